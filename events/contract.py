@@ -1,0 +1,72 @@
+"""The HEXAR topic contract: what a compatible robot records, and what the event log decodes.
+
+The first seven topics are those of the original HEXAR release; the two skill topics are ours (README,
+"Topic contract").
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+ROSOUT = "/rosout"
+TASK_INFO = "/task_info"
+AMCL_POSE = "/amcl_pose"
+JOY_PRIORITY = "/joy_priority"
+IS_CHARGING = "/power/is_charging"
+EPISODIC_MEMORY = "/episodic_memory"
+DIAGNOSTICS = "/diagnostics"
+SAY_EVENTS = "/skills/say/events"
+PIZZA_EVENTS = "/skills/recommend_pizza/events"
+
+LOG_TYPE = "rcl_interfaces/msg/Log"
+STRING_TYPE = "std_msgs/msg/String"
+BOOL_TYPE = "std_msgs/msg/Bool"
+POSE_COV_TYPE = "geometry_msgs/msg/PoseWithCovarianceStamped"
+DIAG_TYPE = "diagnostic_msgs/msg/DiagnosticArray"
+
+ASK_HUMAN_STATUS_NAME = "/skills/skill_ask_human_for_help"
+SAY_STATUS_NAME = "/skills/skill_say"
+PIZZA_STATUS_NAME = "/skills/skill_recommend_pizza"
+
+
+@dataclass(frozen=True)
+class TopicSpec:
+    topic: str
+    type: str
+    fields: str
+    conventions: str
+
+
+CONTRACT: tuple[TopicSpec, ...] = (
+    TopicSpec(ROSOUT, LOG_TYPE, "stamp, level, name, msg",
+              "time = log stamp; Nav2 loggers as in Nav2 Humble; levels 10/20/30/40/50"),
+    TopicSpec(TASK_INFO, STRING_TYPE, "data (JSON: instruction, task_id, task_status, task_error_msg, "
+              "skill_sequence[skill, params, status, error_msg])",
+              "time = bag receive time; status waiting -> Running -> succeeded|failed (any case); "
+              "task_status valid|invalid"),
+    TopicSpec(AMCL_POSE, POSE_COV_TYPE, "header.stamp, pose.pose, pose.covariance[0], [7], [35]",
+              "poor localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 poses"),
+    TopicSpec(JOY_PRIORITY, BOOL_TYPE, "data", "True = joystick (manual) mode holds the base"),
+    TopicSpec(IS_CHARGING, BOOL_TYPE, "data", "True = docked and charging"),
+    TopicSpec(EPISODIC_MEMORY, DIAG_TYPE, "header.stamp, status[].name/message/values",
+              "one status per step, name /skills/skill_ask_human_for_help, values "
+              "[(Module name, skill_ask_human_for_help), (key, str(value))]"),
+    TopicSpec(DIAGNOSTICS, DIAG_TYPE, "header.stamp, status[].level/name/message/values",
+              "1 Hz status of each node"),
+    TopicSpec(SAY_EVENTS, DIAG_TYPE, "header.stamp, status[].message/values",
+              "name /skills/skill_say; message started|finished|timed_out; values text, timeout_s, "
+              "words_per_minute (on start), spoken_s (on end)"),
+    TopicSpec(PIZZA_EVENTS, DIAG_TYPE, "header.stamp, status[].message/values",
+              "name /skills/skill_recommend_pizza; message request|recommendation; values "
+              "available_ingredients (JSON list), recommended_pizza"),
+)
+
+TYPE_OF: dict[str, str] = {spec.topic: spec.type for spec in CONTRACT}
+# ROS 1 recordings carry /rosout as rosgraph_msgs/Log (levels 1/2/4/8/16), accepted as well.
+ROS1_LOG_TYPE = "rosgraph_msgs/msg/Log"
+ROS1_LEVELS = {1: 10, 2: 20, 4: 30, 8: 40, 16: 50}
+ACCEPTED_TYPES: dict[str, frozenset[str]] = {
+    topic: frozenset({typ, ROS1_LOG_TYPE}) if topic == ROSOUT else frozenset({typ})
+    for topic, typ in TYPE_OF.items()
+}
+ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)

@@ -1,0 +1,130 @@
+"""The event log V of one recording, indexed by topic and time, and per-explainer views V_e."""
+
+from __future__ import annotations
+
+from bisect import bisect_left, bisect_right
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+
+from hexar.events import contract as c
+from hexar.events.errors import NoTaskError
+from hexar.events.records import BoolSample, LogLine, PoseSample, StatusRecord, TaskUpdate
+from hexar.events.tasks import Task, build_tasks
+
+
+@dataclass(frozen=True, slots=True)
+class TopicInfo:
+    topic: str
+    type: str
+    count: int
+
+
+def _slice_by_t(items: list[object], times: list[int], start: int | None, end: int | None) -> list[object]:
+    lo = 0 if start is None else bisect_left(times, start)
+    hi = len(items) if end is None else bisect_right(times, end)
+    return items[lo:hi]
+
+
+@dataclass
+class EventLog:
+    """Everything HEXAR decoded from one recording."""
+
+    path: Path
+    storage: str
+    start: int
+    end: int
+    topics: dict[str, TopicInfo]
+    warnings: list[str] = field(default_factory=list)
+    logs: list[LogLine] = field(default_factory=list)
+    task_updates: list[TaskUpdate] = field(default_factory=list)
+    poses: list[PoseSample] = field(default_factory=list)
+    flags: dict[str, list[BoolSample]] = field(default_factory=dict)
+    statuses: dict[str, list[StatusRecord]] = field(default_factory=dict)
+
+    def finish(self) -> None:
+        """Sort by message time: bags are ordered by receive time, which may differ from stamps."""
+        self.logs.sort(key=lambda r: r.t)
+        self.poses.sort(key=lambda r: r.t)
+        for values in self.flags.values():
+            values.sort(key=lambda r: r.t)
+        for records in self.statuses.values():
+            records.sort(key=lambda r: r.t)
+        self.__dict__.pop("tasks", None)
+
+    @cached_property
+    def tasks(self) -> list[Task]:
+        return build_tasks(self.task_updates)
+
+    def task(self, ref: str | None = None) -> Task:
+        """A task by id, by its 1-based order, or by `first`/`latest`; default: the latest user task.
+
+        A recovery task (empty instruction) is the robot's own follow-up; the person asks about the request
+        that failed, so the default skips it.
+        """
+        tasks = self.tasks
+        if not tasks:
+            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages")
+        if ref is None or ref in {"latest", "last"}:
+            user = [t for t in tasks if not t.is_recovery]
+            return max(user or tasks, key=lambda t: t.last_update)
+        if ref == "first":
+            return tasks[0]
+        if ref.isdigit() and 1 <= int(ref) <= len(tasks):
+            return tasks[int(ref) - 1]
+        matches = [t for t in tasks if t.task_id == ref or t.task_id.startswith(ref)]
+        if len(matches) == 1:
+            return matches[0]
+        known = ", ".join(t.task_id for t in tasks)
+        raise NoTaskError(f"no task {ref!r} in {self.path.name} (tasks: {known})")
+
+    def view(self, topics: frozenset[str] | set[str], window: tuple[int, int] | None = None) -> View:
+        """The events of `topics` inside `window` (inclusive), for one explainer."""
+        return View(self, frozenset(topics), window)
+
+
+@dataclass(frozen=True)
+class View:
+    """V_e: an explainer's subset of the events, restricted to a time window."""
+
+    log: EventLog
+    topics: frozenset[str]
+    window: tuple[int, int] | None
+
+    def _bounds(self, pad_before: int = 0) -> tuple[int | None, int | None]:
+        if self.window is None:
+            return None, None
+        return self.window[0] - pad_before, self.window[1]
+
+    def _check(self, topic: str) -> None:
+        if topic not in self.topics:
+            raise KeyError(f"{topic} is not among this explainer's topics")
+
+    def logs(self) -> list[LogLine]:
+        self._check(c.ROSOUT)
+        start, end = self._bounds()
+        return _slice_by_t(self.log.logs, [r.t for r in self.log.logs], start, end)  # type: ignore[return-value]
+
+    def poses(self) -> list[PoseSample]:
+        self._check(c.AMCL_POSE)
+        start, end = self._bounds()
+        return _slice_by_t(self.log.poses, [r.t for r in self.log.poses], start, end)  # type: ignore[return-value]
+
+    def flag_at(self, topic: str, t: int) -> BoolSample | None:
+        """The latest value of a latched flag at time t (it may have been set long before the window)."""
+        self._check(topic)
+        samples = self.log.flags.get(topic, [])
+        i = bisect_right([s.t for s in samples], t)
+        return samples[i - 1] if i else None
+
+    def flags(self, topic: str) -> list[BoolSample]:
+        self._check(topic)
+        samples = self.log.flags.get(topic, [])
+        start, end = self._bounds()
+        return _slice_by_t(samples, [s.t for s in samples], start, end)  # type: ignore[arg-type,return-value]
+
+    def statuses(self, topic: str) -> list[StatusRecord]:
+        self._check(topic)
+        records = self.log.statuses.get(topic, [])
+        start, end = self._bounds()
+        return _slice_by_t(records, [r.t for r in records], start, end)  # type: ignore[arg-type,return-value]

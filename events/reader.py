@@ -1,0 +1,236 @@
+"""Open a recording (rosbag2 sqlite3/mcap folder, or ROS 1 bag) and decode the HEXAR topics into records."""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+from collections.abc import Iterable
+from pathlib import Path
+from typing import Any
+
+from rosbags.highlevel import AnyReader
+from rosbags.typesys import Stores, get_typestore
+from rosbags.typesys.store import Typestore
+
+from hexar.events import contract as c
+from hexar.events.cdr import decode_log, decode_string
+from hexar.events.errors import (
+    CorruptRecordingError,
+    EmptyRecordingError,
+    NotARecordingError,
+    RecordingNotFoundError,
+    UnknownMessageTypeError,
+)
+from hexar.events.log import EventLog, TopicInfo
+from hexar.events.records import BoolSample, LogLine, PoseSample, SkillStep, StatusRecord, TaskUpdate, stamp_ns
+
+_HUMBLE: Typestore | None = None
+
+
+def _humble() -> Typestore:
+    global _HUMBLE
+    if _HUMBLE is None:
+        _HUMBLE = get_typestore(Stores.ROS2_HUMBLE)
+    return _HUMBLE
+
+
+def resolve_path(path: Path) -> Path:
+    """The path AnyReader wants: a rosbag2 folder or a `.bag` file."""
+    if not path.exists():
+        raise RecordingNotFoundError(f"recording not found: {path}")
+    if path.is_file():
+        if path.suffix == ".bag":
+            return path
+        if path.suffix in {".db3", ".mcap"} and (path.parent / "metadata.yaml").is_file():
+            return path.parent
+        raise NotARecordingError(f"not a recording: {path} (expected a rosbag2 folder or a ROS 1 .bag file)")
+    if not (path / "metadata.yaml").is_file():
+        raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml")
+    return path
+
+
+def _yaw(qz: float, qw: float) -> float:
+    import math
+
+    return 2.0 * math.atan2(qz, qw)
+
+
+def parse_task_info(t: int, data: str) -> TaskUpdate | None:
+    """A `/task_info` JSON update, or None when the text is no task update."""
+    try:
+        obj = json.loads(data)
+    except json.JSONDecodeError:
+        return None
+    if not isinstance(obj, dict) or "task_id" not in obj:
+        return None
+    skills = []
+    for step in obj.get("skill_sequence") or []:
+        if not isinstance(step, dict):
+            continue
+        params = step.get("params") or {}
+        skills.append(
+            SkillStep(
+                skill=str(step.get("skill", "")),
+                params=dict(params) if isinstance(params, dict) else {"value": params},
+                status=str(step.get("status", "")),
+                error_msg=str(step.get("error_msg") or ""),
+            )
+        )
+    return TaskUpdate(
+        t=t,
+        task_id=str(obj["task_id"]),
+        instruction=str(obj.get("instruction") or ""),
+        task_status=str(obj.get("task_status") or "valid"),
+        task_error_msg=str(obj.get("task_error_msg") or ""),
+        skills=tuple(skills),
+        raw=data,
+    )
+
+
+def _statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
+    stamp = stamp_ns(msg.header.stamp.sec, msg.header.stamp.nanosec) or t
+    return [
+        StatusRecord(
+            t=stamp,
+            topic=topic,
+            level=int(s.level),
+            name=str(s.name),
+            message=str(s.message),
+            hardware_id=str(s.hardware_id),
+            values=tuple((str(kv.key), str(kv.value)) for kv in s.values),
+        )
+        for s in msg.status
+    ]
+
+
+def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> EventLog:
+    """Read `topics` (default: every topic of the contract) of the recording at `path`.
+
+    Connections on other topics are never deserialised; their counts come from the bag's index.
+    """
+    wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
+    src = resolve_path(Path(path))
+    try:
+        with AnyReader([src], default_typestore=_humble()) as reader:
+            log, complete = _read(reader, src, wanted)
+        if not complete:
+            # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
+            # rosbags then matches no message to its connection; the storage files alone are consistent.
+            files = sorted([*src.glob("*.db3"), *src.glob("*.mcap")])
+            if files:
+                with AnyReader(files, default_typestore=_humble()) as reader:
+                    log, _ = _read(reader, src, wanted)
+        return log
+    except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError):
+        raise
+    except (sqlite3.DatabaseError, OSError, EOFError) as err:
+        raise CorruptRecordingError(f"cannot read {src}: {err}") from err
+    except Exception as err:  # rosbags raises many unrelated classes for damaged files
+        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
+
+
+def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+    """The log, and whether every message the index promised for the selected topics was read."""
+    warnings: list[str] = []
+    infos: dict[str, TopicInfo] = {}
+    for conn in reader.connections:
+        info = infos.setdefault(conn.topic, TopicInfo(conn.topic, conn.msgtype, 0))
+        infos[conn.topic] = TopicInfo(conn.topic, conn.msgtype, info.count + (conn.msgcount or 0))
+    if reader.message_count == 0:
+        raise EmptyRecordingError(f"empty recording: {src} holds no messages")
+
+    known = set(reader.typestore.fielddefs)
+    humble = _humble()
+    selected = []
+    typestores: dict[int, Typestore] = {}
+    for conn in reader.connections:
+        if conn.topic not in wanted:
+            if conn.msgtype not in known and conn.msgtype not in humble.fielddefs:
+                warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
+            continue
+        expected = c.TYPE_OF.get(conn.topic)
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic]:
+            raise UnknownMessageTypeError(
+                f"{conn.topic} has type {conn.msgtype}, but HEXAR reads it as {expected}"
+            )
+        if conn.msgtype in known:
+            typestores[conn.id] = reader.typestore
+        elif conn.msgtype in humble.fielddefs:
+            typestores[conn.id] = humble
+        else:
+            raise UnknownMessageTypeError(f"{conn.topic} has unknown type {conn.msgtype} and the bag defines none")
+        selected.append(conn)
+
+    log = EventLog(
+        path=src,
+        storage=_storage(src),
+        start=reader.start_time if reader.message_count else 0,
+        end=reader.end_time if reader.message_count else 0,
+        topics=dict(sorted(infos.items())),
+        warnings=warnings,
+    )
+    if not selected:
+        return log, True
+    ros2 = reader.is2
+    promised = sum(conn.msgcount or 0 for conn in selected)
+    seen = 0
+    for conn, t, raw in reader.messages(connections=selected):
+        seen += 1
+        ts = typestores[conn.id]
+        msgtype = conn.msgtype
+        if msgtype == c.LOG_TYPE:
+            fast = decode_log(raw) if ros2 else None
+            if fast is not None:
+                sec, nsec, level, name, text = fast
+            else:
+                m = _deser(reader, ts, raw, msgtype, ros2)
+                sec, nsec, level, name, text = m.stamp.sec, m.stamp.nanosec, m.level, m.name, m.msg
+            log.logs.append(LogLine(stamp_ns(sec, nsec) or t, int(level), str(name), str(text)))
+        elif msgtype == c.ROS1_LOG_TYPE:
+            m = _deser(reader, ts, raw, msgtype, ros2)
+            stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
+            level = c.ROS1_LEVELS.get(int(m.level), int(m.level))
+            log.logs.append(LogLine(stamp, level, str(m.name), str(m.msg)))
+        elif msgtype == c.STRING_TYPE:
+            data = decode_string(raw) if ros2 else None
+            if data is None:
+                data = str(_deser(reader, ts, raw, msgtype, ros2).data)
+            if conn.topic == c.TASK_INFO:
+                update = parse_task_info(t, data)
+                if update is None:
+                    warnings.append(f"{conn.topic}: ignored a message that is not task JSON")
+                else:
+                    log.task_updates.append(update)
+        elif msgtype == c.BOOL_TYPE:
+            m = _deser(reader, ts, raw, msgtype, ros2)
+            log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
+        elif msgtype == c.POSE_COV_TYPE:
+            m = _deser(reader, ts, raw, msgtype, ros2)
+            p, cov = m.pose.pose, m.pose.covariance
+            log.poses.append(
+                PoseSample(
+                    stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
+                    float(p.position.x), float(p.position.y),
+                    _yaw(float(p.orientation.z), float(p.orientation.w)),
+                    float(cov[0]), float(cov[7]), float(cov[35]),
+                )
+            )
+        elif msgtype == c.DIAG_TYPE:
+            m = _deser(reader, ts, raw, msgtype, ros2)
+            log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
+    log.finish()
+    return log, seen > 0 or promised == 0
+
+
+def _deser(reader: AnyReader, ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:
+    return ts.deserialize_cdr(raw, msgtype) if ros2 else ts.deserialize_ros1(raw, msgtype)
+
+
+def _storage(src: Path) -> str:
+    if src.suffix == ".bag":
+        return "rosbag1"
+    if any(src.glob("*.mcap")):
+        return "mcap"
+    if any(src.glob("*.db3")):
+        return "sqlite3"
+    return "unknown"

@@ -1,0 +1,96 @@
+"""The registry of component explainers and the module mapping M, both configuration rather than code."""
+
+from __future__ import annotations
+
+import importlib
+import tomllib
+from collections.abc import Iterable, Mapping
+from importlib import resources
+from importlib.metadata import entry_points
+from pathlib import Path
+from typing import Any
+
+from hexar.explainers.base import Explainer, TextModel
+from hexar.explainers.errors import RegistryConfigError, UnknownExplainerError
+
+ENTRY_POINT_GROUP = "hexar.explainers"
+PLANNER = "planner"
+
+
+def _load_class(ref: str) -> type[Any]:
+    module_name, _, attr = ref.partition(":")
+    if not attr:
+        raise RegistryConfigError(f"explainer reference {ref!r} must look like 'package.module:Class'")
+    try:
+        return getattr(importlib.import_module(module_name), attr)  # type: ignore[no-any-return]
+    except (ImportError, AttributeError) as err:
+        raise RegistryConfigError(f"cannot load explainer {ref!r}: {err}") from err
+
+
+def read_config(path: Path | None = None) -> dict[str, Any]:
+    """The mapping file: the packaged `modules.toml`, or the one at `path`."""
+    try:
+        if path is None:
+            text = resources.files("hexar.explainers").joinpath("modules.toml").read_text()
+        else:
+            text = Path(path).read_text()
+        return tomllib.loads(text)
+    except (OSError, tomllib.TOMLDecodeError) as err:
+        raise RegistryConfigError(f"cannot read explainer config {path}: {err}") from err
+
+
+class Registry:
+    """Explainer classes by name, their instances (created on first use), and the module mapping."""
+
+    def __init__(
+        self,
+        classes: Mapping[str, type[Any]],
+        modules: Mapping[str, Iterable[str]],
+        model: TextModel | None = None,
+    ) -> None:
+        self.classes = dict(classes)
+        self.modules = {skill: list(names) for skill, names in modules.items()}
+        self.model = model
+        self._instances: dict[str, Explainer] = {}
+        for skill, names in self.modules.items():
+            for name in names:
+                if name not in self.classes:
+                    raise RegistryConfigError(f"module {skill!r} maps to unknown explainer {name!r}")
+
+    @classmethod
+    def load(cls, model: TextModel | None = None, config: Path | None = None) -> Registry:
+        """Entry points of the `hexar.explainers` group, then the config's own [explainers] and [modules]."""
+        classes: dict[str, type[Any]] = {}
+        for ep in entry_points(group=ENTRY_POINT_GROUP):
+            try:
+                classes[ep.name] = ep.load()
+            except (ImportError, AttributeError) as err:
+                raise RegistryConfigError(f"entry point {ep.name!r} cannot be loaded: {err}") from err
+        data = read_config(None)
+        if config is not None:
+            extra = read_config(config)
+            data = {
+                "modules": {**data.get("modules", {}), **extra.get("modules", {})},
+                "explainers": {**data.get("explainers", {}), **extra.get("explainers", {})},
+            }
+        for name, ref in (data.get("explainers") or {}).items():
+            classes[name] = _load_class(str(ref))
+        return cls(classes, data.get("modules") or {}, model)
+
+    @property
+    def names(self) -> list[str]:
+        return sorted(self.classes)
+
+    def get(self, name: str) -> Explainer:
+        if name not in self.classes:
+            raise UnknownExplainerError(f"no explainer named {name!r} (known: {', '.join(self.names)})")
+        if name not in self._instances:
+            self._instances[name] = self.classes[name](model=self.model, registry=self)
+        return self._instances[name]
+
+    def for_module(self, skill: str) -> list[str]:
+        """Explainers of a robot module; a skill the robot does not have is the planner's to explain."""
+        return self.modules.get(skill) or [PLANNER]
+
+    def descriptions(self) -> dict[str, str]:
+        return {name: str(getattr(self.classes[name], "description", "")) for name in self.names}
