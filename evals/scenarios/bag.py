@@ -102,3 +102,12 @@ class BagBuilder:
                     conns[key] = writer.add_connection(topic, msgtype, typestore=TYPESTORE)
                 writer.write(conns[key], t, TYPESTORE.serialize_cdr(msg, msgtype))
         return out
+
+
+@dataclass(frozen=True)
+class SkillResult:
+    """How a simulated skill execution ended: when, whether it succeeded, and the skill's error message."""
+
+    end: int
+    succeeded: bool
+    error_msg: str = ""

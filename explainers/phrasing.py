@@ -1,0 +1,24 @@
+"""Optional LLM phrasing of a grounded finding; the template text stays the fallback."""
+
+from __future__ import annotations
+
+from hexar.explainers.base import Explanation, TextModel
+from hexar.explainers.errors import ModelError
+from hexar.prompts import load
+
+
+def phrase(model: TextModel | None, prompt_name: str, question: str, facts: str, grounded: Explanation) -> Explanation:
+    """Ask `model` to say `grounded` in its own words, from `facts` only; keep the template on any failure."""
+    if model is None:
+        return grounded
+    messages = [
+        {"role": "system", "content": load(prompt_name)},
+        {"role": "user", "content": f"Facts:\n{facts}\n\nQuestion: {question}\nAnswer:"},
+    ]
+    try:
+        text = model.chat(messages, max_tokens=90).strip()
+    except ModelError:
+        return grounded
+    if not text:
+        return grounded
+    return grounded.model_copy(update={"text": text, "phrased_by": model.name})
