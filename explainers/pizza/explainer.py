@@ -1,0 +1,210 @@
+"""Why this pizza: LIME over the recommender's decision tree, for the recorded request (paper section IV)."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, ClassVar
+
+from hexar.events.contract import PIZZA_EVENTS, PIZZA_STATUS_NAME
+from hexar.events.records import StatusRecord
+from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+
+if TYPE_CHECKING:
+    from hexar.explainers.pizza.recommender import PizzaRecommender
+    from hexar.explainers.registry import Registry
+
+CAUSE = "pizza.ingredients"
+MISMATCH = "pizza.model_mismatch"
+LIME_SAMPLES = 1000
+LIME_SEED = 0
+# LIME fits a local linear model to sampled outputs, so ingredients the tree never tests still get small
+# non-zero weights; anything under this share of the strongest weight is sampling noise, not a reason.
+MIN_SHARE = 0.2
+
+
+@dataclass(frozen=True)
+class Weight:
+    ingredient: str
+    present: bool
+    weight: float
+
+
+def pretty(ingredient: str) -> str:
+    return ingredient.replace("_", " ")
+
+
+def a_pizza(name: str) -> str:
+    return f"{'an' if name[:1].lower() in 'aeio' else 'a'} {name}"
+
+
+def join(words: list[str], last: str = "and") -> str:
+    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} {last} {words[-1]}"
+
+
+def lime_weights(recommender: PizzaRecommender, known: list[str], label: int) -> list[Weight]:
+    """LIME weights of every ingredient toward class `label` at the recorded ingredient vector.
+
+    A fresh LIME explainer per call: it draws from one RandomState, so a shared one would give different
+    weights to the same question asked twice.
+    """
+    from lime.lime_tabular import LimeTabularExplainer
+
+    features = list(range(len(recommender.ingredients)))
+    lime = LimeTabularExplainer(
+        recommender.data,
+        mode="classification",
+        feature_names=recommender.ingredients,
+        class_names=recommender.classes,
+        categorical_features=features,
+        discretize_continuous=False,
+        random_state=LIME_SEED,
+    )
+    row = recommender.vector(known)
+    result = lime.explain_instance(
+        row, recommender.predict_proba, labels=(label,), num_features=len(features), num_samples=LIME_SAMPLES
+    )
+    weights = [
+        Weight(recommender.ingredients[int(i)], bool(row[int(i)] > 0.5), float(w))
+        for i, w in result.as_map()[label]
+    ]
+    return sorted(weights, key=lambda w: -abs(w.weight))
+
+
+def _is_pizza_record(r: StatusRecord) -> bool:
+    # A robot that leaves the status name empty still follows the topic's message convention.
+    return r.name in {PIZZA_STATUS_NAME, ""}
+
+
+def last_pair(records: list[StatusRecord]) -> tuple[StatusRecord | None, StatusRecord | None]:
+    """The last recommendation and the last request made before it (or the last request when none answered)."""
+    pizza = [r for r in records if _is_pizza_record(r)]
+    recommendation = next((r for r in reversed(pizza) if r.message == "recommendation"), None)
+    limit = recommendation.t if recommendation is not None else None
+    request = next(
+        (r for r in reversed(pizza) if r.message == "request" and (limit is None or r.t <= limit)), None
+    )
+    return request, recommendation
+
+
+def parse_ingredients(raw: str) -> list[str] | None:
+    try:
+        value = json.loads(raw)
+    except json.JSONDecodeError:
+        return None
+    if not isinstance(value, list):
+        return None
+    return [str(v) for v in value]
+
+
+class PizzaRecommenderExplainer:
+    """f_e for the `recommend_pizza` skill: which available ingredients made the tree pick the pizza."""
+
+    name: ClassVar[str] = "pizza_recommender"
+    topics: ClassVar[frozenset[str]] = frozenset({PIZZA_EVENTS})
+    description: ClassVar[str] = (
+        "Explains why the robot recommended a particular pizza. The recommender is a decision tree over a "
+        "recipe data set that picks a pizza from the ingredients the person said were available; this "
+        "explainer reads the recorded request and recommendation and uses LIME to tell which of those "
+        "ingredients pushed the choice toward that pizza, and what the robot would have recommended without "
+        "them. Use it for questions like 'why did you suggest a Margherita?' or 'why this pizza?'."
+    )
+
+    def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
+        # The answer is a template over LIME's numbers; the model is kept for the common constructor only.
+        self.model = model
+        self.registry = registry
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        records = context.view(self.topics).statuses(PIZZA_EVENTS)
+        request, recommendation = last_pair(records)
+        if recommendation is None:
+            reason = (
+                "I was asked for a pizza, but no recommendation was recorded."
+                if request is not None
+                else "No pizza recommendation was recorded in this task."
+            )
+            return Explanation.not_enough(self.name, reason)
+        if request is None:
+            return Explanation.not_enough(
+                self.name, "The recommendation was recorded, but not the ingredients it was made from."
+            )
+        raw = request.get("available_ingredients", "") or ""
+        available = parse_ingredients(raw)
+        pizza = (recommendation.get("recommended_pizza", "") or "").strip()
+        if available is None or not pizza:
+            return Explanation.not_enough(self.name, "The recorded request or recommendation is unreadable.")
+
+        evidence = [
+            Evidence(cause=CAUSE, topic=PIZZA_EVENTS, t=request.t, item=f"available_ingredients = {raw}"),
+            Evidence(cause=CAUSE, topic=PIZZA_EVENTS, t=recommendation.t, item=f"recommended_pizza = {pizza}"),
+        ]
+        return self._explain(pizza, available, evidence)
+
+    def _explain(self, pizza: str, available: list[str], evidence: list[Evidence]) -> Explanation:
+        from hexar.explainers.pizza.recommender import default_recommender
+
+        rec = default_recommender()
+        known, unknown = rec.known(available)
+        predicted = rec.recommend(known)
+        details = [f"available ingredients: {', '.join(available) or 'none'}", f"recorded recommendation: {pizza}",
+                   f"my recipe model's choice for them: {predicted}"]
+        if unknown:
+            details.append(f"not in my recipe data, so ignored: {', '.join(unknown)}")
+        label = rec.class_index(pizza)
+        if label is None:
+            text = (
+                f"I recommended {a_pizza(pizza)}, but that pizza is not in my recipe data, so I can't say which "
+                f"ingredients led to it; from the same ingredients my model picks {a_pizza(predicted)}."
+            )
+            return Explanation(explainer=self.name, text=text, causes=[MISMATCH], evidence=evidence,
+                               details=details, confidence=0.3)
+        pizza = rec.classes[label]
+        weights = lime_weights(rec, known, label)
+        details.append(f"LIME weights toward {pizza} (ingredient, present?, weight), strongest first:")
+        details.extend(f"  {w.ingredient}, {'present' if w.present else 'absent'}, {w.weight:+.3f}"
+                       for w in weights if abs(w.weight) >= 0.001)
+        strongest = max((abs(w.weight) for w in weights), default=0.0)
+        floor = max(MIN_SHARE * strongest, 1e-6)
+        # An ingredient the tree never tests cannot have changed its choice, whatever LIME's noise says.
+        used = rec.split_features()
+        strong = [w for w in weights if w.weight >= floor and w.ingredient in used]
+        reasons = [w.ingredient for w in strong if w.present][:3]
+        missing = [w.ingredient for w in strong if not w.present][:2]
+
+        sentences = []
+        if predicted == pizza:
+            if reasons:
+                sentences.append(f"I recommended {a_pizza(pizza)} because you have {join(list(map(pretty, reasons)))}.")
+            else:
+                sentences.append(f"I recommended {a_pizza(pizza)} because none of your ingredients pointed more "
+                                 "strongly to another pizza.")
+        else:
+            sentences.append(
+                f"I recommended {a_pizza(pizza)}, but my recipe model now picks {a_pizza(predicted)} for the same "
+                "ingredients, so the recording and the model disagree."
+            )
+            if reasons:
+                sentences.append(f"What speaks for {a_pizza(pizza)} is that you have "
+                                 f"{join(list(map(pretty, reasons)))}.")
+        if missing:
+            sentences.append(f"Not having {join(list(map(pretty, missing)), 'or')} also pointed to it.")
+        causes = [CAUSE] if predicted == pizza else [CAUSE, MISMATCH]
+        return Explanation(
+            explainer=self.name,
+            text=" ".join(sentences),
+            causes=causes,
+            evidence=evidence,
+            counterfactual=self._counterfactual(rec, known, reasons, pizza),
+            details=details,
+            confidence=1.0 if predicted == pizza else 0.5,
+        )
+
+    @staticmethod
+    def _counterfactual(rec: PizzaRecommender, known: list[str], reasons: list[str], pizza: str) -> str | None:
+        """Ask the tree itself what it picks without each reason in turn, so the claim is computed, not guessed."""
+        for ingredient in reasons:
+            other = rec.recommend([k for k in known if k != ingredient])
+            if other != pizza:
+                return f"Had you not had {pretty(ingredient)}, I would have recommended {a_pizza(other)}."
+        return None

@@ -1,0 +1,110 @@
+"""Planner explainer: validates the plan against the skill catalogue and the request, then explains."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, ClassVar
+
+from hexar.events import contract as c
+from hexar.events.tasks import Task
+from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.phrasing import phrase
+from hexar.explainers.plan_check import Finding, check_plan
+
+if TYPE_CHECKING:
+    from hexar.explainers.registry import Registry
+
+_LEAD = {
+    "planner.request_beyond_capabilities": "I couldn't do that because {msg}.",
+    "planner.invalid_skill": "I didn't start because my plan was faulty: {msg}.",
+    "planner.invalid_parameter": "I didn't start because my plan was faulty: {msg}.",
+    "planner.plan_not_fulfilling_request": "I did the wrong thing because my plan did not match your request: {msg}.",
+}
+_FIX = {
+    "planner.request_beyond_capabilities": "Ask someone with hands for this one; I can move around, talk, "
+    "recommend pizzas and ask people for help.",
+    "planner.invalid_skill": "Ask me again; if it happens again, the task planner needs fixing.",
+    "planner.invalid_parameter": "Ask me again and name one of my places: the kitchen, the dining room or the "
+    "living room.",
+    "planner.plan_not_fulfilling_request": "Ask me again, saying exactly what to do and where.",
+}
+
+
+def plan_of(task: Task) -> list[tuple[str, dict[str, object]]]:
+    return [(run.skill, run.params) for run in task.skills]
+
+
+def task_findings(task: Task) -> list[Finding]:
+    return check_plan(task.instruction, plan_of(task))
+
+
+class PlannerExplainer:
+    """Explains task-planning problems: invalid plans, wrong plans and impossible requests."""
+
+    name: ClassVar[str] = "planner"
+    topics: ClassVar[frozenset[str]] = frozenset({c.TASK_INFO})
+    description: ClassVar[str] = (
+        "Task planning: how the robot turned the request into a plan of skills. Use it for questions about "
+        "what the robot decided to do, a plan that was rejected, a step the robot does not have, a wrong "
+        "place, doing something different from what was asked, or a request the robot cannot do at all."
+    )
+
+    def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
+        self.model = model
+        self.registry = registry
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        task = context.task
+        findings = task_findings(task)
+        update = task.updates[-1]
+        if not findings:
+            if not task.valid:
+                # The robot rejected the plan for a reason our catalogue does not know: report its own words.
+                return Explanation(
+                    explainer=self.name,
+                    text=f"My planner rejected the plan: {task.error_msg or 'it gave no reason'}.",
+                    causes=["planner.invalid_plan"],
+                    evidence=[Evidence(cause="planner.invalid_plan", topic=c.TASK_INFO, t=update.t,
+                                       item=task.error_msg)],
+                    confidence=0.5,
+                )
+            steps = ", then ".join(run.label() for run in task.skills) or "nothing"
+            return Explanation(
+                explainer=self.name,
+                text=f"My plan for \"{task.instruction}\" looks right to me: {steps}.",
+                causes=["planner.plan_ok"],
+                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=update.t,
+                                   item=task.instruction)],
+                details=[f"Plan: {steps}.", f"Outcome: {task.outcome}."],
+            )
+        causes = list(dict.fromkeys(f.cause for f in findings))
+        first = findings[0]
+        evidence = []
+        for f in findings:
+            if f.step is not None and f.step < len(update.skills):
+                item = update.skills[f.step].skill
+            else:
+                item = task.instruction
+            evidence.append(Evidence(cause=f.cause, topic=c.TASK_INFO, t=update.t, item=item))
+        if task.error_msg:
+            evidence.append(Evidence(cause=first.cause, topic=c.TASK_INFO, t=update.t, item=task.error_msg))
+        text = _LEAD[first.cause].format(msg=first.message)
+        details = [f.message[0].upper() + f.message[1:] + "." for f in findings]
+        details.append("Plan: " + (", then ".join(run.label() for run in task.skills) or "(empty)") + ".")
+        if task.error_msg:
+            details.append(f"The plan check said: {task.error_msg}")
+        counterfactual = None
+        if first.cause == "planner.invalid_parameter":
+            counterfactual = "Had every step named a valid place and all its parameters, I would have started the task."
+        elif first.cause == "planner.invalid_skill":
+            counterfactual = "Had the plan used only skills I have, I would have started the task."
+        grounded = Explanation(
+            explainer=self.name,
+            text=text,
+            causes=causes,
+            evidence=evidence,
+            counterfactual=counterfactual,
+            fix=_FIX[first.cause],
+            details=details,
+        )
+        facts = "\n".join([f"Request: {task.instruction}", *details])
+        return phrase(self.model, "planner", question, facts, grounded)

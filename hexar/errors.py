@@ -1,0 +1,13 @@
+"""Errors every HEXAR command reports as one line."""
+
+from __future__ import annotations
+
+from hexar.events.errors import EventsError
+from hexar.explainers.errors import ExplainerError
+
+
+class HexarError(Exception):
+    """A user-facing error outside the event log and the explainers (bad question, bad option)."""
+
+
+USER_ERRORS: tuple[type[Exception], ...] = (HexarError, EventsError, ExplainerError)

@@ -1,0 +1,86 @@
+"""Human-readable and JSON renderings of a recording for `hexar inspect` and `hexar runs`."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+
+
+def clock(t: int) -> str:
+    """Wall-clock time of a nanosecond stamp, to the millisecond."""
+    return datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S") + f".{t // 1_000_000 % 1000:03d}"
+
+
+def task_dict(task: Task) -> dict[str, Any]:
+    start, end = task.window()
+    return {
+        "task_id": task.task_id,
+        "order": task.order,
+        "instruction": task.instruction,
+        "recovery": task.is_recovery,
+        "valid": task.valid,
+        "error_msg": task.error_msg,
+        "outcome": task.outcome,
+        "created_ns": task.created,
+        "last_update_ns": task.last_update,
+        "window_ns": [start, end],
+        "skills": [
+            {
+                "index": run.index,
+                "skill": run.skill,
+                "params": run.params,
+                "status": run.state,
+                "error_msg": run.error_msg,
+                "history": [{"t_ns": ch.t, "status": ch.status, "error_msg": ch.error_msg} for ch in run.history],
+            }
+            for run in task.skills
+        ],
+    }
+
+
+def log_dict(log: EventLog) -> dict[str, Any]:
+    return {
+        "path": str(log.path),
+        "storage": log.storage,
+        "start_ns": log.start,
+        "end_ns": log.end,
+        "duration_s": round((log.end - log.start) / 1e9, 3),
+        "topics": [{"topic": i.topic, "type": i.type, "count": i.count} for i in log.topics.values()],
+        "tasks": [task_dict(t) for t in log.tasks],
+        "warnings": list(log.warnings),
+    }
+
+
+def print_inspection(console: Console, log: EventLog) -> None:
+    console.print(f"[bold]{log.path.name}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
+                  f"{clock(log.start)} to {clock(log.end)} UTC")
+    topics = Table("topic", "type", "messages", title="Topics", title_justify="left")
+    for info in log.topics.values():
+        topics.add_row(info.topic, info.type, str(info.count))
+    console.print(topics)
+    for task in log.tasks:
+        label = "recovery task" if task.is_recovery else f"\"{task.instruction}\""
+        colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
+        console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
+                      f"[{colour}]{task.outcome}[/{colour}]")
+        if not task.valid:
+            console.print(f"  invalid plan: {task.error_msg}")
+        table = Table("#", "skill", "status", "started", "ended", "error")
+        for run in task.skills:
+            started = run.time_of("running")
+            ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
+            table.add_row(str(run.index + 1), run.label(), run.state,
+                          clock(started) if started else "", clock(ended) if ended else "", run.error_msg)
+        console.print(table)
+        start, end = task.window()
+        console.print(f"  window: {clock(start)} to {clock(end)}")
+    if not log.tasks:
+        console.print("[yellow]No task to explain: this recording has no /task_info.[/yellow]")
+    for warning in log.warnings:
+        console.print(f"[yellow]warning:[/yellow] {warning}")
