@@ -1,0 +1,159 @@
+"""The text-to-speech explainer: the TTS stops an utterance at a fixed timeout (paper section IV, template)."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, ClassVar
+
+from hexar.events.contract import SAY_EVENTS, SAY_STATUS_NAME
+from hexar.events.records import StatusRecord
+from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+
+if TYPE_CHECKING:
+    from hexar.explainers.registry import Registry
+
+TIMEOUT = "tts.timeout"
+COMPLETED = "tts.completed"
+# What the original TTS uses when a robot does not record its settings.
+DEFAULT_TIMEOUT_S = 20.0
+DEFAULT_WPM = 150.0
+ENDS = frozenset({"finished", "timed_out"})
+
+
+def _float(record: StatusRecord, key: str) -> float | None:
+    raw = record.get(key)
+    try:
+        return float(raw) if raw is not None else None
+    except ValueError:
+        return None
+
+
+def _num(x: float) -> str:
+    """20.0 -> "20", 38.4 -> "38.4": a person hears whole seconds without a trailing ".0"."""
+    return f"{x:.1f}".removesuffix(".0")
+
+
+def render(record: StatusRecord) -> str:
+    return f"{record.message}: " + ", ".join(f"{k} = {v}" for k, v in record.data_items())
+
+
+def last_utterance(records: list[StatusRecord]) -> tuple[StatusRecord | None, StatusRecord | None]:
+    """The last `started` record and the end (`finished`/`timed_out`) that follows it, if any."""
+    say = [r for r in records if r.name in {SAY_STATUS_NAME, ""}]
+    starts = [i for i, r in enumerate(say) if r.message == "started"]
+    if not starts:
+        return None, None
+    i = starts[-1]
+    end = next((r for r in say[i + 1:] if r.message in ENDS), None)
+    return say[i], end
+
+
+class TextToSpeechExplainer:
+    """f_e for the `say` skill: did the utterance finish, or did the TTS timeout cut it off, and why."""
+
+    name: ClassVar[str] = "text_to_speech"
+    topics: ClassVar[frozenset[str]] = frozenset({SAY_EVENTS})
+    description: ClassVar[str] = (
+        "Explains what happened when the robot spoke through its text-to-speech: whether it said the whole "
+        "message or stopped in the middle because the speech has a fixed time limit (20 seconds by default) "
+        "and the message was too long to say within it. It reads the recorded utterance, its length, the "
+        "speaking rate and the timeout. Use it for questions like 'why did you stop talking?', 'why didn't "
+        "you finish the message?' or 'what did you say?'."
+    )
+
+    def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
+        # The paper answers this module from a template; the model is kept for the common constructor only.
+        self.model = model
+        self.registry = registry
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        started, end = last_utterance(context.view(self.topics).statuses(SAY_EVENTS))
+        if started is None:
+            return Explanation.not_enough(self.name, "Nothing was said through my speech in this task.")
+        if end is None:
+            return Explanation.not_enough(
+                self.name, "I started speaking, but the recording does not show how the utterance ended."
+            )
+        text = started.get("text", "") or ""
+        words = len(text.split())
+        timeout = _float(started, "timeout_s")
+        wpm = _float(started, "words_per_minute")
+        details = [render(started), render(end)]
+        if timeout is None:
+            details.append(f"timeout not recorded; assumed the default {_num(DEFAULT_TIMEOUT_S)} s")
+        if wpm is None:
+            details.append(f"speaking rate not recorded; assumed {_num(DEFAULT_WPM)} words per minute")
+        timeout = timeout if timeout is not None else DEFAULT_TIMEOUT_S
+        wpm = wpm if wpm is not None and wpm > 0 else DEFAULT_WPM
+        needed = words / wpm * 60.0
+        details.append(f"{words} words at {_num(wpm)} words per minute need about {_num(needed)} s")
+        if end.message == "timed_out":
+            return self._timed_out(started, end, text, words, timeout, wpm, needed, details)
+        return self._finished(started, end, words, timeout, details)
+
+    def _timed_out(
+        self,
+        started: StatusRecord,
+        end: StatusRecord,
+        text: str,
+        words: int,
+        timeout: float,
+        wpm: float,
+        needed: float,
+        details: list[str],
+    ) -> Explanation:
+        said = end.get("text_said")
+        said_words = len(said.split()) if said is not None else None
+        max_words = math.floor(timeout * wpm / 60.0)
+        # A round timeout that would have fitted the whole message: the next multiple of 5 s above the need.
+        enough = math.ceil(needed / 5.0) * 5
+        if enough <= needed:
+            enough += 5
+        sentence = (
+            f"I stopped talking because my speech has a {_num(timeout)}-second limit and the message needed "
+            f"about {round(needed)} seconds ({words} words at {_num(wpm)} words per minute)."
+        )
+        if said_words is not None:
+            sentence += f" I got through the first {said_words} of {words} words."
+            details.append(f"said before the cut: {said!r}")
+        details.append(f"the limit fits about {max_words} words at that rate")
+        return Explanation(
+            explainer=self.name,
+            text=sentence,
+            causes=[TIMEOUT],
+            evidence=[
+                Evidence(cause=TIMEOUT, topic=SAY_EVENTS, t=started.t, item=render(started)),
+                Evidence(cause=TIMEOUT, topic=SAY_EVENTS, t=end.t, item=render(end)),
+            ],
+            counterfactual=(
+                f"Had the message been shorter than about {max_words} words, or had the timeout been "
+                f"{enough} seconds, I would have finished it."
+            ),
+            fix="Ask for a shorter message, or split it into several shorter ones.",
+            details=details,
+        )
+
+    def _finished(
+        self,
+        started: StatusRecord,
+        end: StatusRecord,
+        words: int,
+        timeout: float,
+        details: list[str],
+    ) -> Explanation:
+        spoken = _float(end, "spoken_s")
+        took = spoken if spoken is not None else (end.t - started.t) / 1e9
+        text = (
+            f"I said the whole message ({words} words); it took {_num(took)} seconds, within my "
+            f"{_num(timeout)}-second speech limit."
+        )
+        return Explanation(
+            explainer=self.name,
+            text=text,
+            causes=[COMPLETED],
+            evidence=[
+                Evidence(cause=COMPLETED, topic=SAY_EVENTS, t=started.t, item=render(started)),
+                Evidence(cause=COMPLETED, topic=SAY_EVENTS, t=end.t, item=render(end)),
+            ],
+            details=details,
+        )

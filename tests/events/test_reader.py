@@ -1,0 +1,154 @@
+from __future__ import annotations
+
+import sqlite3
+from pathlib import Path
+
+import pytest
+
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events import contract as c
+from hexar.events import read_recording
+from hexar.events.errors import (
+    CorruptRecordingError,
+    EmptyRecordingError,
+    NotARecordingError,
+    NoTaskError,
+    RecordingNotFoundError,
+    UnknownMessageTypeError,
+)
+from tests.events.helpers import T0, two_skill_task
+
+
+def _full_bag() -> BagBuilder:
+    b = BagBuilder()
+    b.log(T0 + 5, "controller_server", 40, "Failed to make progress")
+    b.log(T0 + 3, "bt_navigator", 20, "Begin navigating from current location (0.00, 0.00) to (4.20, 2.10)")
+    b.pose(T0 + 7, 1.0, 2.0, 0.5, 0.31, 0.29, 0.05)
+    b.flag(T0 + 1, c.JOY_PRIORITY, True)
+    b.flag(T0 + 2, c.IS_CHARGING, False)
+    b.status(T0 + 9, c.EPISODIC_MEMORY, c.ASK_HUMAN_STATUS_NAME, "Detecting",
+             [("Module name", "skill_ask_human_for_help"), ("person_distance", "5.2")])
+    two_skill_task(b, T0, "task-a", fail_second=True)
+    return b
+
+
+@pytest.mark.parametrize("storage", ["sqlite3", "mcap"])
+def test_contract_topics_decode_into_typed_records(tmp_path: Path, storage: str) -> None:
+    log = read_recording(_full_bag().write(tmp_path / "run", storage))  # type: ignore[arg-type]
+    assert log.storage == storage
+    # stamps from the messages themselves, ordered by stamp even though the bag orders by receive time
+    assert [(r.t, r.name, r.level_name) for r in log.logs] == [
+        (T0 + 3, "bt_navigator", "INFO"), (T0 + 5, "controller_server", "ERROR")]
+    pose = log.poses[0]
+    assert pose.t == T0 + 7 and pose.cov_xy == pytest.approx(0.30) and pose.yaw == pytest.approx(0.5)
+    assert [s.value for s in log.flags[c.JOY_PRIORITY]] == [True]
+    assert log.flags[c.IS_CHARGING][0].value is False
+    rec = log.statuses[c.EPISODIC_MEMORY][0]
+    assert rec.get("person_distance") == "5.2" and rec.data_items() == (("person_distance", "5.2"),)
+    assert isinstance(log.logs[0].t, int)
+
+
+def test_unsubscribed_topics_are_counted_but_not_decoded(tmp_path: Path) -> None:
+    b = _full_bag()
+    log = read_recording(b.write(tmp_path / "run"), topics={c.TASK_INFO})
+    assert log.logs == [] and log.poses == []
+    assert log.topics[c.ROSOUT].count == 2 and len(log.tasks) == 1
+
+
+def test_missing_path(tmp_path: Path) -> None:
+    with pytest.raises(RecordingNotFoundError, match="not found"):
+        read_recording(tmp_path / "nope")
+
+
+def test_not_a_bag(tmp_path: Path) -> None:
+    (tmp_path / "notes.txt").write_text("hello")
+    with pytest.raises(NotARecordingError):
+        read_recording(tmp_path)
+    with pytest.raises(NotARecordingError):
+        read_recording(tmp_path / "notes.txt")
+
+
+@pytest.mark.parametrize("storage", ["sqlite3", "mcap"])
+def test_truncated_storage_file_is_corrupt(tmp_path: Path, storage: str) -> None:
+    path = _full_bag().write(tmp_path / "run", storage)  # type: ignore[arg-type]
+    data_file = next(p for p in path.iterdir() if p.suffix in {".db3", ".mcap"})
+    data_file.write_bytes(data_file.read_bytes()[: data_file.stat().st_size // 3])
+    with pytest.raises(CorruptRecordingError):
+        read_recording(path)
+
+
+def test_garbage_db3_is_corrupt(tmp_path: Path) -> None:
+    path = _full_bag().write(tmp_path / "run")
+    (path / "run.db3").write_bytes(b"\x00garbage" * 100)
+    with pytest.raises(CorruptRecordingError):
+        read_recording(path)
+
+
+def test_contract_topic_with_wrong_type_is_rejected(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import TYPESTORE
+
+    b = BagBuilder()
+    b.raw(T0, c.TASK_INFO, "std_msgs/msg/Int32", TYPESTORE.types["std_msgs/msg/Int32"](data=3))
+    with pytest.raises(UnknownMessageTypeError, match="/task_info"):
+        read_recording(b.write(tmp_path / "run"))
+
+
+def test_unknown_type_without_definition_is_rejected(tmp_path: Path) -> None:
+    path = _full_bag().write(tmp_path / "run")
+    db = sqlite3.connect(path / "run.db3")
+    db.execute("UPDATE topics SET type='my_msgs/msg/Mystery' WHERE name='/rosout'")
+    db.execute("DELETE FROM message_definitions")
+    db.commit()
+    db.close()
+    meta = (path / "metadata.yaml").read_text().replace("rcl_interfaces/msg/Log", "my_msgs/msg/Mystery")
+    (path / "metadata.yaml").write_text(meta)
+    with pytest.raises((UnknownMessageTypeError, CorruptRecordingError), match="Mystery"):
+        read_recording(path)
+
+
+def test_empty_bag(tmp_path: Path) -> None:
+    from rosbags.rosbag2 import Writer
+
+    from hexar.evals.scenarios.bag import TYPESTORE
+
+    with Writer(tmp_path / "empty", version=9) as w:
+        w.add_connection(c.ROSOUT, c.LOG_TYPE, typestore=TYPESTORE)
+    with pytest.raises(EmptyRecordingError):
+        read_recording(tmp_path / "empty")
+
+
+def test_bag_without_task_info_has_no_task(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "amcl", 20, "initialPoseReceived")
+    log = read_recording(b.write(tmp_path / "run"))
+    assert log.tasks == []
+    with pytest.raises(NoTaskError, match="no task to explain"):
+        log.task()
+
+
+@pytest.mark.parametrize("name", ["rosbag2_talker_sqlite3", "rosbag2_talker_mcap", "gps_vehicle_run"])
+def test_real_recordings_open_and_have_no_task(real_bags: Path, name: str) -> None:
+    log = read_recording(real_bags / name)
+    assert log.logs, "the real bags all carry /rosout lines"
+    assert log.tasks == []
+    with pytest.raises(NoTaskError):
+        log.task()
+
+
+def test_real_bag_without_type_definitions_uses_humble_types(real_bags: Path) -> None:
+    log = read_recording(real_bags / "gps_vehicle_run")
+    assert len(log.logs) == 17
+    assert {r.name for r in log.logs} >= {"rosbag2_recorder"}
+    assert any("ackermann_msgs/msg/AckermannDriveStamped" in w for w in log.warnings)
+    # one node's clock is two months off: its line keeps its own stamp, and sorting puts it first
+    assert log.logs[0].t < log.start
+
+
+def test_task_window_of_a_failed_skill(tmp_path: Path) -> None:
+    b = BagBuilder()
+    two_skill_task(b, T0, "task-a", fail_second=True)
+    task = read_recording(b.write(tmp_path / "run")).task()
+    assert task.outcome == "failed"
+    assert task.failed_skill is not None and task.failed_skill.skill == "say"
+    assert task.window() == (T0 + sec_ns(10), T0 + sec_ns(15))
+    assert task.failed_skill.error_msg == "The skill has timed out"
