@@ -1,4 +1,4 @@
-"""The text-to-speech explainer: the TTS stops an utterance at a fixed timeout (paper section IV, template)."""
+"""The text-to-speech explainer: the TTS stops an utterance at a fixed timeout (paper section IV)."""
 
 from __future__ import annotations
 

@@ -33,7 +33,9 @@ def scenario_ingredients(variant: int, rng: random.Random) -> list[str]:
     return items
 
 
-def simulate_recommend_pizza(b: BagBuilder, rng: random.Random, start: int, available: Sequence[str]) -> SkillResult:
+def simulate_recommend_pizza(
+    b: BagBuilder, rng: random.Random, start: int, available: Sequence[str]
+) -> SkillResult:
     """Publish the request, then the recommendation after the tree's (short) think time.
 
     An ingredient the recipe data lacks makes the skill fail after its request, as the real skill would.

@@ -14,26 +14,26 @@ WARN = 1  # diagnostic_msgs/DiagnosticStatus.WARN
 
 LONG_MESSAGES: tuple[str, ...] = (
     # 1: a message to pass on to the family
-    "Hello everyone, this is a message from Anna. She asked me to tell you that her train from Barcelona has "
-    "been delayed by about two hours because of works on the line near Girona, so she will not be home for "
-    "dinner as planned. Please do not wait for her to eat; she will get something at the station. She also "
-    "asked that somebody takes the laundry out of the machine before it starts to smell, feeds the cat around "
-    "seven, and checks that the back door is locked before going to bed. She will call again as soon as the "
-    "train leaves, and she sends a big hug to the children.",
+    "Hello everyone, this is a message from Anna. She asked me to tell you that her train from Barcelona "
+    "has been delayed by about two hours because of works on the line near Girona, so she will not be "
+    "home for dinner as planned. Please do not wait for her to eat; she will get something at the "
+    "station. She also asked that somebody takes the laundry out of the machine before it starts to "
+    "smell, feeds the cat around seven, and checks that the back door is locked before going to bed. She "
+    "will call again as soon as the train leaves, and she sends a big hug to the children.",
     # 2: a recipe read out step by step
-    "Here is the recipe for a Margherita pizza. Mix five hundred grams of flour with three hundred and twenty "
-    "millilitres of warm water, seven grams of dry yeast, a spoon of olive oil and ten grams of salt. Knead "
-    "the dough for ten minutes until it is smooth, cover it and let it rise for two hours. Divide it into "
-    "three balls and stretch each one by hand into a thin round base. Spread crushed tomatoes on top, add "
-    "torn mozzarella and a pinch of salt, then bake in the hottest oven you have for about eight minutes. "
-    "Finish with fresh basil leaves and a drizzle of olive oil.",
+    "Here is the recipe for a Margherita pizza. Mix five hundred grams of flour with three hundred and "
+    "twenty millilitres of warm water, seven grams of dry yeast, a spoon of olive oil and ten grams of "
+    "salt. Knead the dough for ten minutes until it is smooth, cover it and let it rise for two hours. "
+    "Divide it into three balls and stretch each one by hand into a thin round base. Spread crushed "
+    "tomatoes on top, add torn mozzarella and a pinch of salt, then bake in the hottest oven you have "
+    "for about eight minutes. Finish with fresh basil leaves and a drizzle of olive oil.",
     # 3: the day's schedule
-    "Good morning. Here is your schedule for today. At nine you have a video call with the insurance company "
-    "about the car. At half past ten the physiotherapist comes for your knee exercises, which take about "
-    "forty minutes. Lunch is at one, and your daughter said she would join you. At three you need to take "
-    "your blood pressure tablet with a glass of water. At four the pharmacy delivers your new prescription, "
-    "so please stay at home. In the evening there is the football match at eight, and tomorrow the rubbish "
-    "collection is early, so the bins should go out tonight.",
+    "Good morning. Here is your schedule for today. At nine you have a video call with the insurance "
+    "company about the car. At half past ten the physiotherapist comes for your knee exercises, which "
+    "take about forty minutes. Lunch is at one, and your daughter said she would join you. At three you "
+    "need to take your blood pressure tablet with a glass of water. At four the pharmacy delivers your "
+    "new prescription, so please stay at home. In the evening there is the football match at eight, and "
+    "tomorrow the rubbish collection is early, so the bins should go out tonight.",
 )
 SHORT_MESSAGES: tuple[str, ...] = (
     "I have arrived in the kitchen.",
@@ -63,10 +63,10 @@ def simulate_say(
     timeout_s: float = 20.0,
     words_per_minute: float = 150.0,
 ) -> SkillResult:
-    """Speak `text`: `finished` after its spoken length, or `timed_out` at the TTS timeout with what was said."""
+    """Speak `text`: `finished` after its spoken length, or `timed_out` at the timeout with what was said."""
     t0 = start + sec_ns(rng.uniform(0.05, 0.2))
-    b.status(t0, SAY_EVENTS, SAY_STATUS_NAME, "started",
-             [MODULE, ("text", text), ("timeout_s", f"{timeout_s:g}"), ("words_per_minute", f"{words_per_minute:g}")])
+    settings = [("timeout_s", f"{timeout_s:g}"), ("words_per_minute", f"{words_per_minute:g}")]
+    b.status(t0, SAY_EVENTS, SAY_STATUS_NAME, "started", [MODULE, ("text", text), *settings])
     words = text.split()
     # A real voice does not keep an exact rate: pauses at punctuation make it a few percent slower or faster.
     spoken = len(words) / words_per_minute * 60.0 * rng.uniform(0.97, 1.04)

@@ -77,7 +77,7 @@ def _is_pizza_record(r: StatusRecord) -> bool:
 
 
 def last_pair(records: list[StatusRecord]) -> tuple[StatusRecord | None, StatusRecord | None]:
-    """The last recommendation and the last request made before it (or the last request when none answered)."""
+    """The last recommendation and the last request before it (or just the last request, if unanswered)."""
     pizza = [r for r in records if _is_pizza_record(r)]
     recommendation = next((r for r in reversed(pizza) if r.message == "recommendation"), None)
     limit = recommendation.t if recommendation is not None else None
@@ -137,7 +137,9 @@ class PizzaRecommenderExplainer:
 
         evidence = [
             Evidence(cause=CAUSE, topic=PIZZA_EVENTS, t=request.t, item=f"available_ingredients = {raw}"),
-            Evidence(cause=CAUSE, topic=PIZZA_EVENTS, t=recommendation.t, item=f"recommended_pizza = {pizza}"),
+            Evidence(
+                cause=CAUSE, topic=PIZZA_EVENTS, t=recommendation.t, item=f"recommended_pizza = {pizza}"
+            ),
         ]
         return self._explain(pizza, available, evidence)
 
@@ -147,15 +149,18 @@ class PizzaRecommenderExplainer:
         rec = default_recommender()
         known, unknown = rec.known(available)
         predicted = rec.recommend(known)
-        details = [f"available ingredients: {', '.join(available) or 'none'}", f"recorded recommendation: {pizza}",
-                   f"my recipe model's choice for them: {predicted}"]
+        details = [
+            f"available ingredients: {', '.join(available) or 'none'}",
+            f"recorded recommendation: {pizza}",
+            f"my recipe model's choice for them: {predicted}",
+        ]
         if unknown:
             details.append(f"not in my recipe data, so ignored: {', '.join(unknown)}")
         label = rec.class_index(pizza)
         if label is None:
             text = (
-                f"I recommended {a_pizza(pizza)}, but that pizza is not in my recipe data, so I can't say which "
-                f"ingredients led to it; from the same ingredients my model picks {a_pizza(predicted)}."
+                f"I recommended {a_pizza(pizza)}, but that pizza is not in my recipe data, so I can't say "
+                f"which ingredients led to it; from the same ingredients my model picks {a_pizza(predicted)}."
             )
             return Explanation(explainer=self.name, text=text, causes=[MISMATCH], evidence=evidence,
                                details=details, confidence=0.3)
@@ -172,37 +177,41 @@ class PizzaRecommenderExplainer:
         reasons = [w.ingredient for w in strong if w.present][:3]
         missing = [w.ingredient for w in strong if not w.present][:2]
 
+        have = join([pretty(r) for r in reasons]) if reasons else ""
         sentences = []
         if predicted == pizza:
             if reasons:
-                sentences.append(f"I recommended {a_pizza(pizza)} because you have {join(list(map(pretty, reasons)))}.")
+                sentences.append(f"I recommended {a_pizza(pizza)} because you have {have}.")
             else:
-                sentences.append(f"I recommended {a_pizza(pizza)} because none of your ingredients pointed more "
-                                 "strongly to another pizza.")
+                sentences.append(f"I recommended {a_pizza(pizza)} because none of your ingredients pointed "
+                                 "more strongly to another pizza.")
         else:
             sentences.append(
-                f"I recommended {a_pizza(pizza)}, but my recipe model now picks {a_pizza(predicted)} for the same "
-                "ingredients, so the recording and the model disagree."
+                f"I recommended {a_pizza(pizza)}, but my recipe model now picks {a_pizza(predicted)} for the "
+                "same ingredients, so the recording and the model disagree."
             )
             if reasons:
-                sentences.append(f"What speaks for {a_pizza(pizza)} is that you have "
-                                 f"{join(list(map(pretty, reasons)))}.")
+                sentences.append(f"What speaks for {a_pizza(pizza)} is that you have {have}.")
         if missing:
-            sentences.append(f"Not having {join(list(map(pretty, missing)), 'or')} also pointed to it.")
+            also = " also" if reasons else ""
+            sentences.append(f"Not having {join([pretty(m) for m in missing], 'or')}{also} pointed to it.")
         causes = [CAUSE] if predicted == pizza else [CAUSE, MISMATCH]
         return Explanation(
             explainer=self.name,
             text=" ".join(sentences),
             causes=causes,
             evidence=evidence,
-            counterfactual=self._counterfactual(rec, known, reasons, pizza),
+            # Only when the model agrees with the recording can removing an ingredient change its answer.
+            counterfactual=self._counterfactual(rec, known, reasons, pizza) if predicted == pizza else None,
             details=details,
             confidence=1.0 if predicted == pizza else 0.5,
         )
 
     @staticmethod
-    def _counterfactual(rec: PizzaRecommender, known: list[str], reasons: list[str], pizza: str) -> str | None:
-        """Ask the tree itself what it picks without each reason in turn, so the claim is computed, not guessed."""
+    def _counterfactual(
+        rec: PizzaRecommender, known: list[str], reasons: list[str], pizza: str
+    ) -> str | None:
+        """Ask the tree what it picks without each reason in turn, so the claim is computed, not guessed."""
         for ingredient in reasons:
             other = rec.recommend([k for k in known if k != ingredient])
             if other != pizza:

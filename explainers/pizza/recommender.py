@@ -10,9 +10,8 @@ from importlib import resources
 
 import numpy as np
 import numpy.typing as npt
-from sklearn.tree import DecisionTreeClassifier
-
 from hexar.explainers.errors import ExplainerError
+from sklearn.tree import DecisionTreeClassifier
 
 RECIPES = "recipes.csv"
 LABEL = "pizza"
@@ -74,7 +73,8 @@ class PizzaRecommender:
 
     def known(self, available: Iterable[str]) -> tuple[list[str], list[str]]:
         """(known ingredient names normalised, unknown names as given): a recording may hold names we lack."""
-        known, unknown = [], []
+        known: list[str] = []
+        unknown: list[str] = []
         for name in available:
             (known if normalise(name) in self._index else unknown).append(name)
         return [normalise(n) for n in known], unknown

@@ -8,7 +8,6 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.evals.scenarios.pizza import simulate_recommend_pizza
 from hexar.events.log import EventLog
@@ -27,7 +26,9 @@ def task(status: str, error: str = "") -> dict[str, Any]:
     }
 
 
-def write_pizza_bag(path: Path, available: Sequence[str], seed: int = 7, *, recommend: bool = True) -> EventLog:
+def write_pizza_bag(
+    path: Path, available: Sequence[str], seed: int = 7, *, recommend: bool = True
+) -> EventLog:
     b = BagBuilder()
     rng = random.Random(seed)
     b.task_info(T0, task("waiting"))

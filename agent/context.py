@@ -1,0 +1,53 @@
+"""Run settings and the resources a run shares across turns (kept apart from the checkpointed state)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from hexar.agent.backends import Backend
+from hexar.agent.classifier import QuestionClassifier, default_classifier
+from hexar.events import EventLog, read_recording
+from hexar.explainers.registry import Registry
+
+
+@dataclass(frozen=True)
+class RunSettings:
+    recording: Path
+    llm: str = "auto"
+    time_budget_s: float = 20.0
+    recursion_limit: int = 16
+    registry_config: Path | None = None
+
+
+@dataclass
+class RunContext:
+    """What every node may use: settings, the decoded recording, the explainers and the model."""
+
+    settings: RunSettings
+    backend: Backend
+    registry: Registry
+    probe: Registry  # the same explainers without a model: cheap grounded findings for routing
+    classifier: QuestionClassifier
+    _log: EventLog | None = field(default=None, repr=False)
+    started: float = field(default_factory=time.monotonic)
+
+    @classmethod
+    def create(cls, settings: RunSettings, backend: Backend) -> RunContext:
+        return cls(
+            settings=settings,
+            backend=backend,
+            registry=Registry.load(backend.model, settings.registry_config),
+            probe=Registry.load(None, settings.registry_config),
+            classifier=default_classifier(),
+        )
+
+    @property
+    def log(self) -> EventLog:
+        if self._log is None:
+            self._log = read_recording(self.settings.recording)
+        return self._log
+
+    def budget_left(self) -> float:
+        return self.settings.time_budget_s - (time.monotonic() - self.started)

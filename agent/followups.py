@@ -1,0 +1,55 @@
+"""What kind of turn a question is: a new question, or a follow-up on the last answer.
+
+Written for transcribed speech too: lower case, no punctuation, small misrecognitions.
+"""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.state import Intent
+
+_DEEPER = re.compile(
+    r"^(and |but |so |ok |okay )?(why( is| was| did)?( that| this| it)?( so| happen(ed)?)?|how do you know( that)?|"
+    r"tell me more|more details?|go on|explain( that| more)?|what do you mean|because of what)\W*$"
+)
+_HELPED = re.compile(
+    r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
+    r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|how (can|could|do) (i|we) fix|"
+    r"how (can|could) (i|we|you) (avoid|prevent)|what should i (do|change)|how do i fix"
+)
+_ELSE = re.compile(r"what else|anything else|something else|any other (problem|issue)s?|what other")
+_SWITCH = re.compile(
+    r"(what|how) about (the )?(first|second|third|last|previous|other|earlier|\d+(st|nd|rd|th)?) task|"
+    r"^(and )?(the )?(first|second|third|previous|earlier) task\W*$"
+)
+_ORDINALS = {"first": "first", "second": "2", "third": "3", "last": "latest", "previous": "previous",
+             "earlier": "previous", "other": "previous"}
+
+
+def normalise(question: str) -> str:
+    return re.sub(r"\s+", " ", question.strip().lower())
+
+
+def intent_of(question: str, has_history: bool) -> Intent:
+    q = normalise(question)
+    if _SWITCH.search(q):
+        return "switch"
+    if not has_history:
+        return "new"
+    if _HELPED.search(q):
+        return "helped"
+    if _ELSE.search(q):
+        return "else"
+    if _DEEPER.match(q):
+        return "deeper"
+    return "new"
+
+
+def task_ref_of(question: str) -> str | None:
+    q = normalise(question)
+    m = re.search(r"(first|second|third|last|previous|other|earlier|\d+)(st|nd|rd|th)? task", q)
+    if not m:
+        return None
+    word = m.group(1)
+    return word if word.isdigit() else _ORDINALS[word]

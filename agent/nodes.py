@@ -1,0 +1,207 @@
+"""The agent's nodes: intake, context, failure check, router, tools, answer, follow-up."""
+
+from __future__ import annotations
+
+import json
+import time
+from typing import Any
+
+from langgraph.runtime import Runtime
+
+from hexar.agent import guard
+from hexar.agent.classifier import GENERIC
+from hexar.agent.context import RunContext
+from hexar.agent.errors import BadQuestionError
+from hexar.agent.followups import intent_of, task_ref_of
+from hexar.agent.questions import check_question
+from hexar.agent.state import AgentState
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.errors import ModelError
+from hexar.explainers.planner import task_findings
+from hexar.prompts import load
+from hexar.tools.explainer_tools import explainer_of_tool, scope, tools_for
+
+BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
+CONFIDENT = 0.45
+
+
+def _ms(start: float) -> float:
+    return round((time.perf_counter() - start) * 1000, 2)
+
+
+def _timings(state: AgentState, key: str, start: float) -> dict[str, float]:
+    return {**state.get("timings_ms", {}), key: _ms(start)}
+
+
+def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    start = time.perf_counter()
+    reset: dict[str, Any] = {"timings_ms": {}, "error": "", "fallback": []}
+    try:
+        question = check_question(state.get("question", ""))
+    except BadQuestionError as e:
+        return {**reset, "intent": "invalid", "error": str(e), "answer": str(e)}
+    intent = intent_of(question, bool(state.get("explanations")))
+    update: dict[str, Any] = {**reset, "question": question, "intent": intent}
+    if intent == "switch":
+        update["task_ref"] = task_ref_of(question)
+        update["used"] = []
+    elif intent == "new":
+        update["used"] = []
+    update["timings_ms"] = {"intake": _ms(start)}
+    return update
+
+
+def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    start = time.perf_counter()
+    ctx = runtime.context
+    ref = state.get("task_ref")
+    log = ctx.log
+    if ref == "previous":
+        current = state.get("task_id")
+        user = [t for t in log.tasks if not t.is_recovery and t.task_id != current]
+        ref = user[-1].task_id if user else None
+    task = log.task(ref)
+    candidates: list[str] = []
+    for run in task.skills:
+        for name in ctx.registry.for_module(run.skill):
+            if name not in candidates:
+                candidates.append(name)
+    if "planner" not in candidates:
+        candidates.append("planner")
+    return {"task_id": task.task_id, "task_outcome": task.outcome, "candidates": candidates,
+            "timings_ms": _timings(state, "context", start)}
+
+
+def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    """Deterministic: a failed skill goes to its module's explainer, a bad plan to the planner. No LLM."""
+    start = time.perf_counter()
+    ctx = runtime.context
+    task = ctx.log.task(state["task_id"])
+    selected: list[str] = []
+    if not task.valid:
+        selected = ["planner"]
+    elif (failed := task.failed_skill) is not None:
+        selected = ctx.registry.for_module(failed.skill)[:1]
+    elif task_findings(task):
+        selected = ["planner"]
+    return {"selected": selected, "route": "failure_check" if selected else "none",
+            "timings_ms": _timings(state, "failure_check", start)}
+
+
+def _probe(ctx: RunContext, name: str, question: str, task_id: str) -> Explanation:
+    task = ctx.log.task(task_id)
+    return ctx.probe.get(name).explain(question, Context.for_task(ctx.log, task, ctx.probe))
+
+
+def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str]) -> str | None:
+    """For a question that names no module: the first explainer (in plan order) with a notable finding."""
+    for name in state["candidates"]:
+        if name in exclude:
+            continue
+        found = _probe(ctx, name, state["question"], state["task_id"])
+        if found.enough_information and not set(found.causes) <= BENIGN:
+            return name
+    return None
+
+
+def _llm_choice(ctx: RunContext, state: AgentState) -> str | None:
+    model = ctx.backend.model
+    if model is None:
+        return None
+    descriptions = ctx.registry.descriptions()
+    options = [c for c in state["candidates"] if c in descriptions]
+    listing = "\n".join(f"- {name}: {descriptions[name]}" for name in options)
+    messages = [
+        {"role": "system", "content": load("router")},
+        {"role": "user", "content": f"Explainers:\n{listing}\n\nQuestion: {state['question']}"},
+    ]
+    chooser = getattr(model, "choose_tool", None)
+    try:
+        if chooser is not None:
+            tools = [t for t in tools_for(ctx.registry) if explainer_of_tool(t.name) in options]
+            called = chooser(messages, tools)
+            return explainer_of_tool(called) if called else None
+        schema = {"type": "object", "properties": {"explainer": {"enum": [*options, "none"]}},
+                  "required": ["explainer"]}
+        raw = model.chat(messages, schema=schema, max_tokens=24)
+        choice = str(json.loads(raw).get("explainer", "none"))
+    except (ModelError, ValueError, AttributeError):
+        return None
+    return choice if choice in options else None
+
+
+def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    """Only when nothing failed: choose an explainer from the question (LLM or classifier), else from findings."""
+    start = time.perf_counter()
+    ctx = runtime.context
+    used = set(state.get("used", []))
+    if state.get("intent") == "else":
+        nxt = _by_findings(ctx, state, used) or next((c for c in state["candidates"] if c not in used), None)
+        return {"selected": [nxt] if nxt else [], "route": "followup", "timings_ms": _timings(state, "router", start)}
+    choice = _llm_choice(ctx, state)
+    route = "llm"
+    if choice is None:
+        label, share = ctx.classifier.choose(state["question"], state["candidates"])
+        choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
+    if choice is None:
+        choice = _by_findings(ctx, state, set()) or state["candidates"][0]
+    return {"selected": [choice], "route": route, "timings_ms": _timings(state, "router", start)}
+
+
+def tools(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    start = time.perf_counter()
+    ctx = runtime.context
+    task = ctx.log.task(state["task_id"])
+    by_name = {explainer_of_tool(t.name): t for t in tools_for(ctx.registry)}
+    explanations: list[dict[str, Any]] = []
+    # Past the time budget, answer from the grounded templates rather than wait on the model.
+    registry = ctx.registry if ctx.budget_left() > 0 else ctx.probe
+    with scope(registry, Context.for_task(ctx.log, task, registry)):
+        for name in state.get("selected", []):
+            explanations.append(by_name[name].invoke({"question": state["question"]}))
+    return {"explanations": explanations, "used": [*state.get("used", []), *state.get("selected", [])],
+            "depth": 0, "timings_ms": _timings(state, "tools", start)}
+
+
+def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    start = time.perf_counter()
+    ctx = runtime.context
+    kept: list[dict[str, Any]] = []
+    fallback: list[str] = []
+    for raw in state.get("explanations", []):
+        exp = Explanation.model_validate(raw)
+        if exp.phrased_by != "template":
+            verdict = guard.check(exp.text, exp.causes)
+            if not verdict.ok:
+                fallback.append(f"{exp.explainer}: {verdict.reason}")
+                exp = _probe(ctx, exp.explainer, state["question"], state["task_id"])
+        kept.append(exp.model_dump())
+    texts = list(dict.fromkeys(e["text"] for e in kept))
+    text = " ".join(texts) if texts else "I don't have enough information to say."
+    turn = {"question": state["question"], "answer": text, "explainers": [e["explainer"] for e in kept]}
+    return {"explanations": kept, "answer": text, "fallback": fallback,
+            "history": [*state.get("history", []), turn], "timings_ms": _timings(state, "answer", start)}
+
+
+def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    """'Why?' goes one level deeper (evidence, then the causal chain); 'what would have helped?' gives the
+    counterfactual or fix. Nothing is invented: past what was recorded, the robot says so."""
+    start = time.perf_counter()
+    exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
+    depth = state.get("depth", 0)
+    if state["intent"] == "helped":
+        parts = [p for e in exps for p in (e.counterfactual, e.fix) if p]
+        text = " ".join(parts) or "I don't have enough information to say what would have helped."
+    else:
+        depth += 1
+        if depth == 1:
+            items = [ev.item for e in exps for ev in e.evidence][:3]
+            text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
+        elif depth == 2:
+            text = " ".join(d for e in exps for d in e.details)
+        else:
+            text = ""
+        text = text or "That's everything I recorded about it; I don't have enough information to go deeper."
+    turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
+    return {"answer": text, "depth": depth, "route": "followup", "history": [*state.get("history", []), turn],
+            "timings_ms": _timings(state, "followup", start)}

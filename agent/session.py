@@ -1,0 +1,83 @@
+"""A conversation with the agent about one recording: `hexar ask`, `hexar chat` and `hexar listen` use it."""
+
+from __future__ import annotations
+
+import sqlite3
+import time
+import uuid
+from pathlib import Path
+from typing import Any
+
+from langgraph.checkpoint.memory import InMemorySaver
+from langgraph.checkpoint.sqlite import SqliteSaver
+
+from hexar.agent.backends import Backend, resolve
+from hexar.agent.context import RunContext, RunSettings
+from hexar.agent.graph import build
+from hexar.explainers.base import Explanation
+
+
+def default_checkpoints() -> Path:
+    return Path.home() / ".cache" / "hexar" / "threads.sqlite"
+
+
+class Session:
+    """One recording, one backend, and any number of threads (conversations) over it."""
+
+    def __init__(self, settings: RunSettings, backend: Backend | None = None,
+                 checkpoints: Path | None = None) -> None:
+        self.settings = settings
+        self.backend = backend or resolve(settings.llm)
+        self.context = RunContext.create(settings, self.backend)
+        self.context.log  # noqa: B018 -- decode once, so a bad recording fails before the first question
+        if checkpoints is None:
+            self._saver: Any = InMemorySaver()
+        else:
+            checkpoints.parent.mkdir(parents=True, exist_ok=True)
+            self._conn = sqlite3.connect(str(checkpoints), check_same_thread=False)
+            self._saver = SqliteSaver(self._conn)
+        self.graph = build(self._saver)
+
+    def new_thread(self) -> str:
+        return uuid.uuid4().hex[:12]
+
+    def ask(self, question: str, thread: str | None = None, task: str | None = None) -> dict[str, Any]:
+        thread = thread or self.new_thread()
+        started = time.perf_counter()
+        self.context.started = time.monotonic()
+        update: dict[str, Any] = {"question": question}
+        if task is not None:
+            update["task_ref"] = task
+        config = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"},
+                  "recursion_limit": self.settings.recursion_limit}
+        state = self.graph.invoke(update, config, context=self.context)  # type: ignore[arg-type]
+        return self._result(state, thread, started)
+
+    def history(self, thread: str) -> list[dict[str, Any]]:
+        config = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"}}
+        snap = self.graph.get_state(config)  # type: ignore[arg-type]
+        return list(snap.values.get("history", [])) if snap and snap.values else []
+
+    def _result(self, state: dict[str, Any], thread: str, started: float) -> dict[str, Any]:
+        exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
+        timings = dict(state.get("timings_ms", {}))
+        timings["total"] = round((time.perf_counter() - started) * 1000, 2)
+        followup = state.get("route") == "followup" and state.get("intent") in {"deeper", "helped"}
+        return {
+            "answer": state.get("answer", ""),
+            "error": state.get("error", ""),
+            "explainers": [e.explainer for e in exps],
+            "route": state.get("route", "none"),
+            "intent": state.get("intent", "new"),
+            "backend": self.backend.name,
+            "phrased_by": [e.phrased_by for e in exps] if not followup else [],
+            "causes": [c for e in exps for c in e.causes],
+            "evidence": [ev.model_dump() for e in exps for ev in e.evidence],
+            "counterfactual": next((e.counterfactual for e in exps if e.counterfactual), None),
+            "fix": next((e.fix for e in exps if e.fix), None),
+            "fallback": state.get("fallback", []),
+            "task_id": state.get("task_id", ""),
+            "thread": thread,
+            "recording": str(self.settings.recording),
+            "timings_ms": timings,
+        }

@@ -1,0 +1,37 @@
+"""The agent's state: plain data only, so the SQLite checkpointer can keep a conversation."""
+
+from __future__ import annotations
+
+from typing import Any, Literal, TypedDict
+
+Intent = Literal["new", "deeper", "helped", "else", "switch", "invalid"]
+Route = Literal["failure_check", "llm", "classifier", "findings", "followup", "none"]
+
+
+class Turn(TypedDict):
+    question: str
+    answer: str
+    explainers: list[str]
+
+
+class AgentState(TypedDict, total=False):
+    # the turn being answered
+    question: str
+    intent: Intent
+    task_ref: str | None
+    # context vector C (the recording stays on disk; the run context caches its decoded log)
+    task_id: str
+    task_outcome: str
+    candidates: list[str]
+    # selection
+    route: Route
+    selected: list[str]
+    # results
+    explanations: list[dict[str, Any]]
+    answer: str
+    error: str
+    fallback: list[str]
+    depth: int
+    used: list[str]
+    timings_ms: dict[str, float]
+    history: list[Turn]
