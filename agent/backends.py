@@ -43,7 +43,7 @@ class EmbeddedModel:
         if schema is not None:
             kwargs["response_format"] = {"type": "json_object", "schema": dict(schema)}
         try:
-            out = self._llm.create_chat_completion(messages=[dict(m) for m in messages], **kwargs)
+            out: Any = self._llm.create_chat_completion(messages=[dict(m) for m in messages], **kwargs)  # type: ignore[misc]
             return str(out["choices"][0]["message"]["content"] or "")
         except Exception as err:  # llama.cpp raises bare RuntimeError/ValueError on context overflow
             raise ModelError(f"embedded model failed: {err}") from err

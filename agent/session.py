@@ -6,14 +6,16 @@ import sqlite3
 import time
 import uuid
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
+from langchain_core.runnables import RunnableConfig
 from langgraph.checkpoint.memory import InMemorySaver
 from langgraph.checkpoint.sqlite import SqliteSaver
 
 from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.graph import build
+from hexar.agent.state import AgentState
 from hexar.explainers.base import Explanation
 
 
@@ -48,14 +50,14 @@ class Session:
         update: dict[str, Any] = {"question": question}
         if task is not None:
             update["task_ref"] = task
-        config = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"},
-                  "recursion_limit": self.settings.recursion_limit}
-        state = self.graph.invoke(update, config, context=self.context)  # type: ignore[arg-type]
-        return self._result(state, thread, started)
+        config: RunnableConfig = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"},
+                                  "recursion_limit": self.settings.recursion_limit}
+        state = self.graph.invoke(cast(AgentState, update), config, context=self.context)
+        return self._result(dict(state), thread, started)
 
     def history(self, thread: str) -> list[dict[str, Any]]:
-        config = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"}}
-        snap = self.graph.get_state(config)  # type: ignore[arg-type]
+        config: RunnableConfig = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"}}
+        snap = self.graph.get_state(config)
         return list(snap.values.get("history", [])) if snap and snap.values else []
 
     def _result(self, state: dict[str, Any], thread: str, started: float) -> dict[str, Any]:

@@ -64,7 +64,8 @@ def scenarios() -> tuple[Scenario, ...]:
             Scenario(
                 id=int(s["id"]), category=s["category"], module=s["module"], explainer=s["explainer"],
                 cause=s["cause"], also=tuple(s.get("also", ())), root_cause=s["root_cause"],
-                variants=tuple(variants[v] for v in s["variants"]), questions=tuple(s["questions"]),  # type: ignore[arg-type]
+                variants=tuple(variants[v] for v in s["variants"]),
+                questions=(s["questions"][0], s["questions"][1], s["questions"][2]),
             )
         )
     return tuple(out)

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from bisect import bisect_left, bisect_right
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
+from typing import TypeVar
 
 from hexar.events import contract as c
 from hexar.events.errors import NoTaskError
@@ -20,10 +22,13 @@ class TopicInfo:
     count: int
 
 
-def _slice_by_t(items: list[object], times: list[int], start: int | None, end: int | None) -> list[object]:
+R = TypeVar("R")
+
+
+def _slice_by_t(items: Sequence[R], times: list[int], start: int | None, end: int | None) -> list[R]:
     lo = 0 if start is None else bisect_left(times, start)
     hi = len(items) if end is None else bisect_right(times, end)
-    return items[lo:hi]
+    return list(items[lo:hi])
 
 
 @dataclass
@@ -103,12 +108,12 @@ class View:
     def logs(self) -> list[LogLine]:
         self._check(c.ROSOUT)
         start, end = self._bounds()
-        return _slice_by_t(self.log.logs, [r.t for r in self.log.logs], start, end)  # type: ignore[return-value]
+        return _slice_by_t(self.log.logs, [r.t for r in self.log.logs], start, end)
 
     def poses(self) -> list[PoseSample]:
         self._check(c.AMCL_POSE)
         start, end = self._bounds()
-        return _slice_by_t(self.log.poses, [r.t for r in self.log.poses], start, end)  # type: ignore[return-value]
+        return _slice_by_t(self.log.poses, [r.t for r in self.log.poses], start, end)
 
     def flag_at(self, topic: str, t: int) -> BoolSample | None:
         """The latest value of a latched flag at time t (it may have been set long before the window)."""
@@ -121,10 +126,10 @@ class View:
         self._check(topic)
         samples = self.log.flags.get(topic, [])
         start, end = self._bounds()
-        return _slice_by_t(samples, [s.t for s in samples], start, end)  # type: ignore[arg-type,return-value]
+        return _slice_by_t(samples, [s.t for s in samples], start, end)
 
     def statuses(self, topic: str) -> list[StatusRecord]:
         self._check(topic)
         records = self.log.statuses.get(topic, [])
         start, end = self._bounds()
-        return _slice_by_t(records, [r.t for r in records], start, end)  # type: ignore[arg-type,return-value]
+        return _slice_by_t(records, [r.t for r in records], start, end)

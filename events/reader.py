@@ -22,7 +22,15 @@ from hexar.events.errors import (
     UnknownMessageTypeError,
 )
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.records import BoolSample, LogLine, PoseSample, SkillStep, StatusRecord, TaskUpdate, stamp_ns
+from hexar.events.records import (
+    BoolSample,
+    LogLine,
+    PoseSample,
+    SkillStep,
+    StatusRecord,
+    TaskUpdate,
+    stamp_ns,
+)
 
 _HUMBLE: Typestore | None = None
 

@@ -22,9 +22,59 @@ CATALOGUE: dict[str, tuple[str, ...]] = {
 }
 # Actions that need arms or hands; the robot can only move, talk, look and ask people.
 MANIPULATION_VERBS = frozenset(
-    "open close shut wash clean cook bake boil fry water fold cut chop slice pour lift push pull pick grab "
-    "throw iron vacuum mop sweep tidy repair fix unlock lock plug unplug turn switch press hang feed dust "
-    "scrub wipe stir mix peel hand make build assemble load unload empty fill".split()
+    [
+        "open",
+        "close",
+        "shut",
+        "wash",
+        "clean",
+        "cook",
+        "bake",
+        "boil",
+        "fry",
+        "water",
+        "fold",
+        "cut",
+        "chop",
+        "slice",
+        "pour",
+        "lift",
+        "push",
+        "pull",
+        "pick",
+        "grab",
+        "throw",
+        "iron",
+        "vacuum",
+        "mop",
+        "sweep",
+        "tidy",
+        "repair",
+        "fix",
+        "unlock",
+        "lock",
+        "plug",
+        "unplug",
+        "turn",
+        "switch",
+        "press",
+        "hang",
+        "feed",
+        "dust",
+        "scrub",
+        "wipe",
+        "stir",
+        "mix",
+        "peel",
+        "hand",
+        "make",
+        "build",
+        "assemble",
+        "load",
+        "unload",
+        "empty",
+        "fill",
+    ]
 )
 _POLITE = re.compile(r"^(please|could you|can you|would you|will you|kindly|hey robot|robot)[, ]+", re.I)
 _ROOM_WORDS = {"kitchen": "kitchen", "dining room": "dining_room", "living room": "living_room"}
@@ -58,25 +108,43 @@ def _step_findings(index: int, skill: str, params: Mapping[str, object]) -> list
     if skill not in CATALOGUE:
         close = difflib.get_close_matches(skill, CATALOGUE, n=1, cutoff=0.4)
         hint = f" (did the planner mean {close[0]!r}?)" if close else ""
-        return [Finding("planner.invalid_skill", index, f"step {index + 1} uses the skill {skill!r}, which I don't have{hint}")]
+        msg = f"step {index + 1} uses the skill {skill!r}, which I don't have{hint}"
+        return [Finding("planner.invalid_skill", index, msg)]
     out = []
     for name in CATALOGUE[skill]:
         if name not in params or params[name] in (None, "", []):
-            out.append(Finding("planner.invalid_parameter", index,
-                               f"step {index + 1} ({skill}) is missing its {name!r} parameter"))
+            out.append(
+                Finding(
+                    "planner.invalid_parameter", index, f"step {index + 1} ({skill}) is missing its {name!r} parameter"
+                )
+            )
     unknown = sorted(set(params) - set(CATALOGUE[skill]) - {"value"})
     for name in unknown:
-        out.append(Finding("planner.invalid_parameter", index,
-                           f"step {index + 1} ({skill}) has a parameter {name!r} that the skill does not take"))
+        out.append(
+            Finding(
+                "planner.invalid_parameter",
+                index,
+                f"step {index + 1} ({skill}) has a parameter {name!r} that the skill does not take",
+            )
+        )
     if skill == "navigate_to_zone" and "location" in params:
         loc = params["location"]
         if not isinstance(loc, str):
-            out.append(Finding("planner.invalid_parameter", index,
-                               f"step {index + 1} gives the location as {loc!r}, which is not a place name"))
+            out.append(
+                Finding(
+                    "planner.invalid_parameter",
+                    index,
+                    f"step {index + 1} gives the location as {loc!r}, which is not a place name",
+                )
+            )
         elif loc not in LOCATIONS:
-            out.append(Finding("planner.invalid_parameter", index,
-                               f"step {index + 1} sends me to {loc!r}, which is not one of my places "
-                               f"({', '.join(LOCATIONS)})"))
+            out.append(
+                Finding(
+                    "planner.invalid_parameter",
+                    index,
+                    f"step {index + 1} sends me to {loc!r}, which is not one of my places ({', '.join(LOCATIONS)})",
+                )
+            )
     return out
 
 
@@ -90,22 +158,36 @@ def _fulfilment(instruction: str, plan: Sequence[tuple[str, Mapping[str, object]
         if room not in visited:
             went = " and the ".join(loc.replace("_", " ") for loc in visited) or "nowhere"
             went = f"the {went}" if visited else went
-            out.append(Finding("planner.plan_not_fulfilling_request", None,
-                               f"the request is about the {room.replace('_', ' ')}, but the plan goes to {went}"))
+            out.append(
+                Finding(
+                    "planner.plan_not_fulfilling_request",
+                    None,
+                    f"the request is about the {room.replace('_', ' ')}, but the plan goes to {went}",
+                )
+            )
     if _BRING.search(instruction):
         if "ask_human_for_help" not in skills:
-            out.append(Finding("planner.plan_not_fulfilling_request", None,
-                               "the plan never asks anyone to put the object on my tray"))
+            out.append(
+                Finding(
+                    "planner.plan_not_fulfilling_request",
+                    None,
+                    "the plan never asks anyone to put the object on my tray",
+                )
+            )
         else:
             ask = skills.index("ask_human_for_help")
             if not any(i > ask for i, _ in visits):
-                out.append(Finding("planner.plan_not_fulfilling_request", ask,
-                                   "the plan never brings the object back to you after picking it up"))
+                out.append(
+                    Finding(
+                        "planner.plan_not_fulfilling_request",
+                        ask,
+                        "the plan never brings the object back to you after picking it up",
+                    )
+                )
     elif _TELL.search(instruction) and "say" not in skills:
         out.append(Finding("planner.plan_not_fulfilling_request", None, "the plan never says anything"))
     elif _TELL.search(instruction) and visits and skills.index("say") < visits[-1][0]:
-        out.append(Finding("planner.plan_not_fulfilling_request", None,
-                           "the plan speaks before it reaches the person"))
+        out.append(Finding("planner.plan_not_fulfilling_request", None, "the plan speaks before it reaches the person"))
     if _PIZZA.search(instruction) and "recommend_pizza" not in skills:
         out.append(Finding("planner.plan_not_fulfilling_request", None, "the plan never recommends a pizza"))
     return out
@@ -118,8 +200,13 @@ def check_plan(instruction: str, plan: Sequence[tuple[str, Mapping[str, object]]
     """
     action = requested_action(instruction)
     if action in MANIPULATION_VERBS:
-        return [Finding("planner.request_beyond_capabilities", None,
-                        f"you asked me to {action} something, and I cannot manipulate objects")]
+        return [
+            Finding(
+                "planner.request_beyond_capabilities",
+                None,
+                f"you asked me to {action} something, and I cannot manipulate objects",
+            )
+        ]
     steps = [f for i, (skill, params) in enumerate(plan) for f in _step_findings(i, skill, params)]
     if steps:
         return steps

@@ -14,7 +14,10 @@ from rich.table import Table
 
 from hexar.errors import USER_ERRORS
 
-app = typer.Typer(add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False, help="Ask a robot why it did what it did.")
+app = typer.Typer(
+    add_completion=False, no_args_is_help=True, pretty_exceptions_enable=False,
+    help="Ask a robot why it did what it did.",
+)
 out = Console(highlight=False)
 err = Console(stderr=True, highlight=False)
 
@@ -104,6 +107,46 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
             table.add_row(r["recording"], str(r["tasks"]), r["instruction"], r["outcome"])
         out.print(table)
         return 0
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
+def ask(
+    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    question: Annotated[str | None, typer.Argument(help="the question, e.g. \"Why didn't you bring it?\"")] = None,
+    questions: Annotated[Path | None, typer.Option(help="answer each line of this file as a new conversation")] = None,
+    task: Annotated[str | None, typer.Option(help="task id, order number, 'first' or 'latest'")] = None,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
+    as_json: Annotated[bool, typer.Option("--json", help="print JSON")] = False,
+    verbose: Annotated[bool, typer.Option("--verbose", "-v", help="show route, backend, evidence")] = False,
+) -> None:
+    """Answer one question (or a file of questions) about a recorded run."""
+
+    def body() -> int:
+        from hexar.chat import ask as run_ask
+        from hexar.errors import HexarError
+
+        if question is None and questions is None:
+            raise HexarError("give a question or --questions FILE")
+        return run_ask(run, question, questions, task, llm, as_json, verbose, out)
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
+def chat(
+    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    thread: Annotated[str | None, typer.Option(help="resume this conversation")] = None,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
+    checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations")] = None,
+) -> None:
+    """Talk with the robot about a recorded run; follow-up questions keep the thread."""
+
+    def body() -> int:
+        from hexar.chat import chat as run_chat
+
+        return run_chat(run, thread, llm, out, checkpoints)
 
     raise typer.Exit(guarded(body))
 

@@ -1,21 +1,21 @@
 """Simulated Nav2 (ROS 2 Humble) navigation runs of a TIAGo, written into a BagBuilder.
 
 Every `/rosout` text of a Nav2 node is a verbatim Nav2 Humble format string (shared/reference/
-nav2_log_messages.md), filled with realistic numbers; the skill logger's lines are ours and never name a cause.
-Timings follow TIAGo's Nav2 parameters: the behaviour tree replans at 1 Hz (each replan makes the controller log
-`Passing new path to controller.`), the progress checker allows 10 s to move 0.5 m, the default BT retries the
-navigation 6 times with the recoveries [clear costmaps, spin 1.57, wait 5 s, back up 0.30 m at 0.05 m/s] in
-round-robin order (a failed recovery hands over to the next one in the same tick), and each timed behaviour gives
-up after its 10 s time allowance.
+nav2_log_messages.md) with realistic numbers; the skill logger's lines are ours and never name a cause.
+Timings follow TIAGo's Nav2 parameters: the behaviour tree replans at 1 Hz (each replan makes the controller
+log `Passing new path to controller.`), the progress checker allows 10 s to move 0.5 m, the default BT retries
+the navigation 6 times with the recoveries [clear costmaps, spin 1.57, wait 5 s, back up 0.30 m at 0.05 m/s]
+in round-robin order (a failed recovery hands over to the next in the same tick), and each timed behaviour
+gives up after its 10 s time allowance.
 
 Conventions of the background state (`simulate_robot_state`):
 - `/joy_priority` (transient local, depth 1): one message at recording start with the current value. A toggle
   made before the recording shows as the joystick relay's INFO line, stamped when it happened and received at
   recording start (`/rosout` is transient local with a 10 s lifespan in Humble).
 - `/power/is_charging`: 1 Hz, our choice for a battery-state publisher.
-- `/amcl_pose`: AMCL's latched pose at recording start, then an idle sample every 4-6 s (a simplification: a
-  still robot gets filter updates only from odometry drift). While navigating, AMCL publishes after each filter
-  update, i.e. every `update_min_d` = 0.25 m of travel; a robot that cannot move gets a sample every ~2 s.
+- `/amcl_pose`: AMCL's latched pose at recording start, then an idle sample every 4-6 s (a simplification:
+  a still robot gets filter updates only from odometry drift). While navigating, AMCL publishes after each
+  filter update, every `update_min_d` = 0.25 m of travel; a robot that cannot move gets a sample every ~2 s.
   `simulate_navigation` replaces idle samples inside its run and moves later ones to where the run ended.
 - `/diagnostics` at 1 Hz carries the controller's configured speed limits: a DiagnosticStatus named
   `controller_server: velocity limits` (level 0, message `OK`) with the keys `max_vel_x` (m/s) and
@@ -30,14 +30,15 @@ and the back-up recovery stops with `Collision Ahead` because the dock is right 
 
 from __future__ import annotations
 
+import itertools
 import math
 import random
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
+from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, SkillResult, sec_ns
 from hexar.events import contract as c
 from hexar.events.records import ERROR, INFO, WARN
-from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, SkillResult, sec_ns
 
 NavSituation = Literal["nominal", "blocked", "joystick", "charging", "poor_localisation", "moving_obstacles"]
 
@@ -121,7 +122,8 @@ def _background_noise(b: BagBuilder, rng: random.Random, start: int, end: int) -
             if kind == "SpeedFilter":
                 b.log(t + sec_ns(0.001), logger, INFO,
                       "SpeedFilter: Using absolute speed_limit = 0.000000 + filter_mask_data * 0.010000")
-            b.log(t + sec_ns(0.002), logger, INFO, f'{kind}: Subscribing to "{mask}" topic for filter mask...')
+            b.log(t + sec_ns(0.002), logger, INFO,
+                  f'{kind}: Subscribing to "{mask}" topic for filter mask...')
             b.log(t + sec_ns(rng.uniform(0.02, 0.08)), logger, WARN,
                   f"{kind}: New filter mask arrived from {mask} topic. Updating old filter mask.")
             t += sec_ns(rng.uniform(0.01, 0.05))
@@ -172,11 +174,12 @@ class _Run:
 
     def replans(self) -> None:
         """The 1 Hz replanning ticks that fell due up to now (a preempting new path each time)."""
-        while self.next_replan <= self.t:
+        while self.next_replan < self.t:
             if not self.following:
                 self.next_replan += 1.0
                 continue
-            self.b.log(self.start + sec_ns(self.next_replan + 0.02), CTRL, INFO, "Passing new path to controller.")
+            tick = self.start + sec_ns(self.next_replan)
+            self.b.log(tick, CTRL, INFO, "Passing new path to controller.")
             if self.rng.random() < 0.04:
                 self.b.log(self.start + sec_ns(self.next_replan + 0.01), PLAN, WARN,
                            "Planner loop missed its desired rate of 20.0000 Hz. Current loop rate is "
@@ -223,19 +226,48 @@ class _Run:
         self.replans()
 
 
-def _waypoints(rng: random.Random, origin: tuple[float, float], goal: tuple[float, float]) -> list[tuple[float, float]]:
-    """A planned path bends around furniture: one intermediate waypoint off the straight line."""
+Point = tuple[float, float]
+
+
+def _path(rng: random.Random, origin: Point, goal: Point) -> list[Point]:
+    """A planned path bends around furniture: one intermediate corner off the straight line."""
     dx, dy = goal[0] - origin[0], goal[1] - origin[1]
     dist = math.hypot(dx, dy) or 1.0
     off = rng.uniform(0.2, 0.6) * rng.choice((-1.0, 1.0))
     f = rng.uniform(0.4, 0.6)
-    mid = (origin[0] + dx * f - dy / dist * off, origin[1] + dy * f + dx / dist * off)
-    return [mid, goal]
+    return [origin, (origin[0] + dx * f - dy / dist * off, origin[1] + dy * f + dx / dist * off), goal]
+
+
+def _corners(poly: list[tuple[float, float]]) -> list[float]:
+    """Arc length at each vertex."""
+    out = [0.0]
+    for (x0, y0), (x1, y1) in itertools.pairwise(poly):
+        out.append(out[-1] + math.hypot(x1 - x0, y1 - y0))
+    return out
+
+
+def _along(poly: list[tuple[float, float]], s: float) -> tuple[float, float]:
+    marks = _corners(poly)
+    for i in range(1, len(poly)):
+        if s <= marks[i] or i == len(poly) - 1:
+            seg = (marks[i] - marks[i - 1]) or 1.0
+            f = min(1.0, max(0.0, (s - marks[i - 1]) / seg))
+            (x0, y0), (x1, y1) = poly[i - 1], poly[i]
+            return x0 + (x1 - x0) * f, y0 + (y1 - y0) * f
+    return poly[-1]
 
 
 def _follow_path_failure(run: _Run, reason: str) -> None:
+    run.following = False
     run.log(CTRL, ERROR, reason)
     run.log(CTRL, WARN, "[follow_path] [ActionServer] Aborting handle.", 0.001)
+
+
+def _follow_path_goal(run: _Run) -> None:
+    run.step(run.rng.uniform(0.1, 0.3))
+    run.log(CTRL, INFO, "Received a goal, begin computing control effort.")
+    run.following = True
+    run.next_replan = run.t + 1.0
 
 
 def _clear(run: _Run, which: str) -> None:
@@ -253,7 +285,7 @@ def _planner_failure(run: _Run) -> None:
 
 
 def _recovery(run: _Run, index: int, *, can_move: bool, dock_behind: bool = False) -> None:
-    """Recovery `index` of the round robin [clear, spin, wait, backup]; a failed one hands over to the next."""
+    """Recovery `index` of the round robin [clear, spin, wait, backup]; a failed one hands over."""
     kind = ("clear", "spin", "wait", "backup")[index % 4]
     if kind == "clear":
         _clear(run, "local")
@@ -285,7 +317,6 @@ def _recovery(run: _Run, index: int, *, can_move: bool, dock_behind: bool = Fals
             run.step(run.rng.uniform(0.1, 0.3))
             run.log(BEH, WARN, "Collision Ahead - Exiting DriveOnHeading")
         elif can_move:
-            run.stand(0.0)
             run.x -= 0.30 * math.cos(run.yaw)
             run.y -= 0.30 * math.sin(run.yaw)
             run.step(6.0)
@@ -308,9 +339,7 @@ def _goal_failed(run: _Run) -> None:
 
 def _blocked(run: _Run, path: list[tuple[float, float]]) -> None:
     """Drive until the obstacle, stall in front of it, then planning keeps failing through every recovery."""
-    stop = (run.x + (path[0][0] - run.x) * run.rng.uniform(0.5, 0.8),
-            run.y + (path[0][1] - run.y) * run.rng.uniform(0.5, 0.8))
-    run.drive(stop, run.rng.uniform(0.4, 0.5))
+    run.drive_along(path, 0.0, _corners(path)[-1] * run.rng.uniform(0.3, 0.6), run.rng.uniform(0.4, 0.5))
     run.stand(MOVEMENT_ALLOWANCE_S)
     _follow_path_failure(run, "Failed to make progress")
     _clear(run, "local")
@@ -327,10 +356,8 @@ def _stuck(run: _Run, *, dock_behind: bool) -> None:
     """The base ignores Nav2's velocity commands: every follow-path attempt and every recovery times out."""
     for round_ in range(BT_RETRIES + 1):
         for attempt in range(2):
-            run.step(run.rng.uniform(0.1, 0.3))
             if round_ or attempt:
-                run.log(CTRL, INFO, "Received a goal, begin computing control effort.")
-            run.next_replan = run.t + 1.0
+                _follow_path_goal(run)
             run.stand(MOVEMENT_ALLOWANCE_S)
             _follow_path_failure(run, "Failed to make progress")
             if attempt == 0:
@@ -348,49 +375,43 @@ def _reached(run: _Run) -> None:
 
 
 def _moving_obstacles(run: _Run, path: list[tuple[float, float]]) -> None:
-    """People cross the path: the controller briefly finds no trajectory, once long enough to need a recovery."""
+    """People cross the path: the controller briefly finds no trajectory, once long enough for a recovery."""
     speed = run.rng.uniform(0.35, 0.45)
+    total = _corners(path)[-1]
     crossings = run.rng.randint(3, 5)
     long_one = run.rng.randrange(crossings)
-    legs = [(path[0][0] + (path[1][0] - path[0][0]) * f, path[0][1] + (path[1][1] - path[0][1]) * f)
-            for f in (0.0, 0.5, 1.0)]
-    stops: list[tuple[float, float]] = []
-    prev = (run.x, run.y)
-    for i in range(crossings):
-        leg = legs[min(i * len(legs) // crossings, len(legs) - 1)]
-        f = run.rng.uniform(0.3, 0.7)
-        stops.append((prev[0] + (leg[0] - prev[0]) * f, prev[1] + (leg[1] - prev[1]) * f))
-        prev = stops[-1]
-    for i, stop in enumerate(stops):
-        run.drive(stop, speed)
-        for _ in range(run.rng.randint(2, 6)):  # 20 Hz control loop, within failure_tolerance
+    marks = sorted(run.rng.uniform(0.1, 0.9) * total for _ in range(crossings))
+    s = 0.0
+    for i, mark in enumerate(marks):
+        run.drive_along(path, s, mark, speed)
+        s = mark
+        for _ in range(run.rng.randint(2, 6)):  # 20 Hz control loop, still within failure_tolerance
             run.step(0.05)
             run.log(CTRL, WARN, "No valid trajectories out of 360! ")
-        if i == long_one:
-            for attempt in range(2):
-                run.step(0.3)
-                _follow_path_failure(run, "Controller patience exceeded")
-                if attempt == 0:
-                    _clear(run, "local")
-                    run.step(run.rng.uniform(0.1, 0.3))
-                    run.log(CTRL, INFO, "Received a goal, begin computing control effort.")
-                    run.stand(run.rng.uniform(0.5, 1.0))
-                    run.log(CTRL, WARN, "No valid trajectories out of 360! ")
-            _recovery(run, 0, can_move=True)
-            run.step(run.rng.uniform(0.1, 0.3))
-            run.log(CTRL, INFO, "Received a goal, begin computing control effort.")
-            run.next_replan = run.t + 1.0
-        else:
+        if i != long_one:
             run.stand(run.rng.uniform(1.0, 2.5))
-    for leg in path:
-        run.drive(leg, speed)
+            continue
+        run.step(0.3)
+        _follow_path_failure(run, "Controller patience exceeded")
+        _clear(run, "local")
+        _follow_path_goal(run)
+        run.stand(run.rng.uniform(0.5, 1.0))
+        run.log(CTRL, WARN, "No valid trajectories out of 360! ")
+        run.step(0.3)
+        _follow_path_failure(run, "Controller patience exceeded")
+        _recovery(run, 0, can_move=True)
+        _follow_path_goal(run)
+    run.drive_along(path, s, total, speed)
     _reached(run)
 
 
 def _poor_localisation(run: _Run, path: list[tuple[float, float]]) -> None:
-    """AMCL's estimate spreads in a featureless stretch: the pose jumps, progress is slow, the goal is reached."""
-    run.drive(path[0], run.rng.uniform(0.3, 0.4), cov=(0.02, 0.08))
-    run.drive(path[1], run.rng.uniform(0.15, 0.22), jitter=0.25, cov=(0.25, 0.6))
+    """AMCL's estimate spreads in a featureless stretch: the pose jumps, progress is slow, yet it arrives."""
+    total = _corners(path)[-1]
+    split = total * run.rng.uniform(0.3, 0.5)
+    run.drive_along(path, 0.0, split, run.rng.uniform(0.3, 0.4), cov=(0.02, 0.08))
+    run.drive_along(path, split, total, run.rng.uniform(0.15, 0.22), jitter=0.25, cov=(0.25, 0.6),
+                    min_samples=8)
     run.step(run.rng.uniform(0.5, 1.5))
     run.log(CTRL, WARN, "No valid trajectories out of 360! ")
     run.stand(run.rng.uniform(2.0, 4.0))
@@ -408,7 +429,10 @@ def simulate_navigation(
     skill_logger: str = "skill_navigate_to_zone",
     goal_label: str = "kitchen",
 ) -> SkillResult:
-    """One NavigateToPose goal from `origin` to `goal` sent by the skill at `start`, unfolding as `situation`."""
+    """One NavigateToPose goal from `origin` to `goal`, sent by the skill at `start`, run as `situation`.
+
+    Failed runs end with Nav2's `Goal failed` after the BT's recoveries; `joystick`/`charging` take ~3 min.
+    """
     yaw0 = math.atan2(goal[1] - origin[1], goal[0] - origin[0])
     run = _Run(b, rng, start, origin[0], origin[1], yaw0, goal)
     place = goal_label.replace("_", " ")
@@ -418,11 +442,9 @@ def simulate_navigation(
             f"to ({goal[0]:.2f}, {goal[1]:.2f})")
     run.step(rng.uniform(0.1, 0.3))
     run.log(CTRL, INFO, "Received a goal, begin computing control effort.")
-    path = _waypoints(rng, origin, goal)
+    path = _path(rng, origin, goal)
     if situation == "nominal":
-        speed = rng.uniform(0.4, 0.55)
-        for leg in path:
-            run.drive(leg, speed)
+        run.drive_along(path, 0.0, _corners(path)[-1], rng.uniform(0.4, 0.55))
         _reached(run)
     elif situation == "blocked":
         _blocked(run, path)

@@ -22,6 +22,7 @@ from hexar.evals.scenarios.bag import BagBuilder, SkillResult, Storage, sec_ns
 ROOMS: dict[str, tuple[float, float]] = {"kitchen": (4.2, 2.1), "dining_room": (1.6, 4.4), "living_room": (-1.8, 0.6)}
 EPOCH = 1_741_600_800  # 2025-03-10 10:00 UTC: the recordings' wall clock
 NAV_SITUATION = {5: "blocked", 6: "joystick", 7: "charging", 8: "poor_localisation", 9: "moving_obstacles"}
+SKILL_TIMEOUT = sec_ns(60)  # the task manager aborts a skill after 60 s (hexar_interfaces.md)
 Plan = list[tuple[str, dict[str, Any]]]
 
 
@@ -156,12 +157,27 @@ class Robot:
         if situation is None:
             situation = NAV_SITUATION.get(self.sid, "nominal") if self.navigations == 1 else "nominal"
         goal = ROOMS[location]
+        mark = len(self.b.messages)
         result = nav.simulate_navigation(self.b, self.rng, self.t, self.pos, goal, situation,  # type: ignore[arg-type]
                                          goal_label=location)
+        if result.end - self.t > SKILL_TIMEOUT:
+            result = self._time_out(mark, self.t + SKILL_TIMEOUT)
         if result.succeeded:
             self.pos = goal
             self.moved = True
         return result
+
+    def _time_out(self, mark: int, deadline: int) -> SkillResult:
+        """The task manager cancels a navigation that outlives the skill timeout: Nav2 stops where it was."""
+        added = self.b.messages[mark:]
+        del self.b.messages[mark:]
+        self.b.messages.extend(m for m in added if m[0] <= deadline)
+        t = deadline + sec_ns(self.rng.uniform(0.01, 0.05))
+        self.b.log(t, "bt_navigator", 20, "[navigate_to_pose] [ActionServer] Client requested to cancel the goal. "
+                   "Cancelling.")
+        self.b.log(t + sec_ns(0.02), "controller_server", 20, "Goal was canceled. Stopping the robot.")
+        self.b.log(t + sec_ns(0.05), "bt_navigator", 20, "Goal canceled")
+        return SkillResult(t + sec_ns(0.1), False, "The skill has timed out")
 
     def ask_for_help(self, question: str) -> SkillResult:
         if 11 <= self.sid <= 18:

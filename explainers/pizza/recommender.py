@@ -10,8 +10,9 @@ from importlib import resources
 
 import numpy as np
 import numpy.typing as npt
-from hexar.explainers.errors import ExplainerError
 from sklearn.tree import DecisionTreeClassifier
+
+from hexar.explainers.errors import ExplainerError
 
 RECIPES = "recipes.csv"
 LABEL = "pizza"

@@ -5,6 +5,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.evals.scenarios.tts import LONG_MESSAGES, long_message, short_message, simulate_say
 from hexar.events.contract import SAY_EVENTS, SAY_STATUS_NAME

@@ -5,6 +5,7 @@ import random
 from pathlib import Path
 
 import pytest
+
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.evals.scenarios.pizza import PANTRY, scenario_ingredients, simulate_recommend_pizza
 from hexar.events.contract import PIZZA_EVENTS, PIZZA_STATUS_NAME

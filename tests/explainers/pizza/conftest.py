@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.evals.scenarios.pizza import simulate_recommend_pizza
 from hexar.events.log import EventLog

@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import pytest
+
 from hexar.explainers.errors import ExplainerError
 from hexar.explainers.pizza.explainer import lime_weights
 from hexar.explainers.pizza.recommender import PizzaRecommender, UnknownIngredientError, default_recommender

@@ -1,0 +1,227 @@
+"""Detectors of the known navigation situations, over the filtered Nav2 logs and the robot's state.
+
+Precedence keeps causes precise: a flag that stops the base (joystick lock, charger) explains a failure by
+itself, so the progress failures it produces are not also reported as a blocked path; poor localisation
+explains the trajectory failures and detours it produces (a mislocalised scan makes walls look misplaced), so
+it hides blocked_path and moving_obstacles.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import itertools
+import math
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Literal
+
+from hexar.events import contract as c
+from hexar.events.log import View
+from hexar.events.records import WARN, BoolSample, LogLine, PoseSample, StatusRecord
+from hexar.explainers.base import Evidence
+
+BLOCKED = "navigation.blocked_path"
+JOYSTICK = "navigation.joystick"
+CHARGING = "navigation.charging"
+POOR_LOCALISATION = "navigation.poor_localisation"
+MOVING_OBSTACLES = "navigation.moving_obstacles"
+NOMINAL_SPEED = "navigation.nominal_speed"
+NOMINAL = "navigation.nominal"
+UNEXPLAINED = "navigation.unexplained_failure"
+
+COV_LIMIT = 0.2
+COV_MIN_RUN = 6  # "more than 5 consecutive poses"
+JOY_TOGGLE = "Toggled joy_priority, current status is: True"
+SPEED_KEY = "max_vel_x"
+_SPEED_WORDS = re.compile(
+    r"\b(speed|fast|faster|slow|slower|slowly|quick|quickly|velocity|long|took|time|hurry|m/s)\b|"
+    # "why did you move like that?" asks about how the robot moved, which on a clean run is its speed profile
+    r"\b(move|moving|moved|drive|driving|drove|go|going|went)\s+(like (that|this)|that way|this way|so)\b",
+    re.I,
+)
+_PROGRESS = ("Failed to make progress", "Controller patience exceeded")
+_PLANNER = ("failed to create plan", "failed to generate a valid path", "plugin failed to plan")
+_DISTURBANCE = ("No valid trajectories", "Controller patience exceeded", "Received request to clear entirely",
+                "Running spin", "Running backup", "Running wait", "detected collision ahead")
+
+Outcome = Literal["reached", "failed", "unknown"]
+
+
+def pose_item(p: PoseSample) -> str:
+    return f"x={p.x:.2f} y={p.y:.2f} cov_xy={p.cov_xy:.3f} cov_yaw={p.cov_yaw:.3f}"
+
+
+def flag_item(s: BoolSample) -> str:
+    return f"data={s.value}"
+
+
+def status_item(r: StatusRecord, key: str) -> str:
+    return f"{r.name}: {key}={r.get(key)}"
+
+
+def asks_about_speed(question: str) -> bool:
+    return bool(_SPEED_WORDS.search(question))
+
+
+@dataclass
+class Finding:
+    cause: str
+    evidence: list[Evidence] = field(default_factory=list)
+    facts: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass
+class Run:
+    """What the window holds about navigation: filtered lines, poses, and how the goal ended."""
+
+    lines: list[LogLine]
+    poses: list[PoseSample]
+    outcome: Outcome
+    begin: LogLine | None
+    end: LogLine | None
+
+    def first(self, needles: Iterable[str]) -> LogLine | None:
+        return next(iter(self.matching(needles)), None)
+
+    def matching(self, needles: Iterable[str]) -> list[LogLine]:
+        keys = tuple(needles)
+        return [ln for ln in self.lines if any(k in ln.msg for k in keys)]
+
+    def distance(self) -> float:
+        lo = self.begin.t if self.begin else -math.inf
+        hi = self.end.t if self.end else math.inf
+        ps = [p for p in self.poses if lo <= p.t <= hi]
+        return sum(math.hypot(b.x - a.x, b.y - a.y) for a, b in itertools.pairwise(ps))
+
+    def duration_s(self) -> float | None:
+        if self.begin and self.end and self.end.t > self.begin.t:
+            return (self.end.t - self.begin.t) / 1e9
+        return None
+
+
+def summarise(lines: list[LogLine], poses: list[PoseSample], skill_state: str | None) -> Run:
+    begins = [ln for ln in lines if ln.name == "bt_navigator" and ln.msg.startswith("Begin navigating")]
+    ends = [ln for ln in lines if ln.name == "bt_navigator" and ln.msg in {"Goal succeeded", "Goal failed",
+                                                                          "Goal canceled"}]
+    end = ends[-1] if ends else None
+    outcome: Outcome = "unknown"
+    if end is not None:
+        outcome = "reached" if end.msg == "Goal succeeded" else "failed"
+    elif skill_state == "succeeded":
+        outcome = "reached"
+    elif skill_state == "failed":
+        outcome = "failed"
+    begin = max((b for b in begins if end is None or b.t <= end.t), key=lambda b: b.t, default=None)
+    return Run(lines, poses, outcome, begin, end)
+
+
+def _latched(view: View, topic: str, window: tuple[int, int]) -> list[BoolSample]:
+    """Samples that held during the window: the value latched at its start, then those inside it."""
+    first = view.flag_at(topic, window[0])
+    return ([first] if first is not None else []) + view.flags(topic)
+
+
+def _flag(view: View, topic: str, window: tuple[int, int], cause: str, run: Run) -> Finding | None:
+    held = [s for s in _latched(view, topic, window) if s.value]
+    if not held or run.outcome == "reached":
+        return None
+    found = Finding(cause, [Evidence(cause=cause, topic=topic, t=held[0].t, item=flag_item(held[0]))])
+    if len(held) > 1:
+        found.evidence.append(Evidence(cause=cause, topic=topic, t=held[-1].t, item=flag_item(held[-1])))
+    for line in (run.first(_PROGRESS), run.end if run.outcome == "failed" else None):
+        if line is not None:
+            found.evidence.append(Evidence.of_log(cause, line))
+    return found
+
+
+def joystick(view: View, window: tuple[int, int], run: Run, all_logs: list[LogLine]) -> Finding | None:
+    found = _flag(view, c.JOY_PRIORITY, window, JOYSTICK, run)
+    if found is not None:
+        toggles = [ln for ln in all_logs if ln.t <= window[1] and ln.msg == JOY_TOGGLE]
+        if toggles:
+            found.evidence.insert(1, Evidence.of_log(JOYSTICK, toggles[-1]))
+    return found
+
+
+def charging(view: View, window: tuple[int, int], run: Run) -> Finding | None:
+    return _flag(view, c.IS_CHARGING, window, CHARGING, run)
+
+
+def poor_localisation(run: Run) -> Finding | None:
+    best: list[PoseSample] = []
+    current: list[PoseSample] = []
+    for p in run.poses:
+        if p.cov_xy > COV_LIMIT or p.cov_yaw > COV_LIMIT:
+            current.append(p)
+            if len(current) > len(best):
+                best = list(current)
+        else:
+            current = []
+    warnings = [ln for ln in run.lines if ln.name == "amcl" and ln.level >= WARN]
+    if len(best) < COV_MIN_RUN and not warnings:
+        return None
+    found = Finding(POOR_LOCALISATION)
+    if len(best) >= COV_MIN_RUN:
+        worst = max(best, key=lambda p: max(p.cov_xy, p.cov_yaw))
+        for p in dict.fromkeys([best[0], worst, best[-1]]):
+            found.evidence.append(Evidence(cause=POOR_LOCALISATION, topic=c.AMCL_POSE, t=p.t,
+                                           item=pose_item(p)))
+        found.facts = {"poses": float(len(best)), "max_cov": max(worst.cov_xy, worst.cov_yaw),
+                       "seconds": (best[-1].t - best[0].t) / 1e9}
+    found.evidence += [Evidence.of_log(POOR_LOCALISATION, ln) for ln in warnings[:3]]
+    return found
+
+
+def blocked_path(run: Run) -> Finding | None:
+    if run.outcome == "reached":
+        return None
+    progress = run.matching(_PROGRESS)
+    planner = run.matching(_PLANNER)
+    if not progress and not planner:
+        return None
+    found = Finding(BLOCKED)
+    picks = progress[:1] + planner[:2] + run.matching(("Running ",))[:3]
+    if run.outcome == "failed" and run.end is not None:
+        picks.append(run.end)
+    found.evidence = [Evidence.of_log(BLOCKED, ln) for ln in sorted(set(picks), key=lambda ln: ln.t)]
+    recoveries = run.matching(("Running ",))
+    found.facts = {"planner_failures": float(len(planner)), "recoveries": float(len(recoveries))}
+    return found
+
+
+def moving_obstacles(run: Run) -> Finding | None:
+    if run.outcome != "reached":
+        return None
+    events = run.matching(_DISTURBANCE)
+    if len(events) < 2:
+        return None
+    found = Finding(MOVING_OBSTACLES, [Evidence.of_log(MOVING_OBSTACLES, ln) for ln in events[:8]])
+    if run.end is not None:
+        found.evidence.append(Evidence.of_log(MOVING_OBSTACLES, run.end))
+    found.facts = {"disturbances": float(len(events)),
+                   "new_paths": float(len(run.matching(("Passing new path",))))}
+    return found
+
+
+def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
+    """The normal run's figures: configured limit, distance and average speed."""
+    found = Finding(cause)
+    for line in (run.begin, run.end):
+        if line is not None:
+            found.evidence.append(Evidence.of_log(cause, line))
+    limits = [r for r in statuses if r.get(SPEED_KEY) is not None]
+    if limits:
+        r = limits[-1]
+        item = status_item(r, SPEED_KEY)
+        found.evidence.append(Evidence(cause=cause, topic=c.DIAGNOSTICS, t=r.t, item=item))
+        with contextlib.suppress(ValueError):
+            found.facts["max_vel_x"] = float(r.get(SPEED_KEY) or "nan")
+    distance, duration = run.distance(), run.duration_s()
+    if run.poses:
+        found.facts["distance_m"] = distance
+    if duration is not None:
+        found.facts["duration_s"] = duration
+        if run.poses:
+            found.facts["average_speed"] = distance / duration
+    return found

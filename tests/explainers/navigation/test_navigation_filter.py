@@ -1,0 +1,58 @@
+from __future__ import annotations
+
+from pathlib import Path
+
+from hexar.events.records import INFO, WARN, LogLine
+from hexar.explainers.navigation.filter import NOISE, filter_logs
+from tests.explainers.navigation.scenario import recording
+
+
+def _line(t: int, name: str, msg: str, level: int = INFO) -> LogLine:
+    return LogLine(t, level, name, msg)
+
+
+def test_keeps_nav2_and_skill_loggers_only() -> None:
+    lines = [
+        _line(1, "bt_navigator", "Goal succeeded"),
+        _line(2, "joystick_relay", "Toggled joy_priority, current status is: True"),
+        _line(3, "skill_navigate_to_zone", "Navigating to kitchen at (1.00, 2.00)"),
+        _line(4, "tts_engine", "hello"),
+    ]
+    assert [ln.t for ln in filter_logs(lines)] == [1, 3]
+
+
+def test_drops_every_noise_pattern() -> None:
+    lines = [_line(i, "controller_server", f"x {pattern} y", WARN) for i, pattern in enumerate(NOISE)]
+    lines.append(_line(99, "controller_server", "Failed to make progress"))
+    assert [ln.msg for ln in filter_logs(lines)] == ["Failed to make progress"]
+
+
+def test_drops_a_line_equal_to_the_previous_one_of_the_same_logger() -> None:
+    lines = [
+        _line(1, "controller_server", "Passing new path to controller."),
+        _line(2, "controller_server", "Passing new path to controller."),
+        _line(3, "planner_server", "Planner loop missed its desired rate of 20.0000 Hz. Current loop rate is "
+              "15.0000 Hz"),
+        _line(4, "controller_server", "Passing new path to controller."),
+        _line(5, "controller_server", "No valid trajectories out of 360! "),
+        _line(6, "controller_server", "Passing new path to controller."),
+        _line(7, "bt_navigator", "Passing new path to controller."),
+    ]
+    assert [ln.t for ln in filter_logs(lines)] == [1, 5, 6, 7]
+
+
+def test_a_simulated_recording_loses_its_noise_and_repeats(tmp_path: Path) -> None:
+    log = recording(tmp_path, "joystick")
+    raw = [ln for ln in log.logs if ln.name == "controller_server"]
+    kept = filter_logs(log.logs)
+    assert any("missed its desired rate" in ln.msg for ln in log.logs)
+    assert any("Message Filter dropping message" in ln.msg for ln in log.logs)
+    assert any("KeepoutFilter" in ln.msg for ln in log.logs)
+    assert not any(pattern in ln.msg for ln in kept for pattern in NOISE)
+    new_paths_raw = sum(ln.msg == "Passing new path to controller." for ln in raw)
+    new_paths_kept = sum(ln.msg == "Passing new path to controller." for ln in kept)
+    assert new_paths_kept < new_paths_raw / 5
+    previous: dict[str, str] = {}
+    for ln in kept:
+        assert previous.get(ln.name) != ln.msg
+        previous[ln.name] = ln.msg
