@@ -19,6 +19,9 @@ class RunSettings:
     time_budget_s: float = 20.0
     recursion_limit: int = 16
     registry_config: Path | None = None
+    # None: phrase with Ollama, not with the embedded model (on 2 CPU cores a 1.5B rewrite costs 5-15 s per
+    # answer and the faithfulness guard rejects many of them; routing is where it earns its time).
+    phrase: bool | None = None
 
 
 @dataclass
@@ -35,10 +38,11 @@ class RunContext:
 
     @classmethod
     def create(cls, settings: RunSettings, backend: Backend) -> RunContext:
+        phrase = settings.phrase if settings.phrase is not None else backend.name.startswith("ollama")
         return cls(
             settings=settings,
             backend=backend,
-            registry=Registry.load(backend.model, settings.registry_config),
+            registry=Registry.load(backend.model if phrase else None, settings.registry_config),
             probe=Registry.load(None, settings.registry_config),
             classifier=default_classifier(),
         )

@@ -23,6 +23,7 @@ from hexar.tools.explainer_tools import explainer_of_tool, scope, tools_for
 
 BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
 CONFIDENT = 0.45
+BUILTIN = {"planner", "navigation", "ask_human_for_help", "text_to_speech", "pizza_recommender"}
 
 
 def _ms(start: float) -> float:
@@ -105,26 +106,28 @@ def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str]) -> str |
 
 
 def _llm_choice(ctx: RunContext, state: AgentState) -> str | None:
+    """The model's pick among all explainers; a pick outside this task's candidates counts as no pick."""
     model = ctx.backend.model
     if model is None:
         return None
     descriptions = ctx.registry.descriptions()
     options = [c for c in state["candidates"] if c in descriptions]
-    listing = "\n".join(f"- {name}: {descriptions[name]}" for name in options)
-    messages = [
-        {"role": "system", "content": load("router")},
-        {"role": "user", "content": f"Explainers:\n{listing}\n\nQuestion: {state['question']}"},
-    ]
+    question = state["question"]
     chooser = getattr(model, "choose_tool", None)
     try:
         if chooser is not None:
             tools = [t for t in tools_for(ctx.registry) if explainer_of_tool(t.name) in options]
-            called = chooser(messages, tools)
-            return explainer_of_tool(called) if called else None
-        schema = {"type": "object", "properties": {"explainer": {"enum": [*options, "none"]}},
-                  "required": ["explainer"]}
-        raw = model.chat(messages, schema=schema, max_tokens=24)
-        choice = str(json.loads(raw).get("explainer", "none"))
+            called = chooser([{"role": "user", "content": question}], tools)
+            choice = explainer_of_tool(called) if called else "none"
+        else:
+            # A fixed prefix (the prompt file plus every registered explainer) lets llama.cpp reuse its cache.
+            extra = "".join(f"{name}: {descriptions[name].split('. ')[0]}.\n" for name in ctx.registry.names
+                            if name not in BUILTIN)
+            messages = [{"role": "system", "content": load("router") + extra},
+                        {"role": "user", "content": f"Question: {question}"}]
+            schema = {"type": "object", "properties": {"explainer": {"enum": [*ctx.registry.names, "none"]}},
+                      "required": ["explainer"]}
+            choice = str(json.loads(model.chat(messages, schema=schema, max_tokens=16)).get("explainer", "none"))
     except (ModelError, ValueError, AttributeError):
         return None
     return choice if choice in options else None

@@ -11,6 +11,10 @@ def phrase(model: TextModel | None, prompt_name: str, question: str, facts: str,
     """Ask `model` to say `grounded` in its own words, from `facts` only; keep the template on any failure."""
     if model is None:
         return grounded
+    # A small local model reads ~30 tokens/s on a laptop CPU: keep its facts short, newest last.
+    limit = int(getattr(model, "max_prompt_chars", 8000))
+    if len(facts) > limit:
+        facts = grounded.text + "\n" + facts[-(limit - len(grounded.text) - 1):]
     messages = [
         {"role": "system", "content": load(prompt_name)},
         {"role": "user", "content": f"Facts:\n{facts}\n\nQuestion: {question}\nAnswer:"},

@@ -30,8 +30,8 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
 
 
 def ask(run: Path, question: str | None, questions: Path | None, task: str | None, llm: str,
-        as_json: bool, verbose: bool, console: Console) -> int:
-    session = Session(RunSettings(recording=run, llm=llm))
+        as_json: bool, verbose: bool, console: Console, phrase: bool | None = None) -> int:
+    session = Session(RunSettings(recording=run, llm=llm, phrase=phrase))
     if questions is not None:
         lines = [ln.strip() for ln in questions.read_text(encoding="utf-8").splitlines() if ln.strip()]
         worst = 0
@@ -50,11 +50,13 @@ def ask(run: Path, question: str | None, questions: Path | None, task: str | Non
     return 0
 
 
-def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None) -> int:
+def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None,
+         phrase: bool | None = None) -> int:
     from prompt_toolkit import PromptSession
     from prompt_toolkit.history import FileHistory
 
-    session = Session(RunSettings(recording=run, llm=llm), checkpoints=checkpoints or default_checkpoints())
+    session = Session(RunSettings(recording=run, llm=llm, phrase=phrase),
+                      checkpoints=checkpoints or default_checkpoints())
     thread = thread or session.new_thread()
     history_file = (checkpoints or default_checkpoints()).with_name("chat_history")
     prompt: PromptSession[str] = PromptSession(history=FileHistory(str(history_file)))

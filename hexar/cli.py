@@ -120,6 +120,8 @@ def ask(
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
     as_json: Annotated[bool, typer.Option("--json", help="print JSON")] = False,
     verbose: Annotated[bool, typer.Option("--verbose", "-v", help="show route, backend, evidence")] = False,
+    phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers "
+                                                "(default: with Ollama yes, embedded no)")] = None,
 ) -> None:
     """Answer one question (or a file of questions) about a recorded run."""
 
@@ -129,7 +131,7 @@ def ask(
 
         if question is None and questions is None:
             raise HexarError("give a question or --questions FILE")
-        return run_ask(run, question, questions, task, llm, as_json, verbose, out)
+        return run_ask(run, question, questions, task, llm, as_json, verbose, out, phrase)
 
     raise typer.Exit(guarded(body))
 
@@ -140,13 +142,14 @@ def chat(
     thread: Annotated[str | None, typer.Option(help="resume this conversation")] = None,
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
     checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations")] = None,
+    phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers")] = None,
 ) -> None:
     """Talk with the robot about a recorded run; follow-up questions keep the thread."""
 
     def body() -> int:
         from hexar.chat import chat as run_chat
 
-        return run_chat(run, thread, llm, out, checkpoints)
+        return run_chat(run, thread, llm, out, checkpoints, phrase)
 
     raise typer.Exit(guarded(body))
 

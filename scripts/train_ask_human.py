@@ -1,6 +1,6 @@
 """Rebuild the ask-human-for-help causal model from simulated executions (deterministic for a given seed).
 
-    .venv/bin/python scripts/train_ask_human.py [--n 3000] [--seed 11] [--out explainers/ask_human/model.json]
+.venv/bin/python scripts/train_ask_human.py [--n 3000] [--seed 11] [--out explainers/ask_human/model.json]
 """
 
 from __future__ import annotations
@@ -30,7 +30,8 @@ def main() -> None:
     began = time.perf_counter()
     model = build(args.n, args.seed)
     model.save(args.out)
-    print(f"fitted on {args.n} executions (seed {args.seed}) in {time.perf_counter() - began:.1f} s -> {args.out}")
+    took = time.perf_counter() - began
+    print(f"fitted on {args.n} executions (seed {args.seed}) in {took:.1f} s -> {args.out}")
 
 
 if __name__ == "__main__":

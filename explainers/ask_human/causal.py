@@ -59,7 +59,8 @@ EDGES: tuple[tuple[str, str], ...] = (
 
 
 def _quiet_pgmpy() -> None:
-    # pgmpy announces deprecations and CPD replacements on every import and fit; none of it is actionable here.
+    # pgmpy announces deprecations and CPD replacements on every import and fit; none of it is
+    # actionable here.
     warnings.filterwarnings("ignore", category=FutureWarning, module=r"pgmpy(\..*)?")
     logging.getLogger("pgmpy").setLevel(logging.ERROR)
 
@@ -110,7 +111,7 @@ def hops(src: str, dst: str) -> int:
 
 @dataclass(frozen=True)
 class Counterfactual:
-    """do(changes) and what the model says then; `flips` is whether success becomes the most probable outcome."""
+    """do(changes) and what the model says then; `flips`: success becomes the most probable outcome."""
 
     changes: tuple[tuple[str, str, str], ...]  # (variable, observed value, value under the intervention)
     p_success: float
@@ -142,7 +143,9 @@ class CausalModel:
             equivalent_sample_size=EQUIVALENT_SAMPLE_SIZE,
         )
         network.fit(frame, estimator=estimator)
-        return cls(network, {"executions": len(rows), "equivalent_sample_size": EQUIVALENT_SAMPLE_SIZE, **meta})
+        return cls(
+            network, {"executions": len(rows), "equivalent_sample_size": EQUIVALENT_SAMPLE_SIZE, **meta}
+        )
 
     def to_json(self) -> dict[str, Any]:
         cpds = {}
@@ -186,7 +189,9 @@ class CausalModel:
     def load(cls, path: Path | None = None) -> CausalModel:
         """The model shipped with the package, or the one at `path`."""
         if path is None:
-            text = resources.files("hexar.explainers.ask_human").joinpath(MODEL_FILE).read_text(encoding="utf-8")
+            text = (
+                resources.files("hexar.explainers.ask_human").joinpath(MODEL_FILE).read_text(encoding="utf-8")
+            )
         else:
             text = Path(path).read_text(encoding="utf-8")
         return cls.from_json(json.loads(text))
@@ -243,10 +248,10 @@ def search_counterfactual(
         (v for v in ancestors(failed_transition) if v in WORLD and observed.get(v, NONE) != NONE),
         key=lambda v: (hops(v, failed_transition), VARIABLES.index(v)),
     )
-    best: tuple[tuple[float, ...], Counterfactual] | None = None
+    best: tuple[tuple[float, float, float], Counterfactual] | None = None
     tried = 0
     for size in range(1, max_size + 1):
-        passing: list[tuple[tuple[float, ...], Counterfactual]] = []
+        passing: list[tuple[tuple[float, float, float], Counterfactual]] = []
         for group in combinations(candidates, size):
             options = [[s for s in STATES[v] if s not in (NONE, observed[v])] for v in group]
             for values in product(*options):

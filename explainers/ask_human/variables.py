@@ -17,9 +17,20 @@ APPROACH_ERROR_LIMIT = 0.5
 MID_DISTANCE = 2.0
 
 KEYS: tuple[str, ...] = (
-    "InitialState", "person_approached", "DetectState", "person_detected", "person_std_rms",
-    "detection_stable", "person_distance", "NavigateState", "navigation_failure", "robot_nav_err",
-    "AskForHelpState", "user_accepted", "WaitForConfirmationState", "user_confirmed",
+    "InitialState",
+    "person_approached",
+    "DetectState",
+    "person_detected",
+    "person_std_rms",
+    "detection_stable",
+    "person_distance",
+    "NavigateState",
+    "navigation_failure",
+    "robot_nav_err",
+    "AskForHelpState",
+    "user_accepted",
+    "WaitForConfirmationState",
+    "user_confirmed",
 )
 END_KEYS: tuple[str, ...] = ("SkillSucceeded", "SkillFailed")
 
@@ -78,7 +89,7 @@ PHRASES: dict[str, dict[str, str]] = {
         "lt_0.75": "the person had been closer than 0.75 m",
         "0.75_2.0": "the person had been between 0.75 and 2.0 m away",
         "2.0_4.0": "the person had been between 2.0 and 4.0 m away",
-        "gt_4.0": "the person was farther than 4.0 m away",
+        "gt_4.0": "the person was farther away than the 4.0 m I can ask from",
     },
     "navigation_failure": {
         FALSE: "my navigation to the person had succeeded",
@@ -107,7 +118,7 @@ CAUSE_OF: dict[tuple[str, str], str] = {
     ("person_distance", "gt_4.0"): "ask_human.person_too_far",
     ("navigation_failure", TRUE): "ask_human.navigation_failed",
     ("user_accepted", FALSE): "ask_human.refused",
-    ("user_accepted", NO_ANSWER): "ask_human.no_answer",
+    ("user_accepted", NO_ANSWER): "ask_human.refused",  # the shared vocabulary: refused or did not answer
     ("user_confirmed", FALSE): "ask_human.not_confirmed",
     ("user_confirmed", NO_ANSWER): "ask_human.not_confirmed",
     ("person_std_rms", "gt_0.5"): "ask_human.noisy_detection",
@@ -169,7 +180,11 @@ def assignment(steps: Iterable[tuple[str, str]]) -> dict[str, str]:
         "user_accepted": _flag(rec.get("user_accepted")) if "user_accepted" in rec else NONE,
         "user_confirmed": _flag(rec.get("user_confirmed")) if "user_confirmed" in rec else NONE,
     }
-    navigate, ask, confirm = ("NavigateState" in rec), ("AskForHelpState" in rec), ("WaitForConfirmationState" in rec)
+    navigate, ask, confirm = (
+        ("NavigateState" in rec),
+        ("AskForHelpState" in rec),
+        ("WaitForConfirmationState" in rec),
+    )
     succeeded = "SkillSucceeded" in rec
     out["detection_next"] = "navigate" if navigate else "ask_for_help" if ask else "failure"
     out["navigate_executed"] = TRUE if navigate else FALSE
@@ -198,3 +213,21 @@ def value_gap(var: str, a: str, b: str) -> int:
 
 def describe(assign: Mapping[str, str]) -> str:
     return ", ".join(f"{k}={assign[k]}" for k in WORLD if k in assign)
+
+
+_LABELS = {
+    "lt_0.75": "< 0.75 m",
+    "0.75_2.0": "in 0.75-2.0 m",
+    "2.0_4.0": "in 2.0-4.0 m",
+    "gt_4.0": "> 4.0 m",
+    "le_0.5": "<= 0.5 m",
+    "gt_0.5": "> 0.5 m",
+    TRUE: "= True",
+    FALSE: "= False",
+    NO_ANSWER: "= no answer",
+}
+
+
+def label(var: str, value: str) -> str:
+    """A bin as a condition on the recorded value, e.g. `in 2.0-4.0 m`."""
+    return _LABELS.get(value, f"= {value}")

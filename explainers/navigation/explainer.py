@@ -16,11 +16,13 @@ Causes, each with its evidence from the recording:
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
 from hexar.events.records import LogLine
+from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation.filter import filter_logs
@@ -33,20 +35,36 @@ NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
 MAX_FACT_LINES = 60
 
 
-def _place(context: Context) -> str:
-    runs = [r for r in context.task.skills if r.skill in NAV_SKILLS]
+def _focus(context: Context) -> SkillRun | None:
+    """The plan's navigation step this window is about: the failed one, else the last one inside the window."""
     failed = context.task.failed_skill
-    run = failed if failed is not None and failed.skill in NAV_SKILLS else (runs[-1] if runs else None)
+    if failed is not None and failed.skill in NAV_SKILLS:
+        return failed
+    lo, hi = context.window
+    inside = [r for r in context.task.skills if r.skill in NAV_SKILLS and r.history
+              and context.task.skill_window(r)[0] <= hi and context.task.skill_window(r)[1] >= lo]
+    return inside[-1] if inside else None
+
+
+_NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \(")
+
+
+def _place(context: Context, lines: list[LogLine]) -> str:
+    run = _focus(context)
     location = run.params.get("location") if run is not None else None
-    return f"the {str(location).replace('_', ' ')}" if isinstance(location, str) and location else "my goal"
+    if isinstance(location, str) and location:
+        return f"the {location.replace('_', ' ')}"
+    # A navigation that is no plan step (e.g. approaching a person) names its goal in the skill's own log.
+    for line in lines:
+        m = _NAVIGATING_TO.match(line.msg)
+        if m:
+            return m.group(1)
+    return "my goal"
 
 
 def _skill_state(context: Context) -> str | None:
-    runs = [r for r in context.task.skills if r.skill in NAV_SKILLS]
-    failed = context.task.failed_skill
-    if failed is not None and failed.skill in NAV_SKILLS:
-        return "failed"
-    return runs[-1].state if runs else None
+    run = _focus(context)
+    return run.state if run is not None else None
 
 
 def _quote(line: LogLine | None) -> str:
@@ -73,6 +91,16 @@ class NavigationExplainer:
         self.registry = registry
 
     def explain(self, question: str, context: Context) -> Explanation:
+        task = context.task
+        trips = [r for r in task.skills if r.skill in NAV_SKILLS and r.state in {"succeeded", "failed"}]
+        if task.failed_skill is None and len(trips) > 1 and context.window == task.window():
+            # Several trips in one task: explain each on its own, and answer with the first one that was not
+            # a plain, problem-free drive.
+            parts = [self._explain(question, context.with_window(task.skill_window(r))) for r in trips]
+            return next((p for p in parts if not set(p.causes) <= {d.NOMINAL, d.NOMINAL_SPEED}), parts[0])
+        return self._explain(question, context)
+
+    def _explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)
         window = view.window or (context.log.start, context.log.end)
         raw = view.logs()
@@ -87,7 +115,7 @@ class NavigationExplainer:
         if not lines and not poses and not flags:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         findings = flags + self._others(question, view, run, bool(flags))
-        grounded = self._compose(question, context, run, findings)
+        grounded = self._compose(question, context, run, findings, lines)
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
     def _others(self, question: str, view: View, run: d.Run, flagged: bool) -> list[d.Finding]:
@@ -104,8 +132,9 @@ class NavigationExplainer:
         cause = d.NOMINAL_SPEED if d.asks_about_speed(question) else d.NOMINAL
         return [d.speed(run, view.statuses(c.DIAGNOSTICS), cause)]
 
-    def _compose(self, question: str, context: Context, run: d.Run, findings: list[d.Finding]) -> Explanation:
-        place = _place(context)
+    def _compose(self, question: str, context: Context, run: d.Run, findings: list[d.Finding],
+                 lines: list[LogLine]) -> Explanation:
+        place = _place(context, lines)
         texts: list[str] = []
         fixes: list[str] = []
         details: list[str] = []

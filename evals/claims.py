@@ -1,0 +1,128 @@
+"""What an answer claims, read from its text alone, so that HEXAR's answers and the baselines' free text are
+graded alike.
+
+A cause is claimed when one of its vocabulary phrasings (hexar/causes.yaml) appears affirmed. Three rules keep
+plain regex matching from misreading free text:
+- denial: "there was no obstacle in my path" or "the joystick was not engaged" mention a cause to rule it out;
+  a negation right before the phrase (after the last causal connective of its clause) or right after it flips
+  the match to a denial.
+- inverted phrasings: a few vocabulary patterns name the healthy state ("a stable detection", "knew where I
+  was") and state the cause only when negated, so for them the flip goes the other way.
+- longest match: "no one confirmed" is a phrasing of `ask_human.not_confirmed`; the shorter "no one" inside it
+  must not also count as `ask_human.nobody_detected`.
+
+Besides causes, two claims about the run that no cause id names but that annotators count as incorrect facts:
+blaming the plan, and saying the task failed.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+from dataclasses import dataclass
+from functools import cache
+
+from hexar.causes import vocabulary
+
+# Patterns (by their source text) whose plain form describes the healthy state.
+INVERTED: frozenset[tuple[str, str]] = frozenset({
+    ("ask_human.unstable_detection", "(stable|steady) detection"),
+    ("navigation.poor_localisation", "(knew|know) where I (was|am)"),
+})
+NEGATION = re.compile(r"\b(no|not|never|without|nor|neither|nothing|none)\b|n't\b|\bcannot\b", re.I)
+# A negation before the last of these words belongs to another statement: "I didn't move because the joystick...".
+CONNECTIVE = re.compile(r"\b(because|since|as|so|due to|which|that|when|while|and|but|after|then)\b", re.I)
+AFTER_DENIAL = re.compile(
+    r"^\W*(\w+\W+){0,2}?(was|were|is|are|had been|has been)(\s+not\b|n't\b|\s+(off|disabled|inactive|false)\b)",
+    re.I,
+)
+CLAUSE_END = re.compile(r"[.;:!?\n]")
+WINDOW_WORDS = 3
+
+PLAN_BLAMED = "claim.plan_blamed"
+TASK_FAILED = "claim.task_failed"
+GENERIC: dict[str, re.Pattern[str]] = {
+    PLAN_BLAMED: re.compile(
+        r"\b(my|the) plan (was|is|had been) (incorrect|wrong|faulty|invalid|flawed|bad|mistaken|"
+        r"not (correct|right|valid))|\b(incorrect|wrong|faulty|invalid|flawed|bad|mistaken) plan\b|"
+        r"\bplan(ning)? (error|mistake|failure|fault)", re.I),
+    TASK_FAILED: re.compile(
+        r"\b(I|the task|it|the robot) (failed|could ?n[o']t|was unable|wasn't able|did ?n[o']t manage)( to)? "
+        r"(complete|finish|do|reach|get|bring|deliver|make it)", re.I),
+}
+
+
+@dataclass(frozen=True)
+class Match:
+    claim: str
+    start: int
+    end: int
+    affirmed: bool
+
+
+@dataclass(frozen=True)
+class Claims:
+    """What a text affirms and what it only mentions to deny."""
+
+    affirmed: frozenset[str]
+    denied: frozenset[str]
+    matches: tuple[Match, ...]
+
+    @property
+    def causes(self) -> frozenset[str]:
+        return frozenset(c for c in self.affirmed if not c.startswith("claim."))
+
+    @property
+    def generic(self) -> frozenset[str]:
+        return frozenset(c for c in self.affirmed if c.startswith("claim."))
+
+
+@cache
+def _patterns() -> tuple[tuple[str, re.Pattern[str], bool], ...]:
+    out: list[tuple[str, re.Pattern[str], bool]] = []
+    for cid, cause in vocabulary().items():
+        for p in cause.patterns:
+            out.append((cid, p, (cid, p.pattern) in INVERTED))
+    out += [(cid, p, False) for cid, p in GENERIC.items()]
+    return tuple(out)
+
+
+def _clause_bounds(text: str, start: int, end: int) -> tuple[int, int]:
+    left = max((m.end() for m in CLAUSE_END.finditer(text, 0, start)), default=0)
+    right_m = CLAUSE_END.search(text, end)
+    return left, right_m.start() if right_m else len(text)
+
+
+def _negated(text: str, start: int, end: int) -> bool:
+    left, right = _clause_bounds(text, start, end)
+    before = text[left:start]
+    cut = list(CONNECTIVE.finditer(before))
+    if cut:
+        before = before[cut[-1].end():]
+    words = before.split()[-WINDOW_WORDS:]
+    if NEGATION.search(" ".join(words)):
+        return True
+    return bool(AFTER_DENIAL.search(text[end:right]))
+
+
+def _raw_matches(text: str) -> Iterator[Match]:
+    for cid, pattern, inverted in _patterns():
+        for m in pattern.finditer(text):
+            if m.end() == m.start():
+                continue
+            negated = _negated(text, m.start(), m.end())
+            yield Match(cid, m.start(), m.end(), negated if inverted else not negated)
+
+
+def _shadowed(m: Match, others: list[Match]) -> bool:
+    """Inside a longer phrase of another claim: that claim is what the words say."""
+    return any(o.claim != m.claim and o.start <= m.start and m.end <= o.end and (o.end - o.start) > (m.end - m.start)
+               for o in others)
+
+
+def read_claims(text: str) -> Claims:
+    found = list(_raw_matches(text))
+    kept = tuple(m for m in found if not _shadowed(m, found))
+    affirmed = frozenset(m.claim for m in kept if m.affirmed)
+    denied = frozenset(m.claim for m in kept if not m.affirmed) - affirmed
+    return Claims(affirmed, denied, tuple(sorted(kept, key=lambda m: m.start)))
