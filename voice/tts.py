@@ -5,6 +5,7 @@ from __future__ import annotations
 import importlib
 import shutil
 import subprocess
+from functools import cache
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -34,8 +35,16 @@ def piper_voice_files() -> tuple[Path, Path]:
     return model, config
 
 
+@cache
+def _piper_voice(model: str, config: str | None) -> Any:
+    """One loaded voice per process (loading takes seconds; synthesis is fast)."""
+    piper: Any = importlib.import_module("piper")
+    return piper.PiperVoice.load(model, config_path=config)
+
+
 class PiperSynthesizer:
-    def __init__(self, model: Path | None = None, config: Path | None = None, length_scale: float | None = None) -> None:
+    def __init__(self, model: Path | None = None, config: Path | None = None,
+                 length_scale: float | None = None) -> None:
         try:
             piper: Any = importlib.import_module("piper")
         except ImportError as err:
@@ -43,7 +52,7 @@ class PiperSynthesizer:
         if model is None:
             model, config = piper_voice_files()
         try:
-            self._voice = piper.PiperVoice.load(str(model), config_path=str(config) if config else None)
+            self._voice = _piper_voice(str(model), str(config) if config else None)
         except Exception as err:  # onnxruntime and json raise their own types
             raise SpeakerError(f"cannot load the piper voice {model}: {err}") from err
         self._config = piper.SynthesisConfig(length_scale=length_scale)

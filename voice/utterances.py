@@ -7,6 +7,7 @@ keeps everything; the evidence is there for "tell me more".
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 
 MAX_WORDS = 25
 MAX_SENTENCES = 2
@@ -29,23 +30,32 @@ def clean(text: str) -> str:
     text = _PAREN.sub("", text)
     text = _ASSIGN.sub(" is ", text)
     text = _SNAKE.sub(" ", text)
+    text = re.sub(r"\s+([.,;:!?])", r"\1", text)  # "a path to (4.2, 2.1)." lost its bracket, not its stop
     return re.sub(r"\s+", " ", text).strip()
 
 
-def _sentences(text: str) -> list[str]:
+def _first_sentence(text: str) -> str:
+    parts = [s.strip() for s in _SENTENCE.split(text) if s.strip()]
+    return parts[0] if parts else ""
+
+
+def _sentences(text: str, items: Sequence[str] | None) -> list[str]:
     """The answer's sentences. A list of evidence ("Here is what I recorded: a; b; c") gives the first sentence
-    of each item, since an item's body may be a long quotation, and the same item only once."""
+    of each item, since an item may quote a long message, and the same item once. With the evidence `items`
+    at hand they are used as they are, since a quoted message may itself hold a `;`."""
     m = _HEADER.match(text)
     header, body = (m.group(1), m.group(2)) if m and ";" in m.group(2) else ("", text)
-    units: list[str] = []
-    items = [i.strip() for i in re.split(r";\s+", body) if i.strip()]
-    for item in items:
-        sents = [s.strip() for s in _SENTENCE.split(item) if s.strip()]
-        for s in sents if not header else sents[:1]:
-            if s not in units:
-                units.append(s)
-    if header and units:
-        units[0] = f"{header} {units[0]}"
+    if not header:
+        units = [s.strip() for s in _SENTENCE.split(text) if s.strip()]
+    else:
+        raw = [clean(i) for i in items] if items else re.split(r";\s+", body)
+        units = []
+        for item in raw:
+            first = _first_sentence(item)
+            if first and first not in units:
+                units.append(first)
+        if units:
+            units[0] = f"{header} {units[0]}"
     return units
 
 
@@ -68,12 +78,13 @@ def _end(text: str) -> str:
     return text if text.endswith((".", "!", "?")) else f"{text}."
 
 
-def spoken(answer: str, max_words: int = MAX_WORDS, max_sentences: int = MAX_SENTENCES,
-           max_total: int = MAX_TOTAL_WORDS) -> list[str]:
-    """The utterances to say for `answer`, each at most `max_words` words, together at most `max_total`."""
+def spoken(answer: str, evidence: Sequence[str] | None = None, max_words: int = MAX_WORDS,
+           max_sentences: int = MAX_SENTENCES, max_total: int = MAX_TOTAL_WORDS) -> list[str]:
+    """The utterances to say for `answer`, each at most `max_words` words, together at most `max_total`.
+    `evidence`: the recorded items an evidence answer lists, to split it where the items end."""
     out: list[str] = []
     total = 0
-    for sentence in _sentences(clean(answer))[:max_sentences]:
+    for sentence in _sentences(clean(answer), evidence)[:max_sentences]:
         for chunk in _chunks(sentence, max_words):
             words = chunk.split()
             room = max_total - total

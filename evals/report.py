@@ -1,0 +1,136 @@
+"""The eval report: every case, answer, grade and timing, the summary per method and module, the statistics, the
+judge's agreement, the backend and the prompt hashes; written as JSON (the Markdown and figures read it)."""
+
+from __future__ import annotations
+
+import json
+import platform
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from hexar.evals.judge import agreement, rubric_hash
+from hexar.evals.run import CaseResult, RunOutput, modules
+from hexar.evals.stats import compare, mean_sd
+from hexar.prompts import hashes
+
+SCHEMA = 1
+METRICS: tuple[str, ...] = ("root_cause", "incorrect_facts", "accuracy")
+LOWER_IS_BETTER = frozenset({"incorrect_facts", "runtime_s"})
+# Paper section V-E (and hexar_interfaces.md, "Reported results"): percentages, seconds, selector hits.
+PAPER: dict[str, dict[str, float]] = {
+    "hexar": {"root_cause": 97.22, "incorrect_facts": 7.22, "accuracy": 92.78, "runtime_s": 1.73, "selection": 179},
+    "end-to-end": {"root_cause": 72.78, "incorrect_facts": 27.78, "accuracy": 65.56, "runtime_s": 7.86},
+    "all-components": {"root_cause": 92.22, "incorrect_facts": 32.22, "accuracy": 67.22, "runtime_s": 10.05},
+}
+PAPER_Q: dict[str, float] = {"root_cause": 60.04, "incorrect_facts": 45.50, "accuracy": 50.85}
+PAPER_CASES = 180
+
+
+def _case_dict(row: CaseResult) -> dict[str, Any]:
+    c = row.case
+    out: dict[str, Any] = {
+        "id": c.id, "scenario": c.scenario.id, "module": c.scenario.module, "category": c.scenario.category,
+        "variant": c.variant, "kind": c.kind, "recording": c.recording, "question": c.question,
+        "truth": {"cause": c.scenario.cause, "also": list(c.scenario.also), "explainer": c.scenario.explainer,
+                  "root_cause": c.scenario.root_cause},
+        "results": {},
+    }
+    for name, res in row.results.items():
+        a = res.answer
+        out["results"][name] = {
+            "answer": a.text, "error": a.error, "runtime_s": round(a.runtime_s, 6), "causes": a.causes,
+            "explainers": a.explainers, "grades": res.grades.as_dict(), "extra": a.extra,
+            "judge": res.verdict.as_dict() if res.verdict is not None else None,
+        }
+    return out
+
+
+def _outcomes(cases: Sequence[dict[str, Any]], method: str, metric: str) -> list[bool]:
+    return [bool(c["results"][method]["grades"][metric]) for c in cases]
+
+
+def summarise(cases: Sequence[dict[str, Any]], methods: Sequence[str]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for m in methods:
+        entry: dict[str, Any] = {"n": len(cases)}
+        for metric in METRICS:
+            mean, sd = mean_sd([float(v) for v in _outcomes(cases, m, metric)])
+            entry[metric] = {"mean": mean, "sd": sd}
+        mean, sd = mean_sd([c["results"][m]["runtime_s"] for c in cases])
+        entry["runtime_s"] = {"mean": mean, "sd": sd}
+        selection = [c["results"][m]["grades"]["selection"] for c in cases]
+        if all(s is not None for s in selection):
+            entry["selection"] = {"correct": sum(bool(s) for s in selection), "n": len(cases),
+                                  "mean": sum(bool(s) for s in selection) / len(cases)}
+        structured = [c["results"][m]["grades"]["structured"] for c in cases]
+        if all(s is not None for s in structured):
+            entry["structured"] = {k: sum(bool(s[k]) for s in structured) / len(cases) for k in METRICS}
+        entry["errors"] = sum(bool(c["results"][m]["error"]) for c in cases)
+        out[m] = entry
+    return out
+
+
+def per_module(cases: Sequence[dict[str, Any]], methods: Sequence[str]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for module in modules():
+        rows = [c for c in cases if c["module"] == module]
+        if not rows:
+            continue
+        acc = {m: sum(_outcomes(rows, m, "accuracy")) / len(rows) for m in methods}
+        test = compare({m: _outcomes(rows, m, "accuracy") for m in methods})
+        out[module] = {"n": len(rows), "accuracy": acc, "test": test.as_dict() if test else None}
+    return out
+
+
+def statistics(cases: Sequence[dict[str, Any]], methods: Sequence[str], skipped: dict[str, str]) -> dict[str, Any]:
+    if len(methods) < 2:
+        why = "; ".join(f"{m}: {r}" for m, r in skipped.items()) or "only one method ran"
+        return {"applicable": False, "reason": f"not applicable: only {', '.join(methods)} ran ({why})"}
+    tests = {metric: compare({m: _outcomes(cases, m, metric) for m in methods}) for metric in METRICS}
+    return {"applicable": True, "metrics": {k: v.as_dict() for k, v in tests.items() if v is not None},
+            "paper_q": PAPER_Q}
+
+
+def judge_summary(cases: Sequence[dict[str, Any]], methods: Sequence[str]) -> dict[str, Any]:
+    from hexar.evals.judge import Verdict
+
+    out: dict[str, Any] = {}
+    for m in methods:
+        rows = [(c["id"], c["results"][m]["grades"], Verdict(**c["results"][m]["judge"])) for c in cases
+                if c["results"][m]["judge"] is not None]
+        out[m] = [a.as_dict() for a in agreement(rows)]
+    return out
+
+
+def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -> dict[str, Any]:
+    cases = [_case_dict(row) for row in output.results]
+    report: dict[str, Any] = {
+        "schema": SCHEMA,
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "backend": output.backend,
+        "methods": output.methods,
+        "not_applicable": output.skipped,
+        "runs": str(runs), "seed": seed, "simulated": output.simulated,
+        "selection": selection,
+        "host": {"python": platform.python_version(), "machine": platform.machine(), "system": platform.system()},
+        "prompts": hashes(),
+        "grading": "text-only for every method (hexar/causes.yaml phrasings, evals/claims.py); HEXAR's "
+                   "structured-cause grades are in summary.<method>.structured",
+        "summary": summarise(cases, output.methods),
+        "per_module": per_module(cases, output.methods),
+        "statistics": statistics(cases, output.methods, output.skipped),
+        "paper": {"methods": PAPER, "cochran_q": PAPER_Q, "cases": PAPER_CASES},
+        "judge": None,
+        "cases": cases,
+    }
+    if output.judge is not None:
+        report["judge"] = {"model": output.judge, "rubric": rubric_hash(),
+                           "agreement": judge_summary(cases, output.methods)}
+    return report
+
+
+def write_json(report: dict[str, Any], path: Path) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")

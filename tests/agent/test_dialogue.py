@@ -1,0 +1,73 @@
+"""Follow-ups keep the thread: deeper 'why?', 'what would have helped?', 'what else?', and task switching;
+a conversation resumes from its SQLite checkpoint in a new process-like session."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
+
+
+def _session(suite: Path, rec: str, db: Path) -> Session:
+    return Session(RunSettings(recording=suite / rec, llm="none"), checkpoints=db)
+
+
+@pytest.mark.parametrize(("rec", "cause", "evidence_word"), [
+    ("bagfile_5_1", "navigation.blocked_path", "Failed to make progress"),
+    ("bagfile_7_2", "navigation.charging", "data=True"),
+    ("bagfile_12_1", "ask_human.person_too_far", "person_distance"),
+    ("bagfile_19_1", "tts.timeout", "timed_out"),
+])
+def test_three_turns_resumed_from_checkpoint(suite: Path, tmp_path: Path, rec: str, cause: str,
+                                             evidence_word: str) -> None:
+    db = tmp_path / "threads.sqlite"
+    first = _session(suite, rec, db)
+    r1 = first.ask("What happened?")
+    assert cause in r1["causes"]
+    thread = r1["thread"]
+    # a new session (as after restarting `hexar chat`) continues the same thread from SQLite
+    second = _session(suite, rec, db)
+    r2 = second.ask("and why was that?", thread=thread)
+    assert r2["intent"] == "deeper" and evidence_word in r2["answer"]
+    r3 = second.ask("What would have helped?", thread=thread)
+    assert r3["intent"] == "helped"
+    assert r3["answer"] and "don't have enough information" not in r3["answer"]
+    history = second.history(thread)
+    assert [t["question"] for t in history] == ["What happened?", "and why was that?", "What would have helped?"]
+
+
+def test_why_goes_one_level_deeper_each_time(suite: Path, tmp_path: Path) -> None:
+    s = _session(suite, "bagfile_14_1", tmp_path / "t.sqlite")
+    thread = s.ask("Why didn't you bring me the coffee?")["thread"]
+    evidence = s.ask("why?", thread=thread)["answer"]
+    chain = s.ask("why?", thread=thread)["answer"]
+    bottom = s.ask("why?", thread=thread)["answer"]
+    assert evidence.startswith("Here is what I recorded")
+    assert chain != evidence and chain
+    assert "don't have enough information" in bottom
+
+
+def test_what_else_tries_the_next_explainer(suite: Path, tmp_path: Path) -> None:
+    s = _session(suite, "bagfile_9_1", tmp_path / "t.sqlite")
+    r1 = s.ask("What happened?")
+    r2 = s.ask("What else happened?", thread=r1["thread"])
+    assert r1["explainers"] == ["navigation"]
+    assert r2["explainers"] and r2["explainers"] != r1["explainers"]
+
+
+def test_switching_to_the_first_task(suite: Path, tmp_path: Path) -> None:
+    # bagfile_5_1 holds the failed request and then the robot's recovery task
+    s = _session(suite, "bagfile_5_1", tmp_path / "t.sqlite")
+    r1 = s.ask("What happened?")
+    r2 = s.ask("What about the first task?", thread=r1["thread"])
+    assert r2["intent"] == "switch"
+    assert r2["task_id"] == r1["task_id"]  # the failed request is the first task
+    assert "navigation.blocked_path" in r2["causes"]
+
+
+def test_followup_without_history_is_a_new_question(suite: Path, tmp_path: Path) -> None:
+    r = _session(suite, "bagfile_19_2", tmp_path / "t.sqlite").ask("why?")
+    assert r["intent"] == "new" and "tts.timeout" in r["causes"]

@@ -1,0 +1,90 @@
+"""The deterministic graders on hand-written answers, as a baseline's free text or HEXAR's would read."""
+
+from __future__ import annotations
+
+import pytest
+
+from hexar.evals.cases import Case, cases, scenarios
+from hexar.evals.claims import read_claims
+from hexar.evals.graders import Graded, Grader, Grades, Truth
+
+
+def case_of(scenario: int) -> Case:
+    return next(c for c in cases() if c.scenario.id == scenario)
+
+
+def grade(scenario: int, text: str, causes: list[str] | None = None, explainers: list[str] | None = None) -> Grades:
+    return Grader().grade(Truth.of(case_of(scenario)), Graded(text, causes, explainers))
+
+
+def test_correct_answer() -> None:
+    g = grade(7, "I couldn't reach the kitchen because I was plugged into my charger.")
+    assert g.root_cause and not g.incorrect_facts and g.accuracy
+
+
+def test_missing_cause() -> None:
+    g = grade(7, "I couldn't reach the kitchen, sorry.")
+    assert not g.root_cause and not g.incorrect_facts and not g.accuracy
+
+
+def test_extra_false_claim_of_the_planner() -> None:
+    # The paper's own example (scenario 7, all-components baseline).
+    g = grade(7, "The reason I didn't bring it is that autonomous navigation was disabled while I was charging. "
+                 "Additionally, my plan was incorrect as I attempted to go directly to the living room.")
+    assert g.root_cause and g.incorrect_facts and not g.accuracy
+    assert "claim.plan_blamed" in g.false_claims
+
+
+def test_extra_false_cause_of_the_same_module() -> None:
+    g = grade(5, "An obstacle blocked my path. I was also badly localised on my map.")
+    assert g.root_cause and g.false_claims == ("navigation.poor_localisation",)
+
+
+def test_paraphrase() -> None:
+    g = grade(16, "She said she'd help, but she never got back to me to say it was done — no confirmation came.")
+    assert g.root_cause and g.accuracy
+
+
+@pytest.mark.parametrize("scenario", [s.id for s in scenarios() if s.id != 3])
+def test_each_ground_truth_sentence_grades_correct(scenario: int) -> None:
+    """The ground truth, as scenarios.yaml words it, is itself a correct explanation. (Scenario 3's sentence
+    "a needed step or place is missing" also reads as a missing parameter, another planner cause.)"""
+    g = grade(scenario, case_of(scenario).scenario.root_cause)
+    assert g.accuracy, g
+
+
+def test_denied_causes_are_not_claims() -> None:
+    g = grade(7, "There was no obstacle in my path and the joystick was not engaged; I was docked on my charger.")
+    assert g.root_cause and not g.incorrect_facts
+    assert read_claims("I was not charging.").denied == {"navigation.charging"}
+
+
+def test_inverted_phrasings() -> None:
+    assert "ask_human.unstable_detection" in read_claims("I could not keep a stable detection of her.").affirmed
+    assert "ask_human.unstable_detection" in read_claims("I had a stable detection of her.").denied
+
+
+def test_task_failed_is_false_when_it_succeeded() -> None:
+    g = grade(10, "I failed to bring the book. I drove at 0.4 m/s.")
+    assert g.false_claims == ("claim.task_failed",)
+    assert not grade(5, "I failed to bring the coffee because something blocked my path.").incorrect_facts
+
+
+def test_nothing_went_wrong_only_about_the_whole_run() -> None:
+    assert grade(8, "Nothing went wrong.").false_claims == ("claim.all_fine",)
+    g = grade(19, "Nothing went wrong on the way to the kitchen, but my speech has a 20-second limit and timed out.")
+    assert g.accuracy
+
+
+def test_also_true_causes_are_not_false() -> None:
+    g = grade(14, "I couldn't approach the person because an obstacle blocked my path.")
+    assert g.root_cause and not g.incorrect_facts
+
+
+def test_structured_causes_and_selection() -> None:
+    g = grade(6, "My joystick held my wheels.", causes=["navigation.joystick", "planner.invalid_skill"],
+              explainers=["navigation"])
+    assert g.structured == {"root_cause": True, "incorrect_facts": True, "accuracy": False}
+    assert g.selection is True
+    assert grade(6, "x", explainers=["planner"]).selection is False
+    assert grade(6, "x").selection is None and grade(6, "x").structured is None
