@@ -13,7 +13,6 @@ from hexar.explainers.evidence_check import exists
 from hexar.explainers.registry import Registry
 
 
-
 @pytest.mark.parametrize("sid", [s.id for s in scenarios()])
 def test_module_explainer_finds_ground_truth_on_every_variant(suite: Path, sid: int) -> None:
     registry = Registry.load()
@@ -39,3 +38,15 @@ def test_evidence_check_rejects_items_not_in_the_recording(suite: Path) -> None:
     assert not exists(log, real.model_copy(update={"t": real.t + 1}))
     assert not exists(log, real.model_copy(update={"item": real.item.replace("ERROR", "WARN")}))
     assert not exists(log, Evidence(cause="x", topic="/joy_priority", t=real.t, item="data=True"))
+
+
+def test_another_seed_changes_values_not_scenarios(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.suite import simulate_suite
+
+    simulate_suite(tmp_path, seed=7, only=lambda s, v: v == 1)
+    registry = Registry.load()
+    for scenario in scenarios():
+        log = read_recording(tmp_path / recording_name(scenario.id, 1))
+        question = scenario.questions[2].format(object=scenario.variants[0].object)
+        exp = registry.get(scenario.explainer).explain(question, Context.for_task(log, log.task(), registry))
+        assert scenario.cause in exp.causes, (scenario.id, exp.causes)

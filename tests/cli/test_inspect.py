@@ -1,0 +1,83 @@
+"""`hexar simulate`, `hexar runs` and `hexar inspect` as a user runs them."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from hexar.cli import main
+
+
+def test_simulate_one_scenario_in_mcap_and_inspect_it(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["simulate", "--out", str(tmp_path), "--storage", "mcap", "--scenario", "19"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bagfile_19_1", "bagfile_19_2", "bagfile_19_3"]
+    assert any(p.suffix == ".mcap" for p in (tmp_path / "bagfile_19_1").iterdir())
+    capsys.readouterr()
+    assert main(["inspect", str(tmp_path / "bagfile_19_1"), "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["storage"] == "mcap"
+    first = data["tasks"][0]
+    assert first["outcome"] == "failed" and first["instruction"].startswith("Go to the kitchen and tell Maria")
+    say = first["skills"][-1]
+    assert say["skill"] == "say" and say["status"] == "failed" and say["error_msg"] == "The skill has timed out"
+    assert [h["status"].lower() for h in say["history"]] == ["waiting", "running", "failed"]
+    assert data["tasks"][1]["recovery"] is True
+    topics = {t["topic"]: t["count"] for t in data["topics"]}
+    assert topics["/skills/say/events"] >= 2 and topics["/task_info"] >= 5
+
+
+def test_inspect_renders_a_timeline(suite: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", str(suite / "bagfile_1_1")]) == 0
+    out = capsys.readouterr().out
+    assert "invalid plan: Skill navigate_to_room is not a valid skill." in out
+    assert "Bring me a coffee from the kitchen" in out and "/rosout" in out
+
+
+def test_runs_lists_outcomes(suite: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["runs", str(suite), "--json"]) == 0
+    rows = {r["recording"]: r for r in json.loads(capsys.readouterr().out)}
+    assert len(rows) == 60
+    assert rows["bagfile_5_1"]["outcome"] == "failed"
+    assert rows["bagfile_2_1"]["outcome"] == "invalid"
+    assert rows["bagfile_10_1"]["outcome"] == "succeeded"
+
+
+@pytest.mark.parametrize("name", ["rosbag2_talker_sqlite3", "rosbag2_talker_mcap", "gps_vehicle_run"])
+def test_real_bags_inspect_cleanly_and_say_there_is_no_task(real_bags: Path, name: str,
+                                                          capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", str(real_bags / name)]) == 0
+    out = capsys.readouterr().out
+    assert "No task to explain" in out and "/rosout" in out
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["inspect", "/definitely/not/here"], "recording not found"),
+    (["runs", "/definitely/not/here"], "not a folder"),
+    (["simulate", "--out", "x", "--storage", "zip"], "unknown storage"),
+])
+def test_bad_input_is_one_line_and_exit_2(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ERROR:") and message in err and err.count("\n") == 1
+
+
+def test_inspect_corrupt_bag(tmp_path: Path, suite: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import shutil
+
+    bag = tmp_path / "bag"
+    shutil.copytree(suite / "bagfile_5_1", bag)
+    db = next(bag.glob("*.db3"))
+    db.write_bytes(db.read_bytes()[:4096])
+    assert main(["inspect", str(bag)]) == 2
+    assert "ERROR: cannot read" in capsys.readouterr().err
+
+
+def test_simulation_is_deterministic_per_seed(tmp_path: Path) -> None:
+    from hexar.evals.cases import scenario
+    from hexar.evals.scenarios.suite import record
+
+    a, b, c = record(scenario(9), 2, seed=0), record(scenario(9), 2, seed=0), record(scenario(9), 2, seed=1)
+    assert [(t, topic) for t, topic, _, _ in a.messages] == [(t, topic) for t, topic, _, _ in b.messages]
+    assert [t for t, *_ in a.messages] != [t for t, *_ in c.messages]
