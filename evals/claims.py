@@ -1,18 +1,21 @@
 """What an answer claims, read from its text alone, so that HEXAR's answers and the baselines' free text are
 graded alike.
 
-A cause is claimed when one of its vocabulary phrasings (hexar/causes.yaml) appears affirmed. Three rules keep
+A cause is claimed when one of its vocabulary phrasings (hexar/causes.yaml) appears affirmed. Four rules keep
 plain regex matching from misreading free text:
-- denial: "there was no obstacle in my path" or "the joystick was not engaged" mention a cause to rule it out;
-  a negation right before the phrase (after the last causal connective of its clause) or right after it flips
-  the match to a denial.
+- denial: "there was no obstacle in my path", "I was well localised" or "the joystick was not engaged" mention a
+  cause to rule it out. A negation or a healthy qualifier among the three words before the phrase (after the
+  last connective of its clause, so "I didn't move because the joystick..." still affirms) or a "was not" right
+  after it makes the match a denial.
+- phrasings that carry their own negation ("cannot manipulate", "did not confirm") are already the negative
+  statement of the cause: the words before them are not read as a denial.
 - inverted phrasings: a few vocabulary patterns name the healthy state ("a stable detection", "knew where I
-  was") and state the cause only when negated, so for them the flip goes the other way.
+  was", "confirmed that they had") and state the cause only when negated, so for them the flip goes the other way.
 - longest match: "no one confirmed" is a phrasing of `ask_human.not_confirmed`; the shorter "no one" inside it
   must not also count as `ask_human.nobody_detected`.
 
-Besides causes, two claims about the run that no cause id names but that annotators count as incorrect facts:
-blaming the plan, and saying the task failed.
+Besides causes, three claims about the run that no cause id names but that annotators count as incorrect facts
+when untrue: blaming the plan, saying the task failed, and saying nothing went wrong.
 """
 
 from __future__ import annotations

@@ -49,6 +49,8 @@ def _check(opts: EvalOptions) -> Selection:
         raise HexarError("--audit must be 0 or more")
     if not 0 <= opts.tolerance < 1:
         raise HexarError("--tolerance is a fraction between 0 and 1, e.g. 0.02 for two points")
+    if bad := [m for m in opts.methods if m not in METHODS]:
+        raise HexarError(f"unknown method {bad[0]!r}: use {', '.join(METHODS)}")
     if opts.out.exists() and not opts.out.is_dir():
         raise HexarError(f"--out must be a folder: {opts.out}")
     return Selection(frozenset(opts.scenarios), frozenset(opts.modules), frozenset(opts.kinds), opts.first)

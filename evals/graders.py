@@ -60,6 +60,10 @@ class Truth:
             return False
         return claim in vocabulary() and claim != self.cause and claim not in self.also
 
+    def false_claims(self) -> list[str]:
+        """This scenario's list of claims that would be incorrect facts, derived from the vocabulary."""
+        return sorted(c for c in [*vocabulary(), PLAN_BLAMED, TASK_FAILED, ALL_FINE] if self.is_false(c))
+
 
 @dataclass(frozen=True)
 class Graded:

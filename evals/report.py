@@ -10,6 +10,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
+from hexar.evals.graders import Truth
 from hexar.evals.judge import agreement, rubric_hash
 from hexar.evals.run import CaseResult, RunOutput, modules
 from hexar.evals.stats import compare, mean_sd
@@ -34,7 +35,7 @@ def _case_dict(row: CaseResult) -> dict[str, Any]:
         "id": c.id, "scenario": c.scenario.id, "module": c.scenario.module, "category": c.scenario.category,
         "variant": c.variant, "kind": c.kind, "recording": c.recording, "question": c.question,
         "truth": {"cause": c.scenario.cause, "also": list(c.scenario.also), "explainer": c.scenario.explainer,
-                  "root_cause": c.scenario.root_cause},
+                  "root_cause": c.scenario.root_cause, "false_claims": Truth.of(c).false_claims()},
         "results": {},
     }
     for name, res in row.results.items():

@@ -153,6 +153,31 @@ def chat(
     raise typer.Exit(guarded(body))
 
 
+@app.command()
+def listen(
+    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
+    mic: Annotated[bool, typer.Option("--mic", help="listen on the default microphone (the default)")] = False,
+    speak: Annotated[bool, typer.Option("--speak", help="say answers: robot TTS on a robot, else loudspeaker")] = False,
+    out_dir: Annotated[Path | None, typer.Option("--out", help="write each answer as DIR/turn_NN.wav")] = None,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
+    thread: Annotated[str | None, typer.Option(help="resume this conversation (also from hexar chat)")] = None,
+    checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations")] = None,
+    vosk_model: Annotated[Path | None, typer.Option("--vosk-model", envvar="HEXAR_VOSK_MODEL",
+                                                    help="recognise with this vosk model folder, not whisper")] = None,
+    voice: Annotated[str, typer.Option(help="auto, robot, piper or espeak")] = "auto",
+) -> None:
+    """Talk with the robot: spoken questions in, short spoken answers out; follow-ups keep the thread."""
+
+    def body() -> int:
+        from hexar.voice.loop import listen as run_listen
+
+        return run_listen(run, wavs=wav, mic=mic, speak=speak, out_dir=out_dir, llm=llm, thread=thread,
+                          checkpoints=checkpoints, vosk_model=vosk_model, voice=voice, console=out)
+
+    raise typer.Exit(guarded(body))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit code (usage errors: 2, bad input: 2, success: 0)."""
     try:

@@ -9,6 +9,10 @@ FULL=0
 
 need_apt=()
 command -v python3 >/dev/null || need_apt+=(python3)
+# speech: espeak-ng is the fallback voice and makes test audio; PortAudio lets sounddevice open a microphone
+command -v espeak-ng >/dev/null || need_apt+=(espeak-ng)
+command -v sox >/dev/null || need_apt+=(sox)
+ldconfig -p 2>/dev/null | grep -q libportaudio || need_apt+=(libportaudio2)
 python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
 if [ "$FULL" = 1 ]; then
   command -v cmake >/dev/null || need_apt+=(cmake)
@@ -23,7 +27,7 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "HEXAR ne
 [ -x .venv/bin/python ] || python3 -m venv .venv
 PIP=".venv/bin/python -m pip"
 $PIP install -q --upgrade pip setuptools wheel
-$PIP install -q -e ".[dev]"
+$PIP install -q -e ".[dev,voice]"
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"

@@ -20,6 +20,8 @@ _ASSIGN = re.compile(r"\s*=\s*")
 _SNAKE = re.compile(r"(?<=[a-z])_(?=[a-z])")
 _SENTENCE = re.compile(r"(?<=[.!?])\s+(?=[A-Z0-9\"'])")
 _BREAK_AFTER = (",", ":", ";")
+# Words the voices say ambiguously: piper's "timeout" is heard as "time up" or "we're had the time out".
+_SAY_AS = ((re.compile(r"\btimeout(s?)\b", re.I), r"time-out\1"), (re.compile(r"\bGridBased\b"), "grid-based"))
 _HEADER = re.compile(r"^([^:;.]{3,60}:)\s+(.*)$", re.S)
 
 
@@ -30,6 +32,8 @@ def clean(text: str) -> str:
     text = _PAREN.sub("", text)
     text = _ASSIGN.sub(" is ", text)
     text = _SNAKE.sub(" ", text)
+    for pattern, say_as in _SAY_AS:
+        text = pattern.sub(say_as, text)
     text = re.sub(r"\s+([.,;:!?])", r"\1", text)  # "a path to (4.2, 2.1)." lost its bracket, not its stop
     return re.sub(r"\s+", " ", text).strip()
 
