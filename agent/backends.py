@@ -34,12 +34,10 @@ class EmbeddedModel:
         if not os.path.isfile(file):
             raise BackendError(f"embedded model not found at {file}: run scripts/setup.sh")
         self.name = "embedded:qwen2.5-coder-1.5b-instruct-q4_k_m"
-        from llama_cpp import LlamaRAMCache
-
+        # llama.cpp reuses the evaluated prefix of the previous prompt, so a fixed system prompt costs once.
+        # (LlamaRAMCache would keep more prefixes, but each saved state carries n_ctx x n_vocab logits: GBs.)
         self._llm = Llama(model_path=file, n_ctx=n_ctx, n_threads=threads or min(4, os.cpu_count() or 2),
                           seed=0, verbose=False)
-        # Router and phrasing prompts alternate; a multi-prefix cache keeps both system prompts evaluated.
-        self._llm.set_cache(LlamaRAMCache(capacity_bytes=512 << 20))
         self.max_prompt_chars = 600
 
     def chat(self, messages: Sequence[Mapping[str, str]], *, schema: Mapping[str, Any] | None = None,

@@ -34,8 +34,8 @@ INVERTED: frozenset[tuple[str, str]] = frozenset({
     ("ask_human.not_confirmed", "confirm(ed)? (that )?(they|she|he|it) (had|was|were|finished|done)"),
 })
 NEGATION = re.compile(r"\b(no|not|never|without|nor|neither|nothing|none)\b|n't\b|\bcannot\b", re.I)
-# "well localised", "a good path": the phrase is there, the problem is not. Not for inverted phrasings.
-HEALTHY = re.compile(r"\b(well|correctly|properly|accurately|good|fine)\b", re.I)
+# "well localised", "within my 20-second limit": the phrase is there, the problem is not. Not for inverted phrasings.
+HEALTHY = re.compile(r"\b(well|correctly|properly|accurately|good|fine|within)\b", re.I)
 # A negation before the last of these words belongs to another statement: "I didn't move because the joystick...".
 CONNECTIVE = re.compile(r"\b(because|since|as|so|due to|which|that|when|while|and|but|after|then)\b", re.I)
 AFTER_DENIAL = re.compile(

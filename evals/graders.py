@@ -25,9 +25,6 @@ SUCCEEDED_CATEGORIES = frozenset({"Normal/Successful", "Sub-Optimal Behaviour", 
 NEVER_FALSE = frozenset({"navigation.nominal_speed"})
 # Consequences true of every run of a cause, which scenarios.yaml's `also` does not list: a noisy detection
 # made the approach poor (scenario 18's ground truth says "so it approached them poorly").
-CONSEQUENCES: dict[str, frozenset[str]] = {"ask_human.noisy_detection": frozenset({"ask_human.poor_approach"})}
-
-
 @dataclass(frozen=True)
 class Truth:
     """What is true of one case, from evals/data/scenarios.yaml."""
@@ -41,7 +38,7 @@ class Truth:
     @classmethod
     def of(cls, case: Case) -> Truth:
         s = case.scenario
-        also = frozenset(s.also) | CONSEQUENCES.get(s.cause, frozenset())
+        also = frozenset(s.also)
         return cls(s.cause, also, s.module, s.explainer, s.category)
 
     @property

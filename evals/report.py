@@ -35,7 +35,7 @@ def _case_dict(row: CaseResult) -> dict[str, Any]:
         "id": c.id, "scenario": c.scenario.id, "module": c.scenario.module, "category": c.scenario.category,
         "variant": c.variant, "kind": c.kind, "recording": c.recording, "question": c.question,
         "truth": {"cause": c.scenario.cause, "also": list(c.scenario.also), "explainer": c.scenario.explainer,
-                  "root_cause": c.scenario.root_cause, "false_claims": Truth.of(c).false_claims()},
+                  "root_cause": c.scenario.root_cause},
         "results": {},
     }
     for name, res in row.results.items():
@@ -105,6 +105,11 @@ def judge_summary(cases: Sequence[dict[str, Any]], methods: Sequence[str]) -> di
     return out
 
 
+def false_claims_by_scenario(rows: Sequence[CaseResult]) -> dict[str, list[str]]:
+    """Per scenario, the claims that count as incorrect facts (derived from the vocabulary)."""
+    return {str(r.case.scenario.id): Truth.of(r.case).false_claims() for r in rows}
+
+
 def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -> dict[str, Any]:
     cases = [_case_dict(row) for row in output.results]
     report: dict[str, Any] = {
@@ -113,7 +118,7 @@ def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -
         "backend": output.backend,
         "methods": output.methods,
         "not_applicable": output.skipped,
-        "runs": str(runs), "seed": seed, "simulated": output.simulated,
+        "runs": _shown(runs), "seed": seed, "simulated": output.simulated,
         "selection": selection,
         "host": {"python": platform.python_version(), "machine": platform.machine(), "system": platform.system()},
         "prompts": hashes(),
@@ -124,6 +129,7 @@ def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -
         "statistics": statistics(cases, output.methods, output.skipped),
         "paper": {"methods": PAPER, "cochran_q": PAPER_Q, "cases": PAPER_CASES},
         "judge": None,
+        "false_claims": false_claims_by_scenario(output.results),
         "cases": cases,
     }
     if output.judge is not None:
@@ -135,3 +141,34 @@ def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -
 def write_json(report: dict[str, Any], path: Path) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+
+
+def regrade(report: dict[str, Any]) -> dict[str, Any]:
+    """The same answers graded again with the current graders (after a grader or vocabulary change), with the
+    summary, per-module accuracy and statistics recomputed; the LLMs are not asked again."""
+    from hexar.evals.cases import cases as all_cases
+    from hexar.evals.graders import Graded, Grader
+
+    by_id = {c.id: c for c in all_cases()}
+    grader = Grader()
+    out: dict[str, Any] = json.loads(json.dumps(report))
+    for row in out["cases"]:
+        truth = Truth.of(by_id[row["id"]])
+        out.setdefault("false_claims", {})[str(row["scenario"])] = truth.false_claims()
+        for res in row["results"].values():
+            res["grades"] = grader.grade(truth, Graded(res["answer"], res["causes"], res["explainers"])).as_dict()
+    methods = out["methods"]
+    out["summary"] = summarise(out["cases"], methods)
+    out["per_module"] = per_module(out["cases"], methods)
+    out["statistics"] = statistics(out["cases"], methods, out["not_applicable"])
+    out["prompts"] = report["prompts"]  # the prompts that produced the answers
+    out["regraded"] = time.strftime("%Y-%m-%dT%H:%M:%S%z")
+    return out
+
+
+def _shown(path: Path) -> str:
+    """The recordings folder as a reader can use it: relative to home, never this machine's absolute path."""
+    try:
+        return "~/" + str(Path(path).resolve().relative_to(Path.home().resolve()))
+    except ValueError:
+        return str(path)

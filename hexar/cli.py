@@ -178,6 +178,45 @@ def listen(
     raise typer.Exit(guarded(body))
 
 
+@app.command("eval")
+def eval_(
+    runs: Annotated[Path | None, typer.Option(help="folder of the 60 recordings, simulated there when missing "
+                                              "[default: ~/.cache/hexar/eval-runs/seed-SEED]")] = None,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="none, embedded, ollama[:model] or auto "
+                                     "(default none: a full LLM run takes hours on a CPU)")] = "none",
+    method: Annotated[list[str] | None, typer.Option(help="hexar, end-to-end, all-components [default: all]")] = None,
+    scenario: Annotated[list[int] | None, typer.Option(help="only these scenarios (1-20)")] = None,
+    module: Annotated[list[str] | None, typer.Option(
+        help="only these modules: planning, navigation, ask_human_for_help, text_to_speech, pizza_recommender")] = None,
+    kind: Annotated[list[str] | None, typer.Option(help="only these questions: generic, task, observed")] = None,
+    first: Annotated[int | None, typer.Option(help="only the first N cases of each scenario")] = None,
+    judge: Annotated[str | None, typer.Option(help="an LLM judge beside the graders, e.g. ollama:phi4")] = None,
+    audit: Annotated[int, typer.Option(help="print N graded answers beside their grades")] = 0,
+    out_dir: Annotated[Path, typer.Option("--out", help="folder for report.json, results.md and the figures")] = Path(
+        "eval-out"),
+    baseline: Annotated[Path | None, typer.Option(help="exit 1 on a regression against this baseline")] = None,
+    write_baseline: Annotated[Path | None, typer.Option(help="write this run as a baseline file")] = None,
+    tolerance: Annotated[float, typer.Option(help="allowed metric drop against the baseline (0.02 = 2 points)")] = 0.02,
+    seed: Annotated[int, typer.Option(help="simulation seed of recordings that are missing")] = 0,
+    resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
+    figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
+) -> None:
+    """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
+
+    def body() -> int:
+        from hexar.evals.cli import EvalOptions, eval_command
+
+        opts = EvalOptions(
+            out=out_dir, runs=runs, llm=llm, methods=tuple(method or ()), scenarios=tuple(scenario or ()),
+            modules=tuple(module or ()), kinds=tuple(kind or ()), first=first, judge=judge, audit=audit,
+            baseline=baseline, write_baseline=write_baseline, tolerance=tolerance, seed=seed,
+            resimulate=resimulate, figures=figures,
+        )
+        return eval_command(opts, out)
+
+    raise typer.Exit(guarded(body))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit code (usage errors: 2, bad input: 2, success: 0)."""
     try:

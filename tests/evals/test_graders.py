@@ -88,3 +88,31 @@ def test_structured_causes_and_selection() -> None:
     assert g.selection is True
     assert grade(6, "x", explainers=["planner"]).selection is False
     assert grade(6, "x").selection is None and grade(6, "x").structured is None
+
+
+# Real baseline answers of the embedded model (one case per scenario), with the labels a person gave them.
+OBSERVED = [
+    (6, "The robot was unable to navigate to the kitchen due to a timeout.", False, True),
+    (8, "I asked for help, found a person who agreed to help, and confirmed it. I reached the kitchen slowly and "
+        "unsteadily because I was not sure where I was on my map. I said the whole message (4 words); it took 1.6 "
+        "seconds, within my 20-second speech limit.", True, False),
+    (9, "I asked for help, found a person who agreed, and confirmed it. I was unable to reach the kitchen because "
+        "people or things kept moving into my way, so I had to stop and find new paths around them.", True, True),
+    (11, "The person was unable to find a person to ask for help, so the robot navigated to the living room "
+         "instead.", True, False),
+    (12, "The person was not found while trying to bring coffee from the kitchen.", False, True),
+    (14, "I tried to get help by asking a person for help, but my navigation failed, and I couldn't reach the "
+         "person because something blocked my path.", True, False),
+    (17, "You asked for help to bring me a coffee from the kitchen, but the person you asked did not respond.",
+     False, True),
+    (20, "The pizza recommender suggested a Margherita because they had basil, and not having pineapple also "
+         "pointed to it.", True, False),
+    (2, "I was unable to navigate to the kitchen_counter, as it is not a valid location specified in the plan.",
+     True, False),
+]
+
+
+@pytest.mark.parametrize(("scenario", "text", "root", "wrong"), OBSERVED)
+def test_observed_baseline_answers(scenario: int, text: str, root: bool, wrong: bool) -> None:
+    g = grade(scenario, text)
+    assert (g.root_cause, g.incorrect_facts) == (root, wrong), g
