@@ -148,6 +148,13 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
+    elif set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= BENIGN:
+        # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
+        # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
+        # the drive was fine but the approach to the person was not).
+        other = _by_findings(ctx, state, {choice})
+        if other is not None:
+            choice, route = other, "findings"
     return {"selected": [choice], "route": route, "timings_ms": _timings(state, "router", start)}
 
 

@@ -47,3 +47,22 @@ def decode_string(raw: bytes) -> str | None:
         return raw[8 : 8 + size - 1].decode("utf-8", "replace")
     except (IndexError, StructError):
         return None
+
+
+_POSE = Struct("<43d")  # position xyz, orientation xyzw, 36 covariance values
+
+
+def decode_pose_cov(raw: bytes) -> tuple[int, tuple[float, ...]] | None:
+    """(header stamp in ns, the 43 doubles of pose and covariance) of a PoseWithCovarianceStamped, or None."""
+    try:
+        if raw[1] != 1:
+            return None
+        sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+        (size,) = _U32.unpack_from(raw, 12)
+        body = 12 + size  # payload offset of the first byte after frame_id
+        start = 4 + ((body + 7) & ~7)
+        if start + _POSE.size > len(raw):
+            return None
+        return sec * 1_000_000_000 + nanosec, _POSE.unpack_from(raw, start)
+    except (IndexError, StructError):
+        return None

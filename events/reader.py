@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sqlite3
 from collections.abc import Iterable, Iterator
 from pathlib import Path
@@ -15,7 +16,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
-from hexar.events.cdr import decode_log, decode_string
+from hexar.events.cdr import decode_log, decode_pose_cov, decode_string
 from hexar.events.errors import (
     CorruptRecordingError,
     EmptyRecordingError,
@@ -60,8 +61,6 @@ def resolve_path(path: Path) -> Path:
 
 
 def _yaw(qz: float, qw: float) -> float:
-    import math
-
     return 2.0 * math.atan2(qz, qw)
 
 
@@ -220,16 +219,21 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
             m = _deser(reader, ts, raw, msgtype, ros2)
             log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
         elif msgtype == c.POSE_COV_TYPE:
-            m = _deser(reader, ts, raw, msgtype, ros2)
-            p, cov = m.pose.pose, m.pose.covariance
-            log.poses.append(
-                PoseSample(
-                    stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
-                    float(p.position.x), float(p.position.y),
-                    _yaw(float(p.orientation.z), float(p.orientation.w)),
-                    float(cov[0]), float(cov[7]), float(cov[35]),
+            fast_pose = decode_pose_cov(raw) if ros2 else None
+            if fast_pose is not None:
+                stamp, v = fast_pose
+                log.poses.append(PoseSample(stamp or t, v[0], v[1], _yaw(v[5], v[6]), v[7], v[7 + 7], v[7 + 35]))
+            else:
+                m = _deser(reader, ts, raw, msgtype, ros2)
+                p, cov = m.pose.pose, m.pose.covariance
+                log.poses.append(
+                    PoseSample(
+                        stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
+                        float(p.position.x), float(p.position.y),
+                        _yaw(float(p.orientation.z), float(p.orientation.w)),
+                        float(cov[0]), float(cov[7]), float(cov[35]),
+                    )
                 )
-            )
         elif msgtype == c.DIAG_TYPE:
             m = _deser(reader, ts, raw, msgtype, ros2)
             log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
