@@ -46,7 +46,9 @@ class EmbeddedModel:
         if schema is not None:
             kwargs["response_format"] = {"type": "json_object", "schema": dict(schema)}
         try:
-            out: Any = self._llm.create_chat_completion(messages=[dict(m) for m in messages], **kwargs)  # type: ignore[misc]
+            # llama-cpp-python types messages as TypedDicts; ours are plain dicts of the same shape
+            chat: Any = self._llm.create_chat_completion
+            out: Any = chat(messages=[dict(m) for m in messages], **kwargs)
             return str(out["choices"][0]["message"]["content"] or "")
         except Exception as err:  # llama.cpp raises bare RuntimeError/ValueError on context overflow
             raise ModelError(f"embedded model failed: {err}") from err
