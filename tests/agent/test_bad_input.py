@@ -88,3 +88,18 @@ def test_prompt_injection_in_a_log_line_cannot_change_the_answer(tmp_path: Path)
     assert "robot is fine" not in result["answer"].lower()
     assert "navigation.blocked_path" in result["causes"]
     assert result["fallback"], "the guard must record that it threw the model's answer away"
+
+
+def test_batch_questions_print_one_json_per_line(suite: Path, tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    questions = tmp_path / "q.txt"
+    questions.write_text("What happened?\n\nWhy didn't you bring me the coffee?\nblorp zzzk\n")
+    code = main(["ask", str(suite / "bagfile_6_1"), "--questions", str(questions), "--json", "--llm", "none"])
+    lines = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
+    assert code == 2  # one line was not a question
+    assert [bool(r["error"]) for r in lines] == [False, False, True]
+    assert all("navigation.joystick" in r["causes"] for r in lines[:2])
+    assert lines[0]["thread"] != lines[1]["thread"]  # each line is a fresh conversation
+    assert set(lines[0]) >= {"answer", "explainers", "route", "backend", "causes", "evidence", "timings_ms"}

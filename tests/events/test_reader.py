@@ -152,3 +152,26 @@ def test_task_window_of_a_failed_skill(tmp_path: Path) -> None:
     assert task.failed_skill is not None and task.failed_skill.skill == "say"
     assert task.window() == (T0 + sec_ns(10), T0 + sec_ns(15))
     assert task.failed_skill.error_msg == "The skill has timed out"
+
+
+def test_ros1_bag_with_rosgraph_log(tmp_path: Path) -> None:
+    from rosbags.rosbag1 import Writer as Writer1
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS1_NOETIC)
+    T = ts.types
+    path = tmp_path / "run.bag"
+    with Writer1(path) as w:
+        log = w.add_connection("/rosout", "rosgraph_msgs/msg/Log", typestore=ts)
+        info = w.add_connection("/task_info", "std_msgs/msg/String", typestore=ts)
+        stamp = T["builtin_interfaces/msg/Time"](sec=T0 // 10**9, nanosec=5)
+        header = T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="")
+        msg = T["rosgraph_msgs/msg/Log"](header=header, level=8, name="/move_base", msg="Aborting because a valid plan "
+                                         "could not be found.", file="", function="", line=0, topics=[])
+        w.write(log, T0 + 10, ts.serialize_ros1(msg, "rosgraph_msgs/msg/Log"))
+        data = '{"task_id": "r1", "instruction": "go", "task_status": "valid", "skill_sequence": []}'
+        w.write(info, T0 + 20, ts.serialize_ros1(T["std_msgs/msg/String"](data=data), "std_msgs/msg/String"))
+    rec = read_recording(path)
+    assert rec.storage == "rosbag1"
+    assert [(r.t, r.level_name, r.name) for r in rec.logs] == [(T0 + 5, "ERROR", "/move_base")]
+    assert rec.task().task_id == "r1"
