@@ -73,7 +73,7 @@ def metrics_figure(report: dict[str, Any], path: Path) -> None:
                    edgecolors="black", linewidths=0.6, zorder=3, label=f"{LABEL[m]} (paper)")
     ax.set_ylabel("mean")
     marks = "* p<0.05, ** p<0.01, *** p<0.001 (McNemar, Holm)" if stats["applicable"] else "tests not applicable"
-    ax.set_title(f"Mean per metric, backend {report['backend']}; {marks}", fontsize=9)
+    ax.set_title(f"Mean per metric, backend {report['backend']}\n{marks}", fontsize=9)
     ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     fig.tight_layout()
     fig.savefig(path, dpi=150)

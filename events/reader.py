@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import sqlite3
@@ -25,6 +26,7 @@ from hexar.events.errors import (
     UnknownMessageTypeError,
 )
 from hexar.events.log import EventLog, TopicInfo
+from hexar.events.mcap_index import mcap_messages
 from hexar.events.records import (
     BoolSample,
     LogLine,
@@ -181,7 +183,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
     if not selected:
         return log, True
     ros2 = reader.is2
-    messages = _sqlite_messages(src, selected) if ros2 else None
+    messages = (_sqlite_messages(src, selected) or _mcap_messages(src, selected)) if ros2 else None
     if messages is None:
         messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
@@ -273,6 +275,18 @@ def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Co
                 db.close()
 
     return rows()
+
+
+def _mcap_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
+    """Rows of the selected topics from indexed MCAP files without rosbags' per-chunk heap merge."""
+    files = sorted(src.glob("*.mcap")) if src.is_dir() else []
+    if not files:
+        return None
+    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
+    parts = [mcap_messages(f, wanted) for f in files]
+    if any(p is None for p in parts):
+        return None
+    return itertools.chain.from_iterable(p for p in parts if p is not None)
 
 
 def _deser(reader: AnyReader, ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:

@@ -175,3 +175,24 @@ def test_ros1_bag_with_rosgraph_log(tmp_path: Path) -> None:
     assert rec.storage == "rosbag1"
     assert [(r.t, r.level_name, r.name) for r in rec.logs] == [(T0 + 5, "ERROR", "/move_base")]
     assert rec.task().task_id == "r1"
+
+
+def test_mcap_index_reader_matches_rosbags(tmp_path: Path) -> None:
+    from rosbags.highlevel import AnyReader
+    from rosbags.typesys import Stores, get_typestore
+
+    from hexar.events.mcap_index import mcap_messages
+
+    b = _full_bag()
+    for i in range(300):  # enough messages for several chunks
+        b.log(T0 + sec_ns(i), "planner_server", 30, f"line {i}")
+    path = b.write(tmp_path / "run", "mcap")
+    with AnyReader([path], default_typestore=get_typestore(Stores.ROS2_HUMBLE)) as reader:
+        wanted = {(conn.topic, conn.msgtype): conn for conn in reader.connections if conn.topic != c.JOY_PRIORITY}
+        expected = sorted((conn.topic, t, bytes(raw)) for conn, t, raw in reader.messages(list(wanted.values())))
+    found = mcap_messages(next(path.glob("*.mcap")), wanted)
+    assert found is not None
+    assert sorted((conn.topic, t, bytes(raw)) for conn, t, raw in found) == expected
+    assert len(expected) == 310
+    (tmp_path / "x.mcap").write_bytes(b"\x89MCAP0\r\n" + b"\x00" * 40)
+    assert mcap_messages(tmp_path / "x.mcap", wanted) is None  # no footer/summary: rosbags reads it instead
