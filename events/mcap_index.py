@@ -92,18 +92,26 @@ def mcap_messages(path: Path, wanted: dict[tuple[str, str], K]) -> Iterator[tupl
 def _scan(data: Any, plan: list[tuple[int, Callable[[bytes], bytes]]],
           channels: dict[int, K]) -> Iterator[tuple[K, int, bytes]]:
     for start, decompress in plan:
-        body = start + 9 + 24  # record header, then message start/end time and uncompressed size
-        p = body + 4  # uncompressed crc
+        p = start + 9 + 24 + 4  # record header; message start/end time, uncompressed size; uncompressed crc
         compression_len = _U32.unpack_from(data, p)[0]
         p += 4 + compression_len
         (size,) = _U64.unpack_from(data, p)
-        records = decompress(data[p + 8 : p + 8 + size])
-        q, end = 0, len(records)
+        if decompress is bytes:
+            # Uncompressed: walk the records in place, so the pages of unwanted messages are never touched.
+            records, q, end = data, p + 8, p + 8 + size
+        else:
+            records = decompress(data[p + 8 : p + 8 + size])
+            q, end = 0, len(records)
         while q < end:
             opcode, length = _RECORD.unpack_from(records, q)
             if opcode == 0x05:
                 cid, _, log_time, _ = _MESSAGE.unpack_from(records, q + 9)
                 key = channels.get(cid)
                 if key is not None:
-                    yield key, log_time, records[q + 9 + 22 : q + 9 + length]
+                    yield key, log_time, bytes(records[q + 9 + 22 : q + 9 + length])
             q += 9 + length
+        if records is data:
+            # The kernel maps whole page-cache folios on a fault, images included; let them go chunk by chunk so
+            # the process never holds the recording in memory.
+            lo = start & ~(mmap.PAGESIZE - 1)
+            data.madvise(mmap.MADV_DONTNEED, lo, min(end, len(data)) - lo)
