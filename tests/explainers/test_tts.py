@@ -13,19 +13,14 @@ from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
 from hexar.explainers.base import Context
 from hexar.explainers.tts import TextToSpeechExplainer
+from tests.events.helpers import task_msg
 
 T0 = 1_700_000_000 * 1_000_000_000
 TEN_WORDS = "Please take the blue cup from the kitchen table now."
 
 
 def task(status: str, text: str, error: str = "") -> dict[str, Any]:
-    return {
-        "instruction": "tell the family that Anna is late",
-        "task_id": "sAy0TtS1x2y3z4w5",
-        "task_status": "valid",
-        "task_error_msg": "",
-        "skill_sequence": [{"skill": "say", "params": {"input": text}, "status": status, "error_msg": error}],
-    }
+    return task_msg("sAy0TtS1x2y3z4w5", "tell the family that Anna is late", [("say", {"input": text}, status, error)])
 
 
 def say_bag(tmp_path: Path, text: str, seed: int = 0, **kw: float) -> EventLog:

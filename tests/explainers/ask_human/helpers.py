@@ -13,26 +13,15 @@ from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
 from hexar.explainers.base import Context
 from hexar.explainers.registry import Registry
+from tests.events.helpers import task_msg
 
 T0 = sec_ns(1_760_000_000)
 QUESTION = "Could you please put the coffee on my tray?"
 
 
 def _task(status: str, error: str = "") -> dict[str, Any]:
-    return {
-        "instruction": "Bring me a coffee from the kitchen",
-        "task_id": "askhumantask0001",
-        "task_status": "valid",
-        "task_error_msg": "",
-        "skill_sequence": [
-            {
-                "skill": "ask_human_for_help",
-                "params": {"question": QUESTION},
-                "status": status,
-                "error_msg": error,
-            }
-        ],
-    }
+    return task_msg("askhumantask0001", "Bring me a coffee from the kitchen",
+                    [("ask_human_for_help", {"question": QUESTION}, status, error)])
 
 
 def record(

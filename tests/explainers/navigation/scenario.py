@@ -13,6 +13,7 @@ from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
 from hexar.explainers.base import Context, Evidence
 from hexar.explainers.navigation.detectors import flag_item, pose_item, status_item
+from tests.events.helpers import task_msg
 
 T0 = 1_700_000_000_000_000_000
 ALL: tuple[NavSituation, ...] = ("nominal", "blocked", "joystick", "charging", "poor_localisation",
@@ -20,10 +21,8 @@ ALL: tuple[NavSituation, ...] = ("nominal", "blocked", "joystick", "charging", "
 
 
 def _task(status: str, error: str = "", label: str = "kitchen") -> dict[str, Any]:
-    return {"instruction": f"bring me a coffee from the {label}", "task_id": "Zq3J9kLm0pQr7sT1",
-            "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": label}, "status": status,
-                                "error_msg": error}]}
+    return task_msg("Zq3J9kLm0pQr7sT1", f"bring me a coffee from the {label}",
+                    [("navigate_to_zone", {"location": label}, status, error)])
 
 
 def simulate(situation: NavSituation, seed: int = 1) -> tuple[BagBuilder, SkillResult]:

@@ -13,18 +13,14 @@ from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.evals.scenarios.pizza import simulate_recommend_pizza
 from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
+from tests.events.helpers import task_msg
 
 T0 = 1_700_000_000 * 1_000_000_000
 
 
 def task(status: str, error: str = "") -> dict[str, Any]:
-    return {
-        "instruction": "what pizza can I make with what I have?",
-        "task_id": "pZ4kT9qLmW2xVb7R",
-        "task_status": "valid",
-        "task_error_msg": "",
-        "skill_sequence": [{"skill": "recommend_pizza", "params": {}, "status": status, "error_msg": error}],
-    }
+    return task_msg("pZ4kT9qLmW2xVb7R", "what pizza can I make with what I have?",
+                    [("recommend_pizza", {}, status, error)])
 
 
 def write_pizza_bag(
