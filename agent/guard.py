@@ -4,7 +4,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from hexar.causes import stated_causes, vocabulary
+from hexar.causes import vocabulary
+from hexar.claims import ALL_FINE, PLAN_BLAMED, TASK_FAILED, read_claims
+
+# Causes that describe a run in which nothing went wrong in that module.
+BENIGN_CAUSES = frozenset({"navigation.nominal", "navigation.nominal_speed", "ask_human.succeeded", "tts.completed",
+                           "planner.plan_ok", "pizza.ingredients"})
 
 
 @dataclass(frozen=True)
@@ -13,15 +18,24 @@ class Verdict:
     reason: str = ""
 
 
-def check(text: str, causes: list[str]) -> Verdict:
-    """The text must state the explanation's first cause and no cause of another module it did not find."""
+def check(text: str, causes: list[str], task_outcome: str | None = None) -> Verdict:
+    """The text must affirm the explanation's first cause, affirm no cause of another module it did not find, and
+    not contradict how the task ended (call a success a failure, say all was fine when something failed, or blame a
+    plan the planner did not fault)."""
     vocab = vocabulary()
+    claims = read_claims(text)
     own = set(causes)
     modules = {c.split(".", 1)[0] for c in causes}
     primary = next((c for c in causes if c in vocab), None)
-    if primary is not None and not vocab[primary].stated_in(text):
+    if primary is not None and primary not in claims.causes:
         return Verdict(False, f"does not state {primary}")
-    foreign = sorted(c for c in stated_causes(text) - own if vocab[c].module not in modules)
+    foreign = sorted(c for c in claims.causes - own if vocab[c].module not in modules)
     if foreign:
         return Verdict(False, f"adds {', '.join(foreign)}")
+    if task_outcome == "succeeded" and TASK_FAILED in claims.generic:
+        return Verdict(False, "says the task failed, but it succeeded")
+    if ALL_FINE in claims.generic and not own <= BENIGN_CAUSES:
+        return Verdict(False, "says nothing went wrong, but something did")
+    if PLAN_BLAMED in claims.generic and "planner" not in modules:
+        return Verdict(False, "blames the plan, which the planner did not fault")
     return Verdict(True)

@@ -181,7 +181,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     for raw in state.get("explanations", []):
         exp = Explanation.model_validate(raw)
         if exp.phrased_by != "template":
-            verdict = guard.check(exp.text, exp.causes)
+            verdict = guard.check(exp.text, exp.causes, state.get("task_outcome"))
             if not verdict.ok:
                 fallback.append(f"{exp.explainer}: {verdict.reason}")
                 exp = _probe(ctx, exp.explainer, state["question"], state["task_id"])

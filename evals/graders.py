@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from hexar.causes import vocabulary
+from hexar.claims import ALL_FINE, PLAN_BLAMED, TASK_FAILED, Claims, read_claims
 from hexar.evals.cases import Case
-from hexar.evals.claims import ALL_FINE, PLAN_BLAMED, TASK_FAILED, Claims, read_claims
 
 # Paper Table I categories whose task completed (possibly slowly or awkwardly).
 SUCCEEDED_CATEGORIES = frozenset({"Normal/Successful", "Sub-Optimal Behaviour", "Social Norm Violation"})

@@ -122,7 +122,7 @@ def build(output: RunOutput, runs: Path, selection: dict[str, Any], seed: int) -
         "selection": selection,
         "host": {"python": platform.python_version(), "machine": platform.machine(), "system": platform.system()},
         "prompts": hashes(),
-        "grading": "text-only for every method (hexar/causes.yaml phrasings, evals/claims.py); HEXAR's "
+        "grading": "text-only for every method (hexar/causes.yaml phrasings, hexar/claims.py); HEXAR's "
                    "structured-cause grades are in summary.<method>.structured",
         "summary": summarise(cases, output.methods),
         "per_module": per_module(cases, output.methods),

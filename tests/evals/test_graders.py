@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import pytest
 
+from hexar.claims import read_claims
 from hexar.evals.cases import Case, cases, scenarios
-from hexar.evals.claims import read_claims
 from hexar.evals.graders import Graded, Grader, Grades, Truth
 
 
