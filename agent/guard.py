@@ -19,17 +19,17 @@ class Verdict:
 
 
 def check(text: str, causes: list[str], task_outcome: str | None = None) -> Verdict:
-    """The text must affirm the explanation's first cause, affirm no cause of another module it did not find, and
+    """The text must affirm the explanation's first cause, affirm no cause the explainer did not find, and
     not contradict how the task ended (call a success a failure, say all was fine when something failed, or blame a
     plan the planner did not fault)."""
     vocab = vocabulary()
     claims = read_claims(text)
-    own = set(causes)
+    own = set(causes) | {implied for c in causes if c in vocab for implied in vocab[c].implies}
     modules = {c.split(".", 1)[0] for c in causes}
     primary = next((c for c in causes if c in vocab), None)
     if primary is not None and primary not in claims.causes:
         return Verdict(False, f"does not state {primary}")
-    foreign = sorted(c for c in claims.causes - own if vocab[c].module not in modules)
+    foreign = sorted(claims.causes - own)
     if foreign:
         return Verdict(False, f"adds {', '.join(foreign)}")
     if task_outcome == "succeeded" and TASK_FAILED in claims.generic:

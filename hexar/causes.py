@@ -15,6 +15,7 @@ class Cause:
     id: str
     means: str
     patterns: tuple[re.Pattern[str], ...]
+    implies: tuple[str, ...] = ()
 
     @property
     def module(self) -> str:
@@ -28,7 +29,8 @@ class Cause:
 def vocabulary() -> dict[str, Cause]:
     raw = yaml.safe_load(resources.files("hexar").joinpath("causes.yaml").read_text(encoding="utf-8"))
     return {
-        cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]))
+        cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]),
+                   tuple(entry.get("implies", ())))
         for cid, entry in raw.items()
     }
 
