@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
@@ -19,10 +20,10 @@ HELP = ("Ask why I did something. Commands: /task [ID] (switch or list tasks), /
 
 
 def render_answer(console: Console, result: dict[str, Any], evidence: bool, verbose: bool = False) -> None:
-    console.print(Panel(result["answer"], title="HEXAR", title_align="left", border_style="cyan"))
+    console.print(Panel(escape(result["answer"]), title="HEXAR", title_align="left", border_style="cyan"))
     if evidence:
         for ev in result["evidence"][:6]:
-            console.print(f"  [dim]{clock(ev['t'])} {ev['topic']}[/dim]  {ev['item']}", markup=True)
+            console.print(f"  [dim]{clock(ev['t'])} {ev['topic']}[/dim]  {escape(ev['item'])}")
     if verbose:
         console.print(f"  [dim]route={result['route']} explainers={','.join(result['explainers'])} "
                       f"backend={result['backend']} causes={','.join(result['causes'])} "
