@@ -6,6 +6,7 @@ from datetime import UTC, datetime
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from hexar.events.log import EventLog
@@ -65,22 +66,22 @@ def print_inspection(console: Console, log: EventLog) -> None:
         topics.add_row(info.topic, info.type, str(info.count))
     console.print(topics)
     for task in log.tasks:
-        label = "recovery task" if task.is_recovery else f"\"{task.instruction}\""
+        label = "recovery task" if task.is_recovery else f"\"{escape(task.instruction)}\""
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
         console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
                       f"[{colour}]{task.outcome}[/{colour}]")
         if not task.valid:
-            console.print(f"  invalid plan: {task.error_msg}")
+            console.print(f"  invalid plan: {escape(task.error_msg)}")
         table = Table("#", "skill", "status", "started", "ended", "error")
         for run in task.skills:
             started = run.time_of("running")
             ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
-            table.add_row(str(run.index + 1), run.label(), run.state,
-                          clock(started) if started else "", clock(ended) if ended else "", run.error_msg)
+            table.add_row(str(run.index + 1), escape(run.label()), run.state,
+                          clock(started) if started else "", clock(ended) if ended else "", escape(run.error_msg))
         console.print(table)
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
         console.print("[yellow]No task to explain: this recording has no /task_info.[/yellow]")
     for warning in log.warnings:
-        console.print(f"[yellow]warning:[/yellow] {warning}")
+        console.print(f"[yellow]warning:[/yellow] {escape(warning)}")

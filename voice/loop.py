@@ -107,7 +107,7 @@ class Dialogue:
         heard = escape(transcript)
         if turn.question != transcript:
             heard += f" [dim](as: {escape(turn.question)})[/dim]"
-        self.console.print(f"[bold]you:[/bold] {heard}")
+        self.console.print(f"[bold]you:[/bold] {escape(heard)}")
         if is_stop(transcript):
             turn.answer = "You're welcome." if is_thanks(transcript) else "Goodbye."
             turn.spoken = [turn.answer]

@@ -81,3 +81,11 @@ def test_simulation_is_deterministic_per_seed(tmp_path: Path) -> None:
     a, b, c = record(scenario(9), 2, seed=0), record(scenario(9), 2, seed=0), record(scenario(9), 2, seed=1)
     assert [(t, topic) for t, topic, _, _ in a.messages] == [(t, topic) for t, topic, _, _ in b.messages]
     assert [t for t, *_ in a.messages] != [t for t, *_ in c.messages]
+
+
+def test_verbose_answer_shows_cited_lines_verbatim(suite: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # recorded text is data, not rich markup: a logger name in brackets must survive
+    assert main(["ask", str(suite / "bagfile_5_2"), "What happened?", "--llm", "none", "--verbose"]) == 0
+    out = capsys.readouterr().out
+    assert "[controller_server] ERROR Failed to make progress" in out
+    assert "route=failure_check" in out and "backend=none" in out
