@@ -1,5 +1,5 @@
 """Prompt regression on the embedded model (slow, opt-in: `pytest -m slow`): one case per scenario, all three
-methods, against the committed `evals/baselines/embedded.json`. About 10 minutes on 2 cores."""
+methods, against the committed `evals/baselines/embedded.json`. About 13 minutes on 2 cores."""
 
 from __future__ import annotations
 
