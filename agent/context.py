@@ -39,11 +39,13 @@ class RunContext:
     @classmethod
     def create(cls, settings: RunSettings, backend: Backend) -> RunContext:
         phrase = settings.phrase if settings.phrase is not None else backend.name.startswith("ollama")
+        probe = Registry.load(None, settings.registry_config)
+        phrasing = backend.model if phrase else None
         return cls(
             settings=settings,
             backend=backend,
-            registry=Registry.load(backend.model if phrase else None, settings.registry_config),
-            probe=Registry.load(None, settings.registry_config),
+            registry=Registry.load(phrasing, settings.registry_config) if phrasing is not None else probe,
+            probe=probe,
             classifier=default_classifier(),
         )
 

@@ -46,6 +46,7 @@ class EventLog:
     poses: list[PoseSample] = field(default_factory=list)
     flags: dict[str, list[BoolSample]] = field(default_factory=dict)
     statuses: dict[str, list[StatusRecord]] = field(default_factory=dict)
+    _times: dict[str, list[int]] = field(default_factory=dict, repr=False)
 
     def finish(self) -> None:
         """Sort by message time: bags are ordered by receive time, which may differ from stamps."""
@@ -56,6 +57,13 @@ class EventLog:
         for records in self.statuses.values():
             records.sort(key=lambda r: r.t)
         self.__dict__.pop("tasks", None)
+        self._times.clear()
+
+    def times(self, key: str, records: Sequence[LogLine | PoseSample | BoolSample | StatusRecord]) -> list[int]:
+        """The sorted stamps of one record list, computed once: every explainer view bisects them."""
+        if key not in self._times:
+            self._times[key] = [r.t for r in records]
+        return self._times[key]
 
     @cached_property
     def tasks(self) -> list[Task]:
@@ -108,28 +116,28 @@ class View:
     def logs(self) -> list[LogLine]:
         self._check(c.ROSOUT)
         start, end = self._bounds()
-        return _slice_by_t(self.log.logs, [r.t for r in self.log.logs], start, end)
+        return _slice_by_t(self.log.logs, self.log.times("logs", self.log.logs), start, end)
 
     def poses(self) -> list[PoseSample]:
         self._check(c.AMCL_POSE)
         start, end = self._bounds()
-        return _slice_by_t(self.log.poses, [r.t for r in self.log.poses], start, end)
+        return _slice_by_t(self.log.poses, self.log.times("poses", self.log.poses), start, end)
 
     def flag_at(self, topic: str, t: int) -> BoolSample | None:
         """The latest value of a latched flag at time t (it may have been set long before the window)."""
         self._check(topic)
         samples = self.log.flags.get(topic, [])
-        i = bisect_right([s.t for s in samples], t)
+        i = bisect_right(self.log.times(f"flag:{topic}", samples), t)
         return samples[i - 1] if i else None
 
     def flags(self, topic: str) -> list[BoolSample]:
         self._check(topic)
         samples = self.log.flags.get(topic, [])
         start, end = self._bounds()
-        return _slice_by_t(samples, [s.t for s in samples], start, end)
+        return _slice_by_t(samples, self.log.times(f"flag:{topic}", samples), start, end)
 
     def statuses(self, topic: str) -> list[StatusRecord]:
         self._check(topic)
         records = self.log.statuses.get(topic, [])
         start, end = self._bounds()
-        return _slice_by_t(records, [r.t for r in records], start, end)
+        return _slice_by_t(records, self.log.times(f"status:{topic}", records), start, end)

@@ -175,8 +175,8 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
     log = EventLog(
         path=src,
         storage=_storage(src),
-        start=reader.start_time if reader.message_count else 0,
-        end=reader.end_time if reader.message_count else 0,
+        start=reader.start_time,
+        end=reader.end_time,
         topics=dict(sorted(infos.items())),
         warnings=warnings,
     )
@@ -199,18 +199,18 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                 stamp, level, name, text = fast
                 logs_append(LogLine(stamp or t, level, name, text))
             else:
-                m = _deser(reader, ts, raw, msgtype, ros2)
+                m = _deser(ts, raw, msgtype, ros2)
                 stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec)
                 logs_append(LogLine(stamp or t, int(m.level), str(m.name), str(m.msg)))
         elif msgtype == c.ROS1_LOG_TYPE:
-            m = _deser(reader, ts, raw, msgtype, ros2)
+            m = _deser(ts, raw, msgtype, ros2)
             stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
             level = c.ROS1_LEVELS.get(int(m.level), int(m.level))
             log.logs.append(LogLine(stamp, level, str(m.name), str(m.msg)))
         elif msgtype == c.STRING_TYPE:
             data = decode_string(raw) if ros2 else None
             if data is None:
-                data = str(_deser(reader, ts, raw, msgtype, ros2).data)
+                data = str(_deser(ts, raw, msgtype, ros2).data)
             if conn.topic == c.TASK_INFO:
                 update = parse_task_info(t, data)
                 if update is None:
@@ -218,7 +218,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                 else:
                     log.task_updates.append(update)
         elif msgtype == c.BOOL_TYPE:
-            m = _deser(reader, ts, raw, msgtype, ros2)
+            m = _deser(ts, raw, msgtype, ros2)
             log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
         elif msgtype == c.POSE_COV_TYPE:
             fast_pose = decode_pose_cov(raw) if ros2 else None
@@ -226,7 +226,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                 stamp, v = fast_pose
                 log.poses.append(PoseSample(stamp or t, v[0], v[1], _yaw(v[5], v[6]), v[7], v[7 + 7], v[7 + 35]))
             else:
-                m = _deser(reader, ts, raw, msgtype, ros2)
+                m = _deser(ts, raw, msgtype, ros2)
                 p, cov = m.pose.pose, m.pose.covariance
                 log.poses.append(
                     PoseSample(
@@ -237,7 +237,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                     )
                 )
         elif msgtype == c.DIAG_TYPE:
-            m = _deser(reader, ts, raw, msgtype, ros2)
+            m = _deser(ts, raw, msgtype, ros2)
             log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
     log.finish()
     return log, seen > 0 or promised == 0
@@ -289,7 +289,7 @@ def _mcap_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Conn
     return itertools.chain.from_iterable(p for p in parts if p is not None)
 
 
-def _deser(reader: AnyReader, ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:
+def _deser(ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:
     return ts.deserialize_cdr(raw, msgtype) if ros2 else ts.deserialize_ros1(raw, msgtype)
 
 

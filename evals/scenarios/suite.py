@@ -8,6 +8,7 @@ injected for scenarios 1-4, as the paper did. No label or ground truth is ever w
 from __future__ import annotations
 
 import random
+import shutil
 import string
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -91,7 +92,6 @@ class Robot:
     pos: tuple[float, float]
     moved: bool = False
     navigations: int = 0
-    say_timeout_s: float = 20.0
     log: list[str] = field(default_factory=list)
 
     def task_id(self) -> str:
@@ -140,7 +140,7 @@ class Robot:
             text = str(params["input"])
             if text.startswith("?recommend_pizza"):
                 text = f"I recommend a {self.log[-1]}." if self.log else "I recommend a pizza."
-            return tts.simulate_say(self.b, self.rng, self.t, text, timeout_s=self.say_timeout_s)
+            return tts.simulate_say(self.b, self.rng, self.t, text)
         if skill == "ask_human_for_help":
             return self.ask_for_help(str(params.get("question", "")))
         if skill == "recommend_pizza":
@@ -202,8 +202,6 @@ def record(s: Scenario, variant: int, seed: int = 0) -> BagBuilder:
     start = sec_ns(EPOCH + s.id * 3600 + variant * 600 + rng.uniform(0, 30))
     home = ROOMS[v.home]
     robot = Robot(b, rng, s.id, variant, start + sec_ns(rng.uniform(3, 6)), home)
-    if s.id == 19:
-        robot.say_timeout_s = 20.0
     if s.id in {1, 2, 3, 4}:
         plan, error = injected_plan(s.id, v, variant)
     else:
@@ -234,8 +232,6 @@ def simulate_suite(out: Path, storage: Storage = "sqlite3", seed: int = 0,
                 continue
             path = out / recording_name(s.id, variant)
             if path.exists():
-                import shutil
-
                 shutil.rmtree(path)
             record(s, variant, seed).write(path, storage)
             written.append(path)

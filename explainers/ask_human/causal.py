@@ -9,7 +9,7 @@ import json
 import logging
 import warnings
 from collections import deque
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from importlib import resources
 from itertools import combinations, product
@@ -73,26 +73,23 @@ def parents(node: str) -> list[str]:
     return [a for a, b in EDGES if b == node]
 
 
-def descendants(nodes: Iterable[str]) -> set[str]:
+def _reach(nodes: Iterable[str], step: Callable[[str], list[str]]) -> set[str]:
     seen: set[str] = set()
     todo = list(nodes)
     while todo:
-        for child in children(todo.pop()):
-            if child not in seen:
-                seen.add(child)
-                todo.append(child)
+        for nxt in step(todo.pop()):
+            if nxt not in seen:
+                seen.add(nxt)
+                todo.append(nxt)
     return seen
+
+
+def descendants(nodes: Iterable[str]) -> set[str]:
+    return _reach(nodes, children)
 
 
 def ancestors(node: str) -> set[str]:
-    seen: set[str] = set()
-    todo = [node]
-    while todo:
-        for parent in parents(todo.pop()):
-            if parent not in seen:
-                seen.add(parent)
-                todo.append(parent)
-    return seen
+    return _reach([node], parents)
 
 
 def hops(src: str, dst: str) -> int:
