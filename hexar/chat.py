@@ -31,7 +31,7 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
 
 
 def ask(run: Path, question: str | None, questions: Path | None, task: str | None, llm: str,
-        as_json: bool, verbose: bool, console: Console, phrase: bool | None = None) -> int:
+        as_json: bool, verbose: bool, console: Console, phrase: bool | None = None, plot: Path | None = None) -> int:
     session = Session(RunSettings(recording=run, llm=llm, phrase=phrase))
     if questions is not None:
         lines = [ln.strip() for ln in questions.read_text(encoding="utf-8").splitlines() if ln.strip()]
@@ -44,6 +44,10 @@ def ask(run: Path, question: str | None, questions: Path | None, task: str | Non
     result = session.ask(question or "", task=task)
     if result["error"]:
         raise BadQuestionError(result["error"])
+    if plot is not None:
+        from hexar.web.explain import plot_task
+
+        plot_task(session.context.log, result, plot)
     if as_json:
         print(json.dumps(result, indent=2))
     else:

@@ -60,6 +60,7 @@ def simulate(
 def inspect(
     run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+    plot: Annotated[Path | None, typer.Option(help="also draw the latest task's path/timeline figure (PNG)")] = None,
 ) -> None:
     """Show a recording's topics, tasks, plans with per-skill status and times, and warnings."""
 
@@ -67,6 +68,10 @@ def inspect(
         from hexar.events import read_recording
         from hexar.render import log_dict, print_inspection
 
+        if plot is not None:
+            from hexar.web.explain import plot_latest
+
+            plot_latest(run, plot)
         log = read_recording(run)
         if as_json:
             print(json.dumps(log_dict(log), indent=2))
@@ -121,6 +126,7 @@ def ask(
     verbose: Annotated[bool, typer.Option("--verbose", "-v", help="show route, backend, evidence")] = False,
     phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers "
                                                 "(default: with Ollama yes, embedded no)")] = None,
+    plot: Annotated[Path | None, typer.Option(help="also draw the task's path/timeline figure (PNG)")] = None,
 ) -> None:
     """Answer one question (or a file of questions) about a recorded run."""
 
@@ -130,7 +136,9 @@ def ask(
 
         if question is None and questions is None:
             raise HexarError("give a question or --questions FILE")
-        return run_ask(run, question, questions, task, llm, as_json, verbose, out, phrase)
+        if plot is not None and questions is not None:
+            raise HexarError("--plot draws one answer: give one question, not --questions")
+        return run_ask(run, question, questions, task, llm, as_json, verbose, out, phrase, plot)
 
     raise typer.Exit(guarded(body))
 
