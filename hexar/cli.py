@@ -162,6 +162,24 @@ def chat(
 
 
 @app.command()
+def annotate(
+    run: Annotated[Path, typer.Argument(help="a rosbag2 folder (sqlite3 or mcap)")],
+    out_file: Annotated[Path, typer.Option("--out", help="the MCAP file to write")],
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
+) -> None:
+    """Copy a recording to MCAP with HEXAR's explanations on /hexar/explanations and /hexar/log."""
+
+    def body() -> int:
+        from hexar.web.annotate import annotate as run_annotate
+
+        n = run_annotate(run, out_file, llm)
+        out.print(f"wrote {out_file} with {n} explanation{'s' if n != 1 else ''}")
+        return 0
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
 def listen(
     run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
     wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
