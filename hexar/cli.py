@@ -180,6 +180,25 @@ def annotate(
 
 
 @app.command()
+def web(
+    folder: Annotated[Path, typer.Argument(help="a folder of recordings")] = Path("."),
+    host: Annotated[str, typer.Option(help="address to listen on (loopback by default)")] = "127.0.0.1",
+    port: Annotated[int, typer.Option(help="port to listen on")] = 8080,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
+    checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations (shared with hexar chat)")
+                           ] = None,
+) -> None:
+    """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
+
+    def body() -> int:
+        from hexar.web.server import serve
+
+        return serve(folder, host, port, llm, checkpoints)
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
 def listen(
     run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
     wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,

@@ -1,0 +1,162 @@
+"""What the page shows, as JSON: the runs under a folder, one run's task, and its explainers' findings.
+
+Everything recorded is passed through as data; the page puts it into the DOM as text, never as markup.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+from bisect import bisect_left, bisect_right
+from pathlib import Path
+from typing import Any
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.web.errors import WebError
+from hexar.web.explain import GENERIC_QUESTION
+from hexar.web.runview import spans, track
+
+MAX_LINES = 5000  # "all filtered lines" of an hour-long task: the page lists this many and says how many more
+LIME_LINE = re.compile(r"^\s+(\S+), (present|absent), ([+-]\d+\.\d+)$")
+
+
+def recordings(root: Path) -> list[Path]:
+    """The recordings directly under `root`: rosbag2 folders and ROS 1 bags, by name."""
+    if not root.is_dir():
+        raise WebError(f"not a folder: {root}")
+    return sorted(p for p in root.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file()) or p.suffix == ".bag")
+
+
+def explainers_for(registry: Any, task: Task) -> list[str]:
+    """The explainers the agent's failure check would pick, or every started module's when nothing failed."""
+    if not task.valid:
+        return ["planner"]
+    failed = task.failed_skill
+    skills = [failed.skill] if failed is not None else [r.skill for r in task.skills if r.state != "waiting"]
+    names: list[str] = []
+    for skill in skills or ["planner"]:
+        names.extend(n for n in registry.for_module(skill) if n not in names)
+    return names
+
+
+class Findings:
+    """The explainers' Explanation objects per (recording, task), computed once; explainers are not
+    thread-safe (pgmpy inference, LIME's RandomState), so one lock serialises them."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._cache: dict[tuple[str, str], list[dict[str, Any]]] = {}
+        self._registry: Any = None
+
+    def cached(self, key: tuple[str, str]) -> list[dict[str, Any]] | None:
+        return self._cache.get(key)
+
+    def get(self, name: str, log: EventLog, task: Task) -> list[dict[str, Any]]:
+        key = (name, task.task_id)
+        if key in self._cache:
+            return self._cache[key]
+        from hexar.explainers.base import Context
+        from hexar.explainers.registry import Registry
+
+        with self._lock:
+            if key in self._cache:
+                return self._cache[key]
+            if self._registry is None:
+                self._registry = Registry.load()
+            context = Context.for_task(log, task, self._registry)
+            found = [self._registry.get(n).explain(GENERIC_QUESTION, context).model_dump()
+                     for n in explainers_for(self._registry, task)]
+            self._cache[key] = found
+            return found
+
+
+def _records(log: EventLog, topic: str, window: tuple[int, int]) -> list[dict[str, Any]]:
+    records = log.statuses.get(topic, [])
+    times = log.times(f"status:{topic}", records)
+    lo, hi = bisect_left(times, window[0]), bisect_right(times, window[1])
+    return [{"t_ns": r.t, "message": r.message, "values": [list(kv) for kv in r.data_items()]}
+            for r in records[lo:hi]]
+
+
+def _flags(log: EventLog, window: tuple[int, int]) -> list[dict[str, Any]]:
+    out = []
+    for topic in (c.JOY_PRIORITY, c.IS_CHARGING):
+        samples = log.flags.get(topic, [])
+        if not samples:
+            continue
+        times = log.times(f"flag:{topic}", samples)
+        i = bisect_right(times, window[0])
+        at_start = samples[i - 1].value if i else None
+        changes = [{"t_ns": s.t, "value": s.value} for s in samples[i:bisect_right(times, window[1])]
+                   if s.value != at_start]
+        out.append({"topic": topic, "at_start": at_start, "changes": changes[:50]})
+    return out
+
+
+def _pizza(findings: list[dict[str, Any]], log: EventLog, window: tuple[int, int]) -> dict[str, Any] | None:
+    pizza = next((f for f in findings if f["explainer"] == "pizza_recommender"), None)
+    if pizza is None:
+        return None
+    weights = [{"ingredient": m[1], "present": m[2] == "present", "weight": float(m[3])}
+               for line in pizza["details"] if (m := LIME_LINE.match(line))]
+    recommended = next((v for r in _records(log, c.PIZZA_EVENTS, window) for k, v in r["values"]
+                        if k == "recommended_pizza"), None)
+    return {"recommended": recommended, "weights": weights, "text": pizza["text"]}
+
+
+def _events(findings: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """The evidence of every finding as timeline rows, one row per recorded item, with every cause citing it."""
+    rows: dict[str, dict[str, Any]] = {}
+    for f in findings:
+        for ev in f["evidence"]:
+            key = f"{ev['topic']}|{ev['t']}"
+            row = rows.setdefault(key, {"key": key, "t_ns": ev["t"], "topic": ev["topic"], "item": ev["item"],
+                                        "causes": []})
+            if ev["cause"] not in row["causes"]:
+                row["causes"].append(ev["cause"])
+    return sorted(rows.values(), key=lambda r: (r["t_ns"], r["key"]))
+
+
+def task_summary(task: Task) -> dict[str, Any]:
+    return {"task_id": task.task_id, "order": task.order, "instruction": task.instruction,
+            "outcome": task.outcome, "recovery": task.is_recovery, "valid": task.valid, "error_msg": task.error_msg}
+
+
+def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, Any]]) -> dict[str, Any]:
+    window = (task.created, task.last_update)
+    tr = track(log, task)
+    pose = (lambda p: None if p is None else {"t_ns": p.t, "x": p.x, "y": p.y, "cov_xy": p.cov_xy})
+    return {
+        "recording": name,
+        "storage": log.storage,
+        "start_ns": log.start,
+        "duration_s": round((log.end - log.start) / 1e9, 3),
+        "warnings": list(log.warnings),
+        "tasks": [task_summary(t) for t in log.tasks],
+        "task": {**task_summary(task), "created_ns": task.created, "last_update_ns": task.last_update,
+                 "window_ns": list(task.window())},
+        "spans": [s.as_dict() for s in spans(task)],
+        "findings": findings,
+        "events": _events(findings),
+        "flags": _flags(log, window),
+        "ask_human": _records(log, c.EPISODIC_MEMORY, window),
+        "tts": _records(log, c.SAY_EVENTS, window),
+        "pizza": _pizza(findings, log, window),
+        "path": {"poses": len(tr.poses), "stop": pose(tr.stop), "stop_label": tr.stop_label,
+                 "trips": [{"index": t.index, "skill": t.skill, "status": t.status, "begin": pose(t.begin),
+                            "end": pose(t.end)} for t in tr.trips]},
+    }
+
+
+def filtered_lines(log: EventLog, task: Task) -> dict[str, Any]:
+    """The task's /rosout lines through the navigation explainer's filter (its loggers, no noise, no repeats)."""
+    from hexar.explainers.navigation.filter import filter_logs
+
+    times = log.times("logs", log.logs)
+    window = log.logs[bisect_left(times, task.created):bisect_right(times, task.last_update)]
+    kept = filter_logs(window)
+    return {"total": len(window), "kept": len(kept), "shown": min(len(kept), MAX_LINES),
+            "lines": [{"key": f"{c.ROSOUT}|{ln.t}", "t_ns": ln.t, "topic": c.ROSOUT, "item": ln.render(),
+                       "level": ln.level_name} for ln in kept[:MAX_LINES]]}

@@ -1,0 +1,166 @@
+"""The page's state: the folder of runs, decoded recordings (a few, most recent), findings and chat sessions."""
+
+from __future__ import annotations
+
+import threading
+from collections import OrderedDict
+from pathlib import Path
+from typing import Any
+
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.web.errors import WebError
+from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
+
+KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
+
+
+class Store:
+    def __init__(self, root: Path, llm: str = "auto", checkpoints: Path | None = None) -> None:
+        from hexar.agent.session import default_checkpoints
+
+        self.root = root
+        self.llm = llm
+        self.checkpoints = checkpoints or default_checkpoints()
+        self.findings = Findings()
+        self._logs: OrderedDict[str, EventLog] = OrderedDict()
+        self._lock = threading.Lock()
+        self._rows: dict[str, tuple[float, dict[str, Any]]] = {}
+        self._sessions: dict[str, Any] = {}
+        self._session_lock = threading.Lock()
+        self._backend: Any = None
+        self._worker: threading.Thread | None = None
+        recordings(root)  # a missing folder is the command's one-line error, before the server starts
+
+    def path(self, name: str) -> Path:
+        """A recording of the folder by name; nothing outside the folder can be named."""
+        for p in recordings(self.root):
+            if p.name == name:
+                return p
+        raise WebError(f"no recording named {name!r} in {self.root}")
+
+    def log(self, name: str) -> EventLog:
+        from hexar.events import read_recording
+
+        with self._lock:
+            if name in self._logs:
+                self._logs.move_to_end(name)
+                return self._logs[name]
+        log = read_recording(self.path(name))
+        with self._lock:
+            self._logs[name] = log
+            while len(self._logs) > KEEP_LOGS:
+                self._logs.popitem(last=False)
+        return log
+
+    def task(self, name: str, ref: str | None) -> tuple[EventLog, Task]:
+        log = self.log(name)
+        return log, log.task(ref or None)
+
+    # runs list ---------------------------------------------------------------------------------------------
+    def _row(self, path: Path) -> dict[str, Any]:
+        from hexar.events import EventsError, read_recording
+        from hexar.events.contract import TASK_INFO
+
+        stamp = path.stat().st_mtime
+        cached = self._rows.get(path.name)
+        if cached and cached[0] == stamp:
+            return cached[1]
+        try:
+            log = read_recording(path, topics={TASK_INFO})
+            task = log.task() if log.tasks else None
+            row = {"recording": path.name, "tasks": len(log.tasks), "error": "",
+                   "latest": task_summary(task) if task else None,
+                   "modules": sorted({r.skill for r in task.skills}) if task else []}
+        except EventsError as e:
+            row = {"recording": path.name, "tasks": 0, "error": str(e), "latest": None, "modules": []}
+        self._rows[path.name] = (stamp, row)
+        return row
+
+    def runs(self) -> dict[str, Any]:
+        rows = []
+        pending = 0
+        for path in recordings(self.root):
+            row = dict(self._row(path))
+            found = self.findings.cached((path.name, row["latest"]["task_id"])) if row["latest"] else []
+            row["causes"] = None if found is None else sorted({c for f in found for c in f["causes"]})
+            pending += found is None
+            rows.append(row)
+        if pending:
+            self._start_worker()
+        return {"root": str(self.root), "runs": rows, "pending": pending}
+
+    def _start_worker(self) -> None:
+        """Find each run's causes in the background so the list can be filtered by cause."""
+        if self._worker is not None and self._worker.is_alive():
+            return
+
+        def work() -> None:
+            from hexar.events import EventsError, read_recording
+
+            for path in recordings(self.root):
+                row = self._row(path)
+                if not row["latest"] or self.findings.cached((path.name, row["latest"]["task_id"])) is not None:
+                    continue
+                try:
+                    log = read_recording(path)
+                    self.findings.get(path.name, log, log.task(row["latest"]["task_id"]))
+                except (EventsError, WebError):
+                    continue
+
+        self._worker = threading.Thread(target=work, name="hexar-web-causes", daemon=True)
+        self._worker.start()
+
+    # one run -----------------------------------------------------------------------------------------------
+    def run(self, name: str, ref: str | None) -> dict[str, Any]:
+        log, task = self.task(name, ref)
+        detail = run_detail(name, log, task, self.findings.get(name, log, task))
+        detail["chat"] = {"recording_path": str(self.path(name)), "checkpoints": str(self.checkpoints)}
+        return detail
+
+    def lines(self, name: str, ref: str | None) -> dict[str, Any]:
+        log, task = self.task(name, ref)
+        return filtered_lines(log, task)
+
+    def plot(self, name: str, ref: str | None) -> bytes:
+        from hexar.web.plot import build
+
+        log, task = self.task(name, ref)
+        found = self.findings.get(name, log, task)
+        result = {"answer": " ".join(f["text"] for f in found), "causes": [c for f in found for c in f["causes"]],
+                  "evidence": [e for f in found for e in f["evidence"]]}
+        return build(log, task, result).png(dpi=80)
+
+    # chat --------------------------------------------------------------------------------------------------
+    def backend(self) -> Any:
+        from hexar.agent.backends import resolve
+
+        with self._session_lock:
+            if self._backend is None:
+                self._backend = resolve(self.llm)
+            return self._backend
+
+    def session(self, name: str) -> Any:
+        from hexar.agent.context import RunSettings
+        from hexar.agent.session import Session
+
+        path = self.path(name)
+        backend = self.backend()
+        with self._session_lock:
+            if name not in self._sessions:
+                self._sessions[name] = (Session(RunSettings(recording=path, llm=self.llm), backend=backend,
+                                                checkpoints=self.checkpoints), threading.Lock())
+            return self._sessions[name]
+
+    def ask(self, name: str, question: str, thread: str | None, task: str | None) -> dict[str, Any]:
+        session, lock = self.session(name)
+        with lock:
+            result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
+        for ev in result["evidence"]:
+            ev["key"] = f"{ev['topic']}|{ev['t']}"  # the page's row id: JavaScript numbers cannot hold a ns stamp
+        return result
+
+    def history(self, name: str, thread: str) -> list[dict[str, Any]]:
+        session, lock = self.session(name)
+        with lock:
+            return list(session.history(thread))
