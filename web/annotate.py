@@ -124,5 +124,5 @@ def annotate(run: Path, out: Path, llm: str = "none") -> int:
         merged = heapq.merge(originals, ((e.t, e.topic, e.data) for e in added), key=lambda m: m[0])
         for t, key, data in merged:
             writer.add_message(channels[key], log_time=t, data=data, publish_time=t)
-        writer.finish()
+        writer.finish()  # type: ignore[no-untyped-call]
     return sum(1 for e in added if e.topic == EXPLANATIONS)

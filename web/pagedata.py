@@ -13,6 +13,7 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
+from hexar.events.records import PoseSample
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.explain import GENERIC_QUESTION
@@ -119,6 +120,10 @@ def _events(findings: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return sorted(rows.values(), key=lambda r: (r["t_ns"], r["key"]))
 
 
+def _pose(p: PoseSample | None) -> dict[str, Any] | None:
+    return None if p is None else {"t_ns": p.t, "x": p.x, "y": p.y, "cov_xy": p.cov_xy}
+
+
 def task_summary(task: Task) -> dict[str, Any]:
     return {"task_id": task.task_id, "order": task.order, "instruction": task.instruction,
             "outcome": task.outcome, "recovery": task.is_recovery, "valid": task.valid, "error_msg": task.error_msg}
@@ -127,7 +132,6 @@ def task_summary(task: Task) -> dict[str, Any]:
 def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, Any]]) -> dict[str, Any]:
     window = (task.created, task.last_update)
     tr = track(log, task)
-    pose = (lambda p: None if p is None else {"t_ns": p.t, "x": p.x, "y": p.y, "cov_xy": p.cov_xy})
     return {
         "recording": name,
         "storage": log.storage,
@@ -144,9 +148,9 @@ def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, An
         "ask_human": _records(log, c.EPISODIC_MEMORY, window),
         "tts": _records(log, c.SAY_EVENTS, window),
         "pizza": _pizza(findings, log, window),
-        "path": {"poses": len(tr.poses), "stop": pose(tr.stop), "stop_label": tr.stop_label,
-                 "trips": [{"index": t.index, "skill": t.skill, "status": t.status, "begin": pose(t.begin),
-                            "end": pose(t.end)} for t in tr.trips]},
+        "path": {"poses": len(tr.poses), "stop": _pose(tr.stop), "stop_label": tr.stop_label,
+                 "trips": [{"index": t.index, "skill": t.skill, "status": t.status, "begin": _pose(t.begin),
+                            "end": _pose(t.end)} for t in tr.trips]},
     }
 
 

@@ -14,6 +14,7 @@ from typing import Any
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Rectangle
 
@@ -151,5 +152,7 @@ def build(log: EventLog, task: Task, result: dict[str, Any] | None = None) -> Pa
         causes = ", ".join(result.get("causes", []))
         text = textwrap.fill(f"HEXAR: {result['answer']}" + (f"  [{causes}]" if causes else ""), 150)
         figure.text(0.01, 0.005, text, fontsize=8.5, va="bottom", parse_math=False, color="#333333")
-        figure.get_layout_engine().set(rect=(0, 0.06, 1, 0.94))  # type: ignore[union-attr]
+        engine = figure.get_layout_engine()
+        if isinstance(engine, ConstrainedLayoutEngine):
+            engine.set(rect=(0, 0.06, 1, 0.94))
     return fig

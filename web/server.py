@@ -34,7 +34,7 @@ class Handler(BaseHTTPRequestHandler):
     store: Store
     server_version = "hexar-web"
 
-    def log_message(self, format: str, *args: Any) -> None:  # noqa: A002 -- the base class's name
+    def log_message(self, format: str, *args: Any) -> None:
         if getattr(self.server, "verbose", False):
             super().log_message(format, *args)
 

@@ -1,0 +1,155 @@
+"""The page's HTTP API as the page uses it: runs, one run, lines, figure, chat; errors as the CLI's one line."""
+
+from __future__ import annotations
+
+import json
+import time
+import urllib.error
+import urllib.request
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
+from hexar.cli import main
+from hexar.events import contract as c
+from hexar.events import read_recording
+from tests.web.browser import served
+
+
+def get(url: str) -> tuple[int, Any]:
+    try:
+        with urllib.request.urlopen(url, timeout=60) as r:
+            body = r.read()
+            return r.status, json.loads(body) if r.headers["Content-Type"] == "application/json" else body
+    except urllib.error.HTTPError as e:
+        return e.code, json.loads(e.read())
+
+
+def post(url: str, data: dict[str, Any]) -> tuple[int, Any]:
+    req = urllib.request.Request(url, json.dumps(data).encode(), {"Content-Type": "application/json"})
+    try:
+        with urllib.request.urlopen(req, timeout=120) as r:
+            return r.status, json.loads(r.read())
+    except urllib.error.HTTPError as e:
+        return e.code, json.loads(e.read())
+
+
+def test_runs_list_outcomes_and_causes(webroot: Path, tmp_path: Path) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        deadline = time.monotonic() + 120
+        while True:
+            status, data = get(url + "api/runs")
+            assert status == 200
+            if data["pending"] == 0 or time.monotonic() > deadline:
+                break
+            time.sleep(0.5)
+    rows = {r["recording"]: r for r in data["runs"]}
+    assert data["pending"] == 0
+    assert rows["bagfile_5_1"]["latest"]["outcome"] == "failed"
+    assert rows["bagfile_5_1"]["causes"] == ["navigation.blocked_path"]
+    assert rows["bagfile_12_1"]["causes"] == ["ask_human.person_too_far"]
+    assert rows["bagfile_10_1"]["latest"]["outcome"] == "succeeded"
+    assert "navigate_to_zone" in rows["bagfile_5_1"]["modules"]
+    assert rows["corrupt_run"]["error"].startswith("cannot read")
+
+
+def test_one_run_shows_what_the_explainers_used(webroot: Path, tmp_path: Path) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        _, ask = get(url + "api/run?name=bagfile_12_1")
+        _, tts = get(url + "api/run?name=bagfile_19_1")
+        _, pizza = get(url + "api/run?name=bagfile_20_1")
+        _, nav = get(url + "api/run?name=bagfile_5_1")
+        _, lines = get(url + "api/lines?name=bagfile_5_1")
+        status, png = get(url + "api/plot.png?name=bagfile_5_1")
+    # ask-human steps with their recorded distance
+    log = read_recording(webroot / "bagfile_12_1")
+    recorded = {v for r in log.statuses[c.EPISODIC_MEMORY] for k, v in r.data_items() if k == "person_distance"}
+    shown = {v for r in ask["ask_human"] for k, v in r["values"] if k == "person_distance"}
+    assert shown and shown <= recorded
+    assert [f["causes"] for f in ask["findings"]] == [["ask_human.person_too_far"]]
+    # the TTS utterance and what was said before the cut
+    said = next(v for r in tts["tts"] for k, v in r["values"] if k == "text_said")
+    text = next(v for r in tts["tts"] for k, v in r["values"] if k == "text")
+    assert text.startswith(said) and len(said) < len(text)
+    # LIME's weights, strongest first, the recommended pizza's top ingredient among them
+    weights = pizza["pizza"]["weights"]
+    assert pizza["pizza"]["recommended"] == "Margherita" and len(weights) >= 3
+    assert abs(weights[0]["weight"]) == max(abs(w["weight"]) for w in weights)
+    assert weights[0]["ingredient"] in pizza["pizza"]["text"].lower()
+    # the navigation failure: the failed skill, its evidence rows, the path's stop, the filtered lines
+    assert nav["spans"][0]["status"] == "failed" and nav["spans"][0]["error_msg"]
+    assert any("Failed to make progress" in e["item"] for e in nav["events"])
+    assert nav["path"]["stop_label"].startswith("stopped here") and nav["path"]["poses"] > 10
+    assert {e["key"] for e in nav["events"] if e["topic"] == c.ROSOUT} <= {ln["key"] for ln in lines["lines"]}
+    assert lines["kept"] <= lines["total"]
+    assert status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_chat_thread_moves_between_page_and_terminal(webroot: Path, tmp_path: Path) -> None:
+    ck = tmp_path / "threads.sqlite"
+    with served(webroot, ck) as url:
+        _, first = post(url + "api/chat", {"name": "bagfile_5_1", "question": "why?"})
+        assert first["causes"] == ["navigation.blocked_path"] and first["backend"] == "none"
+        assert all(ev["key"] == f"{ev['topic']}|{ev['t']}" for ev in first["evidence"])
+        _, deeper = post(url + "api/chat", {"name": "bagfile_5_1", "question": "why?", "thread": first["thread"]})
+        assert deeper["intent"] == "deeper" and deeper["thread"] == first["thread"]
+        _, bad = post(url + "api/chat", {"name": "bagfile_5_1", "question": "", "thread": first["thread"]})
+        assert bad["error"] and not bad["answer"].startswith("Traceback")
+    # `hexar chat` with the same recording path and conversation file sees the page's turns
+    session = Session(RunSettings(recording=webroot / "bagfile_5_1", llm="none"), checkpoints=ck)
+    turns = session.history(first["thread"])
+    assert [t["answer"] for t in turns][:2] == [first["answer"], deeper["answer"]]
+    follow = session.ask("What would have helped?", thread=first["thread"])
+    assert follow["intent"] == "helped"
+
+
+@pytest.mark.parametrize(("query", "message"), [
+    ("api/run?name=corrupt_run", "ERROR: cannot read"),
+    ("api/run?name=../bagfile_5_1", "ERROR: no recording named"),
+    ("api/run?name=bagfile_5_1&task=nope", "ERROR: no task 'nope'"),
+    ("api/lines?name=nothing", "ERROR: no recording named"),
+    ("api/plot.png?name=hostile_run&task=9", "ERROR: no task '9'"),
+    ("nowhere", "ERROR: no such page"),
+])
+def test_bad_requests_are_the_clis_one_line(webroot: Path, tmp_path: Path, query: str, message: str) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        status, data = get(url + query)
+    assert status in {400, 404} and data["error"].startswith(message)
+    assert "\n" not in data["error"] and "Traceback" not in data["error"]
+
+
+def test_corrupt_recording_error_matches_the_cli(webroot: Path, tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        _, data = get(url + "api/run?name=corrupt_run")
+    assert main(["inspect", str(webroot / "corrupt_run")]) == 2
+    assert capsys.readouterr().err.strip() == data["error"]
+
+
+def test_static_page_has_no_inline_script_and_a_strict_policy(webroot: Path, tmp_path: Path) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url, urllib.request.urlopen(url) as r:
+        html = r.read().decode()
+        policy = r.headers["Content-Security-Policy"]
+    assert "script-src 'self'" in policy and "<script src=\"/static/app.js\">" in html
+    assert "<script>" not in html
+
+
+@pytest.mark.parametrize(("args", "message"), [
+    (["web", "/definitely/not/here", "--llm", "none"], "not a folder"),
+    (["web", ".", "--llm", "nonsense"], "unknown LLM backend"),
+])
+def test_web_command_bad_input(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(args) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ERROR:") and message in err and err.count("\n") == 1
+
+
+def test_port_in_use_is_one_line(webroot: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        port = url.rsplit(":", 1)[1].strip("/")
+        assert main(["web", str(webroot), "--port", port, "--llm", "none"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ERROR: cannot listen on 127.0.0.1:") and err.count("\n") == 1
