@@ -1,0 +1,172 @@
+"""The page in a real headless Chromium: a failed run's timeline, "why?" in the chat, evidence highlighted.
+
+Screenshots go to the test's tmp folder, and also to $HEXAR_SCREENSHOTS when set (docs/web is refreshed so).
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from hexar.events import read_recording
+from tests.web.browser import chrome, served
+from tests.web.helpers import HOSTILE_ERROR, HOSTILE_INSTRUCTION, HOSTILE_LOG
+
+WAIT_S = 90
+
+
+@pytest.fixture(scope="module")
+def page(webroot: Path, tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, str]]:
+    ck = tmp_path_factory.mktemp("threads") / "threads.sqlite"
+    with served(webroot, ck) as url, chrome() as driver:
+        driver.set_window_size(1440, 1250)
+        yield driver, url
+
+
+@pytest.fixture(scope="module")
+def shots(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return tmp_path_factory.mktemp("screenshots")
+
+
+def _shot(driver: Any, shots: Path, name: str) -> Path:
+    out = shots / f"{name}.png"
+    driver.save_screenshot(str(out))
+    extra = os.environ.get("HEXAR_SCREENSHOTS")
+    if extra:
+        Path(extra).mkdir(parents=True, exist_ok=True)
+        shutil.copy(out, Path(extra) / out.name)
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    return out
+
+
+def _open(driver: Any, url: str, name: str) -> None:
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    driver.get(f"{url}#/run/{name}")
+    WebDriverWait(driver, WAIT_S).until(lambda d: d.execute_script("return document.body.dataset.ready"))
+
+
+def _ask(driver: Any, question: str) -> Any:
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    before = len(driver.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)"))
+    driver.find_element(By.ID, "chat-input").send_keys(question + "\n")
+    WebDriverWait(driver, WAIT_S).until(
+        lambda d: len(d.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)")) > before)
+    return driver.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)")[-1]
+
+
+def test_failed_run_why_and_its_evidence_on_the_timeline(page: tuple[Any, str], webroot: Path, shots: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    driver, url = page
+    _open(driver, url, "bagfile_5_1")
+    failed = read_recording(webroot / "bagfile_5_1").task().failed_skill
+    assert failed is not None
+    bar = driver.find_element(By.ID, f"skill-{failed.index}")
+    assert bar.get_attribute("data-status") == "failed" and failed.error_msg in bar.text
+    answer = _ask(driver, "why?")
+    causes = [c.text for c in answer.find_elements(By.CSS_SELECTOR, ".chip")]
+    assert causes == ["navigation.blocked_path"]
+    assert "blocked" in answer.find_element(By.CSS_SELECTOR, ".answer").text
+    link = next(a for a in answer.find_elements(By.CSS_SELECTOR, ".evlink") if "Failed to make progress" in a.text)
+    assert not driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
+    link.click()
+    key = link.get_attribute("data-key")
+    rows = driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
+    assert [r.get_attribute("data-key") for r in rows] == [key]
+    assert rows[0].is_displayed() and "Failed to make progress" in rows[0].text
+    assert "hl" in driver.find_element(By.CSS_SELECTOR, f".tick[data-key='{key}']").get_attribute("class")
+    assert driver.find_element(By.ID, "gantt-marker").is_displayed()
+    # a cause chip highlights every line cited for it
+    answer.find_element(By.CSS_SELECTOR, ".chip").click()
+    assert len(driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")) == len(
+        driver.find_elements(By.CSS_SELECTOR, "#events-body tr"))
+    link.click()
+    assert "backend none" in driver.find_element(By.ID, "backend").text
+    _shot(driver, shots, "nav_failure")
+    # all filtered lines on request, the cited ones still among them
+    driver.find_element(By.ID, "all-lines").click()
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    WebDriverWait(driver, WAIT_S).until(lambda d: d.find_elements(By.CSS_SELECTOR, "#events-body tr.filtered"))
+    assert "kept by the navigation filter" in driver.find_element(By.ID, "lines-info").text
+
+
+def test_ask_human_run_shows_its_steps_and_distance(page: tuple[Any, str], shots: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    driver, url = page
+    _open(driver, url, "bagfile_12_1")
+    card = driver.find_element(By.ID, "ask-human")
+    assert "person_distance" in card.text
+    answer = _ask(driver, "Why didn't you bring me the coffee?")
+    assert [c.text for c in answer.find_elements(By.CSS_SELECTOR, ".chip")] == ["ask_human.person_too_far"]
+    answer.find_elements(By.CSS_SELECTOR, ".evlink")[0].click()
+    assert driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
+    driver.execute_script("window.scrollTo(0, 0)")
+    _shot(driver, shots, "ask_human")
+
+
+def test_pizza_and_tts_panels(page: tuple[Any, str], shots: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    driver, url = page
+    _open(driver, url, "bagfile_20_1")
+    rows = driver.find_elements(By.CSS_SELECTOR, "#pizza .wrow")
+    assert len(rows) >= 3 and "Margherita" in driver.find_element(By.ID, "pizza").text
+    driver.execute_script("document.getElementById('pizza').scrollIntoView()")
+    _shot(driver, shots, "pizza")
+    _open(driver, url, "bagfile_19_1")
+    said = driver.find_element(By.CSS_SELECTOR, "#tts .said").text
+    unsaid = driver.find_element(By.CSS_SELECTOR, "#tts .unsaid").text
+    assert said and unsaid and said.startswith("Hello everyone")
+
+
+def test_runs_list_filters_by_outcome(page: tuple[Any, str]) -> None:
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import Select, WebDriverWait
+
+    driver, url = page
+    driver.get(url + "#/")
+    WebDriverWait(driver, WAIT_S).until(lambda d: d.find_elements(By.CSS_SELECTOR, "tr.run"))
+    everything = len(driver.find_elements(By.CSS_SELECTOR, "tr.run"))
+    Select(driver.find_element(By.ID, "filter-outcome")).select_by_value("failed")
+    badges = [b.text for b in driver.find_elements(By.CSS_SELECTOR, "tr.run .badge")]
+    assert badges and set(badges) == {"failed"} and len(badges) < everything
+
+
+def test_hostile_recorded_text_stays_text(page: tuple[Any, str]) -> None:
+    from selenium.webdriver.common.by import By
+
+    driver, url = page
+    _open(driver, url, "hostile_run")
+    assert driver.title == "HEXAR · see why"
+    assert HOSTILE_ERROR in driver.find_element(By.ID, "skill-0").text
+    assert HOSTILE_INSTRUCTION in driver.find_element(By.CSS_SELECTOR, ".instruction").text
+    assert not driver.find_elements(By.CSS_SELECTOR, "main img[src='x'], main script")
+    _ask(driver, "What happened?")
+    driver.find_element(By.ID, "all-lines").click()
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    WebDriverWait(driver, WAIT_S).until(lambda d: HOSTILE_LOG in d.find_element(By.ID, "events-body").text)
+    assert driver.title == "HEXAR · see why"
+    assert not driver.find_elements(By.CSS_SELECTOR, "main img[src='x'], main script")
+
+
+def test_bad_recording_shows_one_line_not_a_traceback(page: tuple[Any, str], webroot: Path) -> None:
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    driver, url = page
+    driver.get(f"{url}#/run/corrupt_run")
+    WebDriverWait(driver, WAIT_S).until(lambda d: d.find_elements(By.CSS_SELECTOR, "p.error"))
+    errors = [e.text for e in driver.find_elements(By.CSS_SELECTOR, "p.error")]
+    assert len(errors) == 1 and errors[0].startswith("ERROR: cannot read") and "\n" not in errors[0]
+    assert "Traceback" not in driver.find_element(By.TAG_NAME, "body").text
