@@ -195,7 +195,7 @@ function pathCard(run) {
     el("img", { src, alt: "the robot's path with its covariance, trips and stop point, and the skill timeline", class: "plot" }),
     el("p", { class: "small" }, `${p.poses} poses from /amcl_pose. `,
       p.trips.map((t) => el("span", { class: "flag" }, `trip ${t.index + 1} (${t.skill}, ${t.status}): (${t.begin.x.toFixed(2)}, ${t.begin.y.toFixed(2)}) → (${t.end.x.toFixed(2)}, ${t.end.y.toFixed(2)})`)),
-      p.stop ? el("span", { class: "flag stop" }, `${p.stop_label} at (${p.stop.x.toFixed(2)}, ${p.stop.y.toFixed(2)}), covariance ${p.stop.cov_xy.toFixed(3)}`) : null));
+      p.stop ? el("span", { class: `flag ${p.stop_label.startsWith("stopped") ? "stop" : "end"}` }, `${p.stop_label} at (${p.stop.x.toFixed(2)}, ${p.stop.y.toFixed(2)}), covariance ${p.stop.cov_xy.toFixed(3)}`) : null));
 }
 
 function valuesList(values) {
