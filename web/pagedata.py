@@ -17,8 +17,10 @@ from hexar.events.records import PoseSample
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.explain import GENERIC_QUESTION
-from hexar.web.runview import spans, track
+from hexar.web.runview import POOR_COV, SIGMAS, spans, track
 
+MAX_POINTS = 1500  # the page's path: an hour of 5 Hz poses thinned to what a 700-pixel drawing can show
+MAX_ELLIPSES = 60
 MAX_LINES = 5000  # "all filtered lines" of an hour-long task: the page lists this many and says how many more
 LIME_LINE = re.compile(r"^\s+(\S+), (present|absent), ([+-]\d+\.\d+)$")
 
@@ -120,6 +122,18 @@ def _events(findings: list[dict[str, Any]]) -> list[dict[str, Any]]:
     return sorted(rows.values(), key=lambda r: (r["t_ns"], r["key"]))
 
 
+def _path(task: Task, poses: list[PoseSample]) -> dict[str, Any]:
+    """Path points as [seconds from the task's start, x, y] and 2-sigma ellipses as [x, y, rx, ry, poor]."""
+    step = max(1, -(-len(poses) // MAX_POINTS))
+    thinned = poses[::step] + ([poses[-1]] if poses and (len(poses) - 1) % step else [])
+    every = max(1, len(poses) // MAX_ELLIPSES)
+    return {
+        "points": [[round((p.t - task.created) / 1e9, 3), p.x, p.y] for p in thinned],
+        "ellipses": [[p.x, p.y, SIGMAS * max(p.cov_x, 0.0) ** 0.5, SIGMAS * max(p.cov_y, 0.0) ** 0.5,
+                      max(p.cov_xy, p.cov_yaw) > POOR_COV] for p in poses[::every]],
+    }
+
+
 def _pose(p: PoseSample | None) -> dict[str, Any] | None:
     return None if p is None else {"t_ns": p.t, "x": p.x, "y": p.y, "cov_xy": p.cov_xy}
 
@@ -148,7 +162,7 @@ def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, An
         "ask_human": _records(log, c.EPISODIC_MEMORY, window),
         "tts": _records(log, c.SAY_EVENTS, window),
         "pizza": _pizza(findings, log, window),
-        "path": {"poses": len(tr.poses), "stop": _pose(tr.stop), "stop_label": tr.stop_label,
+        "path": {**_path(task, tr.poses), "poses": len(tr.poses), "stop": _pose(tr.stop), "stop_label": tr.stop_label,
                  "trips": [{"index": t.index, "skill": t.skill, "status": t.status, "begin": _pose(t.begin),
                             "end": _pose(t.end)} for t in tr.trips]},
     }

@@ -14,19 +14,16 @@ from typing import Any
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
-from matplotlib.layout_engine import ConstrainedLayoutEngine
 from matplotlib.lines import Line2D
 from matplotlib.patches import Ellipse, Rectangle
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import PlotError
-from hexar.web.runview import spans, track
+from hexar.web.runview import POOR_COV, SIGMAS, spans, track
 
 STATUS_COLOURS = {"succeeded": "#2e7d32", "failed": "#c62828", "running": "#f9a825", "waiting": "#9e9e9e"}
-SIGMAS = 2.0  # ellipses enclose about 86 % of a 2-D Gaussian's mass
 MAX_ELLIPSES = 60
-POOR_COV = 0.2  # the contract's poor-localisation threshold (README, "Topic contract")
 NS = 1e9
 
 
@@ -90,7 +87,7 @@ def _draw_path(fig: PathFigure, ax: Any, log: EventLog, task: Task) -> None:
         failed = task.failed_skill is not None
         (fig.stop,) = ax.plot(tr.stop.x, tr.stop.y, "X" if failed else "*", color="#c62828" if failed else "#2e7d32",
                               ms=14, label=tr.stop_label)
-    ax.legend(loc="best", fontsize=8)
+    ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
 
 
 def _draw_timeline(fig: PathFigure, ax: Any, task: Task, evidence_t: list[int]) -> None:
@@ -108,7 +105,8 @@ def _draw_timeline(fig: PathFigure, ax: Any, task: Task, evidence_t: list[int]) 
         ft = ((failed.time_of("failed") or failed.last_change) - t0) / NS
         (fig.failure,) = ax.plot(ft, failed.index, "X", color="#b71c1c", ms=12)
         ax.annotate(textwrap.shorten(failed.error_msg or "failed", 60), (ft, failed.index), fontsize=8,
-                    textcoords="offset points", xytext=(-4, 10), ha="right", color="#b71c1c", parse_math=False)
+                    textcoords="offset points", xytext=(-4, -13), ha="right", va="top", color="#b71c1c",
+                    parse_math=False)
     for n, t in enumerate(evidence_t):
         fig.evidence.append(ax.axvline((t - t0) / NS, color="#ff6f00", ls="--", lw=1,
                                        label="cited evidence" if n == 0 else None))
@@ -140,19 +138,20 @@ def _draw_covariance(fig: PathFigure, ax: Any, log: EventLog, task: Task, eviden
 def build(log: EventLog, task: Task, result: dict[str, Any] | None = None) -> PathFigure:
     """The figure for `task`; `result` (an answer of `hexar ask --json`) adds its answer and evidence times."""
     evidence_t = sorted({int(ev["t"]) for ev in (result or {}).get("evidence", [])})
-    figure = Figure(figsize=(12, 6.4), layout="constrained")
+    # fixed margins, not a layout engine: constrained layout re-measures every text several times, which
+    # costs more than drawing an hour of poses
+    figure = Figure(figsize=(12, 6.4))
     fig = PathFigure(figure)
-    grid = figure.add_gridspec(2, 2, width_ratios=[1.05, 1.25], height_ratios=[1.3, 1])
+    bottom = 0.16 if result and result.get("answer") else 0.09
+    grid = figure.add_gridspec(2, 2, width_ratios=[1.05, 1.25], height_ratios=[1.3, 1], left=0.06, right=0.985,
+                               top=0.9, bottom=bottom, wspace=0.16, hspace=0.42)
     _draw_path(fig, figure.add_subplot(grid[:, 0]), log, task)
     _draw_timeline(fig, figure.add_subplot(grid[0, 1]), task, evidence_t)
     _draw_covariance(fig, figure.add_subplot(grid[1, 1]), log, task, evidence_t)
     title = f"{log.path.name} · task {task.order}: {task.instruction or '(recovery)'} — {task.outcome}"
-    figure.suptitle(textwrap.shorten(title, 110), fontsize=12, parse_math=False)
+    figure.suptitle(textwrap.shorten(title, 110), fontsize=12, parse_math=False, y=0.975)
     if result and result.get("answer"):
         causes = ", ".join(result.get("causes", []))
         text = textwrap.fill(f"HEXAR: {result['answer']}" + (f"  [{causes}]" if causes else ""), 150)
-        figure.text(0.01, 0.005, text, fontsize=8.5, va="bottom", parse_math=False, color="#333333")
-        engine = figure.get_layout_engine()
-        if isinstance(engine, ConstrainedLayoutEngine):
-            engine.set(rect=(0, 0.06, 1, 0.94))
+        figure.text(0.01, 0.01, text, fontsize=8.5, va="bottom", parse_math=False, color="#333333")
     return fig

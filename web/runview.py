@@ -14,6 +14,8 @@ from hexar.events.tasks import SkillRun, Task
 # approach of ask_human_for_help drives the base too.
 MOVED_M = 0.2
 NAVIGATION = "navigation"
+SIGMAS = 2.0  # covariance ellipses enclose about 86 % of a 2-D Gaussian's mass
+POOR_COV = 0.2  # the contract's poor-localisation threshold (README, "Topic contract")
 
 
 @dataclass(frozen=True)
