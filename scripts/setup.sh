@@ -14,6 +14,9 @@ command -v espeak-ng >/dev/null || need_apt+=(espeak-ng)
 command -v sox >/dev/null || need_apt+=(sox)
 ldconfig -p 2>/dev/null | grep -q libportaudio || need_apt+=(libportaudio2)
 python3 -c 'import venv, ensurepip' 2>/dev/null || need_apt+=(python3-venv)
+# the page's browser tests drive a real headless Chromium
+command -v chromium >/dev/null || need_apt+=(chromium)
+command -v chromedriver >/dev/null || need_apt+=(chromium-driver)
 if [ "$FULL" = 1 ]; then
   command -v cmake >/dev/null || need_apt+=(cmake)
   command -v g++ >/dev/null || need_apt+=(g++)

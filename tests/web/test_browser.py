@@ -23,9 +23,13 @@ WAIT_S = 90
 @pytest.fixture(scope="module")
 def page(webroot: Path, tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, str]]:
     ck = tmp_path_factory.mktemp("threads") / "threads.sqlite"
-    with served(webroot, ck) as url, chrome() as driver:
-        driver.set_window_size(1440, 1250)
-        yield driver, url
+    # served from the folder's parent with a relative path, as a person runs `hexar web runs`: the page then
+    # shows `hexar chat webroot0/NAME --thread ID` (and the screenshots hold no machine path)
+    with pytest.MonkeyPatch.context() as mp:
+        mp.chdir(webroot.parent)
+        with served(Path(webroot.name), ck) as url, chrome() as driver:
+            driver.set_window_size(1440, 1250)
+            yield driver, url
 
 
 @pytest.fixture(scope="module")
@@ -118,7 +122,8 @@ def test_ask_human_run_shows_its_steps_and_distance(page: tuple[Any, str], shots
     assert [c.text for c in answer.find_elements(By.CSS_SELECTOR, ".chip")] == ["ask_human.person_too_far"]
     answer.find_elements(By.CSS_SELECTOR, ".evlink")[0].click()
     assert driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
-    driver.execute_script("window.scrollTo(0, 0)")
+    assert "shown" in driver.find_element(By.ID, "path-marker").get_attribute("class")
+    driver.execute_script("document.getElementById('path').scrollIntoView({block: 'start'})")
     _shot(driver, shots, "ask_human")
 
 
