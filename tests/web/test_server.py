@@ -153,3 +153,24 @@ def test_port_in_use_is_one_line(webroot: Path, tmp_path: Path, capsys: pytest.C
         assert main(["web", str(webroot), "--port", port, "--llm", "none"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("ERROR: cannot listen on 127.0.0.1:") and err.count("\n") == 1
+
+
+def test_hexar_web_serves_on_loopback(webroot: Path, tmp_path: Path) -> None:
+    """The command as a person starts it: it says where it listens, on loopback, and serves the runs."""
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "hexar", "web", str(webroot), "--port", "0", "--llm", "none",
+                             "--checkpoints", str(tmp_path / "t.sqlite")], stdout=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout is not None
+        line = proc.stdout.readline()
+        assert line.startswith("HEXAR web: http://127.0.0.1:")
+        url = line.split()[2]
+        status, data = get(url + "api/runs")
+        assert status == 200 and any(r["recording"] == "bagfile_5_1" for r in data["runs"])
+        with urllib.request.urlopen(url) as r:
+            assert b"/static/app.js" in r.read()
+    finally:
+        proc.terminate()
+        proc.wait(timeout=30)
