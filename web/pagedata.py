@@ -29,7 +29,8 @@ def recordings(root: Path) -> list[Path]:
     """The recordings directly under `root`: rosbag2 folders and ROS 1 bags, by name."""
     if not root.is_dir():
         raise WebError(f"not a folder: {root}")
-    return sorted(p for p in root.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file()) or p.suffix == ".bag")
+    found = [p for p in root.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file()) or p.suffix == ".bag"]
+    return sorted(found, key=lambda p: [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", p.name)])
 
 
 def explainers_for(registry: Any, task: Task) -> list[str]:

@@ -80,7 +80,9 @@ async function showRuns() {
     count.textContent = `${shown.length} of ${rows.length} recordings`;
   }
   draw();
+  const focused = document.activeElement && document.activeElement.id;  // a refresh keeps the search box focused
   app.replaceChildren(el("section", { class: "card" }, el("h1", {}, "Runs"), bar, count, table));
+  if (focused && document.getElementById(focused)) document.getElementById(focused).focus();
   if (data.pending) state.poll = setTimeout(() => { if (location.hash === "" || location.hash === "#/") showRuns(); }, 1500);
 }
 
