@@ -28,6 +28,7 @@ class Store:
         self._rows: dict[str, tuple[float, dict[str, Any]]] = {}
         self._sessions: dict[str, Any] = {}
         self._session_lock = threading.Lock()
+        self._ask_lock = threading.Lock()
         self._backend: Any = None
         self._worker: threading.Thread | None = None
         recordings(root)  # a missing folder is the command's one-line error, before the server starts
@@ -148,8 +149,9 @@ class Store:
         backend = self.backend()
         with self._session_lock:
             if name not in self._sessions:
+                # one lock for every session: they share the backend, and an in-process model is not reentrant
                 self._sessions[name] = (Session(RunSettings(recording=path, llm=self.llm), backend=backend,
-                                                checkpoints=self.checkpoints), threading.Lock())
+                                                checkpoints=self.checkpoints), self._ask_lock)
             return self._sessions[name]
 
     def ask(self, name: str, question: str, thread: str | None, task: str | None) -> dict[str, Any]:
