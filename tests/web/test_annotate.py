@@ -75,6 +75,7 @@ def test_explanation_sits_at_the_failure(tmp_path: Path, suite: Path) -> None:
 @pytest.mark.parametrize(("target", "message"), [
     ("/definitely/not/here", "recording not found"),
     ("NOTASK", "no task to explain"),
+    ("ROS1", "not ROS 1 bags"),
 ])
 def test_bad_recordings_are_one_line(tmp_path: Path, target: str, message: str,
                                      capsys: pytest.CaptureFixture[str]) -> None:
@@ -83,6 +84,9 @@ def test_bad_recordings_are_one_line(tmp_path: Path, target: str, message: str,
         b = BagBuilder()
         b.log(sec_ns(1_741_600_000), "talker", 20, "Publishing: 'Hello World: 1'")
         run = str(b.write(tmp_path / "talker"))
+    if target == "ROS1":
+        (tmp_path / "old.bag").write_bytes(b"#ROSBAG V2.0\n")
+        run = str(tmp_path / "old.bag")
     assert main(["annotate", run, "--out", str(tmp_path / "x.mcap"), "--llm", "none"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("ERROR:") and message in err and err.count("\n") == 1
