@@ -9,6 +9,7 @@ geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray).
 # No `from __future__ import annotations` here: cyclonedds resolves field annotations by name in this
 # module, and builtins such as `str` are not found that way.
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from cyclonedds.idl import IdlStruct
 from cyclonedds.idl.types import array, float64, int32, sequence, uint8, uint32
@@ -74,10 +75,17 @@ class Pose(IdlStruct, typename=_dds("geometry_msgs/msg/Pose")):
     orientation: Quaternion = field(default_factory=Quaternion)
 
 
+# mypy sees plain lists; cyclonedds needs its own array/sequence markers to lay out the CDR
+if TYPE_CHECKING:
+    Covariance = list[float]
+else:
+    Covariance = array[float64, 36]
+
+
 @dataclass
 class PoseWithCovariance(IdlStruct, typename=_dds("geometry_msgs/msg/PoseWithCovariance")):
     pose: Pose = field(default_factory=Pose)
-    covariance: array[float64, 36] = field(default_factory=lambda: [0.0] * 36)  # type: ignore[type-arg, valid-type, assignment]
+    covariance: Covariance = field(default_factory=lambda: [0.0] * 36)
 
 
 @dataclass
@@ -92,19 +100,31 @@ class KeyValue(IdlStruct, typename=_dds("diagnostic_msgs/msg/KeyValue")):
     value: str = ""
 
 
+if TYPE_CHECKING:
+    KeyValues = list[KeyValue]
+else:
+    KeyValues = sequence[KeyValue]
+
+
 @dataclass
 class DiagnosticStatus(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticStatus")):
     level: uint8 = 0  # `byte` in the .msg; both map to an octet in CDR
     name: str = ""
     message: str = ""
     hardware_id: str = ""
-    values: sequence[KeyValue] = field(default_factory=list)  # type: ignore[type-arg, assignment]
+    values: KeyValues = field(default_factory=list)
+
+
+if TYPE_CHECKING:
+    Statuses = list[DiagnosticStatus]
+else:
+    Statuses = sequence[DiagnosticStatus]
 
 
 @dataclass
 class DiagnosticArray(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticArray")):
     header: Header = field(default_factory=Header)
-    status: sequence[DiagnosticStatus] = field(default_factory=list)  # type: ignore[type-arg, assignment]
+    status: Statuses = field(default_factory=list)
 
 
 def time_of(t: int) -> Time:

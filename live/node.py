@@ -16,8 +16,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal, Protocol
 
+from hexar.events import contract as c
 from hexar.events.errors import EventsError
-from hexar.events.records import TaskUpdate
+from hexar.events.reader import parse_task_info
+from hexar.events.records import StatusRecord, TaskUpdate
 from hexar.live.log import NS, LiveLog
 from hexar.live.topics import ANSWER
 
@@ -105,6 +107,7 @@ class LiveNode:
 
     def start(self) -> None:
         self._session = self._make_session()  # loads the explainers (and a model) before traffic comes in
+        self.warm_up()
         self._worker = threading.Thread(target=self._work, name="hexar-node", daemon=True)
         self._worker.start()
         self.transport.start(self.log, self.on_record, self.on_question)
@@ -115,6 +118,32 @@ class LiveNode:
 
         settings = RunSettings(recording=Path(self.log.name), llm=self.options.llm, phrase=self.options.phrase)
         return Session(settings, log=self.log.snapshot())
+
+    def warm_up(self) -> None:
+        """Pay the first-answer costs now (pgmpy's causal model, the pizza tree, each explainer's first call)
+        so the first live failure is explained within the second: one question per module on a made-up log
+        of failed tasks, answered and thrown away."""
+        from hexar.explainers.ask_human.explainer import shipped_model
+        from hexar.explainers.pizza.recommender import default_recommender
+
+        shipped_model().p_success({})  # imports pgmpy's inference and builds its engine
+        default_recommender()
+        warm = LiveLog(name="warm-up")
+        for i, skill in enumerate(("navigate_to_zone", "ask_human_for_help", "say", "recommend_pizza")):
+            step = {"skill": skill, "params": {}, "status": "failed", "error_msg": "The skill has been aborted"}
+            raw = json.dumps({"instruction": "warm up", "task_id": f"warm{i}", "task_status": "valid",
+                              "task_error_msg": "", "skill_sequence": [step]})
+            update = parse_task_info((i + 3) * NS, raw)
+            if skill == "ask_human_for_help":  # a detection failure makes the causal search run once
+                for j, (key, value) in enumerate((("InitialState", "True"), ("DetectState", "True"),
+                                                  ("person_detected", "True"), ("person_std_rms", "0.9"),
+                                                  ("detection_stable", "False"), ("SkillFailed", "True"))):
+                    warm.add(StatusRecord((i + 2) * NS + j, c.EPISODIC_MEMORY, 0, c.ASK_HUMAN_STATUS_NAME, key, "",
+                                          (("Module name", "skill_ask_human_for_help"), (key, value))))
+            if update is not None:
+                warm.add(update)
+                self._session.use_log(warm.snapshot())
+                self._session.ask(FAILURE_QUESTION, task=update.task_id)
 
     def stop(self) -> None:
         self._jobs.put(Job("stop"))
