@@ -217,6 +217,7 @@ class LiveNode:
         result["latency_ms"] = round((time.monotonic() - job.received) * 1000, 1)
         if job.kind == "failure":
             result["sentence"] = short_sentence(str(result.get("answer", "")))
+            result["event_t"] = job.t  # the failing update, on the robot's clock
         self._publish(result)
         speak = self.speakers and not result.get("error") and (
             job.kind == "question" or self.options.proactive == "speak")

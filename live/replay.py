@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from hexar.events import contract as c
+from hexar.events.errors import CorruptRecordingError
 from hexar.live.errors import BadOptionError
 from hexar.live.topics import PUBLISHED_BY_ROBOT, SUBSCRIBED, TopicQos
 
@@ -37,7 +38,10 @@ def bag_messages(path: Path, start_s: float = 0.0) -> tuple[Iterator[tuple[str, 
 
     src = resolve_path(path)
     reader = AnyReader([src], default_typestore=_humble())
-    reader.open()
+    try:
+        reader.open()
+    except Exception as err:  # rosbags raises many unrelated classes for damaged files
+        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
     wanted = [conn for conn in reader.connections if conn.topic in QOS_OF]
     skipped = sorted({conn.topic for conn in reader.connections} - {conn.topic for conn in wanted})
     begin = reader.start_time + int(start_s * 1e9)
