@@ -12,7 +12,6 @@ import pytest
 
 from hexar.agent.context import RunSettings
 from hexar.agent.session import Session
-from hexar.events import read_recording
 from hexar.live.node import FAILURE_QUESTION, INVALID_QUESTION
 from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
 
