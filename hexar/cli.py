@@ -192,6 +192,7 @@ def serve(
     duration: Annotated[float | None, typer.Option(help="stop after this many seconds")] = None,
     keep_tasks: Annotated[int, typer.Option(help="keep the current task and this many earlier ones")] = 5,
     horizon: Annotated[float, typer.Option(help="keep this many seconds of robot traffic")] = 900.0,
+    quiet: Annotated[bool, typer.Option("--quiet", help="do not print the answers")] = False,
 ) -> None:
     """Listen to a running robot: explain failures as they happen, answer questions on /hexar/question."""
 
@@ -202,7 +203,7 @@ def serve(
         return run_serve(ServeOptions(
             transport=transport, domain=domain, llm=llm, proactive=proactive, tts_topic=tts_topic, voice=voice,
             mic=mic, wavs=list(wav or []), out_dir=out_dir, duration_s=duration, keep_tasks=keep_tasks,
-            horizon_s=horizon))
+            horizon_s=horizon, quiet=quiet))
 
     raise typer.Exit(guarded(body))
 

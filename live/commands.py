@@ -121,6 +121,10 @@ def serve(opts: ServeOptions) -> int:
         pass
     finally:
         node.stop()
+        stats = log.stats()
+        print(f"hexar serve: received {stats['received']} records ({stats['duplicates']} duplicates, "
+              f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers, "
+              f"{node.errors} errors", file=sys.stderr, flush=True)
     return 0
 
 
