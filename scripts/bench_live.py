@@ -159,7 +159,8 @@ def main() -> int:
     print(f"RSS MB: first {samples[0][1]:.0f}, peak {max(mb for _, mb in samples):.0f}, last {samples[-1][1]:.0f}")
     print(f"failures explained {len(failures)} of {len(want)}, with hexar ask's cause {right}")
     print(f"proactive latency ms: p50 {percentile(proactive, 0.5) * 1000:.0f}, "
-          f"p95 {percentile(proactive, 0.95) * 1000:.0f}, max {max(proactive, default=0) * 1000:.0f} (n={len(proactive)})")
+          f"p95 {percentile(proactive, 0.95) * 1000:.0f}, max {max(proactive, default=0) * 1000:.0f} "
+          f"(n={len(proactive)})")
     print(f"question latency ms: p50 {percentile(questions, 0.5) * 1000:.0f}, "
           f"p95 {percentile(questions, 0.95) * 1000:.0f} (n={len(questions)} of {len(asked_at)})")
     print("traceback in node output:", "Traceback" in err)
