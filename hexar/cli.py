@@ -193,6 +193,7 @@ def serve(
     keep_tasks: Annotated[int, typer.Option(help="keep the current task and this many earlier ones")] = 5,
     horizon: Annotated[float, typer.Option(help="keep this many seconds of robot traffic")] = 900.0,
     quiet: Annotated[bool, typer.Option("--quiet", help="do not print the answers")] = False,
+    record: Annotated[Path | None, typer.Option(help="keep a rolling rosbag2 recording of the traffic here")] = None,
 ) -> None:
     """Listen to a running robot: explain failures as they happen, answer questions on /hexar/question."""
 
@@ -203,7 +204,7 @@ def serve(
         return run_serve(ServeOptions(
             transport=transport, domain=domain, llm=llm, proactive=proactive, tts_topic=tts_topic, voice=voice,
             mic=mic, wavs=list(wav or []), out_dir=out_dir, duration_s=duration, keep_tasks=keep_tasks,
-            horizon_s=horizon, quiet=quiet))
+            horizon_s=horizon, quiet=quiet, record=record))
 
     raise typer.Exit(guarded(body))
 

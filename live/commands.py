@@ -42,16 +42,23 @@ def pick_transport(kind: str) -> str:
     return "rclpy" if rclpy_available() else "dds"
 
 
-def make_transport(kind: str, domain: int | None, tts_topic: str | None) -> Transport:
+def make_transport(kind: str, domain: int | None, tts_topic: str | None, record: Path | None = None) -> Transport:
     if tts_topic is not None and not tts_topic.startswith("/"):
         raise BadOptionError(f"--tts-topic must be an absolute ROS topic such as /tts_text, not {tts_topic!r}")
     if pick_transport(kind) == "rclpy":
+        if record is not None:
+            raise BadOptionError("--record works with --transport dds; on the robot, run ros2 bag record")
         from hexar.live.ros import RclpyTransport
 
         return RclpyTransport(tts_topic=tts_topic)
     from hexar.live.dds import DdsTransport
 
-    return DdsTransport(domain_id(domain), tts_topic=tts_topic)
+    recorder = None
+    if record is not None:
+        from hexar.live.recorder import RollingRecorder
+
+        recorder = RollingRecorder(record)
+    return DdsTransport(domain_id(domain), tts_topic=tts_topic, recorder=recorder)
 
 
 @dataclass
@@ -70,6 +77,7 @@ class ServeOptions:
     keep_tasks: int = 5
     horizon_s: float = 900.0
     quiet: bool = False
+    record: Path | None = None
 
 
 def serve(opts: ServeOptions) -> int:
@@ -87,7 +95,7 @@ def serve(opts: ServeOptions) -> int:
     if opts.keep_tasks < 1 or opts.horizon_s <= 0:
         raise BadOptionError("--keep-tasks must be at least 1 and --horizon above 0")
     ears_wanted = opts.mic or bool(opts.wavs)
-    transport = make_transport(opts.transport, opts.domain, opts.tts_topic)
+    transport = make_transport(opts.transport, opts.domain, opts.tts_topic, opts.record)
     try:
         speakers = make_speakers(transport, opts.tts_topic, opts.voice, opts.out_dir,
                                  need_voice=ears_wanted or opts.proactive == "speak")

@@ -90,8 +90,9 @@ class DdsTransport:
 
     name = "dds"
 
-    def __init__(self, domain_id: int = 0, tts_topic: str | None = None) -> None:
+    def __init__(self, domain_id: int = 0, tts_topic: str | None = None, recorder: Any = None) -> None:
         self.endpoint = DdsEndpoint(domain_id)
+        self.recorder = recorder  # a RollingRecorder, or None
         self.tts_topic = tts_topic
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
@@ -104,6 +105,7 @@ class DdsTransport:
         return sorted(self.endpoint.writers)
 
     def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
+        self._types = {t.topic: t.type for t in SUBSCRIBED}
         readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
         readers.append((QUESTION, self.endpoint.reader(QUESTION, c.STRING_TYPE, QUESTION_QOS)))
         self._thread = threading.Thread(target=self._loop, args=(readers, log, on_record, on_question),
@@ -134,11 +136,17 @@ class DdsTransport:
                             on_question(str(sample.data))
                             continue
                         t = int(info.source_timestamp) if info is not None else 0
+                        fresh = False
                         for record in to_records(topic, sample, t):
                             if log.add(record):
+                                fresh = True
                                 on_record(record)
+                        if fresh and self.recorder is not None:
+                            self.recorder.write(topic, self._types[topic], sample.serialize(), t)
                     except Exception as err:  # one bad message is reported and skipped, never a traceback
                         self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+        if self.recorder is not None:
+            self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
 
     def _report(self, line: str) -> None:
         self.errors += 1
@@ -156,4 +164,6 @@ class DdsTransport:
         self._stop.set()
         if self._thread is not None:
             self._thread.join(timeout=2.0)
+        if self.recorder is not None and self._thread is None:
+            self.recorder.close()
         self.endpoint.close()

@@ -92,3 +92,27 @@ def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> No
     assert len(speaker.written) == 1  # the question was answered aloud; the failure was only published
     heard = ears.transcriber.transcribe(read_wav(speaker.written[0])).lower()
     assert "20" in heard or "twenty" in heard or "limit" in heard, heard
+
+
+def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+    from hexar.live.dds import DdsTransport
+    from hexar.live.node import LiveNode, NodeOptions
+    from hexar.live.recorder import RollingRecorder
+
+    domain = fresh_domain()
+    recorder = RollingRecorder(tmp_path / "rec", chunk_s=600)
+    listener = Listener(domain)
+    node = LiveNode(DdsTransport(domain, recorder=recorder), options=NodeOptions(llm="none"))
+    node.start()
+    try:
+        replay(suite / "bagfile_7_1", domain)
+        live = listener.wait_answers(1, "failure")[0]
+    finally:
+        node.stop()
+        listener.close()
+    assert len(recorder.bags) == 1
+    again = Session(RunSettings(recording=recorder.bags[0], llm="none"))
+    assert again.ask("Why did the task fail?", task=live["task_id"])["causes"] == live["causes"]
+    assert len(again.context.log.logs) == len(read_recording(suite / "bagfile_7_1").logs)
