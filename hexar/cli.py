@@ -137,17 +137,26 @@ def ask(
 
 @app.command()
 def chat(
-    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    run: Annotated[Path | None, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")] = None,
     thread: Annotated[str | None, typer.Option(help="resume this conversation")] = None,
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
     checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations")] = None,
     phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers")] = None,
+    live: Annotated[bool, typer.Option("--live", help="talk with a running `hexar serve` (DDS) instead")] = False,
+    domain: Annotated[int | None, typer.Option(help="with --live: DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
 ) -> None:
     """Talk with the robot about a recorded run; follow-up questions keep the thread."""
 
     def body() -> int:
         from hexar.chat import chat as run_chat
+        from hexar.errors import HexarError
 
+        if live:
+            from hexar.live.commands import chat_live_command
+
+            return chat_live_command(domain, out)
+        if run is None:
+            raise HexarError("give a recording, or --live to talk with a running hexar serve")
         return run_chat(run, thread, llm, out, checkpoints, phrase)
 
     raise typer.Exit(guarded(body))

@@ -159,3 +159,24 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
     skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""
     print(f"replayed {stats.published} messages of {run.name} in {stats.seconds:.1f} s{skipped}")
     return 0
+
+
+def chat_live_command(domain: int | None, console: Any) -> int:
+    """`hexar chat --live`: lines from the terminal to the running node, its answers printed."""
+    from rich.markup import escape
+
+    from hexar.live.chat_live import PROMPT_HELP, chat_live
+
+    def show(result: dict[str, Any]) -> None:
+        tag = "unasked" if result.get("trigger") == "failure" else "HEXAR"
+        console.print(f"[bold cyan]{tag}:[/bold cyan] {escape(str(result.get('answer') or result.get('error')))}")
+
+    def lines() -> Any:
+        while True:
+            try:
+                yield input("you> ")
+            except EOFError:
+                return
+
+    console.print(f"[dim]{PROMPT_HELP}[/dim]")
+    return chat_live(domain_id(domain), lines(), show)

@@ -26,6 +26,7 @@ from hexar.live.topics import ANSWER
 Proactive = Literal["off", "publish", "speak"]
 FAILURE_QUESTION = "Why did the task fail?"
 INVALID_QUESTION = "Why couldn't you do the task?"
+KEEP_THREADS = 20
 
 
 class Transport(Protocol):
@@ -101,6 +102,7 @@ class LiveNode:
         self._jobs: queue.Queue[Job] = queue.Queue()
         self._explained: set[str] = set()
         self._session: Any = None
+        self._threads: list[str] = []
         self._worker: threading.Thread | None = None
 
     # -- wiring ---------------------------------------------------------------------------------------------
@@ -208,6 +210,7 @@ class LiveNode:
         else:
             thread = job.thread or self.thread or self._session.new_thread()
             self.thread, task = thread, None
+        self._remember(thread)
         try:
             result = dict(self._session.ask(job.text, thread=thread, task=task))
         except EventsError as err:  # no task yet: say so instead of guessing
@@ -223,6 +226,16 @@ class LiveNode:
             job.kind == "question" or self.options.proactive == "speak")
         if speak:
             self._say(result, job)
+
+    def _remember(self, thread: str) -> None:
+        """Keep the checkpoints of the last KEEP_THREADS dialogues only: a node that runs for weeks must not
+        collect every conversation it ever had in memory."""
+        if thread in self._threads:
+            return
+        self._threads.append(thread)
+        while len(self._threads) > KEEP_THREADS:
+            old = self._threads.pop(0)
+            self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{old}")
 
     def _say(self, result: dict[str, Any], job: Job) -> None:
         from hexar.voice.loop import say_answer

@@ -25,7 +25,7 @@ def test_serve_and_replay_processes(suite: Path) -> None:
         assert serve.stderr is not None
         line = serve.stderr.readline()  # printed once the node listens
         assert "listening over dds" in line and "writes only /hexar/answer" in line
-        assert "replayed" in replay(suite / "bagfile_7_1", domain)
+        assert "replayed" in replay(suite / "bagfile_7_1", domain, rate=20.0)
         failure = listener.wait_answers(1, "failure")
         listener.ask("Why didn't you bring me the coffee?")
         question = listener.wait_answers(1, "question", timeout=15)
@@ -72,3 +72,28 @@ def test_bad_ros_domain_id(suite: Path, capsys: pytest.CaptureFixture[str], monk
 def test_not_a_recording(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["replay", str(tmp_path), "--transport", "dds"]) == 2
     assert "has no metadata.yaml" in capsys.readouterr().err
+
+
+def test_chat_live_talks_with_the_running_node(suite: Path) -> None:
+    from hexar.live.chat_live import chat_live
+    from tests.live.dds_helpers import live_node
+
+    domain = fresh_domain()
+    shown: list[dict[str, object]] = []
+    with live_node(domain):
+        replay(suite / "bagfile_19_1", domain, rate=40.0)
+        time.sleep(1.0)
+        assert chat_live(domain, ["Why didn't you tell Maria?", "why?"], shown.append) == 0
+    answers = [a for a in shown if a["trigger"] == "question"]
+    assert answers[0]["causes"] == ["tts.timeout"]
+    assert answers[1]["route"] == "followup" and answers[1]["thread"] == answers[0]["thread"]
+
+
+def test_chat_live_without_a_node_says_so(capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.live.chat_live import chat_live
+    from hexar.live.errors import LiveError
+
+    with pytest.raises(LiveError, match="no answer from hexar serve"):
+        chat_live(fresh_domain(), ["why?"], print, timeout=1.0)
+    assert main(["chat"]) == 2
+    assert "give a recording, or --live" in capsys.readouterr().err

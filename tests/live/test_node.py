@@ -46,7 +46,7 @@ def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path) ->
             from hexar.live.speech import TopicSpeaker
 
             node.speakers.append(TopicSpeaker(node.transport, TTS_TOPIC))
-            replay(run, domain)
+            replay(run, domain, rate=40.0)
             failure = listener.wait_answers(1, "failure")[0]
             listener.ask("why?")
             follow = listener.wait_answers(1, "question")[0]
@@ -79,7 +79,7 @@ def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> No
         with live_node(domain, proactive="publish") as node:
             speaker = WavSpeaker(synth, tmp_path / "answers")
             node.speakers.append(speaker)
-            replay(suite / "bagfile_19_1", domain)
+            replay(suite / "bagfile_19_1", domain, rate=40.0)
             listener.wait_answers(1, "failure")
             ears = Ears(node.ask, wavs=[question])
             ears.start()
@@ -107,7 +107,7 @@ def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -
     node = LiveNode(DdsTransport(domain, recorder=recorder), options=NodeOptions(llm="none"))
     node.start()
     try:
-        replay(suite / "bagfile_7_1", domain)
+        replay(suite / "bagfile_7_1", domain, rate=40.0)
         live = listener.wait_answers(1, "failure")[0]
     finally:
         node.stop()
