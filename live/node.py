@@ -145,7 +145,8 @@ class LiveNode:
             if update is not None:
                 warm.add(update)
                 self._session.use_log(warm.snapshot())
-                self._session.ask(FAILURE_QUESTION, task=update.task_id)
+                thread = self._session.ask(FAILURE_QUESTION, task=update.task_id)["thread"]
+                self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
 
     def stop(self) -> None:
         self._jobs.put(Job("stop"))

@@ -55,7 +55,7 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
 
 # What the node and the replayer offer. Answers are transient-local so a display that starts later still
 # gets the last few; the question topic is an ordinary ROS default publisher's.
-QUESTION_QOS = TopicQos(depth=10)
+QUESTION_QOS = TopicQos(depth=100)  # keep-last: a burst of questions must not push earlier ones out
 ANSWER_QOS = TopicQos(durability="transient_local", depth=10)
 TTS_QOS = TopicQos(depth=10)
 # The replayer offers what the robot's publishers offer, so a reader that matches it matches the robot.

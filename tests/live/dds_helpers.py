@@ -44,7 +44,9 @@ class Listener:
     def __init__(self, domain: int) -> None:
         self.endpoint = DdsEndpoint(domain)
         self.heard = Heard()
-        self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, ANSWER_QOS)
+        # deeper than the node's writer history, so a burst of answers is not replaced before it is read
+        answer_qos = TopicQos(durability=ANSWER_QOS.durability, depth=100)
+        self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, answer_qos)
         self._tasks = self.endpoint.reader(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100))
         self._question = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
         self._stop = threading.Event()

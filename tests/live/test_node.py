@@ -116,3 +116,26 @@ def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -
     again = Session(RunSettings(recording=recorder.bags[0], llm="none"))
     assert again.ask("Why did the task fail?", task=live["task_id"])["causes"] == live["causes"]
     assert len(again.context.log.logs) == len(read_recording(suite / "bagfile_7_1").logs)
+
+
+def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path) -> None:
+    import json
+
+    from hexar.live.node import KEEP_THREADS
+
+    domain = fresh_domain()
+    listener = Listener(domain)
+    try:
+        with live_node(domain) as node:
+            replay(suite / "bagfile_7_1", domain, rate=40.0)
+            for i in range(KEEP_THREADS + 5):
+                listener.ask(json.dumps({"question": "Why didn't you bring me the coffee?", "thread": f"t{i}"}))
+            answers = listener.wait_answers(KEEP_THREADS + 5, "question", timeout=60)
+            saver = node._session.graph.checkpointer
+            kept = {thread for thread, checkpoints in saver.storage.items() if checkpoints}
+    finally:
+        listener.close()
+    assert len(answers) == KEEP_THREADS + 5
+    assert all(a["causes"] == ["navigation.charging"] for a in answers)
+    assert len(kept) <= KEEP_THREADS
+    assert f"live::t{KEEP_THREADS + 4}" in kept and "live::t0" not in kept
