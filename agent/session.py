@@ -16,6 +16,7 @@ from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.graph import build
 from hexar.agent.state import AgentState
+from hexar.events.log import EventLog
 from hexar.explainers.base import Explanation
 
 
@@ -27,10 +28,12 @@ class Session:
     """One recording, one backend, and any number of threads (conversations) over it."""
 
     def __init__(self, settings: RunSettings, backend: Backend | None = None,
-                 checkpoints: Path | None = None) -> None:
+                 checkpoints: Path | None = None, log: EventLog | None = None) -> None:
         self.settings = settings
         self.backend = backend or resolve(settings.llm)
         self.context = RunContext.create(settings, self.backend)
+        if log is not None:  # an event log built elsewhere (the live node's snapshot), not read from a file
+            self.use_log(log)
         self.context.log  # noqa: B018 -- decode once, so a bad recording fails before the first question
         if checkpoints is None:
             self._saver: Any = InMemorySaver()
@@ -39,6 +42,10 @@ class Session:
             self._conn = sqlite3.connect(str(checkpoints), check_same_thread=False)
             self._saver = SqliteSaver(self._conn)
         self.graph = build(self._saver)
+
+    def use_log(self, log: EventLog) -> None:
+        """Answer the next questions from `log` (the live node swaps in a fresh snapshot per question)."""
+        self.context._log = log
 
     def new_thread(self) -> str:
         return uuid.uuid4().hex[:12]

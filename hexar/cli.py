@@ -145,17 +145,26 @@ def ask(
 
 @app.command()
 def chat(
-    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    run: Annotated[Path | None, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")] = None,
     thread: Annotated[str | None, typer.Option(help="resume this conversation")] = None,
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
     checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations")] = None,
     phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers")] = None,
+    live: Annotated[bool, typer.Option("--live", help="talk with a running `hexar serve` (DDS) instead")] = False,
+    domain: Annotated[int | None, typer.Option(help="with --live: DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
 ) -> None:
     """Talk with the robot about a recorded run; follow-up questions keep the thread."""
 
     def body() -> int:
         from hexar.chat import chat as run_chat
+        from hexar.errors import HexarError
 
+        if live:
+            from hexar.live.commands import chat_live_command
+
+            return chat_live_command(domain, out)
+        if run is None:
+            raise HexarError("give a recording, or --live to talk with a running hexar serve")
         return run_chat(run, thread, llm, out, checkpoints, phrase)
 
     raise typer.Exit(guarded(body))
@@ -219,6 +228,55 @@ def listen(
 
         return run_listen(run, wavs=wav, mic=mic, speak=speak, out_dir=out_dir, llm=llm, thread=thread,
                           checkpoints=checkpoints, vosk_model=vosk_model, voice=voice, console=out)
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
+def serve(
+    transport: Annotated[str, typer.Option(help="auto (rclpy if importable), rclpy or dds")] = "auto",
+    domain: Annotated[int | None, typer.Option(help="DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
+    proactive: Annotated[str, typer.Option(help="on a failure: off, publish (on /hexar/answer) or speak")] = "publish",
+    mic: Annotated[bool, typer.Option("--mic", help="also take spoken questions from the microphone")] = False,
+    wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
+    tts_topic: Annotated[str | None, typer.Option(help="speak on this std_msgs/String topic (robot TTS)")] = None,
+    voice: Annotated[str, typer.Option(help="auto, robot, piper, espeak or none")] = "auto",
+    out_dir: Annotated[Path | None, typer.Option("--out", help="also write spoken answers as WAVs here")] = None,
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="none, auto, embedded or ollama[:model]")] = "none",
+    duration: Annotated[float | None, typer.Option(help="stop after this many seconds")] = None,
+    keep_tasks: Annotated[int, typer.Option(help="keep the current task and this many earlier ones")] = 5,
+    horizon: Annotated[float, typer.Option(help="keep this many seconds of robot traffic")] = 900.0,
+    quiet: Annotated[bool, typer.Option("--quiet", help="do not print the answers")] = False,
+    record: Annotated[Path | None, typer.Option(help="keep a rolling rosbag2 recording of the traffic here")] = None,
+) -> None:
+    """Listen to a running robot: explain failures as they happen, answer questions on /hexar/question."""
+
+    def body() -> int:
+        from hexar.live.commands import ServeOptions
+        from hexar.live.commands import serve as run_serve
+
+        return run_serve(ServeOptions(
+            transport=transport, domain=domain, llm=llm, proactive=proactive, tts_topic=tts_topic, voice=voice,
+            mic=mic, wavs=list(wav or []), out_dir=out_dir, duration_s=duration, keep_tasks=keep_tasks,
+            horizon_s=horizon, quiet=quiet, record=record))
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
+def replay(
+    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
+    rate: Annotated[float, typer.Option(help="playback speed, 10 = ten times faster")] = 1.0,
+    transport: Annotated[str, typer.Option(help="auto (rclpy if importable), rclpy or dds")] = "auto",
+    domain: Annotated[int | None, typer.Option(help="DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
+    start: Annotated[float, typer.Option(help="skip this many seconds of the recording")] = 0.0,
+) -> None:
+    """Publish a recording onto the live topics, like `ros2 bag play`."""
+
+    def body() -> int:
+        from hexar.live.commands import replay_command
+
+        return replay_command(run, rate, transport, domain, start)
 
     raise typer.Exit(guarded(body))
 

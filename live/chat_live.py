@@ -1,0 +1,78 @@
+"""`hexar chat --live`: talk with a running `hexar serve` node over DDS; its unasked explanations show up too."""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+import uuid
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from hexar.events import contract as c
+from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS
+
+PROMPT_HELP = "Ask the robot why; answers come from the running `hexar serve`. Ctrl-D quits."
+
+
+class LiveChat:
+    """A participant that writes questions (tagged with its thread) and reads the node's answers."""
+
+    def __init__(self, domain: int, show: Callable[[dict[str, Any]], None]) -> None:
+        from hexar.live import msgs
+        from hexar.live.dds import DdsEndpoint
+
+        self._string = msgs.String
+        self.endpoint = DdsEndpoint(domain)
+        self.thread = uuid.uuid4().hex[:12]
+        self.show = show
+        self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, ANSWER_QOS)
+        self._questions = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
+        self._mine = threading.Event()
+        self._stop = threading.Event()
+        self._reader = threading.Thread(target=self._read, daemon=True)
+        self._reader.start()
+
+    def _read(self) -> None:
+        while not self._stop.is_set():
+            for sample in self._answers.take(16):
+                if not sample.sample_info.valid_data:
+                    continue
+                try:
+                    result = json.loads(str(sample.data))
+                except json.JSONDecodeError:
+                    continue
+                if result.get("trigger") == "failure":
+                    self.thread = str(result.get("thread") or self.thread)  # "why?" continues that thread
+                    self.show(result)
+                elif result.get("thread") == self.thread:
+                    self.show(result)
+                    self._mine.set()
+            self._stop.wait(0.02)
+
+    def ask(self, question: str, timeout: float = 30.0) -> bool:
+        """Send one question and wait for its answer; False when the node did not answer in time."""
+        self._mine.clear()
+        self._questions.write(self._string(data=json.dumps({"question": question, "thread": self.thread})))
+        return self._mine.wait(timeout)
+
+    def close(self) -> None:
+        self._stop.set()
+        self._reader.join(2.0)
+        self.endpoint.close()
+
+
+def chat_live(domain: int, lines: Iterable[str], show: Callable[[dict[str, Any]], None],
+              timeout: float = 30.0) -> int:
+    """Ask each line in turn; returns 2 if the node never answered (is `hexar serve` running on this domain?)."""
+    from hexar.live.errors import LiveError
+
+    chat = LiveChat(domain, show)
+    try:
+        time.sleep(0.5)  # discovery
+        for line in lines:
+            if line.strip() and not chat.ask(line.strip(), timeout):
+                raise LiveError(f"no answer from hexar serve on DDS domain {domain} within {timeout:.0f} s")
+    finally:
+        chat.close()
+    return 0

@@ -1,0 +1,182 @@
+"""The bodies of `hexar serve` and `hexar replay` (hexar/cli.py holds only their typer signatures)."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, cast
+
+from hexar.live.errors import BadOptionError
+from hexar.live.node import NodeOptions, Proactive, Transport
+
+TRANSPORTS = ("auto", "dds", "rclpy")
+PROACTIVE = ("off", "publish", "speak")
+VOICES = ("auto", "robot", "piper", "espeak", "none")
+
+
+def domain_id(value: int | None) -> int:
+    """--domain, else ROS_DOMAIN_ID (what ROS 2 nodes on the robot use), else 0."""
+    if value is not None:
+        return value
+    env = os.environ.get("ROS_DOMAIN_ID", "").strip()
+    if not env:
+        return 0
+    if not env.isdigit():
+        raise BadOptionError(f"ROS_DOMAIN_ID={env!r} is not a number")
+    return int(env)
+
+
+def pick_transport(kind: str) -> str:
+    if kind not in TRANSPORTS:
+        raise BadOptionError(f"unknown transport {kind!r}: use auto, dds or rclpy")
+    if kind != "auto":
+        return kind
+    from hexar.live.ros import rclpy_available
+
+    return "rclpy" if rclpy_available() else "dds"
+
+
+def make_transport(kind: str, domain: int | None, tts_topic: str | None, record: Path | None = None) -> Transport:
+    if tts_topic is not None and not tts_topic.startswith("/"):
+        raise BadOptionError(f"--tts-topic must be an absolute ROS topic such as /tts_text, not {tts_topic!r}")
+    if pick_transport(kind) == "rclpy":
+        if record is not None:
+            raise BadOptionError("--record works with --transport dds; on the robot, run ros2 bag record")
+        from hexar.live.ros import RclpyTransport
+
+        return RclpyTransport(tts_topic=tts_topic)
+    from hexar.live.dds import DdsTransport
+
+    recorder = None
+    if record is not None:
+        from hexar.live.recorder import RollingRecorder
+
+        recorder = RollingRecorder(record)
+    return DdsTransport(domain_id(domain), tts_topic=tts_topic, recorder=recorder)
+
+
+@dataclass
+class ServeOptions:
+    transport: str = "auto"
+    domain: int | None = None
+    llm: str = "none"
+    proactive: str = "publish"
+    tts_topic: str | None = None
+    voice: str = "auto"
+    mic: bool = False
+    wavs: list[Path] = field(default_factory=list)
+    out_dir: Path | None = None
+    vosk_model: Path | None = None
+    duration_s: float | None = None
+    keep_tasks: int = 5
+    horizon_s: float = 900.0
+    quiet: bool = False
+    record: Path | None = None
+
+
+def serve(opts: ServeOptions) -> int:
+    """Run the node until Ctrl-C (or `duration_s`); answers are also printed, one JSON line each."""
+    from hexar.live.log import Limits, LiveLog
+    from hexar.live.node import LiveNode
+    from hexar.live.speech import Ears, make_speakers
+
+    if opts.proactive not in PROACTIVE:
+        raise BadOptionError(f"unknown --proactive {opts.proactive!r}: use off, publish or speak")
+    if opts.voice not in VOICES:
+        raise BadOptionError(f"unknown --voice {opts.voice!r}: use {', '.join(VOICES)}")
+    if opts.mic and opts.wavs:
+        raise BadOptionError("give --mic or --wav FILE..., not both")
+    if opts.keep_tasks < 1 or opts.horizon_s <= 0:
+        raise BadOptionError("--keep-tasks must be at least 1 and --horizon above 0")
+    ears_wanted = opts.mic or bool(opts.wavs)
+    transport = make_transport(opts.transport, opts.domain, opts.tts_topic, opts.record)
+    try:
+        speakers = make_speakers(transport, opts.tts_topic, opts.voice, opts.out_dir,
+                                 need_voice=ears_wanted or opts.proactive == "speak")
+        log = LiveLog(Limits(keep_tasks=opts.keep_tasks, horizon_s=opts.horizon_s), name=f"live:{transport.name}")
+        printed = threading.Lock()
+
+        def show(result: dict[str, Any]) -> None:
+            if not opts.quiet:
+                with printed:
+                    print(json.dumps(result), flush=True)
+
+        proactive = cast(Proactive, opts.proactive)
+        node = LiveNode(transport, log, NodeOptions(llm=opts.llm, proactive=proactive), speakers=speakers,
+                        on_answer=show)
+        ears = Ears(node.ask, opts.wavs, opts.mic, opts.vosk_model) if ears_wanted else None
+    except BaseException:
+        transport.close()
+        raise
+    node.start()
+    if ears is not None:
+        ears.start()
+    print(f"hexar serve: listening over {transport.name}; answers on /hexar/answer; writes only "
+          f"{', '.join(transport.writer_topics())}", file=sys.stderr, flush=True)
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    try:
+        deadline = None if opts.duration_s is None else time.monotonic() + opts.duration_s
+        while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
+            stop.wait(0.2)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        node.stop()
+        stats = log.stats()
+        print(f"hexar serve: received {stats['received']} records ({stats['duplicates']} duplicates, "
+              f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers, "
+              f"{node.errors} errors", file=sys.stderr, flush=True)
+    return 0
+
+
+def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float) -> int:
+    from hexar.events.reader import resolve_path
+    from hexar.live.replay import DdsReplayer, replay
+
+    resolve_path(run)  # a missing or wrong path fails before DDS starts
+    if not rate > 0:
+        raise BadOptionError(f"--rate must be above 0, not {rate}")
+    if start_s < 0:
+        raise BadOptionError(f"--start must not be negative, not {start_s}")
+    writer: Any
+    if pick_transport(transport) == "rclpy":
+        from hexar.live.ros import RclpyReplayer
+
+        writer = RclpyReplayer()
+    else:
+        writer = DdsReplayer(domain_id(domain))
+    try:
+        stats = replay(run, writer, rate=rate, start_s=start_s)
+    finally:
+        writer.close()
+    skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""
+    print(f"replayed {stats.published} messages of {run.name} in {stats.seconds:.1f} s{skipped}")
+    return 0
+
+
+def chat_live_command(domain: int | None, console: Any) -> int:
+    """`hexar chat --live`: lines from the terminal to the running node, its answers printed."""
+    from rich.markup import escape
+
+    from hexar.live.chat_live import PROMPT_HELP, chat_live
+
+    def show(result: dict[str, Any]) -> None:
+        tag = "unasked" if result.get("trigger") == "failure" else "HEXAR"
+        console.print(f"[bold cyan]{tag}:[/bold cyan] {escape(str(result.get('answer') or result.get('error')))}")
+
+    def lines() -> Any:
+        while True:
+            try:
+                yield input("you> ")
+            except EOFError:
+                return
+
+    console.print(f"[dim]{PROMPT_HELP}[/dim]")
+    return chat_live(domain_id(domain), lines(), show)

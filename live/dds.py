@@ -1,0 +1,169 @@
+"""The DDS transport: the `cyclonedds` binding speaking what rmw_cyclonedds speaks, so HEXAR joins a ROS 2
+robot's network without a ROS install (and the tests drive it with real DDS traffic on loopback)."""
+
+from __future__ import annotations
+
+import sys
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from hexar.events import contract as c
+from hexar.live.convert import to_records
+from hexar.live.errors import BadOptionError, TransportUnavailableError
+from hexar.live.log import LiveLog
+from hexar.live.topics import (
+    ANSWER,
+    ANSWER_QOS,
+    HEXAR_PREFIX,
+    QUESTION,
+    QUESTION_QOS,
+    SUBSCRIBED,
+    TTS_QOS,
+    TopicQos,
+    dds_name,
+)
+
+try:
+    from cyclonedds.core import InstanceState, Policy, Qos, ReadCondition, SampleState, ViewState, WaitSet
+    from cyclonedds.domain import DomainParticipant
+    from cyclonedds.pub import DataWriter
+    from cyclonedds.sub import DataReader
+    from cyclonedds.topic import Topic
+
+    from hexar.live import msgs
+except ImportError as err:  # pragma: no cover -- cyclonedds is in the `live` extra that setup.sh installs
+    raise TransportUnavailableError(
+        "the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'") from err
+
+TakeBatch = 256
+IDL: dict[str, type[Any]] = {
+    c.LOG_TYPE: msgs.Log, c.STRING_TYPE: msgs.String, c.BOOL_TYPE: msgs.Bool,
+    c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
+}
+MAX_BLOCKING_NS = 100_000_000  # rmw_cyclonedds' default for reliable writers
+
+
+def dds_qos(q: TopicQos) -> Qos:
+    """The QoS as DDS policies; data representation XCDR1, which is what ROS 2 (Humble) types use."""
+    reliability = Policy.Reliability.Reliable(MAX_BLOCKING_NS) if q.reliable else Policy.Reliability.BestEffort
+    durability = Policy.Durability.TransientLocal if q.durability == "transient_local" else Policy.Durability.Volatile
+    return Qos(reliability, durability, Policy.History.KeepLast(q.depth),
+               Policy.DataRepresentation(use_cdrv0_representation=True))
+
+
+class DdsEndpoint:
+    """A domain participant with lazily created topics, readers and writers."""
+
+    def __init__(self, domain_id: int = 0) -> None:
+        if not 0 <= domain_id <= 232:
+            raise BadOptionError(f"DDS domain id {domain_id} is out of range (0-232, as ROS_DOMAIN_ID)")
+        try:
+            self.participant = DomainParticipant(domain_id)
+        except Exception as err:  # cyclonedds raises DDSException on a bad CYCLONEDDS_URI or no interface
+            raise TransportUnavailableError(f"cannot join DDS domain {domain_id}: {err}") from err
+        self.domain_id = domain_id
+        self._topics: dict[str, Any] = {}
+        self.writers: dict[str, Any] = {}
+
+    def topic(self, ros_topic: str, ros_type: str) -> Any:
+        if ros_topic not in self._topics:
+            self._topics[ros_topic] = Topic(self.participant, dds_name(ros_topic), IDL[ros_type])
+        return self._topics[ros_topic]
+
+    def reader(self, ros_topic: str, ros_type: str, qos: TopicQos) -> Any:
+        return DataReader(self.participant, self.topic(ros_topic, ros_type), dds_qos(qos))
+
+    def writer(self, ros_topic: str, ros_type: str, qos: TopicQos) -> Any:
+        if ros_topic not in self.writers:
+            self.writers[ros_topic] = DataWriter(self.participant, self.topic(ros_topic, ros_type), dds_qos(qos))
+        return self.writers[ros_topic]
+
+    def close(self) -> None:
+        self.writers.clear()
+        self._topics.clear()
+        self.participant = None  # type: ignore[assignment]  # the binding deletes entities when collected
+
+
+class DdsTransport:
+    """Feeds a LiveLog from the robot's topics and carries the node's questions and answers."""
+
+    name = "dds"
+
+    def __init__(self, domain_id: int = 0, tts_topic: str | None = None, recorder: Any = None) -> None:
+        self.endpoint = DdsEndpoint(domain_id)
+        self.recorder = recorder  # a RollingRecorder, or None
+        self.tts_topic = tts_topic
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+        self.errors = 0
+        self._answer = self.endpoint.writer(ANSWER, c.STRING_TYPE, ANSWER_QOS)
+        self._tts = self.endpoint.writer(tts_topic, c.STRING_TYPE, TTS_QOS) if tts_topic else None
+
+    def writer_topics(self) -> list[str]:
+        """Every topic this node can write: the read-only promise, checked by a test."""
+        return sorted(self.endpoint.writers)
+
+    def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
+        self._types = {t.topic: t.type for t in SUBSCRIBED}
+        readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
+        readers.append((QUESTION, self.endpoint.reader(QUESTION, c.STRING_TYPE, QUESTION_QOS)))
+        self._thread = threading.Thread(target=self._loop, args=(readers, log, on_record, on_question),
+                                        name="hexar-dds", daemon=True)
+        self._thread.start()
+
+    def _loop(self, readers: list[tuple[str, Any]], log: LiveLog, on_record: Callable[[Any], None],
+              on_question: Callable[[str], None]) -> None:
+        ws = WaitSet(self.endpoint.participant)
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+        conditions = [ReadCondition(r, mask) for _, r in readers]
+        for cond in conditions:
+            ws.attach(cond)
+        while not self._stop.is_set():
+            ws.wait(50_000_000)
+            for (topic, reader), cond in zip(readers, conditions, strict=True):
+                try:
+                    samples = reader.take(TakeBatch, condition=cond)
+                except Exception as err:  # a sample the binding cannot decode must not stop the node
+                    self._report(f"cannot read {topic}: {err}")
+                    continue
+                for sample in samples:
+                    info = getattr(sample, "sample_info", None)
+                    if info is not None and not info.valid_data:
+                        continue  # a writer went away (dispose/unregister): no data
+                    try:
+                        if topic == QUESTION:
+                            on_question(str(sample.data))
+                            continue
+                        t = int(info.source_timestamp) if info is not None else 0
+                        fresh = False
+                        for record in to_records(topic, sample, t):
+                            if log.add(record):
+                                fresh = True
+                                on_record(record)
+                        if fresh and self.recorder is not None:
+                            self.recorder.write(topic, self._types[topic], sample.serialize(), t)
+                    except Exception as err:  # one bad message is reported and skipped, never a traceback
+                        self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+        if self.recorder is not None:
+            self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
+
+    def _report(self, line: str) -> None:
+        self.errors += 1
+        print(f"hexar serve: {line}", file=sys.stderr)
+
+    def publish(self, topic: str, text: str) -> None:
+        if topic == ANSWER:
+            self._answer.write(msgs.String(data=text))
+        elif topic == self.tts_topic and self._tts is not None:
+            self._tts.write(msgs.String(data=text))
+        else:  # the node is read-only: it never writes on the robot's own topics
+            raise BadOptionError(f"HEXAR writes only on {HEXAR_PREFIX}* and its TTS topic, not on {topic}")
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+        if self.recorder is not None and self._thread is None:
+            self.recorder.close()
+        self.endpoint.close()

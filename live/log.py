@@ -1,0 +1,244 @@
+"""The live event log: records from a running robot, bounded, de-duplicated, and snapshotted as an EventLog.
+
+Explainers and the agent read an `EventLog` (events/log.py); a snapshot is one, built from the records kept
+here, so they run unchanged on live data. Times follow the recording conventions: stamped messages use their
+own stamp; unstamped ones (`/task_info`, the Bool flags) use the time the publisher wrote them (DDS source
+timestamp), which is the robot's clock, like a bag's receive time on the robot.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import deque
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TypeVar
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog, TopicInfo
+from hexar.events.records import BoolSample, LogLine, PoseSample, StatusRecord, TaskUpdate
+
+NS = 1_000_000_000
+Record = LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord
+S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord)
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What the live log keeps: the current and last `keep_tasks` tasks, streams within `horizon_s` of the
+    newest event, at most `max_records` records per stream, log text cut at `max_chars`."""
+
+    keep_tasks: int = 5
+    horizon_s: float = 900.0
+    max_records: int = 100_000
+    max_chars: int = 16_384
+    dedup_keys: int = 50_000
+    # A clock that goes back by more than this, on several fresh messages in a row, is a clock jump.
+    jump_back_s: float = 30.0
+    jump_confirm: int = 3
+
+
+def _truncate(text: str, limit: int) -> str:
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit]} [... {len(text) - limit} more characters not kept]"
+
+
+class LiveLog:
+    """Thread-safe: transports add from their threads, the node snapshots from its own."""
+
+    def __init__(self, limits: Limits | None = None, name: str = "live") -> None:
+        self.limits = limits or Limits()
+        self.name = name
+        self._lock = threading.Lock()
+        self.changed = threading.Condition(self._lock)
+        self._logs: list[LogLine] = []
+        self._poses: list[PoseSample] = []
+        self._flags: dict[str, list[BoolSample]] = {}
+        self._statuses: dict[str, list[StatusRecord]] = {}
+        self._tasks: dict[str, list[TaskUpdate]] = {}  # insertion order = order first seen
+        self._counts: dict[str, int] = {}
+        self._seen: set[int] = set()
+        self._seen_order: deque[int] = deque()
+        self._behind = 0
+        self._since_prune = 0
+        self.newest = 0
+        self.warnings: deque[str] = deque(maxlen=50)
+        self.received = 0
+        self.duplicates = 0
+        self.truncated = 0
+        self.clock_jumps = 0
+
+    # -- adding ---------------------------------------------------------------------------------------------
+
+    def add(self, record: Record) -> bool:
+        """Keep one record; False when it is a duplicate of one already kept."""
+        with self._lock:
+            added = self._add(record)
+            if added:
+                self.changed.notify_all()
+            return added
+
+    def extend(self, records: Iterable[Record]) -> int:
+        with self._lock:
+            n = sum(1 for r in records if self._add(r))
+            if n:
+                self.changed.notify_all()
+            return n
+
+    def _key(self, r: Record) -> int:
+        if isinstance(r, LogLine):
+            return hash(("log", r.t, r.level, r.name, r.msg))
+        if isinstance(r, TaskUpdate):
+            return hash(("task", r.task_id, r.raw))  # the same JSON twice adds nothing to a task's history
+        if isinstance(r, PoseSample):
+            return hash(("pose", r.t, r.x, r.y, r.yaw))
+        if isinstance(r, BoolSample):
+            return hash(("flag", r.topic, r.t, r.value))
+        return hash(("status", r.topic, r.t, r.name, r.message, r.values))
+
+    def _add(self, r: Record) -> bool:
+        self.received += 1
+        key = self._key(r)
+        if key in self._seen:
+            self.duplicates += 1
+            return False
+        self._seen.add(key)
+        self._seen_order.append(key)
+        if len(self._seen_order) > self.limits.dedup_keys:
+            self._seen.discard(self._seen_order.popleft())
+        if not isinstance(r, BoolSample):  # a latched flag may legitimately be hours old
+            self._watch_clock(r.t, fresh=isinstance(r, (LogLine, TaskUpdate)))
+        if isinstance(r, LogLine):
+            if len(r.msg) > self.limits.max_chars:
+                self.truncated += 1
+                r = LogLine(r.t, r.level, r.name, _truncate(r.msg, self.limits.max_chars))
+            self._insert(self._logs, r, c.ROSOUT)
+        elif isinstance(r, TaskUpdate):
+            updates = self._tasks.pop(r.task_id, [])
+            updates.append(r)
+            self._tasks[r.task_id] = updates  # re-inserted: the most recently updated task is last
+            self._count(c.TASK_INFO)
+        elif isinstance(r, PoseSample):
+            self._insert(self._poses, r, c.AMCL_POSE)
+        elif isinstance(r, BoolSample):
+            self._insert(self._flags.setdefault(r.topic, []), r, r.topic)
+        else:
+            self._insert(self._statuses.setdefault(r.topic, []), r, r.topic)
+        if r.t > self.newest:
+            self.newest = r.t
+        self._since_prune += 1
+        # pruning copies lists, so it runs every few hundred records (and on each task update), not per line
+        if self._since_prune >= 512 or isinstance(r, TaskUpdate):
+            self._prune()
+            self._since_prune = 0
+        return True
+
+    def _count(self, topic: str) -> None:
+        self._counts[topic] = self._counts.get(topic, 0) + 1
+
+    def _insert(self, items: list[S], r: S, topic: str) -> None:
+        self._count(topic)
+        if not items or items[-1].t <= r.t:
+            items.append(r)
+            return
+        # out of order: bisect on the stamps; lists stay sorted, so snapshots need no full sort
+        lo, hi = 0, len(items)
+        while lo < hi:
+            mid = (lo + hi) // 2
+            if items[mid].t <= r.t:
+                lo = mid + 1
+            else:
+                hi = mid
+        items.insert(lo, r)
+
+    # -- bounds ---------------------------------------------------------------------------------------------
+
+    def _watch_clock(self, t: int, fresh: bool) -> None:
+        """A robot whose clock goes back (reboot without NTP, a restarted simulation) would otherwise sort its
+        new events before the old ones and make an old task look like the latest; on a confirmed jump the
+        events from the abandoned future are dropped."""
+        if not fresh or self.newest == 0:
+            return
+        if t >= self.newest - int(self.limits.jump_back_s * NS):
+            self._behind = 0
+            return
+        self._behind += 1
+        if self._behind < self.limits.jump_confirm:
+            return
+        cut = t + int(self.limits.jump_back_s * NS)
+        self.clock_jumps += 1
+        self.warnings.append(f"the robot's clock jumped back by {(self.newest - t) / NS:.0f} s: "
+                             "dropped the events stamped after the jump")
+        self._logs = [r for r in self._logs if r.t <= cut]
+        self._poses = [r for r in self._poses if r.t <= cut]
+        self._statuses = {k: [r for r in v if r.t <= cut] for k, v in self._statuses.items()}
+        self._tasks = {k: v for k, v in self._tasks.items() if v[-1].t <= cut}
+        self.newest = max([t, *(r.t for r in self._logs[-1:]), *(r.t for r in self._poses[-1:])])
+        self._behind = 0
+
+    def _prune(self) -> None:
+        lim = self.limits
+        oldest = self.newest - int(lim.horizon_s * NS)
+        while len(self._tasks) > lim.keep_tasks + 1:  # the current task and the last keep_tasks
+            del self._tasks[next(iter(self._tasks))]
+        if self._tasks:
+            # never drop the evidence of a task that is still kept
+            oldest = min(oldest, min(u[0].t for u in self._tasks.values()))
+        self._logs = _trim(self._logs, oldest, lim.max_records)
+        self._poses = _trim(self._poses, oldest, lim.max_records)
+        for key, samples in self._flags.items():
+            # the latest value before the horizon still says what holds now (a latched joystick flag)
+            self._flags[key] = _trim(samples, oldest, lim.max_records, keep_one=True)
+        for key, records in self._statuses.items():
+            self._statuses[key] = _trim(records, oldest, lim.max_records)
+
+    # -- reading --------------------------------------------------------------------------------------------
+
+    def wait_until(self, t: int, timeout_s: float) -> bool:
+        """Block until an event stamped at or after `t` arrived (the robot's clock passed t), or timeout."""
+        with self._lock:
+            return self.changed.wait_for(lambda: self.newest >= t, timeout=timeout_s)
+
+    def snapshot(self) -> EventLog:
+        """An EventLog of what is kept now; later additions do not change it."""
+        with self._lock:
+            updates = [u for ups in self._tasks.values() for u in ups]
+            logs, poses = list(self._logs), list(self._poses)
+            flags = {k: list(v) for k, v in self._flags.items()}
+            statuses = {k: list(v) for k, v in self._statuses.items()}
+            counts = dict(self._counts)
+            warnings = list(self.warnings)
+        stamps = [*(r.t for r in logs[:1] + logs[-1:]), *(r.t for r in poses[:1] + poses[-1:]),
+                  *(u.t for u in updates)]
+        topics = {t: TopicInfo(t, c.TYPE_OF.get(t, ""), n) for t, n in sorted(counts.items())}
+        log = EventLog(path=Path(self.name), storage="live", start=min(stamps, default=0),
+                       end=max(stamps, default=0), topics=topics, warnings=warnings, logs=logs,
+                       task_updates=updates, poses=poses, flags=flags, statuses=statuses)
+        log.finish()
+        return log
+
+    def stats(self) -> dict[str, int]:
+        with self._lock:
+            return {"received": self.received, "duplicates": self.duplicates, "truncated": self.truncated,
+                    "clock_jumps": self.clock_jumps, "logs": len(self._logs), "poses": len(self._poses),
+                    "tasks": len(self._tasks), "statuses": sum(len(v) for v in self._statuses.values())}
+
+
+def _trim(items: list[S], oldest: int, max_records: int, keep_one: bool = False) -> list[S]:
+    """Drop what is older than `oldest` and what exceeds `max_records` (oldest first). Lists are sorted."""
+    if len(items) > max_records:
+        items = items[len(items) - max_records:]
+    if not items or items[0].t >= oldest:
+        return items
+    lo, hi = 0, len(items)
+    while lo < hi:
+        mid = (lo + hi) // 2
+        if items[mid].t < oldest:
+            lo = mid + 1
+        else:
+            hi = mid
+    if keep_one:
+        lo = max(lo - 1, 0)
+    return items[lo:] if lo else items

@@ -1,0 +1,131 @@
+"""The ROS 2 message types HEXAR reads and writes, as DDS sees them from rmw_cyclonedds.
+
+rmw_cyclonedds names a ROS type `<pkg>::msg::dds_::<Type>_` and a topic `rt/<topic>` and sends plain CDR
+(XCDR1) of final structs; the field order below is the .msg field order (/work/shared/reference/msg_definitions.md
+in the project notes: rcl_interfaces/Log, builtin_interfaces/Time, std_msgs/String|Bool|Header,
+geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray).
+"""
+
+# No `from __future__ import annotations` here: cyclonedds resolves field annotations by name in this
+# module, and builtins such as `str` are not found that way.
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+from cyclonedds.idl import IdlStruct
+from cyclonedds.idl.types import array, float64, int32, sequence, uint8, uint32
+
+
+def _dds(ros_type: str) -> str:
+    """`rcl_interfaces/msg/Log` -> `rcl_interfaces::msg::dds_::Log_`."""
+    pkg, kind, name = ros_type.split("/")
+    return f"{pkg}::{kind}::dds_::{name}_"
+
+
+@dataclass
+class Time(IdlStruct, typename=_dds("builtin_interfaces/msg/Time")):
+    sec: int32 = 0
+    nanosec: uint32 = 0
+
+
+@dataclass
+class Log(IdlStruct, typename=_dds("rcl_interfaces/msg/Log")):
+    stamp: Time = field(default_factory=Time)
+    level: uint8 = 20
+    name: str = ""
+    msg: str = ""
+    file: str = ""
+    function: str = ""
+    line: uint32 = 0
+
+
+@dataclass
+class String(IdlStruct, typename=_dds("std_msgs/msg/String")):
+    data: str = ""
+
+
+@dataclass
+class Bool(IdlStruct, typename=_dds("std_msgs/msg/Bool")):
+    data: bool = False
+
+
+@dataclass
+class Header(IdlStruct, typename=_dds("std_msgs/msg/Header")):
+    stamp: Time = field(default_factory=Time)
+    frame_id: str = ""
+
+
+@dataclass
+class Point(IdlStruct, typename=_dds("geometry_msgs/msg/Point")):
+    x: float64 = 0.0
+    y: float64 = 0.0
+    z: float64 = 0.0
+
+
+@dataclass
+class Quaternion(IdlStruct, typename=_dds("geometry_msgs/msg/Quaternion")):
+    x: float64 = 0.0
+    y: float64 = 0.0
+    z: float64 = 0.0
+    w: float64 = 1.0
+
+
+@dataclass
+class Pose(IdlStruct, typename=_dds("geometry_msgs/msg/Pose")):
+    position: Point = field(default_factory=Point)
+    orientation: Quaternion = field(default_factory=Quaternion)
+
+
+# mypy sees plain lists; cyclonedds needs its own array/sequence markers to lay out the CDR
+if TYPE_CHECKING:
+    Covariance = list[float]
+else:
+    Covariance = array[float64, 36]
+
+
+@dataclass
+class PoseWithCovariance(IdlStruct, typename=_dds("geometry_msgs/msg/PoseWithCovariance")):
+    pose: Pose = field(default_factory=Pose)
+    covariance: Covariance = field(default_factory=lambda: [0.0] * 36)
+
+
+@dataclass
+class PoseWithCovarianceStamped(IdlStruct, typename=_dds("geometry_msgs/msg/PoseWithCovarianceStamped")):
+    header: Header = field(default_factory=Header)
+    pose: PoseWithCovariance = field(default_factory=PoseWithCovariance)
+
+
+@dataclass
+class KeyValue(IdlStruct, typename=_dds("diagnostic_msgs/msg/KeyValue")):
+    key: str = ""
+    value: str = ""
+
+
+if TYPE_CHECKING:
+    KeyValues = list[KeyValue]
+else:
+    KeyValues = sequence[KeyValue]
+
+
+@dataclass
+class DiagnosticStatus(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticStatus")):
+    level: uint8 = 0  # `byte` in the .msg; both map to an octet in CDR
+    name: str = ""
+    message: str = ""
+    hardware_id: str = ""
+    values: KeyValues = field(default_factory=list)
+
+
+if TYPE_CHECKING:
+    Statuses = list[DiagnosticStatus]
+else:
+    Statuses = sequence[DiagnosticStatus]
+
+
+@dataclass
+class DiagnosticArray(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticArray")):
+    header: Header = field(default_factory=Header)
+    status: Statuses = field(default_factory=list)
+
+
+def time_of(t: int) -> Time:
+    return Time(sec=t // 1_000_000_000, nanosec=t % 1_000_000_000)

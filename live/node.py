@@ -1,0 +1,257 @@
+"""The live node: a LiveLog fed by a transport, proactive explanations of failures, and questions answered.
+
+One worker thread runs the agent, so answers come out in the order their triggers arrived and the agent's
+session (its threads of dialogue) is never used from two threads at once.
+"""
+
+from __future__ import annotations
+
+import json
+import queue
+import sys
+import threading
+import time
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal, Protocol
+
+from hexar.events import contract as c
+from hexar.events.errors import EventsError
+from hexar.events.reader import parse_task_info
+from hexar.events.records import StatusRecord, TaskUpdate
+from hexar.live.log import NS, LiveLog
+from hexar.live.topics import ANSWER
+
+Proactive = Literal["off", "publish", "speak"]
+FAILURE_QUESTION = "Why did the task fail?"
+INVALID_QUESTION = "Why couldn't you do the task?"
+KEEP_THREADS = 20
+
+
+class Transport(Protocol):
+    name: str
+
+    def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None: ...
+
+    def publish(self, topic: str, text: str) -> None: ...
+
+    def writer_topics(self) -> list[str]: ...
+
+    def close(self) -> None: ...
+
+
+class Speaker(Protocol):
+    name: str
+
+    def say(self, utterances: Sequence[str], turn: str) -> None: ...
+
+    def close(self) -> None: ...
+
+
+@dataclass
+class NodeOptions:
+    llm: str = "none"
+    proactive: Proactive = "publish"
+    # After a failing /task_info update, wait until the robot's clock passed it by `settle_s` (so log lines
+    # published a moment later but stamped before the failure are in), at most `settle_wall_s` of our time.
+    settle_s: float = 0.2
+    settle_wall_s: float = 0.3
+    phrase: bool | None = None
+
+
+@dataclass
+class Job:
+    kind: Literal["failure", "question", "stop"]
+    text: str = ""
+    task_id: str = ""
+    t: int = 0
+    thread: str | None = None
+    received: float = field(default_factory=time.monotonic)
+
+
+def failure_key(update: TaskUpdate) -> str | None:
+    """What failed in this update (an invalid plan, or a skill by its index), or None."""
+    if not update.valid:
+        return f"{update.task_id}:invalid"
+    for i, step in enumerate(update.skills):
+        if step.state == "failed":
+            return f"{update.task_id}:{i}:{step.skill}"
+    return None
+
+
+def short_sentence(answer: str, max_words: int = 25) -> str:
+    """The first sentence of an answer, at most `max_words` words: what the robot says unasked."""
+    from hexar.voice.utterances import spoken
+
+    said = spoken(answer, max_words=max_words, max_sentences=1, max_total=max_words)
+    return said[0] if said else answer
+
+
+class LiveNode:
+    def __init__(self, transport: Transport, log: LiveLog | None = None, options: NodeOptions | None = None,
+                 speakers: Sequence[Speaker] = (), on_answer: Callable[[dict[str, Any]], None] | None = None) -> None:
+        self.transport = transport
+        self.log = log or LiveLog(name=f"live:{transport.name}")
+        self.options = options or NodeOptions()
+        self.speakers = list(speakers)
+        self.on_answer = on_answer
+        self.thread: str | None = None  # the current dialogue: a follow-up "why?" continues it
+        self.answers = 0
+        self.errors = 0
+        self._jobs: queue.Queue[Job] = queue.Queue()
+        self._explained: set[str] = set()
+        self._session: Any = None
+        self._threads: list[str] = []
+        self._worker: threading.Thread | None = None
+
+    # -- wiring ---------------------------------------------------------------------------------------------
+
+    def start(self) -> None:
+        self._session = self._make_session()  # loads the explainers (and a model) before traffic comes in
+        self.warm_up()
+        self._worker = threading.Thread(target=self._work, name="hexar-node", daemon=True)
+        self._worker.start()
+        self.transport.start(self.log, self.on_record, self.on_question)
+
+    def _make_session(self) -> Any:
+        from hexar.agent.context import RunSettings
+        from hexar.agent.session import Session
+
+        settings = RunSettings(recording=Path(self.log.name), llm=self.options.llm, phrase=self.options.phrase)
+        return Session(settings, log=self.log.snapshot())
+
+    def warm_up(self) -> None:
+        """Pay the first-answer costs now (pgmpy's causal model, the pizza tree, each explainer's first call)
+        so the first live failure is explained within the second: one question per module on a made-up log
+        of failed tasks, answered and thrown away."""
+        from hexar.explainers.ask_human.explainer import shipped_model
+        from hexar.explainers.pizza.recommender import default_recommender
+
+        shipped_model().p_success({})  # imports pgmpy's inference and builds its engine
+        default_recommender()
+        warm = LiveLog(name="warm-up")
+        for i, skill in enumerate(("navigate_to_zone", "ask_human_for_help", "say", "recommend_pizza")):
+            step = {"skill": skill, "params": {}, "status": "failed", "error_msg": "The skill has been aborted"}
+            raw = json.dumps({"instruction": "warm up", "task_id": f"warm{i}", "task_status": "valid",
+                              "task_error_msg": "", "skill_sequence": [step]})
+            update = parse_task_info((i + 3) * NS, raw)
+            if skill == "ask_human_for_help":  # a detection failure makes the causal search run once
+                for j, (key, value) in enumerate((("InitialState", "True"), ("DetectState", "True"),
+                                                  ("person_detected", "True"), ("person_std_rms", "0.9"),
+                                                  ("detection_stable", "False"), ("SkillFailed", "True"))):
+                    warm.add(StatusRecord((i + 2) * NS + j, c.EPISODIC_MEMORY, 0, c.ASK_HUMAN_STATUS_NAME, key, "",
+                                          (("Module name", "skill_ask_human_for_help"), (key, value))))
+            if update is not None:
+                warm.add(update)
+                self._session.use_log(warm.snapshot())
+                thread = self._session.ask(FAILURE_QUESTION, task=update.task_id)["thread"]
+                self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
+
+    def stop(self) -> None:
+        self._jobs.put(Job("stop"))
+        if self._worker is not None:
+            self._worker.join(timeout=30.0)
+        self.transport.close()
+        for speaker in self.speakers:
+            speaker.close()
+
+    # -- triggers (transport threads) -----------------------------------------------------------------------
+
+    def on_record(self, record: Any) -> None:
+        if self.options.proactive == "off" or not isinstance(record, TaskUpdate):
+            return
+        key = failure_key(record)
+        if key is None or key in self._explained:
+            return
+        self._explained.add(key)
+        if len(self._explained) > 10_000:  # bounded like the log; an old key seen again is explained again
+            self._explained.clear()
+            self._explained.add(key)
+        self._jobs.put(Job("failure", task_id=record.task_id, t=record.t,
+                           text=INVALID_QUESTION if not record.valid else FAILURE_QUESTION))
+
+    def on_question(self, text: str) -> None:
+        thread = None
+        stripped = text.strip()
+        if stripped.startswith("{"):  # `{"question": ..., "thread": ...}` from `hexar chat --live`
+            try:
+                obj = json.loads(stripped)
+                stripped, thread = str(obj.get("question", "")), obj.get("thread")
+            except (json.JSONDecodeError, AttributeError):
+                pass
+        self._jobs.put(Job("question", text=stripped, thread=str(thread) if thread else None))
+
+    def ask(self, question: str) -> None:
+        """A question from the microphone or a test, queued like one from /hexar/question."""
+        self.on_question(question)
+
+    # -- the worker -----------------------------------------------------------------------------------------
+
+    def _work(self) -> None:
+        while True:
+            job = self._jobs.get()
+            if job.kind == "stop":
+                return
+            try:
+                self._answer(job)
+            except Exception as err:  # the node keeps answering; the error goes out as an answer and a line
+                self.errors += 1
+                print(f"hexar serve: {type(err).__name__}: {err}", file=sys.stderr)
+                self._publish({"answer": "", "error": f"{type(err).__name__}: {err}", "trigger": job.kind,
+                               "task_id": job.task_id})
+
+    def _answer(self, job: Job) -> None:
+        if job.kind == "failure":
+            self.log.wait_until(job.t + int(self.options.settle_s * NS), self.options.settle_wall_s)
+        self._session.use_log(self.log.snapshot())
+        if job.kind == "failure":
+            self.thread = self._session.new_thread()
+            thread, task = self.thread, job.task_id
+        else:
+            thread = job.thread or self.thread or self._session.new_thread()
+            self.thread, task = thread, None
+        self._remember(thread)
+        try:
+            result = dict(self._session.ask(job.text, thread=thread, task=task))
+        except EventsError as err:  # no task yet: say so instead of guessing
+            result = {"answer": str(err), "error": str(err), "thread": thread}
+        result["trigger"] = job.kind
+        result["recording"] = self.log.name
+        result["latency_ms"] = round((time.monotonic() - job.received) * 1000, 1)
+        if job.kind == "failure":
+            result["sentence"] = short_sentence(str(result.get("answer", "")))
+            result["event_t"] = job.t  # the failing update, on the robot's clock
+        self._publish(result)
+        speak = self.speakers and not result.get("error") and (
+            job.kind == "question" or self.options.proactive == "speak")
+        if speak:
+            self._say(result, job)
+
+    def _remember(self, thread: str) -> None:
+        """Keep the checkpoints of the last KEEP_THREADS dialogues only: a node that runs for weeks must not
+        collect every conversation it ever had in memory."""
+        if thread in self._threads:
+            return
+        self._threads.append(thread)
+        while len(self._threads) > KEEP_THREADS:
+            old = self._threads.pop(0)
+            self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{old}")
+
+    def _say(self, result: dict[str, Any], job: Job) -> None:
+        from hexar.voice.loop import say_answer
+
+        utterances = [str(result["sentence"])] if job.kind == "failure" else say_answer(result)
+        turn = f"answer_{self.answers:03d}"
+        for speaker in self.speakers:
+            try:
+                speaker.say(utterances, turn)
+            except Exception as err:  # a TTS that fails must not stop the node from answering
+                self.errors += 1
+                print(f"hexar serve: cannot speak with {speaker.name}: {err}", file=sys.stderr)
+
+    def _publish(self, result: dict[str, Any]) -> None:
+        self.answers += 1
+        self.transport.publish(ANSWER, json.dumps(result))
+        if self.on_answer is not None:
+            self.on_answer(result)

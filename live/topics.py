@@ -1,0 +1,66 @@
+"""The live topics, their ROS types and the QoS a subscriber must request to match what the robot offers.
+
+A DDS reader matches a writer only if it asks for no more than the writer offers (reliable <= reliable,
+transient-local <= transient-local). So: /rosout and /amcl_pose are read transient-local, because rcl's rosout
+publisher (`rcl_qos_profile_rosout_default`: reliable, transient-local, depth 1000, lifespan 10 s) and AMCL offer
+it, and a node that joins late then receives their recent history; /joy_priority is latched (transient-local,
+depth 1) on TIAGo. Topics published with ROS' default profile (reliable, volatile, depth 10) are read
+reliable + volatile, which also matches a transient-local writer.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+from hexar.events import contract as c
+
+Durability = Literal["volatile", "transient_local"]
+
+QUESTION = "/hexar/question"
+ANSWER = "/hexar/answer"
+HEXAR_PREFIX = "/hexar/"
+
+
+@dataclass(frozen=True)
+class TopicQos:
+    reliable: bool = True
+    durability: Durability = "volatile"
+    depth: int = 10
+
+
+@dataclass(frozen=True)
+class LiveTopic:
+    topic: str
+    type: str
+    qos: TopicQos
+
+
+def dds_name(topic: str) -> str:
+    """rmw_cyclonedds prefixes ROS topics with `rt` (`/rosout` -> `rt/rosout`)."""
+    return "rt" + (topic if topic.startswith("/") else "/" + topic)
+
+
+SUBSCRIBED: tuple[LiveTopic, ...] = (
+    LiveTopic(c.ROSOUT, c.LOG_TYPE, TopicQos(durability="transient_local", depth=1000)),
+    LiveTopic(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.AMCL_POSE, c.POSE_COV_TYPE, TopicQos(durability="transient_local", depth=50)),
+    LiveTopic(c.JOY_PRIORITY, c.BOOL_TYPE, TopicQos(durability="transient_local", depth=1)),
+    LiveTopic(c.IS_CHARGING, c.BOOL_TYPE, TopicQos(depth=10)),
+    LiveTopic(c.EPISODIC_MEMORY, c.DIAG_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.DIAGNOSTICS, c.DIAG_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.SAY_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.PIZZA_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
+)
+
+# What the node and the replayer offer. Answers are transient-local so a display that starts later still
+# gets the last few; the question topic is an ordinary ROS default publisher's.
+QUESTION_QOS = TopicQos(depth=100)  # keep-last: a burst of questions must not push earlier ones out
+ANSWER_QOS = TopicQos(durability="transient_local", depth=10)
+TTS_QOS = TopicQos(depth=10)
+# The replayer offers what the robot's publishers offer, so a reader that matches it matches the robot.
+PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
+    c.ROSOUT: TopicQos(durability="transient_local", depth=1000),
+    c.AMCL_POSE: TopicQos(durability="transient_local", depth=1),
+    c.JOY_PRIORITY: TopicQos(durability="transient_local", depth=1),
+}

@@ -1,0 +1,117 @@
+"""Real DDS participants for the live tests: a listener on the node's answers and the robot's /task_info, a
+question writer, the replayer in its own process. Every test uses its own DDS domain so tests never cross-talk."""
+
+from __future__ import annotations
+
+import itertools
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from hexar.events import contract as c
+from hexar.events.reader import parse_task_info
+from hexar.live import msgs
+from hexar.live.dds import DdsEndpoint, DdsTransport
+from hexar.live.log import Limits, LiveLog
+from hexar.live.node import LiveNode, NodeOptions, failure_key
+from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS, TopicQos
+
+# 233 domains; start from the process id so two test runs on one machine are unlikely to share one
+_DOMAINS = itertools.count((os.getpid() * 7) % 150 + 40)
+
+
+def fresh_domain() -> int:
+    return next(_DOMAINS) % 200 + 20
+
+
+@dataclass
+class Heard:
+    answers: list[tuple[float, dict[str, Any]]] = field(default_factory=list)
+    failures: dict[str, float] = field(default_factory=dict)  # failure key -> when the listener got it
+
+
+class Listener:
+    """Another participant on the domain: reads /hexar/answer and /task_info, writes /hexar/question."""
+
+    def __init__(self, domain: int) -> None:
+        self.endpoint = DdsEndpoint(domain)
+        self.heard = Heard()
+        # deeper than the node's writer history, so a burst of answers is not replaced before it is read
+        answer_qos = TopicQos(durability=ANSWER_QOS.durability, depth=100)
+        self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, answer_qos)
+        self._tasks = self.endpoint.reader(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100))
+        self._question = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
+        self._stop = threading.Event()
+        self._lock = threading.Lock()
+        self._thread = threading.Thread(target=self._loop, daemon=True)
+        self._thread.start()
+
+    def _loop(self) -> None:
+        while not self._stop.is_set():
+            now = time.monotonic()
+            for s in self._tasks.take(64):
+                if not s.sample_info.valid_data:
+                    continue  # the replayer's writer went away
+                update = parse_task_info(0, str(s.data))
+                key = failure_key(update) if update is not None else None
+                if key is not None:
+                    with self._lock:
+                        self.heard.failures.setdefault(key, now)
+            for s in self._answers.take(16):
+                if not s.sample_info.valid_data:
+                    continue
+                with self._lock:
+                    self.heard.answers.append((now, json.loads(str(s.data))))
+            time.sleep(0.002)
+
+    def ask(self, question: str) -> None:
+        self._question.write(msgs.String(data=question))
+
+    def answers(self, trigger: str | None = None) -> list[tuple[float, dict[str, Any]]]:
+        with self._lock:
+            return [(t, a) for t, a in self.heard.answers if trigger is None or a.get("trigger") == trigger]
+
+    def wait_answers(self, n: int, trigger: str | None = None, timeout: float = 10.0) -> list[dict[str, Any]]:
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline and len(self.answers(trigger)) < n:
+            time.sleep(0.02)
+        return [a for _, a in self.answers(trigger)]
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join(2.0)
+        self.endpoint.close()
+
+
+@contextmanager
+def live_node(domain: int, limits: Limits | None = None, **options: Any) -> Iterator[LiveNode]:
+    node = LiveNode(DdsTransport(domain, tts_topic=options.pop("tts_topic", None)), LiveLog(limits),
+                    NodeOptions(llm="none", **options))
+    node.start()
+    try:
+        yield node
+    finally:
+        node.stop()
+
+
+def replay_process(run: Path, domain: int, rate: float = 10.0, *extra: str) -> subprocess.Popen[str]:
+    """`hexar replay` in its own process: the traffic crosses process boundaries as a robot's would."""
+    cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", str(rate), "--transport", "dds",
+           "--domain", str(domain), *extra]
+    return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def replay(run: Path, domain: int, rate: float = 10.0, timeout: float = 120.0) -> str:
+    proc = replay_process(run, domain, rate)
+    out, err = proc.communicate(timeout=timeout)
+    assert proc.returncode == 0, err
+    assert "Traceback" not in err
+    return out

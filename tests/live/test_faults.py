@@ -1,0 +1,84 @@
+"""Faults on real DDS traffic: the replayer killed and restarted mid-task, duplicated and reordered messages,
+a 10 MB log line. The node keeps answering, with the same causes, and never prints a traceback."""
+
+from __future__ import annotations
+
+import signal
+import time
+from pathlib import Path
+
+from hexar.events import contract as c
+from hexar.live import msgs
+from hexar.live.replay import DdsReplayer, bag_messages, to_dds
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay_process
+from tests.live.test_replay_explains import QUESTION, expected
+
+RUN = "bagfile_5_1"  # navigation: the path is blocked; ~70 s of traffic
+
+
+def test_replayer_killed_mid_task_and_restarted(suite: Path) -> None:
+    failures, asked = expected(suite / RUN)
+    domain = fresh_domain()
+    listener = Listener(domain)
+    try:
+        with live_node(domain) as node:
+            first = replay_process(suite / RUN, domain, 20.0)
+            deadline = time.monotonic() + 30
+            while node.log.stats()["tasks"] == 0 and time.monotonic() < deadline:
+                time.sleep(0.05)
+            time.sleep(0.5)  # mid-task: the plan is running
+            first.send_signal(signal.SIGKILL)
+            first.wait(10)
+            assert not listener.answers("failure")
+            seen = node.log.stats()["received"]
+            again = replay_process(suite / RUN, domain, 20.0)  # the robot's publishers come back from the start
+            _, err = again.communicate(timeout=120)
+            assert again.returncode == 0 and "Traceback" not in err
+            got = listener.wait_answers(len(failures), "failure", timeout=5.0)
+            assert {a["task_id"]: a["causes"] for a in got} == failures
+            assert len(listener.answers("failure")) == len(failures)  # explained once, not once per publisher
+            assert node.log.duplicates >= seen // 2  # what the first publisher sent came again
+            listener.ask(QUESTION)
+            assert listener.wait_answers(1, "question")[0]["causes"] == asked
+            assert node.errors == 0
+    finally:
+        listener.close()
+
+
+def test_duplicated_reordered_and_a_10_mb_line(suite: Path) -> None:
+    failures, asked = expected(suite / RUN)
+    domain = fresh_domain()
+    listener = Listener(domain)
+    writer = DdsReplayer(domain)
+    try:
+        with live_node(domain) as node:
+            writer.prepare()
+            time.sleep(0.5)
+            messages = list(bag_messages(suite / RUN)[0])
+            # swap every pair of neighbouring messages and send each one twice
+            for i in range(0, len(messages) - 1, 2):
+                messages[i], messages[i + 1] = messages[i + 1], messages[i]
+            for topic, msgtype, t, m in messages:
+                for _ in range(2):
+                    writer.write(topic, msgtype, to_dds(msgtype, m), t)
+                time.sleep(0.0005)
+            huge = "E" * 10_000_000
+            last_t = messages[-1][2]
+            writer.write(c.ROSOUT, c.LOG_TYPE, msgs.Log(stamp=msgs.time_of(last_t + 1), level=40, name="flood",
+                                                        msg=huge), last_t + 1)
+            got = listener.wait_answers(len(failures), "failure", timeout=10.0)
+            assert {a["task_id"]: a["causes"] for a in got} == failures
+            listener.ask(QUESTION)
+            answer = listener.wait_answers(1, "question", timeout=15.0)
+            assert answer and answer[0]["causes"] == asked
+            deadline = time.monotonic() + 10
+            while node.log.truncated == 0 and time.monotonic() < deadline:
+                time.sleep(0.05)
+            assert node.log.truncated == 1  # the 10 MB line arrived and was kept cut short
+            # every second copy is dropped as a duplicate; a depth-1 latched topic (/joy_priority) may keep only
+            # its latest sample, so a copy can be replaced before delivery
+            assert node.log.duplicates >= len(messages) * 0.95
+            assert node.errors == 0 and node.transport.errors == 0  # type: ignore[attr-defined]
+    finally:
+        writer.close()
+        listener.close()

