@@ -89,8 +89,15 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
+        from hexar.render import natural_key
+
         rows: list[dict[str, Any]] = []
-        for path in sorted(p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"):
+        paths = sorted((p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"), key=natural_key)
+        if not paths and not as_json:
+            out.print(f"No recordings in {folder}: record one, or write the simulated suite with "
+                      "`hexar simulate --out FOLDER`.")
+            return 0
+        for path in paths:
             try:
                 log = read_recording(path, topics={TASK_INFO})
                 task = log.task() if log.tasks else None
