@@ -97,8 +97,9 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
                            causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
     if any(word in q for word in ("why did you go", "why did you drive", "why did you come")):
         named = " and ".join(place_name(r.params.get("location")) for r in trips)
-        return Explanation(explainer="planner", text=sentence(f"I didn't go there for {task_name(task, log)}; I went "
-                                                               f"to {named}, because my plan was to {plan_words(task)}"),
+        text = sentence(f"I didn't go there for {task_name(task, log)}; I went to {named}, because my plan was "
+                        f"to {plan_words(task)}")
+        return Explanation(explainer="planner", text=text,
                            causes=["planner.plan_ok"], evidence=_plan_evidence(task, trips[0], "planner.plan_ok"))
     return _went_step(log, task, trips[0], current=True)
 

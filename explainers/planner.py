@@ -70,7 +70,9 @@ class PlannerExplainer:
             steps = ", then ".join(run.label() for run in task.skills) or "nothing"
             return Explanation(
                 explainer=self.name,
-                text=f"My plan for \"{task.instruction}\" looks right to me: {steps}.",
+                text=(f"My plan for \"{task.instruction}\"" if not task.is_recovery else
+                      "My own recovery plan, which I made after the task before it failed,") +
+                f" looks right to me: {steps}.",
                 causes=["planner.plan_ok"],
                 evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=update.t,
                                    item=task.instruction)],

@@ -45,7 +45,12 @@ CONTENT_QUESTION = re.compile(
 # The part of a request that names what to say: the words after the verb that asks for speech.
 _SPEECH_VERB = re.compile(r"\b(read|tell|say|announce|remind|recite|repeat)\b(.*)$", re.I)
 _FILLER = frozenset(
-    ["me", "you", "him", "her", "them", "us", "it", "the", "a", "an", "to", "for", "of", "and", "or", "that", "this", "these", "those", "what", "is", "are", "was", "be", "on", "in", "at", "whole", "all", "some", "please", "could", "would", "can", "will", "my", "your", "our", "their", "his", "its", "about", "with", "from", "there", "here", "now", "today", "week"]
+    (
+        "me", "you", "him", "her", "them", "us", "it", "the", "a", "an", "to", "for", "of", "and", "or", "that",
+        "this", "these", "those", "what", "is", "are", "was", "be", "on", "in", "at", "whole", "all", "some",
+        "please", "could", "would", "can", "will", "my", "your", "our", "their", "his", "its", "about", "with",
+        "from", "there", "here", "now", "today", "week",
+    )
 )
 
 
