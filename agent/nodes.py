@@ -157,10 +157,6 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     """Only when nothing failed: choose an explainer from the question (LLM or classifier), else from findings."""
     start = time.perf_counter()
     ctx = runtime.context
-    used = set(state.get("used", []))
-    if state.get("intent") == "else":
-        nxt = _by_findings(ctx, state, used) or next((c for c in state["candidates"] if c not in used), None)
-        return {"selected": [nxt] if nxt else [], "route": "followup", "timings_ms": _timings(state, "router", start)}
     choice = _llm_choice(ctx, state)
     route = "llm"
     if choice is None:

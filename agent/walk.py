@@ -51,15 +51,15 @@ def _step(registry: Registry, question: str, log: EventLog, task: Task, run: Ski
     number = f"Step {run.index + 1}"
     out: list[Finding] = []
     if run.skill in NAV_SKILLS:
-        found = _explain(registry, "navigation", question, log, task, window)
         where = place_name(run.params["location"]) if run.params.get("location") else "my goal"
-        if found is not None:
-            out.append(Finding(f"{number}, going to {where}", found))
-        return out
-    for name in registry.for_module(run.skill)[:1]:
+        lead = f"{number}, going to {where}"
+    else:
+        lead = f"{number}, when I tried to {step_words(run)}"
+    # Every explainer registered for the skill has its say (a robot may add its own beside the built-in ones).
+    for name in registry.for_module(run.skill):
         found = _explain(registry, name, question, log, task, window)
-        if found is not None:
-            out.append(Finding(f"{number}, when I tried to {step_words(run)}", found))
+        if found is not None and all(f.explanation.text != found.text for f in out):
+            out.append(Finding(lead, found))
     if run.skill == "ask_human_for_help":
         for trip in trips_inside(log, window):
             inner = (trip.t, window[1])
