@@ -14,39 +14,14 @@ from hexar.explainers.recorded import (
     Trip,
     last_pose,
     place_name,
+    plan_words,
+    sentence,
+    step_words,
     trips_inside,
     utterances,
 )
 from hexar.explainers.tts import compare, first_sentence
 from hexar.render import clock
-
-
-def step_words(run: SkillRun, short: bool = False) -> str:
-    """A plan step as a person says it: "go to the kitchen", "say 'Here is your coffee.'"."""
-    p = run.params
-    if run.skill in NAV_SKILLS and p.get("location"):
-        return f"go to {place_name(p['location'])}"
-    if run.skill == "ask_human_for_help":
-        question = p.get("question")
-        return f'ask someone for help ("{question}")' if question and not short else "ask someone for help"
-    if run.skill == "say":
-        text = str(p.get("input", ""))
-        return "say the pizza I recommend" if text.startswith("?") else f'say "{first_sentence(text, 60)}"'
-    if run.skill == "recommend_pizza":
-        return "choose a pizza from the ingredients available"
-    return run.skill.replace("_", " ")
-
-
-def sentence(text: str) -> str:
-    """End with one full stop, also after a quote that ends in its own (`say "Hi."`)."""
-    return text if text.rstrip('"').endswith((".", "!", "?")) else text + "."
-
-
-def plan_words(task: Task) -> str:
-    steps = [step_words(r) for r in task.skills]
-    if not steps:
-        return "no steps at all"
-    return steps[0] if len(steps) == 1 else ", ".join(steps[:-1]) + " and then " + steps[-1]
 
 
 def task_name(task: Task, log: EventLog) -> str:

@@ -125,7 +125,8 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
 
 
 def describe(task: Task, log: EventLog) -> str:
-    from hexar.agent.content import plan_words, task_name
+    from hexar.agent.content import task_name
+    from hexar.explainers.recorded import plan_words
 
     return f"{task_name(task, log)}, {task.outcome}; its plan: {plan_words(task)}"
 
