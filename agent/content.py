@@ -102,8 +102,8 @@ def where(log: EventLog) -> Explanation:
             if run.skill in NAV_SKILLS and run.params.get("location"):
                 goals.append((start, "in " + place_name(run.params["location"]),
                               {"succeeded": True, "failed": False}.get(run.state)))
-            for trip in trips_inside(log, task.skill_window(run)) if run.skill not in NAV_SKILLS else []:
-                goals.append((trip.t, "by " + trip.describe(), _reached(log, trip)))
+            inner = [] if run.skill in NAV_SKILLS else trips_inside(log, task.skill_window(run))
+            goals += [(trip.t, "by " + trip.describe(), _reached(log, trip)) for trip in inner]
     pose = last_pose(log)
     at = f" My last recorded position is ({pose.x:.2f}, {pose.y:.2f}) on my map, at {clock(pose.t)}." \
         if pose is not None else ""

@@ -69,7 +69,10 @@ def log_dict(log: EventLog) -> dict[str, Any]:
 def print_inspection(console: Console, log: EventLog) -> None:
     console.print(f"[bold]{log.path.name}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
                   f"{clock(log.start)} to {clock(log.end)} UTC")
-    topics = Table("topic", "type", "messages", title="Topics", title_justify="left")
+    topics = Table(title="Topics", title_justify="left")
+    topics.add_column("topic", overflow="fold")
+    topics.add_column("type", overflow="fold")  # wrapped, never cut: the type is what a user looks up
+    topics.add_column("messages", justify="right", no_wrap=True)
     for info in log.topics.values():
         topics.add_row(info.topic, info.type, str(info.count))
     console.print(topics)
