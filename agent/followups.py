@@ -21,10 +21,32 @@ _HELPED = re.compile(
 _ELSE = re.compile(r"what else|anything else|something else|any other (problem|issue)s?|what other")
 _SWITCH = re.compile(
     r"(what|how) about (the )?(first|second|third|last|previous|other|earlier|\d+(st|nd|rd|th)?) task|"
+    r"(what|how) about task \d+|"
     r"^(and )?(the )?(first|second|third|previous|earlier) task\W*$"
 )
 _ORDINALS = {"first": "first", "second": "2", "third": "3", "last": "latest", "previous": "previous",
              "earlier": "previous", "other": "previous"}
+
+
+# Questions about what the robot did, not about a problem: answered from the recording's content.
+_WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( back| over)? (to|into|towards?)\b|"
+                   r"^where did you (go|drive)\b|^where have you been\b")
+_WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
+                    r"where did you finish\b")
+
+
+def content_kind(question: str) -> str | None:
+    """'went', 'where' or 'said' for a question about what the robot did; None for anything else."""
+    from hexar.explainers.tts import CONTENT_QUESTION
+
+    q = normalise(question)
+    if _WHERE.search(q):
+        return "where"
+    if _WENT.search(q):
+        return "went"
+    if CONTENT_QUESTION.search(q):
+        return "said"
+    return None
 
 
 def normalise(question: str) -> str:
@@ -35,6 +57,8 @@ def intent_of(question: str, has_history: bool) -> Intent:
     q = normalise(question)
     if _SWITCH.search(q):
         return "switch"
+    if content_kind(q) is not None:
+        return "content"
     if not has_history:
         return "new"
     if _HELPED.search(q):
@@ -48,7 +72,8 @@ def intent_of(question: str, has_history: bool) -> Intent:
 
 def task_ref_of(question: str) -> str | None:
     q = normalise(question)
-    m = re.search(r"(first|second|third|last|previous|other|earlier|\d+)(st|nd|rd|th)? task", q)
+    m = re.search(r"(first|second|third|last|previous|other|earlier|\d+)(st|nd|rd|th)? task", q) or \
+        re.search(r"task (\d+)", q)
     if not m:
         return None
     word = m.group(1)

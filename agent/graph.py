@@ -21,8 +21,11 @@ def after_intake(state: AgentState) -> Literal["context", "followup", "__end__"]
     return "context"
 
 
-def after_context(state: AgentState) -> Literal["failure_check", "router"]:
-    return "router" if state.get("intent") == "else" else "failure_check"
+def after_context(state: AgentState) -> Literal["failure_check", "walk", "content"]:
+    intent = state.get("intent")
+    if intent == "else":
+        return "walk"
+    return "content" if intent == "content" else "failure_check"
 
 
 def after_failure_check(state: AgentState) -> Literal["tools", "router"]:
@@ -42,6 +45,8 @@ def build(checkpointer: Any = None) -> CompiledStateGraph[AgentState, RunContext
     g.add_node("tools", nodes.tools)
     g.add_node("answer", nodes.answer)
     g.add_node("followup", nodes.followup)
+    g.add_node("walk", nodes.walk)
+    g.add_node("content", nodes.content)
     g.add_edge(START, "intake")
     g.add_conditional_edges("intake", after_intake)
     g.add_conditional_edges("context", after_context)
@@ -50,6 +55,8 @@ def build(checkpointer: Any = None) -> CompiledStateGraph[AgentState, RunContext
     g.add_edge("tools", "answer")
     g.add_edge("answer", END)
     g.add_edge("followup", END)
+    g.add_edge("walk", END)
+    g.add_edge("content", END)
     return g.compile(checkpointer=checkpointer)
 
 

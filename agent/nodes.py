@@ -8,20 +8,31 @@ from typing import Any
 
 from langgraph.runtime import Runtime
 
+from hexar.agent import content as answers
 from hexar.agent import guard
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
-from hexar.agent.followups import intent_of, task_ref_of
+from hexar.agent.followups import content_kind, intent_of, task_ref_of
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
+from hexar.agent.walk import next_finding
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ModelError
 from hexar.explainers.planner import task_findings
 from hexar.prompts import load
+from hexar.render import clock
 from hexar.tools.explainer_tools import explainer_of_tool, scope, tools_for
 
 BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
+BENIGN_ANSWERS = BENIGN | {"navigation.nominal_speed", "tts.utterance_matches"}
+# Where a piece of evidence comes from, as the robot says it.
+_SOURCE = {
+    "/rosout": "my log", "/task_info": "my task status", "/amcl_pose": "my localisation",
+    "/joy_priority": "my joystick switch", "/power/is_charging": "my charger", "/diagnostics": "my diagnostics",
+    "/episodic_memory": "my ask-for-help skill", "/skills/say/events": "my speech",
+    "/skills/recommend_pizza/events": "my pizza recommender",
+}
 CONFIDENT = 0.45
 BUILTIN = {"planner", "navigation", "ask_human_for_help", "text_to_speech", "pizza_recommender"}
 
@@ -32,6 +43,13 @@ def _ms(start: float) -> float:
 
 def _timings(state: AgentState, key: str, start: float) -> dict[str, float]:
     return {**state.get("timings_ms", {}), key: _ms(start)}
+
+
+def _recorded(t: int, topic: str, item: str) -> str:
+    source = _SOURCE.get(topic, topic)
+    if item in {"data=True", "data=False"}:  # a recorded on/off flag
+        return f"at {clock(t)} {source} was {'on' if item == 'data=True' else 'off'} ({topic})"
+    return f"at {clock(t)} {source} recorded \"{item}\""
 
 
 def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -46,8 +64,10 @@ def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     if intent == "switch":
         update["task_ref"] = task_ref_of(question)
         update["used"] = []
+        update["told"] = []
     elif intent == "new":
         update["used"] = []
+        update["told"] = []
     update["timings_ms"] = {"intake": _ms(start)}
     return update
 
@@ -137,10 +157,6 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     """Only when nothing failed: choose an explainer from the question (LLM or classifier), else from findings."""
     start = time.perf_counter()
     ctx = runtime.context
-    used = set(state.get("used", []))
-    if state.get("intent") == "else":
-        nxt = _by_findings(ctx, state, used) or next((c for c in state["candidates"] if c not in used), None)
-        return {"selected": [nxt] if nxt else [], "route": "followup", "timings_ms": _timings(state, "router", start)}
     choice = _llm_choice(ctx, state)
     route = "llm"
     if choice is None:
@@ -189,8 +205,42 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     texts = list(dict.fromkeys(e["text"] for e in kept))
     text = " ".join(texts) if texts else "I don't have enough information to say."
     turn = {"question": state["question"], "answer": text, "explainers": [e["explainer"] for e in kept]}
-    return {"explanations": kept, "answer": text, "fallback": fallback,
+    told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
+    return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
             "history": [*state.get("history", []), turn], "timings_ms": _timings(state, "answer", start)}
+
+
+def _direct(state: AgentState, exp: Explanation, key: str, start: float) -> dict[str, Any]:
+    """An answer made without the router and tools: it becomes the explanation that follow-ups go deeper on."""
+    turn = {"question": state["question"], "answer": exp.text, "explainers": [exp.explainer]}
+    return {"explanations": [exp.model_dump()], "answer": exp.text, "route": "followup", "depth": 0,
+            "selected": [], "told": [*state.get("told", []), *exp.causes],
+            "history": [*state.get("history", []), turn], "timings_ms": _timings(state, key, start)}
+
+
+def walk(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    """'What else happened?': the next finding of the task, in plan order, that the person has not heard."""
+    start = time.perf_counter()
+    ctx = runtime.context
+    task = ctx.log.task(state["task_id"])
+    said_before = [t["answer"] for t in state.get("history", [])]
+    exp = next_finding(ctx.probe, state["question"], ctx.log, task, said_before, set(state.get("told", [])))
+    return _direct(state, exp, "walk", start)
+
+
+def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
+    """Where I went and why, where I am, what I said: answered from the recording, not from a failure."""
+    start = time.perf_counter()
+    ctx = runtime.context
+    task = ctx.log.task(state["task_id"])
+    kind = content_kind(state["question"])
+    if kind == "where":
+        exp = answers.where(ctx.log)
+    elif kind == "went":
+        exp = answers.went(state["question"], ctx.log, task)
+    else:
+        exp = answers.said(state["question"], ctx.log, task)
+    return _direct(state, exp, "content", start)
 
 
 def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -201,11 +251,16 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
         parts = [p for e in exps for p in (e.counterfactual, e.fix) if p]
-        text = " ".join(parts) or "I don't have enough information to say what would have helped."
+        if parts:
+            text = " ".join(parts)
+        elif exps and all(set(e.causes) <= BENIGN_ANSWERS for e in exps):
+            text = "Nothing went wrong there, so I have nothing to suggest changing."
+        else:
+            text = "I have no fix or change to suggest: what I recorded does not show what would have helped."
     else:
         depth += 1
         if depth == 1:
-            items = [ev.item for e in exps for ev in e.evidence][:3]
+            items = [_recorded(ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence][:3]
             text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
         elif depth == 2:
             text = " ".join(d for e in exps for d in e.details)

@@ -62,6 +62,13 @@ class Session:
         state = self.graph.invoke(cast(AgentState, update), config, context=self.context)
         return self._result(dict(state), thread, started)
 
+    def switch(self, thread: str, task_id: str) -> None:
+        """Talk about another task from the next question on: the thread keeps its history, and the next
+        question starts afresh on that task (no follow-up reaches back to the previous task's answer)."""
+        config: RunnableConfig = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"}}
+        fresh = {"task_ref": task_id, "explanations": [], "used": [], "told": [], "depth": 0}
+        self.graph.update_state(config, cast(AgentState, fresh), as_node="answer")
+
     def history(self, thread: str) -> list[dict[str, Any]]:
         config: RunnableConfig = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"}}
         snap = self.graph.get_state(config)

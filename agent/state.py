@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Literal, TypedDict
 
-Intent = Literal["new", "deeper", "helped", "else", "switch", "invalid"]
+Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid"]
 Route = Literal["failure_check", "llm", "classifier", "findings", "followup", "none"]
 
 
@@ -33,5 +33,6 @@ class AgentState(TypedDict, total=False):
     fallback: list[str]
     depth: int
     used: list[str]
+    told: list[str]  # causes the person has heard in this conversation about this task
     timings_ms: dict[str, float]
     history: list[Turn]

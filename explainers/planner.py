@@ -9,6 +9,7 @@ from hexar.events.tasks import Task
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.plan_check import Finding, check_plan
+from hexar.explainers.recorded import plan_words, sentence
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -70,11 +71,13 @@ class PlannerExplainer:
             steps = ", then ".join(run.label() for run in task.skills) or "nothing"
             return Explanation(
                 explainer=self.name,
-                text=f"My plan for \"{task.instruction}\" looks right to me: {steps}.",
+                text=(f"My plan for \"{task.instruction}\"" if not task.is_recovery else
+                      "My own recovery plan, which I made after the task before it failed,") +
+                f" looks right to me: {steps}.",
                 causes=["planner.plan_ok"],
                 evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=update.t,
                                    item=task.instruction)],
-                details=[f"Plan: {steps}.", f"Outcome: {task.outcome}."],
+                details=[sentence(f"My plan was to {plan_words(task)}"), f"Outcome: {task.outcome}."],
             )
         causes = list(dict.fromkeys(f.cause for f in findings))
         first = findings[0]
@@ -89,9 +92,9 @@ class PlannerExplainer:
             evidence.append(Evidence(cause=first.cause, topic=c.TASK_INFO, t=update.t, item=task.error_msg))
         text = _LEAD[first.cause].format(msg=first.message)
         details = [f.message[0].upper() + f.message[1:] + "." for f in findings]
-        details.append("Plan: " + (", then ".join(run.label() for run in task.skills) or "(empty)") + ".")
+        details.append(sentence(f"My plan was to {plan_words(task)}"))
         if task.error_msg:
-            details.append(f"The plan check said: {task.error_msg}")
+            details.append(f"My plan check said: \"{task.error_msg}\"")
         counterfactual = None
         if first.cause == "planner.invalid_parameter":
             counterfactual = "Had every step named a valid place and all its parameters, I would have started the task."

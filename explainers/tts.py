@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events.contract import SAY_EVENTS, SAY_STATUS_NAME
@@ -14,6 +15,8 @@ if TYPE_CHECKING:
 
 TIMEOUT = "tts.timeout"
 COMPLETED = "tts.completed"
+MISMATCH = "tts.utterance_mismatch"
+MATCHES = "tts.utterance_matches"
 # What the original TTS uses when a robot does not record its settings.
 DEFAULT_TIMEOUT_S = 20.0
 DEFAULT_WPM = 150.0
@@ -31,6 +34,75 @@ def _float(record: StatusRecord, key: str) -> float | None:
 def _num(x: float) -> str:
     """20.0 -> "20", 38.4 -> "38.4": a person hears whole seconds without a trailing ".0"."""
     return f"{x:.1f}".removesuffix(".0")
+
+
+# A question about what was said rather than how the speech went.
+CONTENT_QUESTION = re.compile(
+    r"what did you (say|read|tell)|did you (read|say|tell)( me| her| him| them)? (the )?(right|correct|wrong)|"
+    r"(right|correct|wrong) (recipe|message|text|thing|story|list|news)|was (that|it) (the )?(right|correct)|"
+    r"(is|was) that what i asked"
+)
+# The part of a request that names what to say: the words after the verb that asks for speech.
+_SPEECH_VERB = re.compile(r"\b(read|tell|say|announce|remind|recite|repeat)\b(.*)$", re.I)
+_FILLER = frozenset(
+    (
+        "me", "you", "him", "her", "them", "us", "it", "the", "a", "an", "to", "for", "of", "and", "or", "that",
+        "this", "these", "those", "what", "is", "are", "was", "be", "on", "in", "at", "whole", "all", "some",
+        "please", "could", "would", "can", "will", "my", "your", "our", "their", "his", "its", "about", "with",
+        "from", "there", "here", "now", "today", "week",
+    )
+)
+
+
+def _words(text: str, drop: frozenset[str] = frozenset()) -> list[str]:
+    """Lower-case words without a plural s, so that "recipes" meets "recipe"."""
+    return [w.removesuffix("s") for w in re.findall(r"[a-z0-9]+", text.lower()) if w not in drop]
+
+
+def requested_topic(instruction: str) -> list[str]:
+    """The words a request asks to hear about ("Read me the recipe for a lasagne" -> recipe, lasagne); empty
+    when the request does not ask the robot to say something."""
+    m = _SPEECH_VERB.search(instruction)
+    if m is None:
+        return []
+    return list(dict.fromkeys(w for w in _words(m.group(2), _FILLER) if len(w) > 1))
+
+
+def first_sentence(text: str, limit: int = 120) -> str:
+    sentence = re.split(r"(?<=[.!?])\s", text.strip(), maxsplit=1)[0]
+    return sentence if len(sentence) <= limit else sentence[: limit - 3].rstrip() + "..."
+
+
+def compare(instruction: str, text: str, evidence: list[Evidence], question: str = "") -> Explanation | None:
+    """Did the utterance say what the request asked for? Word overlap between the request's topic and the
+    utterance: a missing topic word (e.g. the dish named) is a mismatch. None when nothing can be compared."""
+    topic = requested_topic(instruction)
+    if not topic or not text.strip():
+        return None
+    said = set(_words(text))
+    missing = [w for w in topic if w not in said]
+    quoted = first_sentence(text)
+    yes_no = re.match(r"\W*(did|was|is|were|have|has)\b", question.lower()) is not None
+    if not missing:
+        return Explanation(
+            explainer="text_to_speech",
+            text=("Yes: " if yes_no else "") + f'I said "{quoted}", which is what you asked for ("{instruction}").',
+            causes=[MATCHES], evidence=[e.model_copy(update={"cause": MATCHES}) for e in evidence],
+            details=[f"Every word that names what you asked for is in what I said: {', '.join(topic)}."],
+        )
+    named = " or ".join(f'"{w}"' for w in missing)
+    return Explanation(
+        explainer="text_to_speech",
+        text=("No. " if yes_no else "") + (f'What I said did not match your request: you asked "{instruction}", '
+                                            f'but I said "{quoted}", which never mentions {named}.'),
+        causes=[MISMATCH], evidence=[e.model_copy(update={"cause": MISMATCH}) for e in evidence],
+        counterfactual=f"Had my plan given my speech a text about {' and '.join(missing)}, I would have said "
+                       "what you asked for.",
+        fix="The text I speak comes from my plan's say step, not from my speech itself: ask me again and "
+            "name exactly what you want to hear, so that the plan carries the right text.",
+        details=[f"The words of your request that name what to say: {', '.join(topic)}; missing from what I "
+                 f"said: {', '.join(missing)}.", "My speech says the text it is given; it does not choose it."],
+    )
 
 
 def render(record: StatusRecord) -> str:
@@ -75,6 +147,13 @@ class TextToSpeechExplainer:
                 self.name, "I started speaking, but the recording does not show how the utterance ended."
             )
         text = started.get("text", "") or ""
+        if CONTENT_QUESTION.search(question.lower()):
+            evidence = [Evidence(cause=MISMATCH, topic=SAY_EVENTS, t=started.t, item=render(started))]
+            compared = compare(context.task.instruction, text, evidence, question)
+            if compared is not None:
+                return compared
+            return Explanation(explainer=self.name, text=f'I said: "{first_sentence(text, 200)}"',
+                               causes=[COMPLETED], evidence=evidence)
         words = len(text.split())
         timeout = _float(started, "timeout_s")
         wpm = _float(started, "words_per_minute")

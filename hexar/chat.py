@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import json
+import sys
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +15,9 @@ from rich.panel import Panel
 from hexar.agent.context import RunSettings
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.session import Session, default_checkpoints
+from hexar.events.errors import NoTaskError
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
 from hexar.render import clock
 
 HELP = ("Ask why I did something. Commands: /task [ID] (switch or list tasks), /evidence (toggle evidence), "
@@ -39,7 +44,10 @@ def ask(run: Path, question: str | None, questions: Path | None, task: str | Non
         for line in lines:
             result = session.ask(line, task=task)
             worst = max(worst, 2 if result["error"] else 0)
-            print(json.dumps(result) if as_json else result["answer"] or f"ERROR: {result['error']}")
+            if as_json:
+                print(json.dumps(result))
+            else:
+                print(f"Q: {line}\n{result['answer'] or 'ERROR: ' + result['error']}\n")
         return worst
     result = session.ask(question or "", task=task)
     if result["error"]:
@@ -57,26 +65,21 @@ def ask(run: Path, question: str | None, questions: Path | None, task: str | Non
 
 def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None,
          phrase: bool | None = None) -> int:
-    from prompt_toolkit import PromptSession
-    from prompt_toolkit.history import FileHistory
-
     session = Session(RunSettings(recording=run, llm=llm, phrase=phrase),
                       checkpoints=checkpoints or default_checkpoints())
     thread = thread or session.new_thread()
-    history_file = (checkpoints or default_checkpoints()).with_name("chat_history")
-    prompt: PromptSession[str] = PromptSession(history=FileHistory(str(history_file)))
     log = session.context.log
     task = log.task()
-    console.print(f"[bold]{run.name}[/bold]: task \"{task.instruction}\" ({task.outcome}); "
+    console.print(f"[bold]{escape(run.name)}[/bold]: task \"{escape(task.instruction)}\" ({task.outcome}); "
                   f"backend {session.backend.name}; thread {thread}")
     for turn in session.history(thread):
-        console.print(f"[dim]you: {turn['question']}\nHEXAR: {turn['answer']}[/dim]")
+        console.print(f"[dim]you: {escape(turn['question'])}\nHEXAR: {escape(turn['answer'])}[/dim]")
     console.print(f"[dim]{HELP}[/dim]")
+    read = _reader(checkpoints or default_checkpoints(), console)
     evidence = False
-    task_ref: str | None = None
     while True:
         try:
-            line = prompt.prompt("you> ").strip()
+            line = read()
         except EOFError:
             console.print("bye")
             return 0
@@ -94,7 +97,7 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             console.print(f"evidence {'on' if evidence else 'off'}")
             continue
         if line == "/reset":
-            thread, task_ref = session.new_thread(), None
+            thread = session.new_thread()
             console.print(f"new thread {thread}")
             continue
         if line == "/thread":
@@ -104,15 +107,50 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             arg = line.removeprefix("/task").strip()
             if not arg:
                 for t in log.tasks:
-                    console.print(f"  {t.order}. {t.task_id} \"{t.instruction or '(recovery)'}\" {t.outcome}")
+                    name = f'"{escape(t.instruction)}"' if not t.is_recovery else "(my own recovery task)"
+                    console.print(f"  {t.order}. {t.task_id} {name} {t.outcome}")
                 continue
-            task_ref = arg
-            line = "What happened?"
+            try:
+                chosen = log.task(arg)
+            except NoTaskError as e:
+                console.print(f"[yellow]{escape(str(e))}[/yellow]")
+                continue
+            session.switch(thread, chosen.task_id)
+            console.print(f"Switched to task {chosen.order}: {escape(describe(chosen, log))}. "
+                          "Ask me about it.")
+            continue
         if line == "/why":
             line = "why?"
-        result = session.ask(line, thread=thread, task=task_ref)
-        task_ref = None
+        result = session.ask(line, thread=thread)
         if result["error"]:
-            console.print(f"[yellow]{result['error']}[/yellow]")
+            console.print(f"[yellow]{escape(result['error'])}[/yellow]")
             continue
         render_answer(console, result, evidence)
+
+
+def describe(task: Task, log: EventLog) -> str:
+    from hexar.agent.content import task_name
+    from hexar.explainers.recorded import plan_words
+
+    return f"{task_name(task, log)}, {task.outcome}; its plan: {plan_words(task)}"
+
+
+def _reader(checkpoints: Path, console: Console) -> Callable[[], str]:
+    """A prompt with history in a terminal; from a pipe, plain lines with one echoed prompt each (prompt_toolkit
+    would warn that the input is not a terminal and draw its prompt twice)."""
+    if not sys.stdin.isatty():
+        def from_pipe() -> str:
+            raw = sys.stdin.readline()
+            if not raw:
+                raise EOFError
+            line = raw.strip()
+            if line:
+                console.print(f"you> {escape(line)}")
+            return line
+
+        return from_pipe
+    from prompt_toolkit import PromptSession
+    from prompt_toolkit.history import FileHistory
+
+    prompt: PromptSession[str] = PromptSession(history=FileHistory(str(checkpoints.with_name("chat_history"))))
+    return lambda: prompt.prompt("you> ").strip()

@@ -94,8 +94,15 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
+        from hexar.render import natural_key
+
         rows: list[dict[str, Any]] = []
-        for path in sorted(p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"):
+        paths = sorted((p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"), key=natural_key)
+        if not paths and not as_json:
+            out.print(f"No recordings in {folder}: record one, or write the simulated suite with "
+                      "`hexar simulate --out FOLDER`.")
+            return 0
+        for path in paths:
             try:
                 log = read_recording(path, topics={TASK_INFO})
                 task = log.task() if log.tasks else None
@@ -211,6 +218,8 @@ def web(
 def listen(
     run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
     wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
+    more_wavs: Annotated[list[Path] | None, typer.Argument(help="more WAV files after --wav FILE", show_default=False,
+                                                           metavar="[WAV]...")] = None,
     mic: Annotated[bool, typer.Option("--mic", help="listen on the default microphone (the default)")] = False,
     speak: Annotated[bool, typer.Option("--speak", help="say answers: robot TTS on a robot, else loudspeaker")] = False,
     out_dir: Annotated[Path | None, typer.Option("--out", help="write each answer as DIR/turn_NN.wav")] = None,
@@ -224,10 +233,14 @@ def listen(
     """Talk with the robot: spoken questions in, short spoken answers out; follow-ups keep the thread."""
 
     def body() -> int:
+        from hexar.errors import HexarError
         from hexar.voice.loop import listen as run_listen
 
-        return run_listen(run, wavs=wav, mic=mic, speak=speak, out_dir=out_dir, llm=llm, thread=thread,
-                          checkpoints=checkpoints, vosk_model=vosk_model, voice=voice, console=out)
+        if more_wavs and not wav:
+            raise HexarError(f"unexpected argument {more_wavs[0]}: give WAV files after --wav")
+        return run_listen(run, wavs=[*(wav or []), *(more_wavs or [])], mic=mic, speak=speak, out_dir=out_dir,
+                          llm=llm, thread=thread, checkpoints=checkpoints, vosk_model=vosk_model,
+                          voice=voice, console=out)
 
     raise typer.Exit(guarded(body))
 

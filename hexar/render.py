@@ -2,15 +2,23 @@
 
 from __future__ import annotations
 
+import re
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 
 from rich.console import Console
 from rich.markup import escape
+from rich.padding import Padding
 from rich.table import Table
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
+
+
+def natural_key(path: Path) -> list[int | str]:
+    """bagfile_2_1 before bagfile_10_1: digit runs compare as numbers."""
+    return [int(part) if part.isdigit() else part.lower() for part in re.split(r"(\d+)", path.name)]
 
 
 def clock(t: int) -> str:
@@ -61,7 +69,10 @@ def log_dict(log: EventLog) -> dict[str, Any]:
 def print_inspection(console: Console, log: EventLog) -> None:
     console.print(f"[bold]{log.path.name}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
                   f"{clock(log.start)} to {clock(log.end)} UTC")
-    topics = Table("topic", "type", "messages", title="Topics", title_justify="left")
+    topics = Table(title="Topics", title_justify="left")
+    topics.add_column("topic", overflow="fold")
+    topics.add_column("type", overflow="fold")  # wrapped, never cut: the type is what a user looks up
+    topics.add_column("messages", justify="right", no_wrap=True)
     for info in log.topics.values():
         topics.add_row(info.topic, info.type, str(info.count))
     console.print(topics)
@@ -72,16 +83,34 @@ def print_inspection(console: Console, log: EventLog) -> None:
                       f"[{colour}]{task.outcome}[/{colour}]")
         if not task.valid:
             console.print(f"  invalid plan: {escape(task.error_msg)}")
-        table = Table("#", "skill", "status", "started", "ended", "error")
-        for run in task.skills:
-            started = run.time_of("running")
-            ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
-            table.add_row(str(run.index + 1), escape(run.label()), run.state,
-                          clock(started) if started else "", clock(ended) if ended else "", escape(run.error_msg))
-        console.print(table)
+        console.print(_steps(log, task))
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
         console.print("[yellow]No task to explain: this recording has no /task_info.[/yellow]")
     for warning in log.warnings:
         console.print(f"[yellow]warning:[/yellow] {escape(warning)}")
+
+
+def _steps(log: EventLog, task: Task) -> Table:
+    """One row per step: its number, then its name, status and times on one line (a skill name is never cut),
+    with parameters, error and the step's own recorded facts wrapped below."""
+    from hexar.explainers.recorded import step_facts
+
+    grid = Table.grid(padding=(0, 1))
+    grid.add_column(justify="right", no_wrap=True)
+    grid.add_column(overflow="fold")
+    for run in task.skills:
+        started = run.time_of("running")
+        ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
+        when = f"{clock(started)} to {clock(ended)}" if started and ended else clock(started) if started else ""
+        colour = {"succeeded": "green", "failed": "red"}.get(run.state, "yellow")
+        grid.add_row(f"  {run.index + 1}.", f"[bold]{escape(run.skill)}[/bold]  [{colour}]{run.state}[/{colour}]"
+                     f"  {when}")
+        for key, value in run.params.items():
+            grid.add_row("", Padding(f"{escape(str(key))}: {escape(repr(value))}", (0, 0, 0, 2)))
+        if run.error_msg:
+            grid.add_row("", Padding(f"[red]error:[/red] {escape(run.error_msg)}", (0, 0, 0, 2)))
+        for fact in step_facts(log, task, run):
+            grid.add_row("", Padding(f"[dim]{escape(fact)}[/dim]", (0, 0, 0, 2)))
+    return grid

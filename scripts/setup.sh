@@ -29,16 +29,24 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "HEXAR ne
 
 [ -x .venv/bin/python ] || python3 -m venv .venv
 PIP=".venv/bin/python -m pip"
-$PIP install -q --upgrade pip setuptools wheel
-$PIP install -q -e ".[dev,voice,live]"
+# pip and the build backend print notes (e.g. setuptools' editable-install advice) even with -q: show them
+# only when an install fails.
+quiet() { local log; log="$(mktemp)"; "$@" >"$log" 2>&1 || { cat "$log"; rm -f "$log"; return 1; }; rm -f "$log"; }
+quiet $PIP install -q --upgrade pip setuptools wheel
+quiet $PIP install -q -e ".[dev,voice,live]"
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"
   mkdir -p "$WHEELS"
   if ! .venv/bin/python -c 'import llama_cpp' 2>/dev/null; then
     if ! ls "$WHEELS"/llama_cpp_python-*.whl >/dev/null 2>&1; then
-      echo "building llama-cpp-python (once, about 6 minutes on 2 cores)..."
-      CMAKE_ARGS="-DGGML_NATIVE=OFF -DGGML_AVX2=ON -DGGML_FMA=ON -DGGML_F16C=ON -DLLAMA_BUILD_TOOLS=OFF -DMTMD_BUILD=OFF" \
+      echo "building llama-cpp-python (once, several minutes on 2 cores)..."
+      # Only the libraries the bindings load: llama-cpp-python's LLAVA_BUILD option is what compiles the
+      # multimodal (mtmd) sources, and llama.cpp's own tools, examples, tests and server are not needed.
+      # CMAKE_BUILD_PARALLEL_LEVEL makes the build use every core (cmake defaults to one job).
+      CMAKE_BUILD_PARALLEL_LEVEL="$(nproc)" \
+      CMAKE_ARGS="-DGGML_NATIVE=OFF -DGGML_AVX2=ON -DGGML_FMA=ON -DGGML_F16C=ON -DLLAVA_BUILD=OFF \
+-DLLAMA_BUILD_TOOLS=OFF -DLLAMA_BUILD_EXAMPLES=OFF -DLLAMA_BUILD_TESTS=OFF -DLLAMA_BUILD_SERVER=OFF -DLLAMA_CURL=OFF" \
         $PIP wheel -q --no-deps -w "$WHEELS" "llama-cpp-python==0.3.36"
     fi
     $PIP install -q "$WHEELS"/llama_cpp_python-*.whl

@@ -49,14 +49,21 @@ def _ms(since: float) -> float:
     return round((time.perf_counter() - since) * 1000, 1)
 
 
-def wav_utterances(paths: Sequence[Path]) -> list[tuple[str, Audio]]:
-    """Every utterance in the files, read before any model loads so a bad file fails fast."""
+def wav_utterances(paths: Sequence[Path], notes: list[str] | None = None) -> list[tuple[str, Audio]]:
+    """Every utterance in the files, read before any model loads so a bad file fails fast. A silent file among
+    others is skipped with a note (one quiet recording should not end the conversation); all silent is an
+    error."""
     out: list[tuple[str, Audio]] = []
     for path in paths:
         found = segments(read_wav(path))
         if not found:
-            raise NoSpeechError(f"no speech detected in {path}: is it silent or very quiet?")
+            if notes is not None:
+                notes.append(f"skipped {path.name}: no speech in it (silent or very quiet)")
+            continue
         out += [(path.name if len(found) == 1 else f"{path.name}#{i + 1}", a) for i, a in enumerate(found)]
+    if not out:
+        which = str(paths[0]) if len(paths) == 1 else f"any of the {len(paths)} files"
+        raise NoSpeechError(f"no speech detected in {which}: is it silent or very quiet?")
     return out
 
 
@@ -107,7 +114,7 @@ class Dialogue:
         heard = escape(transcript)
         if turn.question != transcript:
             heard += f" [dim](as: {escape(turn.question)})[/dim]"
-        self.console.print(f"[bold]you:[/bold] {escape(heard)}")
+        self.console.print(f"[bold]you:[/bold] {heard}")
         if is_stop(transcript):
             turn.answer = "You're welcome." if is_thanks(transcript) else "Goodbye."
             turn.spoken = [turn.answer]
@@ -155,8 +162,9 @@ def listen(run: Path, wavs: Sequence[Path] | None = None, mic: bool = False, spe
         speak = True
     # cheap checks first: a bad file or missing microphone should not wait for the models to load
     source: Iterator[tuple[str, Audio]] | list[tuple[str, Audio]]
+    notes: list[str] = []
     if wavs:
-        source = wav_utterances(wavs)
+        source = wav_utterances(wavs, notes)
     else:
         from hexar.voice.mic import open_microphone
 
@@ -171,6 +179,8 @@ def listen(run: Path, wavs: Sequence[Path] | None = None, mic: bool = False, spe
         console.print(f"[bold]{escape(run.name)}[/bold]: task \"{escape(task.instruction)}\" ({task.outcome}); "
                       f"backend {session.backend.name}; speech {transcriber.name} -> "
                       f"{', '.join(s.name for s in speakers)}; thread {dialogue.thread}")
+        for note in notes:
+            console.print(f"[yellow]{escape(note)}[/yellow]")
         console.print("[dim]Ask why I did something; say \"stop\" or \"thank you\" to end. "
                       f"Continue in text with: hexar chat {escape(str(run))} --thread {dialogue.thread}[/dim]")
         return dialogue.run(source)

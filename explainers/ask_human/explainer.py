@@ -18,7 +18,6 @@ from hexar.explainers.ask_human.variables import (
     TRANSITION_OF_STATE,
     WORLD,
     assignment,
-    label,
     phrase,
 )
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
@@ -65,6 +64,17 @@ def last_execution(records: list[StatusRecord]) -> list[Step]:
 def shipped_model() -> CausalModel:
     """The packaged model, loaded once per process: it is read-only, and pgmpy takes a second to load it."""
     return CausalModel.load()
+
+
+def chance(p: float) -> str:
+    """0.82 -> "about 4 in 5": odds a person can use, with the smallest denominator that is close enough."""
+    for d in range(2, 11):
+        k = round(p * d)
+        if abs(p - k / d) <= 0.03:
+            if k == 0:
+                return "almost no"
+            return "almost a certain" if k == d else f"about {k} in {d}"
+    return f"about {round(p * 100)} in 100"
 
 
 def _likely(p: float) -> str:
@@ -143,26 +153,23 @@ class AskHumanForHelpExplainer:
         text = f"I could not get help: {because or 'the step of ' + STEP_NAMES[state] + ' failed'}."
         # The error string is left out on purpose: "Person not found" also ends unstable and too-far
         # detections, and would name the wrong cause.
-        details = [f"The skill failed while {STEP_NAMES[state]} ({transition} -> failure)."]
+        details = [f"The skill failed while {STEP_NAMES[state]}."]
         counterfactual = None
         if cf is not None:
             had = " and ".join(phrase(v, new) for v, _, new in cf.changes)
             if cf.flips:
                 text += f" If {had}, I would {_likely(cf.p_success)} have got the help I needed."
-            was = " and ".join(f"{v} = {by_key[v].value}" for v, _, _ in cf.changes)
-            setting = ", ".join(f"{v} {label(v, new)}" for v, _, new in cf.changes)
-            counterfactual = f"The skill failed at the {state} transition because {was}; had {setting}, " + (
-                f"the skill would have succeeded (P(success) = {cf.p_success:.2f})."
+            odds = chance(cf.p_success)
+            counterfactual = (
+                f"If {had}, I would {_likely(cf.p_success)} have got the help I needed ({odds} chance)."
                 if cf.flips
-                else f"success would still not be likely (P(success) = {cf.p_success:.2f})."
+                else f"Even if {had}, getting help would still not have been likely ({odds} chance)."
             )
-            found = (
-                "smallest that makes success most probable" if cf.flips else "none makes success likely; best"
-            )
+            found = "the smallest one that makes success most likely" if cf.flips else "none makes success likely"
             details.append(
-                f"Counterfactual search over the learned causal model ({self.causal.meta.get('executions')} "
-                f"simulated executions): {cf.tried} intervention(s) on the causes of {transition} tried; "
-                f"{found}: do({setting}), P(success) = {cf.p_success:.2f}."
+                f"I checked {cf.tried} possible change(s) against what I learned from "
+                f"{self.causal.meta.get('executions')} simulated runs of this skill; {found}: {had} "
+                f"({odds} chance of success)."
             )
         return Explanation(
             explainer=NAME,
@@ -237,9 +244,9 @@ class AskHumanForHelpExplainer:
                 )
             text += "."
             counterfactual = (
-                f"The approach risk was high because person_std_rms = {std.value} m; had person_std_rms "
-                f"been <= {NOISE_LIMIT} m, a poor approach would have had P = {p_steady:.2f} instead of "
-                f"{p_noisy:.2f}."
+                f"Had the person's position varied by less than {_cm(str(NOISE_LIMIT))} (it varied by "
+                f"{_cm(std.value)}), a poor approach would have had {chance(p_steady)} chance instead of "
+                f"{chance(p_noisy)}."
             )
             return Explanation(
                 explainer=NAME,
@@ -266,10 +273,12 @@ class AskHumanForHelpExplainer:
             causes=[cause],
             evidence=[err.evidence(cause)],
             counterfactual=(
-                "The poor approach happened while the person's position was known precisely "
-                f"(person_std_rms <= {NOISE_LIMIT} m), where the model gives it only P = {p_steady:.2f}; it "
-                "came from the navigation's final approach."
+                f"I knew where the person was to within {_cm(str(NOISE_LIMIT))}, and then a poor approach has "
+                f"only {chance(p_steady)} chance: it came from my navigation's final approach, so a better "
+                "final approach would have put me in the right place."
             ),
+            fix="Give me a little more room around the person, or have my navigation's final approach (its "
+            "goal tolerance) checked.",
             details=[
                 "The person's position was known precisely, so the error comes from navigation, "
                 "not perception."

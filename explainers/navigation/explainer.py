@@ -41,8 +41,10 @@ def _focus(context: Context) -> SkillRun | None:
     if failed is not None and failed.skill in NAV_SKILLS:
         return failed
     lo, hi = context.window
+    # Strict overlap: a step that merely ends where the window starts (the trip before an approach to a
+    # person) is not the trip this window is about.
     inside = [r for r in context.task.skills if r.skill in NAV_SKILLS and r.history
-              and context.task.skill_window(r)[0] <= hi and context.task.skill_window(r)[1] >= lo]
+              and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
     return inside[-1] if inside else None
 
 

@@ -17,7 +17,7 @@ def _session(suite: Path, rec: str, db: Path) -> Session:
 
 @pytest.mark.parametrize(("rec", "cause", "evidence_word"), [
     ("bagfile_5_1", "navigation.blocked_path", "Failed to make progress"),
-    ("bagfile_7_2", "navigation.charging", "data=True"),
+    ("bagfile_7_2", "navigation.charging", "my charger was on (/power/is_charging)"),
     ("bagfile_12_1", "ask_human.person_too_far", "person_distance"),
     ("bagfile_19_1", "tts.timeout", "timed_out"),
 ])

@@ -41,6 +41,7 @@ def test_chat_answers_follow_ups_and_resumes(suite: Path, tmp_path: Path) -> Non
 
     again = _spawn(suite, db, "--thread", thread)
     again.expect("you: Why didn't you bring me the coffee")
+    again.expect(r"\[controller_server\] ERROR")  # a resumed thread keeps bracketed logger names
     again.expect("you>")
     again.sendline("")
     again.sendline("/task")

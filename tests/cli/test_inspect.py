@@ -89,3 +89,50 @@ def test_verbose_answer_shows_cited_lines_verbatim(suite: Path, capsys: pytest.C
     out = capsys.readouterr().out
     assert "[controller_server] ERROR Failed to make progress" in out
     assert "route=failure_check" in out and "backend=none" in out
+
+
+def _hexar_at_80(*args: str) -> str:
+    import os
+    import subprocess
+    import sys
+
+    hexar = str(Path(sys.executable).with_name("hexar"))
+    done = subprocess.run([hexar, *args], capture_output=True, text=True, check=False, timeout=120,
+                          env={**os.environ, "COLUMNS": "80", "TERM": "dumb"})
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_inspect_at_80_columns_shows_whole_skill_names_and_their_facts(suite: Path) -> None:
+    out = _hexar_at_80("inspect", str(suite / "bagfile_20_1"))
+    assert all(len(line) <= 80 for line in out.splitlines())
+    assert "recommend_pizza  succeeded" in out and "say  succeeded" in out
+    assert "recommended: Margherita" in out and "ingredients available:" in out
+    assert 'said: "I recommend a Margherita." (said in full' in out
+    asked = _hexar_at_80("inspect", str(suite / "bagfile_14_1"))
+    assert "ask_human_for_help  failed" in asked and "approached the person at (" in asked
+    assert "question: 'Could you please put the coffee on my tray?'" in " ".join(asked.split())
+    cut = _hexar_at_80("inspect", str(suite / "bagfile_19_2"))
+    assert "cut off at the speech time limit" in cut and "got through 49 of 109 words" in cut
+
+
+def test_runs_in_natural_order_and_an_empty_folder(suite: Path, tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["runs", str(suite), "--json"]) == 0
+    names = [r["recording"] for r in json.loads(capsys.readouterr().out)]
+    assert names[:4] == ["bagfile_1_1", "bagfile_1_2", "bagfile_1_3", "bagfile_2_1"]
+    assert names.index("bagfile_9_3") < names.index("bagfile_10_1")
+    assert main(["runs", str(tmp_path)]) == 0
+    assert "No recordings in" in capsys.readouterr().out
+
+
+def test_ask_questions_file_echoes_each_question(suite: Path, tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    questions = tmp_path / "q.txt"
+    questions.write_text("What happened?\n\nWhy didn't you move?\n", encoding="utf-8")
+    assert main(["ask", str(suite / "bagfile_7_1"), "--questions", str(questions), "--llm", "none"]) == 0
+    out = capsys.readouterr().out
+    assert out.count("Q: ") == 2
+    first, second = out.split("Q: ")[1:]
+    assert first.startswith("What happened?\n") and "charger" in first
+    assert second.startswith("Why didn't you move?\n") and "charger" in second

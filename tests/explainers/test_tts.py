@@ -119,3 +119,45 @@ def test_unfinished_utterance_is_not_explained(tmp_path: Path) -> None:
     b.task_info(T0 + sec_ns(1), task("Running", "hi"))
     exp = explain(read_recording(b.write(tmp_path / "bag")))
     assert not exp.enough_information and "does not show how" in exp.text
+
+
+LASAGNE = ("Here is the recipe for a lasagne. Cook a meat sauce, make a white sauce, then layer lasagne sheets, "
+           "sauce and cheese three times and bake for forty minutes.")
+
+
+def recipe_bag(tmp_path: Path, instruction: str, text: str) -> EventLog:
+    b = BagBuilder()
+    steps = lambda status, err="": task_msg("rEcIpE0TtS1x2y3z", instruction,  # noqa: E731
+                                            [("say", {"input": text}, status, err)])
+    b.task_info(T0, steps("waiting"))
+    b.task_info(T0 + sec_ns(0.2), steps("Running"))
+    result = simulate_say(b, random.Random(0), T0 + sec_ns(0.2), text)
+    b.task_info(result.end, steps("succeeded" if result.succeeded else "failed", result.error_msg))
+    return read_recording(b.write(tmp_path / "bag"))
+
+
+def test_asked_for_lasagne_read_a_margherita_recipe(tmp_path: Path) -> None:
+    log = recipe_bag(tmp_path, "Read me the recipe for a lasagne", long_message(2))
+    out = TextToSpeechExplainer().explain("Did you read me the right recipe?", Context.for_task(log, log.task()))
+    assert out.causes == ["tts.utterance_mismatch"]
+    assert out.text.startswith("No. What I said did not match your request")
+    assert "Margherita" in out.text and '"lasagne"' in out.text
+    assert out.fix and "plan" in out.fix and out.counterfactual and "lasagne" in out.counterfactual
+    assert out.evidence and out.evidence[0].topic == SAY_EVENTS and "Margherita" in out.evidence[0].item
+    # the timeout stays the answer to "why did you stop?": the mismatch is a finding of its own
+    assert explain(log).causes == ["tts.timeout"]
+
+
+def test_asked_for_lasagne_read_a_lasagne_recipe(tmp_path: Path) -> None:
+    log = recipe_bag(tmp_path, "Read me the recipe for a lasagne", LASAGNE)
+    out = TextToSpeechExplainer().explain("Did you read me the right recipe?", Context.for_task(log, log.task()))
+    assert out.causes == ["tts.utterance_matches"]
+    assert out.text.startswith('Yes: I said "Here is the recipe for a lasagne."')
+    what = TextToSpeechExplainer().explain("What did you say?", Context.for_task(log, log.task()))
+    assert what.text.startswith('I said "Here is the recipe for a lasagne."')
+
+
+def test_a_request_that_asks_for_no_speech_is_not_compared(tmp_path: Path) -> None:
+    log = recipe_bag(tmp_path, "Bring me a coffee from the kitchen", "Here is your coffee.")
+    out = TextToSpeechExplainer().explain("What did you say?", Context.for_task(log, log.task()))
+    assert out.text == 'I said: "Here is your coffee."' and out.causes == ["tts.completed"]

@@ -57,6 +57,20 @@ def test_silent_wav(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     assert err == f"ERROR: no speech detected in {wav}: is it silent or very quiet?"
 
 
+def test_every_wav_silent(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    quiet = [write_wav(tmp_path / f"s{i}.wav", silence(1.0, 16_000)) for i in range(2)]
+    code, err = exit_code(capsys, wavs=quiet)
+    assert (code, err) == (2, "ERROR: no speech detected in any of the 2 files: is it silent or very quiet?")
+
+
+def test_wav_files_without_the_flag(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.cli import main
+
+    code = main(["listen", str(RUN), str(speechlike(tmp_path)), "--llm", "none"])
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and err.startswith("ERROR: unexpected argument") and "after --wav" in err
+
+
 def test_not_a_wav(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     bad = tmp_path / "q.mp3"
     bad.write_bytes(b"ID3\x03\x00" + b"\0" * 100)

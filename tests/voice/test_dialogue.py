@@ -145,3 +145,23 @@ def test_microphone_dialogue(runs: Path, tmp_path: Path, monkeypatch: pytest.Mon
     assert len(turns) == 3 and turns[1]["route"] == "followup" and turns[2]["answer"] == "You're welcome."
     assert "tts.timeout" in stated_causes(turns[0]["answer"])
     assert np.isfinite(turns[0]["timings_ms"]["transcribe"])
+
+
+def test_several_wavs_after_one_flag_skip_a_silent_one(runs: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+                                                       ) -> None:
+    """`hexar listen RUN --wav a.wav quiet.wav b.wav`: every file is heard in order, the silent one is skipped with
+    a note, and the conversation goes on in one thread."""
+    from hexar.cli import main
+
+    q1, q2 = say(EspeakSynthesizer(), tmp_path / "questions", ["Why didn't you bring me the coffee?", "Why?"])
+    quiet = write_wav(tmp_path / "questions" / "quiet.wav", silence(1.5, 16_000))
+    out = tmp_path / "answers"
+    code = main(["listen", str(runs / "bagfile_5_1"), "--wav", str(q1), str(quiet), str(q2), "--out", str(out),
+                 "--llm", "none", "--checkpoints", str(tmp_path / "threads.sqlite")])
+    printed = capsys.readouterr().out
+    assert code == 0
+    assert "skipped quiet.wav: no speech in it" in printed
+    assert "[dim]" not in printed and "[/dim]" not in printed
+    turns = [json.loads(line) for line in (out / LOG_NAME).read_text().splitlines()]
+    assert [t["source"] for t in turns] == ["q1.wav", "q2.wav"]
+    assert turns[1]["route"] == "followup" and len({t["thread"] for t in turns}) == 1

@@ -1,6 +1,7 @@
 from __future__ import annotations
 
 import random
+import re
 from dataclasses import replace
 from pathlib import Path
 from typing import Any, ClassVar
@@ -72,11 +73,10 @@ def test_too_far_counterfactual_is_a_distance_within_4m(
     assert "5.0 m" in out.text and "4.0 m" in out.text
     assert "between 2.0 and 4.0 m" in out.text  # the nearest distance bin that makes success most probable
     assert out.counterfactual is not None
-    assert (
-        "person_distance = 5.0" in out.counterfactual and "person_distance in 2.0-4.0 m" in out.counterfactual
-    )
-    p = float(out.counterfactual.rsplit("P(success) = ", 1)[1].rstrip(")."))
-    assert 0.5 < p <= 1.0
+    # said plainly, with odds a person can use and no model notation
+    assert "between 2.0 and 4.0 m" in out.counterfactual and "P(" not in out.counterfactual
+    m = re.search(r"about (\d+) in (\d+) chance", out.counterfactual)
+    assert m is not None and 0.5 < int(m.group(1)) / int(m.group(2)) <= 1.0, out.counterfactual
 
 
 def test_no_answer_counts_as_refusal(tmp_path: Path, explainer: AskHumanForHelpExplainer) -> None:
