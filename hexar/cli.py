@@ -217,6 +217,25 @@ def eval_(
     raise typer.Exit(guarded(body))
 
 
+@app.command()
+def mcp(
+    folder: Annotated[Path, typer.Argument(help="serve the recordings under this folder (read-only)")] = Path("."),
+    http: Annotated[bool, typer.Option("--http", help="streamable HTTP instead of stdio")] = False,
+    port: Annotated[int, typer.Option(help="HTTP port")] = 8000,
+    host: Annotated[str, typer.Option(help="HTTP address to listen on")] = "127.0.0.1",
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="the `ask` tool's LLM: auto, embedded, "
+                                     "ollama[:model] or none")] = "auto",
+) -> None:
+    """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
+
+    def body() -> int:
+        from hexar.mcp_server import serve
+
+        return serve(folder, http, port, host, llm)
+
+    raise typer.Exit(guarded(body))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit code (usage errors: 2, bad input: 2, success: 0)."""
     try:

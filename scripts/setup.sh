@@ -27,7 +27,7 @@ python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "HEXAR ne
 [ -x .venv/bin/python ] || python3 -m venv .venv
 PIP=".venv/bin/python -m pip"
 $PIP install -q --upgrade pip setuptools wheel
-$PIP install -q -e ".[dev,voice]"
+$PIP install -q -e ".[dev,voice,mcp,fleet]"
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"
