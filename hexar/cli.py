@@ -225,13 +225,14 @@ def mcp(
     host: Annotated[str, typer.Option(help="HTTP address to listen on")] = "127.0.0.1",
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="the `ask` tool's LLM: auto, embedded, "
                                      "ollama[:model] or none")] = "auto",
+    explainers: Annotated[Path | None, typer.Option(help="a modules.toml registering more explainers")] = None,
 ) -> None:
     """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
 
     def body() -> int:
         from hexar.mcp_server import serve
 
-        return serve(folder, http, port, host, llm)
+        return serve(folder, http, port, host, llm, explainers)
 
     raise typer.Exit(guarded(body))
 

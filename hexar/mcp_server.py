@@ -39,8 +39,9 @@ class _OneLine(logging.Filter):
         return True
 
 
-def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 8000) -> FastMCP:
-    ws = Workspace(root, llm)
+def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 8000,
+          explainers: Path | None = None) -> FastMCP:
+    ws = Workspace(root, llm, explainers)
     logging.getLogger("mcp.server.fastmcp.server").addFilter(_OneLine())
     server = FastMCP("hexar", instructions=INSTRUCTIONS, host=host, port=port, log_level="WARNING")
 
@@ -125,7 +126,7 @@ def resource_uri(recording: str, kind: str) -> str:
     return f"hexar://recording/{quote(recording, safe='')}/{kind}"
 
 
-def serve(root: Path, http: bool, port: int, host: str, llm: str) -> int:
-    server = build(root, llm, host=host, port=port)
+def serve(root: Path, http: bool, port: int, host: str, llm: str, explainers: Path | None = None) -> int:
+    server = build(root, llm, host=host, port=port, explainers=explainers)
     server.run("streamable-http" if http else "stdio")
     return 0

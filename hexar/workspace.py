@@ -62,11 +62,12 @@ def _page(items: list[Any], offset: int, limit: int, key: str) -> dict[str, Any]
 class Workspace:
     """The recordings under one folder, as a client may see them."""
 
-    def __init__(self, root: Path, llm: str = "none") -> None:
+    def __init__(self, root: Path, llm: str = "none", explainers: Path | None = None) -> None:
         if not root.is_dir():
             raise WorkspaceError(f"not a folder: {root}")
         self.root = root.resolve()
         self.llm = llm
+        self.explainers = explainers  # a modules.toml adding explainers, as for the agent
         self._logs: OrderedDict[tuple[Path, int], EventLog] = OrderedDict()
         self._sessions: OrderedDict[Path, Any] = OrderedDict()
         self._registry: Any = None
@@ -139,7 +140,7 @@ class Workspace:
         if self._registry is None:
             from hexar.explainers.registry import Registry
 
-            self._registry = Registry.load()
+            self._registry = Registry.load(config=self.explainers)
         return self._registry
 
     def explain(self, explainer: str, recording: str, question: str, task: str | None = None,
@@ -169,7 +170,7 @@ class Workspace:
         path = self.resolve(recording)
         session = self._sessions.get(path)
         if session is None:
-            session = Session(RunSettings(recording=path, llm=self.llm))
+            session = Session(RunSettings(recording=path, llm=self.llm, registry_config=self.explainers))
             self._sessions[path] = session
             if len(self._sessions) > CACHED:
                 self._sessions.popitem(last=False)
