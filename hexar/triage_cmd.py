@@ -105,6 +105,9 @@ def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[dict
 
 
 def triage_command(opts: TriageOptions, console: Console) -> int:
+    if opts.workers is not None and opts.workers < 1:
+        raise TriageError(f"--workers must be 1 or more, not {opts.workers}")
+    workers = opts.workers or default_workers()
     found = [(str(path.resolve()), rel) for path, rel in expand(opts.inputs)]
     if not found:
         raise TriageError(f"no recordings under {', '.join(opts.inputs)}")
@@ -114,13 +117,16 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
         raise TriageError(f"cannot write to {opts.out}: {err}") from err
     done = {item["key"] for item in load_results(opts.out)}
     todo = [(path, rel) for path, rel in found if path not in done]
-    workers = opts.workers or default_workers()
-    if workers < 1:
-        raise TriageError(f"--workers must be 1 or more, not {workers}")
     where = "Ray" if opts.ray is not None else f"{workers} worker{'s' if workers > 1 else ''}"
     console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
     interrupted = False
-    with (opts.out / RESULTS).open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
+    results_file = opts.out / RESULTS
+    if results_file.is_file() and results_file.stat().st_size:
+        with results_file.open("rb+") as f:
+            f.seek(-1, os.SEEK_END)
+            if f.read(1) != b"\n":
+                f.write(b"\n")  # a crash cut the last line short: start a fresh one, or the next result is lost too
+    with results_file.open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
         job = bar.add_task("triage", total=len(todo))
 
         def on_done(result: dict[str, Any]) -> None:

@@ -38,7 +38,8 @@ def write_outputs(results: list[dict[str, Any]], out: Path, figures: bool = True
 
 
 def summary(df: pd.DataFrame, results: list[dict[str, Any]]) -> dict[str, int]:
-    return {"recordings": len(results), "unreadable": sum(1 for r in results if r["error"]), "tasks": len(df),
+    return {"recordings": len(results), "unreadable": sum(1 for r in results if r["error"]),
+            "without_tasks": sum(1 for r in results if not r["error"] and not r["rows"]), "tasks": len(df),
             "failed": int((df["kind"] == "failure").sum()), "findings": int((df["kind"] == "finding").sum())}
 
 
@@ -71,7 +72,8 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
     s = summary(df, results)
     flagged = df[df["cause"] != ""]
     lines = ["# HEXAR fleet triage", "",
-             f"{s['recordings']} recordings ({s['unreadable']} unreadable), {s['tasks']} tasks: {s['failed']} failed "
+             f"{s['recordings']} recordings ({s['unreadable']} unreadable, {s['without_tasks']} without a task), "
+             f"{s['tasks']} tasks: {s['failed']} failed "
              f"or wrongly planned, {s['findings']} succeeded with a finding worth a look. Explained without an LLM "
              "by the failure check and the component explainers; every cause is backed by recorded evidence.", ""]
     lines += ["## Most frequent causes", ""]
