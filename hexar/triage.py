@@ -134,7 +134,8 @@ def expand(inputs: Iterable[str]) -> Iterator[tuple[Path, str]]:
                 base = path.parent
             else:
                 found = find_recordings(path)
-                base = path
+                # `fleet/robot-*` names robots: keep the matched folder's name; a plain folder is the fleet itself.
+                base = path.parent if glob.has_magic(raw) else path
             for rec in found:
                 real = rec.resolve()
                 if real in seen:

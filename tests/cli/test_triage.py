@@ -198,6 +198,10 @@ def test_globs_and_nested_folders(fleet: Path, tmp_path: Path) -> None:
     df = pd.read_parquet(out / "tasks.parquet")
     assert sorted(set(df["recording"])) == ["bagfile_11_1", "bagfile_12_1"]
     assert len(df[~df["recovery"]]) == 4  # two robots, two scenarios
+    from hexar.triage import expand
+
+    named = {rel for _, rel in expand([str(fleet / "robot-[ab]")])}
+    assert "robot-a/seed-1/bagfile_5_1" in named and "robot-b/seed-2/bagfile_5_1" in named
 
 
 def test_ray_local_equals_the_local_pool(fleet: Path, full: Path, tmp_path: Path) -> None:
