@@ -145,7 +145,8 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             interrupted = True
     from hexar.triage_report import write_outputs
 
-    results = load_results(opts.out)
+    wanted = {path for path, _ in found}  # the report is about these inputs, whatever else --out holds
+    results = [r for r in load_results(opts.out) if r["key"] in wanted]
     summary = write_outputs(results, opts.out, figures=opts.figures)
     bad = [r for r in results if r["error"]]
     console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "

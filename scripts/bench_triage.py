@@ -43,7 +43,9 @@ def make_fleet(base: Path) -> Path:
         return fleet
     seeds = -(-N // 60)
     for seed in range(seeds):
-        simulate_suite(fleet / f"robot-{seed:02d}", "sqlite3", seed)
+        robot = fleet / f"robot-{seed:02d}"
+        if not (robot.is_dir() and sum(1 for _ in robot.iterdir()) == 60):  # kept from an interrupted run
+            simulate_suite(robot, "sqlite3", seed)
     extra = sorted((fleet / f"robot-{seeds - 1:02d}").iterdir())[: seeds * 60 - N]
     for rec in extra:
         shutil.rmtree(rec)
