@@ -138,7 +138,9 @@ def test_ctrl_c_keeps_what_is_done_and_a_rerun_finishes_with_the_same_result(fle
                                                                              tmp_path: Path) -> None:
     out = tmp_path / "out"
     proc = subprocess.Popen([HEXAR, "triage", str(fleet), "--out", str(out), "--workers", "2", "--no-figures"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True,
+                            # a test run started in the background ignores SIGINT, and a child would inherit that
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     _wait_for_lines(out / RESULTS, 10, proc)
     os.killpg(proc.pid, signal.SIGINT)  # as Ctrl-C does: the whole process group
     stdout, stderr = proc.communicate(timeout=120)
