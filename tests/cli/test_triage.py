@@ -49,7 +49,7 @@ def make_fleet(root: Path, seeds: dict[str, tuple[int, str]]) -> Path:
 
     for robot, (seed, storage) in seeds.items():
         simulate_suite(root / robot / f"seed-{seed}", storage, seed)  # type: ignore[arg-type]
-    first = next(iter(seeds))
+    first = next(iter(seeds))  # its copies become the broken recordings: it must be sqlite3
     some = next((root / first).glob("*/bagfile_5_1"))
     broken = root / "robot-c"
     shutil.copytree(some, broken / "truncated")
@@ -217,7 +217,7 @@ def test_ray_local_equals_the_local_pool(fleet: Path, full: Path, tmp_path: Path
 @pytest.mark.slow
 def test_several_hundred_recordings(tmp_path: Path) -> None:
     """Five seeds on five robots: 300 recordings plus the broken ones, counts per cause against the truth."""
-    seeds = {f"robot-{chr(ord('a') + i)}": (10 + i, "sqlite3" if i % 2 else "mcap") for i in range(5)}
+    seeds = {f"robot-{chr(ord('a') + i)}": (10 + i, "mcap" if i % 2 else "sqlite3") for i in range(5)}
     seeds["robot-c"] = (20, "sqlite3")  # robot-c also holds the broken recordings
     fleet = make_fleet(tmp_path / "fleet", seeds)
     out = tmp_path / "out"
