@@ -333,6 +333,60 @@ def eval_(
     raise typer.Exit(guarded(body))
 
 
+@app.command()
+def mcp(
+    folder: Annotated[Path, typer.Argument(help="serve the recordings under this folder (read-only)")] = Path("."),
+    http: Annotated[bool, typer.Option("--http", help="streamable HTTP instead of stdio")] = False,
+    port: Annotated[int, typer.Option(help="HTTP port")] = 8000,
+    host: Annotated[str, typer.Option(help="HTTP address to listen on")] = "127.0.0.1",
+    llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="the `ask` tool's LLM: auto, embedded, "
+                                     "ollama[:model] or none")] = "auto",
+    explainers: Annotated[Path | None, typer.Option(help="a modules.toml registering more explainers")] = None,
+) -> None:
+    """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
+
+    def body() -> int:
+        from hexar.mcp_server import serve
+
+        return serve(folder, http, port, host, llm, explainers)
+
+    raise typer.Exit(guarded(body))
+
+
+@app.command()
+def triage(
+    inputs: Annotated[list[str] | None, typer.Argument(help="folders (nested by robot/date) or globs of recordings")]
+    = None,
+    out_dir: Annotated[Path, typer.Option("--out", help="results, tables, report, figures")] = Path("triage-out"),
+    workers: Annotated[int | None, typer.Option(help="processes [default: the machine's cores]")] = None,
+    ray: Annotated[str | None, typer.Option(help="run as Ray tasks: 'local' or a cluster address (ray://host:10001)")]
+    = None,
+    compare: Annotated[tuple[str, str] | None, typer.Option(help="compare two triage outputs or two day ranges "
+                                                            "(YYYY-MM-DD[..YYYY-MM-DD]) of --out")] = None,
+    figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
+) -> None:
+    """Explain every task of many recordings without an LLM: tables, a report of causes, resumable, or on Ray."""
+
+    def body() -> int:
+        from hexar.errors import HexarError
+
+        if compare is not None:
+            from hexar.triage_report import compare as run_compare
+            from hexar.triage_report import compare_markdown
+
+            text = compare_markdown(run_compare(compare[0], compare[1], out_dir))
+            print(text)
+            return 0
+        if not inputs:
+            raise HexarError("give folders or globs of recordings, or --compare A B")
+        from hexar.triage_cmd import TriageOptions, triage_command
+
+        where = None if ray is None else ("" if ray == "local" else ray)
+        return triage_command(TriageOptions(tuple(inputs), out_dir, workers, where, figures), out)
+
+    raise typer.Exit(guarded(body))
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit code (usage errors: 2, bad input: 2, success: 0)."""
     try:

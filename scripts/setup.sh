@@ -33,7 +33,7 @@ PIP=".venv/bin/python -m pip"
 # only when an install fails.
 quiet() { local log; log="$(mktemp)"; "$@" >"$log" 2>&1 || { cat "$log"; rm -f "$log"; return 1; }; rm -f "$log"; }
 quiet $PIP install -q --upgrade pip setuptools wheel
-quiet $PIP install -q -e ".[dev,voice,live]"
+quiet $PIP install -q -e ".[dev,voice,live,mcp,fleet]"
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"

@@ -1,0 +1,132 @@
+"""`hexar mcp`: HEXAR's explainers as Model Context Protocol tools, so any MCP client gets grounded answers.
+
+The tools and resources are thin wrappers over `hexar.workspace.Workspace`; one tool per registered explainer is
+generated from the same registry and the same tool names and descriptions the agent's router uses.
+Imported only by the `hexar mcp` command body: it pulls in the MCP SDK.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+from typing import Any
+from urllib.parse import quote, unquote
+
+from mcp.server.fastmcp import FastMCP
+from mcp.server.fastmcp.exceptions import ResourceError, ToolError
+
+from hexar.errors import USER_ERRORS
+from hexar.workspace import PAGE, Workspace
+
+INSTRUCTIONS = (
+    "HEXAR explains what a robot did in a recorded run. Start with list_recordings, pick a recording and a task, "
+    "then call the explain_* tool of the module in question (or `ask` for the whole agent). Every answer comes "
+    "with evidence: the recorded topic, time (ns) and item that support each cause. Read-only."
+)
+
+
+def _clean(ws: Workspace, err: Exception) -> str:
+    """One line, without the server's own folder in it."""
+    return str(err).replace(str(ws.root) + "/", "").replace(str(ws.root), ".").splitlines()[0]
+
+
+class _OneLine(logging.Filter):
+    """The SDK logs a traceback for every failed resource read; a user error is one line, not a traceback."""
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if record.exc_info and isinstance(record.exc_info[1], (*USER_ERRORS, ResourceError)):
+            record.exc_info = None
+        return True
+
+
+def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 8000,
+          explainers: Path | None = None) -> FastMCP:
+    ws = Workspace(root, llm, explainers)
+    logging.getLogger("mcp.server.fastmcp.server").addFilter(_OneLine())
+    server = FastMCP("hexar", instructions=INSTRUCTIONS, host=host, port=port, log_level="WARNING")
+
+    def call(fn: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
+        try:
+            result: dict[str, Any] = fn(*args, **kwargs)
+        except USER_ERRORS as err:
+            raise ToolError(_clean(ws, err)) from err
+        return result
+
+    @server.tool()
+    def list_recordings(offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+        """List the recordings in the served folder (nested folders included) with their tasks: task id,
+        instruction, outcome (succeeded, failed, invalid, running, waiting) and the failed skill. Paged."""
+        return call(ws.list_recordings, offset, limit)
+
+    @server.tool()
+    def inspect_task(recording: str, task: str | None = None) -> dict[str, Any]:
+        """Show one task of a recording: its plan, each step's status history with times (ns), errors, and the
+        time window HEXAR explains. `task`: a task id, its order number, 'first' or 'latest' (default)."""
+        return call(ws.inspect_task, recording, task)
+
+    @server.tool()
+    def timeline(recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+        """The recording's events in time order (task and step status changes, /rosout lines, joystick and
+        charging flags), at most `limit` entries per call; page on with `offset` = the returned next_offset."""
+        return call(ws.timeline, recording, offset, limit)
+
+    @server.tool()
+    def topic_contract(recording: str) -> dict[str, Any]:
+        """Which topics of the HEXAR topic contract the recording holds, with the expected type, and how many
+        messages: whether HEXAR can explain it, and what is missing."""
+        return call(ws.contract, recording)
+
+    from hexar.tools.explainer_tools import explainer_of_tool, tools_for
+
+    def explainer_tool(name: str) -> Any:
+        def explain(recording: str, question: str, task: str | None = None,
+                    evidence_offset: int = 0) -> dict[str, Any]:
+            return call(ws.explain, name, recording, question, task, evidence_offset)
+
+        return explain
+
+    for lc_tool in tools_for(ws.registry()):
+        server.add_tool(explainer_tool(explainer_of_tool(lc_tool.name)), name=lc_tool.name, description=(
+            f"{lc_tool.description}\n\nArguments: recording (path in the served folder), question, task (id, "
+            f"order number, 'first' or 'latest'; default latest), evidence_offset (evidence is paged by {PAGE}). "
+            "Returns the structured explanation: text, causes, evidence (cause, topic, t in ns, item), "
+            "counterfactual, fix, details."))
+
+    @server.tool()
+    def ask(recording: str, question: str, task: str | None = None, thread: str | None = None,
+            evidence_offset: int = 0) -> dict[str, Any]:
+        """Ask HEXAR's whole agent one question about a recording: it checks for a failure, routes to the right
+        explainer, guards the answer against the evidence, and keeps a conversation. Pass the returned `thread`
+        back for follow-ups such as "why?"."""
+        return call(ws.ask, recording, question, task, thread, evidence_offset)
+
+    def resource(fn: Any, recording: str) -> str:
+        import json
+
+        try:
+            return json.dumps(fn(unquote(recording)), indent=1)
+        except USER_ERRORS as err:
+            raise ResourceError(_clean(ws, err)) from err
+
+    @server.resource("hexar://recording/{recording}/timeline", mime_type="application/json")
+    def timeline_resource(recording: str) -> str:
+        """The first page of a recording's timeline (the `timeline` tool pages on). The recording path is
+        URL-encoded, e.g. hexar://recording/robot1%2Fbag_3/timeline."""
+        return resource(ws.timeline, recording)
+
+    @server.resource("hexar://recording/{recording}/contract", mime_type="application/json")
+    def contract_resource(recording: str) -> str:
+        """The recording's topic contract report (URL-encoded recording path)."""
+        return resource(ws.contract, recording)
+
+    return server
+
+
+def resource_uri(recording: str, kind: str) -> str:
+    return f"hexar://recording/{quote(recording, safe='')}/{kind}"
+
+
+def serve(root: Path, http: bool, port: int, host: str, llm: str, explainers: Path | None = None) -> int:
+    server = build(root, llm, host=host, port=port, explainers=explainers)
+    server.run("streamable-http" if http else "stdio")
+    return 0

@@ -1,0 +1,144 @@
+"""Fleet triage, one recording at a time: every task's outcome and, with no LLM, the explanation of what went wrong.
+
+This is the unit of work of `hexar triage`: the local process pool and Ray both call `triage_recording` and get
+plain rows (dicts of str/int/float/list) back, so results travel between processes without pickling events.
+"""
+
+from __future__ import annotations
+
+import glob
+from collections.abc import Iterable, Iterator
+from datetime import UTC, datetime
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+from hexar.errors import HexarError
+from hexar.events import EventLog, EventsError, Task, read_recording
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.errors import ExplainerError
+from hexar.explainers.planner import task_findings
+from hexar.explainers.registry import PLANNER, Registry
+from hexar.workspace import find_recordings, is_recording
+
+QUESTION = "What happened?"
+# What an explainer reports when nothing went wrong: not worth a look in a fleet report.
+BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
+
+
+class TriageError(HexarError):
+    """Bad triage input: nothing to triage, a bad option, an unreadable results folder."""
+
+
+@cache
+def registry() -> Registry:
+    """No model: explainers phrase their own template answers (the `--llm none` path)."""
+    return Registry.load(None)
+
+
+def failure_explainer(task: Task, reg: Registry) -> str | None:
+    """The agent's failure check (agent/nodes.py), without the agent: a bad plan goes to the planner, a failed
+    skill to its module's first explainer, a plan that does not fulfil the request to the planner."""
+    if not task.valid:
+        return PLANNER
+    if (failed := task.failed_skill) is not None:
+        return reg.for_module(failed.skill)[0]
+    return PLANNER if task_findings(task) else None
+
+
+def notable_finding(log: EventLog, task: Task, reg: Registry) -> Explanation | None:
+    """For a task that did not fail: the first explainer, in plan order, that found something worth a look
+    (slow, erratic or awkward behaviour), as the agent routes an open question."""
+    seen: list[str] = []
+    for run in task.skills:
+        for name in reg.for_module(run.skill):
+            if name in seen:
+                continue
+            seen.append(name)
+            exp = reg.get(name).explain(QUESTION, Context.for_task(log, task, reg))
+            if exp.enough_information and exp.causes and not set(exp.causes) <= BENIGN:
+                return exp
+    return None
+
+
+def _iso(t: int) -> str:
+    return datetime.fromtimestamp(t / 1e9, tz=UTC).isoformat(timespec="seconds")
+
+
+def robot_of(rel: str) -> str:
+    """Fleets keep recordings as ROBOT/[DATE/]RECORDING: the first folder of the path under the input."""
+    parts = rel.split("/")
+    return parts[0] if len(parts) > 1 else ""
+
+
+def task_row(log: EventLog, task: Task, rel: str, reg: Registry) -> dict[str, Any]:
+    name = failure_explainer(task, reg)
+    kind = "failure" if name else ""
+    exp: Explanation | None = None
+    if name is not None:
+        exp = reg.get(name).explain(QUESTION, Context.for_task(log, task, reg))
+    elif not task.is_recovery:
+        exp = notable_finding(log, task, reg)
+        kind = "finding" if exp else ""
+    failed = task.failed_skill
+    causes = list(exp.causes) if exp else []
+    return {
+        "recording": rel,
+        "robot": robot_of(rel),
+        "storage": log.storage,
+        "task_id": task.task_id,
+        "order": task.order,
+        "instruction": task.instruction,
+        "recovery": task.is_recovery,
+        "outcome": task.outcome,
+        "failed_skill": failed.skill if failed else "",
+        "kind": kind,
+        "explainer": exp.explainer if exp else "",
+        "cause": causes[0] if causes else "",
+        "causes": causes,
+        "explanation": exp.text.split("\n")[0] if exp else "",
+        "evidence": len(exp.evidence) if exp else 0,
+        "time": _iso(task.created),
+        "day": _iso(task.created)[:10],
+        "t_ns": task.created,
+        "duration_s": round((task.last_update - task.created) / 1e9, 3),
+    }
+
+
+def triage_recording(path: Path, rel: str) -> dict[str, Any]:
+    """One recording's rows, or its one-line error; never raises for a bad recording."""
+    try:
+        log = read_recording(path)
+        reg = registry()
+        # A recording without tasks is readable, just not explainable: it is counted, not listed as bad.
+        return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": ""}
+    except (EventsError, ExplainerError) as err:
+        return {"recording": rel, "rows": [], "error": str(err).splitlines()[0] if str(err) else type(err).__name__}
+    except Exception as err:  # an explainer bug on odd data must not stop a fleet run: report it as that run's
+        return {"recording": rel, "rows": [], "error": f"{type(err).__name__}: {err}".splitlines()[0]}
+
+
+def expand(inputs: Iterable[str]) -> Iterator[tuple[Path, str]]:
+    """Recordings under folders or globs, nested at any depth, each with its name relative to its input."""
+    seen: set[Path] = set()
+    for raw in inputs:
+        matches = sorted(glob.glob(raw, recursive=True)) if glob.has_magic(raw) else [raw]
+        if not matches:
+            raise TriageError(f"no recordings match {raw!r}")
+        for match in matches:
+            path = Path(match)
+            if not path.exists():
+                raise TriageError(f"no such folder or recording: {raw}")
+            if is_recording(path):
+                found: Iterable[Path] = [path]
+                base = path.parent
+            else:
+                found = find_recordings(path)
+                # `fleet/robot-*` names robots: keep the matched folder's name; a plain folder is the fleet itself.
+                base = path.parent if glob.has_magic(raw) else path
+            for rec in found:
+                real = rec.resolve()
+                if real in seen:
+                    continue
+                seen.add(real)
+                yield rec, rec.relative_to(base).as_posix()

@@ -1,0 +1,174 @@
+"""`hexar triage`: every task of every recording, explained without an LLM, on a process pool or on Ray.
+
+Resumable: each finished recording is appended as one JSON line to OUT/results.jsonl at once, so a crash or
+Ctrl-C keeps what is done and a re-run skips it. The tables, report and figures are rebuilt from that file.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+from collections.abc import Callable, Iterator
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TextIO
+
+from rich.console import Console
+from rich.markup import escape
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
+
+from hexar.triage import TriageError, expand, registry, triage_recording
+
+RESULTS = "results.jsonl"
+
+
+@dataclass(frozen=True)
+class TriageOptions:
+    inputs: tuple[str, ...]
+    out: Path
+    workers: int | None = None
+    ray: str | None = None  # None: local pool; "": a local Ray instance; else a cluster address
+    figures: bool = True
+    progress: bool = True
+
+
+def default_workers() -> int:
+    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1))
+
+
+def load_results(out: Path) -> list[dict[str, Any]]:
+    """The finished recordings; a line cut short by a crash is dropped (its recording runs again)."""
+    path = out / RESULTS
+    if not path.is_file():
+        return []
+    done: dict[str, dict[str, Any]] = {}
+    for line in path.read_text(encoding="utf-8").splitlines():
+        try:
+            item = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        if isinstance(item, dict) and "key" in item:
+            done[item["key"]] = item
+    return list(done.values())
+
+
+def _ignore_sigint() -> None:
+    """Workers leave Ctrl-C to the parent, which stops handing out work and keeps what is finished."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _work(path: str, rel: str) -> dict[str, Any]:
+    result = triage_recording(Path(path), rel)
+    result["key"] = path
+    return result
+
+
+def warm() -> None:
+    """Load the explainers and the help-seeking causal model before forking, so no worker pays for it."""
+    registry()
+    from hexar.explainers.ask_human.explainer import shipped_model
+
+    shipped_model()
+
+
+def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[dict[str, Any]], None]) -> None:
+    if workers == 1:
+        for path, rel in todo:
+            on_done(_work(path, rel))
+        return
+    import multiprocessing
+
+    warm()
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
+                             initializer=_ignore_sigint) as pool:
+        pending: set[Future[dict[str, Any]]] = set()
+        queue: Iterator[tuple[str, str]] = iter(todo)
+        try:
+            # A bounded window of submitted work: memory stays flat for any number of recordings.
+            for path, rel in queue:
+                pending.add(pool.submit(_work, path, rel))
+                if len(pending) >= workers * 4:
+                    break
+            while pending:
+                finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    on_done(fut.result())
+                    nxt = next(queue, None)
+                    if nxt is not None:
+                        pending.add(pool.submit(_work, *nxt))
+        except KeyboardInterrupt:
+            for fut in pending:
+                fut.cancel()
+            raise
+
+
+def triage_command(opts: TriageOptions, console: Console) -> int:
+    if opts.workers is not None and opts.workers < 1:
+        raise TriageError(f"--workers must be 1 or more, not {opts.workers}")
+    workers = opts.workers or default_workers()
+    found = [(str(path.resolve()), rel) for path, rel in expand(opts.inputs)]
+    if not found:
+        raise TriageError(f"no recordings under {', '.join(opts.inputs)}")
+    try:
+        opts.out.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise TriageError(f"cannot write to {opts.out}: {err}") from err
+    done = {item["key"] for item in load_results(opts.out)}
+    todo = [(path, rel) for path, rel in found if path not in done]
+    where = "Ray" if opts.ray is not None else f"{workers} worker{'s' if workers > 1 else ''}"
+    console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
+    interrupted = False
+    results_file = opts.out / RESULTS
+    if results_file.is_file() and results_file.stat().st_size:
+        with results_file.open("rb+") as f:
+            f.seek(-1, os.SEEK_END)
+            if f.read(1) != b"\n":
+                f.write(b"\n")  # a crash cut the last line short: start a fresh one, or the next result is lost too
+    with results_file.open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
+        job = bar.add_task("triage", total=len(todo))
+
+        def on_done(result: dict[str, Any]) -> None:
+            _append(sink, result)
+            bar.advance(job)
+            bar.refresh()
+
+        try:
+            if opts.ray is not None:
+                from hexar.triage_ray import run_ray
+
+                run_ray(todo, opts.ray, opts.workers, on_done)
+            else:
+                run_local(todo, workers, on_done)
+        except KeyboardInterrupt:
+            interrupted = True
+    from hexar.triage_report import write_outputs
+
+    wanted = {path for path, _ in found}  # the report is about these inputs, whatever else --out holds
+    results = [r for r in load_results(opts.out) if r["key"] in wanted]
+    summary = write_outputs(results, opts.out, figures=opts.figures)
+    bad = [r for r in results if r["error"]]
+    console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "
+                  f"{summary['findings']} with a finding; {len(bad)} unreadable")
+    for r in bad[:20]:
+        console.print(f"  [yellow]unreadable[/yellow] {escape(r['recording'])}: {escape(r['error'])}")
+    if len(bad) > 20:
+        console.print(f"  ... and {len(bad) - 20} more in {opts.out / 'report.md'}")
+    console.print(f"wrote {opts.out / 'tasks.parquet'}, tasks.jsonl, report.md")
+    if interrupted:
+        console.print(f"[yellow]interrupted: {len(results)} of {len(found)} recordings done; run again to "
+                      "finish the rest[/yellow]")
+        return 130
+    return 0
+
+
+def _append(sink: TextIO, result: dict[str, Any]) -> None:
+    sink.write(json.dumps(result, ensure_ascii=False) + "\n")
+    sink.flush()
+
+
+def _progress(console: Console, enabled: bool) -> Progress:
+    return Progress(TextColumn("[progress.description]{task.description}"), BarColumn(), MofNCompleteColumn(),
+                    TimeRemainingColumn(), console=console, disable=not enabled, transient=False,
+                    auto_refresh=False)  # no refresh thread: the pool forks, and a fork must not copy a held lock

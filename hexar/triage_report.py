@@ -1,0 +1,179 @@
+"""The outputs of `hexar triage`: a Parquet and a JSON-lines table of all tasks, a Markdown report, figures, and
+`--compare` between two runs or periods."""
+
+from __future__ import annotations
+
+import json
+import re
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from hexar.triage import TriageError
+
+COLUMNS = ["recording", "robot", "storage", "task_id", "order", "instruction", "recovery", "outcome", "failed_skill",
+           "kind", "explainer", "cause", "causes", "explanation", "evidence", "time", "day", "t_ns", "duration_s"]
+TOP = 10
+
+
+def table(results: list[dict[str, Any]]) -> pd.DataFrame:
+    rows = [row for r in sorted(results, key=lambda r: r["recording"]) for row in r["rows"]]
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def write_outputs(results: list[dict[str, Any]], out: Path, figures: bool = True) -> dict[str, int]:
+    df = table(results)
+    with (out / "tasks.jsonl").open("w", encoding="utf-8") as f:
+        for row in df.to_dict(orient="records"):
+            f.write(json.dumps(row, ensure_ascii=False) + "\n")
+    try:
+        df.to_parquet(out / "tasks.parquet", index=False)
+    except ImportError as err:
+        raise TriageError("Parquet output needs pyarrow: pip install 'hexar[fleet]'") from err
+    pictures = draw(df, out) if figures else []
+    (out / "report.md").write_text(report(df, results, pictures), encoding="utf-8")
+    return summary(df, results)
+
+
+def summary(df: pd.DataFrame, results: list[dict[str, Any]]) -> dict[str, int]:
+    return {"recordings": len(results), "unreadable": sum(1 for r in results if r["error"]),
+            "without_tasks": sum(1 for r in results if not r["error"] and not r["rows"]), "tasks": len(df),
+            "failed": int((df["kind"] == "failure").sum()), "findings": int((df["kind"] == "finding").sum())}
+
+
+def _md(text: object) -> str:
+    """Recorded text in a Markdown table cell: no pipes, no newlines, no HTML."""
+    return re.sub(r"[|<>\n\r`]", " ", str(text)).strip()
+
+
+def _counts(series: pd.Series, title: str, what: str) -> list[str]:
+    lines = [f"### By {title}", "", f"| {what} | tasks |", "|---|---:|"]
+    lines += [f"| {_md(k) or '(none)'} | {v} |" for k, v in series.value_counts().items()]
+    return [*lines, ""]
+
+
+def look_first(df: pd.DataFrame) -> pd.DataFrame:
+    """Recordings with failures first, a rare cause (a new problem) before a common one, then more findings."""
+    flagged = df[df["cause"] != ""]
+    if flagged.empty:
+        return flagged
+    freq = flagged["cause"].value_counts()
+    per = flagged.groupby("recording").agg(failures=("kind", lambda k: int((k == "failure").sum())),
+                                           findings=("kind", lambda k: int((k == "finding").sum())),
+                                           cause=("cause", "first"), explanation=("explanation", "first"),
+                                           robot=("robot", "first"), time=("time", "first"))
+    per["rarity"] = per["cause"].map(freq)
+    return per.sort_values(["failures", "rarity", "findings"], ascending=[False, True, False]).head(TOP)
+
+
+def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str]) -> str:
+    s = summary(df, results)
+    flagged = df[df["cause"] != ""]
+    lines = ["# HEXAR fleet triage", "",
+             f"{s['recordings']} recordings ({s['unreadable']} unreadable, {s['without_tasks']} without a task), "
+             f"{s['tasks']} tasks: {s['failed']} failed "
+             f"or wrongly planned, {s['findings']} succeeded with a finding worth a look. Explained without an LLM "
+             "by the failure check and the component explainers; every cause is backed by recorded evidence.", ""]
+    lines += ["## Most frequent causes", ""]
+    for cause, n in flagged["cause"].value_counts().head(TOP).items():
+        ex = flagged[flagged["cause"] == cause].iloc[0]
+        lines += [f"- **{_md(cause)}**: {n} tasks. Example, {_md(ex['recording'])} ({ex['time']}): "
+                  f"\"{_md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
+    lines += ["", "## Counts", ""]
+    lines += _counts(flagged["cause"], "cause", "cause")
+    lines += _counts(flagged["explainer"], "module (explainer)", "explainer")
+    lines += _counts(flagged["robot"], "robot", "robot")
+    lines += _counts(flagged["day"], "day", "day")
+    lines += ["### Outcomes", "", "| outcome | tasks |", "|---|---:|"]
+    lines += [f"| {k} | {v} |" for k, v in df["outcome"].value_counts().items()] + [""]
+    lines += ["## Recordings to look at first", "", "| recording | robot | time | failures | findings | cause | "
+              "explanation |", "|---|---|---|---:|---:|---|---|"]
+    for rec, row in look_first(df).iterrows():
+        lines.append(f"| {_md(rec)} | {_md(row['robot'])} | {row['time']} | {row['failures']} | {row['findings']} | "
+                     f"{_md(row['cause'])} | {_md(row['explanation'])} |")
+    bad = [r for r in results if r["error"]]
+    if bad:
+        lines += ["", "## Unreadable recordings", "", "| recording | error |", "|---|---|"]
+        lines += [f"| {_md(r['recording'])} | {_md(r['error'])} |" for r in bad]
+    if pictures:
+        lines += ["", "## Figures", ""] + [f"![{p}]({p})" for p in pictures]
+    return "\n".join(lines) + "\n"
+
+
+def draw(df: pd.DataFrame, out: Path) -> list[str]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    flagged = df[df["cause"] != ""]
+    if flagged.empty:
+        return []
+    names = []
+    for key, name, title in (("day", "causes_over_time.png", "Causes per day"),
+                             ("robot", "causes_per_robot.png", "Causes per robot")):
+        counts = flagged.assign(robot=flagged["robot"].replace("", "(unnamed)")).pivot_table(
+            index=key, columns="cause", values="task_id", aggfunc="count", fill_value=0)
+        fig, ax = plt.subplots(figsize=(10, 5))
+        counts.plot(kind="bar", stacked=True, ax=ax, colormap="tab20", width=0.8)
+        ax.set_title(title)
+        ax.set_ylabel("tasks")
+        ax.set_xlabel(key)
+        ax.legend(fontsize=7, bbox_to_anchor=(1.01, 1), loc="upper left")
+        fig.tight_layout()
+        fig.savefig(out / name, dpi=110)
+        plt.close(fig)
+        names.append(name)
+    return names
+
+
+_PERIOD = re.compile(r"^(\d{4}-\d{2}-\d{2})(?:\.\.(\d{4}-\d{2}-\d{2}))?$")
+
+
+def _side(spec: str, base: Path | None) -> pd.DataFrame:
+    """A triage output folder, its tasks.jsonl/.parquet, or a day range DAY[..DAY] of the run in --out."""
+    path = Path(spec)
+    if path.is_dir():
+        path = path / "tasks.parquet" if (path / "tasks.parquet").is_file() else path / "tasks.jsonl"
+    if path.is_file():
+        try:
+            return pd.read_parquet(path) if path.suffix == ".parquet" else pd.read_json(path, lines=True, dtype=False)
+        except (ValueError, OSError, ImportError) as err:
+            raise TriageError(f"cannot read triage results {path}: {err}") from err
+    m = _PERIOD.match(spec)
+    if m and base is not None and (base / "tasks.jsonl").is_file():
+        df = _side(str(base), None)
+        first, last = m.group(1), m.group(2) or m.group(1)
+        return df[(df["day"] >= first) & (df["day"] <= last)]
+    raise TriageError(f"cannot compare {spec!r}: give a triage output folder, a tasks file, or a day range "
+                      "YYYY-MM-DD[..YYYY-MM-DD] of the run in --out")
+
+
+def compare(a: str, b: str, base: Path | None) -> dict[str, Any]:
+    """Per cause: tasks in A and in B, per 100 tasks, and the change; causes that appeared or disappeared."""
+    da, db = _side(a, base), _side(b, base)
+    ca, cb = Counter(da.loc[da["cause"] != "", "cause"]), Counter(db.loc[db["cause"] != "", "cause"])
+    na, nb = max(len(da), 1), max(len(db), 1)
+    rows = [{"cause": cause, "a": ca[cause], "b": cb[cause], "a_per_100": round(100 * ca[cause] / na, 1),
+             "b_per_100": round(100 * cb[cause] / nb, 1), "change": cb[cause] - ca[cause]}
+            for cause in sorted(set(ca) | set(cb), key=lambda k: (-abs(cb[k] - ca[k]), k))]
+    return {"a": a, "b": b, "tasks_a": len(da), "tasks_b": len(db),
+            "failed_a": int((da["kind"] == "failure").sum()), "failed_b": int((db["kind"] == "failure").sum()),
+            "new": [r["cause"] for r in rows if r["a"] == 0], "gone": [r["cause"] for r in rows if r["b"] == 0],
+            "causes": rows}
+
+
+def compare_markdown(result: dict[str, Any]) -> str:
+    lines = [f"# Triage: {_md(result['a'])} vs {_md(result['b'])}", "",
+             f"Tasks: {result['tasks_a']} -> {result['tasks_b']}; failed: {result['failed_a']} -> "
+             f"{result['failed_b']}.", ""]
+    if result["new"]:
+        lines.append(f"New causes: {', '.join(result['new'])}.")
+    if result["gone"]:
+        lines.append(f"Gone: {', '.join(result['gone'])}.")
+    lines += ["", "| cause | A | B | A per 100 tasks | B per 100 tasks | change |", "|---|---:|---:|---:|---:|---:|"]
+    lines += [f"| {r['cause']} | {r['a']} | {r['b']} | {r['a_per_100']} | {r['b_per_100']} | {r['change']:+d} |"
+              for r in result["causes"]]
+    return "\n".join(lines) + "\n"
