@@ -66,3 +66,46 @@ def decode_pose_cov(raw: bytes) -> tuple[int, tuple[float, ...]] | None:
         return sec * 1_000_000_000 + nanosec, _POSE.unpack_from(raw, start)
     except (IndexError, StructError):
         return None
+
+
+_TWIST = Struct("<6d")  # linear xyz, angular xyz
+
+
+def _after_header(raw: bytes) -> tuple[int, int]:
+    """(header stamp in ns, payload offset just after the header's frame_id) of a stamped message."""
+    sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+    (size,) = _U32.unpack_from(raw, 12)
+    return sec * 1_000_000_000 + nanosec, 12 + size
+
+
+def decode_twist(raw: bytes, stamped: bool) -> tuple[int, tuple[float, ...]] | None:
+    """(header stamp in ns or 0, the 6 doubles) of a Twist or TwistStamped, or None."""
+    try:
+        if raw[1] != 1:
+            return None
+        stamp, body = _after_header(raw) if stamped else (0, 0)
+        start = 4 + ((body + 7) & ~7)
+        if start + _TWIST.size > len(raw):
+            return None
+        return stamp, _TWIST.unpack_from(raw, start)
+    except (IndexError, StructError):
+        return None
+
+
+def decode_odom(raw: bytes) -> tuple[int, float, float, float, float] | None:
+    """(header stamp in ns, x, y, linear.x, angular.z) of a nav_msgs/msg/Odometry, or None."""
+    try:
+        if raw[1] != 1:
+            return None
+        stamp, body = _after_header(raw)
+        child = (body + 3) & ~3  # child_frame_id: uint32 length, then the bytes
+        (size,) = _U32.unpack_from(raw, 4 + child)
+        pose = 4 + ((child + 4 + size + 7) & ~7)
+        twist = pose + _POSE.size
+        if twist + _TWIST.size > len(raw):
+            return None
+        x, y = _POSE.unpack_from(raw, pose)[:2]
+        v = _TWIST.unpack_from(raw, twist)
+        return stamp, x, y, v[0], v[5]
+    except (IndexError, StructError):
+        return None
