@@ -203,10 +203,20 @@ def eval_(
     seed: Annotated[int, typer.Option(help="simulation seed of recordings that are missing")] = 0,
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
+    suite: Annotated[str, typer.Option(help="paper (the 180 cases) or real-nav2 (real Nav2 logs from public "
+                                       "threads; uses --out, --runs, --llm, --baseline, --write-baseline, "
+                                       "--tolerance)")] = "paper",
 ) -> None:
     """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
 
     def body() -> int:
+        if suite != "paper":
+            from hexar.evals.real_nav2_cli import real_nav2_main
+
+            return real_nav2_main(suite, out_dir, runs, llm, baseline, write_baseline, tolerance, out,
+                                  paper_only={"--method": method, "--scenario": scenario, "--module": module,
+                                              "--kind": kind, "--first": first, "--judge": judge,
+                                              "--audit": audit or None})
         from hexar.evals.cli import EvalOptions, eval_command
 
         opts = EvalOptions(
