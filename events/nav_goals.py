@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from hexar.events.records import GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.records import ERROR, WARN, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
 
 SOURCE = "nav2"
@@ -107,7 +107,34 @@ def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose
         open_goal.end, open_goal.state = t, _KIND_STATE[kind]
         open_goal.error = str(details.get("error", "") or details.get("msg", "")) if kind != "succeeded" else ""
         open_goal = None
-    return goals
+    return goals or _activity(logs)
+
+
+def _activity(logs: list[LogLine]) -> list[_Goal]:
+    """Nav2 at work without any goal line (the recording began after the goal was sent): one goal over the
+    lines the catalogue ties to a cause or to the progress checker; failed when Nav2 logged an error or an
+    abort, else still running as far as the recording shows."""
+    from hexar.explainers.navigation.catalogue import catalogue
+
+    cat = catalogue()
+    active: list[LogLine] = []
+    failed: LogLine | None = None
+    for line in logs:
+        if line.level < WARN:
+            continue
+        entry = cat.match(line.msg)
+        if entry is None or (entry.cause is None and entry.kind not in {"progress", "failed"}):
+            if "[ActionServer] Aborting handle" not in line.msg:
+                continue
+        active.append(line)
+        if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg):
+            failed = line
+    if not active:
+        return []
+    goal = _Goal(active[0].t, None, None, "Nav2 log (no goal line)")
+    if failed is not None:
+        goal.end, goal.state, goal.error = active[-1].t, "failed", failed.msg
+    return [goal]
 
 
 def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[Task]:

@@ -36,7 +36,7 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "The goal is outside the map / in an obstacle: pick a reachable goal on free space of the map.",
                 seen)
     if f.cause == g.OFF_COSTMAP:
-        return (f"I couldn't reach {place} because my own position was off my costmap (outside the map), "
+        return (f"I couldn't reach {place} because my own position was off my costmap, "
                 "so I may not be localized.",
                 "Set the initial pose (e.g. '2D Pose Estimate' in RViz) so that the robot is on the map, and "
                 "check the map -> odom transform.",
