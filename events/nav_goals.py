@@ -152,9 +152,13 @@ def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[Go
             history.append(StatusChange(goal.end, goal.state, goal.error))
         run = SkillRun(0, SKILL, params, tuple(history))
         task_id = f"nav2-goal-{order}"
-        updates = tuple(
-            TaskUpdate(change.t, task_id, instruction, "valid", "",
-                       (SkillStep(SKILL, params, change.status, change.error_msg),), raw="")
-            for change in history)
-        tasks.append(Task(task_id, instruction, updates, (run,), order, derived=True))
+        updates = [TaskUpdate(change.t, task_id, instruction, "valid", "",
+                              (SkillStep(SKILL, params, change.status, change.error_msg),), raw="")
+                   for change in history]
+        last = max((ln.t for ln in logs), default=goal.start)
+        if goal.end is None and last > goal.start:
+            # still running when the recording ended: its window reaches the last line recorded
+            updates.append(TaskUpdate(last, task_id, instruction, "valid", "",
+                                      (SkillStep(SKILL, params, "running", ""),), raw=""))
+        tasks.append(Task(task_id, instruction, tuple(updates), (run,), order, derived=True))
     return tasks

@@ -159,12 +159,15 @@ class Catalogue:
         self._role_cache: dict[str, str | None] = {}
 
     def match(self, msg: str) -> Entry | None:
-        """The first entry whose pattern the message holds."""
+        """The first entry with a cause whose pattern the message holds, else the first entry that matches."""
         text = clean(msg)
+        first: Entry | None = None
         for entry in self.entries:
             if entry.search(text):
-                return entry
-        return None
+                if entry.cause is not None:
+                    return entry  # e.g. a planner's exception text quoted inside "plugin failed to plan"
+                first = first or entry
+        return first
 
     def role(self, logger: str) -> str | None:
         """The Nav2 role of a logger name, e.g. `robot1.controller_server` -> controller_server."""
