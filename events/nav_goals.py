@@ -123,9 +123,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         if line.level < WARN:
             continue
         entry = cat.match(line.msg)
-        if entry is None or (entry.cause is None and entry.kind not in {"progress", "failed"}):
-            if "[ActionServer] Aborting handle" not in line.msg:
-                continue
+        nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
+        if not nav2 and "[ActionServer] Aborting handle" not in line.msg:
+            continue
         active.append(line)
         if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg):
             failed = line

@@ -69,7 +69,8 @@ def print_inspection(console: Console, log: EventLog) -> None:
     for task in log.tasks:
         label = "recovery task" if task.is_recovery else f"\"{escape(task.instruction)}\""
         if task.derived:
-            label = f"Nav2 goal {escape(task.instruction.removesuffix(' (derived from Nav2)'))} [dim](derived from Nav2: no /task_info)[/dim]"
+            goal = escape(task.instruction.removesuffix(" (derived from Nav2)"))
+            label = f"Nav2 goal: {goal} [dim](derived from Nav2: no /task_info)[/dim]"
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
         console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
                       f"[{colour}]{task.outcome}[/{colour}]")

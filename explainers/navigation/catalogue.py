@@ -1,13 +1,16 @@
-"""The Nav2 message catalogue (nav2_catalogue.yaml): what a Nav2 line means and which cause it supports.
+"""The Nav2 message catalogue (nav2_catalogue.json): what a Nav2 line means and which cause it supports.
 
 Lines are matched by their text, never dropped for an unknown logger; the logger's role (bt_navigator,
 controller_server, ...) is looked up separately, across namespaces and the names of older distros. The file is
-parsed once, on first use, so importing the explainer stays cheap.
+parsed once, on first use (JSON: a couple of milliseconds), and each pattern is compiled only when a line holds
+its literal, so importing the explainer stays cheap.
 """
 
 from __future__ import annotations
 
+import json
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import cache, cached_property
 from importlib import resources
@@ -21,7 +24,7 @@ GOAL_KINDS = END_KINDS | {"begin"}
 
 
 class CatalogueError(ExplainerError):
-    """nav2_catalogue.yaml is malformed."""
+    """nav2_catalogue.json is malformed."""
 
 
 @dataclass(frozen=True)
@@ -34,8 +37,11 @@ class Entry:
     strength: str
     distros: tuple[str, ...]
     source: str
-    keys: tuple[str, ...]
     raw: str
+
+    @cached_property
+    def keys(self) -> tuple[str, ...]:
+        return _keys(self.raw)
 
     @cached_property
     def pattern(self) -> re.Pattern[str]:
@@ -147,27 +153,54 @@ class Catalogue:
     def __init__(self, raw: dict[str, Any]) -> None:
         try:
             self.distros: list[str] = list(raw["distros"])
-            self._roles = [(role, re.compile("|".join(pats))) for role, pats in raw["roles"].items()]
+            self._role_patterns: dict[str, list[str]] = {str(k): list(v) for k, v in raw["roles"].items()}
             self.entries: tuple[Entry, ...] = tuple(
                 Entry(id=str(m["id"]), role=str(m["role"]), raw=str(m["pattern"]),
                       meaning=str(m["meaning"]), cause=m.get("cause"), kind=str(m.get("kind", "cause")),
                       strength=str(m.get("strength", "strong")), distros=_distros(m["distros"], self.distros),
-                      source=str(m["source"]), keys=_keys(str(m["pattern"])))
+                      source=str(m["source"]))
                 for m in raw["messages"])
-        except (KeyError, TypeError, ValueError, re.error) as err:
+        except (KeyError, TypeError, ValueError, AttributeError) as err:
             raise CatalogueError(f"malformed Nav2 catalogue: {err}") from err
         self._role_cache: dict[str, str | None] = {}
+        self._seen: dict[str, Entry | None] = {}
+
+    @cached_property
+    def _literals(self) -> list[tuple[str, int]]:
+        """(literal, entry index) pairs: a line holding none of an entry's literals cannot match it. Built on
+        first use, like each entry's regex, so that loading stays a parse."""
+        return [(k, i) for i, e in enumerate(self.entries) for k in e.keys]
+
+    @cached_property
+    def _keyless(self) -> list[Entry]:
+        return [e for e in self.entries if not e.keys]
 
     def match(self, msg: str) -> Entry | None:
         """The first entry with a cause whose pattern the message holds, else the first entry that matches."""
+        if msg in self._seen:  # Nav2 repeats its lines (replanning at 1 Hz, recoveries, warnings in loops)
+            return self._seen[msg]
         text = clean(msg)
+        hits = {i for k, i in self._literals if k in text}
+        candidates = [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
+        found = self._scan(text, candidates)
+        if len(self._seen) > 20_000:
+            self._seen.clear()
+        self._seen[msg] = found
+        return found
+
+    @staticmethod
+    def _scan(text: str, entries: Iterable[Entry]) -> Entry | None:
         first: Entry | None = None
-        for entry in self.entries:
+        for entry in entries:
             if entry.search(text):
                 if entry.cause is not None:
                     return entry  # e.g. a planner's exception text quoted inside "plugin failed to plan"
                 first = first or entry
         return first
+
+    @cached_property
+    def _roles(self) -> list[tuple[str, re.Pattern[str]]]:
+        return [(role, re.compile("|".join(pats))) for role, pats in self._role_patterns.items()]
 
     def role(self, logger: str) -> str | None:
         """The Nav2 role of a logger name, e.g. `robot1.controller_server` -> controller_server."""
@@ -197,11 +230,11 @@ class Catalogue:
 
 @cache
 def catalogue() -> Catalogue:
-    import yaml  # parsed once, on first use
-
-    text = resources.files("hexar.explainers.navigation").joinpath("nav2_catalogue.yaml").read_text("utf-8")
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-    raw = yaml.load(text, Loader=loader)  # noqa: S506 - a safe loader
+    text = resources.files("hexar.explainers.navigation").joinpath("nav2_catalogue.json").read_text("utf-8")
+    try:
+        raw = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise CatalogueError(f"malformed Nav2 catalogue: {err}") from err
     if not isinstance(raw, dict):
         raise CatalogueError("malformed Nav2 catalogue: not a mapping")
     return Catalogue(raw)

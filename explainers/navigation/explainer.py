@@ -56,6 +56,8 @@ def _place(context: Context, lines: list[LogLine]) -> str:
     location = run.params.get("location") if run is not None else None
     if isinstance(location, str) and location:
         return f"the {location.replace('_', ' ')}"
+    if run is not None and run.params.get("source") == "nav2" and "x" in run.params and "y" in run.params:
+        return f"the goal at ({run.params['x']:.2f}, {run.params['y']:.2f})"  # a goal derived from Nav2
     # A navigation that is no plan step (e.g. approaching a person) names its goal in the skill's own log.
     for line in lines:
         m = _NAVIGATING_TO.match(line.msg)

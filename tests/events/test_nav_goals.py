@@ -45,8 +45,10 @@ def _status_array(t: int, goals: list[tuple[int, int]]) -> object:
     ty = TYPESTORE.types
     stamp = ty["builtin_interfaces/msg/Time"](sec=t // 10**9, nanosec=t % 10**9)
     return ty["action_msgs/msg/GoalStatusArray"](status_list=[
-        ty["action_msgs/msg/GoalStatus"](goal_info=ty["action_msgs/msg/GoalInfo"](
-            goal_id=ty["unique_identifier_msgs/msg/UUID"](uuid=np.full(16, gid, dtype=np.uint8)), stamp=stamp), status=status)
+        ty["action_msgs/msg/GoalStatus"](
+            goal_info=ty["action_msgs/msg/GoalInfo"](
+                goal_id=ty["unique_identifier_msgs/msg/UUID"](uuid=np.full(16, gid, dtype=np.uint8)), stamp=stamp),
+            status=status)
         for gid, status in goals])
 
 
