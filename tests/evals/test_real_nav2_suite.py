@@ -3,8 +3,6 @@ wrong; and a run of HEXAR (no LLM) over real excerpts written as recordings."""
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
 from hexar.agent.backends import resolve
