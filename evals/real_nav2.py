@@ -119,7 +119,8 @@ def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]
 def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     m = LEVELED.match(line)
     if m:
-        records.append(_record(m["level"].upper(), m["stamp"], m["logger"], m["msg"], m["proc"]))
+        msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
+        records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))
         return
     n = NAMED.match(line)
     if n:
