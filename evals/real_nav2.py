@@ -41,12 +41,12 @@ _STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
 _LOGGER = r"\[(?P<logger>[^\]\s]*)\]:\s?"
 LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
-PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*): (?P<msg>\S.*)$")
+PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
 PROC_ONLY = re.compile(r"^\[(?P<proc>[\w./-]+-\d+)\](?P<rest>.*)$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
 ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?)\b", re.I)
 WARN_WORDS = re.compile(r"\b(warn\w*|timed out|time out|dropping|cannot|could not|couldn't|unable|exceeded|"
-                        r"not available|does not exist)\b", re.I)
+                        r"not available|does not exist|out of (map )?bounds)\b", re.I)
 
 
 @dataclass(frozen=True)
@@ -119,7 +119,8 @@ def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]
 def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     m = LEVELED.match(line)
     if m:
-        records.append(_record(m["level"].upper(), m["stamp"], m["logger"], m["msg"], m["proc"]))
+        msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
+        records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))
         return
     n = NAMED.match(line)
     if n:

@@ -3,6 +3,7 @@ body of `hexar eval --suite real-nav2`."""
 
 from __future__ import annotations
 
+import copy
 import json
 import time
 from dataclasses import dataclass
@@ -76,7 +77,7 @@ def render(report: dict[str, Any]) -> str:
 
 def baseline_of(report: dict[str, Any]) -> dict[str, Any]:
     return {"schema": BASELINE_SCHEMA, "suite": SUITE, "backend": report["backend"],
-            "created": time.strftime("%Y-%m-%d"), "summary": report["summary"],
+            "created": time.strftime("%Y-%m-%d"), "summary": copy.deepcopy(report["summary"]),
             "excerpts": {e["id"]: {"verdict": e["text"]["verdict"], "unsupported": e["text"]["unsupported"],
                                    "answer": e["answer"]} for e in report["excerpts"]}}
 
