@@ -131,7 +131,7 @@ class NavigationExplainer:
             if found is not None:
                 return [found]
         else:
-            problem = d.poor_localisation(run) or d.moving_obstacles(run)
+            problem = d.poor_localisation(run) or _held_by_collision_monitor(run) or d.moving_obstacles(run)
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":
@@ -217,6 +217,23 @@ def _speed_sentence(f: d.Finding) -> str:
     return (", ".join(parts) + ".") if parts else ""
 
 
+def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
+    """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
+    held the robot (until it let it continue)."""
+    stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
+    if not stops:
+        return None
+    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
+    resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),
+                   None)
+    if resumed is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, resumed))
+        found.facts["held_s"] = (resumed.t - stops[0].t) / 1e9
+    if run.end is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, run.end))
+    return found
+
+
 def _stall(view: View, run: d.Run) -> d.Finding | None:
     """Commands on /cmd_vel that /odom never followed: the only evidence for commands_not_reaching_base."""
     if c.CMD_VEL not in view.log.topics or c.ODOM not in view.log.topics:
@@ -291,5 +308,7 @@ def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, li
         return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
                 ["My navigation logs show no failures, recoveries or warnings for this trip."])
     verb = "failed" if failed else "did not finish"
-    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.", None,
+    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.",
+            "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
+            "and the planner's and controller's own logs at debug level." if failed else None,
             [f"The last navigation message was {_quote(run.end)}."] if run.end else [])

@@ -53,6 +53,13 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
                 "check that the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
+    if f.cause == g.COLLISION_AHEAD and run.outcome == "reached":
+        held = f" for {f.facts['held_s']:.0f} s" if "held_s" in f.facts else ""
+        return (f"It took me longer to reach {place} because my collision monitor stopped me{held}: something "
+                "was inside its stop zone, so it detected a collision ahead and held me until the way was clear.",
+                "Look at what entered the collision monitor's stop polygon (or at the polygon's size, if "
+                "nothing was there).",
+                seen)
     if f.cause == g.COLLISION_AHEAD:
         return (f"I couldn't reach {place} because my collision checking stopped me: it detected a collision "
                 "ahead and would not let me move on.",

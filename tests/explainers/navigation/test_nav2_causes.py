@@ -153,3 +153,20 @@ def test_commands_not_reaching_base_needs_cmd_vel_and_still_odometry(tmp_path: P
         moving.raw(t, "/cmd_vel", "geometry_msgs/msg/Twist", _twist(0.26))
         moving.raw(t, "/odom", "nav_msgs/msg/Odometry", _odom(t, 0.026 * i, 0.26))
     assert _explain(tmp_path, moving, "moving", storage)[0] == [g.NO_PROGRESS]
+
+
+def test_a_goal_reached_late_because_the_collision_monitor_held_the_robot(tmp_path: Path) -> None:
+    # corpus mowgli-159-collision-monitor-stop: the collision monitor held the robot 414 s, then let it go on
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    step = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(t, task_msg("t1", "mow the strip", step))
+    b.log(t + sec_ns(0.1), "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    b.log(t + sec_ns(5), "collision_monitor", INFO, "Robot to stop due to PolygonStop polygon")
+    b.log(t + sec_ns(419), "collision_monitor", INFO, "Robot to continue normal operation")
+    b.log(t + sec_ns(430), "bt_navigator", INFO, "Goal succeeded")
+    b.task_info(t + sec_ns(430.1), task_msg("t1", "mow the strip", [(*step[0][:2], "succeeded", "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    answer = NavigationExplainer().explain("Why did it take so long to get there?", Context.for_task(log, log.task()))
+    assert answer.causes == [g.COLLISION_AHEAD]
+    assert "collision monitor stopped me for 414 s" in answer.text
