@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from hexar.events.records import ERROR, WARN, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.records import ERROR, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
 
 SOURCE = "nav2"
@@ -112,16 +112,15 @@ def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose
 
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent): one goal over the
-    lines the catalogue ties to a cause or to the progress checker; failed when Nav2 logged an error or an
-    abort, else still running as far as the recording shows."""
+    lines the catalogue ties to a cause or to the progress checker (at any level: consoles pasted without
+    levels are read as INFO); failed when Nav2 logged an error or an abort, else still running as far as the
+    recording shows."""
     from hexar.explainers.navigation.catalogue import catalogue
 
     cat = catalogue()
     active: list[LogLine] = []
     failed: LogLine | None = None
     for line in logs:
-        if line.level < WARN:
-            continue
         entry = cat.match(line.msg)
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
         if not nav2 and "[ActionServer] Aborting handle" not in line.msg:

@@ -164,6 +164,10 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
             continue
         expected = c.TYPE_OF.get(conn.topic)
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic] and conn.topic in c.NAV2_TOPICS:
+            # an ordinary topic name that this robot uses for another type: not ours to read, not an error
+            warnings.append(f"skipped {conn.topic}: type {conn.msgtype}, HEXAR reads it as {expected}")
+            continue
         if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic]:
             raise UnknownMessageTypeError(
                 f"{conn.topic} has type {conn.msgtype}, but HEXAR reads it as {expected}"
