@@ -42,8 +42,7 @@ _SPEED_WORDS = re.compile(
     r"\b(move|moving|moved|drive|driving|drove|go|going|went)\s+(like (that|this)|that way|this way|so)\b",
     re.I,
 )
-_PROGRESS = ("Failed to make progress", "Controller patience exceeded")
-PROGRESS = _PROGRESS
+PROGRESS = ("Failed to make progress", "Controller patience exceeded")
 _DISTURBANCE = ("No valid trajectories", "Controller patience exceeded", "Received request to clear entirely",
                 "Running spin", "Running backup", "Running wait", "detected collision ahead")
 
@@ -83,9 +82,6 @@ class Run:
     begin: LogLine | None
     end: LogLine | None
     notes: list[Tagged] = field(default_factory=list)  # lines the catalogue ties to a cause
-
-    def notes_of(self) -> list[Tagged]:
-        return self.notes
 
     def first(self, needles: Iterable[str]) -> LogLine | None:
         return next(iter(self.matching(needles)), None)
@@ -144,7 +140,7 @@ def _flag(view: View, topic: str, window: tuple[int, int], cause: str, run: Run)
     found = Finding(cause, [Evidence(cause=cause, topic=topic, t=held[0].t, item=flag_item(held[0]))])
     if len(held) > 1:
         found.evidence.append(Evidence(cause=cause, topic=topic, t=held[-1].t, item=flag_item(held[-1])))
-    for line in (run.first(_PROGRESS), run.end if run.outcome == "failed" else None):
+    for line in (run.first(PROGRESS), run.end if run.outcome == "failed" else None):
         if line is not None:
             found.evidence.append(Evidence.of_log(cause, line))
     return found
@@ -200,7 +196,7 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
     if not planner:
         return None
     found = Finding(BLOCKED)
-    progress = run.matching(_PROGRESS)
+    progress = run.matching(PROGRESS)
     picks = progress[:1] + planner[:2] + run.matching(("Running ",))[:3]
     if run.outcome == "failed" and run.end is not None:
         picks.append(run.end)

@@ -1,10 +1,11 @@
 """Causes read from Nav2's own words (the message catalogue) and from odometry, for a goal that did not succeed.
 
 Evidence decides: a cause is claimed only when lines (or recorded motion) that support it are in the window.
-Strong lines are taken in the order of `ORDER` (a bring-up or TF fault explains the planner and controller
-failures it causes; a goal outside the map explains the planner's "no valid path"); weak lines (e.g. the TF
-message filter dropping scans, which many healthy robots print at start-up) count only when no strong line
-supports any cause. `Failed to make progress` alone is reported as what it is: no progress, cause not logged.
+The explainer takes strong lines in the order of `ORDER` (a bring-up or TF fault explains the planner and
+controller failures it causes; a goal outside the map explains the planner's "no valid path"); weak lines (e.g.
+the TF message filter dropping scans, which many healthy robots print at start-up) count only when no strong
+line supports any cause. `Failed to make progress` alone is reported as what it is: no progress, cause not
+logged.
 """
 
 from __future__ import annotations
@@ -45,16 +46,6 @@ class Tagged:
 
 def supporting(tagged: list[Tagged], cause: str, strength: str | None = None) -> list[LogLine]:
     return [t.line for t in tagged if t.entry.cause == cause and (strength is None or t.entry.strength == strength)]
-
-
-def strongest(tagged: list[Tagged]) -> tuple[str, list[LogLine]] | None:
-    """The first cause of ORDER with strong lines, else the first with weak lines."""
-    for strength in ("strong", "weak"):
-        for cause in ORDER:
-            lines = supporting(tagged, cause, strength)
-            if lines:
-                return cause, lines
-    return None
 
 
 def evidence(cause: str, lines: list[LogLine]) -> list[Evidence]:

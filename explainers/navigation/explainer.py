@@ -1,11 +1,19 @@
 """The navigation (Nav2) component explainer: log filter, situation detectors, template or LLM phrasing.
 
-Causes, each with its evidence from the recording:
+Every line is read through the Nav2 message catalogue (nav2_catalogue.json), by its text, whatever its logger.
+Causes, each with its evidence from the recording (a cause is claimed only when lines or motion support it):
 - navigation.joystick: `/joy_priority` True while the goal did not complete (plus the relay's toggle line).
 - navigation.charging: `/power/is_charging` True while the goal did not complete.
+- a goal that did not succeed, first cause with strong lines in diagnose.ORDER, then weak ones:
+  configuration_error (bring-up, plugins, BT XML, lifecycle), transform_error (TF, clocks),
+  poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap (the robot's start off the map),
+  goal_unreachable (goal outside the map or in lethal cost), docking_failure, blocked_path (the planner found
+  no valid path), collision_ahead, controller_failure, commands_not_reaching_base (/cmd_vel commanding while
+  /odom is still; never from logs alone).
+- navigation.no_progress: `Failed to make progress` and nothing that says why: the checks a person can make.
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
-- navigation.blocked_path: the goal failed with progress or planning failures and no flag explains them.
+- navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
 - navigation.moving_obstacles: the goal was reached after at least two transient trajectory failures,
   costmap clears or recoveries.
 - navigation.nominal_speed: a clean successful run asked about speed or time: configured limit (from
@@ -153,7 +161,7 @@ class NavigationExplainer:
                 elif cause == g.NOT_REACHING_BASE:
                     found = _stall(view, run) if strength == "strong" else None
                 else:
-                    lines = g.supporting(run.notes_of(), cause, strength)
+                    lines = g.supporting(run.notes, cause, strength)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
                 if found is not None:
