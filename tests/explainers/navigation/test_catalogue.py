@@ -38,7 +38,8 @@ def test_every_entry_is_well_formed() -> None:
     ("controller_server_rclcpp_node", "controller_server"), ("DWBLocalPlanner", "controller_server"),
     ("global_costmap.global_costmap", "costmap"), ("robot1.local_costmap.local_costmap", "costmap"),
     ("nav2_costmap_2d", "costmap"), ("lifecycle_manager_navigation", "lifecycle_manager"),
-    ("tf2_buffer", "tf"), ("docking_server", "docking_server"), ("my_own_node", None),
+    ("tf2_buffer", "tf"), ("transformPoseInTargetFrame", "tf"), ("BehaviorTreeEngine", "bt_navigator"),
+    ("docking_server", "docking_server"), ("my_own_node", None),
 ])
 def test_roles_across_distros_and_namespaces(logger: str, role: str | None) -> None:
     assert catalogue().role(logger) == role
