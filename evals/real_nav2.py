@@ -283,6 +283,17 @@ def with_task(index: int) -> bool:
     return index % 2 == 0
 
 
+def task_plan(excerpts: Sequence[Excerpt]) -> list[bool]:
+    """Which excerpts get a /task_info task: every other one in corpus order *within each outcome*, so failures,
+    successes and slow runs are each split between recordings with a task and recordings without one."""
+    seen: dict[str, int] = {}
+    plan = []
+    for ex in excerpts:
+        plan.append(with_task(seen.get(ex.outcome, 0)))
+        seen[ex.outcome] = seen.get(ex.outcome, 0) + 1
+    return plan
+
+
 def _goal(records: Sequence[ConsoleLine]) -> dict[str, float]:
     for r in records:
         if r.msg.startswith("Begin navigating") and (m := _GOAL.search(r.msg)):

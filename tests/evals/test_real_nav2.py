@@ -18,6 +18,7 @@ from hexar.evals.real_nav2 import (
     parse_console,
     parse_corpus,
     stamped,
+    task_plan,
     with_task,
     write_recording,
 )
@@ -195,6 +196,10 @@ def test_recording_without_task_has_only_rosout(tmp_path: Path) -> None:
                      "global_costmap.global_costmap"]
 
 
-def test_half_the_excerpts_get_a_task() -> None:
+def test_half_the_excerpts_of_each_outcome_get_a_task() -> None:
     n = len(corpus())
     assert sum(with_task(i) for i in range(n)) == (n + 1) // 2
+    plan = task_plan(corpus())
+    for outcome in ("failed", "succeeded", "slow"):
+        tasks = [t for e, t in zip(corpus(), plan, strict=True) if e.outcome == outcome]
+        assert tasks and sum(tasks) == (len(tasks) + 1) // 2
