@@ -43,8 +43,14 @@ LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
 PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
 PROC_ONLY = re.compile(r"^\[(?P<proc>[\w./-]+-\d+)\](?P<rest>.*)$")
+# Wall-clock consoles: "10:33:12  msg" (a summary pasted with times) and RCUTILS_CONSOLE_OUTPUT_FORMAT variants
+# such as "[ WARN][6:31:18.730 PM -03][controller_server]: msg". Their times become stamps on BASE_NS's day.
+_CLOCK = r"(?P<clock>\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)(?:\s*(?P<ampm>AM|PM))?(?:\s*[+-]\d{2}(?::?\d{2})?)?"
+CLOCK_LEVELED = re.compile(rf"^{_PROC}{_LEVEL}\[{_CLOCK}\]\s*(?:{_LOGGER})?(?P<msg>.*)$")
+CLOCK_PREFIX = re.compile(rf"^{_CLOCK}\s+(?P<rest>\S.*)$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
-ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?)\b", re.I)
+ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
+                         r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
 WARN_WORDS = re.compile(r"\b(warn\w*|timed out|time out|dropping|cannot|could not|couldn't|unable|exceeded|"
                         r"not available|does not exist|out of (map )?bounds)\b", re.I)
 
@@ -90,16 +96,25 @@ def infer_level(msg: str) -> int:
     return LEVELS["INFO"]
 
 
-def _record(level: str | None, stamp: str | None, logger: str | None, msg: str, proc: str | None) -> ConsoleLine:
+def _clock_ns(clock: str, ampm: str | None) -> int:
+    h, m, sec = clock.split(":")
+    hours = int(h) % 12 + (12 if ampm == "PM" else 0) if ampm else int(h)
+    whole, _, frac = sec.partition(".")
+    day = BASE_NS - BASE_NS % (86_400 * NS)
+    return day + (hours * 3600 + int(m) * 60 + int(whole)) * NS + int((frac + "000000000")[:9])
+
+
+def _record(level: str | None, stamp: str | None, logger: str | None, msg: str, proc: str | None,
+            stamp_ns: int | None = None) -> ConsoleLine:
     made: set[str] = set()
     if level is None:
         made.add("level")
-    if not stamp:
+    if not stamp and stamp_ns is None:
         made.add("stamp")
     if logger is None:
         made.add("name")
     return ConsoleLine(
-        stamp_ns=_stamp_ns(stamp) if stamp else None,
+        stamp_ns=_stamp_ns(stamp) if stamp else stamp_ns,
         level=LEVELS[level] if level is not None else infer_level(msg),
         name=logger or "",
         msg=msg,
@@ -117,6 +132,20 @@ def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]
 
 
 def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
+    c = CLOCK_LEVELED.match(line)
+    if c:
+        records.append(_record(c["level"].upper(), None, c["logger"], c["msg"], c["proc"],
+                               _clock_ns(c["clock"], c["ampm"])))
+        return
+    t = CLOCK_PREFIX.match(line)
+    if t:
+        inner: list[ConsoleLine] = []
+        _parse_line(t["rest"], "", inner)
+        for r in inner:
+            r.stamp_ns = _clock_ns(t["clock"], t["ampm"])
+            r.synthesised.discard("stamp")
+        records.extend(inner)
+        return
     m = LEVELED.match(line)
     if m:
         msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
@@ -252,6 +281,17 @@ _GOAL = re.compile(r"to \((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
 def with_task(index: int) -> bool:
     """Half of the excerpts, alternating in corpus order, get a navigation task on /task_info."""
     return index % 2 == 0
+
+
+def task_plan(excerpts: Sequence[Excerpt]) -> list[bool]:
+    """Which excerpts get a /task_info task: every other one in corpus order *within each outcome*, so failures,
+    successes and slow runs are each split between recordings with a task and recordings without one."""
+    seen: dict[str, int] = {}
+    plan = []
+    for ex in excerpts:
+        plan.append(with_task(seen.get(ex.outcome, 0)))
+        seen[ex.outcome] = seen.get(ex.outcome, 0) + 1
+    return plan
 
 
 def _goal(records: Sequence[ConsoleLine]) -> dict[str, float]:

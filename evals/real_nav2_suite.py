@@ -24,7 +24,7 @@ from hexar.agent.backends import Backend
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
-from hexar.evals.real_nav2 import DISTROS, Excerpt, corpus, with_task, write_recording
+from hexar.evals.real_nav2 import DISTROS, Excerpt, corpus, task_plan, write_recording
 
 SUITE = "real-nav2"
 NO_PROGRESS = "navigation.no_progress"
@@ -125,11 +125,10 @@ def evaluate(excerpts: Sequence[Excerpt], runs: Path, ask: Ask, step: Callable[[
     import shutil
 
     out: list[Result] = []
-    for i, ex in enumerate(excerpts):
+    for ex, task in zip(excerpts, task_plan(excerpts), strict=True):
         path = runs / ex.id
         if path.exists():
             shutil.rmtree(path)
-        task = with_task(i)
         write_recording(ex, path, task)
         question = QUESTIONS[ex.outcome]
         try:

@@ -18,6 +18,7 @@ from hexar.evals.real_nav2 import (
     parse_console,
     parse_corpus,
     stamped,
+    task_plan,
     with_task,
     write_recording,
 )
@@ -114,6 +115,37 @@ def test_bare_lines_before_the_first_stamp_are_stamped_before_it() -> None:
     assert (first.name, first.level, last.level) == ("", 30, 30)
 
 
+def test_wall_clock_summary_lines_keep_their_times_as_stamps() -> None:
+    text = ("10:33:02  Made contact with dock, waiting for charge to start\n"
+            "10:33:12  Docking failed, will retry: Timed out waiting for charge to start\n"
+            "10:34:12  [dock_robot] Aborting handle. error_code:905")
+    records = parse_console(text)
+    stamps = [r.stamp_ns for r in records]
+    assert all(s is not None for s in stamps) and stamps[1] - stamps[0] == 10 * NS and stamps[2] - stamps[1] == 60 * NS
+    assert [r.level for r in records] == [20, 40, 40]
+    assert records[0].msg == "Made contact with dock, waiting for charge to start"
+    assert all("stamp" not in r.synthesised and "level" in r.synthesised for r in records)
+
+
+def test_custom_console_format_with_a_clock_time_and_zone() -> None:
+    text = ("[ WARN][6:31:18.730 PM -03][controller_server]: RegulatedPurePursuitController detected collision ahead!\n"
+            "[ERROR][6:31:18.730 PM -03][controller_server]: Controller patience exceeded\n"
+            "[ WARN][6:31:20.761 PM -03][behavior_server]: Collision Ahead - Exiting Spin")
+    first, second, third = parse_console(text)
+    assert (first.level, first.name, second.level, third.name) == (30, "controller_server", 40, "behavior_server")
+    assert first.stamp_ns is not None and third.stamp_ns is not None
+    assert third.stamp_ns - first.stamp_ns == 2_031_000_000 and not first.synthesised
+
+
+def test_markdown_quoted_lines_and_a_crash_line_without_level() -> None:
+    text = ("> [bt_navigator-6] [ERROR] [1691138616.839305494] [bt_navigator]: Exception when loading BT: Error at "
+            "line 14: -> Node not recognized: WouldAPlannerRecoveryHelp\n\n"
+            'Thread 1 "controller_serv" received signal SIGILL, Illegal instruction.')
+    quoted, crash = parse_console(text)
+    assert (quoted.process, quoted.name, quoted.level) == ("bt_navigator-6", "bt_navigator", 40)
+    assert crash.level == 40 and crash.name == ""
+
+
 def test_corpus_loads_and_every_entry_is_readable() -> None:
     entries = corpus()
     assert len(entries) >= 20
@@ -164,6 +196,10 @@ def test_recording_without_task_has_only_rosout(tmp_path: Path) -> None:
                      "global_costmap.global_costmap"]
 
 
-def test_half_the_excerpts_get_a_task() -> None:
+def test_half_the_excerpts_of_each_outcome_get_a_task() -> None:
     n = len(corpus())
     assert sum(with_task(i) for i in range(n)) == (n + 1) // 2
+    plan = task_plan(corpus())
+    for outcome in ("failed", "succeeded", "slow"):
+        tasks = [t for e, t in zip(corpus(), plan, strict=True) if e.outcome == outcome]
+        assert tasks and sum(tasks) == (len(tasks) + 1) // 2
