@@ -85,7 +85,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
     def body() -> int:
         from hexar.errors import HexarError
         from hexar.events import EventsError, read_recording
-        from hexar.events.contract import TASK_INFO
+        from hexar.events.contract import NAV_GOAL_TOPICS, TASK_INFO
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
@@ -93,9 +93,12 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
         for path in sorted(p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"):
             try:
                 log = read_recording(path, topics={TASK_INFO})
+                if not log.tasks:  # tasks derived from Nav2 goals need the logs and goal topics
+                    log = read_recording(path, topics=NAV_GOAL_TOPICS)
                 task = log.task() if log.tasks else None
                 rows.append({"recording": path.name, "instruction": task.instruction if task else "",
-                             "outcome": task.outcome if task else "no task", "tasks": len(log.tasks)})
+                             "outcome": task.outcome if task else "no task", "tasks": len(log.tasks),
+                             "derived_from_nav2": bool(task and task.derived)})
             except EventsError as e:
                 rows.append({"recording": path.name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
         if as_json:
