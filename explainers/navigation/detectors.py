@@ -192,7 +192,11 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
     """No valid path (the planner's words), not a goal outside the map: an obstacle on the way."""
     if run.outcome == "reached":
         return None
-    planner = [n.line for n in run.notes if n.entry.cause == BLOCKED and n.entry.strength == strength]
+    gave_up = [ln.t for ln in run.matching((*PROGRESS, "[follow_path] [ActionServer] Aborting handle"))]
+    planner = [n.line for n in run.notes if n.entry.cause == BLOCKED and n.entry.strength == strength
+               # DWB's obstacle critic is an obstacle on the way only when the controller then gave up; while
+               # it keeps driving, rejected trajectories are the controller's own trouble (or a passer-by)
+               and (n.entry.kind != "disturbance" or any(t >= n.line.t for t in gave_up))]
     if not planner:
         return None
     found = Finding(BLOCKED)

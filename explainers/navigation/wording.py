@@ -74,7 +74,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 seen)
     if f.cause == g.DOCKING:
         return ("My docking failed: the docking server could not complete the docking.",
-                "Check that the dock is visible to the dock detector and that the staging pose is reachable.",
+                "Check the docking server's log: that its detector sees the target, that the staging pose is "
+                "reachable and that the contacts mate.",
                 seen)
     if f.cause == g.NOT_REACHING_BASE:
         facts = f.facts
