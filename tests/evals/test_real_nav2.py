@@ -190,7 +190,7 @@ def test_recording_with_a_navigation_task(tmp_path: Path) -> None:
 def test_recording_without_task_has_only_rosout(tmp_path: Path) -> None:
     ex = next(e for e in corpus() if e.id == "nav2-3230-tb3-off-costmap")
     log = read_recording(write_recording(ex, tmp_path / "bag", task=False, storage="mcap"))
-    assert not log.task_updates and all(t.derived for t in log.tasks)  # tasks come from Nav2 only (issue 9, part 3)
+    assert not log.task_updates and all(t.derived for t in log.tasks)  # only tasks derived from Nav2
     names = [line.name for line in log.view(frozenset({c.ROSOUT})).logs()]
     assert names == ["nav2_costmap_2d", "planner_server", "local_costmap.local_costmap",
                      "global_costmap.global_costmap"]
