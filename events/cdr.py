@@ -66,3 +66,53 @@ def decode_pose_cov(raw: bytes) -> tuple[int, tuple[float, ...]] | None:
         return sec * 1_000_000_000 + nanosec, _POSE.unpack_from(raw, start)
     except (IndexError, StructError):
         return None
+
+
+_TWIST = Struct("<6d")  # linear xyz, angular xyz
+_F64 = Struct("<d")
+
+
+def _after_header(raw: bytes) -> tuple[int, int]:
+    """(header stamp in ns, payload offset just after the header's frame_id) of a stamped message."""
+    sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+    (size,) = _U32.unpack_from(raw, 12)
+    return sec * 1_000_000_000 + nanosec, 12 + size
+
+
+def decode_twist(raw: bytes, stamped: bool) -> tuple[int, tuple[float, ...]] | None:
+    """(header stamp in ns or 0, the 6 doubles) of a Twist or TwistStamped, or None."""
+    try:
+        if raw[1] != 1:
+            return None
+        stamp, body = _after_header(raw) if stamped else (0, 0)
+        start = 4 + ((body + 7) & ~7)
+        if start + _TWIST.size > len(raw):
+            return None
+        return stamp, _TWIST.unpack_from(raw, start)
+    except (IndexError, StructError):
+        return None
+
+
+_XY = Struct("<2d")
+_TWIST_OFFSET = _POSE.size  # the twist follows the pose and its 36 covariance values
+_WZ_OFFSET = _TWIST_OFFSET + 5 * 8
+
+
+def decode_odom(raw: bytes) -> tuple[int, float, float, float, float] | None:
+    """(header stamp in ns, x, y, linear.x, angular.z) of a nav_msgs/msg/Odometry, or None."""
+    try:
+        if raw[1] != 1:
+            return None
+        sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+        (size,) = _U32.unpack_from(raw, 12)
+        child = (12 + size + 3) & ~3  # child_frame_id: uint32 length, then the bytes
+        (size,) = _U32.unpack_from(raw, 4 + child)
+        pose = 4 + ((child + 4 + size + 7) & ~7)
+        if pose + _WZ_OFFSET + 8 > len(raw):
+            return None
+        x, y = _XY.unpack_from(raw, pose)
+        (vx,) = _F64.unpack_from(raw, pose + _TWIST_OFFSET)
+        (wz,) = _F64.unpack_from(raw, pose + _WZ_OFFSET)
+        return sec * 1_000_000_000 + nanosec, x, y, vx, wz
+    except (IndexError, StructError):
+        return None

@@ -1,7 +1,8 @@
 """The HEXAR topic contract: what a compatible robot records, and what the event log decodes.
 
 The first seven topics are those of the original HEXAR release; the two skill topics are ours (README,
-"Topic contract").
+"Topic contract"); the last four are ordinary Nav2 topics that most robots record anyway (README, "What a robot
+must record").
 """
 
 from __future__ import annotations
@@ -17,12 +18,22 @@ EPISODIC_MEMORY = "/episodic_memory"
 DIAGNOSTICS = "/diagnostics"
 SAY_EVENTS = "/skills/say/events"
 PIZZA_EVENTS = "/skills/recommend_pizza/events"
+# Ordinary Nav2 topics (no HEXAR contract needed): motion, goals and the NavigateToPose action's status.
+CMD_VEL = "/cmd_vel"
+ODOM = "/odom"
+GOAL_POSE = "/goal_pose"
+NAV_STATUS = "/navigate_to_pose/_action/status"
 
 LOG_TYPE = "rcl_interfaces/msg/Log"
 STRING_TYPE = "std_msgs/msg/String"
 BOOL_TYPE = "std_msgs/msg/Bool"
 POSE_COV_TYPE = "geometry_msgs/msg/PoseWithCovarianceStamped"
 DIAG_TYPE = "diagnostic_msgs/msg/DiagnosticArray"
+TWIST_TYPE = "geometry_msgs/msg/Twist"
+TWIST_STAMPED_TYPE = "geometry_msgs/msg/TwistStamped"
+ODOM_TYPE = "nav_msgs/msg/Odometry"
+POSE_STAMPED_TYPE = "geometry_msgs/msg/PoseStamped"
+GOAL_STATUS_TYPE = "action_msgs/msg/GoalStatusArray"
 
 ASK_HUMAN_STATUS_NAME = "/skills/skill_ask_human_for_help"
 SAY_STATUS_NAME = "/skills/skill_say"
@@ -59,6 +70,14 @@ CONTRACT: tuple[TopicSpec, ...] = (
     TopicSpec(PIZZA_EVENTS, DIAG_TYPE, "header.stamp, status[].message/values",
               "name /skills/skill_recommend_pizza; message request|recommendation; values "
               "available_ingredients (JSON list), recommended_pizza"),
+    TopicSpec(CMD_VEL, TWIST_TYPE, "linear.x, linear.y, angular.z (or TwistStamped's twist)",
+              "what the controller commanded; with /odom it shows commands that do not reach the base"),
+    TopicSpec(ODOM, ODOM_TYPE, "header.stamp, pose.pose.position, twist.twist.linear.x, angular.z",
+              "how the base moved"),
+    TopicSpec(GOAL_POSE, POSE_STAMPED_TYPE, "header.stamp, header.frame_id, pose.position",
+              "a navigation goal (RViz's Nav2 Goal); tasks are derived from goals when /task_info is absent"),
+    TopicSpec(NAV_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
+              "NavigateToPose goals and how they ended (4 succeeded, 5 canceled, 6 aborted)"),
 )
 
 TYPE_OF: dict[str, str] = {spec.topic: spec.type for spec in CONTRACT}
@@ -69,4 +88,9 @@ ACCEPTED_TYPES: dict[str, frozenset[str]] = {
     topic: frozenset({typ, ROS1_LOG_TYPE}) if topic == ROSOUT else frozenset({typ})
     for topic, typ in TYPE_OF.items()
 }
+ACCEPTED_TYPES[CMD_VEL] = frozenset({TWIST_TYPE, TWIST_STAMPED_TYPE})
 ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
+# The ordinary Nav2 topics: optional; another type under one of these names is skipped with a warning.
+NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
+# What deriving tasks from Nav2 goals reads (recordings without /task_info).
+NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})

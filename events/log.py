@@ -11,7 +11,17 @@ from typing import TypeVar
 
 from hexar.events import contract as c
 from hexar.events.errors import NoTaskError
-from hexar.events.records import BoolSample, LogLine, PoseSample, StatusRecord, TaskUpdate
+from hexar.events.records import (
+    BoolSample,
+    GoalPose,
+    GoalStatus,
+    LogLine,
+    OdomSample,
+    PoseSample,
+    StatusRecord,
+    TaskUpdate,
+    TwistSample,
+)
 from hexar.events.tasks import Task, build_tasks
 
 
@@ -46,6 +56,10 @@ class EventLog:
     poses: list[PoseSample] = field(default_factory=list)
     flags: dict[str, list[BoolSample]] = field(default_factory=dict)
     statuses: dict[str, list[StatusRecord]] = field(default_factory=dict)
+    twists: list[TwistSample] = field(default_factory=list)
+    odometry: list[OdomSample] = field(default_factory=list)
+    goals: list[GoalPose] = field(default_factory=list)
+    goal_statuses: list[GoalStatus] = field(default_factory=list)
     _times: dict[str, list[int]] = field(default_factory=dict, repr=False)
 
     def finish(self) -> None:
@@ -56,10 +70,13 @@ class EventLog:
             values.sort(key=lambda r: r.t)
         for records in self.statuses.values():
             records.sort(key=lambda r: r.t)
+        for motion in (self.twists, self.odometry, self.goals, self.goal_statuses):
+            motion.sort(key=lambda r: r.t)
         self.__dict__.pop("tasks", None)
         self._times.clear()
 
-    def times(self, key: str, records: Sequence[LogLine | PoseSample | BoolSample | StatusRecord]) -> list[int]:
+    def times(self, key: str, records: Sequence[LogLine | PoseSample | BoolSample | StatusRecord | TwistSample
+                                                | OdomSample]) -> list[int]:
         """The sorted stamps of one record list, computed once: every explainer view bisects them."""
         if key not in self._times:
             self._times[key] = [r.t for r in records]
@@ -67,7 +84,12 @@ class EventLog:
 
     @cached_property
     def tasks(self) -> list[Task]:
-        return build_tasks(self.task_updates)
+        """The /task_info tasks; without any, one task per Nav2 navigation goal (derived, marked as such)."""
+        if self.task_updates:
+            return build_tasks(self.task_updates)
+        from hexar.events.nav_goals import derive_tasks  # only recordings without /task_info need it
+
+        return derive_tasks(self.logs, self.goal_statuses, self.goals)
 
     def task(self, ref: str | None = None) -> Task:
         """A task by id, by its 1-based order, or by `first`/`latest`; default: the latest user task.
@@ -77,7 +99,8 @@ class EventLog:
         """
         tasks = self.tasks
         if not tasks:
-            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages")
+            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages and no Nav2 "
+                              "navigation goal")
         if ref is None or ref in {"latest", "last"}:
             user = [t for t in tasks if not t.is_recovery]
             return max(user or tasks, key=lambda t: t.last_update)
@@ -141,3 +164,13 @@ class View:
         records = self.log.statuses.get(topic, [])
         start, end = self._bounds()
         return _slice_by_t(records, self.log.times(f"status:{topic}", records), start, end)
+
+    def twists(self) -> list[TwistSample]:
+        self._check(c.CMD_VEL)
+        start, end = self._bounds()
+        return _slice_by_t(self.log.twists, self.log.times("twists", self.log.twists), start, end)
+
+    def odometry(self) -> list[OdomSample]:
+        self._check(c.ODOM)
+        start, end = self._bounds()
+        return _slice_by_t(self.log.odometry, self.log.times("odometry", self.log.odometry), start, end)

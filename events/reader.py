@@ -17,7 +17,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
-from hexar.events.cdr import decode_log, decode_pose_cov, decode_string
+from hexar.events.cdr import decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
 from hexar.events.errors import (
     CorruptRecordingError,
     EmptyRecordingError,
@@ -29,11 +29,15 @@ from hexar.events.log import EventLog, TopicInfo
 from hexar.events.mcap_index import mcap_messages
 from hexar.events.records import (
     BoolSample,
+    GoalPose,
+    GoalStatus,
     LogLine,
+    OdomSample,
     PoseSample,
     SkillStep,
     StatusRecord,
     TaskUpdate,
+    TwistSample,
     stamp_ns,
 )
 
@@ -160,6 +164,10 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
             continue
         expected = c.TYPE_OF.get(conn.topic)
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic] and conn.topic in c.NAV2_TOPICS:
+            # an ordinary topic name that this robot uses for another type: not ours to read, not an error
+            warnings.append(f"skipped {conn.topic}: type {conn.msgtype}, HEXAR reads it as {expected}")
+            continue
         if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic]:
             raise UnknownMessageTypeError(
                 f"{conn.topic} has type {conn.msgtype}, but HEXAR reads it as {expected}"
@@ -239,8 +247,42 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
         elif msgtype == c.DIAG_TYPE:
             m = _deser(ts, raw, msgtype, ros2)
             log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
+        else:
+            _motion(log, ts, conn.topic, msgtype, t, raw, ros2)
     log.finish()
     return log, seen > 0 or promised == 0
+
+
+def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw: bytes, ros2: bool) -> None:
+    """The ordinary Nav2 topics: velocity commands, odometry, goals and the navigation action's status."""
+    if msgtype in (c.TWIST_TYPE, c.TWIST_STAMPED_TYPE):
+        stamped = msgtype == c.TWIST_STAMPED_TYPE
+        fast = decode_twist(raw, stamped) if ros2 else None
+        if fast is not None:
+            stamp, v = fast
+        else:
+            m = _deser(ts, raw, msgtype, ros2)
+            tw = m.twist if stamped else m
+            stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) if stamped else 0
+            v = (tw.linear.x, tw.linear.y, 0.0, 0.0, 0.0, tw.angular.z)
+        log.twists.append(TwistSample(stamp or t, topic, float(v[0]), float(v[1]), float(v[5])))
+    elif msgtype == c.ODOM_TYPE:
+        odom = decode_odom(raw) if ros2 else None
+        if odom is None:
+            m = _deser(ts, raw, msgtype, ros2)
+            odom = (stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec), float(m.pose.pose.position.x),
+                    float(m.pose.pose.position.y), float(m.twist.twist.linear.x), float(m.twist.twist.angular.z))
+        log.odometry.append(OdomSample(odom[0] or t, *odom[1:]))
+    elif msgtype == c.POSE_STAMPED_TYPE:
+        m = _deser(ts, raw, msgtype, ros2)
+        stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
+        log.goals.append(GoalPose(stamp, float(m.pose.position.x), float(m.pose.position.y), str(m.header.frame_id)))
+    elif msgtype == c.GOAL_STATUS_TYPE:
+        m = _deser(ts, raw, msgtype, ros2)
+        for s in m.status_list:
+            gid = bytes(bytearray(s.goal_info.goal_id.uuid)).hex()
+            accepted = stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)
+            log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status)))
 
 
 def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:

@@ -117,3 +117,45 @@ class StatusRecord:
     def data_items(self) -> tuple[tuple[str, str], ...]:
         """The values without the `Module name` tag that every skill record carries."""
         return tuple((k, v) for k, v in self.values if k != "Module name")
+
+
+@dataclass(frozen=True, slots=True)
+class TwistSample:
+    """A velocity command (`/cmd_vel`: geometry_msgs/msg/Twist or TwistStamped), stamped by the header or bag."""
+
+    t: int
+    topic: str
+    vx: float
+    vy: float
+    wz: float
+
+
+@dataclass(frozen=True, slots=True)
+class OdomSample:
+    """One `/odom` (nav_msgs/msg/Odometry): where the base says it is and how fast it moves."""
+
+    t: int
+    x: float
+    y: float
+    vx: float
+    wz: float
+
+
+@dataclass(frozen=True, slots=True)
+class GoalStatus:
+    """One goal of an action's status array (`/navigate_to_pose/_action/status`, action_msgs/msg/GoalStatus)."""
+
+    t: int
+    goal_id: str
+    accepted: int
+    status: int  # 1 accepted, 2 executing, 3 canceling, 4 succeeded, 5 canceled, 6 aborted
+
+
+@dataclass(frozen=True, slots=True)
+class GoalPose:
+    """A goal sent to Nav2 (`/goal_pose`, geometry_msgs/msg/PoseStamped)."""
+
+    t: int
+    x: float
+    y: float
+    frame: str

@@ -7,7 +7,7 @@ from typing import Literal
 
 from hexar.events.records import SkillStep, TaskUpdate
 
-Outcome = Literal["invalid", "failed", "succeeded", "running", "waiting"]
+Outcome = Literal["invalid", "failed", "succeeded", "canceled", "running", "waiting"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -57,6 +57,7 @@ class Task:
     updates: tuple[TaskUpdate, ...]
     skills: tuple[SkillRun, ...]
     order: int
+    derived: bool = False  # built from Nav2 goals (events/nav_goals.py), not from /task_info
 
     @property
     def created(self) -> int:
@@ -95,6 +96,8 @@ class Task:
         states = [run.state for run in self.skills]
         if states and all(s == "succeeded" for s in states):
             return "succeeded"
+        if "canceled" in states:
+            return "canceled"
         if any(s in {"running", "succeeded"} for s in states):
             return "running"
         return "waiting"

@@ -15,6 +15,9 @@ LOCATIONS = ("kitchen", "dining_room", "living_room")
 CATALOGUE: dict[str, tuple[str, ...]] = {
     "say": ("input",),
     "navigate_to_zone": ("location",),
+    # Nav2's own NavigateToPose goal (modules.toml maps it to the navigation explainer): recordings of ordinary
+    # Nav2 robots and tasks derived from their goals carry it with coordinates, not a place name.
+    "navigate_to_pose": (),
     "ask_human_for_help": ("question",),
     "look_for_human": ("patterns",),
     "recommend_pizza": (),

@@ -90,7 +90,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
     def body() -> int:
         from hexar.errors import HexarError
         from hexar.events import EventsError, read_recording
-        from hexar.events.contract import TASK_INFO
+        from hexar.events.contract import NAV_GOAL_TOPICS, TASK_INFO
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
@@ -105,9 +105,12 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
         for path in paths:
             try:
                 log = read_recording(path, topics={TASK_INFO})
+                if not log.tasks:  # tasks derived from Nav2 goals need the logs and goal topics
+                    log = read_recording(path, topics=NAV_GOAL_TOPICS)
                 task = log.task() if log.tasks else None
                 rows.append({"recording": path.name, "instruction": task.instruction if task else "",
-                             "outcome": task.outcome if task else "no task", "tasks": len(log.tasks)})
+                             "outcome": task.outcome if task else "no task", "tasks": len(log.tasks),
+                             "derived_from_nav2": bool(task and task.derived)})
             except EventsError as e:
                 rows.append({"recording": path.name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
         if as_json:
@@ -316,10 +319,20 @@ def eval_(
     seed: Annotated[int, typer.Option(help="simulation seed of recordings that are missing")] = 0,
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
+    suite: Annotated[str, typer.Option(help="paper (the 180 cases) or real-nav2 (real Nav2 logs from public "
+                                       "threads; uses --out, --runs, --llm, --baseline, --write-baseline, "
+                                       "--tolerance)")] = "paper",
 ) -> None:
     """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
 
     def body() -> int:
+        if suite != "paper":
+            from hexar.evals.real_nav2_cli import real_nav2_main
+
+            return real_nav2_main(suite, out_dir, runs, llm, baseline, write_baseline, tolerance, out,
+                                  paper_only={"--method": method, "--scenario": scenario, "--module": module,
+                                              "--kind": kind, "--first": first, "--judge": judge,
+                                              "--audit": audit or None})
         from hexar.evals.cli import EvalOptions, eval_command
 
         opts = EvalOptions(

@@ -33,6 +33,7 @@ def task_dict(task: Task) -> dict[str, Any]:
         "order": task.order,
         "instruction": task.instruction,
         "recovery": task.is_recovery,
+        "derived_from_nav2": task.derived,
         "valid": task.valid,
         "error_msg": task.error_msg,
         "outcome": task.outcome,
@@ -78,6 +79,9 @@ def print_inspection(console: Console, log: EventLog) -> None:
     console.print(topics)
     for task in log.tasks:
         label = "recovery task" if task.is_recovery else f"\"{escape(task.instruction)}\""
+        if task.derived:
+            goal = escape(task.instruction.removesuffix(" (derived from Nav2)"))
+            label = f"Nav2 goal: {goal} [dim](derived from Nav2: no /task_info)[/dim]"
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
         console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
                       f"[{colour}]{task.outcome}[/{colour}]")
@@ -87,7 +91,8 @@ def print_inspection(console: Console, log: EventLog) -> None:
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
-        console.print("[yellow]No task to explain: this recording has no /task_info.[/yellow]")
+        console.print("[yellow]No task to explain: this recording has no /task_info and no Nav2 navigation goal."
+                      "[/yellow]")
     for warning in log.warnings:
         console.print(f"[yellow]warning:[/yellow] {escape(warning)}")
 

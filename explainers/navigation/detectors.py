@@ -20,6 +20,8 @@ from hexar.events import contract as c
 from hexar.events.log import View
 from hexar.events.records import WARN, BoolSample, LogLine, PoseSample, StatusRecord
 from hexar.explainers.base import Evidence
+from hexar.explainers.navigation.catalogue import END_KINDS, Entry, catalogue
+from hexar.explainers.navigation.diagnose import Tagged
 
 BLOCKED = "navigation.blocked_path"
 JOYSTICK = "navigation.joystick"
@@ -40,8 +42,7 @@ _SPEED_WORDS = re.compile(
     r"\b(move|moving|moved|drive|driving|drove|go|going|went)\s+(like (that|this)|that way|this way|so)\b",
     re.I,
 )
-_PROGRESS = ("Failed to make progress", "Controller patience exceeded")
-_PLANNER = ("failed to create plan", "failed to generate a valid path", "plugin failed to plan")
+PROGRESS = ("Failed to make progress", "Controller patience exceeded")
 _DISTURBANCE = ("No valid trajectories", "Controller patience exceeded", "Received request to clear entirely",
                 "Running spin", "Running backup", "Running wait", "detected collision ahead")
 
@@ -80,6 +81,7 @@ class Run:
     outcome: Outcome
     begin: LogLine | None
     end: LogLine | None
+    notes: list[Tagged] = field(default_factory=list)  # lines the catalogue ties to a cause
 
     def first(self, needles: Iterable[str]) -> LogLine | None:
         return next(iter(self.matching(needles)), None)
@@ -100,20 +102,29 @@ class Run:
         return None
 
 
-def summarise(lines: list[LogLine], poses: list[PoseSample], skill_state: str | None) -> Run:
-    begins = [ln for ln in lines if ln.name == "bt_navigator" and ln.msg.startswith("Begin navigating")]
-    ends = [ln for ln in lines if ln.name == "bt_navigator" and ln.msg in {"Goal succeeded", "Goal failed",
-                                                                          "Goal canceled"}]
-    end = ends[-1] if ends else None
+def summarise(tagged: list[tuple[LogLine, Entry | None]], poses: list[PoseSample], skill_state: str | None,
+              extra: list[tuple[LogLine, Entry]] | None = None) -> Run:
+    """The run of the window: the goal's begin and end in any distro's wording (bt_navigator by role, or an
+    unknown logger), and the catalogue's reading of each line (`extra`: weak evidence the filter drops)."""
+    lines = [ln for ln, _ in tagged]
+    cat = catalogue()
+
+    def is_goal_line(line: LogLine, entry: Entry | None, kinds: frozenset[str]) -> bool:
+        return entry is not None and entry.kind in kinds and cat.role(line.name) in {"bt_navigator", None}
+
+    begins = [ln for ln, e in tagged if is_goal_line(ln, e, frozenset({"begin"}))]
+    ends = [(ln, e) for ln, e in tagged if is_goal_line(ln, e, END_KINDS)]
+    end = ends[-1][0] if ends else None
     outcome: Outcome = "unknown"
-    if end is not None:
-        outcome = "reached" if end.msg == "Goal succeeded" else "failed"
+    if ends:
+        outcome = "reached" if ends[-1][1] is not None and ends[-1][1].kind == "succeeded" else "failed"
     elif skill_state == "succeeded":
         outcome = "reached"
     elif skill_state == "failed":
         outcome = "failed"
     begin = max((b for b in begins if end is None or b.t <= end.t), key=lambda b: b.t, default=None)
-    return Run(lines, poses, outcome, begin, end)
+    notes = [Tagged(ln, e) for ln, e in [*tagged, *(extra or [])] if e is not None and e.cause is not None]
+    return Run(lines, poses, outcome, begin, end, sorted(notes, key=lambda n: n.line.t))
 
 
 def _latched(view: View, topic: str, window: tuple[int, int]) -> list[BoolSample]:
@@ -129,7 +140,7 @@ def _flag(view: View, topic: str, window: tuple[int, int], cause: str, run: Run)
     found = Finding(cause, [Evidence(cause=cause, topic=topic, t=held[0].t, item=flag_item(held[0]))])
     if len(held) > 1:
         found.evidence.append(Evidence(cause=cause, topic=topic, t=held[-1].t, item=flag_item(held[-1])))
-    for line in (run.first(_PROGRESS), run.end if run.outcome == "failed" else None):
+    for line in (run.first(PROGRESS), run.end if run.outcome == "failed" else None):
         if line is not None:
             found.evidence.append(Evidence.of_log(cause, line))
     return found
@@ -158,7 +169,11 @@ def poor_localisation(run: Run) -> Finding | None:
                 best = list(current)
         else:
             current = []
-    warnings = [ln for ln in run.lines if ln.name == "amcl" and ln.level >= WARN]
+    other = {id(n.line) for n in run.notes if n.entry.cause != POOR_LOCALISATION}
+    said = [n.line for n in run.notes if n.entry.cause == POOR_LOCALISATION]
+    cat = catalogue()
+    warnings = [ln for ln in run.lines if cat.role(ln.name) == "amcl" and ln.level >= WARN and id(ln) not in other]
+    warnings = sorted(set(warnings) | set(said), key=lambda ln: ln.t)
     if len(best) < COV_MIN_RUN and not warnings:
         return None
     found = Finding(POOR_LOCALISATION)
@@ -173,14 +188,19 @@ def poor_localisation(run: Run) -> Finding | None:
     return found
 
 
-def blocked_path(run: Run) -> Finding | None:
+def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
+    """No valid path (the planner's words), not a goal outside the map: an obstacle on the way."""
     if run.outcome == "reached":
         return None
-    progress = run.matching(_PROGRESS)
-    planner = run.matching(_PLANNER)
-    if not progress and not planner:
+    gave_up = [ln.t for ln in run.matching((*PROGRESS, "[follow_path] [ActionServer] Aborting handle"))]
+    planner = [n.line for n in run.notes if n.entry.cause == BLOCKED and n.entry.strength == strength
+               # DWB's obstacle critic is an obstacle on the way only when the controller then gave up; while
+               # it keeps driving, rejected trajectories are the controller's own trouble (or a passer-by)
+               and (n.entry.kind != "disturbance" or any(t >= n.line.t for t in gave_up))]
+    if not planner:
         return None
     found = Finding(BLOCKED)
+    progress = run.matching(PROGRESS)
     picks = progress[:1] + planner[:2] + run.matching(("Running ",))[:3]
     if run.outcome == "failed" and run.end is not None:
         picks.append(run.end)

@@ -1,11 +1,19 @@
 """The navigation (Nav2) component explainer: log filter, situation detectors, template or LLM phrasing.
 
-Causes, each with its evidence from the recording:
+Every line is read through the Nav2 message catalogue (nav2_catalogue.json), by its text, whatever its logger.
+Causes, each with its evidence from the recording (a cause is claimed only when lines or motion support it):
 - navigation.joystick: `/joy_priority` True while the goal did not complete (plus the relay's toggle line).
 - navigation.charging: `/power/is_charging` True while the goal did not complete.
+- a goal that did not succeed, first cause with strong lines in diagnose.ORDER, then weak ones:
+  configuration_error (bring-up, plugins, BT XML, lifecycle), transform_error (TF, clocks),
+  poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap (the robot's start off the map),
+  goal_unreachable (goal outside the map or in lethal cost), docking_failure, blocked_path (the planner found
+  no valid path), collision_ahead, controller_failure, commands_not_reaching_base (/cmd_vel commanding while
+  /odom is still; never from logs alone).
+- navigation.no_progress: `Failed to make progress` and nothing that says why: the checks a person can make.
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
-- navigation.blocked_path: the goal failed with progress or planning failures and no flag explains them.
+- navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
 - navigation.moving_obstacles: the goal was reached after at least two transient trajectory failures,
   costmap clears or recoveries.
 - navigation.nominal_speed: a clean successful run asked about speed or time: configured limit (from
@@ -25,7 +33,9 @@ from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import detectors as d
-from hexar.explainers.navigation.filter import filter_logs
+from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.filter import tag_logs, weak_noise
+from hexar.explainers.navigation.wording import template as nav2_template
 from hexar.explainers.phrasing import phrase
 
 if TYPE_CHECKING:
@@ -56,6 +66,8 @@ def _place(context: Context, lines: list[LogLine]) -> str:
     location = run.params.get("location") if run is not None else None
     if isinstance(location, str) and location:
         return f"the {location.replace('_', ' ')}"
+    if run is not None and run.params.get("source") == "nav2" and "x" in run.params and "y" in run.params:
+        return f"the goal at ({run.params['x']:.2f}, {run.params['y']:.2f})"  # a goal derived from Nav2
     # A navigation that is no plan step (e.g. approaching a person) names its goal in the skill's own log.
     for line in lines:
         m = _NAVIGATING_TO.match(line.msg)
@@ -78,7 +90,7 @@ class NavigationExplainer:
 
     name: ClassVar[str] = "navigation"
     topics: ClassVar[frozenset[str]] = frozenset({c.ROSOUT, c.AMCL_POSE, c.JOY_PRIORITY, c.IS_CHARGING,
-                                                  c.DIAGNOSTICS})
+                                                  c.DIAGNOSTICS, c.CMD_VEL, c.ODOM})
     description: ClassVar[str] = (
         "Explains the robot's movement between places (Nav2 navigation): why it could not reach a location "
         "(path blocked by an obstacle, joystick/manual mode holding the base, plugged into the charger, "
@@ -110,8 +122,9 @@ class NavigationExplainer:
         if not raw and not poses:
             return Explanation.not_enough(
                 self.name, "The recording has no log lines and no localisation data for that time.")
-        lines = filter_logs(raw)
-        run = d.summarise(lines, poses, _skill_state(context))
+        tagged = tag_logs(raw)
+        lines = [ln for ln, _ in tagged]
+        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
         if not lines and not poses and not flags:
@@ -123,16 +136,49 @@ class NavigationExplainer:
     def _others(self, question: str, view: View, run: d.Run, flagged: bool) -> list[d.Finding]:
         if flagged:
             return []
-        loc = d.poor_localisation(run)
-        if loc is not None:
-            return [loc]
-        problem = d.blocked_path(run) or d.moving_obstacles(run)
-        if problem is not None:
-            return [problem]
+        if run.outcome != "reached":
+            found = self._failure(view, run)
+            if found is not None:
+                return [found]
+        else:
+            problem = d.poor_localisation(run) or _held_by_collision_monitor(run) or d.moving_obstacles(run)
+            if problem is not None:
+                return [problem]
         if run.outcome == "failed":
             return [d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])]
         cause = d.NOMINAL_SPEED if d.asks_about_speed(question) else d.NOMINAL
         return [d.speed(run, view.statuses(c.DIAGNOSTICS), cause)]
+
+    @staticmethod
+    def _failure(view: View, run: d.Run) -> d.Finding | None:
+        """The first cause, in diagnose.ORDER, that the window's lines (or its motion) support: strong lines
+        first, then weak ones; `Failed to make progress` alone is no_progress, never an obstacle."""
+        for strength in ("strong", "weak"):
+            for cause in g.ORDER:
+                found: d.Finding | None = None
+                if cause == g.POOR_LOCALISATION:
+                    found = d.poor_localisation(run) if strength == "strong" else None
+                elif cause == g.BLOCKED:
+                    found = d.blocked_path(run, strength)
+                elif cause == g.NOT_REACHING_BASE:
+                    found = _stall(view, run) if strength == "strong" else None
+                else:
+                    lines = g.supporting(run.notes, cause, strength)
+                    if lines:
+                        found = d.Finding(cause, g.evidence(cause, lines))
+                if found is not None:
+                    for line in (run.first(d.PROGRESS), run.end if run.outcome == "failed" else None):
+                        if line is not None and all(e.t != line.t for e in found.evidence):
+                            found.evidence.append(Evidence.of_log(cause, line))
+                    return found
+        progress = run.matching(("Failed to make progress",))
+        if progress:
+            found = d.Finding(g.NO_PROGRESS, [Evidence.of_log(g.NO_PROGRESS, progress[0])])
+            if run.end is not None and run.outcome == "failed":
+                found.evidence.append(Evidence.of_log(g.NO_PROGRESS, run.end))
+            found.facts = {"progress_failures": float(len(progress))}
+            return found
+        return None
 
     def _compose(self, question: str, context: Context, run: d.Run, findings: list[d.Finding],
                  lines: list[LogLine]) -> Explanation:
@@ -153,7 +199,7 @@ class NavigationExplainer:
             evidence=[e for f in findings for e in f.evidence],
             fix=" ".join(fixes) or None,
             details=details,
-            confidence=0.4 if findings and findings[0].cause == d.UNEXPLAINED else 0.9,
+            confidence={d.UNEXPLAINED: 0.4, g.NO_PROGRESS: 0.5}.get(findings[0].cause, 0.9) if findings else 0.9,
         )
 
     @staticmethod
@@ -181,8 +227,44 @@ def _speed_sentence(f: d.Finding) -> str:
     return (", ".join(parts) + ".") if parts else ""
 
 
+def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
+    """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
+    held the robot (until it let it continue)."""
+    stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
+    if not stops:
+        return None
+    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
+    resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),
+                   None)
+    if resumed is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, resumed))
+        found.facts["held_s"] = (resumed.t - stops[0].t) / 1e9
+    if run.end is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, run.end))
+    return found
+
+
+def _stall(view: View, run: d.Run) -> d.Finding | None:
+    """Commands on /cmd_vel that /odom never followed: the only evidence for commands_not_reaching_base."""
+    if c.CMD_VEL not in view.log.topics or c.ODOM not in view.log.topics:
+        return None
+    stall = g.stalled(view.twists(), view.odometry())
+    if stall is None:
+        return None
+    item = f"vx={stall.first.vx:.2f} vy={stall.first.vy:.2f} wz={stall.first.wz:.2f}"
+    odom = f"x={stall.odom.x:.2f} y={stall.odom.y:.2f} vx={stall.odom.vx:.3f} wz={stall.odom.wz:.3f}"
+    found = d.Finding(g.NOT_REACHING_BASE, [
+        Evidence(cause=g.NOT_REACHING_BASE, topic=c.CMD_VEL, t=stall.first.t, item=item),
+        Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
+    found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
+    return found
+
+
 def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[str]]:
     """(sentence, fix, details) for one finding."""
+    nav2 = nav2_template(f, place, run)
+    if nav2 is not None:
+        return nav2
     progress = run.first(("Failed to make progress",))
     planner = run.first(("failed to generate a valid path",))
     failed = run.outcome == "failed"
@@ -236,5 +318,7 @@ def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, li
         return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
                 ["My navigation logs show no failures, recoveries or warnings for this trip."])
     verb = "failed" if failed else "did not finish"
-    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.", None,
+    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.",
+            "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
+            "and the planner's and controller's own logs at debug level." if failed else None,
             [f"The last navigation message was {_quote(run.end)}."] if run.end else [])

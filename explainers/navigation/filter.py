@@ -1,8 +1,11 @@
-"""The navigation explainer's log filter, as the original HEXAR defines it (hexar_interfaces.md).
+"""The navigation explainer's log filter.
 
-Kept: lines of the Nav2 loggers and of the navigation skills. Dropped: lines holding a known noise substring,
-and a line equal to the previous kept line of the same logger (Nav2 repeats e.g. `Passing new path to
-controller.` at every 1 Hz replan; one copy says as much as twenty).
+Kept: every line the Nav2 message catalogue recognises by its text (whatever its logger: namespaced,
+Foxy/Galactic names, `*_rclcpp_node` helpers, `DWBLocalPlanner`, TF helpers, or a logger we never heard of),
+the other lines of loggers whose Nav2 role is known, and the navigation skills' lines. Dropped: lines holding a
+known noise substring that the catalogue gives no cause, and a line equal to the previous kept line of the same
+logger (Nav2 repeats e.g. `Passing new path to controller.` at every 1 Hz replan; one copy says as much as
+twenty).
 """
 
 from __future__ import annotations
@@ -10,13 +13,20 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from hexar.events.records import LogLine
+from hexar.explainers.navigation.catalogue import Entry, catalogue
 
+# The loggers of the original HEXAR filter (hexar_interfaces.md); roles now cover their other spellings.
 NAV2_LOGGERS: frozenset[str] = frozenset({
     "amcl", "global_costmap.global_costmap", "local_costmap.local_costmap", "behavior_server",
     "planner_server", "controller_server", "bt_navigator",
 })
 SKILL_LOGGERS: frozenset[str] = frozenset({"skill_navigate_to_zone", "skill_navigate_to_pose"})
 KEPT_LOGGERS: frozenset[str] = NAV2_LOGGERS | SKILL_LOGGERS
+# Roles whose every line is worth reading; TF helpers and map servers only through recognised lines.
+KEPT_ROLES: frozenset[str] = frozenset({
+    "bt_navigator", "planner_server", "controller_server", "behavior_server", "costmap", "amcl",
+    "collision_monitor", "docking_server", "smoother_server", "velocity_smoother", "waypoint_follower",
+})
 NOISE: tuple[str, ...] = (
     "KeepoutFilter",
     "SpeedFilter",
@@ -33,15 +43,42 @@ def is_noise(msg: str) -> bool:
     return any(pattern in msg for pattern in NOISE)
 
 
+def kept(line: LogLine) -> tuple[bool, Entry | None]:
+    """Whether the line is worth reading, and its catalogue entry."""
+    cat = catalogue()
+    entry = cat.match(line.msg)
+    if is_noise(line.msg):
+        return False, entry
+    if entry is not None or line.name in KEPT_LOGGERS:
+        return True, entry
+    return cat.role(line.name) in KEPT_ROLES, entry
+
+
 def filter_logs(lines: Iterable[LogLine]) -> list[LogLine]:
     """The lines worth reading, in time order."""
-    kept: list[LogLine] = []
+    return [line for line, _ in tag_logs(lines)]
+
+
+def tag_logs(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry | None]]:
+    """The lines worth reading, with what the catalogue says of each."""
+    out: list[tuple[LogLine, Entry | None]] = []
     previous: dict[str, str] = {}
     for line in lines:
-        if line.name not in KEPT_LOGGERS or is_noise(line.msg):
-            continue
-        if previous.get(line.name) == line.msg:
+        keep, entry = kept(line)
+        if not keep or previous.get(line.name) == line.msg:
             continue
         previous[line.name] = line.msg
-        kept.append(line)
-    return kept
+        out.append((line, entry))
+    return out
+
+
+def weak_noise(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry]]:
+    """Noise lines the catalogue still counts as weak evidence (e.g. the TF message filter dropping scans)."""
+    cat = catalogue()
+    out = []
+    for line in lines:
+        if is_noise(line.msg):
+            entry = cat.match(line.msg)
+            if entry is not None and entry.cause is not None:
+                out.append((line, entry))
+    return out

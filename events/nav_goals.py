@@ -1,0 +1,163 @@
+"""Tasks derived from Nav2 navigation goals, for recordings that have no `/task_info`.
+
+Most ROS 2 robots publish no HEXAR task messages, yet Nav2 says when a goal begins and ends. Each goal becomes a
+task with one `navigate_to_pose` step whose params hold the goal coordinates, so "Why didn't you get there?"
+works on an ordinary recording. Sources, best first: bt_navigator's begin/end lines in every distro's wording
+(the Nav2 message catalogue), the NavigateToPose action status (`/navigate_to_pose/_action/status`), and goal
+poses (`/goal_pose`). A new begin line while a goal runs is Nav2's goal preemption: the same goal, a new target.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from hexar.events.records import ERROR, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.tasks import SkillRun, StatusChange, Task
+
+SOURCE = "nav2"
+SKILL = "navigate_to_pose"
+_STATUS_END = {4: "succeeded", 5: "canceled", 6: "failed"}
+_KIND_STATE = {"succeeded": "succeeded", "failed": "failed", "canceled": "canceled"}
+
+
+@dataclass
+class _Goal:
+    start: int
+    x: float | None
+    y: float | None
+    via: str
+    end: int | None = None
+    state: str = "running"
+    error: str = ""
+    lines: list[str] = field(default_factory=list)
+
+
+def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]]:
+    """(t, kind, details) of bt_navigator's begin/end lines (any distro, any namespace, unknown loggers too)."""
+    from hexar.explainers.navigation.catalogue import GOAL_KINDS, catalogue
+
+    cat = catalogue()
+    out: list[tuple[int, str, dict[str, object]]] = []
+    for line in logs:
+        if not line.msg.startswith(("Begin navigating", "Goal ", "Navigation ")):
+            continue  # cheap: every goal line starts with one of these
+        entry = cat.match(line.msg)
+        if entry is None or entry.kind not in GOAL_KINDS or cat.role(line.name) not in {"bt_navigator", None}:
+            continue
+        m = entry.search(line.msg)
+        details: dict[str, object] = {"msg": line.msg}
+        if m is not None:
+            details.update({k: v for k, v in m.groupdict().items() if v is not None})
+        out.append((line.t, entry.kind, details))
+    return out
+
+
+def _from_statuses(statuses: list[GoalStatus]) -> list[tuple[int, str, dict[str, object]]]:
+    seen: dict[str, str] = {}
+    out: list[tuple[int, str, dict[str, object]]] = []
+    for s in statuses:
+        state = _STATUS_END.get(s.status, "running")
+        if seen.get(s.goal_id) == state or (s.goal_id in seen and seen[s.goal_id] != "running"):
+            continue
+        if s.goal_id not in seen:
+            out.append((s.accepted or s.t, "begin", {"goal_id": s.goal_id}))
+        if state != "running":
+            out.append((s.t, state, {"goal_id": s.goal_id}))
+        seen[s.goal_id] = state
+    return out
+
+
+def _number(value: object) -> float | None:
+    try:
+        return float(str(value))
+    except ValueError:
+        return None
+
+
+def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[_Goal]:
+    events = _goal_events(logs)
+    via = "Nav2 log"
+    if not any(kind == "begin" for _, kind, _ in events) and statuses:
+        events = [e for e in events if e[1] != "begin"] + _from_statuses(statuses)
+        via = "NavigateToPose status"
+    if not any(kind == "begin" for _, kind, _ in events):
+        events += [(p.t, "begin", {"x": p.x, "y": p.y, "pose": True}) for p in poses]
+        via = "goal pose" if poses else via
+    goals: list[_Goal] = []
+    open_goal: _Goal | None = None
+    for t, kind, details in sorted(events, key=lambda e: (e[0], e[1] != "begin")):
+        if kind == "begin":
+            x, y = _number(details.get("x")), _number(details.get("y"))
+            if open_goal is not None and not details.get("pose"):
+                # preemption (or the log line of a goal the status already opened): same goal, latest target
+                open_goal.x, open_goal.y = x if x is not None else open_goal.x, y if y is not None else open_goal.y
+                continue
+            if open_goal is not None:
+                open_goal.end, open_goal.state = t, "canceled"
+            open_goal = _Goal(t, x, y, via)
+            goals.append(open_goal)
+            continue
+        if open_goal is None:
+            if goals and goals[-1].end is not None and t - goals[-1].end < 1_000_000_000:
+                continue  # the status topic's copy of an end the log already gave
+            # an end without a recorded begin: the goal started before the recording did
+            first = logs[0].t if logs else t
+            open_goal = _Goal(min(first, t), None, None, via)
+            goals.append(open_goal)
+        open_goal.end, open_goal.state = t, _KIND_STATE[kind]
+        open_goal.error = str(details.get("error", "") or details.get("msg", "")) if kind != "succeeded" else ""
+        open_goal = None
+    return goals or _activity(logs)
+
+
+def _activity(logs: list[LogLine]) -> list[_Goal]:
+    """Nav2 at work without any goal line (the recording began after the goal was sent): one goal over the
+    lines the catalogue ties to a cause or to the progress checker (at any level: consoles pasted without
+    levels are read as INFO); failed when Nav2 logged an error or an abort, else still running as far as the
+    recording shows."""
+    from hexar.explainers.navigation.catalogue import catalogue
+
+    cat = catalogue()
+    active: list[LogLine] = []
+    failed: LogLine | None = None
+    for line in logs:
+        entry = cat.match(line.msg)
+        nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
+        if not nav2 and "[ActionServer] Aborting handle" not in line.msg:
+            continue
+        active.append(line)
+        if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg):
+            failed = line
+    if not active:
+        return []
+    goal = _Goal(active[0].t, None, None, "Nav2 log (no goal line)")
+    if failed is not None:
+        goal.end, goal.state, goal.error = active[-1].t, "failed", failed.msg
+    return [goal]
+
+
+def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[Task]:
+    """One task per navigation goal, in time order; empty when the recording shows no Nav2 goal."""
+    tasks = []
+    for order, goal in enumerate(_goals(logs, statuses, poses), start=1):
+        params: dict[str, object] = {"source": SOURCE, "derived_from": goal.via}
+        where = "an unrecorded goal"
+        if goal.x is not None and goal.y is not None:
+            params.update({"x": round(goal.x, 3), "y": round(goal.y, 3)})
+            where = f"({goal.x:.2f}, {goal.y:.2f})"
+        instruction = f"Navigate to {where} (derived from Nav2)"
+        history = [StatusChange(goal.start, "running", "")]
+        if goal.end is not None:
+            history.append(StatusChange(goal.end, goal.state, goal.error))
+        run = SkillRun(0, SKILL, params, tuple(history))
+        task_id = f"nav2-goal-{order}"
+        updates = [TaskUpdate(change.t, task_id, instruction, "valid", "",
+                              (SkillStep(SKILL, params, change.status, change.error_msg),), raw="")
+                   for change in history]
+        last = max((ln.t for ln in logs), default=goal.start)
+        if goal.end is None and last > goal.start:
+            # still running when the recording ended: its window reaches the last line recorded
+            updates.append(TaskUpdate(last, task_id, instruction, "valid", "",
+                                      (SkillStep(SKILL, params, "running", ""),), raw=""))
+        tasks.append(Task(task_id, instruction, tuple(updates), (run,), order, derived=True))
+    return tasks

@@ -1,0 +1,94 @@
+"""Answers for the causes read from Nav2's own words: (sentence, fix, details), each fix fitting its cause.
+
+The sentences avoid the phrasings of other causes in hexar/causes.yaml (e.g. a goal outside the map is not
+worded as "no valid path", which names an obstacle on the way), so the graders and the guard read exactly the
+cause that was found.
+"""
+
+from __future__ import annotations
+
+from hexar.events.records import LogLine
+from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.detectors import Finding, Run
+
+
+def quote(line: LogLine | None) -> str:
+    return f"'{line.msg.strip()}'" if line is not None else ""
+
+
+def _said(f: Finding) -> str:
+    """The first supporting line, quoted, with its logger."""
+    ev = next((e for e in f.evidence if e.topic == "/rosout"), None)
+    return f"{ev.item}" if ev is not None else ""
+
+
+def _progress_seconds(run: Run) -> str:
+    # The allowance is a parameter the recording does not hold; Nav2's default is 10 s.
+    return "longer than its movement time allowance (10 s by default)"
+
+
+def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
+    said = _said(f)
+    seen = [f"Nav2 said: {said}"] if said else []
+    if f.cause == g.GOAL_UNREACHABLE:
+        return (f"I couldn't reach {place} because the goal itself cannot be reached: it lies outside my map or "
+                "inside an obstacle, so planning to it always fails.",
+                "The goal is outside the map / in an obstacle: pick a reachable goal on free space of the map.",
+                seen)
+    if f.cause == g.OFF_COSTMAP:
+        return (f"I couldn't reach {place} because my own position was off my costmap, "
+                "so I may not be localized.",
+                "Set the initial pose (e.g. '2D Pose Estimate' in RViz) so that the robot is on the map, and "
+                "check the map -> odom transform.",
+                [*seen, "Nav2 plans from the robot's position; a start outside the map makes every plan fail."])
+    if f.cause == g.TRANSFORM:
+        return (f"I couldn't reach {place} because of a transform (TF) or clock error: the transforms my "
+                "navigation needs were missing, stale or stamped at the wrong time.",
+                "Check the TF tree (ros2 run tf2_tools view_frames), that every node uses the same clock "
+                "(use_sim_time everywhere or nowhere) and that odometry and localisation publish their transforms.",
+                seen)
+    if f.cause == g.CONFIGURATION:
+        return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
+                "up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",
+                "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
+                "check that the lifecycle manager reports 'Managed nodes are active'.",
+                seen)
+    if f.cause == g.COLLISION_AHEAD and run.outcome == "reached":
+        held = f" for {f.facts['held_s']:.0f} s" if "held_s" in f.facts else ""
+        return (f"It took me longer to reach {place} because my collision monitor stopped me{held}: something "
+                "was inside its stop zone, so it detected a collision ahead and held me until the way was clear.",
+                "Look at what entered the collision monitor's stop polygon (or at the polygon's size, if "
+                "nothing was there).",
+                seen)
+    if f.cause == g.COLLISION_AHEAD:
+        return (f"I couldn't reach {place} because my collision checking stopped me: it detected a collision "
+                "ahead and would not let me move on.",
+                "Look at what is close to the robot (or its footprint and collision-monitor polygons, if nothing "
+                "is there).",
+                seen)
+    if f.cause == g.CONTROLLER:
+        return (f"I couldn't reach {place} because my controller failed to compute velocity commands "
+                "to follow the path.",
+                "Check the controller's parameters and the local costmap around the robot (footprint, inflation, "
+                "critics).",
+                seen)
+    if f.cause == g.DOCKING:
+        return ("My docking failed: the docking server could not complete the docking.",
+                "Check the docking server's log: that its detector sees the target, that the staging pose is "
+                "reachable and that the contacts mate.",
+                seen)
+    if f.cause == g.NOT_REACHING_BASE:
+        facts = f.facts
+        return (f"I couldn't reach {place} because my velocity commands never reached my base: the "
+                f"controller commanded up to {facts.get('max_cmd', 0.0):.2f} for {facts.get('seconds', 0.0):.0f} s "
+                "while my odometry showed no motion.",
+                "Check that cmd_vel reaches the base: the topic remapping, the velocity smoother's output and the "
+                "base driver.",
+                ["/cmd_vel carried motion commands while /odom stayed still."])
+    if f.cause == g.NO_PROGRESS:
+        return (f"My navigation to {place} gave up because my controller made no progress for "
+                f"{_progress_seconds(run)}; nothing in my logs says why.",
+                "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is "
+                "fresh, that the controller is tuned for this robot, and whether something stood in the way.",
+                ["The only failure Nav2 logged was its progress checker giving up; no line names a cause."])
+    return None

@@ -1,0 +1,89 @@
+"""Tasks derived from Nav2 goals on recordings without /task_info (sqlite3 and mcap), from the log lines of
+several distros, from the NavigateToPose status topic and from /goal_pose; old-shape recordings unchanged."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, sec_ns
+from hexar.events.errors import NoTaskError
+from hexar.events.reader import read_recording
+from hexar.events.records import ERROR, INFO
+from tests.events.helpers import T0, two_skill_task
+
+# bt_navigator's begin/end wording per distro (shared reference nav2_log_messages.md; Foxy bt_navigator.cpp;
+# Kilted/main bt_action_server_impl.hpp:470).
+HUMBLE = ("Begin navigating from current location (0.00, 0.00) to (2.50, 1.00)", "Goal failed")
+FOXY = ("Begin navigating from current location to (2.50, 1.00)", "Navigation failed")
+KILTED = ("Begin navigating from current location (0.00, 0.00) to (2.50, 1.00)",
+          "Goal failed error_code:104 error_msg:'Failed to make progress'")
+
+
+@pytest.mark.parametrize("storage", ["sqlite3", "mcap"])
+@pytest.mark.parametrize(("logger", "wording"), [("bt_navigator", HUMBLE), ("bt_navigator", FOXY),
+                                                  ("robot1.bt_navigator", KILTED)])
+def test_goals_from_nav2_lines(tmp_path: Path, storage: str, logger: str, wording: tuple[str, str]) -> None:
+    b = BagBuilder()
+    b.log(T0, logger, INFO, wording[0])
+    b.log(T0 + sec_ns(20), "controller_server", ERROR, "Failed to make progress")
+    b.log(T0 + sec_ns(30), logger, ERROR, wording[1])
+    b.log(T0 + sec_ns(40), logger, INFO, "Begin navigating from current location (2.40, 1.00) to (0.00, 3.00)")
+    b.log(T0 + sec_ns(60), logger, INFO, "Goal succeeded")
+    log = read_recording(b.write(tmp_path / "bag", storage=storage))  # type: ignore[arg-type]
+    first, second = log.tasks
+    assert first.derived and first.outcome == "failed" and second.outcome == "succeeded"
+    assert first.skills[0].skill == "navigate_to_pose"
+    assert (first.skills[0].params["x"], first.skills[0].params["y"]) == (2.5, 1.0)
+    assert first.window() == (T0, T0 + sec_ns(30))
+    assert log.task().task_id == second.task_id
+
+
+def _status_array(t: int, goals: list[tuple[int, int]]) -> object:
+    ty = TYPESTORE.types
+    stamp = ty["builtin_interfaces/msg/Time"](sec=t // 10**9, nanosec=t % 10**9)
+    return ty["action_msgs/msg/GoalStatusArray"](status_list=[
+        ty["action_msgs/msg/GoalStatus"](
+            goal_info=ty["action_msgs/msg/GoalInfo"](
+                goal_id=ty["unique_identifier_msgs/msg/UUID"](uuid=np.full(16, gid, dtype=np.uint8)), stamp=stamp),
+            status=status)
+        for gid, status in goals])
+
+
+def test_goals_from_the_action_status_and_goal_pose(tmp_path: Path) -> None:
+    ty = TYPESTORE.types
+    b = BagBuilder()
+    header = ty["std_msgs/msg/Header"](stamp=ty["builtin_interfaces/msg/Time"](sec=T0 // 10**9, nanosec=0),
+                                       frame_id="map")
+    pose = ty["geometry_msgs/msg/Pose"](position=ty["geometry_msgs/msg/Point"](x=3.0, y=-1.0, z=0.0),
+                                        orientation=ty["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))
+    b.raw(T0, "/goal_pose", "geometry_msgs/msg/PoseStamped", ty["geometry_msgs/msg/PoseStamped"](header=header,
+                                                                                                 pose=pose))
+    status = "/navigate_to_pose/_action/status"
+    b.raw(T0 + sec_ns(1), status, "action_msgs/msg/GoalStatusArray", _status_array(T0 + sec_ns(1), [(7, 2)]))
+    b.raw(T0 + sec_ns(9), status, "action_msgs/msg/GoalStatusArray", _status_array(T0 + sec_ns(9), [(7, 6)]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    (task,) = log.tasks
+    assert task.derived and task.outcome == "failed"
+    # only the pose topic gives no goal without status; with the status, the status decides the outcome
+    only_pose = BagBuilder(messages=[m for m in b.messages if m[1] == "/goal_pose"])
+    (goal,) = read_recording(only_pose.write(tmp_path / "pose")).tasks
+    assert goal.skills[0].params["x"] == 3.0 and goal.outcome == "running"
+
+
+def test_recording_with_task_info_keeps_its_tasks(tmp_path: Path) -> None:
+    b = BagBuilder()
+    two_skill_task(b, T0, "a1", fail_second=False)
+    b.log(T0 + sec_ns(2), "bt_navigator", INFO, HUMBLE[0])
+    log = read_recording(b.write(tmp_path / "bag"))
+    assert [t.task_id for t in log.tasks] == ["a1"] and not log.tasks[0].derived
+
+
+def test_no_nav2_activity_still_no_task(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "minimal_publisher", INFO, "Publishing: 'Hello, world! 0'")
+    log = read_recording(b.write(tmp_path / "bag"))
+    with pytest.raises(NoTaskError, match="no task to explain"):
+        log.task()

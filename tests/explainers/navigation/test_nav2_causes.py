@@ -1,0 +1,204 @@
+"""The new navigation causes on recordings written with rosbags from REAL Nav2 lines (each cited), with and
+without /task_info, plus /cmd_vel and /odom evidence for commands that never reach the base."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, sec_ns
+from hexar.events.reader import read_recording
+from hexar.events.records import ERROR, INFO, WARN
+from hexar.explainers.base import Context
+from hexar.explainers.navigation import NavigationExplainer
+from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.catalogue import catalogue
+from hexar.explainers.navigation.detectors import BLOCKED
+from tests.events.helpers import task_msg
+
+T0 = 1_700_000_000_000_000_000
+Line = tuple[str, int, str]
+
+# (corpus id or source, expected cause, lines as (logger, level, msg)): messages verbatim from the threads.
+CASES: list[tuple[str, str, list[Line]]] = [
+    # evals/data/real_nav2/corpus.yaml nav2-3230-tb3-off-costmap (ros-navigation/navigation2#3230, galactic)
+    ("nav2-3230", g.OFF_COSTMAP, [
+        ("nav2_costmap_2d", WARN, "Robot is out of bounds of the costmap!"),
+        ("planner_server", WARN, "Cannot create a plan: the robot's start position is off the global costmap. "
+         "Planning will always fail, are you sure the robot has been properly localized?")]),
+    # coverage-64-goal-outside-bounds (open-navigation/opennav_coverage#64)
+    ("coverage-64", g.GOAL_UNREACHABLE, [
+        ("planner_server", WARN, 'GridBased plugin failed to plan from (0.00, -0.01) to (-105.92, 39.25): '
+         '"Goal Coordinates of(-105.918845, 39.251424) was outside bounds"')]),
+    # nav2-3746-sim-time-extrapolation (ros-navigation/navigation2#3746): an unknown TF-helper logger
+    ("nav2-3746", g.TRANSFORM, [
+        ("transformPoseInTargetFrame", ERROR, "Extrapolation Error looking up target frame: Lookup would require "
+         "extrapolation into the future.  Requested time 1691424773.212782 but the latest data is at time "
+         "3617.600000, when looking up transform from frame [map] to frame [odom]"),
+        ("planner_server", WARN, "Could not transform the start or goal pose in the costmap frame")]),
+    # rbvogui-20-dwb-not-installed (namespaced logger `robot.controller_server`)
+    ("rbvogui-20", g.CONFIGURATION, [
+        ("robot.controller_server", 50, "Failed to create controller. Exception: According to the loaded plugin "
+         "descriptions the class dwb_core::DWBLocalPlanner with base class type nav2_core::Controller does not "
+         "exist.")]),
+    # neo-sim2-19-spin-collision-ahead (Foxy/Galactic `recoveries_server`)
+    ("neo-sim2-19", g.COLLISION_AHEAD, [
+        ("recoveries_server", INFO, "Attempting spin"),
+        ("recoveries_server", WARN, "Collision Ahead - Exiting Spin"),
+        ("controller_server", ERROR, "Failed to make progress")]),
+    # nav2-451-goaldist-unreachable-area (`DWBLocalPlanner`'s own logger)
+    ("nav2-451", g.CONTROLLER, [
+        ("DWBLocalPlanner", ERROR, "No valid trajectories out of 399! "),
+        ("DWBLocalPlanner", ERROR, "1.00:   GoalDist/Trajectory Hits Unreachable Area.")]),
+    # shared reference nav2_log_messages.md: docking_server.cpp:184@jazzy
+    ("nav2_log_messages.md docking_server", g.DOCKING, [
+        ("docking_server", ERROR, "Failed to dock, all retries have been used")]),
+]
+
+
+def _bag(lines: list[Line], with_task: bool, end: str | None = "Goal failed") -> BagBuilder:
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    task = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    if with_task:
+        b.task_info(t, task_msg("t1", "go to the door", task))
+    b.log(t + sec_ns(0.1), "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    for i, (name, level, msg) in enumerate(lines):
+        b.log(t + sec_ns(1 + i), name, level, msg)
+    done = t + sec_ns(2 + len(lines))
+    if end is not None:
+        b.log(done, "bt_navigator", ERROR, end)
+    if with_task:
+        b.task_info(done + sec_ns(0.1), task_msg("t1", "go to the door", [(*task[0][:2], "failed", "")]))
+    return b
+
+
+def _explain(tmp_path: Path, b: BagBuilder, name: str, storage: str = "sqlite3") -> tuple[list[str], str]:
+    log = read_recording(b.write(tmp_path / name, storage=storage))  # type: ignore[arg-type]
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
+    return answer.causes, f"{answer.text} {answer.fix}"
+
+
+@pytest.mark.parametrize(("source", "cause", "lines"), CASES, ids=[c[0] for c in CASES])
+@pytest.mark.parametrize("with_task", [True, False])
+def test_each_new_cause_from_real_lines(tmp_path: Path, source: str, cause: str, lines: list[Line],
+                                        with_task: bool) -> None:
+    causes, _ = _explain(tmp_path, _bag(lines, with_task), "bag")
+    assert causes == [cause], source
+
+
+def test_goal_outside_the_map_is_not_an_obstacle(tmp_path: Path) -> None:
+    causes, text = _explain(tmp_path, _bag(CASES[1][2], True), "bag")
+    assert causes == [g.GOAL_UNREACHABLE]
+    assert "pick a reachable goal" in text and "Clear the way" not in text
+
+
+def test_failed_to_make_progress_alone_is_no_progress_never_blocked(tmp_path: Path) -> None:
+    # corpus hsr-14-failed-to-make-progress: the controller gave up and nothing says why
+    lines: list[Line] = [("controller_server", INFO, "Passing new path to controller."),
+                         ("controller_server", ERROR, "Failed to make progress"),
+                         ("controller_server", WARN, "[follow_path] [ActionServer] Aborting handle.")]
+    causes, text = _explain(tmp_path, _bag(lines, True), "bag")
+    assert causes == [g.NO_PROGRESS] and BLOCKED not in causes
+    assert "nothing in my logs says why" in text and "cmd_vel reaches the base" in text
+    assert "obstacle" not in text.lower().split("checks")[0]
+
+
+def test_a_line_of_an_unknown_logger_still_reaches_the_detectors(tmp_path: Path) -> None:
+    # corpus outdoor-example-3-tf-unconnected: the TF message arrives under a logger nobody lists
+    lines: list[Line] = [("my_custom_wrapper_node", WARN, "Could not find a connection between 'odom' and "
+                          "'base_link' because they are not part of the same tree.Tf has two or more unconnected "
+                          "trees.")]
+    assert catalogue().role("my_custom_wrapper_node") is None
+    causes, _ = _explain(tmp_path, _bag(lines, True), "bag")
+    assert causes == [g.TRANSFORM]
+
+
+def _twist(vx: float) -> object:
+    v3 = TYPESTORE.types["geometry_msgs/msg/Vector3"]
+    return TYPESTORE.types["geometry_msgs/msg/Twist"](linear=v3(x=vx, y=0.0, z=0.0), angular=v3(x=0.0, y=0.0, z=0.0))
+
+
+def _odom(t: int, x: float, vx: float) -> object:
+    ty = TYPESTORE.types
+    pose = ty["geometry_msgs/msg/Pose"](position=ty["geometry_msgs/msg/Point"](x=x, y=0.0, z=0.0),
+                                       orientation=ty["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))
+    header = ty["std_msgs/msg/Header"](stamp=ty["builtin_interfaces/msg/Time"](sec=t // 10**9, nanosec=t % 10**9),
+                                       frame_id="odom")
+    return ty["nav_msgs/msg/Odometry"](
+        header=header, child_frame_id="base_link",
+        pose=ty["geometry_msgs/msg/PoseWithCovariance"](pose=pose, covariance=np.zeros(36)),
+        twist=ty["geometry_msgs/msg/TwistWithCovariance"](twist=_twist(vx), covariance=np.zeros(36)))
+
+
+@pytest.mark.parametrize("storage", ["sqlite3", "mcap"])
+def test_commands_not_reaching_base_needs_cmd_vel_and_still_odometry(tmp_path: Path, storage: str) -> None:
+    # corpus nav2-4027-cmd-vel-not-set: the controller kept commanding, the robot never moved
+    lines: list[Line] = [("controller_server", INFO, "Received a goal, begin computing control effort."),
+                         ("controller_server", ERROR, "Failed to make progress")]
+    b = _bag(lines, True)
+    for i in range(40):
+        t = T0 + sec_ns(1.2 + i * 0.1)
+        b.raw(t, "/cmd_vel", "geometry_msgs/msg/Twist", _twist(0.26))
+        b.raw(t, "/odom", "nav_msgs/msg/Odometry", _odom(t, 0.0, 0.0))
+    causes, text = _explain(tmp_path, b, "bag", storage)
+    assert causes == [g.NOT_REACHING_BASE]
+    assert "check that cmd_vel reaches the base" in text.lower()
+    # the same goal where odometry shows motion: no such claim, only the honest no-progress finding
+    moving = _bag(lines, True)
+    for i in range(40):
+        t = T0 + sec_ns(1.2 + i * 0.1)
+        moving.raw(t, "/cmd_vel", "geometry_msgs/msg/Twist", _twist(0.26))
+        moving.raw(t, "/odom", "nav_msgs/msg/Odometry", _odom(t, 0.026 * i, 0.26))
+    assert _explain(tmp_path, moving, "moving", storage)[0] == [g.NO_PROGRESS]
+
+
+def test_a_goal_reached_late_because_the_collision_monitor_held_the_robot(tmp_path: Path) -> None:
+    # corpus mowgli-159-collision-monitor-stop: the collision monitor held the robot 414 s, then let it go on
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    step = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(t, task_msg("t1", "mow the strip", step))
+    b.log(t + sec_ns(0.1), "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    b.log(t + sec_ns(5), "collision_monitor", INFO, "Robot to stop due to PolygonStop polygon")
+    b.log(t + sec_ns(419), "collision_monitor", INFO, "Robot to continue normal operation")
+    b.log(t + sec_ns(430), "bt_navigator", INFO, "Goal succeeded")
+    b.task_info(t + sec_ns(430.1), task_msg("t1", "mow the strip", [(*step[0][:2], "succeeded", "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    answer = NavigationExplainer().explain("Why did it take so long to get there?", Context.for_task(log, log.task()))
+    assert answer.causes == [g.COLLISION_AHEAD]
+    assert "collision monitor stopped me for 414 s" in answer.text
+
+
+DWB_HITS: list[Line] = [  # corpus tb4-679 / nav2-3807: DWB's debug lines, verbatim
+    ("DWBLocalPlanner", ERROR, "No valid trajectories out of 419! "),
+    ("DWBLocalPlanner", ERROR, "1.00: BaseObstacle/Trajectory Hits Obstacle."),
+]
+
+
+def test_dwb_obstacle_critic_is_a_blocked_path_only_when_the_controller_gave_up(tmp_path: Path) -> None:
+    # tb4-679-humble-trajectory-hits-obstacle: then "Controller patience exceeded" and the goal failed
+    gave_up = [*DWB_HITS, ("controller_server", ERROR, "Controller patience exceeded")]
+    assert _explain(tmp_path, _bag(gave_up, True), "gave_up")[0] == [BLOCKED]
+    # nav2-3807-dwb-no-valid-trajectories: the controller keeps driving; its trajectories were the trouble
+    going = [*DWB_HITS, ("controller_server", INFO, "Passing new path to controller.")]
+    assert _explain(tmp_path, _bag(going, True), "going")[0] == [g.CONTROLLER]
+
+
+def test_a_crashed_nav2_process_is_a_bring_up_failure(tmp_path: Path) -> None:
+    # corpus nav2-4380-humble-mppi-sigill-arm-binaries (gdb's report, an unknown logger)
+    lines: list[Line] = [("gdb", ERROR, 'Thread 1 "controller_serv" received signal SIGILL, Illegal instruction.')]
+    assert _explain(tmp_path, _bag(lines, False), "bag")[0] == [g.CONFIGURATION]
+
+
+def test_a_docking_failure_is_not_worded_as_charging(tmp_path: Path) -> None:
+    from hexar.causes import stated_causes
+
+    # corpus mowgli-486-dock-charge-timeout
+    lines: list[Line] = [("docking_server", WARN, "Docking failed, will retry: Timed out waiting for charge to start"),
+                         ("docking_server", ERROR, "Timed out resetting dock approach")]
+    causes, text = _explain(tmp_path, _bag(lines, True), "bag")
+    assert causes == [g.DOCKING]
+    assert g.DOCKING in stated_causes(text) and "navigation.charging" not in stated_causes(text)
