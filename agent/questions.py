@@ -130,7 +130,7 @@ def normalise(question: str) -> str:
 
 
 def _asks(q: str, words: list[str]) -> bool:
-    if q.endswith("?") or any(w in _ASKING for w in words) or "how come" in q:
+    if q.endswith("?") or any(w.split("'")[0] in _ASKING for w in words) or "how come" in q:
         return True
     if words[0] in _OPENERS or (len(words) > 1 and words[0] in {"so", "and", "but", "ok", "okay", "hey", "robot",
                                                                 "please", "well", "now", "then", "i"}
