@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import os
-import urllib.request
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -60,13 +59,23 @@ class EmbeddedModel:
         kwargs: dict[str, Any] = {"temperature": 0.0, "max_tokens": max_tokens}
         if schema is not None:
             kwargs["response_format"] = {"type": "json_object", "schema": dict(schema)}
+        saved = None
+        if messages and messages[0].get("role") == "system" and os.environ.get("HEXAR_PREFIX_CACHE", "1") != "0":
+            from hexar.agent import prefix_cache
+
+            name = prefix_cache.key(self._file, self._n_ctx, messages[0]["content"])
+            saved = prefix_cache.cache_dir() / f"{name}.bin"
+            prefix_cache.restore(self._llm, saved)
         try:
             # llama-cpp-python types messages as TypedDicts; ours are plain dicts of the same shape
             chat: Any = self._llm.create_chat_completion
             out: Any = chat(messages=[dict(m) for m in messages], **kwargs)
-            return str(out["choices"][0]["message"]["content"] or "")
+            text = str(out["choices"][0]["message"]["content"] or "")
         except Exception as err:  # llama.cpp raises bare RuntimeError/ValueError on context overflow
             raise ModelError(f"embedded model failed: {err}") from err
+        if saved is not None:
+            prefix_cache.save(self._llm, saved)
+        return text
 
 
 class OllamaModel:
@@ -104,6 +113,8 @@ class OllamaModel:
 
 
 def ollama_answers(host: str | None = None, timeout: float = 0.5) -> bool:
+    import urllib.request  # with http and ssl, 50 ms of imports that `--llm none` never needs
+
     try:
         with urllib.request.urlopen(f"{host or ollama_host()}/api/tags", timeout=timeout) as r:
             json.loads(r.read() or b"{}")
