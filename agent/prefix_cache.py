@@ -34,12 +34,20 @@ def key(model_file: str, n_ctx: int, system: str) -> str:
 
 
 def restore(llm: Any, path: Path) -> bool:
-    """Load the saved state into a fresh context; True when it was loaded."""
+    """Load the saved state into a fresh context; True when it was loaded. A file that cannot be loaded is
+    removed, so that the next reply writes a good one."""
+    if llm.n_tokens != 0 or not path.is_file():
+        return False
+    if _load(llm, path):
+        return True
+    path.unlink(missing_ok=True)
+    return False
+
+
+def _load(llm: Any, path: Path) -> bool:
     import llama_cpp
     import numpy as np
 
-    if llm.n_tokens != 0 or not path.is_file():
-        return False
     try:
         data = path.read_bytes()
         if not data.startswith(_MAGIC):

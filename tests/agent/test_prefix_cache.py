@@ -36,3 +36,5 @@ def test_a_saved_prefix_changes_no_reply(tmp_path: Path, monkeypatch: pytest.Mon
     monkeypatch.setenv("HEXAR_PREFIX_CACHE", "1")
     saved[0].write_bytes(b"HXPC1 damaged")
     assert EmbeddedModel().chat(question, schema=SCHEMA, max_tokens=16) == restored
+    assert len(list((tmp_path / "hexar" / "prefix").glob("*.bin"))) == 1  # rewritten whole
+    assert saved[0].stat().st_size > 1_000_000
