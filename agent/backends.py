@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import os
-import urllib.request
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -26,32 +25,57 @@ class EmbeddedModel:
     """llama-cpp-python with the packaged Qwen2.5-Coder-1.5B-Instruct; greedy decoding, 2 threads."""
 
     def __init__(self, path: str | None = None, n_ctx: int = 2048, threads: int | None = None) -> None:
-        try:
-            from llama_cpp import Llama
-        except ImportError as err:
-            raise BackendError("the embedded backend needs llama-cpp-python: run scripts/setup.sh") from err
+        import importlib.util
+
+        if importlib.util.find_spec("llama_cpp") is None:
+            raise BackendError("the embedded backend needs llama-cpp-python: run scripts/setup.sh")
         file = path or str(model_path())
         if not os.path.isfile(file):
             raise BackendError(f"embedded model not found at {file}: run scripts/setup.sh")
         self.name = "embedded:qwen2.5-coder-1.5b-instruct-q4_k_m"
-        # llama.cpp reuses the evaluated prefix of the previous prompt, so a fixed system prompt costs once.
-        # (LlamaRAMCache would keep more prefixes, but each saved state carries n_ctx x n_vocab logits: GBs.)
-        self._llm = Llama(model_path=file, n_ctx=n_ctx, n_threads=threads or min(4, os.cpu_count() or 2),
-                          seed=0, verbose=False)
         self.max_prompt_chars = 600
+        self._file, self._n_ctx, self._threads = file, n_ctx, threads or min(4, os.cpu_count() or 2)
+        self._loaded: Any = None
+        self.load_s: float | None = None
+
+    @property
+    def _llm(self) -> Any:
+        """The model, loaded on first use: an answer the failure check decides never waits for it."""
+        if self._loaded is None:
+            import time
+
+            from llama_cpp import Llama
+
+            began = time.perf_counter()
+            # llama.cpp reuses the evaluated prefix of the previous prompt, so a fixed system prompt costs once.
+            # (LlamaRAMCache would keep more prefixes, but each saved state carries n_ctx x n_vocab logits: GBs.)
+            self._loaded = Llama(model_path=self._file, n_ctx=self._n_ctx, n_threads=self._threads, seed=0,
+                                 verbose=False)
+            self.load_s = round(time.perf_counter() - began, 3)
+        return self._loaded
 
     def chat(self, messages: Sequence[Mapping[str, str]], *, schema: Mapping[str, Any] | None = None,
              max_tokens: int = 160) -> str:
         kwargs: dict[str, Any] = {"temperature": 0.0, "max_tokens": max_tokens}
         if schema is not None:
             kwargs["response_format"] = {"type": "json_object", "schema": dict(schema)}
+        saved = None
+        if messages and messages[0].get("role") == "system" and os.environ.get("HEXAR_PREFIX_CACHE", "1") != "0":
+            from hexar.agent import prefix_cache
+
+            name = prefix_cache.key(self._file, self._n_ctx, messages[0]["content"])
+            saved = prefix_cache.cache_dir() / f"{name}.bin"
+            prefix_cache.restore(self._llm, saved)
         try:
             # llama-cpp-python types messages as TypedDicts; ours are plain dicts of the same shape
             chat: Any = self._llm.create_chat_completion
             out: Any = chat(messages=[dict(m) for m in messages], **kwargs)
-            return str(out["choices"][0]["message"]["content"] or "")
+            text = str(out["choices"][0]["message"]["content"] or "")
         except Exception as err:  # llama.cpp raises bare RuntimeError/ValueError on context overflow
             raise ModelError(f"embedded model failed: {err}") from err
+        if saved is not None:
+            prefix_cache.save(self._llm, saved)
+        return text
 
 
 class OllamaModel:
@@ -89,6 +113,8 @@ class OllamaModel:
 
 
 def ollama_answers(host: str | None = None, timeout: float = 0.5) -> bool:
+    import urllib.request  # with http and ssl, 50 ms of imports that `--llm none` never needs
+
     try:
         with urllib.request.urlopen(f"{host or ollama_host()}/api/tags", timeout=timeout) as r:
             json.loads(r.read() or b"{}")

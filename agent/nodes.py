@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import json
 import time
-from typing import Any
-
-from langgraph.runtime import Runtime
+from typing import TYPE_CHECKING, Any
 
 from hexar.agent import content as answers
 from hexar.agent import guard
@@ -22,7 +20,11 @@ from hexar.explainers.errors import ModelError
 from hexar.explainers.planner import task_findings
 from hexar.prompts import load
 from hexar.render import clock
-from hexar.tools.explainer_tools import explainer_of_tool, scope, tools_for
+from hexar.tools.explainer_tools import explainer_of_tool, run_explainer, scope, tools_for
+
+if TYPE_CHECKING:
+    # Only a type: the one-shot path runs these nodes without importing LangGraph (agent/oneshot.py).
+    from langgraph.runtime import Runtime
 
 BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
 BENIGN_ANSWERS = BENIGN | {"navigation.nominal_speed", "tts.utterance_matches"}
@@ -178,13 +180,13 @@ def tools(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     start = time.perf_counter()
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
-    by_name = {explainer_of_tool(t.name): t for t in tools_for(ctx.registry)}
     explanations: list[dict[str, Any]] = []
     # Past the time budget, answer from the grounded templates rather than wait on the model.
     registry = ctx.registry if ctx.budget_left() > 0 else ctx.probe
     with scope(registry, Context.for_task(ctx.log, task, registry)):
         for name in state.get("selected", []):
-            explanations.append(by_name[name].invoke({"question": state["question"]}))
+            # What each explainer tool runs, called directly: building LangChain tools costs a second of imports.
+            explanations.append(run_explainer(name, state["question"]))
     return {"explanations": explanations, "used": [*state.get("used", []), *state.get("selected", [])],
             "depth": 0, "timings_ms": _timings(state, "tools", start)}
 

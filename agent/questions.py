@@ -1,16 +1,59 @@
-"""Is this a question HEXAR can take? Empty, gibberish and statements are refused with a reason."""
+"""Is this a question HEXAR can take? People type and speak to a robot without question marks, in statement form
+("you went to the wrong place didnt you"), with "why" at the end, fillers and recogniser slips: all of that is a
+question. Only what carries none is refused (empty, noise, gibberish, a greeting or a remark about nothing the
+robot did), with a line saying what would work."""
 
 from __future__ import annotations
 
+import difflib
 import re
 from functools import cache
 
 from hexar.agent.classifier import examples
 from hexar.agent.errors import BadQuestionError
 
-_QUESTION_START = re.compile(
-    r"^(and |but |so |ok |okay |hey |robot |please )*(why|what|how|when|where|who|which|did|do|does|was|were|is|"
-    r"are|can|could|would|will|should|have|has|had|tell|explain|describe|show|say|give)\b"
+
+def _words(text: str) -> frozenset[str]:
+    return frozenset(text.split())
+
+
+EXAMPLE = 'e.g. "Why didn\'t you bring me the coffee?" or "what happened"'
+_WORD = re.compile(r"[a-z]+(?:'[a-z]+)?")
+# Sounds and transcript markers that carry no words (whisper writes "[BLANK_AUDIO]" or "(static)" for noise).
+_FILLERS = _words("um umm uh uhh uhm erm er ah ahh eh hmm hm mm mmm")
+_MARKER = re.compile(r"\[[^\]]*\]|\([^)]*\)|<[^>]*>")
+# Typed or recognised without an apostrophe, or in chat spelling.
+_SPELLING = {
+    "didnt": "didn't", "dont": "don't", "doesnt": "doesn't", "cant": "can't", "couldnt": "couldn't",
+    "wouldnt": "wouldn't", "shouldnt": "shouldn't", "wasnt": "wasn't", "werent": "weren't", "isnt": "isn't",
+    "arent": "aren't", "havent": "haven't", "hasnt": "hasn't", "hadnt": "hadn't", "wont": "won't",
+    "youre": "you're", "whats": "what's", "thats": "that's", "theres": "there's", "hows": "how's",
+    "whered": "where'd", "whyd": "why'd", "im": "i'm", "ive": "i've", "u": "you", "ur": "your", "y": "why",
+    "r": "are", "wat": "what", "wut": "what", "wht": "what", "wy": "why", "whyy": "why", "coz": "because",
+    "cuz": "because", "pls": "please", "plz": "please",
+}
+_ASKING = _words("why what what's whats how how's when where where'd who whom whose which why'd whys")
+_OPENERS = _words(
+    "did do does was were is are can could would will should have has had didn't don't doesn't wasn't weren't "
+    "isn't aren't can't couldn't wouldn't won't shouldn't haven't hasn't tell explain describe show say give "
+    "walk help talk wonder curious"
+)
+# A statement about what the robot did or what went wrong is a question about it ("you didnt bring it").
+_ABOUT_ROBOT = _words("you your you're yourself robot tiago hexar")
+_EVENTS = _words(
+    "fail failed failing failure wrong stuck stopped stop late slow slowly never nothing broke broken crashed "
+    "lost missed forgot gave didn't couldn't wasn't weren't won't can't problem error mistake instead"
+)
+_TAGS = re.compile(
+    r"(?:\b(?:didn't|did|don't|do|weren't|were|wasn't|was|aren't|are|isn't|is|won't|will|can't|can|couldn't|"
+    r"could|haven't|have|hasn't|has) (?:you|it|they|he|she|we|i|there)|\bright|\bhuh|\beh|\bno|\bor what|\bor not|"
+    r"\bwhy not|\bhow come|\bisn't it|\bwasn't it)\W*$"
+)
+# Nothing to explain in these on their own: greetings, thanks, acknowledgements.
+_SMALL_TALK = re.compile(
+    r"^(?:(?:hi|hello|hey|yo|thanks|thank|you|ok|okay|yes|yeah|yep|no|nope|sure|fine|great|good|cool|nice|bye|"
+    r"goodbye|morning|evening|night|afternoon|very|much|so|a|lot|for|watching|all|right|alright|robot|tiago|"
+    r"please|well|oh|wow)\b\W*)+$"
 )
 _COMMON = (
     "a an the i you we he she it they me my your our us him her them this that these those there here to of in on "
@@ -23,7 +66,28 @@ _COMMON = (
     "robot task room kitchen dining living bring brought fetch coffee book message maria pizza recipe help "
     "helped ask asked approach move moved moving drive driving talk talking speak speaking finish finished "
     "middle first second last other else more much many time times minute minutes second seconds fix problem "
-    "that's don't didn't doesn't wasn't weren't isn't aren't can't couldn't won't wouldn't i'm you're it's"
+    "that's don't didn't doesn't wasn't weren't isn't aren't can't couldn't won't wouldn't i'm you're it's "
+    # beyond the example questions: how people go on about a robot's errand
+    "faster slower quick quicker speed hurry late early place places spot door doors hall hallway corridor table "
+    "chair sofa couch bedroom bathroom office home back forward around away toward towards close closer far "
+    "farther near next front behind left turn turned turning spin spun circle circles route path way wall "
+    "obstacle obstacles blocked block stuck crash crashed bump bumped hit wait waited waiting stand standing "
+    "stood sit idle frozen freeze froze fail failed failing failure fails error mistake mess messed broke broken "
+    "lost miss missed forgot forget gave give giving up quit sorry please hey hi hello ok okay well oh um uh "
+    "actually really anyway though because since why'd what's how's where's there's won't shouldn't haven't "
+    "hasn't hadn't i've you've we've they've weren't any all every each some none both one two three four five "
+    "cup mug water drink tea food dinner lunch breakfast plate remote control keys phone bottle glass box list "
+    "shopping agenda news weather person's man woman lady guy guys someone's human humans somebody anybody "
+    "everyone everybody nobody's said saying says sentence words word voice quiet silent loud cut interrupted "
+    "plan planned planning plans step steps order ordered request requested instruction instructions mean meant "
+    "understand understood doing does deliver delivered delivering carry carried pick picked drop dropped "
+    "recommend recommended recommendation choose chose chosen choice pick picked pizzas ingredients different "
+    "same better worse best worst weird strange strangely odd oddly awkward awkwardly rude creepy scary close "
+    "end ended ending reason reasons explain explanation describe show tell told answer going gonna wanna "
+    "supposed able unable possible impossible instead again still yet already ago today now then while during "
+    "until later soon took taking takes reach reached reaching arrive arrived arriving get getting got leave "
+    "left leaving return returned returning empty handed empty-handed nothing happen happening went go goes "
+    "drove drives driven walked walk walking run ran running trip errand job mission goal"
 )
 
 
@@ -32,21 +96,65 @@ def vocabulary() -> frozenset[str]:
     words = set(_COMMON.split())
     for qs in examples().values():
         for q in qs:
-            words.update(re.findall(r"[a-z']+", q.lower()))
+            words.update(_WORD.findall(q.lower()))
     return frozenset(words)
 
 
+@cache
+def _known(word: str) -> bool:
+    """In the vocabulary, or one slip away from a word of it (a typo, or a recogniser's near miss)."""
+    vocab = vocabulary()
+    if word in vocab or word in _SPELLING or word in _FILLERS:
+        return True
+    if word.endswith(("s", "ed", "ing", "ly")) and word.rstrip("s").removesuffix("ed").removesuffix("ing") in vocab:
+        return True
+    return len(word) >= 4 and bool(difflib.get_close_matches(word, vocab, n=1, cutoff=0.8))
+
+
+def normalise(question: str) -> str:
+    """Noise markers and filler sounds out, apostrophe-less contractions and chat spellings spelled out;
+    everything else as asked (a well-formed question comes back unchanged)."""
+    text = _MARKER.sub(" ", question)
+    text = re.sub(r"\b(would|could|should|might|must) of\b", r"\1 have", text, flags=re.I)
+
+    def word(m: re.Match[str]) -> str:
+        w = m.group(0)
+        low = w.lower()
+        if low in _FILLERS:
+            return ""
+        return _SPELLING.get(low, w)
+
+    text = re.sub(r"[A-Za-z]+(?:'[A-Za-z]+)?", word, text)
+    text = re.sub(r"\s+([,.?!])", r"\1", re.sub(r"\s+", " ", text)).strip()
+    return text.lstrip(" ,.;:-")
+
+
+def _asks(q: str, words: list[str]) -> bool:
+    if q.endswith("?") or any(w.split("'")[0] in _ASKING for w in words) or "how come" in q:
+        return True
+    if words[0] in _OPENERS or (len(words) > 1 and words[0] in {"so", "and", "but", "ok", "okay", "hey", "robot",
+                                                                "please", "well", "now", "then", "i"}
+                                and words[1] in _OPENERS | _ASKING):
+        return True
+    if _TAGS.search(q) and len(words) > 2:
+        return True
+    about = any(w in _ABOUT_ROBOT for w in words) and len(words) >= 3
+    return about or any(w in _EVENTS for w in words)
+
+
 def check_question(question: str) -> str:
-    """The question, trimmed; raises BadQuestionError with a one-line reason otherwise."""
-    q = question.strip()
-    if not q:
-        raise BadQuestionError("empty question: ask me why I did something, e.g. \"What happened?\"")
-    words = re.findall(r"[a-z']+", q.lower())
+    """The question, trimmed and normalised; raises BadQuestionError with a one-line reason otherwise."""
+    if not question.strip():
+        raise BadQuestionError(f"empty question: ask me why I did something, {EXAMPLE}")
+    q = normalise(question)
+    words = _WORD.findall(q.lower())
     if not words:
-        raise BadQuestionError(f"I can't read {q!r} as a question: ask me why I did something")
-    known = sum(1 for w in words if w in vocabulary())
-    if known / len(words) < 0.4:
-        raise BadQuestionError(f"I don't understand {q!r}: ask me why I did something, e.g. \"What happened?\"")
-    if not q.endswith("?") and not _QUESTION_START.match(q.lower()):
-        raise BadQuestionError(f"{q!r} is not a question: ask me why I did something, e.g. \"Why did you stop?\"")
+        raise BadQuestionError(f"I can't read {question.strip()!r} as a question: ask me why I did something, "
+                               f"{EXAMPLE}")
+    known = sum(1 for w in words if _known(w))
+    if known / len(words) < 0.5 or (len(words) == 1 and not _known(words[0])):
+        raise BadQuestionError(f"I don't understand {question.strip()!r}: ask me in words why I did something, "
+                               f"{EXAMPLE}")
+    if _SMALL_TALK.match(q.lower()) or not _asks(q.lower(), words):
+        raise BadQuestionError(f"{question.strip()!r} is not a question: ask me why I did something, {EXAMPLE}")
     return q

@@ -15,9 +15,9 @@ from langgraph.checkpoint.sqlite import SqliteSaver
 from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.graph import build
+from hexar.agent.oneshot import result_of
 from hexar.agent.state import AgentState
 from hexar.events.log import EventLog
-from hexar.explainers.base import Explanation
 
 
 def default_checkpoints() -> Path:
@@ -75,25 +75,4 @@ class Session:
         return list(snap.values.get("history", [])) if snap and snap.values else []
 
     def _result(self, state: dict[str, Any], thread: str, started: float) -> dict[str, Any]:
-        exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
-        timings = dict(state.get("timings_ms", {}))
-        timings["total"] = round((time.perf_counter() - started) * 1000, 2)
-        followup = state.get("route") == "followup" and state.get("intent") in {"deeper", "helped"}
-        return {
-            "answer": state.get("answer", ""),
-            "error": state.get("error", ""),
-            "explainers": [e.explainer for e in exps],
-            "route": state.get("route", "none"),
-            "intent": state.get("intent", "new"),
-            "backend": self.backend.name,
-            "phrased_by": [e.phrased_by for e in exps] if not followup else [],
-            "causes": [c for e in exps for c in e.causes],
-            "evidence": [ev.model_dump() for e in exps for ev in e.evidence],
-            "counterfactual": next((e.counterfactual for e in exps if e.counterfactual), None),
-            "fix": next((e.fix for e in exps if e.fix), None),
-            "fallback": state.get("fallback", []),
-            "task_id": state.get("task_id", ""),
-            "thread": thread,
-            "recording": str(self.settings.recording),
-            "timings_ms": timings,
-        }
+        return result_of(state, self.backend.name, str(self.settings.recording), thread, started)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import importlib
 import tomllib
 from collections.abc import Iterable, Mapping
+from functools import cache
 from importlib import resources
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -25,6 +26,19 @@ def _load_class(ref: str) -> type[Any]:
         return getattr(importlib.import_module(module_name), attr)  # type: ignore[no-any-return]
     except (ImportError, AttributeError) as err:
         raise RegistryConfigError(f"cannot load explainer {ref!r}: {err}") from err
+
+
+@cache
+def _entry_point_classes() -> dict[str, type[Any]]:
+    # Scanning every installed distribution's entry points costs tens of milliseconds; a batch over many
+    # recordings loads a registry per recording, and the installed set does not change while it runs.
+    classes: dict[str, type[Any]] = {}
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        try:
+            classes[ep.name] = ep.load()
+        except (ImportError, AttributeError) as err:
+            raise RegistryConfigError(f"entry point {ep.name!r} cannot be loaded: {err}") from err
+    return classes
 
 
 def read_config(path: Path | None = None) -> dict[str, Any]:
@@ -60,12 +74,7 @@ class Registry:
     @classmethod
     def load(cls, model: TextModel | None = None, config: Path | None = None) -> Registry:
         """Entry points of the `hexar.explainers` group, then the config's own [explainers] and [modules]."""
-        classes: dict[str, type[Any]] = {}
-        for ep in entry_points(group=ENTRY_POINT_GROUP):
-            try:
-                classes[ep.name] = ep.load()
-            except (ImportError, AttributeError) as err:
-                raise RegistryConfigError(f"entry point {ep.name!r} cannot be loaded: {err}") from err
+        classes = dict(_entry_point_classes())
         data = read_config(None)
         if config is not None:
             extra = read_config(config)

@@ -1,8 +1,7 @@
-"""`hexar ask` (one-shot and batch) and `hexar chat` (interactive) over one recording."""
+"""`hexar chat` (interactive) over one recording, and the answer panel `hexar ask` prints too."""
 
 from __future__ import annotations
 
-import json
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -13,8 +12,6 @@ from rich.markup import escape
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
-from hexar.agent.errors import BadQuestionError
-from hexar.agent.session import Session, default_checkpoints
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -35,36 +32,10 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
                       f"total={result['timings_ms'].get('total')} ms[/dim]")
 
 
-def ask(run: Path, question: str | None, questions: Path | None, task: str | None, llm: str,
-        as_json: bool, verbose: bool, console: Console, phrase: bool | None = None, plot: Path | None = None) -> int:
-    session = Session(RunSettings(recording=run, llm=llm, phrase=phrase))
-    if questions is not None:
-        lines = [ln.strip() for ln in questions.read_text(encoding="utf-8").splitlines() if ln.strip()]
-        worst = 0
-        for line in lines:
-            result = session.ask(line, task=task)
-            worst = max(worst, 2 if result["error"] else 0)
-            if as_json:
-                print(json.dumps(result))
-            else:
-                print(f"Q: {line}\n{result['answer'] or 'ERROR: ' + result['error']}\n")
-        return worst
-    result = session.ask(question or "", task=task)
-    if result["error"]:
-        raise BadQuestionError(result["error"])
-    if plot is not None:
-        from hexar.web.explain import plot_task
-
-        plot_task(session.context.log, result, plot)
-    if as_json:
-        print(json.dumps(result, indent=2))
-    else:
-        render_answer(console, result, evidence=verbose, verbose=verbose)
-    return 0
-
-
 def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None,
          phrase: bool | None = None) -> int:
+    from hexar.agent.session import Session, default_checkpoints
+
     session = Session(RunSettings(recording=run, llm=llm, phrase=phrase),
                       checkpoints=checkpoints or default_checkpoints())
     thread = thread or session.new_thread()

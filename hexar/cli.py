@@ -127,28 +127,29 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
 
 @app.command()
 def ask(
-    run: Annotated[Path, typer.Argument(help="a rosbag2 folder or ROS 1 .bag")],
-    question: Annotated[str | None, typer.Argument(help="the question, e.g. \"Why didn't you bring it?\"")] = None,
+    targets: Annotated[list[str], typer.Argument(
+        metavar="RUN... [QUESTION]",
+        help="one or more recordings (rosbag2 folders or ROS 1 .bag), then the question, e.g. \"Why didn't you "
+             "bring it?\" (no question with --questions)")],
     questions: Annotated[Path | None, typer.Option(help="answer each line of this file as a new conversation")] = None,
+    runs: Annotated[Path | None, typer.Option("--runs", help="also ask every recording in this folder")] = None,
     task: Annotated[str | None, typer.Option(help="task id, order number, 'first' or 'latest'")] = None,
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
-    as_json: Annotated[bool, typer.Option("--json", help="print JSON")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print JSON (one object per line in a batch)")] = False,
     verbose: Annotated[bool, typer.Option("--verbose", "-v", help="show route, backend, evidence")] = False,
     phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers "
                                                 "(default: with Ollama yes, embedded no)")] = None,
     plot: Annotated[Path | None, typer.Option(help="also draw the task's path/timeline figure (PNG)")] = None,
 ) -> None:
-    """Answer one question (or a file of questions) about a recorded run."""
+    """Answer a question (or a file of questions) about one or many recorded runs, starting up once."""
 
     def body() -> int:
-        from hexar.chat import ask as run_ask
+        from hexar.ask_cmd import ask as run_ask
         from hexar.errors import HexarError
 
-        if question is None and questions is None:
-            raise HexarError("give a question or --questions FILE")
         if plot is not None and questions is not None:
             raise HexarError("--plot draws one answer: give one question, not --questions")
-        return run_ask(run, question, questions, task, llm, as_json, verbose, out, phrase, plot)
+        return run_ask(targets, questions, runs, task, llm, as_json, verbose, out, phrase, plot)
 
     raise typer.Exit(guarded(body))
 

@@ -2,6 +2,8 @@
 
 The tools run inside the agent's tool node, which sets the scope (the explainers and the context vector C of
 the task being explained) for the duration of the call; the tools themselves take only the question.
+LangChain is imported only when the tool objects are built (`tools_for`, `TOOLS`): a question answered without
+an LLM runs the same explainers through `run_explainer` and never pays that import.
 """
 
 from __future__ import annotations
@@ -10,12 +12,14 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import Any
-
-from langchain_core.tools import BaseTool, StructuredTool, tool
+from functools import cache
+from typing import TYPE_CHECKING, Any
 
 from hexar.explainers.base import Context
 from hexar.explainers.registry import Registry
+
+if TYPE_CHECKING:
+    from langchain_core.tools import BaseTool
 
 
 @dataclass(frozen=True)
@@ -43,41 +47,35 @@ def run_explainer(name: str, question: str) -> dict[str, Any]:
     return current.registry.get(name).explain(question, current.context).model_dump()
 
 
-@tool
 def explain_planning(question: str) -> dict[str, Any]:
     """Explain the robot's task plan: how it turned the request into steps, a plan it rejected, a step or place
     it does not have, doing something other than what was asked, or a request it cannot do at all."""
     return run_explainer("planner", question)
 
 
-@tool
 def explain_navigation(question: str) -> dict[str, Any]:
     """Explain how the robot drove between rooms: why it did not get somewhere, stopped, turned around, took
     long, changed direction, moved slowly or strangely, or its speed."""
     return run_explainer("navigation", question)
 
 
-@tool
 def explain_asking_for_help(question: str) -> dict[str, Any]:
     """Explain how the robot looked for a person and asked them for help: nobody found, the person too far or
     not clearly seen, could not reach them, they refused or did not confirm, or an awkward approach."""
     return run_explainer("ask_human_for_help", question)
 
 
-@tool
 def explain_speech(question: str) -> dict[str, Any]:
     """Explain what the robot said aloud: why it stopped talking, cut a message off or did not finish it."""
     return run_explainer("text_to_speech", question)
 
 
-@tool
 def explain_pizza_choice(question: str) -> dict[str, Any]:
     """Explain the robot's pizza recommendation: why that pizza, and which available ingredients led to it."""
     return run_explainer("pizza_recommender", question)
 
 
-TOOLS: list[BaseTool] = [explain_planning, explain_navigation, explain_asking_for_help, explain_speech,
-                         explain_pizza_choice]
+_FUNCTIONS = (explain_planning, explain_navigation, explain_asking_for_help, explain_speech, explain_pizza_choice)
 TOOL_EXPLAINER: dict[str, str] = {
     "explain_planning": "planner",
     "explain_navigation": "navigation",
@@ -87,9 +85,26 @@ TOOL_EXPLAINER: dict[str, str] = {
 }
 
 
+@cache
+def builtin_tools() -> tuple[BaseTool, ...]:
+    """The five functions above as LangChain tools (name, docstring and argument schema taken from each)."""
+    from langchain_core.tools import tool
+
+    return tuple(tool(fn) for fn in _FUNCTIONS)
+
+
+def __getattr__(name: str) -> Any:
+    # `TOOLS` stays importable as before, built on first use rather than at import.
+    if name == "TOOLS":
+        return list(builtin_tools())
+    raise AttributeError(name)
+
+
 def tools_for(registry: Registry) -> list[BaseTool]:
     """The five tools above plus one for every further explainer registered by entry point or config."""
-    out = list(TOOLS)
+    from langchain_core.tools import StructuredTool
+
+    out = list(builtin_tools())
     known = set(TOOL_EXPLAINER.values())
     for name, description in registry.descriptions().items():
         if name in known:

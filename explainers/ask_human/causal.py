@@ -117,12 +117,19 @@ class Counterfactual:
 
 
 class CausalModel:
-    """A fitted network plus the intervention queries the explainer needs."""
+    """A fitted network plus the intervention queries the explainer needs.
 
-    def __init__(self, network: Any, meta: Mapping[str, Any]) -> None:
-        self.network = network
+    pgmpy learns the CPDs (`fit`); queries run on the CPD tables with NumPy (exact variable elimination by
+    einsum), so answering a question never imports pgmpy, pandas or scikit-learn (seconds at a cold start).
+    """
+
+    def __init__(self, network: Any, meta: Mapping[str, Any], specs: Mapping[str, Any] | None = None,
+                 edges: Sequence[tuple[str, str]] = EDGES) -> None:
+        self._network = network
         self.meta = dict(meta)
-        self._engines: dict[frozenset[str], Any] = {}
+        self._edges = [tuple(e) for e in edges]
+        self._specs: dict[str, Any] = dict(specs) if specs is not None else _cpd_specs(network)
+        self._tables = _tables_of(self._specs)
 
     @classmethod
     def fit(cls, rows: Sequence[Mapping[str, str]], **meta: Any) -> CausalModel:
@@ -145,42 +152,40 @@ class CausalModel:
         )
 
     def to_json(self) -> dict[str, Any]:
-        cpds = {}
-        for var in VARIABLES:
-            cpd = self.network.get_cpds(var)
-            evidence = list(cpd.variables[1:])
-            cpds[var] = {
-                "evidence": evidence,
-                "state_names": {v: list(cpd.state_names[v]) for v in [var, *evidence]},
-                "values": [[round(float(x), 10) for x in row] for row in cpd.get_values()],
-            }
-        return {"format": FORMAT, "meta": self.meta, "edges": [list(e) for e in EDGES], "cpds": cpds}
+        return {"format": FORMAT, "meta": self.meta, "edges": [list(e) for e in EDGES], "cpds": self._specs}
 
     def save(self, path: Path) -> None:
         path.write_text(json.dumps(self.to_json(), indent=1, sort_keys=True) + "\n", encoding="utf-8")
 
     @classmethod
     def from_json(cls, data: Mapping[str, Any]) -> CausalModel:
-        _quiet_pgmpy()
-        from pgmpy.factors.discrete import TabularCPD
-        from pgmpy.models import DiscreteBayesianNetwork
-
         if data.get("format") != FORMAT:
             raise ValueError(f"not an ask-human causal model (format {data.get('format')!r})")
-        network = DiscreteBayesianNetwork([tuple(e) for e in data["edges"]])
-        for var, spec in data["cpds"].items():
-            names = spec["state_names"]
-            network.add_cpds(
-                TabularCPD(
-                    var,
-                    len(names[var]),
-                    spec["values"],
-                    evidence=spec["evidence"] or None,
-                    evidence_card=[len(names[e]) for e in spec["evidence"]] or None,
-                    state_names=names,
+        return cls(None, data.get("meta", {}), data["cpds"], [(a, b) for a, b in data["edges"]])
+
+    @property
+    def network(self) -> Any:
+        """The pgmpy network (built from the tables on first use: only training and its checks need it)."""
+        if self._network is None:
+            _quiet_pgmpy()
+            from pgmpy.factors.discrete import TabularCPD
+            from pgmpy.models import DiscreteBayesianNetwork
+
+            network = DiscreteBayesianNetwork(self._edges)
+            for var, spec in self._specs.items():
+                names = spec["state_names"]
+                network.add_cpds(
+                    TabularCPD(
+                        var,
+                        len(names[var]),
+                        spec["values"],
+                        evidence=spec["evidence"] or None,
+                        evidence_card=[len(names[e]) for e in spec["evidence"]] or None,
+                        state_names=names,
+                    )
                 )
-            )
-        return cls(network, data.get("meta", {}))
+            self._network = network
+        return self._network
 
     @classmethod
     def load(cls, path: Path | None = None) -> CausalModel:
@@ -194,30 +199,67 @@ class CausalModel:
         return cls.from_json(json.loads(text))
 
     def cpd_values(self, var: str) -> list[list[float]]:
-        return [[float(x) for x in row] for row in self.network.get_cpds(var).get_values()]
-
-    def _engine(self, intervened: frozenset[str]) -> Any:
-        if intervened not in self._engines:
-            from pgmpy.inference import VariableElimination
-
-            # do(): the intervened variables lose their parents (the mutilated network), then we condition.
-            network = self.network.do(sorted(intervened)) if intervened else self.network
-            self._engines[intervened] = VariableElimination(network)
-        return self._engines[intervened]
+        table = self._tables[var]
+        return [[float(x) for x in row] for row in table.values.reshape(table.values.shape[0], -1)]
 
     def probability(
         self, var: str, value: str, do: Mapping[str, str], evidence: Mapping[str, str] | None = None
     ) -> float:
         """P(var = value | do(do), evidence)."""
-        engine = self._engine(frozenset(do))
+        import numpy as np
+
         known = {**(evidence or {}), **do}
         if var in known:
             return 1.0 if known[var] == value else 0.0
-        factor = engine.query([var], evidence=known, show_progress=False)
-        return float(factor.get_value(**{var: value}))
+        # do(): the intervened variables lose their parents (the mutilated network), then everything is
+        # conditioned on; an intervened root's own table is then a constant that normalisation removes.
+        label = {v: i for i, v in enumerate(VARIABLES)}
+        operands: list[Any] = []
+        for child, table in self._tables.items():
+            if child in do:
+                continue
+            index = tuple(table.names[a].index(known[a]) if a in known else slice(None) for a in table.axes)
+            operands += [table.values[index], [label[a] for a in table.axes if a not in known]]
+        marginal = np.einsum(*operands, [label[var]], optimize="greedy")
+        total = float(marginal.sum())
+        return float(marginal[self._tables[var].names[var].index(value)] / total) if total > 0 else 0.0
 
     def p_success(self, do: Mapping[str, str], evidence: Mapping[str, str] | None = None) -> float:
         return self.probability("outcome", "success", do, evidence)
+
+
+@dataclass(frozen=True)
+class _Table:
+    """One CPD as an array with an axis per variable: the child first, then its parents."""
+
+    axes: tuple[str, ...]
+    names: dict[str, list[str]]
+    values: Any
+
+
+def _cpd_specs(network: Any) -> dict[str, dict[str, Any]]:
+    cpds = {}
+    for var in VARIABLES:
+        cpd = network.get_cpds(var)
+        evidence = list(cpd.variables[1:])
+        cpds[var] = {
+            "evidence": evidence,
+            "state_names": {v: list(cpd.state_names[v]) for v in [var, *evidence]},
+            "values": [[round(float(x), 10) for x in row] for row in cpd.get_values()],
+        }
+    return cpds
+
+
+def _tables_of(cpds: Mapping[str, Mapping[str, Any]]) -> dict[str, _Table]:
+    import numpy as np
+
+    tables = {}
+    for var, spec in cpds.items():
+        names = {k: list(v) for k, v in spec["state_names"].items()}
+        axes = (var, *spec["evidence"])
+        values = np.asarray(spec["values"], dtype=np.float64).reshape([len(names[a]) for a in axes])
+        tables[var] = _Table(axes, names, values)
+    return tables
 
 
 def _kept_evidence(observed: Mapping[str, str], intervened: Iterable[str]) -> dict[str, str]:

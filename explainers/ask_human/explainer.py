@@ -112,7 +112,7 @@ class AskHumanForHelpExplainer:
 
     @property
     def causal(self) -> CausalModel:
-        # Loading pgmpy and the network costs about a second; only pay it when a question comes.
+        # Reading the shipped tables is cheap (queries run with NumPy, not pgmpy); still, only when asked.
         if self._causal is None:
             self._causal = shipped_model()
         return self._causal

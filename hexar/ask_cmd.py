@@ -1,0 +1,120 @@
+"""`hexar ask`: one question, a file of questions (`--questions`), or many recordings, in one process.
+
+Every question is a new conversation, so the agent runs one-shot (agent/oneshot.py): the same nodes as the
+LangGraph agent, without importing LangGraph. Start-up (imports, explainers, model load) is paid once however
+many questions and recordings there are; each recording is decoded once.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from hexar.agent.context import RunSettings
+from hexar.agent.errors import BadQuestionError
+from hexar.errors import USER_ERRORS, HexarError
+
+if TYPE_CHECKING:
+    from rich.console import Console
+
+
+def recordings_in(folder: Path) -> list[Path]:
+    """The recordings directly inside a folder: rosbag2 folders and ROS 1 .bag files."""
+    if not folder.is_dir():
+        raise HexarError(f"not a folder: {folder}")
+    found = sorted(p for p in folder.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file())
+                   or p.suffix in {".bag", ".mcap", ".db3"})
+    if not found:
+        raise HexarError(f"no recordings in {folder}")
+    return found
+
+
+def split_targets(targets: list[str], questions: Path | None, runs: Path | None) -> tuple[list[Path], str | None]:
+    """`RUN... QUESTION`: the last argument is the question unless the questions come from --questions."""
+    paths = [Path(t) for t in targets]
+    question: str | None = None
+    if questions is None and targets:
+        question = targets[-1]
+        paths = paths[:-1]
+    if runs is not None:
+        paths.extend(recordings_in(runs))
+    if not paths:
+        raise HexarError("give a recording, then a question (or --questions FILE)")
+    if questions is None and question is None:
+        raise HexarError("give a question or --questions FILE")
+    return paths, question
+
+
+def read_questions(path: Path) -> list[str]:
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise HexarError(f"cannot read questions from {path}: {err}") from err
+    return [ln.strip() for ln in text.splitlines() if ln.strip()]
+
+
+def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str | None, llm: str,
+        as_json: bool, verbose: bool, console: Console, phrase: bool | None = None,
+        plot: Path | None = None) -> int:
+    from hexar.agent.backends import resolve
+    from hexar.agent.oneshot import OneShot
+
+    paths, question = split_targets(targets, questions, runs)
+    lines = read_questions(questions) if questions is not None else [question or ""]
+    backend = resolve(llm)  # one backend (and one model load) for every recording
+    if plot is not None and (questions is not None or len(paths) > 1):
+        raise HexarError("--plot draws one answer: give one recording and one question")
+    if len(paths) == 1 and questions is None:
+        agent = OneShot(RunSettings(recording=paths[0], llm=llm, phrase=phrase), backend)
+        result = agent.ask(lines[0], task=task)
+        if result["error"]:
+            raise BadQuestionError(result["error"])
+        if plot is not None:
+            from hexar.web.explain import plot_task
+
+            plot_task(agent.context.log, result, plot)
+        if as_json:
+            print(json.dumps(result, indent=2))
+        else:
+            from hexar.chat import render_answer
+
+            render_answer(console, result, evidence=verbose, verbose=verbose)
+        return 0
+    worst = 0
+    for path in paths:
+        try:
+            agent = OneShot(RunSettings(recording=path, llm=llm, phrase=phrase), backend)
+        except USER_ERRORS as err:
+            worst = 2
+            _refused({"recording": str(path), "error": str(err)}, as_json)
+            continue
+        for n, line in enumerate(lines, start=1):
+            try:
+                result = agent.ask(line, task=task)
+            except USER_ERRORS as err:  # e.g. --task names a task this recording does not have
+                result = {"answer": "", "error": str(err), "recording": str(path)}
+            result = {**result, "question": line, "line": n}
+            if result["error"]:
+                worst = 2
+                _refused(result, as_json)
+            elif as_json:
+                print(json.dumps(result))
+            else:
+                # One answer line per answer (after the echoed question in a --questions batch), so a batch's
+                # output lines up with its questions.
+                if questions is not None:
+                    print(f"Q: {line}")
+                print(f"{path.name}: {result['answer']}" if len(paths) > 1 else result["answer"])
+    return worst
+
+
+def _refused(result: dict[str, Any], as_json: bool) -> None:
+    """A refused line or unreadable recording: its own JSON object with `error`, or one ERROR line."""
+    if as_json:
+        print(json.dumps({"answer": "", **result}))
+        return
+    where = Path(result["recording"]).name
+    line = f" line {result['line']}" if "line" in result else ""
+    print(f"ERROR: {where}{line}: {result['error']}", file=sys.stderr)
