@@ -170,3 +170,35 @@ def test_a_goal_reached_late_because_the_collision_monitor_held_the_robot(tmp_pa
     answer = NavigationExplainer().explain("Why did it take so long to get there?", Context.for_task(log, log.task()))
     assert answer.causes == [g.COLLISION_AHEAD]
     assert "collision monitor stopped me for 414 s" in answer.text
+
+
+DWB_HITS: list[Line] = [  # corpus tb4-679 / nav2-3807: DWB's debug lines, verbatim
+    ("DWBLocalPlanner", ERROR, "No valid trajectories out of 419! "),
+    ("DWBLocalPlanner", ERROR, "1.00: BaseObstacle/Trajectory Hits Obstacle."),
+]
+
+
+def test_dwb_obstacle_critic_is_a_blocked_path_only_when_the_controller_gave_up(tmp_path: Path) -> None:
+    # tb4-679-humble-trajectory-hits-obstacle: then "Controller patience exceeded" and the goal failed
+    gave_up = [*DWB_HITS, ("controller_server", ERROR, "Controller patience exceeded")]
+    assert _explain(tmp_path, _bag(gave_up, True), "gave_up")[0] == [BLOCKED]
+    # nav2-3807-dwb-no-valid-trajectories: the controller keeps driving; its trajectories were the trouble
+    going = [*DWB_HITS, ("controller_server", INFO, "Passing new path to controller.")]
+    assert _explain(tmp_path, _bag(going, True), "going")[0] == [g.CONTROLLER]
+
+
+def test_a_crashed_nav2_process_is_a_bring_up_failure(tmp_path: Path) -> None:
+    # corpus nav2-4380-humble-mppi-sigill-arm-binaries (gdb's report, an unknown logger)
+    lines: list[Line] = [("gdb", ERROR, 'Thread 1 "controller_serv" received signal SIGILL, Illegal instruction.')]
+    assert _explain(tmp_path, _bag(lines, False), "bag")[0] == [g.CONFIGURATION]
+
+
+def test_a_docking_failure_is_not_worded_as_charging(tmp_path: Path) -> None:
+    from hexar.causes import stated_causes
+
+    # corpus mowgli-486-dock-charge-timeout
+    lines: list[Line] = [("docking_server", WARN, "Docking failed, will retry: Timed out waiting for charge to start"),
+                         ("docking_server", ERROR, "Timed out resetting dock approach")]
+    causes, text = _explain(tmp_path, _bag(lines, True), "bag")
+    assert causes == [g.DOCKING]
+    assert g.DOCKING in stated_causes(text) and "navigation.charging" not in stated_causes(text)
