@@ -2,50 +2,53 @@
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.session import Session, default_checkpoints
+from hexar.errors import USER_ERRORS
+from hexar.inputs import read_text_arg
 from hexar.render import clock
+from hexar.safe_text import json_dumps, safe, visible
 
 HELP = ("Ask why I did something. Commands: /task [ID] (switch or list tasks), /evidence (toggle evidence), "
         "/why (go deeper), /reset (new conversation), /thread (show its id), /help. Ctrl-D quits.")
 
 
 def render_answer(console: Console, result: dict[str, Any], evidence: bool, verbose: bool = False) -> None:
-    console.print(Panel(escape(result["answer"]), title="HEXAR", title_align="left", border_style="cyan"))
+    console.print(Panel(safe(result["answer"], keep_newlines=True), title="HEXAR", title_align="left",
+                        border_style="cyan"))
     if evidence:
         for ev in result["evidence"][:6]:
-            console.print(f"  [dim]{clock(ev['t'])} {ev['topic']}[/dim]  {escape(ev['item'])}")
+            console.print(f"  [dim]{clock(ev['t'])} {safe(ev['topic'])}[/dim]  {safe(ev['item'])}")
     if verbose:
-        console.print(f"  [dim]route={result['route']} explainers={','.join(result['explainers'])} "
-                      f"backend={result['backend']} causes={','.join(result['causes'])} "
-                      f"total={result['timings_ms'].get('total')} ms[/dim]")
+        console.print(safe(f"  route={result['route']} explainers={','.join(result['explainers'])} "
+                           f"backend={result['backend']} causes={','.join(result['causes'])} "
+                           f"total={result['timings_ms'].get('total')} ms"), style="dim")
 
 
 def ask(run: Path, question: str | None, questions: Path | None, task: str | None, llm: str,
         as_json: bool, verbose: bool, console: Console, phrase: bool | None = None) -> int:
     session = Session(RunSettings(recording=run, llm=llm, phrase=phrase))
     if questions is not None:
-        lines = [ln.strip() for ln in questions.read_text(encoding="utf-8").splitlines() if ln.strip()]
+        lines = [ln.strip() for ln in read_text_arg(questions, "--questions").splitlines() if ln.strip()]
         worst = 0
         for line in lines:
             result = session.ask(line, task=task)
             worst = max(worst, 2 if result["error"] else 0)
-            print(json.dumps(result) if as_json else result["answer"] or f"ERROR: {result['error']}")
+            print(json_dumps(result) if as_json
+                  else visible(result["answer"], keep_newlines=True) or f"ERROR: {visible(result['error'])}")
         return worst
     result = session.ask(question or "", task=task)
     if result["error"]:
         raise BadQuestionError(result["error"])
     if as_json:
-        print(json.dumps(result, indent=2))
+        print(json_dumps(result, indent=2))
     else:
         render_answer(console, result, evidence=verbose, verbose=verbose)
     return 0
@@ -63,10 +66,10 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
     prompt: PromptSession[str] = PromptSession(history=FileHistory(str(history_file)))
     log = session.context.log
     task = log.task()
-    console.print(f"[bold]{run.name}[/bold]: task \"{task.instruction}\" ({task.outcome}); "
-                  f"backend {session.backend.name}; thread {thread}")
+    console.print(f"[bold]{safe(run.name)}[/bold]: task \"{safe(task.instruction)}\" ({safe(task.outcome)}); "
+                  f"backend {safe(session.backend.name)}; thread {safe(thread)}")
     for turn in session.history(thread):
-        console.print(f"[dim]you: {turn['question']}\nHEXAR: {turn['answer']}[/dim]")
+        console.print(f"[dim]you: {safe(turn['question'])}\nHEXAR: {safe(turn['answer'], keep_newlines=True)}[/dim]")
     console.print(f"[dim]{HELP}[/dim]")
     evidence = False
     task_ref: str | None = None
@@ -94,21 +97,32 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             console.print(f"new thread {thread}")
             continue
         if line == "/thread":
-            console.print(thread)
+            console.print(safe(thread))
             continue
         if line.startswith("/task"):
             arg = line.removeprefix("/task").strip()
             if not arg:
                 for t in log.tasks:
-                    console.print(f"  {t.order}. {t.task_id} \"{t.instruction or '(recovery)'}\" {t.outcome}")
+                    console.print(f"  {t.order}. {safe(t.task_id)} \"{safe(t.instruction or '(recovery)')}\" "
+                                  f"{safe(t.outcome)}")
+                continue
+            try:
+                log.task(arg)
+            except USER_ERRORS as err:  # an unknown task is a typo, not the end of the conversation
+                console.print(f"[yellow]{safe(err)}[/yellow]")
                 continue
             task_ref = arg
             line = "What happened?"
         if line == "/why":
             line = "why?"
-        result = session.ask(line, thread=thread, task=task_ref)
-        task_ref = None
+        try:
+            result = session.ask(line, thread=thread, task=task_ref)
+        except USER_ERRORS as err:
+            console.print(f"[yellow]{safe(err)}[/yellow]")
+            continue
+        finally:
+            task_ref = None
         if result["error"]:
-            console.print(f"[yellow]{result['error']}[/yellow]")
+            console.print(f"[yellow]{safe(result['error'])}[/yellow]")
             continue
         render_answer(console, result, evidence)

@@ -6,16 +6,22 @@ from datetime import UTC, datetime
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
+from hexar.safe_text import json_dumps, safe, visible
+
+__all__ = ["clock", "json_dumps", "log_dict", "print_inspection", "safe", "task_dict", "visible"]
 
 
 def clock(t: int) -> str:
-    """Wall-clock time of a nanosecond stamp, to the millisecond."""
-    return datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S") + f".{t // 1_000_000 % 1000:03d}"
+    """Wall-clock time of a nanosecond stamp, to the millisecond (a stamp no calendar holds: the raw number)."""
+    try:
+        wall = datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S")
+    except (OverflowError, OSError, ValueError):
+        return f"{t} ns"
+    return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
 def task_dict(task: Task) -> dict[str, Any]:
@@ -59,29 +65,29 @@ def log_dict(log: EventLog) -> dict[str, Any]:
 
 
 def print_inspection(console: Console, log: EventLog) -> None:
-    console.print(f"[bold]{log.path.name}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
+    console.print(f"[bold]{safe(log.path.name)}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
                   f"{clock(log.start)} to {clock(log.end)} UTC")
     topics = Table("topic", "type", "messages", title="Topics", title_justify="left")
     for info in log.topics.values():
-        topics.add_row(info.topic, info.type, str(info.count))
+        topics.add_row(safe(info.topic), safe(info.type), str(info.count))
     console.print(topics)
     for task in log.tasks:
-        label = "recovery task" if task.is_recovery else f"\"{escape(task.instruction)}\""
+        label = "recovery task" if task.is_recovery else f"\"{safe(task.instruction)}\""
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
-        console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
-                      f"[{colour}]{task.outcome}[/{colour}]")
+        console.print(f"\n[bold]Task {task.order}[/bold] {safe(task.task_id)}: {label}  "
+                      f"[{colour}]{safe(task.outcome)}[/{colour}]")
         if not task.valid:
-            console.print(f"  invalid plan: {escape(task.error_msg)}")
+            console.print(f"  invalid plan: {safe(task.error_msg)}")
         table = Table("#", "skill", "status", "started", "ended", "error")
         for run in task.skills:
             started = run.time_of("running")
             ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
-            table.add_row(str(run.index + 1), escape(run.label()), run.state,
-                          clock(started) if started else "", clock(ended) if ended else "", escape(run.error_msg))
+            table.add_row(str(run.index + 1), safe(run.label()), safe(run.state),
+                          clock(started) if started else "", clock(ended) if ended else "", safe(run.error_msg))
         console.print(table)
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
         console.print("[yellow]No task to explain: this recording has no /task_info.[/yellow]")
     for warning in log.warnings:
-        console.print(f"[yellow]warning:[/yellow] {escape(warning)}")
+        console.print(f"[yellow]warning:[/yellow] {safe(warning)}")
