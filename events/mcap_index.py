@@ -159,34 +159,49 @@ def _scan(data: Any, plan: list[tuple[int, Callable[[bytes], bytes]]],
             data.madvise(mmap.MADV_DONTNEED, lo, min(end, len(data)) - lo)
 
 
-def check_mcap(path: Path) -> None:
+def check_mcap(path: Path, crc: bool = True) -> None:
     """Walk every record of an MCAP file from its start; CorruptRecordingError on the first damage found.
 
-    For files the indexed reader cannot use (no summary, an unknown codec), before rosbags reads them.
+    With `crc=False` only the structure is checked (every record inside the file, the footer and the chunk
+    index pointing at records that exist): cheap, and run before rosbags opens a file, because rosbags trusts a
+    damaged length and asks for that many bytes. With `crc=True` every chunk is also decompressed and checked,
+    for files the indexed reader cannot use.
     """
     name = path.name
     with path.open("rb") as f:
-        if f.seek(0, 2) < len(MAGIC):
+        if f.seek(0, 2) < 2 * len(MAGIC):
             raise CorruptRecordingError(f"damaged recording: {name} is too short to be an MCAP file")
         data: Any = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
     if data[: len(MAGIC)] != MAGIC:
         raise CorruptRecordingError(f"damaged recording: {name} does not start like an MCAP file")
-    pos = len(MAGIC)
-    while True:
-        if pos + 9 > len(data):
-            raise CorruptRecordingError(f"damaged recording: {name} ends at byte {len(data)} without its MCAP "
+    pos, size = len(MAGIC), len(data)
+    starts: dict[int, int] = {}  # record offset -> its length, to check what the index points at
+    chunk_index: list[tuple[int, int]] = []
+    footer: tuple[int, int] | None = None
+    while footer is None:
+        if pos + 9 > size:
+            raise CorruptRecordingError(f"damaged recording: {name} ends at byte {size} without its MCAP "
                                         "footer (truncated)")
         opcode, length = _RECORD.unpack_from(data, pos)
-        if pos + 9 + length > len(data):
+        if pos + 9 + length > size:
             raise CorruptRecordingError(f"damaged recording: {name}: record at byte {pos} runs past the end of "
-                                        "the file (truncated)")
-        if opcode == 0x06 and length >= 32:
+                                        "the file (truncated or damaged)")
+        starts[pos] = length
+        if opcode == 0x06 and crc and length >= 32:
             compression, _ = _string(data, pos + 9 + 28)
             decompress = _decompressor(compression)
             if decompress is not None:
                 _chunk_records(data, pos, decompress, name)
-        if opcode == 0x02:
-            break
+        elif opcode == 0x08 and length >= 32:
+            chunk_index.append(_CHUNK_INDEX.unpack_from(data, pos + 9)[2:4])
+        elif opcode == 0x02 and length >= 20:
+            footer = (_U64.unpack_from(data, pos + 9)[0], _U64.unpack_from(data, pos + 17)[0])
         pos += 9 + length
-    if data[-len(MAGIC):] != MAGIC:
-        raise CorruptRecordingError(f"damaged recording: {name} does not end like an MCAP file (truncated)")
+    if data[pos:] != MAGIC:
+        raise CorruptRecordingError(f"damaged recording: {name} does not end like an MCAP file")
+    if any(offset and offset not in starts for offset in footer):
+        raise CorruptRecordingError(f"damaged recording: {name}: the MCAP footer points between records")
+    for offset, length in chunk_index:
+        if starts.get(offset, -1) + 9 != length:
+            raise CorruptRecordingError(f"damaged recording: {name}: the chunk index points at no chunk "
+                                        f"(byte {offset})")

@@ -158,6 +158,8 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
     src = resolve_path(Path(path))
     try:
+        for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
+            check_mcap(file, crc=False)
         with AnyReader([src], default_typestore=_humble()) as reader:
             log, complete = _read_skipping(reader, src, wanted)
         if not complete:
