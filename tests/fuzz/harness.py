@@ -274,7 +274,7 @@ def run_cli(args: list[str]) -> Outcome:
     result = Outcome(args, code, out.getvalue(), err.getvalue())
     if code not in (0, 2):
         result.problems.append(f"exit code {code}")
-    if "Traceback" in result.err or "internal error" in result.err:
+    if "Traceback (most recent call last)" in result.err or "internal error, please report" in result.err:
         result.problems.append("traceback or internal error: " + result.err[-300:])
     bad = _bad_char(result.out + result.err)
     if bad:
@@ -353,22 +353,25 @@ def example(seed: int, work: Path) -> list[Outcome]:
             damage(rng, target)
         else:
             shutil.copytree(_base_bag(sid, storage, work), bag)
-        log = _read(bag)
         question = hostile_text(rng) if kind == "question" else rng.choice(QUESTIONS)
         if kind == "question" and rng.random() < 0.2:
             question += "\ud800"  # a lone surrogate, as a broken terminal may pass
-        outcomes.append(_ask_grounded(bag, question, log))
-        if kind == "question":
+        # One command per example keeps a long run affordable; over many seeds every command meets every kind.
+        roll = rng.random()
+        if roll < 0.5:
+            outcomes.append(_ask_grounded(bag, question, _read(bag)))
+        elif kind == "question":
             qfile = folder / "questions.txt"
             encode: Callable[[str], bytes] = rng.choice([
                 lambda s: s.encode("utf-8", "surrogatepass"), lambda s: s.encode("utf-16", "surrogatepass"),
                 lambda s: b"\xef\xbb\xbf" + s.encode("utf-8", "surrogatepass"), lambda s: hostile_bytes(rng)])
             qfile.write_bytes(encode("\n".join([question, *rng.sample(QUESTIONS, 2)])))
-            outcomes.append(run_cli(["ask", str(bag), "--questions", str(qfile), "--llm", "none", "--json"]))
-        # one more view of the same input per example keeps a long run affordable; over many seeds all are run
-        others = [["ask", str(bag), question, "--llm", "none", "-v"], ["inspect", str(bag), "--json"],
-                  ["inspect", str(bag)], ["runs", str(folder)], ["runs", str(folder), "--json"]]
-        outcomes.append(run_cli(rng.choice(others)))
+            outcomes.append(run_cli(["ask", str(bag), "--questions", str(qfile), "--llm", "none",
+                                     *rng.choice([["--json"], ["-v"], []])]))
+        else:
+            others = [["ask", str(bag), question, "--llm", "none", "-v"], ["inspect", str(bag), "--json"],
+                      ["inspect", str(bag)], ["runs", str(folder)], ["runs", str(folder), "--json"]]
+            outcomes.append(run_cli(rng.choice(others)))
     finally:
         shutil.rmtree(folder, ignore_errors=True)
     return outcomes
