@@ -34,9 +34,11 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
 
 def ask(run: Path, question: str | None, questions: Path | None, task: str | None, llm: str,
         as_json: bool, verbose: bool, console: Console, phrase: bool | None = None) -> int:
+    # a bad questions file fails before the recording and the models load
+    lines = [ln.strip() for ln in read_text_arg(questions, "--questions").splitlines()
+             if ln.strip()] if questions is not None else []
     session = Session(RunSettings(recording=run, llm=llm, phrase=phrase))
     if questions is not None:
-        lines = [ln.strip() for ln in read_text_arg(questions, "--questions").splitlines() if ln.strip()]
         worst = 0
         for line in lines:
             result = session.ask(line, task=task)
