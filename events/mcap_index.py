@@ -178,6 +178,7 @@ def check_mcap(path: Path, crc: bool = True) -> None:
     starts: dict[int, int] = {}  # record offset -> its length, to check what the index points at
     chunk_index: list[tuple[int, int]] = []
     footer: tuple[int, int] | None = None
+    footer_at = 0
     while footer is None:
         if pos + 9 > size:
             raise CorruptRecordingError(f"damaged recording: {name} ends at byte {size} without its MCAP "
@@ -196,11 +197,16 @@ def check_mcap(path: Path, crc: bool = True) -> None:
             chunk_index.append(_CHUNK_INDEX.unpack_from(data, pos + 9)[2:4])
         elif opcode == 0x02 and length >= 20:
             footer = (_U64.unpack_from(data, pos + 9)[0], _U64.unpack_from(data, pos + 17)[0])
+            footer_at = pos
         pos += 9 + length
     if data[pos:] != MAGIC:
         raise CorruptRecordingError(f"damaged recording: {name} does not end like an MCAP file")
     if any(offset and offset not in starts for offset in footer):
         raise CorruptRecordingError(f"damaged recording: {name}: the MCAP footer points between records")
+    (summary_crc,) = _U32.unpack_from(data, footer_at + 9 + 16)
+    if footer[0] and summary_crc and zlib.crc32(memoryview(data)[footer[0] : footer_at + 9 + 16]) != summary_crc:
+        raise CorruptRecordingError(f"damaged recording: {name}: the MCAP summary (byte {footer[0]}) fails its "
+                                    "CRC check")
     for offset, length in chunk_index:
         if starts.get(offset, -1) + 9 != length:
             raise CorruptRecordingError(f"damaged recording: {name}: the chunk index points at no chunk "
