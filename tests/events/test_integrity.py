@@ -50,7 +50,7 @@ def _ask(bag: Path, capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
 
 def test_clean_recording_answers_with_its_cause(clean_mcap: Path, capsys: pytest.CaptureFixture[str]) -> None:
     code, out, _ = _ask(clean_mcap, capsys)
-    assert code == 0 and "navigation.blocked" in out
+    assert code == 0 and "navigation.blocked_path" in out
 
 
 def test_flipped_byte_in_a_log_line_fails_the_chunk_crc(clean_mcap: Path, tmp_path: Path,
