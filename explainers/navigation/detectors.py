@@ -217,6 +217,10 @@ def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
         found.evidence.append(Evidence(cause=cause, topic=c.DIAGNOSTICS, t=r.t, item=item))
         with contextlib.suppress(ValueError):
             found.facts["max_vel_x"] = float(r.get(SPEED_KEY) or "nan")
+    if not found.evidence and run.poses:
+        # no navigator lines: the recorded poses are what shows the drive went as it did
+        for p in dict.fromkeys([run.poses[0], run.poses[-1]]):
+            found.evidence.append(Evidence(cause=cause, topic=c.AMCL_POSE, t=p.t, item=pose_item(p)))
     distance, duration = run.distance(), run.duration_s()
     if run.poses:
         found.facts["distance_m"] = distance

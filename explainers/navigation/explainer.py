@@ -115,6 +115,10 @@ class NavigationExplainer:
         if not lines and not poses and not flags:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         findings = flags + self._others(question, view, run, bool(flags))
+        if run.outcome == "unknown" and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
+            # neither a navigator line nor the skill's status says how the trip ended: "it went fine" would be
+            # a claim without evidence
+            return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal.")
         grounded = self._compose(question, context, run, findings, lines)
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
