@@ -36,6 +36,9 @@ from hexar.events import contract as c
 from hexar.events.errors import EventsError
 from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
+from hexar.explainers.base import Evidence
+from hexar.explainers.evidence_check import exists
+from hexar.safe_text import visible
 
 _T = TYPESTORE.types
 PIECES = [
@@ -298,7 +301,27 @@ def grounded(result: dict[str, Any], log: EventLog) -> list[str]:
                 if not any(ev["cause"] == cause for ev in result.get("evidence", []))]
     problems += [f"evidence on {ev['topic']} at {ev['t']} is in no recorded message"
                  for ev in result.get("evidence", []) if (ev["topic"], ev["t"]) not in recorded]
+    problems += [f"evidence {visible(ev['item'][:80])!r} on {ev['topic']} is not what was recorded there"
+                 for ev in result.get("evidence", []) if not _cited(log, Evidence(**ev))]
     return problems
+
+
+def _cited(log: EventLog, ev: Evidence) -> bool:
+    """evidence_check.exists, plus /task_info text as decoded (its raw JSON escapes non-ASCII text)."""
+    if exists(log, ev):
+        return True
+    if ev.topic != c.TASK_INFO:
+        return False
+    for u in log.task_updates:
+        if u.t != ev.t:
+            continue
+        texts = [u.instruction, u.task_error_msg, u.task_id]
+        for step in u.skills:
+            texts += [step.skill, step.status, step.error_msg, str(step.params), step.label()]
+            texts += [f"{k}={v}" for k, v in step.params.items()] + [str(v) for v in step.params.values()]
+        if any(ev.item and (ev.item in text or text and text in ev.item) for text in texts):
+            return True
+    return False
 
 
 def _ask_grounded(bag: Path, question: str, log: EventLog | None) -> Outcome:
