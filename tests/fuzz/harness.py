@@ -319,7 +319,7 @@ def _cited(log: EventLog, ev: Evidence) -> bool:
         for step in u.skills:
             texts += [step.skill, step.status, step.error_msg, str(step.params), step.label()]
             texts += [f"{k}={v}" for k, v in step.params.items()] + [str(v) for v in step.params.values()]
-        if any(ev.item and (ev.item in text or text and text in ev.item) for text in texts):
+        if any(ev.item and (ev.item in text or (text and text in ev.item)) for text in texts):
             return True
     return False
 
