@@ -56,6 +56,8 @@ class PlannerExplainer:
         task = context.task
         findings = task_findings(task)
         update = task.updates[-1]
+        # cite the message that holds the quoted text, not merely the latest one
+        said = next((u for u in reversed(task.updates) if u.instruction == task.instruction), update)
         if not findings:
             if not task.valid:
                 # The robot rejected the plan for a reason our catalogue does not know: report its own words.
@@ -72,7 +74,7 @@ class PlannerExplainer:
                 explainer=self.name,
                 text=f"My plan for \"{task.instruction}\" looks right to me: {steps}.",
                 causes=["planner.plan_ok"],
-                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=update.t,
+                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t,
                                    item=task.instruction)],
                 details=[f"Plan: {steps}.", f"Outcome: {task.outcome}."],
             )
