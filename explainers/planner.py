@@ -86,7 +86,8 @@ class PlannerExplainer:
                 item = update.skills[f.step].skill
             else:
                 item = task.instruction
-            evidence.append(Evidence(cause=f.cause, topic=c.TASK_INFO, t=update.t, item=item))
+            evidence.append(Evidence(cause=f.cause, topic=c.TASK_INFO, t=(update if item != task.instruction
+                                                                         else said).t, item=item))
         if task.error_msg:
             evidence.append(Evidence(cause=first.cause, topic=c.TASK_INFO, t=update.t, item=task.error_msg))
         text = _LEAD[first.cause].format(msg=first.message)

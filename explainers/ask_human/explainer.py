@@ -149,7 +149,9 @@ class AskHumanForHelpExplainer:
             had = " and ".join(phrase(v, new) for v, _, new in cf.changes)
             if cf.flips:
                 text += f" If {had}, I would {_likely(cf.p_success)} have got the help I needed."
-            was = " and ".join(f"{v} = {by_key[v].value}" for v, _, _ in cf.changes)
+            # a variable the execution never recorded is said to be unrecorded, not given a value
+            was = " and ".join(f"{v} = {by_key[v].value}" if v in by_key else f"{v} was not recorded"
+                               for v, _, _ in cf.changes)
             setting = ", ".join(f"{v} {label(v, new)}" for v, _, new in cf.changes)
             counterfactual = f"The skill failed at the {state} transition because {was}; had {setting}, " + (
                 f"the skill would have succeeded (P(success) = {cf.p_success:.2f})."
