@@ -9,6 +9,7 @@ Prints the examples run per kind, exit codes, commands run, findings (each repro
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 import tempfile
 import time
@@ -51,7 +52,8 @@ def main() -> int:
     kinds: Counter[str] = Counter()
     codes: Counter[int] = Counter()
     commands = done = 0
-    with ProcessPoolExecutor(max_workers=args.jobs) as pool:
+    # Ctrl-C (SIGINT) stops after the batches in flight and still prints the figures of what ran
+    with contextlib.suppress(KeyboardInterrupt), ProcessPoolExecutor(max_workers=args.jobs) as pool:
         for f, k, c, n in pool.map(_batch, batches):
             found += f
             kinds.update(k)
