@@ -122,6 +122,9 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
         except USER_ERRORS as err:
             console.print(f"[yellow]{safe(err)}[/yellow]")
             continue
+        except Exception as err:  # a bug in one answer must not end the conversation
+            console.print(f"[red]internal error, please report it: {safe(type(err).__name__)}: {safe(err)}[/red]")
+            continue
         finally:
             task_ref = None
         if result["error"]:

@@ -117,6 +117,9 @@ class Dialogue:
                 result = self.session.ask(turn.question, thread=self.thread)
             except USER_ERRORS as err:  # a question the agent cannot take is one turn, not the end of the talk
                 result = {"error": str(err), "route": "none", "explainers": [], "causes": [], "answer": ""}
+            except Exception as err:  # nor is a bug in one answer
+                result = {"error": f"internal error, please report it: {type(err).__name__}: {err}",
+                          "route": "none", "explainers": [], "causes": [], "answer": ""}
             turn.timings_ms["answer"] = _ms(started)
             turn.error, turn.route = str(result["error"]), str(result["route"])
             turn.explainers, turn.causes = list(result["explainers"]), list(result["causes"])
