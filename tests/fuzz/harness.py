@@ -38,6 +38,7 @@ from hexar.events.log import EventLog
 from hexar.events.reader import read_recording
 from hexar.explainers.base import Evidence
 from hexar.explainers.evidence_check import exists
+from hexar.explainers.tts import render as render_status
 from hexar.safe_text import visible
 
 _T = TYPESTORE.types
@@ -310,6 +311,9 @@ def _cited(log: EventLog, ev: Evidence) -> bool:
     """evidence_check.exists, plus /task_info text as decoded (its raw JSON escapes non-ASCII text)."""
     if exists(log, ev):
         return True
+    if ev.topic in log.statuses:
+        # exists() parses "key = value" pairs, which hostile keys and values break; compare whole renderings
+        return any(r.t == ev.t and ev.item == render_status(r) for r in log.statuses[ev.topic])
     if ev.topic != c.TASK_INFO:
         return False
     for u in log.task_updates:

@@ -12,7 +12,8 @@ import pytest
 from tests.fuzz.harness import KINDS, example
 
 DEFAULT = range(24)  # six of each kind, about half a minute on two cores
-FOUND_BY_LONG_RUNS = [220, 1298, 1616, 1888, 3064, 3154, 5126, 20020, 20232, 20381, 20628]  # see the long-run notes in the README
+# seeds the long runs found (each fixed): pizza, navigation, ask-human and planner evidence, ask-human flags
+FOUND_BY_LONG_RUNS = [220, 1298, 1616, 1888, 3064, 3154, 5126, 20020, 20232, 20381, 20628]
 
 
 @pytest.mark.parametrize("seed", [*DEFAULT, *FOUND_BY_LONG_RUNS])
