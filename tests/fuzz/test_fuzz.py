@@ -12,8 +12,9 @@ import pytest
 from tests.fuzz.harness import KINDS, example
 
 DEFAULT = range(24)  # six of each kind, about half a minute on two cores
-# seeds the long runs found (each fixed): pizza, navigation, ask-human and planner evidence, ask-human flags
-FOUND_BY_LONG_RUNS = [220, 1298, 1616, 1888, 3064, 3154, 5126, 20020, 20232, 20381, 20628]
+# seeds the long runs found, each fixed: pizza, navigation, ask-human and planner evidence, ask-human flags,
+# a "nan" speed limit
+FOUND_BY_LONG_RUNS = [220, 1298, 1616, 1888, 3064, 3154, 5126, 20020, 20232, 20381, 20628, 31456]
 
 
 @pytest.mark.parametrize("seed", [*DEFAULT, *FOUND_BY_LONG_RUNS])
