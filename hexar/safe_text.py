@@ -20,11 +20,13 @@ import math
 import re
 from typing import Any
 
-# C0 and C1 controls, DEL, invisible format characters that reorder or hide text (bidi overrides, zero-width),
-# line/paragraph separators and lone surrogates (which cannot even be encoded to a UTF-8 terminal).
+# Every character of Unicode 14's categories Cc (C0/C1 controls, DEL), Cf (invisible format characters that
+# reorder or hide text: bidi overrides, zero-width, tag characters), Cs (lone surrogates, which cannot even be
+# encoded for a UTF-8 terminal), Zl and Zp (line/paragraph separators); newline is added or not per call.
 _UNSAFE = re.compile(
-    "[\x00-\x09\x0b-\x1f\x7f-\x9f\u00ad\u061c\u180e\u200b-\u200f\u2028-\u202e\u2060-\u206f\ufeff"
-    "\ufff9-\ufffb\ud800-\udfff]"
+    "[\x00-\x09\x0b-\x1f\x7f-\x9f\xad\u0600-\u0605\u061c\u06dd\u070f\u0890-\u0891\u08e2\u180e\u200b-\u200f"
+    "\u2028-\u202e\u2060-\u2064\u2066-\u206f\ud800-\udfff\ufeff\ufff9-\ufffb\U000110bd\U000110cd"
+    "\U00013430-\U00013438\U0001bca0-\U0001bca3\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f]"
 )
 _UNSAFE_WITH_NEWLINE = re.compile(_UNSAFE.pattern.replace("\x0b", "\x0a\x0b", 1))
 _MARKUP = re.compile(r"(\\*)(\[[a-z#/@][^[]*?])")
@@ -37,7 +39,7 @@ def _escape_char(m: re.Match[str]) -> str:
     if named is not None:
         return named
     code = ord(ch)
-    return f"\\x{code:02x}" if code <= 0xFF else f"\\u{code:04x}"
+    return f"\\x{code:02x}" if code <= 0xFF else (f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}")
 
 
 def visible(text: object, keep_newlines: bool = False) -> str:
