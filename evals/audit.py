@@ -9,6 +9,8 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+from hexar.safe_text import safe, visible
+
 Row = tuple[dict[str, Any], str]  # (case, method)
 
 
@@ -63,8 +65,10 @@ def table(report: dict[str, Any], n: int) -> Table:
     for case, method in pick(report, n):
         res = case["results"][method]
         answer = res["answer"] or f"(no answer: {res['error']})"
-        t.add_row(f"{case['id']}\n{method}", case["question"],
-                  f"{case['truth']['root_cause']}\n[{case['truth']['cause']}]", answer, grades_text(res))
+        # answers quote the recording; questions and ground truth may come from a user's case file
+        t.add_row(safe(f"{case['id']}\n{method}", keep_newlines=True), safe(case["question"]),
+                  safe(f"{case['truth']['root_cause']}\n[{case['truth']['cause']}]", keep_newlines=True),
+                  safe(answer, keep_newlines=True), safe(grades_text(res), keep_newlines=True))
     return t
 
 
@@ -77,7 +81,8 @@ def markdown(report: dict[str, Any], n: int) -> str:
     for case, method in pick(report, n):
         res = case["results"][method]
         truth = f"{case['truth']['root_cause']} `{case['truth']['cause']}`"
-        cells = [f"{case['id']} {method}", case["question"], truth, res["answer"] or f"(no answer: {res['error']})",
-                 grades_text(res).replace("\n", "<br>")]
+        cells = [visible(c) for c in (f"{case['id']} {method}", case["question"], truth,
+                                      res["answer"] or f"(no answer: {res['error']})")]
+        cells.append(visible(grades_text(res), keep_newlines=True).replace("\n", "<br>"))
         out.append("| " + " | ".join(c.replace("|", "\\|") for c in cells) + " |")
     return "\n".join(out) + "\n"

@@ -21,6 +21,8 @@ from hexar.evals.methods import METHODS
 from hexar.evals.report import build, write_json
 from hexar.evals.run import Selection, default_runs, run
 from hexar.explainers.base import TextModel
+from hexar.inputs import output_dir
+from hexar.safe_text import safe
 
 
 @dataclass(frozen=True)
@@ -87,7 +89,7 @@ def regression_table(result: reg.Regression) -> Table:
     for d in result.drops:
         t.add_row(d.method, "(all)", d.metric, f"{100 * d.baseline:.2f} %", f"{100 * d.now:.2f} %")
     for f in result.flips:
-        t.add_row(f.method, f.case, f.metric, f.baseline_answer, f.answer)
+        t.add_row(f.method, safe(f.case), f.metric, safe(f.baseline_answer), safe(f.answer))
     return t
 
 
@@ -112,7 +114,7 @@ def eval_command(opts: EvalOptions, console: Console | None = None, progress_con
         result = reg.compare(report, baseline, opts.tolerance)
         report["regression"] = {**result.as_dict(), "baseline": str(opts.baseline)}
         code = 1 if result.failed else 0
-    opts.out.mkdir(parents=True, exist_ok=True)
+    output_dir(opts.out, "--out")
     write_json(report, opts.out / "report.json")
     figures: list[str] = []
     if opts.figures:

@@ -41,9 +41,11 @@ def write_baseline(report: dict[str, Any], path: Path) -> None:
 
 
 def read_baseline(path: Path) -> dict[str, Any]:
+    from hexar.inputs import read_text_arg
+
     try:
-        data: dict[str, Any] = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError) as err:
+        data: dict[str, Any] = json.loads(read_text_arg(path, "--baseline"))
+    except ValueError as err:
         raise HexarError(f"cannot read baseline {path}: {err}") from err
     if data.get("schema") != BASELINE_SCHEMA or "methods" not in data:
         raise HexarError(f"{path} is not a hexar eval baseline (schema {BASELINE_SCHEMA})")

@@ -4,6 +4,10 @@
 a full message object per line, which caps decoding well below 100k lines/s. These decoders read only the
 fields HEXAR uses from little-endian CDR and return None on anything unexpected, so the caller falls back to
 rosbags.
+
+A message whose bytes do not end where the standard layout ends was written with another definition (a newer
+or custom message type); decoding it as the standard one would misread it, so the decoders raise LayoutError
+and the reader decides what to do (decode with the recording's own definition, or report the topic).
 """
 
 from __future__ import annotations
@@ -12,6 +16,14 @@ from struct import Struct
 from struct import error as StructError
 
 _U32 = Struct("<I")
+# CDR pads a message to its alignment; more left-over bytes than this means fields the standard layout lacks
+_MAX_PAD = 7
+
+
+class LayoutError(ValueError):
+    """The message's bytes do not fit the standard definition of its type."""
+
+
 _LOG_HEAD = Struct("<iIB")  # stamp.sec, stamp.nanosec, level
 
 
@@ -33,6 +45,18 @@ def decode_log(raw: bytes) -> tuple[int, int, str, str] | None:
         msg = raw[pos + 4 : stop - 1].decode("utf-8", "replace")
     except (IndexError, StructError):
         return None
+    try:
+        # file, function, line: the rest of the standard Log; anything else is another layout (inlined: this
+        # runs for every line of an hour's log)
+        p = 4 + ((stop - 1) & ~3)
+        q = p + 4 + _U32.unpack_from(raw, p)[0]
+        p = 4 + ((q - 1) & ~3)
+        q = p + 4 + _U32.unpack_from(raw, p)[0]
+        end = 4 + ((q - 1) & ~3) + 4
+    except (IndexError, StructError):
+        end = len(raw) + _MAX_PAD + 1  # the standard strings run past the message: another layout
+    if not 0 <= len(raw) - end <= _MAX_PAD:
+        raise LayoutError(f"rcl_interfaces/msg/Log of {len(raw)} bytes where the standard layout ends at {end}")
     return sec * 1_000_000_000 + nanosec, level, name, msg
 
 
@@ -44,9 +68,12 @@ def decode_string(raw: bytes) -> str | None:
         (size,) = _U32.unpack_from(raw, 4)
         if size == 0 or 8 + size > len(raw):
             return None
-        return raw[8 : 8 + size - 1].decode("utf-8", "replace")
+        text = raw[8 : 8 + size - 1].decode("utf-8", "replace")
     except (IndexError, StructError):
         return None
+    if len(raw) - (8 + size) > _MAX_PAD:
+        raise LayoutError(f"std_msgs/msg/String of {len(raw)} bytes where the standard layout ends at {8 + size}")
+    return text
 
 
 _POSE = Struct("<43d")  # position xyz, orientation xyzw, 36 covariance values
@@ -63,6 +90,9 @@ def decode_pose_cov(raw: bytes) -> tuple[int, tuple[float, ...]] | None:
         start = 4 + ((body + 7) & ~7)
         if start + _POSE.size > len(raw):
             return None
+        if len(raw) - (start + _POSE.size) > _MAX_PAD:
+            raise LayoutError(f"PoseWithCovarianceStamped of {len(raw)} bytes where the standard layout ends at "
+                              f"{start + _POSE.size}")
         return sec * 1_000_000_000 + nanosec, _POSE.unpack_from(raw, start)
     except (IndexError, StructError):
         return None

@@ -13,11 +13,12 @@ from typing import Any
 import yaml
 from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
+from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
-from hexar.events.cdr import decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
+from hexar.events.cdr import LayoutError, decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
 from hexar.events.errors import (
     CorruptRecordingError,
     EmptyRecordingError,
@@ -26,7 +27,7 @@ from hexar.events.errors import (
     UnknownMessageTypeError,
 )
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.mcap_index import mcap_messages
+from hexar.events.mcap_index import check_mcap, mcap_messages
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -49,6 +50,41 @@ def _humble() -> Typestore:
     if _HUMBLE is None:
         _HUMBLE = get_typestore(Stores.ROS2_HUMBLE)
     return _HUMBLE
+
+
+class _Unreadable(Exception):
+    """A connection whose messages do not fit the definition HEXAR would decode them with."""
+
+    def __init__(self, conn: Connection, reason: str) -> None:
+        super().__init__(reason)
+        self.conn, self.reason = conn, reason
+
+
+# what a message that does not fit the definition it is decoded with raises
+_MISFIT = (LayoutError, SerdeError, AttributeError, TypeError, KeyError)
+
+
+def _same_layout(ts: Typestore, msgtype: str) -> bool:
+    """Whether the recording's definition of `msgtype` is the standard (Humble) one the fast decoders assume."""
+    humble = _humble()
+    if ts is humble:
+        return True
+    try:
+        return ts.hash_rihs01(msgtype) == humble.hash_rihs01(msgtype)
+    except Exception:  # a type rosbags cannot hash is no standard layout
+        return False
+
+
+def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+    """`_read`, again without each connection found unreadable, which is then named in the warnings."""
+    skip: dict[int, str] = {}
+    while True:
+        try:
+            return _read(reader, src, wanted, skip)
+        except _Unreadable as bad:
+            if bad.conn.id in skip:
+                raise CorruptRecordingError(f"cannot read {src}: {bad.reason}") from bad
+            skip[bad.conn.id] = bad.reason
 
 
 def resolve_path(path: Path) -> Path:
@@ -126,17 +162,20 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
     src = resolve_path(Path(path))
     try:
+        for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
+            check_mcap(file, crc=False)
         with AnyReader([src], default_typestore=_humble()) as reader:
-            log, complete = _read(reader, src, wanted)
+            log, complete = _read_skipping(reader, src, wanted)
         if not complete:
             # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
             # rosbags then matches no message to its connection; the storage files alone are consistent.
             files = sorted([*src.glob("*.db3"), *src.glob("*.mcap")])
             if files:
                 with AnyReader(files, default_typestore=_humble()) as reader:
-                    log, _ = _read(reader, src, wanted)
+                    log, _ = _read_skipping(reader, src, wanted)
         return log
-    except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError):
+    except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError,
+            CorruptRecordingError):
         raise
     except (sqlite3.DatabaseError, OSError, EOFError) as err:
         raise CorruptRecordingError(f"cannot read {src}: {err}") from err
@@ -144,8 +183,12 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
-    """The log, and whether every message the index promised for the selected topics was read."""
+def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
+    """The log, and whether every message the index promised for the selected topics was read.
+
+    Connections in `skip` are left out and reported: their messages fit neither the standard definition nor
+    one stored in the recording, and misreading them could invent a cause.
+    """
     warnings: list[str] = []
     infos: dict[str, TopicInfo] = {}
     for conn in reader.connections:
@@ -159,6 +202,9 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
     selected = []
     typestores: dict[int, Typestore] = {}
     for conn in reader.connections:
+        if conn.id in skip:
+            warnings.append(f"{conn.topic} is unreadable and was not used: {skip[conn.id]}")
+            continue
         if conn.topic not in wanted:
             if conn.msgtype not in known and conn.msgtype not in humble.fielddefs:
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
@@ -195,69 +241,38 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLo
     if messages is None:
         messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
+    # The hand decoders assume the standard layout; a recording that stores another definition is decoded by
+    # rosbags with that definition instead.
+    standard = {conn.id: ros2 and _same_layout(typestores[conn.id], conn.msgtype) for conn in selected}
     seen = 0
-    logs_append = log.logs.append
     for conn, t, raw in messages:
         seen += 1
-        ts = typestores[conn.id]
-        msgtype = conn.msgtype
-        if msgtype == c.LOG_TYPE:
-            fast = decode_log(raw) if ros2 else None
-            if fast is not None:
-                stamp, level, name, text = fast
-                logs_append(LogLine(stamp or t, level, name, text))
-            else:
-                m = _deser(ts, raw, msgtype, ros2)
-                stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec)
-                logs_append(LogLine(stamp or t, int(m.level), str(m.name), str(m.msg)))
-        elif msgtype == c.ROS1_LOG_TYPE:
-            m = _deser(ts, raw, msgtype, ros2)
-            stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
-            level = c.ROS1_LEVELS.get(int(m.level), int(m.level))
-            log.logs.append(LogLine(stamp, level, str(m.name), str(m.msg)))
-        elif msgtype == c.STRING_TYPE:
-            data = decode_string(raw) if ros2 else None
-            if data is None:
-                data = str(_deser(ts, raw, msgtype, ros2).data)
-            if conn.topic == c.TASK_INFO:
-                update = parse_task_info(t, data)
-                if update is None:
-                    warnings.append(f"{conn.topic}: ignored a message that is not task JSON")
-                else:
-                    log.task_updates.append(update)
-        elif msgtype == c.BOOL_TYPE:
-            m = _deser(ts, raw, msgtype, ros2)
-            log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
-        elif msgtype == c.POSE_COV_TYPE:
-            fast_pose = decode_pose_cov(raw) if ros2 else None
-            if fast_pose is not None:
-                stamp, v = fast_pose
-                log.poses.append(PoseSample(stamp or t, v[0], v[1], _yaw(v[5], v[6]), v[7], v[7 + 7], v[7 + 35]))
-            else:
-                m = _deser(ts, raw, msgtype, ros2)
-                p, cov = m.pose.pose, m.pose.covariance
-                log.poses.append(
-                    PoseSample(
-                        stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
-                        float(p.position.x), float(p.position.y),
-                        _yaw(float(p.orientation.z), float(p.orientation.w)),
-                        float(cov[0]), float(cov[7]), float(cov[35]),
-                    )
-                )
-        elif msgtype == c.DIAG_TYPE:
-            m = _deser(ts, raw, msgtype, ros2)
-            log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
-        else:
-            _motion(log, ts, conn.topic, msgtype, t, raw, ros2)
+        try:
+            _decode(log, conn, t, raw, typestores[conn.id], ros2, standard[conn.id], warnings)
+        except _MISFIT as err:
+            if standard[conn.id] or not ros2:
+                raise _Unreadable(conn, f"its messages do not fit the standard {conn.msgtype} and the recording "
+                                        f"stores no definition that fits them ({type(err).__name__}: {err})") from err
+            # A stored definition that does not fit its own bytes (test bags carry such stand-ins): the standard
+            # one may still fit them exactly, which the strict decoders check.
+            try:
+                _decode(log, conn, t, raw, humble, ros2, True, warnings)
+            except Exception as err2:
+                raise _Unreadable(conn, f"its messages fit neither the definition of {conn.msgtype} stored in "
+                                        f"the recording nor the standard one ({type(err).__name__}: {err})") from err2
+            standard[conn.id], typestores[conn.id] = True, humble
+            warnings.append(f"{conn.topic}: the definition of {conn.msgtype} stored in the recording does not fit "
+                            "its messages; they fit the standard definition exactly and were read with it")
     log.finish()
     return log, seen > 0 or promised == 0
 
 
-def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw: bytes, ros2: bool) -> None:
+def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw: bytes, ros2: bool,
+            standard: bool) -> None:
     """The ordinary Nav2 topics: velocity commands, odometry, goals and the navigation action's status."""
     if msgtype in (c.TWIST_TYPE, c.TWIST_STAMPED_TYPE):
         stamped = msgtype == c.TWIST_STAMPED_TYPE
-        fast = decode_twist(raw, stamped) if ros2 else None
+        fast = decode_twist(raw, stamped) if standard else None
         if fast is not None:
             stamp, v = fast
         else:
@@ -267,7 +282,7 @@ def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw:
             v = (tw.linear.x, tw.linear.y, 0.0, 0.0, 0.0, tw.angular.z)
         log.twists.append(TwistSample(stamp or t, topic, float(v[0]), float(v[1]), float(v[5])))
     elif msgtype == c.ODOM_TYPE:
-        odom = decode_odom(raw) if ros2 else None
+        odom = decode_odom(raw) if standard else None
         if odom is None:
             m = _deser(ts, raw, msgtype, ros2)
             odom = (stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec), float(m.pose.pose.position.x),
@@ -283,6 +298,60 @@ def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw:
             gid = bytes(bytearray(s.goal_info.goal_id.uuid)).hex()
             accepted = stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)
             log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status)))
+
+
+def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, ros2: bool, standard: bool,
+            warnings: list[str]) -> None:
+    """Append the record(s) of one message to `log`."""
+    msgtype = conn.msgtype
+    if msgtype == c.LOG_TYPE:
+        fast = decode_log(raw) if standard else None
+        if fast is not None:
+            stamp, level, name, text = fast
+            log.logs.append(LogLine(stamp or t, level, name, text))
+        else:
+            m = _deser(ts, raw, msgtype, ros2)
+            stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec)
+            log.logs.append(LogLine(stamp or t, int(m.level), _text(m.name), _text(m.msg)))
+    elif msgtype == c.ROS1_LOG_TYPE:
+        m = _deser(ts, raw, msgtype, ros2)
+        stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
+        level = c.ROS1_LEVELS.get(int(m.level), int(m.level))
+        log.logs.append(LogLine(stamp, level, str(m.name), str(m.msg)))
+    elif msgtype == c.STRING_TYPE:
+        data = decode_string(raw) if standard else None
+        if data is None:
+            data = str(_deser(ts, raw, msgtype, ros2).data)
+        if conn.topic == c.TASK_INFO:
+            update = parse_task_info(t, data)
+            if update is None:
+                warnings.append(f"{conn.topic}: ignored a message that is not task JSON")
+            else:
+                log.task_updates.append(update)
+    elif msgtype == c.BOOL_TYPE:
+        m = _deser(ts, raw, msgtype, ros2)
+        log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
+    elif msgtype == c.POSE_COV_TYPE:
+        fast_pose = decode_pose_cov(raw) if standard else None
+        if fast_pose is not None:
+            stamp, v = fast_pose
+            log.poses.append(PoseSample(stamp or t, v[0], v[1], _yaw(v[5], v[6]), v[7], v[7 + 7], v[7 + 35]))
+        else:
+            m = _deser(ts, raw, msgtype, ros2)
+            p, cov = m.pose.pose, m.pose.covariance
+            log.poses.append(
+                PoseSample(
+                    stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
+                    float(p.position.x), float(p.position.y),
+                    _yaw(float(p.orientation.z), float(p.orientation.w)),
+                    float(cov[0]), float(cov[7]), float(cov[35]),
+                )
+            )
+    elif msgtype == c.DIAG_TYPE:
+        m = _deser(ts, raw, msgtype, ros2)
+        log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
+    else:
+        _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
 
 
 def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
@@ -327,8 +396,17 @@ def _mcap_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Conn
     wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
     parts = [mcap_messages(f, wanted) for f in files]
     if any(p is None for p in parts):
+        for f in files:
+            check_mcap(f)  # rosbags reads on without checking CRCs or truncation
         return None
     return itertools.chain.from_iterable(p for p in parts if p is not None)
+
+
+def _text(value: object) -> str:
+    """A string field; anything else means the definition gives the field another type."""
+    if not isinstance(value, str):
+        raise TypeError(f"a text field holds {type(value).__name__}")
+    return value
 
 
 def _deser(ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:

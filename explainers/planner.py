@@ -59,6 +59,8 @@ class PlannerExplainer:
         task = context.task
         findings = task_findings(task)
         update = task.updates[-1]
+        # cite the message that holds the quoted text, not merely the latest one
+        said = next((u for u in reversed(task.updates) if u.instruction == task.instruction), update)
         if not findings:
             if not task.valid:
                 # The robot rejected the plan for a reason our catalogue does not know: report its own words.
@@ -77,7 +79,7 @@ class PlannerExplainer:
                       "My own recovery plan, which I made after the task before it failed,") +
                 f" looks right to me: {steps}.",
                 causes=["planner.plan_ok"],
-                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=update.t,
+                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t,
                                    item=task.instruction)],
                 details=[sentence(f"My plan was to {plan_words(task)}"), f"Outcome: {task.outcome}."],
             )
@@ -89,7 +91,8 @@ class PlannerExplainer:
                 item = update.skills[f.step].skill
             else:
                 item = task.instruction
-            evidence.append(Evidence(cause=f.cause, topic=c.TASK_INFO, t=update.t, item=item))
+            evidence.append(Evidence(cause=f.cause, topic=c.TASK_INFO, t=(update if item != task.instruction
+                                                                         else said).t, item=item))
         if task.error_msg:
             evidence.append(Evidence(cause=first.cause, topic=c.TASK_INFO, t=update.t, item=task.error_msg))
         text = _LEAD[first.cause].format(msg=first.message)

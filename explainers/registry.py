@@ -43,12 +43,17 @@ def _entry_point_classes() -> dict[str, type[Any]]:
 
 def read_config(path: Path | None = None) -> dict[str, Any]:
     """The mapping file: the packaged `modules.toml`, or the one at `path`."""
+    from hexar.errors import InputFileError
+    from hexar.inputs import read_text_arg
+
     try:
         if path is None:
             text = resources.files("hexar.explainers").joinpath("modules.toml").read_text()
         else:
-            text = Path(path).read_text()
+            text = read_text_arg(Path(path), "explainer config")
         return tomllib.loads(text)
+    except InputFileError as err:
+        raise RegistryConfigError(str(err)) from err
     except (OSError, tomllib.TOMLDecodeError) as err:
         raise RegistryConfigError(f"cannot read explainer config {path}: {err}") from err
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events.contract import SAY_EVENTS, SAY_STATUS_NAME
@@ -20,7 +21,21 @@ MATCHES = "tts.utterance_matches"
 # What the original TTS uses when a robot does not record its settings.
 DEFAULT_TIMEOUT_S = 20.0
 DEFAULT_WPM = 150.0
+MAX_TIMEOUT_S = 86_400.0
+MAX_WPM = 1_000.0
 ENDS = frozenset({"finished", "timed_out"})
+
+
+@dataclass(frozen=True)
+class Assumed:
+    """Which settings the recording did not hold, so that the answer says they are defaults."""
+
+    timeout: bool
+    wpm: bool
+
+    @property
+    def any(self) -> bool:
+        return self.timeout or self.wpm
 
 
 def _float(record: StatusRecord, key: str) -> float | None:
@@ -157,18 +172,24 @@ class TextToSpeechExplainer:
         words = len(text.split())
         timeout = _float(started, "timeout_s")
         wpm = _float(started, "words_per_minute")
+        # a recorded "nan", "-1" or "1e308" is no setting a person could be told: treated as not recorded
+        if timeout is not None and not 0 < timeout <= MAX_TIMEOUT_S:
+            timeout = None
+        if wpm is not None and not 1 <= wpm <= MAX_WPM:
+            wpm = None
+        assumed = Assumed(timeout is None, wpm is None)
         details = [render(started), render(end)]
         if timeout is None:
             details.append(f"timeout not recorded; assumed the default {_num(DEFAULT_TIMEOUT_S)} s")
         if wpm is None:
             details.append(f"speaking rate not recorded; assumed {_num(DEFAULT_WPM)} words per minute")
         timeout = timeout if timeout is not None else DEFAULT_TIMEOUT_S
-        wpm = wpm if wpm is not None and wpm > 0 else DEFAULT_WPM
+        wpm = wpm if wpm is not None else DEFAULT_WPM
         needed = words / wpm * 60.0
         details.append(f"{words} words at {_num(wpm)} words per minute need about {_num(needed)} s")
         if end.message == "timed_out":
-            return self._timed_out(started, end, text, words, timeout, wpm, needed, details)
-        return self._finished(started, end, words, timeout, details)
+            return self._timed_out(started, end, text, words, timeout, wpm, needed, details, assumed)
+        return self._finished(started, end, words, timeout, details, assumed)
 
     def _timed_out(
         self,
@@ -180,6 +201,7 @@ class TextToSpeechExplainer:
         wpm: float,
         needed: float,
         details: list[str],
+        assumed: Assumed,
     ) -> Explanation:
         said = end.get("text_said")
         said_words = len(said.split()) if said is not None else None
@@ -188,10 +210,21 @@ class TextToSpeechExplainer:
         enough = math.ceil(needed / 5.0) * 5
         if enough <= needed:
             enough += 5
-        sentence = (
-            f"I stopped talking because my speech has a {_num(timeout)}-second limit and the message needed "
-            f"about {round(needed)} seconds ({words} words at {_num(wpm)} words per minute)."
-        )
+        rate = f"{words} words at {'an assumed ' if assumed.wpm else ''}{_num(wpm)} words per minute"
+        if assumed.timeout:
+            sentence = (
+                f"I stopped talking before the end of the message. The recording does not say my speech time "
+                f"limit; the default is {_num(timeout)} seconds, and the message needed about {round(needed)} "
+                f"seconds ({rate})."
+            )
+        else:
+            sentence = (
+                f"I stopped talking because my speech has a {_num(timeout)}-second limit and the message needed "
+                f"about {round(needed)} seconds ({rate})."
+            )
+        if assumed.wpm:
+            sentence += f" The recording does not say my speaking rate; {_num(DEFAULT_WPM)} words per minute is " \
+                        "the default."
         if said_words is not None:
             sentence += f" I got through the first {said_words} of {words} words."
             details.append(f"said before the cut: {said!r}")
@@ -205,7 +238,8 @@ class TextToSpeechExplainer:
                 Evidence(cause=TIMEOUT, topic=SAY_EVENTS, t=end.t, item=render(end)),
             ],
             counterfactual=(
-                f"Had the message been shorter than about {max_words} words, or had the timeout been "
+                ("If the default limit applied, h" if assumed.any else "H")
+                + f"ad the message been shorter than about {max_words} words, or had the timeout been "
                 f"{enough} seconds, I would have finished it."
             ),
             fix="Ask for a shorter message, or split it into several shorter ones.",
@@ -219,13 +253,16 @@ class TextToSpeechExplainer:
         words: int,
         timeout: float,
         details: list[str],
+        assumed: Assumed,
     ) -> Explanation:
         spoken = _float(end, "spoken_s")
-        took = spoken if spoken is not None else (end.t - started.t) / 1e9
-        text = (
-            f"I said the whole message ({words} words); it took {_num(took)} seconds, within my "
-            f"{_num(timeout)}-second speech limit."
-        )
+        took = spoken if spoken is not None and math.isfinite(spoken) else (end.t - started.t) / 1e9
+        if assumed.timeout:
+            text = (f"I said the whole message ({words} words); it took {_num(took)} seconds. The recording does "
+                    f"not say my speech time limit; the default is {_num(timeout)} seconds.")
+        else:
+            text = (f"I said the whole message ({words} words); it took {_num(took)} seconds, within my "
+                    f"{_num(timeout)}-second speech limit.")
         return Explanation(
             explainer=self.name,
             text=text,

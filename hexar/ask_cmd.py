@@ -7,7 +7,6 @@ many questions and recordings there are; each recording is decoded once.
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -15,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 from hexar.agent.context import RunSettings
 from hexar.agent.errors import BadQuestionError
 from hexar.errors import USER_ERRORS, HexarError
+from hexar.safe_text import json_dumps, visible
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -48,11 +48,9 @@ def split_targets(targets: list[str], questions: Path | None, runs: Path | None)
 
 
 def read_questions(path: Path) -> list[str]:
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise HexarError(f"cannot read questions from {path}: {err}") from err
-    return [ln.strip() for ln in text.splitlines() if ln.strip()]
+    from hexar.inputs import read_text_arg
+
+    return [ln.strip() for ln in read_text_arg(path, "--questions").splitlines() if ln.strip()]
 
 
 def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str | None, llm: str,
@@ -76,7 +74,7 @@ def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str
 
             plot_task(agent.context.log, result, plot)
         if as_json:
-            print(json.dumps(result, indent=2))
+            print(json_dumps(result, indent=2))
         else:
             from hexar.chat import render_answer
 
@@ -100,21 +98,22 @@ def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str
                 worst = 2
                 _refused(result, as_json)
             elif as_json:
-                print(json.dumps(result))
+                print(json_dumps(result))
             else:
                 # One answer line per answer (after the echoed question in a --questions batch), so a batch's
                 # output lines up with its questions.
                 if questions is not None:
-                    print(f"Q: {line}")
-                print(f"{path.name}: {result['answer']}" if len(paths) > 1 else result["answer"])
+                    print(f"Q: {visible(line)}")
+                answer = visible(result["answer"], keep_newlines=True)
+                print(f"{visible(path.name)}: {answer}" if len(paths) > 1 else answer)
     return worst
 
 
 def _refused(result: dict[str, Any], as_json: bool) -> None:
     """A refused line or unreadable recording: its own JSON object with `error`, or one ERROR line."""
     if as_json:
-        print(json.dumps({"answer": "", **result}))
+        print(json_dumps({"answer": "", **result}))
         return
     where = Path(result["recording"]).name
     line = f" line {result['line']}" if "line" in result else ""
-    print(f"ERROR: {where}{line}: {result['error']}", file=sys.stderr)
+    print(f"ERROR: {visible(where)}{line}: {visible(result['error'])}", file=sys.stderr)

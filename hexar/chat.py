@@ -8,28 +8,30 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
+from hexar.errors import USER_ERRORS
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.render import clock
+from hexar.safe_text import safe
 
 HELP = ("Ask why I did something. Commands: /task [ID] (switch or list tasks), /evidence (toggle evidence), "
         "/why (go deeper), /reset (new conversation), /thread (show its id), /help. Ctrl-D quits.")
 
 
 def render_answer(console: Console, result: dict[str, Any], evidence: bool, verbose: bool = False) -> None:
-    console.print(Panel(escape(result["answer"]), title="HEXAR", title_align="left", border_style="cyan"))
+    console.print(Panel(safe(result["answer"], keep_newlines=True), title="HEXAR", title_align="left",
+                        border_style="cyan"))
     if evidence:
         for ev in result["evidence"][:6]:
-            console.print(f"  [dim]{clock(ev['t'])} {ev['topic']}[/dim]  {escape(ev['item'])}")
+            console.print(f"  [dim]{clock(ev['t'])} {safe(ev['topic'])}[/dim]  {safe(ev['item'])}")
     if verbose:
-        console.print(f"  [dim]route={result['route']} explainers={','.join(result['explainers'])} "
-                      f"backend={result['backend']} causes={','.join(result['causes'])} "
-                      f"total={result['timings_ms'].get('total')} ms[/dim]")
+        console.print(safe(f"  route={result['route']} explainers={','.join(result['explainers'])} "
+                           f"backend={result['backend']} causes={','.join(result['causes'])} "
+                           f"total={result['timings_ms'].get('total')} ms"), style="dim")
 
 
 def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None,
@@ -41,10 +43,10 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
     thread = thread or session.new_thread()
     log = session.context.log
     task = log.task()
-    console.print(f"[bold]{escape(run.name)}[/bold]: task \"{escape(task.instruction)}\" ({task.outcome}); "
-                  f"backend {session.backend.name}; thread {thread}")
+    console.print(f"[bold]{safe(run.name)}[/bold]: task \"{safe(task.instruction)}\" ({safe(task.outcome)}); "
+                  f"backend {safe(session.backend.name)}; thread {safe(thread)}")
     for turn in session.history(thread):
-        console.print(f"[dim]you: {escape(turn['question'])}\nHEXAR: {escape(turn['answer'])}[/dim]")
+        console.print(f"[dim]you: {safe(turn['question'])}\nHEXAR: {safe(turn['answer'], keep_newlines=True)}[/dim]")
     console.print(f"[dim]{HELP}[/dim]")
     read = _reader(checkpoints or default_checkpoints(), console)
     evidence = False
@@ -72,29 +74,36 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             console.print(f"new thread {thread}")
             continue
         if line == "/thread":
-            console.print(thread)
+            console.print(safe(thread))
             continue
         if line.startswith("/task"):
             arg = line.removeprefix("/task").strip()
             if not arg:
                 for t in log.tasks:
-                    name = f'"{escape(t.instruction)}"' if not t.is_recovery else "(my own recovery task)"
+                    name = f'"{safe(t.instruction)}"' if not t.is_recovery else "(my own recovery task)"
                     console.print(f"  {t.order}. {t.task_id} {name} {t.outcome}")
                 continue
             try:
                 chosen = log.task(arg)
             except NoTaskError as e:
-                console.print(f"[yellow]{escape(str(e))}[/yellow]")
+                console.print(f"[yellow]{safe(str(e))}[/yellow]")
                 continue
             session.switch(thread, chosen.task_id)
-            console.print(f"Switched to task {chosen.order}: {escape(describe(chosen, log))}. "
+            console.print(f"Switched to task {chosen.order}: {safe(describe(chosen, log))}. "
                           "Ask me about it.")
             continue
         if line == "/why":
             line = "why?"
-        result = session.ask(line, thread=thread)
+        try:
+            result = session.ask(line, thread=thread)
+        except USER_ERRORS as err:
+            console.print(f"[yellow]{safe(err)}[/yellow]")
+            continue
+        except Exception as err:  # a bug in one answer must not end the conversation
+            console.print(f"[red]internal error, please report it: {safe(type(err).__name__)}: {safe(err)}[/red]")
+            continue
         if result["error"]:
-            console.print(f"[yellow]{escape(result['error'])}[/yellow]")
+            console.print(f"[yellow]{safe(result['error'])}[/yellow]")
             continue
         render_answer(console, result, evidence)
 
@@ -116,7 +125,7 @@ def _reader(checkpoints: Path, console: Console) -> Callable[[], str]:
                 raise EOFError
             line = raw.strip()
             if line:
-                console.print(f"you> {escape(line)}")
+                console.print(f"you> {safe(line)}")
             return line
 
         return from_pipe

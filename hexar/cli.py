@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -23,13 +22,19 @@ out = Console(highlight=False)
 
 def guarded(fn: Callable[[], int]) -> int:
     """Run a command body; a user error becomes `ERROR: ...` and exit code 2, never a traceback."""
+    from hexar.safe_text import visible
+
     try:
         return fn()
     except USER_ERRORS as e:
-        print(f"ERROR: {e}", file=sys.stderr)
+        # the message may quote the recording (task ids, file names): never let it drive the terminal
+        print(f"ERROR: {visible(e)}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130
+    except Exception as e:  # the last guard: a bug reads as one line the user can report, not a traceback
+        print(f"ERROR: internal error, please report it: {type(e).__name__}: {visible(e)}", file=sys.stderr)
+        return 2
 
 
 @app.command()
@@ -44,9 +49,11 @@ def simulate(
     def body() -> int:
         from hexar.errors import HexarError
         from hexar.evals.scenarios.suite import simulate_suite
+        from hexar.inputs import output_dir
 
         if storage not in {"sqlite3", "mcap"}:
             raise HexarError(f"unknown storage {storage!r}: use sqlite3 or mcap")
+        output_dir(out_dir, "--out")
         wanted = set(scenario or [])
         written = simulate_suite(out_dir, storage, seed,  # type: ignore[arg-type]
                                  only=(lambda s, v: s in wanted) if wanted else None)
@@ -66,7 +73,7 @@ def inspect(
 
     def body() -> int:
         from hexar.events import read_recording
-        from hexar.render import log_dict, print_inspection
+        from hexar.render import json_dumps, log_dict, print_inspection
 
         if plot is not None:
             from hexar.web.explain import plot_latest
@@ -74,7 +81,7 @@ def inspect(
             plot_latest(run, plot)
         log = read_recording(run)
         if as_json:
-            print(json.dumps(log_dict(log), indent=2))
+            print(json_dumps(log_dict(log), indent=2))
         else:
             print_inspection(out, log)
         return 0
@@ -91,6 +98,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
         from hexar.errors import HexarError
         from hexar.events import EventsError, read_recording
         from hexar.events.contract import NAV_GOAL_TOPICS, TASK_INFO
+        from hexar.safe_text import json_dumps, safe
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
@@ -114,11 +122,11 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
             except EventsError as e:
                 rows.append({"recording": path.name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
         if as_json:
-            print(json.dumps(rows, indent=2))
+            print(json_dumps(rows, indent=2))
             return 0
         table = Table("recording", "tasks", "latest task", "outcome")
         for r in rows:
-            table.add_row(r["recording"], str(r["tasks"]), r["instruction"], r["outcome"])
+            table.add_row(safe(r["recording"]), str(r["tasks"]), safe(r["instruction"]), safe(r["outcome"]))
         out.print(table)
         return 0
 

@@ -11,3 +11,7 @@ class HexarError(Exception):
 
 
 USER_ERRORS: tuple[type[Exception], ...] = (HexarError, EventsError, ExplainerError)
+
+
+class InputFileError(HexarError):
+    """A file or folder argument that is missing, of the wrong kind, unreadable, binary or wrongly encoded."""

@@ -8,12 +8,14 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
 from rich.padding import Padding
 from rich.table import Table
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
+from hexar.safe_text import json_dumps, safe, visible
+
+__all__ = ["clock", "json_dumps", "log_dict", "print_inspection", "safe", "task_dict", "visible"]
 
 
 def natural_key(path: Path) -> list[int | str]:
@@ -22,8 +24,12 @@ def natural_key(path: Path) -> list[int | str]:
 
 
 def clock(t: int) -> str:
-    """Wall-clock time of a nanosecond stamp, to the millisecond."""
-    return datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S") + f".{t // 1_000_000 % 1000:03d}"
+    """Wall-clock time of a nanosecond stamp, to the millisecond (a stamp no calendar holds: the raw number)."""
+    try:
+        wall = datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S")
+    except (OverflowError, OSError, ValueError):
+        return f"{t} ns"
+    return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
 def task_dict(task: Task) -> dict[str, Any]:
@@ -68,25 +74,25 @@ def log_dict(log: EventLog) -> dict[str, Any]:
 
 
 def print_inspection(console: Console, log: EventLog) -> None:
-    console.print(f"[bold]{log.path.name}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
+    console.print(f"[bold]{safe(log.path.name)}[/bold]  {log.storage}, {(log.end - log.start) / 1e9:.1f} s, "
                   f"{clock(log.start)} to {clock(log.end)} UTC")
     topics = Table(title="Topics", title_justify="left")
     topics.add_column("topic", overflow="fold")
     topics.add_column("type", overflow="fold")  # wrapped, never cut: the type is what a user looks up
     topics.add_column("messages", justify="right", no_wrap=True)
     for info in log.topics.values():
-        topics.add_row(info.topic, info.type, str(info.count))
+        topics.add_row(safe(info.topic), safe(info.type), str(info.count))
     console.print(topics)
     for task in log.tasks:
-        label = "recovery task" if task.is_recovery else f"\"{escape(task.instruction)}\""
+        label = "recovery task" if task.is_recovery else f"\"{safe(task.instruction)}\""
         if task.derived:
-            goal = escape(task.instruction.removesuffix(" (derived from Nav2)"))
+            goal = safe(task.instruction.removesuffix(" (derived from Nav2)"))
             label = f"Nav2 goal: {goal} [dim](derived from Nav2: no /task_info)[/dim]"
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
-        console.print(f"\n[bold]Task {task.order}[/bold] {task.task_id}: {label}  "
-                      f"[{colour}]{task.outcome}[/{colour}]")
+        console.print(f"\n[bold]Task {task.order}[/bold] {safe(task.task_id)}: {label}  "
+                      f"[{colour}]{safe(task.outcome)}[/{colour}]")
         if not task.valid:
-            console.print(f"  invalid plan: {escape(task.error_msg)}")
+            console.print(f"  invalid plan: {safe(task.error_msg)}")
         console.print(_steps(log, task))
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
@@ -94,7 +100,7 @@ def print_inspection(console: Console, log: EventLog) -> None:
         console.print("[yellow]No task to explain: this recording has no /task_info and no Nav2 navigation goal."
                       "[/yellow]")
     for warning in log.warnings:
-        console.print(f"[yellow]warning:[/yellow] {escape(warning)}")
+        console.print(f"[yellow]warning:[/yellow] {safe(warning)}")
 
 
 def _steps(log: EventLog, task: Task) -> Table:
@@ -110,12 +116,12 @@ def _steps(log: EventLog, task: Task) -> Table:
         ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
         when = f"{clock(started)} to {clock(ended)}" if started and ended else clock(started) if started else ""
         colour = {"succeeded": "green", "failed": "red"}.get(run.state, "yellow")
-        grid.add_row(f"  {run.index + 1}.", f"[bold]{escape(run.skill)}[/bold]  [{colour}]{run.state}[/{colour}]"
+        grid.add_row(f"  {run.index + 1}.", f"[bold]{safe(run.skill)}[/bold]  [{colour}]{run.state}[/{colour}]"
                      f"  {when}")
         for key, value in run.params.items():
-            grid.add_row("", Padding(f"{escape(str(key))}: {escape(repr(value))}", (0, 0, 0, 2)))
+            grid.add_row("", Padding(f"{safe(str(key))}: {safe(repr(value))}", (0, 0, 0, 2)))
         if run.error_msg:
-            grid.add_row("", Padding(f"[red]error:[/red] {escape(run.error_msg)}", (0, 0, 0, 2)))
+            grid.add_row("", Padding(f"[red]error:[/red] {safe(run.error_msg)}", (0, 0, 0, 2)))
         for fact in step_facts(log, task, run):
-            grid.add_row("", Padding(f"[dim]{escape(fact)}[/dim]", (0, 0, 0, 2)))
+            grid.add_row("", Padding(f"[dim]{safe(fact)}[/dim]", (0, 0, 0, 2)))
     return grid

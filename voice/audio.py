@@ -95,11 +95,15 @@ def decode_wav(data: bytes, name: str = "audio") -> Audio:
 
 
 def read_wav(path: Path) -> Audio:
+    from hexar.errors import InputFileError
+    from hexar.inputs import read_bytes_arg
+    from hexar.safe_text import visible
+
     try:
-        data = path.read_bytes()
-    except OSError as err:
-        raise AudioFormatError(f"cannot read {path}: {err.strerror or err}") from err
-    return decode_wav(data, str(path))
+        data = read_bytes_arg(path, "--wav")
+    except InputFileError as err:
+        raise AudioFormatError(str(err)) from err
+    return decode_wav(data, visible(str(path)))
 
 
 def write_wav(path: Path, audio: Audio) -> Path:

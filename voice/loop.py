@@ -5,7 +5,6 @@ The thread lives in the same SQLite checkpoints as `hexar chat`, so a spoken con
 
 from __future__ import annotations
 
-import json
 import time
 from collections.abc import Iterator, Sequence
 from dataclasses import asdict, dataclass, field
@@ -13,10 +12,11 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.markup import escape
 
 from hexar.agent.context import RunSettings
 from hexar.agent.session import Session, default_checkpoints
+from hexar.errors import USER_ERRORS
+from hexar.safe_text import json_dumps, safe
 from hexar.voice.audio import Audio, read_wav
 from hexar.voice.errors import NoSpeechError, VoiceError
 from hexar.voice.speakers import Speaker, make_speakers
@@ -111,29 +111,35 @@ class Dialogue:
         turn = Turn(n=len(self.turns) + 1, source=source, transcript=transcript,
                     timings_ms={"audio": round(audio.seconds * 1000, 1), "transcribe": _ms(started)})
         turn.question = repair(transcript)
-        heard = escape(transcript)
+        heard = safe(transcript)
         if turn.question != transcript:
-            heard += f" [dim](as: {escape(turn.question)})[/dim]"
+            heard += f" [dim](as: {safe(turn.question)})[/dim]"
         self.console.print(f"[bold]you:[/bold] {heard}")
         if is_stop(transcript):
             turn.answer = "You're welcome." if is_thanks(transcript) else "Goodbye."
             turn.spoken = [turn.answer]
         else:
             started = time.perf_counter()
-            result = self.session.ask(turn.question, thread=self.thread)
+            try:
+                result = self.session.ask(turn.question, thread=self.thread)
+            except USER_ERRORS as err:  # a question the agent cannot take is one turn, not the end of the talk
+                result = {"error": str(err), "route": "none", "explainers": [], "causes": [], "answer": ""}
+            except Exception as err:  # nor is a bug in one answer
+                result = {"error": f"internal error, please report it: {type(err).__name__}: {err}",
+                          "route": "none", "explainers": [], "causes": [], "answer": ""}
             turn.timings_ms["answer"] = _ms(started)
             turn.error, turn.route = str(result["error"]), str(result["route"])
             turn.explainers, turn.causes = list(result["explainers"]), list(result["causes"])
             turn.answer = str(result["answer"]) if not turn.error else NOT_UNDERSTOOD
             turn.spoken = say_answer(result) if not turn.error else [NOT_UNDERSTOOD]
         if turn.error:
-            self.console.print(f"[yellow]{escape(turn.error)}[/yellow]")
-        self.console.print(f"[bold cyan]HEXAR:[/bold cyan] {escape(turn.answer)}")
+            self.console.print(f"[yellow]{safe(turn.error)}[/yellow]")
+        self.console.print(f"[bold cyan]HEXAR:[/bold cyan] {safe(turn.answer, keep_newlines=True)}")
         self._say(turn.spoken, turn)
         self.turns.append(turn)
         if self.log is not None:
             with self.log.open("a", encoding="utf-8") as f:
-                f.write(json.dumps({"thread": self.thread, **asdict(turn)}) + "\n")
+                f.write(json_dumps({"thread": self.thread, **asdict(turn)}) + "\n")
         return turn
 
     def run(self, utterances: Iterator[tuple[str, Audio]] | Sequence[tuple[str, Audio]]) -> int:
@@ -163,6 +169,10 @@ def listen(run: Path, wavs: Sequence[Path] | None = None, mic: bool = False, spe
     # cheap checks first: a bad file or missing microphone should not wait for the models to load
     source: Iterator[tuple[str, Audio]] | list[tuple[str, Audio]]
     notes: list[str] = []
+    if out_dir is not None:
+        from hexar.inputs import output_dir
+
+        output_dir(out_dir, "--out")
     if wavs:
         source = wav_utterances(wavs, notes)
     else:
@@ -176,13 +186,13 @@ def listen(run: Path, wavs: Sequence[Path] | None = None, mic: bool = False, spe
         session = Session(RunSettings(recording=run, llm=llm), checkpoints=checkpoints or default_checkpoints())
         dialogue = Dialogue(session, transcriber, speakers, thread, console, out_dir)
         task = session.context.log.task()
-        console.print(f"[bold]{escape(run.name)}[/bold]: task \"{escape(task.instruction)}\" ({task.outcome}); "
+        console.print(f"[bold]{safe(run.name)}[/bold]: task \"{safe(task.instruction)}\" ({safe(task.outcome)}); "
                       f"backend {session.backend.name}; speech {transcriber.name} -> "
                       f"{', '.join(s.name for s in speakers)}; thread {dialogue.thread}")
         for note in notes:
-            console.print(f"[yellow]{escape(note)}[/yellow]")
+            console.print(f"[yellow]{safe(note)}[/yellow]")
         console.print("[dim]Ask why I did something; say \"stop\" or \"thank you\" to end. "
-                      f"Continue in text with: hexar chat {escape(str(run))} --thread {dialogue.thread}[/dim]")
+                      f"Continue in text with: hexar chat {safe(str(run))} --thread {safe(dialogue.thread)}[/dim]")
         return dialogue.run(source)
     finally:
         for speaker in speakers:

@@ -126,6 +126,9 @@ class AskHumanForHelpExplainer:
                 f"I have no record of asking anybody for help in that time ({EPISODIC_MEMORY} is empty).",
             )
         keys = [s.key for s in steps]
+        if "SkillFailed" in keys and not any(k in TRANSITION_OF_STATE for k in keys):
+            return Explanation.not_enough(
+                NAME, "The recording shows that asking for help failed, but not in which step.")
         if "SkillFailed" in keys:
             found = self._failure(steps)
             found = self._with_navigation(question, context, steps, found)

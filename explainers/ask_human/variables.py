@@ -180,6 +180,9 @@ def assignment(steps: Iterable[tuple[str, str]]) -> dict[str, str]:
         "user_accepted": _flag(rec.get("user_accepted")) if "user_accepted" in rec else NONE,
         "user_confirmed": _flag(rec.get("user_confirmed")) if "user_confirmed" in rec else NONE,
     }
+    for var, value in out.items():
+        if value not in WORLD[var]:
+            out[var] = NONE  # a recorded value this variable cannot take ("maybe") tells nothing
     navigate, ask, confirm = (
         ("NavigateState" in rec),
         ("AskForHelpState" in rec),

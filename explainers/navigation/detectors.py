@@ -8,7 +8,6 @@ it hides blocked_path and moving_obstacles.
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import math
 import re
@@ -224,19 +223,30 @@ def moving_obstacles(run: Run) -> Finding | None:
     return found
 
 
+def _limit(r: StatusRecord) -> float | None:
+    try:
+        value = float(r.get(SPEED_KEY) or "nan")
+    except ValueError:
+        return None
+    return value if math.isfinite(value) and value > 0 else None
+
+
 def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
     """The normal run's figures: configured limit, distance and average speed."""
     found = Finding(cause)
     for line in (run.begin, run.end):
         if line is not None:
             found.evidence.append(Evidence.of_log(cause, line))
-    limits = [r for r in statuses if r.get(SPEED_KEY) is not None]
+    limits = [r for r in statuses if _limit(r) is not None]  # an empty or "nan" limit is no limit to state
     if limits:
         r = limits[-1]
         item = status_item(r, SPEED_KEY)
         found.evidence.append(Evidence(cause=cause, topic=c.DIAGNOSTICS, t=r.t, item=item))
-        with contextlib.suppress(ValueError):
-            found.facts["max_vel_x"] = float(r.get(SPEED_KEY) or "nan")
+        found.facts["max_vel_x"] = _limit(r) or 0.0
+    if not found.evidence and run.poses:
+        # no navigator lines: the recorded poses are what shows the drive went as it did
+        for p in dict.fromkeys([run.poses[0], run.poses[-1]]):
+            found.evidence.append(Evidence(cause=cause, topic=c.AMCL_POSE, t=p.t, item=pose_item(p)))
     distance, duration = run.distance(), run.duration_s()
     if run.poses:
         found.facts["distance_m"] = distance

@@ -81,6 +81,15 @@ def _skill_state(context: Context) -> str | None:
     return run.state if run is not None else None
 
 
+def _status_evidence(context: Context, cause: str) -> list[Evidence]:
+    """The /task_info update where the navigation skill failed: the record of a failure no log line explains."""
+    run = _focus(context)
+    change = next((h for h in reversed(run.history) if h.status.strip().lower() == "failed"), None) if run else None
+    if change is None:
+        return []
+    return [Evidence(cause=cause, topic=c.TASK_INFO, t=change.t, item=change.error_msg or change.status)]
+
+
 def _quote(line: LogLine | None) -> str:
     return f"'{line.msg.strip()}'" if line is not None else ""
 
@@ -130,6 +139,13 @@ class NavigationExplainer:
         if not lines and not poses and not flags:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         findings = flags + self._others(question, view, run, bool(flags))
+        for f in findings:
+            if f.cause == d.UNEXPLAINED and not f.evidence:
+                f.evidence += _status_evidence(context, d.UNEXPLAINED)
+        if run.outcome == "unknown" and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
+            # neither a navigator line nor the skill's status says how the trip ended: "it went fine" would be
+            # a claim without evidence
+            return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal.")
         grounded = self._compose(question, context, run, findings, lines)
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 

@@ -156,6 +156,9 @@ class PizzaRecommenderExplainer:
         ]
         if unknown:
             details.append(f"not in my recipe data, so ignored: {', '.join(unknown)}")
+        if predicted != pizza:
+            # the recorded recommendation is what the model disagrees with: it backs the mismatch cause too
+            evidence = [*evidence, *(ev.model_copy(update={"cause": MISMATCH}) for ev in evidence[1:])]
         label = rec.class_index(pizza)
         if label is None:
             text = (

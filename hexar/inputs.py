@@ -1,0 +1,77 @@
+"""File and folder arguments checked once, the same way for every command: one line for whatever is wrong.
+
+A person passes a questions file saved by Notepad (UTF-16), a folder instead of a file, a PDF, or a path with a
+typo; each gets a sentence that says which argument and what to do, never a traceback.
+"""
+
+from __future__ import annotations
+
+import codecs
+import os
+from pathlib import Path
+
+from hexar.errors import InputFileError
+from hexar.safe_text import visible
+
+_BOMS = ((codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
+
+
+def _name(path: Path) -> str:
+    return visible(str(path))
+
+
+def check_input_file(path: Path, what: str) -> Path:
+    """`path` if it is a readable file; else InputFileError naming the argument `what`."""
+    if not path.exists():
+        raise InputFileError(f"{what}: no such file: {_name(path)}")
+    if path.is_dir():
+        raise InputFileError(f"{what}: {_name(path)} is a folder; give a file")
+    if not path.is_file():
+        raise InputFileError(f"{what}: {_name(path)} is not a regular file")
+    if not os.access(path, os.R_OK):
+        raise InputFileError(f"{what}: cannot read {_name(path)}: permission denied")
+    return path
+
+
+def read_bytes_arg(path: Path, what: str) -> bytes:
+    check_input_file(path, what)
+    try:
+        return path.read_bytes()
+    except OSError as err:
+        raise InputFileError(f"{what}: cannot read {_name(path)}: {visible(err.strerror or err)}") from err
+
+
+def decode_text(data: bytes, path: Path, what: str) -> str:
+    """UTF-8 (with or without a BOM) or UTF-16 with a BOM; anything else is refused with the reason."""
+    for bom, codec in _BOMS:
+        if data.startswith(bom):
+            try:
+                return data.decode(codec)
+            except UnicodeDecodeError as err:
+                raise InputFileError(f"{what}: {_name(path)} starts like {codec.upper()} but is not valid "
+                                     f"{codec.upper()} (byte {err.start})") from err
+    if b"\x00" in data:
+        raise InputFileError(f"{what}: {_name(path)} is a binary file, not text")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as err:
+        raise InputFileError(f"{what}: {_name(path)} is not UTF-8 text (byte 0x{data[err.start]:02x} at offset "
+                             f"{err.start}); save it as UTF-8") from err
+
+
+def read_text_arg(path: Path, what: str) -> str:
+    """The text of a file argument, checked and decoded, or one InputFileError line."""
+    return decode_text(read_bytes_arg(path, what), path, what)
+
+
+def output_dir(path: Path, what: str) -> Path:
+    """`path` as a folder that exists and can be written, created if missing; else one InputFileError line."""
+    if path.exists() and not path.is_dir():
+        raise InputFileError(f"{what}: {_name(path)} is a file; give a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise InputFileError(f"{what}: cannot create folder {_name(path)}: {visible(err.strerror or err)}") from err
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise InputFileError(f"{what}: cannot write in folder {_name(path)}: permission denied")
+    return path

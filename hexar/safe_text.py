@@ -1,0 +1,94 @@
+"""The one output layer for recorded text: nothing a robot recorded reaches a terminal, file or page raw.
+
+A recording is written by whoever can publish on the robot, so its strings are untrusted: an escape sequence in
+a log line can recolour the terminal, set its title or (OSC 52) write the user's clipboard, and rich markup such
+as `[/]` breaks or restyles the output. Every command prints recorded strings through these functions:
+
+- `visible(text)`: control characters, escape sequences, bidirectional overrides and lone surrogates become their
+  visible escapes (`\\x1b[31m`), for plain `print`, files and web pages (which escape HTML on top);
+- `safe(text)`: `visible` plus rich markup escaped, for anything handed to a rich Console, Table or Panel;
+- `json_dumps(obj)`: strict JSON (`allow_nan=False`); a non-finite number becomes null and the enclosing
+  top-level object gets a `warnings` entry naming where it was.
+
+This module imports nothing heavy, so a web page or a live node can use it without the CLI.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from typing import Any
+
+# Every character of Unicode 14's categories Cc (C0/C1 controls, DEL), Cf (invisible format characters that
+# reorder or hide text: bidi overrides, zero-width, tag characters), Cs (lone surrogates, which cannot even be
+# encoded for a UTF-8 terminal), Zl and Zp (line/paragraph separators); newline is added or not per call.
+_UNSAFE = re.compile(
+    "[\x00-\x09\x0b-\x1f\x7f-\x9f\xad\u0600-\u0605\u061c\u06dd\u070f\u0890-\u0891\u08e2\u180e\u200b-\u200f"
+    "\u2028-\u202e\u2060-\u2064\u2066-\u206f\ud800-\udfff\ufeff\ufff9-\ufffb\U000110bd\U000110cd"
+    "\U00013430-\U00013438\U0001bca0-\U0001bca3\U0001d173-\U0001d17a\U000e0001\U000e0020-\U000e007f]"
+)
+_UNSAFE_WITH_NEWLINE = re.compile(_UNSAFE.pattern.replace("\x0b", "\x0a\x0b", 1))
+_MARKUP = re.compile(r"(\\*)(\[[a-z#/@][^[]*?])")
+_NAMED = {"\n": "\\n", "\t": "\\t", "\r": "\\r"}
+
+
+def _escape_char(m: re.Match[str]) -> str:
+    ch = m.group(0)
+    named = _NAMED.get(ch)
+    if named is not None:
+        return named
+    code = ord(ch)
+    return f"\\x{code:02x}" if code <= 0xFF else (f"\\u{code:04x}" if code <= 0xFFFF else f"\\U{code:08x}")
+
+
+def visible(text: object, keep_newlines: bool = False) -> str:
+    """`text` with every control or invisible character shown as its escape; newlines kept only if asked."""
+    s = text if isinstance(text, str) else str(text)
+    pattern = _UNSAFE if keep_newlines else _UNSAFE_WITH_NEWLINE
+    return pattern.sub(_escape_char, s)
+
+
+def escape_markup(text: str) -> str:
+    """Rich markup shown literally: `[bold]` prints as `[bold]`, `[/]` no longer closes a style."""
+    # The same rule as rich.markup.escape, kept here so that this module needs no rich import.
+    out = _MARKUP.sub(lambda m: f"{m.group(1)}{m.group(1)}\\{m.group(2)}", text)
+    if out.endswith("\\") and not out.endswith("\\\\"):
+        out += "\\"
+    return out
+
+
+def safe(text: object, keep_newlines: bool = False) -> str:
+    """Recorded text ready for a rich Console, Table or Panel: controls visible and markup escaped."""
+    return escape_markup(visible(text, keep_newlines))
+
+
+def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
+    """A copy of `obj` with NaN and infinities replaced by None; their paths are appended to `found`."""
+    if isinstance(obj, float):
+        if math.isfinite(obj):
+            return obj
+        if found is not None:
+            found.append(f"{where or 'value'} was {obj!r}")
+        return None
+    if isinstance(obj, dict):
+        return {k: finite(v, f"{where}.{k}" if where else str(k), found) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [finite(v, f"{where}[{i}]", found) for i, v in enumerate(obj)]
+    return obj
+
+
+def _with_warnings(obj: Any) -> Any:
+    found: list[str] = []
+    clean = finite(obj, "", found)
+    if found and isinstance(clean, dict):
+        notes = [f"non-finite number replaced by null: {visible(f)}" for f in found]
+        old = clean.get("warnings")
+        clean["warnings"] = [*old, *notes] if isinstance(old, list) else notes
+    return clean
+
+
+def json_dumps(obj: Any, indent: int | None = None) -> str:
+    """Strict JSON of `obj`: never NaN or Infinity; a list's objects get their own `warnings`."""
+    clean = [_with_warnings(v) for v in obj] if isinstance(obj, list | tuple) else _with_warnings(obj)
+    return json.dumps(clean, indent=indent, allow_nan=False, default=str)
