@@ -81,7 +81,7 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             if not arg:
                 for t in log.tasks:
                     name = f'"{safe(t.instruction)}"' if not t.is_recovery else "(my own recovery task)"
-                    console.print(f"  {t.order}. {t.task_id} {name} {t.outcome}")
+                    console.print(f"  {t.order}. {safe(t.task_id)} {name} {safe(t.outcome)}")
                 continue
             try:
                 chosen = log.task(arg)

@@ -69,4 +69,4 @@ def test_no_question_and_no_recording_are_one_line_errors(suite: Path, tmp_path:
     assert main(["ask", "--runs", str(tmp_path), "what happened", "--llm", "none"]) == 2
     assert "no recordings in" in capsys.readouterr().err
     assert main(["ask", str(suite / "bagfile_5_1"), "--questions", str(tmp_path / "nope.txt"), "--llm", "none"]) == 2
-    assert "cannot read questions" in capsys.readouterr().err
+    assert "--questions: no such file" in capsys.readouterr().err

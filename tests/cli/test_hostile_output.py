@@ -131,9 +131,10 @@ def test_ask_json_keeps_the_recorded_bytes(hostile: Path, capsys: pytest.Capture
 def test_ask_batch_prints_visible_text(hostile: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     questions = tmp_path / "q.txt"
     questions.write_text(f"What happened?\nwhy {CLIPBOARD}?\n", encoding="utf-8")
-    code, out, _ = _run(["ask", str(hostile / "bagfile_hostile"), "--questions", str(questions), "--llm", "none"],
-                        capsys)
-    assert code == 2 and "blocked" in out and "\\x1b]52" in out  # the second line is no question: exit 2
+    code, out, err = _run(["ask", str(hostile / "bagfile_hostile"), "--questions", str(questions), "--llm", "none"],
+                          capsys)
+    assert code == 2 and "blocked" in out  # the second line is no question: exit 2, refused on stderr
+    assert err.startswith("ERROR: bagfile_hostile line 2:")
     code, out, _ = _run(["ask", str(hostile / "bagfile_hostile"), "--questions", str(questions), "--llm", "none",
                          "--json"], capsys)
     assert [bool(_strict(line)["error"]) for line in out.splitlines()] == [False, True]
