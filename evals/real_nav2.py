@@ -262,10 +262,23 @@ def parse_corpus(text: str) -> tuple[Excerpt, ...]:
     return out
 
 
+# The tuning corpus and the held-out set (threads the catalogue was never tuned on), both in the data package.
+CORPUS_FILE = "corpus.yaml"
+HELDOUT_FILE = "heldout.yaml"
+
+
 @cache
-def corpus() -> tuple[Excerpt, ...]:
-    text = resources.files("hexar.evals").joinpath("data/real_nav2/corpus.yaml").read_text(encoding="utf-8")
+def load_excerpts(name: str) -> tuple[Excerpt, ...]:
+    text = resources.files("hexar.evals").joinpath(f"data/real_nav2/{name}").read_text(encoding="utf-8")
     return parse_corpus(text)
+
+
+def corpus() -> tuple[Excerpt, ...]:
+    return load_excerpts(CORPUS_FILE)
+
+
+def heldout() -> tuple[Excerpt, ...]:
+    return load_excerpts(HELDOUT_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -14,7 +14,7 @@ from rich.console import Console
 from rich.table import Table
 
 from hexar.errors import HexarError
-from hexar.evals.real_nav2_suite import SUITE, run_suite
+from hexar.evals.real_nav2_suite import SUITE, SUITES, run_suite
 
 BASELINE_SCHEMA = 1
 RANK = {"wrong": 0, "honest": 1, "named": 2}
@@ -30,6 +30,7 @@ class RealNav2Options:
     write_baseline: Path | None = None
     tolerance: float = 0.02
     progress: bool = True
+    suite: str = SUITE
 
 
 def _pct(x: float | None) -> str:
@@ -53,9 +54,9 @@ def _table(title: str, rows: dict[str, dict[str, Any]], first: str, kind: str = 
 def render(report: dict[str, Any]) -> str:
     s = report["summary"]
     lines = [
-        f"# hexar eval --suite {SUITE} ({report['backend']})", "",
+        f"# hexar eval --suite {report['suite']} ({report['backend']})", "",
         f"{report['n']} real Nav2 console excerpts from {report['sources']} public threads "
-        "(evals/data/real_nav2/corpus.yaml), each written as a rosbag2 recording; half with a navigation task on "
+        f"(evals/data/real_nav2/{report['data']}), each written as a rosbag2 recording; half with a navigation task on "
         "/task_info, half with none. Cause named is counted over the excerpts whose pasted lines show the "
         "diagnosed cause; honest not-enough (\"the logs do not show why\") is counted apart from wrong.", "",
         *_table("All excerpts (graded on the answer's text)", {"all": s}, "set"),
@@ -76,19 +77,19 @@ def render(report: dict[str, Any]) -> str:
 
 
 def baseline_of(report: dict[str, Any]) -> dict[str, Any]:
-    return {"schema": BASELINE_SCHEMA, "suite": SUITE, "backend": report["backend"],
+    return {"schema": BASELINE_SCHEMA, "suite": report["suite"], "backend": report["backend"],
             "created": time.strftime("%Y-%m-%d"), "summary": copy.deepcopy(report["summary"]),
             "excerpts": {e["id"]: {"verdict": e["text"]["verdict"], "unsupported": e["text"]["unsupported"],
                                    "answer": e["answer"]} for e in report["excerpts"]}}
 
 
-def read_baseline(path: Path) -> dict[str, Any]:
+def read_baseline(path: Path, suite: str = SUITE) -> dict[str, Any]:
     try:
         data: dict[str, Any] = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError) as err:
         raise HexarError(f"cannot read baseline {path}: {err}") from err
-    if data.get("schema") != BASELINE_SCHEMA or data.get("suite") != SUITE:
-        raise HexarError(f"{path} is not a {SUITE} baseline (schema {BASELINE_SCHEMA})")
+    if data.get("schema") != BASELINE_SCHEMA or data.get("suite") != suite:
+        raise HexarError(f"{path} is not a {suite} baseline (schema {BASELINE_SCHEMA})")
     return data
 
 
@@ -115,7 +116,7 @@ def compare(report: dict[str, Any], baseline: dict[str, Any], tolerance: float =
 
 def summary_table(report: dict[str, Any]) -> Table:
     t = Table("distro", "excerpts", "cause named", "no unsupported cause", "honest not-enough", "wrong",
-              title=f"hexar eval --suite {SUITE} ({report['backend']})")
+              title=f"hexar eval --suite {report['suite']} ({report['backend']})")
     for name, row in [*report["by_distro"].items(), ("all", report["summary"])]:
         g = row["text"]
         t.add_row(name, str(row["n"]), f"{g['named']}/{row['n_shown']} ({_pct(g['named_rate'])})",
@@ -134,12 +135,12 @@ def real_nav2_command(opts: RealNav2Options, console: Console | None = None) -> 
         raise HexarError(f"--out must be a folder: {opts.out}")
     if opts.runs is not None and opts.runs.exists() and not opts.runs.is_dir():
         raise HexarError(f"--runs must be a folder: {opts.runs}")
-    baseline = read_baseline(opts.baseline) if opts.baseline is not None else None
+    baseline = read_baseline(opts.baseline, opts.suite) if opts.baseline is not None else None
     backend = resolve(opts.llm)
     if baseline is not None and baseline["backend"] != backend.name:
         raise HexarError(f"the baseline {opts.baseline} is for backend {baseline['backend']!r}, this run uses "
                          f"{backend.name!r}")
-    report = run_suite(backend, opts.runs)
+    report = run_suite(backend, opts.runs, suite=opts.suite)
     worse = compare(report, baseline, opts.tolerance) if baseline is not None else []
     if baseline is not None:
         report["regression"] = {"baseline": str(opts.baseline), "worse": worse}
@@ -163,10 +164,10 @@ def real_nav2_main(suite: str, out: Path, runs: Path | None, llm: str, baseline:
                    write_baseline: Path | None, tolerance: float, console: Console,
                    paper_only: dict[str, object]) -> int:
     """`hexar eval --suite NAME` for any suite but the paper's: checks the options that apply, then runs."""
-    if suite != SUITE:
-        raise HexarError(f"unknown suite {suite!r}: use paper or {SUITE}")
+    if suite not in SUITES:
+        raise HexarError(f"unknown suite {suite!r}: use paper, {' or '.join(SUITES)}")
     if given := [name for name, value in paper_only.items() if value]:
-        raise HexarError(f"{', '.join(given)} belong to the paper's suite, not to --suite {SUITE}")
+        raise HexarError(f"{', '.join(given)} belong to the paper's suite, not to --suite {suite}")
     opts = RealNav2Options(out=out, runs=runs, llm=llm, baseline=baseline, write_baseline=write_baseline,
-                           tolerance=tolerance)
+                           tolerance=tolerance, suite=suite)
     return real_nav2_command(opts, console)

@@ -24,9 +24,12 @@ from hexar.agent.backends import Backend
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
-from hexar.evals.real_nav2 import DISTROS, Excerpt, corpus, task_plan, write_recording
+from hexar.evals.real_nav2 import DISTROS, Excerpt, corpus, heldout, task_plan, write_recording
 
 SUITE = "real-nav2"
+# The same suite on threads the catalogue was never tuned on (evals/data/real_nav2/heldout.yaml).
+HELDOUT_SUITE = "real-nav2-heldout"
+SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})
@@ -172,10 +175,11 @@ def by_distro(results: Sequence[Result]) -> dict[str, dict[str, Any]]:
     return {d: rows[d] for d in DISTROS if d in rows}
 
 
-def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Excerpt]) -> dict[str, Any]:
+def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Excerpt], suite: str = SUITE
+                 ) -> dict[str, Any]:
     sources = sorted({e.source for e in excerpts})
     return {
-        "suite": SUITE, "backend": backend, "n": len(results), "sources": len(sources),
+        "suite": suite, "data": SUITES[suite][0], "backend": backend, "n": len(results), "sources": len(sources),
         "summary": summarise(results)["all"], "by_distro": by_distro(results),
         "by_cause": dict(sorted(summarise(results, key=lambda r: r.cause).items())),
         "excerpts": [r.as_dict() for r in results],
@@ -184,11 +188,11 @@ def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Exc
 
 def run_suite(backend: Backend, runs: Path | None = None, ask: Ask | None = None,
               step: Callable[[str], None] | None = None,
-              excerpts: Sequence[Excerpt] | None = None) -> dict[str, Any]:
-    excerpts = corpus() if excerpts is None else excerpts
+              excerpts: Sequence[Excerpt] | None = None, suite: str = SUITE) -> dict[str, Any]:
+    excerpts = SUITES[suite][1]() if excerpts is None else excerpts
     ask = ask or hexar_asker(backend)
     if runs is None:
         with tempfile.TemporaryDirectory(prefix="hexar-real-nav2-") as tmp:
-            return build_report(evaluate(excerpts, Path(tmp), ask, step), backend.name, excerpts)
+            return build_report(evaluate(excerpts, Path(tmp), ask, step), backend.name, excerpts, suite)
     runs.mkdir(parents=True, exist_ok=True)
-    return build_report(evaluate(excerpts, runs, ask, step), backend.name, excerpts)
+    return build_report(evaluate(excerpts, runs, ask, step), backend.name, excerpts, suite)

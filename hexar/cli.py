@@ -328,9 +328,10 @@ def eval_(
     seed: Annotated[int, typer.Option(help="simulation seed of recordings that are missing")] = 0,
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
-    suite: Annotated[str, typer.Option(help="paper (the 180 cases) or real-nav2 (real Nav2 logs from public "
-                                       "threads; uses --out, --runs, --llm, --baseline, --write-baseline, "
-                                       "--tolerance)")] = "paper",
+    suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
+                                       "threads) or real-nav2-heldout (threads never tuned on); the real-nav2 "
+                                       "suites use --out, --runs, --llm, --baseline, --write-baseline, "
+                                       "--tolerance")] = "paper",
 ) -> None:
     """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
 
