@@ -184,6 +184,8 @@ def poor_localisation(run: Run) -> Finding | None:
         found.facts = {"poses": float(len(best)), "max_cov": max(worst.cov_xy, worst.cov_yaw),
                        "seconds": (best[-1].t - best[0].t) / 1e9}
     found.evidence += [Evidence.of_log(POOR_LOCALISATION, ln) for ln in warnings[:3]]
+    if any(n.entry.id == "amcl.set_initial_pose" for n in run.notes):
+        found.facts["no_initial_pose"] = 1.0  # AMCL never got a start pose: it was not localised at all
     return found
 
 

@@ -204,7 +204,7 @@ class NavigationExplainer:
         details: list[str] = []
         for f in findings:
             text, fix, more = _template(f, place, run)
-            texts.append(text)
+            texts.append(_unfinished(text, place) if run.outcome == "unknown" else text)
             if fix:
                 fixes.append(fix)
             details += more
@@ -230,6 +230,17 @@ class NavigationExplainer:
         out.append("Filtered navigation log (oldest first):")
         out += [line.render() for line in shown]
         return "\n".join(out)
+
+
+def _unfinished(text: str, place: str) -> str:
+    """A cause seen while the goal was still running when the recording ended (no end line, no task status):
+    what the logs show, without claiming the goal failed."""
+    head = f"I couldn't reach {place} because "
+    if not text.startswith(head):
+        return text
+    what = text.removeprefix(head).removeprefix("of ")
+    return (f"The recording ends before my navigation to {place} finished, so it does not show whether I got "
+            f"there; on the way my logs show a problem: {what}")
 
 
 def _speed_sentence(f: d.Finding) -> str:
@@ -311,6 +322,12 @@ def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, li
     if f.cause == d.POOR_LOCALISATION:
         how = f"I reached {place}, but slowly and unsteadily," if run.outcome == "reached" else \
             f"I couldn't reach {place}"
+        if "no_initial_pose" in f.facts and "poses" not in f.facts:
+            return (f"{how} because my localisation (AMCL) never received an initial pose, so it could not tell "
+                    "where I was on my map.",
+                    "Set my initial pose (e.g. '2D Pose Estimate' in RViz, or /initialpose), and check that my "
+                    "laser scans and transforms reach AMCL with matching timestamps.",
+                    ["AMCL said it cannot publish a pose or update the transform until the initial pose is set."])
         figs = (f"My position estimate was very uncertain for {int(f.facts['poses'])} consecutive updates "
                 f"({f.facts['seconds']:.0f} s, variance up to {f.facts['max_cov']:.2f})."
                 if "poses" in f.facts else "My localisation reported warnings.")

@@ -27,6 +27,10 @@ def _progress_seconds(run: Run) -> str:
     return "longer than its movement time allowance (10 s by default)"
 
 
+def _held(seconds: float) -> str:
+    return " for less than a second" if seconds < 1 else f" for {seconds:.0f} s"
+
+
 def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     said = _said(f)
     seen = [f"Nav2 said: {said}"] if said else []
@@ -54,7 +58,7 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "check that the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
     if f.cause == g.COLLISION_AHEAD and run.outcome == "reached":
-        held = f" for {f.facts['held_s']:.0f} s" if "held_s" in f.facts else ""
+        held = _held(f.facts["held_s"]) if "held_s" in f.facts else ""
         return (f"It took me longer to reach {place} because my collision monitor stopped me{held}: something "
                 "was inside its stop zone, so it detected a collision ahead and held me until the way was clear.",
                 "Look at what entered the collision monitor's stop polygon (or at the polygon's size, if "

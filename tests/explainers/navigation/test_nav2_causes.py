@@ -202,3 +202,51 @@ def test_a_docking_failure_is_not_worded_as_charging(tmp_path: Path) -> None:
     causes, text = _explain(tmp_path, _bag(lines, True), "bag")
     assert causes == [g.DOCKING]
     assert g.DOCKING in stated_causes(text) and "navigation.charging" not in stated_causes(text)
+
+
+def _no_task(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str) -> tuple[list[str], str]:
+    b = BagBuilder()
+    for s, logger, level, msg in lines:
+        b.log(T0 + sec_ns(s), logger, level, msg)
+    log = read_recording(b.write(tmp_path / "bag"))
+    answer = NavigationExplainer().explain(question, Context.for_task(log, log.task()))
+    return answer.causes, answer.text
+
+
+def test_a_stop_seen_while_the_goal_still_runs_is_not_called_a_failed_goal(tmp_path: Path) -> None:
+    # corpus mowgli-159-collision-monitor-stop: no goal line, no /task_info, the robot resumed after 414 s
+    causes, text = _no_task(tmp_path, [(1, "collision_monitor", INFO, "Robot to stop due to PolygonStop polygon"),
+                                       (415, "collision_monitor", INFO, "Robot to continue normal operation")],
+                            "Why did it take so long?")
+    assert causes == [g.COLLISION_AHEAD]
+    assert "couldn't reach" not in text and "does not show whether I got there" in text
+
+
+def test_a_short_collision_monitor_hold_is_not_worded_as_0_s(tmp_path: Path) -> None:
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    step = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(t, task_msg("t1", "mow the strip", step))
+    b.log(t + sec_ns(5), "collision_monitor", INFO, "Robot to stop due to PolygonStop polygon")
+    b.log(t + sec_ns(5.3), "collision_monitor", INFO, "Robot to continue normal operation")
+    b.log(t + sec_ns(20), "bt_navigator", INFO, "Goal succeeded")
+    b.task_info(t + sec_ns(20.1), task_msg("t1", "mow the strip", [(*step[0][:2], "succeeded", "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    text = NavigationExplainer().explain("Why were you slow?", Context.for_task(log, log.task())).text
+    assert "stopped me for less than a second" in text and "0 s" not in text
+
+
+def test_amcl_waiting_for_an_initial_pose_says_so_and_how_to_fix_it(tmp_path: Path) -> None:
+    # corpus tb4-318-lidar-create3-clock: AMCL's own warning, verbatim, with a failed goal on /task_info
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    step = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(t, task_msg("t1", "go to the dock", step))
+    for k in range(3):
+        b.log(t + sec_ns(1 + 2 * k), "amcl", WARN,
+              "AMCL cannot publish a pose or update the transform. Please set the initial pose...")
+    b.task_info(t + sec_ns(9), task_msg("t1", "go to the dock", [(*step[0][:2], "failed", "aborted")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
+    assert answer.causes == [g.POOR_LOCALISATION]
+    assert "never received an initial pose" in answer.text and "initial pose" in (answer.fix or "")
