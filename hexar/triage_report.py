@@ -11,6 +11,7 @@ from typing import Any
 
 import pandas as pd
 
+from hexar.safe_text import visible
 from hexar.triage import TriageError
 
 COLUMNS = ["recording", "robot", "storage", "task_id", "order", "instruction", "recovery", "outcome", "failed_skill",
@@ -45,7 +46,7 @@ def summary(df: pd.DataFrame, results: list[dict[str, Any]]) -> dict[str, int]:
 
 def _md(text: object) -> str:
     """Recorded text in a Markdown table cell: no pipes, no newlines, no HTML."""
-    return re.sub(r"[|<>\n\r`]", " ", str(text)).strip()
+    return re.sub(r"[|<>\n\r`]", " ", visible(text)).strip()
 
 
 def _counts(series: pd.Series, title: str, what: str) -> list[str]:
@@ -54,9 +55,20 @@ def _counts(series: pd.Series, title: str, what: str) -> list[str]:
     return [*lines, ""]
 
 
+UNEXPLAINED = "(failed, no cause found)"
+
+
+def flag(df: pd.DataFrame) -> pd.DataFrame:
+    """Tasks worth a look: those with a cause, and failures no explainer found a cause for (a new problem is
+    often exactly that)."""
+    rows = df[(df["cause"] != "") | (df["kind"] == "failure")].copy()
+    rows.loc[rows["cause"] == "", "cause"] = UNEXPLAINED
+    return rows
+
+
 def look_first(df: pd.DataFrame) -> pd.DataFrame:
     """Recordings with failures first, a rare cause (a new problem) before a common one, then more findings."""
-    flagged = df[df["cause"] != ""]
+    flagged = flag(df)
     if flagged.empty:
         return flagged
     freq = flagged["cause"].value_counts()
@@ -70,7 +82,7 @@ def look_first(df: pd.DataFrame) -> pd.DataFrame:
 
 def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str]) -> str:
     s = summary(df, results)
-    flagged = df[df["cause"] != ""]
+    flagged = flag(df)
     lines = ["# HEXAR fleet triage", "",
              f"{s['recordings']} recordings ({s['unreadable']} unreadable, {s['without_tasks']} without a task), "
              f"{s['tasks']} tasks: {s['failed']} failed "
@@ -108,7 +120,7 @@ def draw(df: pd.DataFrame, out: Path) -> list[str]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    flagged = df[df["cause"] != ""]
+    flagged = flag(df)
     if flagged.empty:
         return []
     names = []
@@ -154,7 +166,7 @@ def _side(spec: str, base: Path | None) -> pd.DataFrame:
 def compare(a: str, b: str, base: Path | None) -> dict[str, Any]:
     """Per cause: tasks in A and in B, per 100 tasks, and the change; causes that appeared or disappeared."""
     da, db = _side(a, base), _side(b, base)
-    ca, cb = Counter(da.loc[da["cause"] != "", "cause"]), Counter(db.loc[db["cause"] != "", "cause"])
+    ca, cb = Counter(flag(da)["cause"]), Counter(flag(db)["cause"])
     na, nb = max(len(da), 1), max(len(db), 1)
     rows = [{"cause": cause, "a": ca[cause], "b": cb[cause], "a_per_100": round(100 * ca[cause] / na, 1),
              "b_per_100": round(100 * cb[cause] / nb, 1), "change": cb[cause] - ca[cause]}

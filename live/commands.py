@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 import signal
 import sys
@@ -14,6 +13,7 @@ from typing import Any, cast
 
 from hexar.live.errors import BadOptionError
 from hexar.live.node import NodeOptions, Proactive, Transport
+from hexar.safe_text import json_dumps, safe
 
 TRANSPORTS = ("auto", "dds", "rclpy")
 PROACTIVE = ("off", "publish", "speak")
@@ -105,7 +105,7 @@ def serve(opts: ServeOptions) -> int:
         def show(result: dict[str, Any]) -> None:
             if not opts.quiet:
                 with printed:
-                    print(json.dumps(result), flush=True)
+                    print(json_dumps(result), flush=True)
 
         proactive = cast(Proactive, opts.proactive)
         node = LiveNode(transport, log, NodeOptions(llm=opts.llm, proactive=proactive), speakers=speakers,
@@ -163,13 +163,11 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
 
 def chat_live_command(domain: int | None, console: Any) -> int:
     """`hexar chat --live`: lines from the terminal to the running node, its answers printed."""
-    from rich.markup import escape
-
     from hexar.live.chat_live import PROMPT_HELP, chat_live
 
     def show(result: dict[str, Any]) -> None:
         tag = "unasked" if result.get("trigger") == "failure" else "HEXAR"
-        console.print(f"[bold cyan]{tag}:[/bold cyan] {escape(str(result.get('answer') or result.get('error')))}")
+        console.print(f"[bold cyan]{tag}:[/bold cyan] {safe(result.get('answer') or result.get('error'))}")
 
     def lines() -> Any:
         while True:

@@ -223,3 +223,19 @@ def test_several_hundred_recordings(tmp_path: Path) -> None:
     out = tmp_path / "out"
     assert triage_command(TriageOptions((str(fleet),), out, progress=False), Console(quiet=True)) == 0
     assert user_causes(pd.read_parquet(out / "tasks.parquet")) == ground_truth(fleet)
+
+
+def test_report_shows_recorded_control_characters_visibly(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder
+    from tests.events.helpers import T0, two_skill_task
+
+    robot = tmp_path / "fleet" / "robot-\x1b[31mred"  # a folder name and a task id carrying terminal escapes
+    b = BagBuilder()
+    two_skill_task(b, T0, "t1\x1b]52;c;ZWNobyBwd25lZA==\x07", fail_second=True)
+    b.write(robot / "run1")
+    out = tmp_path / "o"
+    assert main(["triage", str(tmp_path / "fleet"), "--out", str(out), "--workers", "1", "--no-figures"]) == 0
+    report = (out / "report.md").read_text()
+    assert "\x1b" not in report and "\x07" not in report
+    assert "robot-\\x1b[31mred" in report
+    assert "| (failed, no cause found) | 1 |" in report  # a failure no explainer explains is still listed
