@@ -17,7 +17,6 @@ from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ModelError
-from hexar.explainers.planner import task_findings
 from hexar.prompts import load
 from hexar.render import clock
 from hexar.tools.explainer_tools import explainer_of_tool, run_explainer, scope, tools_for
@@ -100,13 +99,8 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
     start = time.perf_counter()
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
-    selected: list[str] = []
-    if not task.valid:
-        selected = ["planner"]
-    elif (failed := task.failed_skill) is not None:
-        selected = ctx.registry.for_module(failed.skill)[:1]
-    elif task_findings(task):
-        selected = ["planner"]
+    name = ctx.registry.failure_explainer(task)
+    selected = [name] if name else []
     return {"selected": selected, "route": "failure_check" if selected else "none",
             "timings_ms": _timings(state, "failure_check", start)}
 

@@ -9,10 +9,13 @@ from functools import cache
 from importlib import resources
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from hexar.explainers.base import Explainer, TextModel
 from hexar.explainers.errors import RegistryConfigError, UnknownExplainerError
+
+if TYPE_CHECKING:
+    from hexar.events.tasks import Task
 
 ENTRY_POINT_GROUP = "hexar.explainers"
 PLANNER = "planner"
@@ -105,6 +108,18 @@ class Registry:
     def for_module(self, skill: str) -> list[str]:
         """Explainers of a robot module; a skill the robot does not have is the planner's to explain."""
         return self.modules.get(skill) or [PLANNER]
+
+    def failure_explainer(self, task: Task) -> str | None:
+        """The deterministic failure check, shared by the agent and fleet triage: a bad plan goes to the planner,
+        a failed skill to its module's first explainer, a plan that does not fulfil the request to the planner;
+        None when nothing failed."""
+        from hexar.explainers.planner import task_findings
+
+        if not task.valid:
+            return PLANNER
+        if (failed := task.failed_skill) is not None:
+            return self.for_module(failed.skill)[0]
+        return PLANNER if task_findings(task) else None
 
     def descriptions(self) -> dict[str, str]:
         return {name: str(getattr(self.classes[name], "description", "")) for name in self.names}

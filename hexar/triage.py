@@ -17,8 +17,7 @@ from hexar.errors import HexarError
 from hexar.events import EventLog, EventsError, Task, read_recording
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ExplainerError
-from hexar.explainers.planner import task_findings
-from hexar.explainers.registry import PLANNER, Registry
+from hexar.explainers.registry import Registry
 from hexar.workspace import find_recordings, is_recording
 
 QUESTION = "What happened?"
@@ -34,16 +33,6 @@ class TriageError(HexarError):
 def registry() -> Registry:
     """No model: explainers phrase their own template answers (the `--llm none` path)."""
     return Registry.load(None)
-
-
-def failure_explainer(task: Task, reg: Registry) -> str | None:
-    """The agent's failure check (agent/nodes.py), without the agent: a bad plan goes to the planner, a failed
-    skill to its module's first explainer, a plan that does not fulfil the request to the planner."""
-    if not task.valid:
-        return PLANNER
-    if (failed := task.failed_skill) is not None:
-        return reg.for_module(failed.skill)[0]
-    return PLANNER if task_findings(task) else None
 
 
 def notable_finding(log: EventLog, task: Task, reg: Registry) -> Explanation | None:
@@ -72,7 +61,7 @@ def robot_of(rel: str) -> str:
 
 
 def task_row(log: EventLog, task: Task, rel: str, reg: Registry) -> dict[str, Any]:
-    name = failure_explainer(task, reg)
+    name = reg.failure_explainer(task)
     kind = "failure" if name else ""
     exp: Explanation | None = None
     if name is not None:
