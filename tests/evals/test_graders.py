@@ -116,3 +116,9 @@ OBSERVED = [
 def test_observed_baseline_answers(scenario: int, text: str, root: bool, wrong: bool) -> None:
     g = grade(scenario, text)
     assert (g.root_cause, g.incorrect_facts) == (root, wrong), g
+
+
+def test_quoting_failed_to_make_progress_claims_no_obstacle() -> None:
+    # Nav2 also says it when cmd_vel never reaches the base or TF is stale: quoting it names no blocked path
+    claims = read_claims("My controller said 'Failed to make progress' and made no progress for 10 s.").affirmed
+    assert "navigation.blocked_path" not in claims and "navigation.no_progress" in claims
