@@ -2,17 +2,18 @@
 
 Kept: every line the Nav2 message catalogue recognises by its text (whatever its logger: namespaced,
 Foxy/Galactic names, `*_rclcpp_node` helpers, `DWBLocalPlanner`, TF helpers, or a logger we never heard of),
-the other lines of loggers whose Nav2 role is known, and the navigation skills' lines. Dropped: lines holding a
-known noise substring that the catalogue gives no cause, and a line equal to the previous kept line of the same
-logger (Nav2 repeats e.g. `Passing new path to controller.` at every 1 Hz replan; one copy says as much as
-twenty).
+the other lines of loggers whose Nav2 role is known, the navigation skills' lines, and warnings and errors of
+loggers with no known role (an unknown logger's decisive line reaches the LLM even when the catalogue lacks it).
+Dropped: lines holding a known noise substring that the catalogue gives no cause, and a line equal to the
+previous kept line of the same logger (Nav2 repeats e.g. `Passing new path to controller.` at every 1 Hz replan;
+one copy says as much as twenty).
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 
-from hexar.events.records import LogLine
+from hexar.events.records import WARN, LogLine
 from hexar.explainers.navigation.catalogue import Entry, catalogue
 
 # The loggers of the original HEXAR filter (hexar_interfaces.md); roles now cover their other spellings.
@@ -51,7 +52,10 @@ def kept(line: LogLine) -> tuple[bool, Entry | None]:
         return False, entry
     if entry is not None or line.name in KEPT_LOGGERS:
         return True, entry
-    return cat.role(line.name) in KEPT_ROLES, entry
+    role = cat.role(line.name)
+    if role is None and line.level >= WARN:
+        return True, entry  # a warning of a logger we never heard of may be the decisive line: never drop it unread
+    return role in KEPT_ROLES, entry
 
 
 def filter_logs(lines: Iterable[LogLine]) -> list[LogLine]:

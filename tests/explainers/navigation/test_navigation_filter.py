@@ -56,3 +56,12 @@ def test_a_simulated_recording_loses_its_noise_and_repeats(tmp_path: Path) -> No
     for ln in kept:
         assert previous.get(ln.name) != ln.msg
         previous[ln.name] = ln.msg
+
+
+def test_an_unknown_loggers_warnings_are_kept_its_chatter_is_not() -> None:
+    lines = [
+        _line(1, "my_robot_base_driver", "Motor controller 2 over temperature, limiting current", WARN),
+        _line(2, "my_robot_base_driver", "publishing odometry at 50 Hz"),
+        _line(3, "bt_navigator", "Goal failed"),
+    ]
+    assert [ln.t for ln in filter_logs(lines)] == [1, 3]
