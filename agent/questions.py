@@ -42,8 +42,16 @@ _OPENERS = _words(
 _ABOUT_ROBOT = _words("you your you're yourself robot tiago hexar")
 _EVENTS = _words(
     "fail failed failing failure wrong stuck stopped stop late slow slowly never nothing broke broken crashed "
-    "lost missed forgot gave didn't couldn't wasn't weren't won't can't problem error mistake instead"
+    "lost missed forgot gave didn't couldn't wasn't weren't won't can't problem error mistake instead "
+    # a remark of surprise at what the robot did asks why it did it ("that was weird")
+    "weird weirdly strange strangely odd oddly awkward awkwardly rude creepy scary funny"
 )
+# "i asked for coffee": reminding the robot of a request is asking why it was not done.
+_REMINDERS = _words("asked wanted told said needed expected thought meant ordered requested")
+# "ok so the navigation thing": naming one of the robot's modules as the topic.
+_MODULES = _words("navigation navigating planner planning plan speech talking pizza recommendation recipe "
+                  "localisation localization path route")
+_TOPIC_MARKERS = _words("so about thing regarding re")
 _TAGS = re.compile(
     r"(?:\b(?:didn't|did|don't|do|weren't|were|wasn't|was|aren't|are|isn't|is|won't|will|can't|can|couldn't|"
     r"could|haven't|have|hasn't|has) (?:you|it|they|he|she|we|i|there)|\bright|\bhuh|\beh|\bno|\bor what|\bor not|"
@@ -137,6 +145,10 @@ def _asks(q: str, words: list[str]) -> bool:
                                 and words[1] in _OPENERS | _ASKING):
         return True
     if _TAGS.search(q) and len(words) > 2:
+        return True
+    if len(words) >= 3 and words[0] == "i" and words[1] in _REMINDERS:
+        return True
+    if any(w in _MODULES for w in words) and any(w in _TOPIC_MARKERS for w in words):
         return True
     about = any(w in _ABOUT_ROBOT for w in words) and len(words) >= 3
     return about or any(w in _EVENTS for w in words)
