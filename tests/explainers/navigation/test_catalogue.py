@@ -66,6 +66,7 @@ def test_the_literal_prefilter_never_hides_a_match() -> None:
         "GridBased: failed to create plan with tolerance 0.50.", "Goal failed", "Navigation failed",
         "Goal failed error_code:104 error_msg:'Failed to make progress'", "Attempting spin",
         "Goal Coordinates of(5.000000, 1.000000) was in lethal cost", "Optimizer fail to compute path",
+        "Min velocities are higher than max velocities!",
         "\x1b[34m\x1b[1mFailed to bring up all requested nodes. Aborting bringup.\x1b[0m\x1b[0m",
     ]
     for msg in messages:
@@ -86,6 +87,11 @@ def test_the_literal_prefilter_never_hides_a_match() -> None:
     ("Failed to make progress", None, "progress"),
     ("Begin navigating from current location to (-2.04, -1.17)", None, "begin"),
     ("Navigation succeeded", None, "succeeded"),
+    # ros-navigation/navigation2 nav2_velocity_smoother/src/velocity_smoother.cpp (main): its format strings
+    ("Positive values set of deceleration! These should be negative to slow down!",
+     "navigation.configuration_error", "cause"),
+    ("Invalid feedback_type, options are OPEN_LOOP and CLOSED_LOOP.", "navigation.configuration_error", "cause"),
+    ("Velocity message contains NaNs or Infs! Ignoring as invalid!", "navigation.controller_failure", "cause"),
 ])
 def test_real_wordings(msg: str, cause: str | None, kind: str) -> None:
     entry = catalogue().match(msg)
