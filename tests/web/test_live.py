@@ -136,3 +136,47 @@ def test_live_without_cyclonedds_is_one_line(capsys: pytest.CaptureFixture[str],
     assert main(["web", "--live", "--llm", "none"]) == 2
     err = capsys.readouterr().err.strip()
     assert err == "ERROR: the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'"
+
+
+def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    from tests.web.browser import chrome
+
+    domain = fresh_domain()
+    robot = Robot(domain)
+    try:
+        with live_page(domain, tmp_path / "t.sqlite") as (url, _), chrome() as driver:
+            ready = "return document.body.dataset.ready"
+            driver.get(f"{url}#/run/live")
+            WebDriverWait(driver, 30).until(lambda d: d.execute_script(ready) == "none")
+            assert driver.find_element(By.ID, "no-task").text.startswith("no task to explain:")
+            assert not driver.find_elements(By.CSS_SELECTOR, "p.error")
+            driver.execute_script("window.notReloaded = true")
+
+            robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
+            WebDriverWait(driver, 15).until(lambda d: d.execute_script(ready) == "nav1")
+            WebDriverWait(driver, 15).until(lambda d: d.find_element(By.ID, "skill-0").get_attribute("data-status")
+                                            == "failed")
+            driver.find_element(By.ID, "chat-input").send_keys("why?\n")
+            WebDriverWait(driver, 30).until(lambda d: d.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)"))
+            answer = driver.find_element(By.CSS_SELECTOR, ".msg.bot:not(.pending)")
+            assert [c.text for c in answer.find_elements(By.CSS_SELECTOR, ".chip")] == [BLOCKED]
+            driver.find_element(By.ID, "chat-input").send_keys("and then")  # typed, not sent yet
+            # an unchanged run is not redrawn by the next poll
+            driver.execute_script("window.shownTimeline = document.getElementById('timeline')")
+            time.sleep(2.5)
+            assert driver.execute_script("return window.shownTimeline.isConnected")
+
+            robot.blocked_trip("nav2", "Go to the kitchen again")
+            WebDriverWait(driver, 15).until(lambda d: d.execute_script(ready) == "nav2")
+            assert driver.execute_script("return window.notReloaded === true")
+            tabs = [t.text for t in driver.find_elements(By.CSS_SELECTOR, ".tabs .tab")]
+            assert len(tabs) == 2 and "Go to the kitchen again" in tabs[1]
+            assert "Go to the kitchen again" in driver.find_element(By.CSS_SELECTOR, ".instruction").text
+            # the chat is kept as it was: the answer, and what was being typed
+            assert driver.find_elements(By.CSS_SELECTOR, ".msg.bot .chip")[0].text == BLOCKED
+            assert driver.find_element(By.ID, "chat-input").get_attribute("value") == "and then"
+    finally:
+        robot.close()
