@@ -105,6 +105,7 @@ class LiveSource:
         self._lock = threading.Lock()
         self._snap: Snapshot | None = None
         self._built = 0.0
+        self.shared = Findings()  # the page's: explainers run one at a time across every run (Findings says why)
 
     @classmethod
     def over_dds(cls, domain_id: int, limits: Limits | None = None) -> LiveSource:
@@ -127,7 +128,7 @@ class LiveSource:
             snap = self._snap
             if snap is None or (kept != snap.version and (fresh or time.monotonic() - self._built >= REBUILD_S)):
                 # findings are per snapshot: a running task's explanation changes as its records arrive
-                snap = self._snap = Snapshot(self.log.snapshot(), kept, Findings())
+                snap = self._snap = Snapshot(self.log.snapshot(), kept, Findings(self.shared))
                 self._built = time.monotonic()
             return snap
 

@@ -28,6 +28,8 @@ class Store:
         self.llm = llm
         self.checkpoints = checkpoints or default_checkpoints()
         self.findings = Findings()
+        if live is not None:
+            live.shared = self.findings
         self._logs: OrderedDict[str, EventLog] = OrderedDict()
         self._lock = threading.Lock()
         self._rows: dict[str, tuple[float, dict[str, Any]]] = {}

@@ -113,6 +113,32 @@ def test_the_live_page_writes_nothing_on_the_robots_network(tmp_path: Path) -> N
     assert {"rt/task_info", "rt/rosout", "rt/amcl_pose"} <= read and "rt/hexar/question" not in read
 
 
+def test_hexar_web_live_command(tmp_path: Path) -> None:
+    """The command as a person runs it, without a folder: the page lists only the robot, fed over DDS."""
+    import signal
+    import subprocess
+
+    domain = fresh_domain()
+    robot = Robot(domain)
+    cmd = [sys.executable, "-m", "hexar", "web", "--live", "--domain", str(domain), "--port", "0", "--llm", "none",
+           "--checkpoints", str(tmp_path / "t.sqlite")]
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    try:
+        assert proc.stdout is not None
+        line = proc.stdout.readline()
+        assert f"the live robot on DDS domain {domain}" in line and "recordings" not in line
+        url = line.split()[2]
+        robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
+        _, runs = wait_for(lambda: get(url + "api/runs"), lambda r: r[1]["runs"][0]["latest"] is not None)
+        assert [(r["recording"], r["latest"]["outcome"], r["causes"]) for r in runs["runs"]] == [
+            ("live", "failed", [BLOCKED])]
+    finally:
+        robot.close()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 0 and "Traceback" not in err
+
+
 @pytest.mark.parametrize(("argv", "env", "message"), [
     (["web", "--live", "--domain", "500"], {}, "out of range"),
     (["web", "--live"], {"ROS_DOMAIN_ID": "robot"}, "ROS_DOMAIN_ID='robot' is not a number"),
