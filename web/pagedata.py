@@ -51,7 +51,7 @@ class Findings:
     as long as one live snapshot shares its lock and registry with the page's (`shared`)."""
 
     def __init__(self, shared: Findings | None = None) -> None:
-        self._lock = shared._lock if shared is not None else threading.Lock()
+        self._lock: threading.Lock = shared._lock if shared is not None else threading.Lock()
         self._shared = shared
         self._cache: dict[tuple[str, str], list[dict[str, Any]]] = {}
         self._registry: Any = None
