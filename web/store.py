@@ -38,7 +38,9 @@ class Store:
         self._ask_lock = threading.Lock()
         self._backend: Any = None
         self._worker: threading.Thread | None = None
-        self._recordings()  # a missing folder is the command's one-line error, before the server starts
+        names = {p.name for p in self._recordings()}  # a missing folder is the one-line error, before serving
+        if live is not None and LIVE in names:
+            raise WebError(f"{root} holds a recording named {LIVE!r}, the live run's name: rename it to use --live")
 
     def _recordings(self) -> list[Path]:
         return [] if self.root is None else recordings(self.root)

@@ -154,6 +154,14 @@ def test_bad_live_options_are_one_line(argv: list[str], env: dict[str, str], mes
     assert err.startswith("ERROR: ") and message in err and "\n" not in err
 
 
+def test_a_recording_named_live_is_refused_with_live(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "live").mkdir()
+    (tmp_path / "live" / "metadata.yaml").write_text("rosbag2_bagfile_information: {}\n")
+    assert main(["web", str(tmp_path), "--live", "--domain", str(fresh_domain()), "--llm", "none"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("ERROR: ") and "named 'live'" in err and "\n" not in err
+
+
 def test_live_without_cyclonedds_is_one_line(capsys: pytest.CaptureFixture[str],
                                               monkeypatch: pytest.MonkeyPatch) -> None:
     for name in [m for m in sys.modules if m.startswith("cyclonedds") or m in {"hexar.live.dds", "hexar.live.msgs"}]:
