@@ -131,7 +131,6 @@ def live_source(live: bool, domain: int | None) -> LiveSource | None:
             raise WebError("--domain needs --live (it picks the robot's DDS domain)")
         return None
     from hexar.live.commands import domain_id
-    from hexar.web.live import LiveSource
 
     return LiveSource.over_dds(domain_id(domain))
 
@@ -155,10 +154,10 @@ def serve(root: Path | None, host: str, port: int, llm: str, checkpoints: Path |
             source.close()
         raise
     where = f"http://{host}:{server.server_address[1]}/"
-    what = " and ".join(x for x in (f"recordings in {root}" if root is not None else "",
-                                    f"the live robot on DDS domain {source.watcher.domain_id}"
-                                    if source is not None and source.watcher is not None else "") if x)
-    print(f"HEXAR web: {where}  ({what}; backend {store.backend().name}; Ctrl-C stops)", flush=True)
+    what = [f"recordings in {root}"] if root is not None else []
+    if source is not None and source.watcher is not None:
+        what.append(f"the live robot on DDS domain {source.watcher.domain_id}")
+    print(f"HEXAR web: {where}  ({' and '.join(what)}; backend {store.backend().name}; Ctrl-C stops)", flush=True)
     if host not in {"127.0.0.1", "localhost", "::1"}:
         print(f"warning: listening on {host}: anyone who can reach this port can read these runs", flush=True)
     try:

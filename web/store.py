@@ -50,7 +50,8 @@ class Store:
         for p in self._recordings():
             if p.name == name:
                 return p
-        raise WebError(f"no recording named {name!r} in {self.root or 'the live robot'}")
+        where = f"in {self.root}" if self.root is not None else "here: only the live robot is shown"
+        raise WebError(f"no recording named {name!r} {where}")
 
     def log(self, name: str) -> EventLog:
         from hexar.events import read_recording

@@ -38,6 +38,9 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
             assert [(r["recording"], r.get("live")) for r in runs["runs"]] == [("live", True)]
             _, empty = get(url + "api/run?name=live")  # no task yet: the CLI's line, not an error
             assert empty["no_task"].startswith("no task to explain:") and empty["live"]
+            status, other = get(url + "api/run?name=bagfile_5_1")  # no folder given: nothing else can be named
+            assert status == 400 and other["error"] == "ERROR: no recording named 'bagfile_5_1' here: only the live " \
+                "robot is shown"
 
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
             status, run = wait_for(lambda: get(url + "api/run?name=live"),
