@@ -9,7 +9,7 @@ from __future__ import annotations
 import sys
 import threading
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from hexar.events.log import EventLog
@@ -90,6 +90,7 @@ class Snapshot:
     log: EventLog
     version: int
     findings: Findings
+    views: dict[str, dict[str, Any]] = field(default_factory=dict)  # the page's JSON per task, built once
 
     def explain(self, task: Task) -> list[dict[str, Any]]:
         return self.findings.get(LIVE, self.log, task)

@@ -3,6 +3,8 @@ and with `--live` one more run: the robot's LiveLog (web/live.py)."""
 
 from __future__ import annotations
 
+import hashlib
+import json
 import threading
 from collections import OrderedDict
 from pathlib import Path
@@ -12,7 +14,7 @@ from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
-from hexar.web.live import LIVE, LiveSource
+from hexar.web.live import LIVE, LiveSource, Snapshot
 from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
 
 KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
@@ -111,7 +113,7 @@ class Store:
     def _live_row(self, live: LiveSource) -> dict[str, Any]:
         snap = live.snapshot()
         task = snap.log.task() if snap.log.tasks else None
-        return {"recording": LIVE, "live": True, "version": snap.version, "tasks": len(snap.log.tasks), "error": "",
+        return {"recording": LIVE, "live": True, "tasks": len(snap.log.tasks), "error": "",
                 "latest": task_summary(task) if task else None,
                 "modules": sorted({r.skill for r in task.skills}) if task else [],
                 "causes": sorted({c for f in snap.explain(task) for c in f["causes"]}) if task else []}
@@ -156,21 +158,32 @@ class Store:
         return detail
 
     def live_run(self, live: LiveSource, ref: str | None, since: str | None) -> dict[str, Any]:
-        """The live run like a recording's, with its version: a page that already shows `since` gets only that
-        nothing changed, and a robot with no task yet is the CLI's one line, not an error."""
+        """The live run like a recording's, with a version: a page that already shows version `since` gets only
+        that nothing changed. A robot with no task yet is the CLI's one line, not an error."""
         snap = live.snapshot()
-        head = {"recording": LIVE, "live": True, "version": snap.version, "storage": "live",
-                "start_ns": snap.log.start, "warnings": list(snap.log.warnings)}
-        if since is not None and since == str(snap.version):
-            return {**head, "unchanged": True}
+        view = snap.views.get(ref or "")
+        if view is None:  # built once per snapshot and task, however many pages poll
+            view = snap.views[ref or ""] = self._live_view(snap, ref)
+        if since is not None and since == view["version"]:
+            return {"recording": LIVE, "live": True, "version": view["version"], "unchanged": True}
+        return view
+
+    def _live_view(self, snap: Snapshot, ref: str | None) -> dict[str, Any]:
+        head = {"recording": LIVE, "live": True, "storage": "live", "warnings": list(snap.log.warnings)}
         try:
             task = snap.log.task(ref or None)
         except NoTaskError as err:
-            return {**head, "no_task": str(err), "tasks": []}
-        detail = run_detail(LIVE, snap.log, task, snap.explain(task))
-        detail.update(head)
-        detail["chat"] = {"recording_path": None, "checkpoints": str(self.checkpoints)}
-        return detail
+            view = {**head, "no_task": str(err), "tasks": []}
+        else:
+            view = run_detail(LIVE, snap.log, task, snap.explain(task))
+            view.update(head)
+            view["chat"] = {"recording_path": None, "checkpoints": str(self.checkpoints)}
+        # the version is what the page shows: a robot that only publishes poses and log lines after the task
+        # ended changes the snapshot, not the task's view, and the page is then not redrawn
+        shown = {k: v for k, v in view.items() if k not in {"start_ns", "duration_s"}}
+        digest = hashlib.sha1(json.dumps(shown, sort_keys=True).encode(), usedforsecurity=False)
+        view["version"] = digest.hexdigest()[:16]
+        return view
 
     def lines(self, name: str, ref: str | None) -> dict[str, Any]:
         log, task = self.task(name, ref)

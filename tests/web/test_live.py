@@ -33,7 +33,7 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
     domain = fresh_domain()
     robot = Robot(domain)
     try:
-        with live_page(domain, tmp_path / "t.sqlite") as (url, _):
+        with live_page(domain, tmp_path / "t.sqlite") as (url, store):
             _, runs = get(url + "api/runs")
             assert [(r["recording"], r.get("live")) for r in runs["runs"]] == [("live", True)]
             _, empty = get(url + "api/run?name=live")  # no task yet: the CLI's line, not an error
@@ -58,6 +58,13 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
             # the page's poll: the same version is answered "unchanged", without the run
             _, same = get(url + f"api/run?name=live&since={run['version']}")
             assert same == {**same, "unchanged": True, "version": run["version"]} and "spans" not in same
+            # the robot idles after the failure: new poses and lines change the snapshot, not the failed task's view
+            before = store.live.snapshot().version
+            robot.pose(-0.2, 1.0)
+            robot.log("amcl", 20, "initialPoseReceived")
+            wait_for(lambda: store.live.snapshot().version, lambda v: v != before)
+            _, idle = get(url + f"api/run?name=live&since={run['version']}")
+            assert idle.get("unchanged") is True
             _, lines = get(url + "api/lines?name=live")
             assert any("Goal failed" in ln["item"] for ln in lines["lines"])
             status, png = get(url + "api/plot.png?name=live")

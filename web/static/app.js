@@ -388,7 +388,7 @@ async function pollLive(name, task, version) {
   const here = state.route;
   let run = null;
   try {
-    run = await api(`/api/run?name=${encodeURIComponent(name)}${task ? `&task=${encodeURIComponent(task)}` : ""}&since=${version}`);
+    run = await api(`/api/run?name=${encodeURIComponent(name)}${task ? `&task=${encodeURIComponent(task)}` : ""}&since=${encodeURIComponent(version)}`);
   } catch (e) { run = null; }  // the server is away for a moment: ask again later
   if (location.hash !== here || state.route !== here) return;  // the page moved on meanwhile
   if (run && !run.unchanged) renderRun(name, run);
