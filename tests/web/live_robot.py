@@ -43,10 +43,20 @@ class Robot:
         self.writer = DdsReplayer(domain)
         self.writer.prepare()
         self.t = time.time_ns()
+        self.sent = 0  # messages written; each is one record of the page's live log
 
     def tick(self, seconds: float) -> int:
         self.t += int(seconds * NS)
+        self.sent += 1
         return self.t
+
+    def heard_by(self, store: Any, timeout: float = 10.0) -> None:
+        """Wait until the page's live log received every message written so far: DDS keeps each writer's order,
+        not the order across topics, so the failing /task_info update can overtake the last /rosout lines."""
+        deadline = time.monotonic() + timeout
+        while store.live.log.stats()["received"] < self.sent and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert store.live.log.stats()["received"] == self.sent
 
     def task(self, task_id: str, instruction: str, status: str, error: str = "") -> None:
         step = {"skill": NAV, "params": {"location": "kitchen"}, "status": status, "error_msg": error}

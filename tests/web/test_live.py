@@ -43,6 +43,7 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
                 "robot is shown"
 
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
+            robot.heard_by(store)
             status, run = wait_for(lambda: get(url + "api/run?name=live"),
                                    lambda r: r[1].get("task", {}).get("outcome") == "failed")
             assert status == 200 and run["task"]["task_id"] == "nav1"
@@ -71,6 +72,7 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
             assert status == 200 and png[:8] == b"\x89PNG\r\n\x1a\n"
 
             robot.blocked_trip("nav2", "Go to the kitchen again")
+            robot.heard_by(store)
             _, later = wait_for(lambda: get(url + f"api/run?name=live&since={run['version']}"),
                                 lambda r: r[1].get("task", {}).get("outcome") == "failed"
                                 and r[1]["task"]["task_id"] == "nav2")
@@ -90,9 +92,7 @@ def test_live_chat_answers_why_from_the_newest_data(tmp_path: Path) -> None:
             status, early = post(url + "api/chat", {"name": "live", "question": "why?"})
             assert status == 400 and early["error"].startswith("ERROR: no task to explain")
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
-            # the chat reads a fresh snapshot: no page poll is needed before asking
-            wait_for(lambda: store.live.log.stats()["tasks"], lambda n: n == 1)
-            wait_for(lambda: store.live.log.snapshot().task().outcome, lambda o: o == "failed")
+            robot.heard_by(store)  # the chat reads a fresh snapshot: no page poll is needed before asking
             status, answer = post(url + "api/chat", {"name": "live", "question": "why?"})
             assert status == 200 and answer["causes"] == [BLOCKED] and answer["task_id"] == "nav1"
             assert "blocked" in answer["answer"]
@@ -191,18 +191,26 @@ def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
     domain = fresh_domain()
     robot = Robot(domain)
     try:
-        with live_page(domain, tmp_path / "t.sqlite") as (url, _), chrome() as driver:
+        with live_page(domain, tmp_path / "t.sqlite") as (url, store), chrome() as driver:
             ready = "return document.body.dataset.ready"
-            driver.get(f"{url}#/run/live")
+            driver.get(f"{url}#/")
+            WebDriverWait(driver, 30).until(lambda d: d.find_elements(By.CSS_SELECTOR, "tr.run[data-name='live']"))
+            row = driver.find_element(By.CSS_SELECTOR, "tr.run[data-name='live']")
+            assert row.find_element(By.CSS_SELECTOR, ".badge.live").text == "live" and "no task yet" in row.text
+            row.click()
             WebDriverWait(driver, 30).until(lambda d: d.execute_script(ready) == "none")
             assert driver.find_element(By.ID, "no-task").text.startswith("no task to explain:")
             assert not driver.find_elements(By.CSS_SELECTOR, "p.error")
             driver.execute_script("window.notReloaded = true")
 
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
-            WebDriverWait(driver, 15).until(lambda d: d.execute_script(ready) == "nav1")
-            WebDriverWait(driver, 15).until(lambda d: d.find_element(By.ID, "skill-0").get_attribute("data-status")
-                                            == "failed")
+            robot.heard_by(store)
+            _, final = wait_for(lambda: get(url + "api/run?name=live"),
+                                lambda r: r[1].get("task", {}).get("outcome") == "failed")
+            WebDriverWait(driver, 15).until(lambda d: d.execute_script("return document.body.dataset.version")
+                                            == final["version"])  # the page redrew by itself, to the end
+            assert driver.execute_script(ready) == "nav1"
+            assert driver.find_element(By.ID, "skill-0").get_attribute("data-status") == "failed"
             driver.find_element(By.ID, "chat-input").send_keys("why?\n")
             WebDriverWait(driver, 30).until(lambda d: d.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)"))
             answer = driver.find_element(By.CSS_SELECTOR, ".msg.bot:not(.pending)")

@@ -52,7 +52,10 @@ async function showRuns() {
   const live = data.runs.some((r) => r.live);
   const again = () => { state.poll = setTimeout(() => { if (location.hash === "" || location.hash === "#/") showRuns(); }, live ? LIVE_POLL_MS : 1500); };
   const seen = JSON.stringify(data);
-  if (seen === state.runsSeen && document.getElementById("runs-table")) { again(); return; }  // unchanged: no redraw
+  if (seen === state.runsSeen && document.getElementById("runs-table")) {  // unchanged: no redraw
+    if (data.pending || live) again();
+    return;
+  }
   state.runsSeen = seen;
   document.getElementById("rootdir").textContent = data.root;
   const rows = data.runs;
