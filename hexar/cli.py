@@ -209,19 +209,23 @@ def annotate(
 
 @app.command()
 def web(
-    folder: Annotated[Path, typer.Argument(help="a folder of recordings")] = Path("."),
+    folder: Annotated[Path | None, typer.Argument(help="a folder of recordings (default: here, or none with --live)")
+                      ] = None,
     host: Annotated[str, typer.Option(help="address to listen on (loopback by default)")] = "127.0.0.1",
     port: Annotated[int, typer.Option(help="port to listen on")] = 8080,
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="auto, embedded, ollama[:model] or none")] = "auto",
     checkpoints: Annotated[Path | None, typer.Option(help="SQLite file of conversations (shared with hexar chat)")
                            ] = None,
+    live: Annotated[bool, typer.Option("--live", help="also follow the robot over DDS (read-only)")] = False,
+    domain: Annotated[int | None, typer.Option(help="DDS domain with --live (default: ROS_DOMAIN_ID, else 0)")
+                      ] = None,
 ) -> None:
     """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
 
     def body() -> int:
         from hexar.web.server import serve
 
-        return serve(folder, host, port, llm, checkpoints)
+        return serve(folder, host, port, llm, checkpoints, live, domain)
 
     raise typer.Exit(guarded(body))
 

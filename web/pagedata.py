@@ -47,12 +47,23 @@ def explainers_for(registry: Any, task: Task) -> list[str]:
 
 class Findings:
     """The explainers' Explanation objects per (recording, task), computed once; explainers are not
-    thread-safe (pgmpy inference, LIME's RandomState), so one lock serialises them."""
+    thread-safe (pgmpy inference, LIME's RandomState), so one lock serialises them. A cache that lives only
+    as long as one live snapshot shares its lock and registry with the page's (`shared`)."""
 
-    def __init__(self) -> None:
-        self._lock = threading.Lock()
+    def __init__(self, shared: Findings | None = None) -> None:
+        self._lock: threading.Lock = shared._lock if shared is not None else threading.Lock()
+        self._shared = shared
         self._cache: dict[tuple[str, str], list[dict[str, Any]]] = {}
         self._registry: Any = None
+
+    def registry(self) -> Any:
+        from hexar.explainers.registry import Registry
+
+        if self._shared is not None:
+            return self._shared.registry()
+        if self._registry is None:
+            self._registry = Registry.load()
+        return self._registry
 
     def cached(self, key: tuple[str, str]) -> list[dict[str, Any]] | None:
         return self._cache.get(key)
@@ -62,16 +73,14 @@ class Findings:
         if key in self._cache:
             return self._cache[key]
         from hexar.explainers.base import Context
-        from hexar.explainers.registry import Registry
 
         with self._lock:
             if key in self._cache:
                 return self._cache[key]
-            if self._registry is None:
-                self._registry = Registry.load()
-            context = Context.for_task(log, task, self._registry)
-            found = [self._registry.get(n).explain(GENERIC_QUESTION, context).model_dump()
-                     for n in explainers_for(self._registry, task)]
+            registry = self.registry()
+            context = Context.for_task(log, task, registry)
+            found = [registry.get(n).explain(GENERIC_QUESTION, context).model_dump()
+                     for n in explainers_for(registry, task)]
             self._cache[key] = found
             return found
 

@@ -17,6 +17,7 @@ from typing import Any
 from urllib.parse import parse_qs, urlparse
 
 from hexar.errors import USER_ERRORS
+from hexar.web.live import LiveSource
 from hexar.web.store import Store
 
 STATIC = {"index.html": "text/html; charset=utf-8", "app.js": "text/javascript; charset=utf-8",
@@ -78,7 +79,7 @@ class Handler(BaseHTTPRequestHandler):
             elif url.path == "/api/runs":
                 self._json(s.runs())
             elif url.path == "/api/run":
-                self._json(s.run(q.get("name", ""), q.get("task")))
+                self._json(s.run(q.get("name", ""), q.get("task"), q.get("since")))
             elif url.path == "/api/lines":
                 self._json(s.lines(q.get("name", ""), q.get("task")))
             elif url.path == "/api/plot.png":
@@ -120,17 +121,43 @@ def make_server(store: Store, host: str = "127.0.0.1", port: int = 8080) -> Thre
     return server
 
 
-def serve(root: Path, host: str, port: int, llm: str, checkpoints: Path | None) -> int:
+def live_source(live: bool, domain: int | None) -> LiveSource | None:
+    """`--live [--domain N]`: the robot's topics, read-only over DDS (the transport `hexar serve --transport dds`
+    uses; no rclpy here, since the page writes nothing and needs no ROS graph presence)."""
     from hexar.web.errors import WebError
 
-    store = Store(root, llm, checkpoints)
-    store.backend()  # an unreachable model is the command's one-line error, not a broken chat later
+    if not live:
+        if domain is not None:
+            raise WebError("--domain needs --live (it picks the robot's DDS domain)")
+        return None
+    from hexar.live.commands import domain_id
+
+    return LiveSource.over_dds(domain_id(domain))
+
+
+def serve(root: Path | None, host: str, port: int, llm: str, checkpoints: Path | None, live: bool = False,
+          domain: int | None = None) -> int:
+    from hexar.web.errors import WebError
+
+    if root is None and not live:
+        root = Path(".")
+    source = live_source(live, domain)
     try:
-        server = make_server(store, host, port)
-    except OSError as err:
-        raise WebError(f"cannot listen on {host}:{port}: {err.strerror or err}") from err
+        store = Store(root, llm, checkpoints, source)
+        store.backend()  # an unreachable model is the command's one-line error, not a broken chat later
+        try:
+            server = make_server(store, host, port)
+        except OSError as err:
+            raise WebError(f"cannot listen on {host}:{port}: {err.strerror or err}") from err
+    except BaseException:
+        if source is not None:
+            source.close()
+        raise
     where = f"http://{host}:{server.server_address[1]}/"
-    print(f"HEXAR web: {where}  (recordings in {root}; backend {store.backend().name}; Ctrl-C stops)", flush=True)
+    what = [f"recordings in {root}"] if root is not None else []
+    if source is not None and source.watcher is not None:
+        what.append(f"the live robot on DDS domain {source.watcher.domain_id}")
+    print(f"HEXAR web: {where}  ({' and '.join(what)}; backend {store.backend().name}; Ctrl-C stops)", flush=True)
     if host not in {"127.0.0.1", "localhost", "::1"}:
         print(f"warning: listening on {host}: anyone who can reach this port can read these runs", flush=True)
     try:
@@ -139,4 +166,5 @@ def serve(root: Path, host: str, port: int, llm: str, checkpoints: Path | None) 
         pass
     finally:
         server.server_close()
+        store.close()
     return 0

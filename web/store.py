@@ -1,28 +1,37 @@
-"""The page's state: the folder of runs, decoded recordings (a few, most recent), findings and chat sessions."""
+"""The page's state: the folder of runs, decoded recordings (a few, most recent), findings and chat sessions,
+and with `--live` one more run: the robot's LiveLog (web/live.py)."""
 
 from __future__ import annotations
 
+import hashlib
+import json
 import threading
 from collections import OrderedDict
 from pathlib import Path
 from typing import Any
 
+from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
+from hexar.web.live import LIVE, LiveSource, Snapshot
 from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
 
 KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
 
 
 class Store:
-    def __init__(self, root: Path, llm: str = "auto", checkpoints: Path | None = None) -> None:
+    def __init__(self, root: Path | None, llm: str = "auto", checkpoints: Path | None = None,
+                 live: LiveSource | None = None) -> None:
         from hexar.agent.session import default_checkpoints
 
         self.root = root
+        self.live = live
         self.llm = llm
         self.checkpoints = checkpoints or default_checkpoints()
         self.findings = Findings()
+        if live is not None:
+            live.shared = self.findings
         self._logs: OrderedDict[str, EventLog] = OrderedDict()
         self._lock = threading.Lock()
         self._rows: dict[str, tuple[float, dict[str, Any]]] = {}
@@ -31,18 +40,26 @@ class Store:
         self._ask_lock = threading.Lock()
         self._backend: Any = None
         self._worker: threading.Thread | None = None
-        recordings(root)  # a missing folder is the command's one-line error, before the server starts
+        names = {p.name for p in self._recordings()}  # a missing folder is the one-line error, before serving
+        if live is not None and LIVE in names:
+            raise WebError(f"{root} holds a recording named {LIVE!r}, the live run's name: rename it to use --live")
+
+    def _recordings(self) -> list[Path]:
+        return [] if self.root is None else recordings(self.root)
 
     def path(self, name: str) -> Path:
         """A recording of the folder by name; nothing outside the folder can be named."""
-        for p in recordings(self.root):
+        for p in self._recordings():
             if p.name == name:
                 return p
-        raise WebError(f"no recording named {name!r} in {self.root}")
+        where = f"in {self.root}" if self.root is not None else "here: only the live robot is shown"
+        raise WebError(f"no recording named {name!r} {where}")
 
     def log(self, name: str) -> EventLog:
         from hexar.events import read_recording
 
+        if self.live is not None and name == LIVE:
+            return self.live.snapshot().log
         with self._lock:
             if name in self._logs:
                 self._logs.move_to_end(name)
@@ -81,7 +98,7 @@ class Store:
     def runs(self) -> dict[str, Any]:
         rows = []
         pending = 0
-        for path in recordings(self.root):
+        for path in self._recordings():
             row = dict(self._row(path))
             found = self.findings.cached((path.name, row["latest"]["task_id"])) if row["latest"] else []
             row["causes"] = None if found is None else sorted({c for f in found for c in f["causes"]})
@@ -89,7 +106,17 @@ class Store:
             rows.append(row)
         if pending:
             self._start_worker()
-        return {"root": str(self.root), "runs": rows, "pending": pending}
+        if self.live is not None:
+            rows.insert(0, self._live_row(self.live))
+        return {"root": "" if self.root is None else str(self.root), "runs": rows, "pending": pending}
+
+    def _live_row(self, live: LiveSource) -> dict[str, Any]:
+        snap = live.snapshot()
+        task = snap.log.task() if snap.log.tasks else None
+        return {"recording": LIVE, "live": True, "tasks": len(snap.log.tasks), "error": "",
+                "latest": task_summary(task) if task else None,
+                "modules": sorted({r.skill for r in task.skills}) if task else [],
+                "causes": sorted({c for f in snap.explain(task) for c in f["causes"]}) if task else []}
 
     def _start_worker(self) -> None:
         """Find each run's causes in the background so the list can be filtered by cause."""
@@ -99,7 +126,7 @@ class Store:
         def work() -> None:
             from hexar.events import EventsError, read_recording
 
-            for path in recordings(self.root):
+            for path in self._recordings():
                 row = self._row(path)
                 if not row["latest"] or self.findings.cached((path.name, row["latest"]["task_id"])) is not None:
                     continue
@@ -113,11 +140,50 @@ class Store:
         self._worker.start()
 
     # one run -----------------------------------------------------------------------------------------------
-    def run(self, name: str, ref: str | None) -> dict[str, Any]:
+    def explained(self, name: str, ref: str | None) -> tuple[EventLog, Task, list[dict[str, Any]]]:
+        """The task and its findings, both from one snapshot when the run is live."""
+        if self.live is not None and name == LIVE:
+            snap = self.live.snapshot()
+            task = snap.log.task(ref or None)
+            return snap.log, task, snap.explain(task)
+        log, task = self.task(name, ref)
+        return log, task, self.findings.get(name, log, task)
+
+    def run(self, name: str, ref: str | None, since: str | None = None) -> dict[str, Any]:
+        if self.live is not None and name == LIVE:
+            return self.live_run(self.live, ref, since)
         log, task = self.task(name, ref)
         detail = run_detail(name, log, task, self.findings.get(name, log, task))
         detail["chat"] = {"recording_path": str(self.path(name)), "checkpoints": str(self.checkpoints)}
         return detail
+
+    def live_run(self, live: LiveSource, ref: str | None, since: str | None) -> dict[str, Any]:
+        """The live run like a recording's, with a version: a page that already shows version `since` gets only
+        that nothing changed. A robot with no task yet is the CLI's one line, not an error."""
+        snap = live.snapshot()
+        view = snap.views.get(ref or "")
+        if view is None:  # built once per snapshot and task, however many pages poll
+            view = snap.views[ref or ""] = self._live_view(snap, ref)
+        if since is not None and since == view["version"]:
+            return {"recording": LIVE, "live": True, "version": view["version"], "unchanged": True}
+        return view
+
+    def _live_view(self, snap: Snapshot, ref: str | None) -> dict[str, Any]:
+        head = {"recording": LIVE, "live": True, "storage": "live", "warnings": list(snap.log.warnings)}
+        try:
+            task = snap.log.task(ref or None)
+        except NoTaskError as err:
+            view = {**head, "no_task": str(err), "tasks": []}
+        else:
+            view = run_detail(LIVE, snap.log, task, snap.explain(task))
+            view.update(head)
+            view["chat"] = {"recording_path": None, "checkpoints": str(self.checkpoints)}
+        # the version is what the page shows: a robot that only publishes poses and log lines after the task
+        # ended changes the snapshot, not the task's view, and the page is then not redrawn
+        shown = {k: v for k, v in view.items() if k not in {"start_ns", "duration_s"}}
+        digest = hashlib.sha1(json.dumps(shown, sort_keys=True).encode(), usedforsecurity=False)
+        view["version"] = digest.hexdigest()[:16]
+        return view
 
     def lines(self, name: str, ref: str | None) -> dict[str, Any]:
         log, task = self.task(name, ref)
@@ -126,8 +192,7 @@ class Store:
     def plot(self, name: str, ref: str | None) -> bytes:
         from hexar.web.plot import build
 
-        log, task = self.task(name, ref)
-        found = self.findings.get(name, log, task)
+        log, task, found = self.explained(name, ref)
         result = {"answer": " ".join(f["text"] for f in found), "causes": [c for f in found for c in f["causes"]],
                   "evidence": [e for f in found for e in f["evidence"]]}
         return build(log, task, result).png(dpi=80)
@@ -145,18 +210,21 @@ class Store:
         from hexar.agent.context import RunSettings
         from hexar.agent.session import Session
 
-        path = self.path(name)
+        live = self.live.snapshot().log if self.live is not None and name == LIVE else None
+        path = Path(LIVE) if live is not None else self.path(name)
         backend = self.backend()
         with self._session_lock:
             if name not in self._sessions:
                 # one lock for every session: they share the backend, and an in-process model is not reentrant
                 self._sessions[name] = (Session(RunSettings(recording=path, llm=self.llm), backend=backend,
-                                                checkpoints=self.checkpoints), self._ask_lock)
+                                                checkpoints=self.checkpoints, log=live), self._ask_lock)
             return self._sessions[name]
 
     def ask(self, name: str, question: str, thread: str | None, task: str | None) -> dict[str, Any]:
         session, lock = self.session(name)
         with lock:
+            if self.live is not None and name == LIVE:
+                session.use_log(self.live.snapshot(fresh=True).log)  # as the live node does: the newest data
             result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
         for ev in result["evidence"]:
             ev["key"] = f"{ev['topic']}|{ev['t']}"  # the page's row id: JavaScript numbers cannot hold a ns stamp
@@ -166,3 +234,7 @@ class Store:
         session, lock = self.session(name)
         with lock:
             return list(session.history(thread))
+
+    def close(self) -> None:
+        if self.live is not None:
+            self.live.close()

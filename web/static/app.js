@@ -3,7 +3,9 @@
 // (text nodes / textContent / attribute values), never as markup. There is no innerHTML in this file.
 
 const app = document.getElementById("app");
-const state = { filters: { outcome: "", module: "", cause: "", text: "" }, poll: null, run: null };
+const state = { filters: { outcome: "", module: "", cause: "", text: "" }, poll: null, run: null, runsSeen: "",
+  route: "", head: null, main: null, chat: null };
+const LIVE_POLL_MS = 2000;  // a live run's page asks this often whether the robot's run changed
 
 function el(tag, props, ...kids) {
   const n = document.createElement(tag);
@@ -47,6 +49,14 @@ async function showRuns() {
   clearInterval(state.poll);
   let data;
   try { data = await api("/api/runs"); } catch (e) { app.replaceChildren(errorLine(e.message)); return; }
+  const live = data.runs.some((r) => r.live);
+  const again = () => { state.poll = setTimeout(() => { if (location.hash === "" || location.hash === "#/") showRuns(); }, live ? LIVE_POLL_MS : 1500); };
+  const seen = JSON.stringify(data);
+  if (seen === state.runsSeen && document.getElementById("runs-table")) {  // unchanged: no redraw
+    if (data.pending || live) again();
+    return;
+  }
+  state.runsSeen = seen;
   document.getElementById("rootdir").textContent = data.root;
   const rows = data.runs;
   const modules = [...new Set(rows.flatMap((r) => r.modules))].sort();
@@ -61,7 +71,7 @@ async function showRuns() {
     select("module", "module", modules), select("cause", "cause", causes), search,
     data.pending ? el("span", { class: "muted" }, `finding causes… ${data.pending} runs left`) : null);
   const body = el("tbody");
-  const table = el("table", { class: "runs" },
+  const table = el("table", { class: "runs", id: "runs-table" },
     el("thead", {}, el("tr", {}, ["recording", "tasks", "latest task", "outcome", "modules", "causes"].map((h) => el("th", {}, h)))), body);
   const count = el("p", { class: "muted" });
   function draw() {
@@ -72,8 +82,9 @@ async function showRuns() {
     body.replaceChildren(...shown.map((r) => el("tr", { class: "run", dataset: { name: r.recording }, tabindex: "0",
       on: { click: () => { location.hash = `#/run/${encodeURIComponent(r.recording)}`; },
         keydown: (e) => { if (e.key === "Enter") location.hash = `#/run/${encodeURIComponent(r.recording)}`; } } },
-      el("td", { class: "mono" }, r.recording), el("td", {}, r.tasks),
-      el("td", {}, r.error ? el("span", { class: "error" }, r.error) : (r.latest ? r.latest.instruction || "(recovery)" : "")),
+      el("td", { class: "mono" }, r.recording, r.live ? el("span", { class: "badge live", title: "the robot, followed over DDS" }, "live") : null),
+      el("td", {}, r.tasks),
+      el("td", {}, r.error ? el("span", { class: "error" }, r.error) : (r.latest ? r.latest.instruction || "(recovery)" : (r.live ? "no task yet" : ""))),
       el("td", {}, r.error ? badge("unreadable") : badge(r.latest && r.latest.outcome)),
       el("td", { class: "small" }, r.modules.join(", ")),
       el("td", { class: "small" }, r.causes === null ? el("span", { class: "muted" }, "…") : r.causes.join(", ")))));
@@ -83,7 +94,7 @@ async function showRuns() {
   const focused = document.activeElement && document.activeElement.id;  // a refresh keeps the search box focused
   app.replaceChildren(el("section", { class: "card" }, el("h1", {}, "Runs"), bar, count, table));
   if (focused && document.getElementById(focused)) document.getElementById(focused).focus();
-  if (data.pending) state.poll = setTimeout(() => { if (location.hash === "" || location.hash === "#/") showRuns(); }, 1500);
+  if (data.pending || live) again();
 }
 
 // ---------------------------------------------------------------------------------------------- one run
@@ -311,7 +322,10 @@ function chatPanel(run) {
   const threadInfo = el("p", { class: "muted small", id: "thread-info" });
   const input = el("input", { id: "chat-input", type: "text", placeholder: "Ask why…", autocomplete: "off", maxlength: "2000" });
   const send = el("button", { id: "chat-send", type: "submit" }, "Ask");
-  const showThread = () => { threadInfo.textContent = thread ? `thread ${thread} · continue in a terminal: hexar chat ${run.chat.recording_path} --thread ${thread}` : "new thread"; };
+  const showThread = () => {
+    threadInfo.textContent = !thread ? "new thread" : run.chat.recording_path === null ? `thread ${thread}`
+      : `thread ${thread} · continue in a terminal: hexar chat ${run.chat.recording_path} --thread ${thread}`;
+  };
   showThread();
   api("/api/backend").then((b) => { backend.textContent = `backend ${b.backend}`; }).catch((e) => { backend.textContent = e.message; });
 
@@ -333,7 +347,7 @@ function chatPanel(run) {
     send.disabled = true;
     try {
       const r = await api("/api/chat", { method: "POST", headers: { "Content-Type": "application/json" },
-        body: JSON.stringify({ name: run.recording, question: q, thread, task: run.task.task_id }) });
+        body: JSON.stringify({ name: run.recording, question: q, thread, task: (state.run || run).task.task_id }) });
       wait.remove();
       if (r.thread) { thread = r.thread; localStorage.setItem(key, thread); showThread(); }
       answerBubble(r);
@@ -356,6 +370,8 @@ function chatPanel(run) {
 
 async function showRun(name, task) {
   clearTimeout(state.poll);
+  state.route = location.hash;
+  state.chat = null;
   app.replaceChildren(el("p", { class: "muted" }, "reading the recording…"));
   const started = performance.now();
   let run;
@@ -365,20 +381,59 @@ async function showRun(name, task) {
     app.replaceChildren(el("p", {}, el("a", { href: "#/" }, "← runs")), errorLine(e.message));
     return;
   }
-  state.run = run;
+  renderRun(name, run);
+  document.body.dataset.loadedMs = String(Math.round(performance.now() - started));
+  if (run.live) state.poll = setTimeout(() => pollLive(name, task, run.version), LIVE_POLL_MS);
+}
+
+// A live run: ask whether it changed since the version shown; redraw only then, keeping the chat as it is.
+async function pollLive(name, task, version) {
+  const here = state.route;
+  let run = null;
+  try {
+    run = await api(`/api/run?name=${encodeURIComponent(name)}${task ? `&task=${encodeURIComponent(task)}` : ""}&since=${encodeURIComponent(version)}`);
+  } catch (e) { run = null; }  // the server is away for a moment: ask again later
+  if (location.hash !== here || state.route !== here) return;  // the page moved on meanwhile
+  if (run && !run.unchanged) renderRun(name, run);
+  state.poll = setTimeout(() => pollLive(name, task, run ? run.version : version), LIVE_POLL_MS);
+}
+
+function runHead(name, run) {
   const tabs = el("nav", { class: "tabs" }, run.tasks.map((t) => el("a", {
-    class: `tab ${t.task_id === run.task.task_id ? "active" : ""}`,
+    class: `tab ${run.task && t.task_id === run.task.task_id ? "active" : ""}`,
     href: `#/run/${encodeURIComponent(name)}/${encodeURIComponent(t.task_id)}` },
     `${t.order}. ${t.instruction || "(recovery)"} `, badge(t.outcome))));
-  const head = el("section", { class: "runhead" }, el("a", { href: "#/" }, "← runs"),
-    el("h1", {}, run.recording, " ", badge(run.task.outcome)),
-    el("p", { class: "muted" }, `${run.storage} · ${run.duration_s.toFixed(1)} s from ${clock(run.start_ns)} UTC`),
+  const where = run.live ? `the robot, live · ${run.duration_s === undefined ? "nothing kept yet" : `${run.duration_s.toFixed(1)} s kept, from ${clock(run.start_ns)} UTC`}`
+    : `${run.storage} · ${run.duration_s.toFixed(1)} s from ${clock(run.start_ns)} UTC`;
+  return el("section", { class: "runhead" }, el("a", { href: "#/" }, "← runs"),
+    el("h1", {}, run.recording, " ", run.live ? el("span", { class: "badge live" }, "live") : null, " ", run.task ? badge(run.task.outcome) : null),
+    el("p", { class: "muted" }, where),
     run.warnings.map((w) => el("p", { class: "warn" }, w)), tabs,
-    el("p", { class: "instruction" }, "\u201c", run.task.instruction || "(the robot's own recovery task)", "\u201d",
-      run.task.valid ? null : el("span", { class: "error" }, ` invalid plan: ${run.task.error_msg}`)));
+    run.task ? el("p", { class: "instruction" }, "\u201c", run.task.instruction || "(the robot's own recovery task)", "\u201d",
+      run.task.valid ? null : el("span", { class: "error" }, ` invalid plan: ${run.task.error_msg}`)) : null);
+}
+
+function renderRun(name, run) {
+  document.body.dataset.version = String(run.version === undefined ? "" : run.version);
+  if (run.no_task) {  // a live robot with no task yet: the CLI's one line, and the page keeps following it
+    state.run = null;
+    state.chat = null;
+    app.replaceChildren(runHead(name, run), el("p", { class: "muted", id: "no-task" }, run.no_task));
+    document.body.dataset.ready = "none";
+    return;
+  }
+  state.run = run;
+  const head = runHead(name, run);
   const main = el("div", { class: "main" }, timelineCard(run), findingsCard(run), pathCard(run), askHumanCard(run), ttsCard(run), pizzaCard(run));
-  app.replaceChildren(head, el("div", { class: "grid" }, main, chatPanel(run)));
-  document.body.dataset.loadedMs = String(Math.round(performance.now() - started));
+  if (state.chat && state.chat.isConnected && state.main && state.main.isConnected) {
+    state.head.replaceWith(head);  // the chat is left in place: its messages, its input and its focus stay
+    state.main.replaceWith(main);
+  } else {
+    state.chat = chatPanel(run);
+    app.replaceChildren(head, el("div", { class: "grid" }, main, state.chat));
+  }
+  state.head = head;
+  state.main = main;
   document.body.dataset.ready = run.task.task_id;
 }
 

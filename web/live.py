@@ -1,0 +1,138 @@
+"""The page's live run: a read-only DDS subscription to the robot, kept in a LiveLog and shown like a recording.
+
+The page is a viewer. Unlike `hexar serve` it creates no DDS writer at all (not even /hexar/answer), so it can
+run beside a live node on the robot's network without a second voice answering questions.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.live.log import Limits, LiveLog
+from hexar.web.pagedata import Findings
+
+LIVE = "live"  # the live run's name in the runs list and the page's address
+REBUILD_S = 0.5  # a snapshot copies every kept record: at most one rebuild per this long, however many polls
+
+
+class DdsWatcher:
+    """Readers on the robot's topics (the ones `hexar serve` reads, with the same QoS), feeding a LiveLog."""
+
+    def __init__(self, domain_id: int) -> None:
+        from hexar.live.dds import DdsEndpoint  # raises the one-line error when cyclonedds cannot load
+
+        self.endpoint = DdsEndpoint(domain_id)
+        self.domain_id = domain_id
+        self.errors = 0
+        self._stop = threading.Event()
+        self._thread: threading.Thread | None = None
+
+    def writer_topics(self) -> list[str]:
+        """Every topic this viewer can write: none. A test checks it from DDS discovery."""
+        return sorted(self.endpoint.writers)
+
+    def start(self, log: LiveLog) -> None:
+        from hexar.live.topics import SUBSCRIBED
+
+        readers = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
+        self._thread = threading.Thread(target=self._loop, args=(readers, log), name="hexar-web-dds", daemon=True)
+        self._thread.start()
+
+    def _loop(self, readers: list[tuple[str, Any]], log: LiveLog) -> None:
+        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
+
+        from hexar.live.convert import to_records
+        from hexar.live.dds import TakeBatch
+
+        ws = WaitSet(self.endpoint.participant)
+        mask = SampleState.Any | ViewState.Any | InstanceState.Any
+        conditions = [ReadCondition(r, mask) for _, r in readers]
+        for cond in conditions:
+            ws.attach(cond)
+        while not self._stop.is_set():
+            ws.wait(50_000_000)
+            for (topic, reader), cond in zip(readers, conditions, strict=True):
+                try:
+                    samples = reader.take(TakeBatch, condition=cond)
+                except Exception as err:  # a sample the binding cannot decode must not stop the page
+                    self._report(f"cannot read {topic}: {err}")
+                    continue
+                for sample in samples:
+                    info = getattr(sample, "sample_info", None)
+                    if info is not None and not info.valid_data:
+                        continue  # a writer went away: no data
+                    try:
+                        log.extend(to_records(topic, sample, int(info.source_timestamp) if info else 0))
+                    except Exception as err:  # one bad message is reported and skipped
+                        self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+
+    def _report(self, line: str) -> None:
+        self.errors += 1
+        print(f"hexar web: {line}", file=sys.stderr)
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=2.0)
+        self.endpoint.close()
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """One state of the live run: its event log, its version and the explainers' findings on that log."""
+
+    log: EventLog
+    version: int
+    findings: Findings
+    views: dict[str, dict[str, Any]] = field(default_factory=dict)  # the page's JSON per task, built once
+
+    def explain(self, task: Task) -> list[dict[str, Any]]:
+        return self.findings.get(LIVE, self.log, task)
+
+
+class LiveSource:
+    """The live run as the page reads it: the latest snapshot, rebuilt only when records arrived (and not more
+    often than REBUILD_S), so page polls between arrivals cost nothing."""
+
+    def __init__(self, log: LiveLog, watcher: DdsWatcher | None = None) -> None:
+        self.log = log
+        self.watcher = watcher
+        self._lock = threading.Lock()
+        self._snap: Snapshot | None = None
+        self._built = 0.0
+        self.shared = Findings()  # the page's: explainers run one at a time across every run (Findings says why)
+
+    @classmethod
+    def over_dds(cls, domain_id: int, limits: Limits | None = None) -> LiveSource:
+        watcher = DdsWatcher(domain_id)
+        log = LiveLog(limits, name=f"live (DDS domain {domain_id})")
+        watcher.start(log)
+        return cls(log, watcher)
+
+    def _kept(self) -> int:
+        # read under the log's lock, so a record counted is a record a snapshot taken after this holds; counts
+        # only grow, and a clock jump drops records but is counted, so the version still moves
+        s = self.log.stats()
+        return s["received"] - s["duplicates"] + s["clock_jumps"]
+
+    def snapshot(self, fresh: bool = False) -> Snapshot:
+        """The latest snapshot; its version changes whenever the kept records changed. `fresh`: whatever
+        arrived until now, however recently the last one was built (a chat answer must see it)."""
+        with self._lock:
+            kept = self._kept()
+            snap = self._snap
+            if snap is None or (kept != snap.version and (fresh or time.monotonic() - self._built >= REBUILD_S)):
+                # findings are per snapshot: a running task's explanation changes as its records arrive
+                snap = self._snap = Snapshot(self.log.snapshot(), kept, Findings(self.shared))
+                self._built = time.monotonic()
+            return snap
+
+    def close(self) -> None:
+        if self.watcher is not None:
+            self.watcher.close()
