@@ -40,6 +40,8 @@ TakeBatch = 256
 IDL: dict[str, type[Any]] = {
     c.LOG_TYPE: msgs.Log, c.STRING_TYPE: msgs.String, c.BOOL_TYPE: msgs.Bool,
     c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
+    c.TWIST_TYPE: msgs.Twist, c.ODOM_TYPE: msgs.Odometry, c.POSE_STAMPED_TYPE: msgs.PoseStamped,
+    c.GOAL_STATUS_TYPE: msgs.GoalStatusArray,
 }
 MAX_BLOCKING_NS = 100_000_000  # rmw_cyclonedds' default for reliable writers
 
