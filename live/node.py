@@ -191,7 +191,7 @@ class LiveNode:
         failed = [task for task in self._session.context.log.tasks if task.derived and task.outcome == "failed"]
         if not failed:
             return ""
-        return min(failed, key=lambda task: abs(task.last_update - t)).task_id
+        return str(min(failed, key=lambda task: abs(task.last_update - t)).task_id)
 
     def on_question(self, text: str) -> None:
         thread = None
