@@ -140,7 +140,19 @@ class DdsReplayer:
         for topic, qos in QOS_OF.items():
             self.endpoint.writer(topic, c.TYPE_OF[topic], qos)
 
-    def close(self) -> None:
+    def close(self, linger_s: float = 2.0) -> None:
+        """Wait (at most `linger_s` in all) until matched reliable readers acknowledged what was written: a
+        process that exits right after its last write would otherwise take the unacknowledged tail with it (a
+        sample lost on a busy loopback is resent only after the reader's NACK)."""
+        deadline = time.monotonic() + linger_s
+        for writer in self.endpoint.writers.values():
+            left = deadline - time.monotonic()
+            if left <= 0:
+                break
+            try:
+                writer.wait_for_acks(int(left * 1e9))
+            except Exception:  # a writer the binding has already torn down has nothing left to deliver
+                continue
         self.endpoint.close()
 
 

@@ -56,9 +56,11 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.SAY_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
     LiveTopic(c.PIZZA_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
     # The ordinary Nav2 topics. /cmd_vel is read as geometry_msgs/Twist, Humble's type for it (a DDS topic has
-    # one type; a Jazzy robot publishing TwistStamped there is not matched).
-    LiveTopic(c.CMD_VEL, c.TWIST_TYPE, TopicQos(depth=10)),
-    LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=10)),
+    # one type; a Jazzy robot publishing TwistStamped there is not matched). The robot offers depth 10; depth is
+    # no matching rule, and the reader keeps 100 so that 20-50 Hz odometry (x10 in a replay) survives a reader
+    # thread that is late by a few hundred milliseconds: keep-last drops the oldest unread samples.
+    LiveTopic(c.CMD_VEL, c.TWIST_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=100)),
     LiveTopic(c.GOAL_POSE, c.POSE_STAMPED_TYPE, TopicQos(depth=10)),
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
 )

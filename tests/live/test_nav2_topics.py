@@ -153,7 +153,10 @@ def test_hexar_replay_republishes_the_nav2_topics(tmp_path: Path) -> None:
     transport.start(log, lambda r: None, lambda q: None)
     try:
         replay(run, domain, rate=10.0)
-        time.sleep(0.3)
+        deadline = time.monotonic() + 3.0  # the reader thread may still be taking the last samples
+        sent = len(rec.twists) + len(rec.odometry) + len(rec.goals) + len(rec.goal_statuses) + len(rec.logs)
+        while time.monotonic() < deadline and log.stats()["received"] < sent:
+            time.sleep(0.02)
     finally:
         transport.close()
     snap = log.snapshot()
