@@ -182,3 +182,23 @@ def test_odometry_for_hours_stays_bounded(tmp_path: Path) -> None:
     snap = log.snapshot()
     assert snap.odometry[-1].t == T0 + (n - 1) * (10**9 // hz)  # the newest kept, the oldest dropped
     assert snap.odometry[0].t >= snap.odometry[-1].t - int(limits.horizon_s * 1e9) - 600 * (10**9 // hz)
+
+
+def test_replay_skips_a_nav2_topic_of_another_type_and_sends_twist_stamped_as_twist(tmp_path: Path) -> None:
+    from hexar.live.convert import to_records
+    from hexar.live.replay import bag_messages, to_dds
+
+    b = BagBuilder()
+    b.log(T0, "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    # a robot whose /odom is a PoseStamped (not Nav2's Odometry) and whose /cmd_vel is Jazzy's TwistStamped
+    b.raw(T0 + sec_ns(1), c.ODOM, c.POSE_STAMPED_TYPE, TY["geometry_msgs/msg/PoseStamped"](
+        header=TY["std_msgs/msg/Header"](stamp=_time(T0), frame_id="odom"), pose=_pose(1.0, 0.0)))
+    b.raw(T0 + sec_ns(2), c.CMD_VEL, c.TWIST_STAMPED_TYPE, TY["geometry_msgs/msg/TwistStamped"](
+        header=TY["std_msgs/msg/Header"](stamp=_time(T0 + sec_ns(2)), frame_id="base_link"), twist=_twist(0.3, 0.2)))
+    run = b.write(tmp_path / "jazzy")
+    messages, skipped, _ = bag_messages(run)
+    sent = [(topic, to_dds(msgtype, m), t) for topic, msgtype, t, m in messages]
+    assert c.ODOM in skipped and [topic for topic, _, _ in sent] == [c.ROSOUT, c.CMD_VEL]
+    twist = to_records(c.CMD_VEL, sent[1][1], sent[1][2])
+    assert twist == read_recording(run).twists  # same velocities; the header stamp equals the bag time here
+    assert read_recording(run).warnings[0].startswith("skipped /odom")  # the reader skips the misfit /odom the same way
