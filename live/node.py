@@ -28,6 +28,7 @@ FAILURE_QUESTION = "Why did the task fail?"
 INVALID_QUESTION = "Why couldn't you do the task?"
 KEEP_THREADS = 20
 GOAL_ABORTED = 6  # action_msgs/GoalStatus STATUS_ABORTED: Nav2's "Goal failed"
+GOAL_ACTIVE = frozenset({1, 2, 3})  # accepted, executing, canceling
 
 
 class Transport(Protocol):
@@ -102,6 +103,7 @@ class LiveNode:
         self.errors = 0
         self._jobs: queue.Queue[Job] = queue.Queue()
         self._explained: set[str] = set()
+        self._active_goals: set[str] = set()  # NavigateToPose goals this node saw before they ended
         self._session: Any = None
         self._threads: list[str] = []
         self._worker: threading.Thread | None = None
@@ -180,8 +182,18 @@ class LiveNode:
     def _on_goal_status(self, status: GoalStatus) -> None:
         """A robot without /task_info: its tasks are derived from Nav2 goals (events/nav_goals.py), and an aborted
         NavigateToPose goal is its failure. The derived task is found when the job runs (`_derived_task`)."""
+        if status.status in GOAL_ACTIVE:
+            if len(self._active_goals) > 10_000:
+                self._active_goals.clear()
+            self._active_goals.add(status.goal_id)
+            return
         key = f"nav2:{status.goal_id}:aborted"
         if status.status != GOAL_ABORTED or key in self._explained or self.log.stats()["tasks"]:
+            return
+        if status.goal_id not in self._active_goals:
+            # aborted before this node joined: the transient-local status topic hands a late joiner the last
+            # array, with goals that ended up to 15 minutes ago (Humble's result_timeout); the node explains
+            # failures as they happen, and answers about older ones when asked
             return
         self._explained.add(key)
         self._jobs.put(Job("failure", t=status.t, text=FAILURE_QUESTION))

@@ -202,3 +202,31 @@ def test_replay_skips_a_nav2_topic_of_another_type_and_sends_twist_stamped_as_tw
     twist = to_records(c.CMD_VEL, sent[1][1], sent[1][2])
     assert twist == read_recording(run).twists  # same velocities; the header stamp equals the bag time here
     assert read_recording(run).warnings[0].startswith("skipped /odom")  # the reader skips the misfit /odom the same way
+
+
+def test_a_goal_that_failed_before_the_node_joined_is_answered_when_asked_not_announced(tmp_path: Path) -> None:
+    from hexar.live.topics import PUBLISHED_BY_ROBOT
+
+    run = nav2_robot(UNREACHABLE).write(tmp_path / "before")
+    task_id, causes = recorded_answer(run)
+    domain = fresh_domain()
+    robot = DdsReplayer(domain)  # the robot's writers stay: /rosout and the action status are transient-local
+    listener = Listener(domain)
+    try:
+        replay_in_process(run, robot, rate=20.0, warmup_s=0.0)
+        assert PUBLISHED_BY_ROBOT[c.NAV_STATUS].durability == "transient_local"
+        with live_node(domain) as node:
+            deadline = time.monotonic() + 5.0
+            while time.monotonic() < deadline and not node.log.snapshot().goal_statuses:
+                time.sleep(0.05)
+            time.sleep(0.5)
+            snap = node.log.snapshot()
+            assert [s.status for s in snap.goal_statuses] == [6]  # the late joiner got the last array only
+            assert snap.logs == read_recording(run).logs  # and /rosout's history, as rcl's rosout offers it
+            assert listener.answers("failure") == []
+            listener.ask("Why did the task fail?")
+            (answer,) = listener.wait_answers(1, "question", timeout=10.0)
+    finally:
+        listener.close()
+        robot.close()
+    assert answer["task_id"] == task_id and answer["causes"] == causes
