@@ -6,9 +6,46 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.events.reader import _statuses, _yaw, parse_task_info
-from hexar.events.records import BoolSample, LogLine, PoseSample, StatusRecord, TaskUpdate, stamp_ns
+from hexar.events.records import (
+    BoolSample,
+    GoalPose,
+    GoalStatus,
+    LogLine,
+    OdomSample,
+    PoseSample,
+    StatusRecord,
+    TaskUpdate,
+    TwistSample,
+    stamp_ns,
+)
 
-Record = LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord
+Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
+          | GoalStatus)
+
+
+def _stamp(header: Any) -> int:
+    return stamp_ns(header.stamp.sec, header.stamp.nanosec)
+
+
+def _motion(topic: str, msg: Any, t: int) -> list[Record]:
+    """The Nav2 topics, field for field as the reader's `_motion` (events/reader.py) reads them."""
+    if topic == c.CMD_VEL:
+        stamped = hasattr(msg, "header")  # TwistStamped (Jazzy's cmd_vel) carries its twist under `twist`
+        tw = msg.twist if stamped else msg
+        return [TwistSample((_stamp(msg.header) if stamped else 0) or t, topic, float(tw.linear.x),
+                            float(tw.linear.y), float(tw.angular.z))]
+    if topic == c.ODOM:
+        return [OdomSample(_stamp(msg.header) or t, float(msg.pose.pose.position.x), float(msg.pose.pose.position.y),
+                           float(msg.twist.twist.linear.x), float(msg.twist.twist.angular.z))]
+    if topic == c.GOAL_POSE:
+        return [GoalPose(_stamp(msg.header) or t, float(msg.pose.position.x), float(msg.pose.position.y),
+                         str(msg.header.frame_id))]
+    if topic == c.NAV_STATUS:
+        # the array is dated by its write time, like the reader dates it by the bag's receive time
+        return [GoalStatus(t, bytes(bytearray(s.goal_info.goal_id.uuid)).hex(),
+                           stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec), int(s.status))
+                for s in msg.status_list]
+    return []
 
 
 def to_records(topic: str, msg: Any, t: int) -> list[Record]:
@@ -33,4 +70,4 @@ def to_records(topic: str, msg: Any, t: int) -> list[Record]:
         return [BoolSample(t, topic, bool(msg.data))]
     if c.TYPE_OF.get(topic) == c.DIAG_TYPE:
         return list(_statuses(t, topic, msg))
-    return []
+    return _motion(topic, msg, t)

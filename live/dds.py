@@ -40,16 +40,26 @@ TakeBatch = 256
 IDL: dict[str, type[Any]] = {
     c.LOG_TYPE: msgs.Log, c.STRING_TYPE: msgs.String, c.BOOL_TYPE: msgs.Bool,
     c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
+    c.TWIST_TYPE: msgs.Twist, c.ODOM_TYPE: msgs.Odometry, c.POSE_STAMPED_TYPE: msgs.PoseStamped,
+    c.GOAL_STATUS_TYPE: msgs.GoalStatusArray,
 }
 MAX_BLOCKING_NS = 100_000_000  # rmw_cyclonedds' default for reliable writers
+UNLIMITED = -1  # DDS_LENGTH_UNLIMITED
 
 
 def dds_qos(q: TopicQos) -> Qos:
     """The QoS as DDS policies; data representation XCDR1, which is what ROS 2 (Humble) types use."""
     reliability = Policy.Reliability.Reliable(MAX_BLOCKING_NS) if q.reliable else Policy.Reliability.BestEffort
     durability = Policy.Durability.TransientLocal if q.durability == "transient_local" else Policy.Durability.Volatile
-    return Qos(reliability, durability, Policy.History.KeepLast(q.depth),
-               Policy.DataRepresentation(use_cdrv0_representation=True))
+    policies: list[Any] = [reliability, durability, Policy.History.KeepLast(q.depth),
+                           Policy.DataRepresentation(use_cdrv0_representation=True)]
+    if q.durability == "transient_local":
+        # Cyclone keeps a late joiner's history by the durability-service history (default: 1 sample), not the
+        # writer's; rmw_cyclonedds sets it to the history for transient-local (rmw_node.cpp, create_readwrite_qos),
+        # so /rosout offers its last 1000 lines and HEXAR's answers their last 10, as on a ROS 2 robot.
+        policies.append(Policy.DurabilityService(0, Policy.History.KeepLast(q.depth), UNLIMITED, UNLIMITED,
+                                                 UNLIMITED))
+    return Qos(*policies)
 
 
 class DdsEndpoint:

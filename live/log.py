@@ -17,11 +17,22 @@ from typing import TypeVar
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.records import BoolSample, LogLine, PoseSample, StatusRecord, TaskUpdate
+from hexar.events.records import (
+    BoolSample,
+    GoalPose,
+    GoalStatus,
+    LogLine,
+    OdomSample,
+    PoseSample,
+    StatusRecord,
+    TaskUpdate,
+    TwistSample,
+)
 
 NS = 1_000_000_000
-Record = LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord
-S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord)
+Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
+          | GoalStatus)
+S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus)
 
 
 @dataclass(frozen=True)
@@ -57,6 +68,11 @@ class LiveLog:
         self._poses: list[PoseSample] = []
         self._flags: dict[str, list[BoolSample]] = {}
         self._statuses: dict[str, list[StatusRecord]] = {}
+        # the Nav2 topics: /odom and /cmd_vel come at 20-50 Hz, bounded by the same horizon and max_records
+        self._twists: list[TwistSample] = []
+        self._odom: list[OdomSample] = []
+        self._goals: list[GoalPose] = []
+        self._goal_statuses: list[GoalStatus] = []
         self._tasks: dict[str, list[TaskUpdate]] = {}  # insertion order = order first seen
         self._counts: dict[str, int] = {}
         self._seen: set[int] = set()
@@ -96,6 +112,8 @@ class LiveLog:
             return hash(("pose", r.t, r.x, r.y, r.yaw))
         if isinstance(r, BoolSample):
             return hash(("flag", r.topic, r.t, r.value))
+        if isinstance(r, (TwistSample, OdomSample, GoalPose, GoalStatus)):
+            return hash((type(r).__name__, *(getattr(r, f) for f in r.__slots__)))
         return hash(("status", r.topic, r.t, r.name, r.message, r.values))
 
     def _add(self, r: Record) -> bool:
@@ -124,6 +142,14 @@ class LiveLog:
             self._insert(self._poses, r, c.AMCL_POSE)
         elif isinstance(r, BoolSample):
             self._insert(self._flags.setdefault(r.topic, []), r, r.topic)
+        elif isinstance(r, TwistSample):
+            self._insert(self._twists, r, r.topic)
+        elif isinstance(r, OdomSample):
+            self._insert(self._odom, r, c.ODOM)
+        elif isinstance(r, GoalPose):
+            self._insert(self._goals, r, c.GOAL_POSE)
+        elif isinstance(r, GoalStatus):
+            self._insert(self._goal_statuses, r, c.NAV_STATUS)
         else:
             self._insert(self._statuses.setdefault(r.topic, []), r, r.topic)
         if r.t > self.newest:
@@ -174,6 +200,10 @@ class LiveLog:
         self._logs = [r for r in self._logs if r.t <= cut]
         self._poses = [r for r in self._poses if r.t <= cut]
         self._statuses = {k: [r for r in v if r.t <= cut] for k, v in self._statuses.items()}
+        self._twists = [r for r in self._twists if r.t <= cut]
+        self._odom = [r for r in self._odom if r.t <= cut]
+        self._goals = [r for r in self._goals if r.t <= cut]
+        self._goal_statuses = [r for r in self._goal_statuses if r.t <= cut]
         self._tasks = {k: v for k, v in self._tasks.items() if v[-1].t <= cut}
         self.newest = max([t, *(r.t for r in self._logs[-1:]), *(r.t for r in self._poses[-1:])])
         self._behind = 0
@@ -193,6 +223,10 @@ class LiveLog:
             self._flags[key] = _trim(samples, oldest, lim.max_records, keep_one=True)
         for key, records in self._statuses.items():
             self._statuses[key] = _trim(records, oldest, lim.max_records)
+        self._twists = _trim(self._twists, oldest, lim.max_records)
+        self._odom = _trim(self._odom, oldest, lim.max_records)
+        self._goals = _trim(self._goals, oldest, lim.max_records)
+        self._goal_statuses = _trim(self._goal_statuses, oldest, lim.max_records)
 
     # -- reading --------------------------------------------------------------------------------------------
 
@@ -208,14 +242,18 @@ class LiveLog:
             logs, poses = list(self._logs), list(self._poses)
             flags = {k: list(v) for k, v in self._flags.items()}
             statuses = {k: list(v) for k, v in self._statuses.items()}
+            twists, odom, goals = list(self._twists), list(self._odom), list(self._goals)
+            goal_statuses = list(self._goal_statuses)
             counts = dict(self._counts)
             warnings = list(self.warnings)
         stamps = [*(r.t for r in logs[:1] + logs[-1:]), *(r.t for r in poses[:1] + poses[-1:]),
-                  *(u.t for u in updates)]
+                  *(u.t for u in updates),
+                  *(r.t for seq in (twists, odom, goals, goal_statuses) for r in seq[:1] + seq[-1:])]
         topics = {t: TopicInfo(t, c.TYPE_OF.get(t, ""), n) for t, n in sorted(counts.items())}
         log = EventLog(path=Path(self.name), storage="live", start=min(stamps, default=0),
                        end=max(stamps, default=0), topics=topics, warnings=warnings, logs=logs,
-                       task_updates=updates, poses=poses, flags=flags, statuses=statuses)
+                       task_updates=updates, poses=poses, flags=flags, statuses=statuses, twists=twists,
+                       odometry=odom, goals=goals, goal_statuses=goal_statuses)
         log.finish()
         return log
 
@@ -223,7 +261,9 @@ class LiveLog:
         with self._lock:
             return {"received": self.received, "duplicates": self.duplicates, "truncated": self.truncated,
                     "clock_jumps": self.clock_jumps, "logs": len(self._logs), "poses": len(self._poses),
-                    "tasks": len(self._tasks), "statuses": sum(len(v) for v in self._statuses.values())}
+                    "tasks": len(self._tasks), "statuses": sum(len(v) for v in self._statuses.values()),
+                    "twists": len(self._twists), "odometry": len(self._odom), "goals": len(self._goals),
+                    "goal_statuses": len(self._goal_statuses)}
 
 
 def _trim(items: list[S], oldest: int, max_records: int, keep_one: bool = False) -> list[S]:

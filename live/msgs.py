@@ -3,7 +3,9 @@
 rmw_cyclonedds names a ROS type `<pkg>::msg::dds_::<Type>_` and a topic `rt/<topic>` and sends plain CDR
 (XCDR1) of final structs; the field order below is the .msg field order (/work/shared/reference/msg_definitions.md
 in the project notes: rcl_interfaces/Log, builtin_interfaces/Time, std_msgs/String|Bool|Header,
-geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray).
+geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray, geometry_msgs/Twist|Vector3|PoseStamped,
+action_msgs/GoalStatusArray|GoalStatus|GoalInfo, unique_identifier_msgs/UUID; nav_msgs/Odometry and
+geometry_msgs/TwistWithCovariance as rosbags' Humble type store defines them).
 """
 
 # No `from __future__ import annotations` here: cyclonedds resolves field annotations by name in this
@@ -12,7 +14,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cyclonedds.idl import IdlStruct
-from cyclonedds.idl.types import array, float64, int32, sequence, uint8, uint32
+from cyclonedds.idl.types import array, float64, int8, int32, sequence, uint8, uint32
 
 
 def _dds(ros_type: str) -> str:
@@ -125,6 +127,73 @@ else:
 class DiagnosticArray(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticArray")):
     header: Header = field(default_factory=Header)
     status: Statuses = field(default_factory=list)
+
+
+@dataclass
+class PoseStamped(IdlStruct, typename=_dds("geometry_msgs/msg/PoseStamped")):
+    header: Header = field(default_factory=Header)
+    pose: Pose = field(default_factory=Pose)
+
+
+@dataclass
+class Vector3(IdlStruct, typename=_dds("geometry_msgs/msg/Vector3")):
+    x: float64 = 0.0
+    y: float64 = 0.0
+    z: float64 = 0.0
+
+
+@dataclass
+class Twist(IdlStruct, typename=_dds("geometry_msgs/msg/Twist")):
+    linear: Vector3 = field(default_factory=Vector3)
+    angular: Vector3 = field(default_factory=Vector3)
+
+
+@dataclass
+class TwistWithCovariance(IdlStruct, typename=_dds("geometry_msgs/msg/TwistWithCovariance")):
+    twist: Twist = field(default_factory=Twist)
+    covariance: Covariance = field(default_factory=lambda: [0.0] * 36)
+
+
+@dataclass
+class Odometry(IdlStruct, typename=_dds("nav_msgs/msg/Odometry")):
+    header: Header = field(default_factory=Header)
+    child_frame_id: str = ""
+    pose: PoseWithCovariance = field(default_factory=PoseWithCovariance)
+    twist: TwistWithCovariance = field(default_factory=TwistWithCovariance)
+
+
+if TYPE_CHECKING:
+    Uuid16 = list[int]
+else:
+    Uuid16 = array[uint8, 16]
+
+
+@dataclass
+class UUID(IdlStruct, typename=_dds("unique_identifier_msgs/msg/UUID")):
+    uuid: Uuid16 = field(default_factory=lambda: [0] * 16)
+
+
+@dataclass
+class GoalInfo(IdlStruct, typename=_dds("action_msgs/msg/GoalInfo")):
+    goal_id: UUID = field(default_factory=UUID)
+    stamp: Time = field(default_factory=Time)
+
+
+@dataclass
+class GoalStatus(IdlStruct, typename=_dds("action_msgs/msg/GoalStatus")):
+    goal_info: GoalInfo = field(default_factory=GoalInfo)
+    status: int8 = 0  # 1 accepted, 2 executing, 3 canceling, 4 succeeded, 5 canceled, 6 aborted
+
+
+if TYPE_CHECKING:
+    GoalStatuses = list[GoalStatus]
+else:
+    GoalStatuses = sequence[GoalStatus]
+
+
+@dataclass
+class GoalStatusArray(IdlStruct, typename=_dds("action_msgs/msg/GoalStatusArray")):
+    status_list: GoalStatuses = field(default_factory=list)
 
 
 def time_of(t: int) -> Time:

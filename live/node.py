@@ -19,7 +19,7 @@ from typing import Any, Literal, Protocol
 from hexar.events import contract as c
 from hexar.events.errors import EventsError
 from hexar.events.reader import parse_task_info
-from hexar.events.records import StatusRecord, TaskUpdate
+from hexar.events.records import GoalStatus, StatusRecord, TaskUpdate
 from hexar.live.log import NS, LiveLog
 from hexar.live.topics import ANSWER
 
@@ -27,6 +27,8 @@ Proactive = Literal["off", "publish", "speak"]
 FAILURE_QUESTION = "Why did the task fail?"
 INVALID_QUESTION = "Why couldn't you do the task?"
 KEEP_THREADS = 20
+GOAL_ABORTED = 6  # action_msgs/GoalStatus STATUS_ABORTED: Nav2's "Goal failed"
+GOAL_ACTIVE = frozenset({1, 2, 3})  # accepted, executing, canceling
 
 
 class Transport(Protocol):
@@ -101,6 +103,7 @@ class LiveNode:
         self.errors = 0
         self._jobs: queue.Queue[Job] = queue.Queue()
         self._explained: set[str] = set()
+        self._active_goals: set[str] = set()  # NavigateToPose goals this node saw before they ended
         self._session: Any = None
         self._threads: list[str] = []
         self._worker: threading.Thread | None = None
@@ -159,7 +162,12 @@ class LiveNode:
     # -- triggers (transport threads) -----------------------------------------------------------------------
 
     def on_record(self, record: Any) -> None:
-        if self.options.proactive == "off" or not isinstance(record, TaskUpdate):
+        if self.options.proactive == "off":
+            return
+        if isinstance(record, GoalStatus):
+            self._on_goal_status(record)
+            return
+        if not isinstance(record, TaskUpdate):
             return
         key = failure_key(record)
         if key is None or key in self._explained:
@@ -170,6 +178,32 @@ class LiveNode:
             self._explained.add(key)
         self._jobs.put(Job("failure", task_id=record.task_id, t=record.t,
                            text=INVALID_QUESTION if not record.valid else FAILURE_QUESTION))
+
+    def _on_goal_status(self, status: GoalStatus) -> None:
+        """A robot without /task_info: its tasks are derived from Nav2 goals (events/nav_goals.py), and an aborted
+        NavigateToPose goal is its failure. The derived task is found when the job runs (`_derived_task`)."""
+        if status.status in GOAL_ACTIVE:
+            if len(self._active_goals) > 10_000:
+                self._active_goals.clear()
+            self._active_goals.add(status.goal_id)
+            return
+        key = f"nav2:{status.goal_id}:aborted"
+        if status.status != GOAL_ABORTED or key in self._explained or self.log.stats()["tasks"]:
+            return
+        if status.goal_id not in self._active_goals:
+            # aborted before this node joined: the transient-local status topic hands a late joiner the last
+            # array, with goals that ended up to 15 minutes ago (Humble's result_timeout); the node explains
+            # failures as they happen, and answers about older ones when asked
+            return
+        self._explained.add(key)
+        self._jobs.put(Job("failure", t=status.t, text=FAILURE_QUESTION))
+
+    def _derived_task(self, t: int) -> str:
+        """The derived task that failed closest to `t` (the aborted status), or "" when there is none."""
+        failed = [task for task in self._session.context.log.tasks if task.derived and task.outcome == "failed"]
+        if not failed:
+            return ""
+        return str(min(failed, key=lambda task: abs(task.last_update - t)).task_id)
 
     def on_question(self, text: str) -> None:
         thread = None
@@ -206,8 +240,10 @@ class LiveNode:
             self.log.wait_until(job.t + int(self.options.settle_s * NS), self.options.settle_wall_s)
         self._session.use_log(self.log.snapshot())
         if job.kind == "failure":
+            if not job.task_id:
+                job.task_id = self._derived_task(job.t)
             self.thread = self._session.new_thread()
-            thread, task = self.thread, job.task_id
+            thread, task = self.thread, job.task_id or None
         else:
             thread = job.thread or self.thread or self._session.new_thread()
             self.thread, task = thread, None

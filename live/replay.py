@@ -42,7 +42,9 @@ def bag_messages(path: Path, start_s: float = 0.0) -> tuple[Iterator[tuple[str, 
         reader.open()
     except Exception as err:  # rosbags raises many unrelated classes for damaged files
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
-    wanted = [conn for conn in reader.connections if conn.topic in QOS_OF]
+    # a Nav2 topic name that this robot uses for another type is skipped, as the reader skips it
+    wanted = [conn for conn in reader.connections
+              if conn.topic in QOS_OF and conn.msgtype in c.ACCEPTED_TYPES.get(conn.topic, frozenset())]
     skipped = sorted({conn.topic for conn in reader.connections} - {conn.topic for conn in wanted})
     begin = reader.start_time + int(start_s * 1e9)
 
@@ -71,6 +73,14 @@ def to_dds(msgtype: str, m: Any) -> Any:
         return msgs.String(data=m.data)
     if msgtype == c.BOOL_TYPE:
         return msgs.Bool(data=bool(m.data))
+    if msgtype == c.TWIST_TYPE:
+        return _twist(m)
+    if msgtype == c.GOAL_STATUS_TYPE:
+        return msgs.GoalStatusArray(status_list=[
+            msgs.GoalStatus(goal_info=msgs.GoalInfo(
+                goal_id=msgs.UUID(uuid=[int(b) for b in s.goal_info.goal_id.uuid]),
+                stamp=msgs.Time(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)), status=int(s.status))
+            for s in m.status_list])
     header = msgs.Header(stamp=msgs.Time(m.header.stamp.sec, m.header.stamp.nanosec), frame_id=m.header.frame_id)
     if msgtype == c.POSE_COV_TYPE:
         p = m.pose.pose
@@ -85,7 +95,30 @@ def to_dds(msgtype: str, m: Any) -> Any:
                                   hardware_id=s.hardware_id,
                                   values=[msgs.KeyValue(kv.key, kv.value) for kv in s.values])
             for s in m.status])
+    if msgtype == c.POSE_STAMPED_TYPE:
+        return msgs.PoseStamped(header=header, pose=_pose(m.pose))
+    if msgtype == c.ODOM_TYPE:
+        return msgs.Odometry(header=header, child_frame_id=m.child_frame_id, pose=msgs.PoseWithCovariance(
+            pose=_pose(m.pose.pose), covariance=[float(v) for v in m.pose.covariance]),
+            twist=msgs.TwistWithCovariance(twist=_twist(m.twist.twist),
+                                           covariance=[float(v) for v in m.twist.covariance]))
+    if msgtype == c.TWIST_STAMPED_TYPE:
+        return _twist(m.twist)  # the live topic carries Humble's Twist; the header's stamp is not sent
     raise BadOptionError(f"cannot replay type {msgtype}")
+
+
+def _pose(p: Any) -> Any:
+    from hexar.live import msgs
+
+    return msgs.Pose(position=msgs.Point(p.position.x, p.position.y, p.position.z),
+                     orientation=msgs.Quaternion(p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w))
+
+
+def _twist(tw: Any) -> Any:
+    from hexar.live import msgs
+
+    return msgs.Twist(linear=msgs.Vector3(tw.linear.x, tw.linear.y, tw.linear.z),
+                      angular=msgs.Vector3(tw.angular.x, tw.angular.y, tw.angular.z))
 
 
 class DdsReplayer:
@@ -99,7 +132,7 @@ class DdsReplayer:
         self.endpoint = DdsEndpoint(domain_id)
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
-        ros_type = c.LOG_TYPE if msgtype == c.ROS1_LOG_TYPE else msgtype
+        ros_type = c.TYPE_OF[topic]  # a ROS 1 log goes out as rcl_interfaces/Log, a TwistStamped as Twist
         self.endpoint.writer(topic, ros_type, QOS_OF[topic]).write(msg, timestamp=t)
 
     def prepare(self) -> None:
@@ -107,7 +140,19 @@ class DdsReplayer:
         for topic, qos in QOS_OF.items():
             self.endpoint.writer(topic, c.TYPE_OF[topic], qos)
 
-    def close(self) -> None:
+    def close(self, linger_s: float = 2.0) -> None:
+        """Wait (at most `linger_s` in all) until matched reliable readers acknowledged what was written: a
+        process that exits right after its last write would otherwise take the unacknowledged tail with it (a
+        sample lost on a busy loopback is resent only after the reader's NACK)."""
+        deadline = time.monotonic() + linger_s
+        for writer in self.endpoint.writers.values():
+            left = deadline - time.monotonic()
+            if left <= 0:
+                break
+            try:
+                writer.wait_for_acks(int(left * 1e9))
+            except Exception:  # a writer the binding has already torn down has nothing left to deliver
+                continue
         self.endpoint.close()
 
 

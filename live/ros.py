@@ -20,7 +20,9 @@ from hexar.live.topics import ANSWER, ANSWER_QOS, HEXAR_PREFIX, QUESTION, QUESTI
 ROS_TYPES = {
     c.LOG_TYPE: ("rcl_interfaces.msg", "Log"), c.STRING_TYPE: ("std_msgs.msg", "String"),
     c.BOOL_TYPE: ("std_msgs.msg", "Bool"), c.POSE_COV_TYPE: ("geometry_msgs.msg", "PoseWithCovarianceStamped"),
-    c.DIAG_TYPE: ("diagnostic_msgs.msg", "DiagnosticArray"),
+    c.DIAG_TYPE: ("diagnostic_msgs.msg", "DiagnosticArray"), c.TWIST_TYPE: ("geometry_msgs.msg", "Twist"),
+    c.ODOM_TYPE: ("nav_msgs.msg", "Odometry"), c.POSE_STAMPED_TYPE: ("geometry_msgs.msg", "PoseStamped"),
+    c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"),
 }
 
 
@@ -111,7 +113,7 @@ class RclpyTransport:  # pragma: no cover -- needs a ROS 2 install
         self._thread.start()
 
     def _callback(self, topic: str, log: LiveLog, on_record: Callable[[Any], None]) -> Callable[[Any], None]:
-        stamped = topic in {c.ROSOUT, c.AMCL_POSE} or c.TYPE_OF.get(topic) == c.DIAG_TYPE
+        stamped = topic in {c.ROSOUT, c.AMCL_POSE, c.ODOM, c.GOAL_POSE} or c.TYPE_OF.get(topic) == c.DIAG_TYPE
 
         def handle(msg: Any) -> None:
             recv = time.time_ns()
@@ -160,8 +162,8 @@ class RclpyReplayer:  # pragma: no cover -- needs a ROS 2 install
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
         from hexar.events.reader import _humble
 
-        if msgtype not in ROS_TYPES:
-            return  # a ROS 1 log has no rclpy publisher here
+        if msgtype != c.TYPE_OF[topic]:
+            return  # a ROS 1 log or a TwistStamped has no publisher of its type here
         self._pubs[topic].publish(_humble().serialize_cdr(msg, msgtype))
 
     def close(self) -> None:

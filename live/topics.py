@@ -5,7 +5,11 @@ transient-local <= transient-local). So: /rosout and /amcl_pose are read transie
 publisher (`rcl_qos_profile_rosout_default`: reliable, transient-local, depth 1000, lifespan 10 s) and AMCL offer
 it, and a node that joins late then receives their recent history; /joy_priority is latched (transient-local,
 depth 1) on TIAGo. Topics published with ROS' default profile (reliable, volatile, depth 10) are read
-reliable + volatile, which also matches a transient-local writer.
+reliable + volatile, which also matches a transient-local writer: /cmd_vel (Nav2's controller and velocity
+smoother), /odom, /goal_pose (RViz's Nav2 Goal tool). An action server's status topic is offered with
+`rcl_action_qos_profile_status_default` (keep-last 1, reliable, transient-local: ros2/rcl,
+rcl_action/include/rcl_action/default_qos.h), so /navigate_to_pose/_action/status is read transient-local and a
+late joiner still gets the status array of the goals the server tracks.
 """
 
 from __future__ import annotations
@@ -51,6 +55,14 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.DIAGNOSTICS, c.DIAG_TYPE, TopicQos(depth=100)),
     LiveTopic(c.SAY_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
     LiveTopic(c.PIZZA_EVENTS, c.DIAG_TYPE, TopicQos(depth=100)),
+    # The ordinary Nav2 topics. /cmd_vel is read as geometry_msgs/Twist, Humble's type for it (a DDS topic has
+    # one type; a Jazzy robot publishing TwistStamped there is not matched). The robot offers depth 10; depth is
+    # no matching rule, and the reader keeps 100 so that 20-50 Hz odometry (x10 in a replay) survives a reader
+    # thread that is late by a few hundred milliseconds: keep-last drops the oldest unread samples.
+    LiveTopic(c.CMD_VEL, c.TWIST_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=100)),
+    LiveTopic(c.GOAL_POSE, c.POSE_STAMPED_TYPE, TopicQos(depth=10)),
+    LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
 )
 
 # What the node and the replayer offer. Answers are transient-local so a display that starts later still
@@ -63,4 +75,8 @@ PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.ROSOUT: TopicQos(durability="transient_local", depth=1000),
     c.AMCL_POSE: TopicQos(durability="transient_local", depth=1),
     c.JOY_PRIORITY: TopicQos(durability="transient_local", depth=1),
+    c.CMD_VEL: TopicQos(depth=10),
+    c.ODOM: TopicQos(depth=10),
+    c.GOAL_POSE: TopicQos(depth=10),
+    c.NAV_STATUS: TopicQos(durability="transient_local", depth=1),  # rcl_action_qos_profile_status_default
 }
