@@ -119,10 +119,11 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
     parquet = parquet_available()
     if not parquet:
         console.print("[yellow]pyarrow is not installed: writing tasks.jsonl only, no tasks.parquet "
-                      "(pip install 'hexar[fleet]')[/yellow]")
+                      "(pip install 'hexar\\[fleet]')[/yellow]")
     done = {item["key"] for item in load_results(opts.out)}
     todo = [(path, rel) for path, rel in found if path not in done]
-    where = "Ray" if opts.ray is not None else f"{workers} worker{'s' if workers > 1 else ''}"
+    where = (f"Ray ({opts.ray or 'a local instance'})" if opts.ray is not None
+             else f"{workers} worker{'s' if workers > 1 else ''}")
     console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
     interrupted = False
     results_file = opts.out / RESULTS
@@ -140,7 +141,7 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             bar.refresh()
 
         try:
-            if opts.ray is not None:
+            if opts.ray is not None and todo:  # nothing left to do: no cluster to start or reach
                 from hexar.triage_ray import run_ray
 
                 run_ray(todo, opts.ray, opts.workers, on_done)

@@ -198,7 +198,10 @@ def test_globs_and_nested_folders(fleet: Path, tmp_path: Path) -> None:
     pattern = str(fleet / "robot-*" / "seed-*" / "bagfile_1[12]_1")
     assert main(["triage", pattern, "--out", str(out), "--workers", "1", "--no-figures"]) == 0
     df = pd.read_parquet(out / "tasks.parquet")
-    assert sorted(set(df["recording"])) == ["bagfile_11_1", "bagfile_12_1"]
+    # named under the matches' common folder: the same run on two robots is two recordings
+    assert sorted(set(df["recording"])) == [f"robot-{r}/seed-{s}/bagfile_{n}_1" for r, s in (("a", 1), ("b", 2))
+                                            for n in (11, 12)]
+    assert set(df["robot"]) == {"robot-a", "robot-b"}
     assert len(df[~df["recovery"]]) == 4  # two robots, two scenarios
     from hexar.triage import expand
 
