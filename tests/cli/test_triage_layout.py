@@ -125,12 +125,3 @@ def test_without_pyarrow_the_tables_are_json_lines_and_the_run_says_so(dated_fle
 def test_the_explanation_column_is_the_first_sentence(text: str, sentence: str) -> None:
     assert first_sentence(text) == sentence
 
-
-def test_stored_explanations_are_one_sentence(dated_fleet: Path, tmp_path: Path) -> None:
-    from hexar.evals.scenarios.suite import simulate_suite
-
-    fleet = tmp_path / "fleet"
-    simulate_suite(fleet / "robot-a", "sqlite3", 3)
-    rows = [r for r in triage_rows([str(fleet)], tmp_path / "o") if r["explanation"]]
-    assert rows and all(first_sentence(r["explanation"]) == r["explanation"] for r in rows)
-    assert all(r["explanation"][-1] in ".!?\"')" for r in rows if r["kind"] == "failure")
