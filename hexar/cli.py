@@ -386,8 +386,9 @@ def triage(
     = None,
     out_dir: Annotated[Path, typer.Option("--out", help="results, tables, report, figures")] = Path("triage-out"),
     workers: Annotated[int | None, typer.Option(help="processes [default: the machine's cores]")] = None,
-    ray: Annotated[str | None, typer.Option(help="run as Ray tasks: 'local' or a cluster address (ray://host:10001)")]
-    = None,
+    ray: Annotated[bool, typer.Option("--ray", help="run as Ray tasks, on a local Ray instance unless an address "
+                                      "follows (--ray auto, --ray ray://host:10001)")] = False,
+    ray_address: Annotated[str | None, typer.Option(help="the Ray cluster to run on (implies --ray)")] = None,
     compare: Annotated[tuple[str, str] | None, typer.Option(help="compare two triage outputs or two day ranges "
                                                             "(YYYY-MM-DD[..YYYY-MM-DD]) of --out")] = None,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
@@ -406,10 +407,12 @@ def triage(
             return 0
         if not inputs:
             raise HexarError("give folders or globs of recordings, or --compare A B")
-        from hexar.triage_cmd import TriageOptions, triage_command
+        from hexar.triage_cmd import TriageOptions, ray_target, triage_command
 
-        where = None if ray is None else ("" if ray == "local" else ray)
-        return triage_command(TriageOptions(tuple(inputs), out_dir, workers, where, figures), out)
+        given, where = ray_target(inputs, ray, ray_address)
+        if not given:
+            raise HexarError("give folders or globs of recordings, or --compare A B")
+        return triage_command(TriageOptions(tuple(given), out_dir, workers, where, figures), out)
 
     raise typer.Exit(guarded(body))
 

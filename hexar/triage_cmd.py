@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import signal
 from collections.abc import Callable, Iterator
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -19,7 +20,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from hexar.triage import TriageError, expand, registry, triage_recording
+from hexar.triage import TriageError, expand, registry, robot_of, triage_recording
 
 RESULTS = "results.jsonl"
 
@@ -115,9 +116,14 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
         opts.out.mkdir(parents=True, exist_ok=True)
     except OSError as err:
         raise TriageError(f"cannot write to {opts.out}: {err}") from err
+    parquet = parquet_available()
+    if not parquet:
+        console.print("[yellow]pyarrow is not installed: writing tasks.jsonl only, no tasks.parquet "
+                      "(pip install 'hexar\\[fleet]')[/yellow]")
     done = {item["key"] for item in load_results(opts.out)}
     todo = [(path, rel) for path, rel in found if path not in done]
-    where = "Ray" if opts.ray is not None else f"{workers} worker{'s' if workers > 1 else ''}"
+    where = (f"Ray ({opts.ray or 'a local instance'})" if opts.ray is not None
+             else f"{workers} worker{'s' if workers > 1 else ''}")
     console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
     interrupted = False
     results_file = opts.out / RESULTS
@@ -135,7 +141,7 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             bar.refresh()
 
         try:
-            if opts.ray is not None:
+            if opts.ray is not None and todo:  # nothing left to do: no cluster to start or reach
                 from hexar.triage_ray import run_ray
 
                 run_ray(todo, opts.ray, opts.workers, on_done)
@@ -145,9 +151,9 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             interrupted = True
     from hexar.triage_report import write_outputs
 
-    wanted = {path for path, _ in found}  # the report is about these inputs, whatever else --out holds
-    results = [r for r in load_results(opts.out) if r["key"] in wanted]
-    summary = write_outputs(results, opts.out, figures=opts.figures)
+    labels = dict(found)  # the report is about these inputs, whatever else --out holds
+    results = [relabel(r, labels[r["key"]]) for r in load_results(opts.out) if r["key"] in labels]
+    summary = write_outputs(results, opts.out, figures=opts.figures, parquet=parquet)
     bad = [r for r in results if r["error"]]
     console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "
                   f"{summary['findings']} with a finding; {len(bad)} unreadable")
@@ -155,12 +161,47 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
         console.print(f"  [yellow]unreadable[/yellow] {escape(r['recording'])}: {escape(r['error'])}")
     if len(bad) > 20:
         console.print(f"  ... and {len(bad) - 20} more in {opts.out / 'report.md'}")
-    console.print(f"wrote {opts.out / 'tasks.parquet'}, tasks.jsonl, report.md")
+    console.print(f"wrote {opts.out / 'tasks.parquet'}, tasks.jsonl, report.md" if parquet else
+                  f"wrote {opts.out / 'tasks.jsonl'}, report.md (no tasks.parquet: pyarrow is not installed)")
     if interrupted:
         console.print(f"[yellow]interrupted: {len(results)} of {len(found)} recordings done; run again to "
                       "finish the rest[/yellow]")
         return 130
     return 0
+
+
+def relabel(result: dict[str, Any], rel: str) -> dict[str, Any]:
+    """A recording finished by an earlier run named by this run's inputs: labels stay unique within one report."""
+    result["recording"] = rel
+    for row in result["rows"]:
+        row["recording"], row["robot"] = rel, robot_of(rel)
+    return result
+
+
+def parquet_available() -> bool:
+    """Parquet needs pyarrow (the `fleet` extra): asked before the work, so a plain install still gets its tables."""
+    try:
+        import pyarrow  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+# A Ray address as `--ray ADDRESS` gives it: the flag takes no value, so the address arrives among the inputs.
+_RAY_ADDRESS = re.compile(r"auto|local|ray://\S+|[\w.-]+:\d+")
+
+
+def ray_target(inputs: list[str], ray: bool, address: str | None) -> tuple[list[str], str | None]:
+    """The inputs, and where Ray runs: None for the local pool, "" for a local Ray instance, else an address."""
+    if address is None and ray:
+        given = [x for x in inputs if _RAY_ADDRESS.fullmatch(x) and not Path(x).exists()]
+        if len(given) > 1:
+            raise TriageError(f"two Ray addresses: {', '.join(given)}")
+        address = given[0] if given else "local"
+        inputs = [x for x in inputs if x not in given]
+    if address is None:
+        return inputs, None
+    return inputs, "" if address == "local" else address
 
 
 def _append(sink: TextIO, result: dict[str, Any]) -> None:

@@ -24,15 +24,19 @@ def table(results: list[dict[str, Any]]) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
-def write_outputs(results: list[dict[str, Any]], out: Path, figures: bool = True) -> dict[str, int]:
+def write_outputs(results: list[dict[str, Any]], out: Path, figures: bool = True,
+                  parquet: bool = True) -> dict[str, int]:
     df = table(results)
     with (out / "tasks.jsonl").open("w", encoding="utf-8") as f:
         for row in df.to_dict(orient="records"):
             f.write(json.dumps(row, ensure_ascii=False) + "\n")
-    try:
-        df.to_parquet(out / "tasks.parquet", index=False)
-    except ImportError as err:
-        raise TriageError("Parquet output needs pyarrow: pip install 'hexar[fleet]'") from err
+    if parquet:
+        try:
+            df.to_parquet(out / "tasks.parquet", index=False)
+        except ImportError as err:
+            raise TriageError("Parquet output needs pyarrow: pip install 'hexar[fleet]'") from err
+    else:
+        (out / "tasks.parquet").unlink(missing_ok=True)  # an earlier run's table would be read as this run's
     pictures = draw(df, out) if figures else []
     (out / "report.md").write_text(report(df, results, pictures), encoding="utf-8")
     return summary(df, results)

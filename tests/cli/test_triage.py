@@ -20,6 +20,7 @@ from rich.console import Console
 
 from hexar.cli import main
 from hexar.evals.cases import scenario
+from hexar.triage import first_sentence
 from hexar.triage_cmd import RESULTS, TriageOptions, triage_command
 from hexar.triage_report import compare
 
@@ -99,6 +100,9 @@ def test_counts_per_cause_equal_the_ground_truth(fleet: Path, full: Path) -> Non
     assert user_causes(df) == ground_truth(fleet)
     failed = df[df["kind"] == "failure"]
     assert (failed["evidence"] > 0).all() and (failed["explanation"].str.len() > 0).all()
+    explained = [e for e in df["explanation"] if e]  # one sentence each, though explainers often say two or three
+    assert explained and all(first_sentence(e) == e for e in explained)
+    assert all(e[-1] in ".!?\"')" for e in failed["explanation"])
     assert set(df["robot"]) == {"robot-a", "robot-b", "robot-c"}
     assert set(df["storage"]) == {"sqlite3", "mcap", "rosbag1"}
     nav = df[(df["cause"] == "navigation.blocked_path") & ~df["recovery"]].iloc[0]
@@ -198,7 +202,10 @@ def test_globs_and_nested_folders(fleet: Path, tmp_path: Path) -> None:
     pattern = str(fleet / "robot-*" / "seed-*" / "bagfile_1[12]_1")
     assert main(["triage", pattern, "--out", str(out), "--workers", "1", "--no-figures"]) == 0
     df = pd.read_parquet(out / "tasks.parquet")
-    assert sorted(set(df["recording"])) == ["bagfile_11_1", "bagfile_12_1"]
+    # named under the matches' common folder: the same run on two robots is two recordings
+    assert sorted(set(df["recording"])) == [f"robot-{r}/seed-{s}/bagfile_{n}_1" for r, s in (("a", 1), ("b", 2))
+                                            for n in (11, 12)]
+    assert set(df["robot"]) == {"robot-a", "robot-b"}
     assert len(df[~df["recovery"]]) == 4  # two robots, two scenarios
     from hexar.triage import expand
 
