@@ -5,6 +5,8 @@ and its instruction, the navigation goals, the last pose, the utterances.
 
 from __future__ import annotations
 
+import re
+
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
@@ -48,47 +50,100 @@ def _reached(log: EventLog, trip: Trip) -> bool | None:
     return None
 
 
+def _started(run: SkillRun) -> bool:
+    return run.time_of("running") is not None or run.state in {"succeeded", "failed", "canceled"}
+
+
+def _rank(run: SkillRun) -> int:
+    """Which step answers "why did you go to X?" best: one that got there, then one that set off, then a plan."""
+    return 0 if run.state == "succeeded" else 1 if _started(run) else 2
+
+
+def _join(words: list[str]) -> str:
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
+
+
+def trips_words(task: Task) -> str:
+    """Where the task's plan took me, as it happened: reached, set off for but not reached, or never started.
+    A step that only ever waited is no trip, whatever its status history holds."""
+    reached: list[str] = []
+    tried: list[str] = []
+    never: list[str] = []
+    for run in task.skills:
+        loc = run.params.get("location")
+        if run.skill in NAV_SKILLS and isinstance(loc, str):
+            place = place_name(loc)
+            (reached if run.state == "succeeded" else tried if _started(run) else never).append(place)
+    parts = [f"I went to {_join(reached)}"] if reached else []
+    if tried:
+        parts.append(f"I tried to go to {_join(tried)} but didn't get there")
+    if never:
+        parts.append(f"I never set off for {_join(never)}")
+    if not parts:
+        return "I didn't drive anywhere"
+    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + ", and " + parts[-1]
+
+
+_ASKED_PLACE = re.compile(r"\b(?:to|into|towards?)\s+(?:the\s+)?([a-z][a-z _]*?)\W*$")
+
+
 def went(question: str, log: EventLog, task: Task) -> Explanation:
-    """Why the robot went somewhere: the plan step that sent it there, and the request behind the plan."""
-    q = question.lower()
-    for candidate in [task, *(t for t in log.tasks if t is not task)]:
-        for run in candidate.skills:
-            loc = run.params.get("location")
-            if run.skill in NAV_SKILLS and isinstance(loc, str) and loc.replace("_", " ") in q.replace("_", " "):
-                return _went_step(log, candidate, run, current=candidate is task)
+    """Why the robot went somewhere: the plan step that sent it there, and the request behind the plan.
+    Only a step that reached its place is "I went"; one that set off and failed is "I tried to go"."""
+    q = question.lower().replace("_", " ")
+    matches = [(candidate, run) for candidate in [task, *(t for t in log.tasks if t is not task)]
+               for run in candidate.skills
+               if run.skill in NAV_SKILLS and isinstance(loc := run.params.get("location"), str)
+               and re.search(rf"\b{re.escape(loc.replace('_', ' '))}\b", q)]
+    if matches:
+        # min() keeps the first of equal rank, so the task being discussed wins a tie
+        candidate, run = min(matches, key=lambda m: _rank(m[1]))
+        return _went_step(log, candidate, run, current=candidate is task)
     if "person" in q or "someone" in q or "them" in q:
         for run in task.skills:
-            if run.skill == "ask_human_for_help" and run.history:
+            if run.skill == "ask_human_for_help" and _started(run):
                 for trip in trips_inside(log, task.skill_window(run)):
+                    verb = "tried to go" if _reached(log, trip) is False else "went"
                     return Explanation(
                         explainer="planner",
-                        text=(f"I went to {trip.describe()} because step {run.index + 1} of my plan was to "
+                        text=(f"I {verb} to {trip.describe()} because step {run.index + 1} of my plan was to "
                               f"{step_words(run)}, and I drive up to a person before I ask."),
                         causes=["planner.plan_ok"], evidence=_plan_evidence(task, run, "planner.plan_ok"))
-    trips = [r for r in task.skills if r.skill in NAV_SKILLS and r.history]
-    if not trips:
-        return Explanation(explainer="planner", text=sentence(f"I didn't drive anywhere for {task_name(task, log)}: "
-                                                               f"my plan was to {plan_words(task)}"),
+    plan = sentence(f"My plan was to {plan_words(task)}")
+    if not any(run.skill in NAV_SKILLS and _started(run) for run in task.skills):
+        return Explanation(explainer="planner", text=f"I didn't drive anywhere for {task_name(task, log)}. {plan}",
                            causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
-    if any(word in q for word in ("why did you go", "why did you drive", "why did you come")):
-        named = " and ".join(place_name(r.params.get("location")) for r in trips)
-        text = sentence(f"I didn't go there for {task_name(task, log)}; I went to {named}, because my plan was "
-                        f"to {plan_words(task)}")
-        return Explanation(explainer="planner", text=text,
-                           causes=["planner.plan_ok"], evidence=_plan_evidence(task, trips[0], "planner.plan_ok"))
-    return _went_step(log, task, trips[0], current=True)
+    if any(word in q for word in ("why did you", "why have you")):
+        asked = _ASKED_PLACE.search(q)
+        there = f"to the {asked.group(1)}" if asked else "there"
+        text = (f"I did not go {there} for {task_name(task, log)}: no step of my plan went there. "
+                f"{trips_words(task)}. {plan}")
+    else:
+        text = f"For {task_name(task, log)}, {trips_words(task)}. {plan}"
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=_plan_evidence(task, None, "planner.plan_ok"))
 
 
 def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Explanation:
     place = place_name(run.params.get("location"))
-    outcome = {"succeeded": "and I got there", "failed": "but I didn't get there",
-               "running": "and I was still on my way"}.get(run.state, "but that step never started")
     where = "" if current else f" (task {task.order})"
-    text = (f"I went to {place} because step {run.index + 1} of my plan for {task_name(task, log)}{where} was "
-            f"to go there, {outcome}. " + sentence(f"The whole plan was to {plan_words(task)}"))
+    because = f"step {run.index + 1} of my plan for {task_name(task, log)}{where} was to go there"
+    if run.state == "succeeded":
+        lead = f"I went to {place} because {because}, and I got there."
+    elif run.state == "running":
+        lead = f"I set off for {place} because {because}, and the recording ends while I was still on my way."
+    elif _started(run):
+        ended = "the step was canceled" if run.state == "canceled" else "I didn't get there"
+        lead = f"I tried to go to {place} because {because}, but {ended}."
+    else:
+        failed = task.failed_skill
+        why = (f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" if failed is not None
+               else "that step never started")
+        lead = f"I did not go to {place}: {because}, but {why}, so I never set off."
+    text = lead + " " + sentence(f"The whole plan was to {plan_words(task)}")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_plan_evidence(task, run, "planner.plan_ok"),
-                       details=[f"{task.task_id}: {run.label()} {run.state}"])
+                       details=[f"Step {run.index + 1} of task {task.order}, {step_words(run)}: {run.state}."])
 
 
 def where(log: EventLog) -> Explanation:

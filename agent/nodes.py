@@ -256,10 +256,12 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     else:
         depth += 1
         if depth == 1:
-            items = [_recorded(ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence][:3]
+            items = [_recorded(ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item][:3]
             text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
         elif depth == 2:
-            text = " ".join(d for e in exps for d in e.details)
+            # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)
+            heard = {ev.item for e in exps for ev in e.evidence}
+            text = " ".join(d for e in exps for d in e.details if d not in heard)
         else:
             text = ""
         text = text or "That's everything I recorded about it; I don't have enough information to go deeper."

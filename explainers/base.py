@@ -39,6 +39,8 @@ class Explanation(BaseModel):
     counterfactual: str | None = None
     fix: str | None = None
     details: list[str] = Field(default_factory=list, description="the causal chain, deepest last, for 'why?'")
+    figures: list[str] = Field(default_factory=list, description="a model's own numbers (e.g. LIME weights): shown "
+                               "with the evidence, never spoken")
     confidence: float = 1.0
     enough_information: bool = True
     phrased_by: str = "template"

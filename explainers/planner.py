@@ -5,11 +5,11 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
-from hexar.events.tasks import Task
+from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.plan_check import Finding, check_plan
-from hexar.explainers.recorded import plan_words, sentence
+from hexar.explainers.recorded import plan_words, sentence, step_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -28,6 +28,25 @@ _FIX = {
     "living room.",
     "planner.plan_not_fulfilling_request": "Ask me again, saying exactly what to do and where.",
 }
+
+
+_OUTCOME = {"invalid": "was rejected", "failed": "failed", "succeeded": "succeeded", "canceled": "was canceled",
+            "running": "was still running when the recording ends", "waiting": "never started"}
+_STEP_STATE = {"succeeded": "done", "failed": "failed", "running": "still running when the recording ends",
+               "canceled": "canceled"}
+
+
+def _step_outcome(run: SkillRun) -> str:
+    return f"Step {run.index + 1}, to {step_words(run, short=True)}: {_STEP_STATE.get(run.state, 'never started')}."
+
+
+def _recovery_item(task: Task) -> str:
+    """What to cite for a recovery task, whose instruction is empty: the first step's own words as recorded."""
+    for run in task.skills:
+        for value in run.params.values():
+            if isinstance(value, str) and value:
+                return value
+    return task.skills[0].skill if task.skills else ""
 
 
 def plan_of(task: Task) -> list[tuple[str, dict[str, object]]]:
@@ -72,16 +91,18 @@ class PlannerExplainer:
                                        item=task.error_msg)],
                     confidence=0.5,
                 )
-            steps = ", then ".join(run.label() for run in task.skills) or "nothing"
+            # Plain words for each step ("say 'Sorry, ...'"), never the plan's call notation.
+            steps = plan_words(task)
+            item = task.instruction or _recovery_item(task)
             return Explanation(
                 explainer=self.name,
                 text=(f"My plan for \"{task.instruction}\"" if not task.is_recovery else
                       "My own recovery plan, which I made after the task before it failed,") +
-                f" looks right to me: {steps}.",
+                sentence(f" looks right to me: {steps}"),
                 causes=["planner.plan_ok"],
-                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t,
-                                   item=task.instruction)],
-                details=[sentence(f"My plan was to {plan_words(task)}"), f"Outcome: {task.outcome}."],
+                evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t, item=item)]
+                if item else [],
+                details=[*(_step_outcome(run) for run in task.skills), f"The task {_OUTCOME[task.outcome]}."],
             )
         causes = list(dict.fromkeys(f.cause for f in findings))
         first = findings[0]

@@ -28,6 +28,8 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
     if evidence:
         for ev in result["evidence"][:6]:
             console.print(f"  [dim]{clock(ev['t'])} {safe(ev['topic'])}[/dim]  {safe(ev['item'])}")
+        for figure in result.get("figures", []):
+            console.print(f"  [dim]{safe(figure)}[/dim]")
     if verbose:
         console.print(safe(f"  route={result['route']} explainers={','.join(result['explainers'])} "
                            f"backend={result['backend']} causes={','.join(result['causes'])} "

@@ -113,7 +113,7 @@ def _pizza(findings: list[dict[str, Any]], log: EventLog, window: tuple[int, int
     if pizza is None:
         return None
     weights = [{"ingredient": m[1], "present": m[2] == "present", "weight": float(m[3])}
-               for line in pizza["details"] if (m := LIME_LINE.match(line))]
+               for line in pizza.get("figures", []) if (m := LIME_LINE.match(line))]
     recommended = next((v for r in _records(log, c.PIZZA_EVENTS, window) for k, v in r["values"]
                         if k == "recommended_pizza"), None)
     return {"recommended": recommended, "weights": weights, "text": pizza["text"]}

@@ -42,6 +42,29 @@ def join(words: list[str], last: str = "and") -> str:
     return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} {last} {words[-1]}"
 
 
+def _strength(weight: float, strongest: float) -> str:
+    share = abs(weight) / strongest if strongest > 0 else 0.0
+    return "strongly" if share >= 0.5 else "somewhat" if share >= MIN_SHARE else "slightly"
+
+
+def weighed(pizza: str, weights: list[Weight], strongest: float, most: int = 4) -> list[str]:
+    """LIME's weights said as a person would: what spoke for the pizza and what against, strongest first.
+    Only weights of at least a twentieth of the strongest are named: the rest is LIME's sampling noise."""
+    named = [w for w in weights if strongest > 0 and abs(w.weight) >= strongest / 20]
+
+    def words(w: Weight) -> str:
+        have = f"you have {pretty(w.ingredient)}" if w.present else f"you have no {pretty(w.ingredient)}"
+        return f"that {have} ({_strength(w.weight, strongest)})"
+
+    pro = [words(w) for w in named if w.weight > 0][:most]
+    con = [words(w) for w in named if w.weight < 0][:most - 1]
+    out = [f"What weighed most for {a_pizza(pizza)}: {join(pro)}." if pro else
+           f"Nothing you have spoke clearly for {a_pizza(pizza)}."]
+    if con:
+        out.append(f"What weighed against it: {join(con)}.")
+    return out
+
+
 def lime_weights(recommender: PizzaRecommender, known: list[str], label: int) -> list[Weight]:
     """LIME weights of every ingredient toward class `label` at the recorded ingredient vector.
 
@@ -149,13 +172,14 @@ class PizzaRecommenderExplainer:
         rec = default_recommender()
         known, unknown = rec.known(available)
         predicted = rec.recommend(known)
-        details = [
-            f"available ingredients: {', '.join(available) or 'none'}",
-            f"recorded recommendation: {pizza}",
-            f"my recipe model's choice for them: {predicted}",
-        ]
+        had = join([pretty(a) for a in available]) if available else "no ingredients at all"
+        model = ("my recipe model still picks the same for them" if predicted == pizza
+                 else f"my recipe model picks {a_pizza(predicted)} for them")
+        details = [f"You told me you had {had}.", f"I recommended {a_pizza(pizza)}, and {model}."]
         if unknown:
-            details.append(f"not in my recipe data, so ignored: {', '.join(unknown)}")
+            details.append(f"{join([pretty(u) for u in unknown]).capitalize()} "
+                           f"{'is' if len(unknown) == 1 else 'are'} not in my recipe data, so I left "
+                           f"{'it' if len(unknown) == 1 else 'them'} out.")
         if predicted != pizza:
             # the recorded recommendation is what the model disagrees with: it backs the mismatch cause too
             evidence = [*evidence, *(ev.model_copy(update={"cause": MISMATCH}) for ev in evidence[1:])]
@@ -169,10 +193,11 @@ class PizzaRecommenderExplainer:
                                details=details, confidence=0.3)
         pizza = rec.classes[label]
         weights = lime_weights(rec, known, label)
-        details.append(f"LIME weights toward {pizza} (ingredient, present?, weight), strongest first:")
-        details.extend(f"  {w.ingredient}, {'present' if w.present else 'absent'}, {w.weight:+.3f}"
-                       for w in weights if abs(w.weight) >= 0.001)
         strongest = max((abs(w.weight) for w in weights), default=0.0)
+        details.extend(weighed(pizza, weights, strongest))
+        figures = [f"LIME weights toward {pizza} (ingredient, present?, weight), strongest first:"]
+        figures.extend(f"  {w.ingredient}, {'present' if w.present else 'absent'}, {w.weight:+.3f}"
+                       for w in weights if abs(w.weight) >= 0.001)
         floor = max(MIN_SHARE * strongest, 1e-6)
         # An ingredient the tree never tests cannot have changed its choice, whatever LIME's noise says.
         used = rec.split_features()
@@ -207,6 +232,7 @@ class PizzaRecommenderExplainer:
             # Only when the model agrees with the recording can removing an ingredient change its answer.
             counterfactual=self._counterfactual(rec, known, reasons, pizza) if predicted == pizza else None,
             details=details,
+            figures=figures,
             confidence=1.0 if predicted == pizza else 0.5,
         )
 

@@ -29,8 +29,31 @@ def test_why_did_you_go_and_where_are_you(suite: Path) -> None:
 
 def test_a_place_the_plan_never_went(suite: Path) -> None:
     (went,) = _ask(suite / "bagfile_3_1", "Why did you go to the kitchen?")
-    assert str(went["answer"]).startswith("I didn't go there for your request")
-    assert "the dining room" in str(went["answer"])
+    assert str(went["answer"]).startswith("I did not go to the kitchen for your request")
+    assert "I went to the dining room and the living room" in str(went["answer"])
+
+
+def test_only_a_reached_place_is_where_i_went(suite: Path) -> None:
+    """bagfile_5_1 stops on the way to the kitchen: the later steps only ever waited, so no answer may say the robot
+    went to the living room, and a room in no step is not answered with rooms it never reached."""
+    living, dining, kitchen, anywhere = _ask(suite / "bagfile_5_1", "Why did you go to the living room?",
+                                             "Why did you go to the dining room?", "Why did you go to the kitchen?",
+                                             "Where did you go?")
+    assert str(living["answer"]).startswith("I did not go to the living room: step 3 of my plan")
+    assert "step 1 (to go to the kitchen) failed first, so I never set off" in str(living["answer"])
+    assert str(dining["answer"]).startswith("I did not go to the dining room for your request")
+    assert "I tried to go to the kitchen but didn't get there, and I never set off for the living room" in \
+        str(dining["answer"])
+    assert str(kitchen["answer"]).startswith("I tried to go to the kitchen because step 1")
+    for answer in (living, dining, kitchen, anywhere):
+        assert "I went to" not in str(answer["answer"]), answer["answer"]
+
+
+def test_a_recovery_trip_counts_where_the_request_never_went(suite: Path) -> None:
+    """bagfile_14_1: the request never got to the living room, the recovery task drove there."""
+    (went,) = _ask(suite / "bagfile_14_1", "Why did you go to the living room?")
+    assert str(went["answer"]).startswith("I went to the living room because step 1 of my plan for my own recovery "
+                                          "task after task 1 failed (task 2)")
 
 
 def test_where_when_the_robot_never_moved(suite: Path) -> None:

@@ -71,3 +71,17 @@ def test_switching_to_the_first_task(suite: Path, tmp_path: Path) -> None:
 def test_followup_without_history_is_a_new_question(suite: Path, tmp_path: Path) -> None:
     r = _session(suite, "bagfile_19_2", tmp_path / "t.sqlite").ask("why?")
     assert r["intent"] == "new" and "tts.timeout" in r["causes"]
+
+
+def test_second_why_on_a_pizza_is_plain_and_keeps_the_numbers(suite: Path, tmp_path: Path) -> None:
+    """Depth 2 says LIME's weights in words; the weights themselves travel as figures (shown with the evidence)."""
+    session = _session(suite, "bagfile_20_1", tmp_path / "threads.sqlite")
+    first = session.ask("Why did you recommend that pizza?")
+    thread = first["thread"]
+    session.ask("why?", thread=thread)
+    second = session.ask("why?", thread=thread)
+    assert second["intent"] == "deeper"
+    assert "What weighed most for a Margherita: that you have basil (strongly)" in second["answer"]
+    assert "LIME" not in second["answer"] and "+0." not in second["answer"]
+    assert second["figures"][0].startswith("LIME weights toward Margherita")
+    assert any(f.strip().startswith("basil, present, +") for f in second["figures"])

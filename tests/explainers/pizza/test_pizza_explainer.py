@@ -24,7 +24,11 @@ def test_names_pizza_and_present_ingredient(pizza_bag: MakeBag) -> None:
     assert exp.enough_information and exp.causes == ["pizza.ingredients"]
     assert exp.text.startswith("I recommended a Margherita because you have basil")
     assert exp.counterfactual is not None and "basil" in exp.counterfactual
-    assert any("basil, present" in d for d in exp.details)
+    # A second "why?" hears the weights in words; LIME's own numbers stay with the evidence.
+    assert "What weighed most for a Margherita: that you have basil (strongly)" in " ".join(exp.details)
+    assert not any("LIME" in d or "present," in d or "+0." in d for d in exp.details)
+    assert exp.figures[0].startswith("LIME weights toward Margherita")
+    assert any(f.strip().startswith("basil, present, +") for f in exp.figures)
     recorded = {(r.t, r.message, v) for r in log.statuses[PIZZA_EVENTS] for _, v in r.data_items()}
     assert {e.item for e in exp.evidence} == {
         f'available_ingredients = {str(available).replace(chr(39), chr(34))}',
