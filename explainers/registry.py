@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib
+import inspect
 import tomllib
 from collections.abc import Iterable, Mapping
 from functools import cache
@@ -122,4 +123,15 @@ class Registry:
         return PLANNER if task_findings(task) else None
 
     def descriptions(self) -> dict[str, str]:
-        return {name: str(getattr(self.classes[name], "description", "")) for name in self.names}
+        """What each explainer explains, for the agent's router and the MCP tools: its `description` attribute,
+        else its class docstring (an added explainer is often documented only there)."""
+        return {name: describe(self.classes[name]) for name in self.names}
+
+
+def describe(cls: type[Any]) -> str:
+    given = getattr(cls, "description", None)
+    if isinstance(given, str) and given.strip():
+        return given
+    # the class's own docstring only: __doc__ is not inherited, so a base class's text never stands in
+    own = cls.__dict__.get("__doc__")
+    return inspect.cleandoc(own) if isinstance(own, str) else ""

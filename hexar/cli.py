@@ -177,6 +177,7 @@ def chat(
     def body() -> int:
         from hexar.chat import chat as run_chat
         from hexar.errors import HexarError
+        from hexar.inputs import checkpoints_file
 
         if live:
             from hexar.live.commands import chat_live_command
@@ -184,6 +185,7 @@ def chat(
             return chat_live_command(domain, out)
         if run is None:
             raise HexarError("give a recording, or --live to talk with a running hexar serve")
+        checkpoints_file(checkpoints)
         return run_chat(run, thread, llm, out, checkpoints, phrase)
 
     raise typer.Exit(guarded(body))
@@ -223,8 +225,10 @@ def web(
     """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
 
     def body() -> int:
+        from hexar.inputs import checkpoints_file
         from hexar.web.server import serve
 
+        checkpoints_file(checkpoints)
         return serve(folder, host, port, llm, checkpoints, live, domain)
 
     raise typer.Exit(guarded(body))
@@ -250,10 +254,12 @@ def listen(
 
     def body() -> int:
         from hexar.errors import HexarError
+        from hexar.inputs import checkpoints_file
         from hexar.voice.loop import listen as run_listen
 
         if more_wavs and not wav:
             raise HexarError(f"unexpected argument {more_wavs[0]}: give WAV files after --wav")
+        checkpoints_file(checkpoints)
         return run_listen(run, wavs=[*(wav or []), *(more_wavs or [])], mic=mic, speak=speak, out_dir=out_dir,
                           llm=llm, thread=thread, checkpoints=checkpoints, vosk_model=vosk_model,
                           voice=voice, console=out)

@@ -75,3 +75,60 @@ def output_dir(path: Path, what: str) -> Path:
     if not os.access(path, os.W_OK | os.X_OK):
         raise InputFileError(f"{what}: cannot write in folder {_name(path)}: permission denied")
     return path
+
+
+_SQLITE_MAGIC = b"SQLite format 3\x00"
+
+
+def _nearest_existing(path: Path) -> Path:
+    for parent in (path, *path.parents):
+        if parent.exists():
+            return parent
+    return Path(".")
+
+
+def checkpoints_file(path: Path | None, what: str = "--checkpoints") -> Path | None:
+    """`path` as a SQLite file of conversations HEXAR can read and write, or a new one it can create; else one
+    InputFileError line (sqlite3 itself would say only "unable to open database file" or "file is not a
+    database", after the recording was already decoded)."""
+    if path is None:
+        return None
+    if path.exists():
+        if path.is_dir():
+            raise InputFileError(f"{what}: {_name(path)} is a folder; give a file such as "
+                                 f"{_name(path / 'threads.sqlite')}")
+        if not path.is_file():
+            raise InputFileError(f"{what}: {_name(path)} is not a regular file")
+        if not os.access(path, os.R_OK | os.W_OK):
+            raise InputFileError(f"{what}: cannot read and write {_name(path)}: permission denied")
+        try:
+            with path.open("rb") as f:
+                head = f.read(len(_SQLITE_MAGIC))
+        except OSError as err:
+            raise InputFileError(f"{what}: cannot read {_name(path)}: {visible(err.strerror or err)}") from err
+        if head and head != _SQLITE_MAGIC:  # an empty file is a new, empty database to SQLite
+            raise InputFileError(f"{what}: {_name(path)} is not a SQLite database; give a new file name or one "
+                                 "written by hexar chat")
+        if head:
+            _check_sqlite(path, what)
+        return path
+    base = _nearest_existing(path.parent)
+    if not base.is_dir():
+        raise InputFileError(f"{what}: cannot create {_name(path)}: {_name(base)} is a file, not a folder")
+    if not os.access(base, os.W_OK | os.X_OK):
+        raise InputFileError(f"{what}: cannot create {_name(path)}: folder {_name(base)} is not writable")
+    return path
+
+
+def _check_sqlite(path: Path, what: str) -> None:
+    """A SQLite header over a damaged body: reading the schema (read-only) finds it before any question."""
+    import sqlite3
+
+    try:
+        conn = sqlite3.connect(f"{path.resolve().as_uri()}?mode=ro", uri=True)
+        try:
+            conn.execute("SELECT count(*) FROM sqlite_master").fetchone()
+        finally:
+            conn.close()
+    except sqlite3.Error as err:
+        raise InputFileError(f"{what}: {_name(path)} is a damaged SQLite database: {visible(err)}") from err

@@ -16,6 +16,7 @@ from mcp.server.fastmcp import FastMCP
 from mcp.server.fastmcp.exceptions import ResourceError, ToolError
 
 from hexar.errors import USER_ERRORS
+from hexar.safe_text import finite_with_warnings, json_dumps
 from hexar.workspace import PAGE, Workspace
 
 INSTRUCTIONS = (
@@ -50,19 +51,29 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
             result: dict[str, Any] = fn(*args, **kwargs)
         except USER_ERRORS as err:
             raise ToolError(_clean(ws, err)) from err
-        return result
+        # the SDK writes NaN and Infinity into the text content: strict JSON, with a warning where one was
+        return dict(finite_with_warnings(result))
 
     @server.tool()
     def list_recordings(offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
         """List the recordings in the served folder (nested folders included) with their tasks: task id,
-        instruction, outcome (succeeded, failed, invalid, running, waiting) and the failed skill. Paged."""
+        instruction, outcome (succeeded, failed, invalid, running, waiting) and the failed skill. Paged; each
+        recording shows its first page of tasks and tasks_total; list_tasks pages on."""
         return call(ws.list_recordings, offset, limit)
 
     @server.tool()
-    def inspect_task(recording: str, task: str | None = None) -> dict[str, Any]:
+    def list_tasks(recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+        """List one recording's tasks (id, order, instruction, outcome, failed skill), at most `limit` per call;
+        page on with `offset` = the returned next_offset. A recording without /task_info has one task per Nav2
+        navigation goal."""
+        return call(ws.list_tasks, recording, offset, limit)
+
+    @server.tool()
+    def inspect_task(recording: str, task: str | None = None, tasks_offset: int = 0) -> dict[str, Any]:
         """Show one task of a recording: its plan, each step's status history with times (ns), errors, and the
-        time window HEXAR explains. `task`: a task id, its order number, 'first' or 'latest' (default)."""
-        return call(ws.inspect_task, recording, task)
+        time window HEXAR explains. `task`: a task id, its order number, 'first' or 'latest' (default). The ids
+        of the recording's tasks come paged: tasks_offset = the returned tasks_next_offset."""
+        return call(ws.inspect_task, recording, task, tasks_offset)
 
     @server.tool()
     def timeline(recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
@@ -101,10 +112,8 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
         return call(ws.ask, recording, question, task, thread, evidence_offset)
 
     def resource(fn: Any, recording: str) -> str:
-        import json
-
         try:
-            return json.dumps(fn(unquote(recording)), indent=1)
+            return json_dumps(fn(unquote(recording)), indent=1)
         except USER_ERRORS as err:
             raise ResourceError(_clean(ws, err)) from err
 

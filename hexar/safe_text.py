@@ -78,7 +78,8 @@ def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
     return obj
 
 
-def _with_warnings(obj: Any) -> Any:
+def finite_with_warnings(obj: Any) -> Any:
+    """`finite(obj)`; a dict also gets a `warnings` entry for each non-finite number replaced."""
     found: list[str] = []
     clean = finite(obj, "", found)
     if found and isinstance(clean, dict):
@@ -90,5 +91,5 @@ def _with_warnings(obj: Any) -> Any:
 
 def json_dumps(obj: Any, indent: int | None = None) -> str:
     """Strict JSON of `obj`: never NaN or Infinity; a list's objects get their own `warnings`."""
-    clean = [_with_warnings(v) for v in obj] if isinstance(obj, list | tuple) else _with_warnings(obj)
+    clean = [finite_with_warnings(v) for v in obj] if isinstance(obj, list | tuple) else finite_with_warnings(obj)
     return json.dumps(clean, indent=indent, allow_nan=False, default=str)

@@ -59,6 +59,11 @@ def _page(items: list[Any], offset: int, limit: int, key: str) -> dict[str, Any]
     return {key: chunk, "total": len(items), "offset": offset, "next_offset": nxt if nxt < len(items) else None}
 
 
+def _task_row(t: Task) -> dict[str, Any]:
+    return {"task_id": t.task_id, "order": t.order, "instruction": t.instruction, "outcome": t.outcome,
+            "failed_skill": t.failed_skill.skill if t.failed_skill else None}
+
+
 class Workspace:
     """The recordings under one folder, as a client may see them."""
 
@@ -118,21 +123,34 @@ class Workspace:
             row: dict[str, Any] = {"recording": self.name(path)}
             try:
                 log = read_recording(path, topics={c.TASK_INFO})
-                row["tasks"] = [{"task_id": t.task_id, "order": t.order, "instruction": t.instruction,
-                                 "outcome": t.outcome, "failed_skill": t.failed_skill.skill if t.failed_skill else None}
-                                for t in log.tasks]
+                if not log.tasks:  # one task per Nav2 goal, as `hexar runs` and inspect_task see it
+                    log = read_recording(path, topics=c.NAV_GOAL_TOPICS)
+                tasks = _page(log.tasks, 0, PAGE, "tasks")  # the rest through list_tasks
+                row.update({"tasks": [_task_row(t) for t in tasks["tasks"]], "tasks_total": tasks["total"],
+                            "tasks_next_offset": tasks["next_offset"]})
             except EventsError as err:
                 row["error"] = str(err).replace(str(self.root) + os.sep, "")
             rows.append(row)
         page["recordings"] = rows
         return page
 
-    def inspect_task(self, recording: str, task: str | None = None) -> dict[str, Any]:
-        """The task's plan with each step's status history and times, and the window HEXAR explains."""
+    def list_tasks(self, recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+        """One page of a recording's tasks (id, order, instruction, outcome, failed skill)."""
+        log = self.log(recording)
+        page = _page(log.tasks, offset, limit, "tasks")
+        page["tasks"] = [_task_row(t) for t in page["tasks"]]
+        page["recording"] = self.name(log.path)
+        return page
+
+    def inspect_task(self, recording: str, task: str | None = None, tasks_offset: int = 0) -> dict[str, Any]:
+        """The task's plan with each step's status history and times, and the window HEXAR explains; the ids
+        of the recording's other tasks one page at a time."""
         log, found = self.task(recording, task)
         out = task_dict(found)
         out["recording"] = self.name(log.path)
-        out["tasks_in_recording"] = [t.task_id for t in log.tasks]
+        others = _page([t.task_id for t in log.tasks], tasks_offset, PAGE, "ids")
+        out.update({"tasks_in_recording": others["ids"], "tasks_total": others["total"],
+                    "tasks_next_offset": others["next_offset"]})
         out["created"] = clock(found.created)
         return out
 

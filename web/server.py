@@ -50,7 +50,9 @@ class Handler(BaseHTTPRequestHandler):
         self.wfile.write(body)
 
     def _json(self, data: Any, status: int = 200) -> None:
-        self._send(status, json.dumps(data).encode(), "application/json")
+        from hexar.safe_text import json_dumps  # strict JSON: a NaN from a recording becomes null, with a warning
+
+        self._send(status, json_dumps(data).encode(), "application/json")
 
     def _guard(self, fn: Any) -> None:
         """A user error becomes the CLI's one-line message; anything else a short line, never a traceback."""

@@ -14,6 +14,7 @@ from hexar.explainers.ask_human.causal import CausalModel, Counterfactual, ances
 from hexar.explainers.ask_human.variables import (
     APPROACH_ERROR_LIMIT,
     CAUSE_OF,
+    DEFAULT_NOTE,
     NOISE_LIMIT,
     TRANSITION_OF_STATE,
     WORLD,
@@ -187,6 +188,8 @@ class AskHumanForHelpExplainer:
     @staticmethod
     def _observed(var: str, raw: str, value: str) -> str:
         said = phrase(var, value)
+        if var == "person_distance" and value == "gt_4.0":
+            return f"{said} (I measured {raw} m; the limit is {DEFAULT_NOTE})"
         if var == "person_distance":
             return f"{said} (I measured {raw} m)"
         return said
@@ -202,7 +205,7 @@ class AskHumanForHelpExplainer:
     def _fix(cause: str) -> str | None:
         return {
             "ask_human.nobody_detected": "Ask for help where people usually are, or try again later.",
-            "ask_human.person_too_far": "Move closer to the person (within 4 m) before asking.",
+            "ask_human.person_too_far": "Move closer to the person (within 4 m, my default limit) before asking.",
             "ask_human.unstable_detection": "Wait until the person stays in view long enough to be tracked.",
             "ask_human.navigation_failed": "Clear the way to the person.",
             "ask_human.refused": "Ask someone else, or ask again later.",
@@ -237,7 +240,7 @@ class AskHumanForHelpExplainer:
             evidence = [std.evidence(cause)]
             text = (
                 "I got help, but my detection of the person was uncertain: their position varied by "
-                f"{_cm(std.value)}, more than the {_cm(str(NOISE_LIMIT))} I normally accept"
+                f"{_cm(std.value)}, more than my limit of {_cm(str(NOISE_LIMIT))} ({DEFAULT_NOTE})"
             )
             if poor:
                 evidence.append(by_key["robot_nav_err"].evidence(cause))
@@ -247,7 +250,8 @@ class AskHumanForHelpExplainer:
                 )
             text += "."
             counterfactual = (
-                f"Had the person's position varied by less than {_cm(str(NOISE_LIMIT))} (it varied by "
+                f"Had the person's position varied by less than my default limit of {_cm(str(NOISE_LIMIT))} "
+                f"(it varied by "
                 f"{_cm(std.value)}), a poor approach would have had {chance(p_steady)} chance instead of "
                 f"{chance(p_noisy)}."
             )
@@ -265,10 +269,13 @@ class AskHumanForHelpExplainer:
             )
         cause = "ask_human.poor_approach"
         err = by_key["robot_nav_err"]
+        spread = by_key.get("person_std_rms")
+        known = (f"I knew where the person was to within {_cm(spread.value)}" if spread is not None
+                 else "My detection of the person was not noisy")
         text = (
             f"I got help, but my approach to the person was poor: I stopped {_cm(err.value)} away from "
-            f"where I should have, more than the {_cm(str(APPROACH_ERROR_LIMIT))} I allow, although I had "
-            "located them well."
+            f"where I should have, more than my limit of {_cm(str(APPROACH_ERROR_LIMIT))} ({DEFAULT_NOTE}), "
+            "although I had located them well."
         )
         return Explanation(
             explainer=NAME,
@@ -276,9 +283,8 @@ class AskHumanForHelpExplainer:
             causes=[cause],
             evidence=[err.evidence(cause)],
             counterfactual=(
-                f"I knew where the person was to within {_cm(str(NOISE_LIMIT))}, and then a poor approach has "
-                f"only {chance(p_steady)} chance: it came from my navigation's final approach, so a better "
-                "final approach would have put me in the right place."
+                f"{known}, and then a poor approach has only {chance(p_steady)} chance: it came from my "
+                "navigation's final approach, so a better final approach would have put me in the right place."
             ),
             fix="Give me a little more room around the person, or have my navigation's final approach (its "
             "goal tolerance) checked.",

@@ -8,7 +8,9 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
 
-# Thresholds of the skill (reference, `/episodic_memory`).
+# Thresholds of the skill (reference, `/episodic_memory`). The skill records the measured values, never these
+# limits, so an answer names them as configured defaults (DEFAULT_NOTE), not as facts of the recording.
+DEFAULT_NOTE = "a configured default, not recorded"
 MAX_DISTANCE = 4.0
 APPROACH_MARGIN = 0.75
 NOISE_LIMIT = 0.5
@@ -89,7 +91,7 @@ PHRASES: dict[str, dict[str, str]] = {
         "lt_0.75": "the person had been closer than 0.75 m",
         "0.75_2.0": "the person had been between 0.75 and 2.0 m away",
         "2.0_4.0": "the person had been between 2.0 and 4.0 m away",
-        "gt_4.0": "the person was farther away than the 4.0 m I can ask from",
+        "gt_4.0": "the person was farther away than my limit for asking, 4.0 m",
     },
     "navigation_failure": {
         FALSE: "my navigation to the person had succeeded",
@@ -102,12 +104,12 @@ PHRASES: dict[str, dict[str, str]] = {
     "user_accepted": {
         TRUE: "the person had agreed to help",
         FALSE: "the person declined to help",
-        NO_ANSWER: "the person did not answer within 45 seconds",
+        NO_ANSWER: f"the person did not answer in time (I wait 45 seconds: {DEFAULT_NOTE})",
     },
     "user_confirmed": {
         TRUE: "the person had confirmed that they had helped",
         FALSE: "the person did not confirm that they had helped",
-        NO_ANSWER: "the person did not confirm within 30 seconds",
+        NO_ANSWER: f"the person did not confirm in time (I wait 30 seconds: {DEFAULT_NOTE})",
     },
 }
 
