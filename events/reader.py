@@ -421,3 +421,10 @@ def _storage(src: Path) -> str:
     if any(src.glob("*.db3")):
         return "sqlite3"
     return "unknown"
+
+
+def read_tasks(path: str | Path) -> EventLog:
+    """Only what the recording's tasks need: `/task_info`, else the Nav2 log and goal topics that tasks are
+    derived from (a recording without `/task_info`), so listing many recordings stays cheap."""
+    log = read_recording(path, topics={c.TASK_INFO})
+    return log if log.tasks else read_recording(path, topics=c.NAV_GOAL_TOPICS)

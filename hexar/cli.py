@@ -96,8 +96,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
 
     def body() -> int:
         from hexar.errors import HexarError
-        from hexar.events import EventsError, read_recording
-        from hexar.events.contract import NAV_GOAL_TOPICS, TASK_INFO
+        from hexar.events import EventsError, read_tasks
         from hexar.safe_text import json_dumps, safe
 
         if not folder.is_dir():
@@ -112,9 +111,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
             return 0
         for path in paths:
             try:
-                log = read_recording(path, topics={TASK_INFO})
-                if not log.tasks:  # tasks derived from Nav2 goals need the logs and goal topics
-                    log = read_recording(path, topics=NAV_GOAL_TOPICS)
+                log = read_tasks(path)
                 task = log.task() if log.tasks else None
                 rows.append({"recording": path.name, "instruction": task.instruction if task else "",
                              "outcome": task.outcome if task else "no task", "tasks": len(log.tasks),

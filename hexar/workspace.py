@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from hexar.errors import HexarError
-from hexar.events import EventLog, EventsError, Task, read_recording
+from hexar.events import EventLog, EventsError, Task, read_recording, read_tasks
 from hexar.events import contract as c
 from hexar.render import clock, task_dict
 
@@ -122,9 +122,7 @@ class Workspace:
         for path in page["recordings"]:
             row: dict[str, Any] = {"recording": self.name(path)}
             try:
-                log = read_recording(path, topics={c.TASK_INFO})
-                if not log.tasks:  # one task per Nav2 goal, as `hexar runs` and inspect_task see it
-                    log = read_recording(path, topics=c.NAV_GOAL_TOPICS)
+                log = read_tasks(path)  # one task per Nav2 goal without /task_info, as `hexar runs` sees it
                 tasks = _page(log.tasks, 0, PAGE, "tasks")  # the rest through list_tasks
                 row.update({"tasks": [_task_row(t) for t in tasks["tasks"]], "tasks_total": tasks["total"],
                             "tasks_next_offset": tasks["next_offset"]})

@@ -65,6 +65,11 @@ class Findings:
             self._registry = Registry.load()
         return self._registry
 
+    def modules(self, task: Task) -> list[str]:
+        """The robot modules (explainers) the task's plan used, for the runs list's module filter."""
+        reg = self.registry()
+        return sorted({name for run in task.skills for name in reg.for_module(run.skill)})
+
     def cached(self, key: tuple[str, str]) -> list[dict[str, Any]] | None:
         return self._cache.get(key)
 

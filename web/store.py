@@ -77,19 +77,18 @@ class Store:
 
     # runs list ---------------------------------------------------------------------------------------------
     def _row(self, path: Path) -> dict[str, Any]:
-        from hexar.events import EventsError, read_recording
-        from hexar.events.contract import TASK_INFO
+        from hexar.events import EventsError, read_tasks
 
         stamp = path.stat().st_mtime
         cached = self._rows.get(path.name)
         if cached and cached[0] == stamp:
             return cached[1]
         try:
-            log = read_recording(path, topics={TASK_INFO})
+            log = read_tasks(path)  # tasks derived from Nav2 goals too, as `hexar runs` lists them
             task = log.task() if log.tasks else None
             row = {"recording": path.name, "tasks": len(log.tasks), "error": "",
                    "latest": task_summary(task) if task else None,
-                   "modules": sorted({r.skill for r in task.skills}) if task else []}
+                   "modules": self.findings.modules(task) if task else []}
         except EventsError as e:
             row = {"recording": path.name, "tasks": 0, "error": str(e), "latest": None, "modules": []}
         self._rows[path.name] = (stamp, row)
@@ -115,7 +114,7 @@ class Store:
         task = snap.log.task() if snap.log.tasks else None
         return {"recording": LIVE, "live": True, "tasks": len(snap.log.tasks), "error": "",
                 "latest": task_summary(task) if task else None,
-                "modules": sorted({r.skill for r in task.skills}) if task else [],
+                "modules": self.findings.modules(task) if task else [],
                 "causes": sorted({c for f in snap.explain(task) for c in f["causes"]}) if task else []}
 
     def _start_worker(self) -> None:

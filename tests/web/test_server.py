@@ -52,7 +52,8 @@ def test_runs_list_outcomes_and_causes(webroot: Path, tmp_path: Path) -> None:
     assert rows["bagfile_5_1"]["causes"] == ["navigation.blocked_path"]
     assert rows["bagfile_12_1"]["causes"] == ["ask_human.person_too_far"]
     assert rows["bagfile_10_1"]["latest"]["outcome"] == "succeeded"
-    assert "navigate_to_zone" in rows["bagfile_5_1"]["modules"]
+    modules = rows["bagfile_5_1"]["modules"]
+    assert {"navigation", "text_to_speech"} <= set(modules) and "navigate_to_zone" not in modules  # not skills
     assert rows["corrupt_run"]["error"].startswith("cannot read")
 
 
@@ -174,3 +175,27 @@ def test_hexar_web_serves_on_loopback(webroot: Path, tmp_path: Path) -> None:
     finally:
         proc.terminate()
         proc.wait(timeout=30)
+
+
+def test_a_recording_without_task_info_is_listed_with_its_nav2_goal(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+    from hexar.events.records import ERROR, INFO, WARN
+
+    # real Nav2 Humble lines (shared reference nav2_log_messages.md), no /task_info
+    b = BagBuilder()
+    t0 = 1_700_000_000_000_000_000
+    b.log(t0, "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (4.00, 1.00)")
+    b.log(t0 + sec_ns(2), "planner_server", WARN, "GridBased: failed to create plan with tolerance 0.50.")
+    b.log(t0 + sec_ns(3), "bt_navigator", ERROR, "Goal failed")
+    root = tmp_path / "runs"
+    b.write(root / "nav2_only")
+    with served(root, tmp_path / "t.sqlite") as url:
+        deadline = time.monotonic() + 60
+        while True:
+            _, data = get(url + "api/runs")
+            if data["pending"] == 0 or time.monotonic() > deadline:
+                break
+            time.sleep(0.3)
+    row = data["runs"][0]
+    assert row["tasks"] == 1 and row["latest"]["outcome"] == "failed" and row["modules"] == ["navigation"]
+    assert row["causes"] == ["navigation.blocked_path"]
