@@ -139,7 +139,10 @@ def test_hexar_web_live_command(tmp_path: Path) -> None:
         assert f"the live robot on DDS domain {domain}" in line and "recordings" not in line
         url = line.split()[2]
         robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
-        _, runs = wait_for(lambda: get(url + "api/runs"), lambda r: r[1]["runs"][0]["latest"] is not None)
+        # DDS orders samples per topic, not across them: the page catches up once the failing update arrived
+        _, runs = wait_for(lambda: get(url + "api/runs"),
+                           lambda r: (r[1]["runs"][0]["latest"] or {}).get("outcome") == "failed" and
+                           bool(r[1]["runs"][0]["causes"]), timeout=20)
         assert [(r["recording"], r["latest"]["outcome"], r["causes"]) for r in runs["runs"]] == [
             ("live", "failed", [BLOCKED])]
     finally:
