@@ -62,6 +62,33 @@ def dds_qos(q: TopicQos) -> Qos:
     return Qos(*policies)
 
 
+def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.Event,
+              handle: Callable[[str, Any, int], None], report: Callable[[str], None]) -> None:
+    """Wait on every reader and hand each valid sample to `handle(topic, sample, source_stamp_ns)` until `stop`;
+    a sample the binding cannot decode, or one `handle` fails on, is reported and skipped, never a traceback."""
+    ws = WaitSet(participant)
+    mask = SampleState.Any | ViewState.Any | InstanceState.Any
+    conditions = [ReadCondition(r, mask) for _, r in readers]
+    for cond in conditions:
+        ws.attach(cond)
+    while not stop.is_set():
+        ws.wait(50_000_000)
+        for (topic, reader), cond in zip(readers, conditions, strict=True):
+            try:
+                samples = reader.take(TakeBatch, condition=cond)
+            except Exception as err:  # a sample the binding cannot decode must not stop the reading
+                report(f"cannot read {topic}: {err}")
+                continue
+            for sample in samples:
+                info = getattr(sample, "sample_info", None)
+                if info is not None and not info.valid_data:
+                    continue  # a writer went away (dispose/unregister): no data
+                try:
+                    handle(topic, sample, int(info.source_timestamp) if info is not None else 0)
+                except Exception as err:  # one bad message is reported and skipped
+                    report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+
+
 class DdsEndpoint:
     """A domain participant with lazily created topics, readers and writers."""
 
@@ -124,37 +151,19 @@ class DdsTransport:
 
     def _loop(self, readers: list[tuple[str, Any]], log: LiveLog, on_record: Callable[[Any], None],
               on_question: Callable[[str], None]) -> None:
-        ws = WaitSet(self.endpoint.participant)
-        mask = SampleState.Any | ViewState.Any | InstanceState.Any
-        conditions = [ReadCondition(r, mask) for _, r in readers]
-        for cond in conditions:
-            ws.attach(cond)
-        while not self._stop.is_set():
-            ws.wait(50_000_000)
-            for (topic, reader), cond in zip(readers, conditions, strict=True):
-                try:
-                    samples = reader.take(TakeBatch, condition=cond)
-                except Exception as err:  # a sample the binding cannot decode must not stop the node
-                    self._report(f"cannot read {topic}: {err}")
-                    continue
-                for sample in samples:
-                    info = getattr(sample, "sample_info", None)
-                    if info is not None and not info.valid_data:
-                        continue  # a writer went away (dispose/unregister): no data
-                    try:
-                        if topic == QUESTION:
-                            on_question(str(sample.data))
-                            continue
-                        t = int(info.source_timestamp) if info is not None else 0
-                        fresh = False
-                        for record in to_records(topic, sample, t):
-                            if log.add(record):
-                                fresh = True
-                                on_record(record)
-                        if fresh and self.recorder is not None:
-                            self.recorder.write(topic, self._types[topic], sample.serialize(), t)
-                    except Exception as err:  # one bad message is reported and skipped, never a traceback
-                        self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+        def handle(topic: str, sample: Any, t: int) -> None:
+            if topic == QUESTION:
+                on_question(str(sample.data))
+                return
+            fresh = False
+            for record in to_records(topic, sample, t):
+                if log.add(record):
+                    fresh = True
+                    on_record(record)
+            if fresh and self.recorder is not None:
+                self.recorder.write(topic, self._types[topic], sample.serialize(), t)
+
+        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report)
         if self.recorder is not None:
             self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
 

@@ -45,32 +45,13 @@ class DdsWatcher:
         self._thread.start()
 
     def _loop(self, readers: list[tuple[str, Any]], log: LiveLog) -> None:
-        from cyclonedds.core import InstanceState, ReadCondition, SampleState, ViewState, WaitSet
-
         from hexar.live.convert import to_records
-        from hexar.live.dds import TakeBatch
+        from hexar.live.dds import take_loop
 
-        ws = WaitSet(self.endpoint.participant)
-        mask = SampleState.Any | ViewState.Any | InstanceState.Any
-        conditions = [ReadCondition(r, mask) for _, r in readers]
-        for cond in conditions:
-            ws.attach(cond)
-        while not self._stop.is_set():
-            ws.wait(50_000_000)
-            for (topic, reader), cond in zip(readers, conditions, strict=True):
-                try:
-                    samples = reader.take(TakeBatch, condition=cond)
-                except Exception as err:  # a sample the binding cannot decode must not stop the page
-                    self._report(f"cannot read {topic}: {err}")
-                    continue
-                for sample in samples:
-                    info = getattr(sample, "sample_info", None)
-                    if info is not None and not info.valid_data:
-                        continue  # a writer went away: no data
-                    try:
-                        log.extend(to_records(topic, sample, int(info.source_timestamp) if info else 0))
-                    except Exception as err:  # one bad message is reported and skipped
-                        self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+        def handle(topic: str, sample: Any, t: int) -> None:
+            log.extend(to_records(topic, sample, t))
+
+        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report)
 
     def _report(self, line: str) -> None:
         self.errors += 1
