@@ -261,10 +261,19 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         elif depth == 2:
             # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)
             heard = {ev.item for e in exps for ev in e.evidence}
-            text = " ".join(d for e in exps for d in e.details if d not in heard)
+            text = " ".join(_sentence(d) for e in exps for d in e.details if d not in heard)
         else:
             text = ""
         text = text or "That's everything I recorded about it; I don't have enough information to go deeper."
     turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
     return {"answer": text, "depth": depth, "route": "followup", "history": [*state.get("history", []), turn],
             "timings_ms": _timings(state, "followup", start)}
+
+
+def _sentence(detail: str) -> str:
+    """Details are written as notes; spoken one after another each must end as a sentence."""
+    detail = detail.strip()
+    if not detail:
+        return detail
+    detail = detail[0].upper() + detail[1:]
+    return detail if detail.endswith((".", "!", "?", '."', ".'")) else detail + "."

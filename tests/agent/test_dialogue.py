@@ -85,3 +85,16 @@ def test_second_why_on_a_pizza_is_plain_and_keeps_the_numbers(suite: Path, tmp_p
     assert "LIME" not in second["answer"] and "+0." not in second["answer"]
     assert second["figures"][0].startswith("LIME weights toward Margherita")
     assert any(f.strip().startswith("basil, present, +") for f in second["figures"])
+
+
+@pytest.mark.parametrize("rec", ["bagfile_19_1", "bagfile_5_1", "bagfile_12_1"])
+def test_the_second_why_is_told_in_whole_sentences(suite: Path, tmp_path: Path, rec: str) -> None:
+    import re
+
+    s = _session(suite, rec, tmp_path / "t.sqlite")
+    thread = s.ask("What happened?")["thread"]
+    s.ask("why?", thread=thread)
+    deeper = s.ask("why?", thread=thread)["answer"]
+    assert deeper.endswith((".", "!", "?", '."', ".'"))
+    # no note runs into the next: a sentence never ends in a quote followed by a lower-case word
+    assert not re.search(r"['\"] [a-z]", deeper), deeper
