@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Set up HEXAR in ./.venv on a fresh Debian machine.
 #   scripts/setup.sh          core + test tools
-#   scripts/setup.sh --full   also the embedded LLM (builds llama-cpp-python once, ~6 min, cached) and its model
+#   scripts/setup.sh --full   also the embedded LLM (builds llama-cpp-python once, ~5 min on 2 cores, cached) and its model
 set -euo pipefail
 cd "$(dirname "$0")/.."
 FULL=0
