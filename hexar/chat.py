@@ -6,6 +6,7 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
+from urllib.parse import quote
 
 from rich.console import Console
 from rich.panel import Panel
@@ -76,7 +77,9 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             console.print(f"new thread {thread}")
             continue
         if line == "/thread":
-            console.print(safe(thread))
+            # the page (`hexar web` on this recording's folder) continues it at #/run/NAME?thread=ID
+            console.print(f"{safe(thread)}  (in `hexar web {safe(run.parent)}`: "
+                          f"#/run/{safe(quote(run.name))}?thread={safe(quote(thread))})")
             continue
         if line.startswith("/task"):
             arg = line.removeprefix("/task").strip()

@@ -18,11 +18,13 @@ from tests.web.browser import chrome, served
 from tests.web.helpers import HOSTILE_ERROR, HOSTILE_INSTRUCTION, HOSTILE_LOG
 
 WAIT_S = 90
+CHECKPOINTS: dict[str, Path] = {}  # the page's thread file, where a terminal conversation is written too
 
 
 @pytest.fixture(scope="module")
 def page(webroot: Path, tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[Any, str]]:
     ck = tmp_path_factory.mktemp("threads") / "threads.sqlite"
+    CHECKPOINTS["file"] = ck
     # served from the folder's parent with a relative path, as a person runs `hexar web runs`: the page then
     # shows `hexar chat webroot0/NAME --thread ID` (and the screenshots hold no machine path)
     with pytest.MonkeyPatch.context() as mp:
@@ -185,3 +187,24 @@ def test_bad_recording_shows_one_line_not_a_traceback(page: tuple[Any, str], web
     errors = [e.text for e in driver.find_elements(By.CSS_SELECTOR, "p.error")]
     assert len(errors) == 1 and errors[0].startswith("ERROR: cannot read") and "\n" not in errors[0]
     assert "Traceback" not in driver.find_element(By.TAG_NAME, "body").text
+
+
+def test_a_conversation_started_in_the_terminal_continues_in_the_page(page: tuple[Any, str], webroot: Path) -> None:
+    from selenium.webdriver.common.by import By
+
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+
+    driver, url = page
+    # what `hexar chat webroot0/bagfile_19_1 --checkpoints FILE` does, from the folder the page is served from
+    terminal = Session(RunSettings(recording=Path(webroot.name) / "bagfile_19_1", llm="none"),
+                       checkpoints=CHECKPOINTS["file"])
+    first = terminal.ask("why did you stop talking")
+    _open(driver, url, f"bagfile_19_1?thread={first['thread']}")
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    WebDriverWait(driver, WAIT_S).until(lambda d: d.find_elements(By.CSS_SELECTOR, "#chat-log .msg.bot"))
+    assert first["thread"] in driver.find_element(By.ID, "thread-info").text
+    assert first["answer"][:40] in driver.find_element(By.ID, "chat-log").text
+    deeper = _ask(driver, "why?")  # the page goes on in the same thread: one level deeper
+    assert deeper.text.startswith("Here is what I recorded")

@@ -439,9 +439,17 @@ function renderRun(name, run) {
 
 function route() {
   delete document.body.dataset.ready;
-  const m = location.hash.match(/^#\/run\/([^/]+)(?:\/([^/]+))?$/);
-  if (m) showRun(decodeURIComponent(m[1]), m[2] ? decodeURIComponent(m[2]) : null);
-  else showRuns();
+  const [path, query] = location.hash.split("?");
+  const m = path.match(/^#\/run\/([^/]+)(?:\/([^/]+))?$/);
+  if (!m) { showRuns(); return; }
+  const name = decodeURIComponent(m[1]);
+  // `#/run/NAME?thread=ID`: continue a conversation started elsewhere (`hexar chat ... --thread ID`, /thread)
+  const thread = new URLSearchParams(query || "").get("thread");
+  if (thread) {
+    localStorage.setItem(`hexar.thread.${name}`, thread);
+    history.replaceState(null, "", path);  // the thread is remembered; the address goes back to the run's
+  }
+  showRun(name, m[2] ? decodeURIComponent(m[2]) : null);
 }
 window.addEventListener("hashchange", route);
 route();
