@@ -45,6 +45,9 @@ def test_chat_unknown_task_and_bad_questions_do_not_end_it(bag: Path, tmp_path: 
     child.sendline("/task")
     child.expect(r"t1\\x1b\]52;c;")  # the recorded task id, shown not obeyed
     child.expect("you>")
+    child.sendline("/thread")
+    child.expect(r"#/run/bag\?thread=")  # where the page continues this conversation
+    child.expect("you>")
     child.sendline("Why didn't you say hello?")
     child.expect("enough information")  # an answer: the conversation went on
     child.expect("you>")
