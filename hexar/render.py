@@ -116,7 +116,7 @@ def _steps(log: EventLog, task: Task) -> Table:
         ended = run.time_of(run.state) if run.state in {"succeeded", "failed"} else None
         when = f"{clock(started)} to {clock(ended)}" if started and ended else clock(started) if started else ""
         colour = {"succeeded": "green", "failed": "red"}.get(run.state, "yellow")
-        grid.add_row(f"  {run.index + 1}.", f"[bold]{safe(run.skill)}[/bold]  [{colour}]{run.state}[/{colour}]"
+        grid.add_row(f"  {run.index + 1}.", f"[bold]{safe(run.skill)}[/bold]  [{colour}]{safe(run.state)}[/{colour}]"
                      f"  {when}")
         for key, value in run.params.items():
             grid.add_row("", Padding(f"{safe(str(key))}: {safe(repr(value))}", (0, 0, 0, 2)))

@@ -268,10 +268,10 @@ class Outcome:
     problems: list[str] = field(default_factory=list)
 
 
-def run_cli(args: list[str]) -> Outcome:
+def run_cli(args: list[str], stdin: str = "") -> Outcome:
     out, err = io.StringIO(), io.StringIO()
     try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), _stdin(stdin):
             code = main(args)
     except BaseException as e:
         return Outcome(args, -1, out.getvalue(), err.getvalue(), [f"exception escaped: {type(e).__name__}: {e}"])
@@ -290,6 +290,19 @@ def run_cli(args: list[str]) -> Outcome:
         except ValueError as e:
             result.problems.append(f"invalid JSON: {e}")
     return result
+
+
+@contextlib.contextmanager
+def _stdin(text: str) -> Any:
+    """Piped input, as `printf 'q\\n' | hexar chat RUN` gives it."""
+    import sys
+
+    saved = sys.stdin
+    sys.stdin = io.StringIO(text)
+    try:
+        yield
+    finally:
+        sys.stdin = saved
 
 
 def grounded(result: dict[str, Any], log: EventLog) -> list[str]:
@@ -399,7 +412,25 @@ def example(seed: int, work: Path) -> list[Outcome]:
             others = [["ask", str(bag), question, "--llm", "none", "-v"], ["inspect", str(bag), "--json"],
                       ["inspect", str(bag)], ["runs", str(folder)], ["runs", str(folder), "--json"]]
             outcomes.append(run_cli(rng.choice(others)))
+        # The other commands over the same recording; drawn after the choices above, so the seeds found by
+        # earlier long runs still run what they ran then.
+        if rng.random() < 0.4:
+            more = [
+                (["chat", str(bag), "--llm", "none", "--checkpoints", str(folder / "t.sqlite")],
+                 f"{question}\nwhy?\n/task\n/evidence\nwhat else happened?\n"),
+                (["triage", str(folder), "--out", str(work / f"triage{seed}"), "--workers", "1", "--no-figures"],
+                 ""),
+                (["annotate", str(bag), "--out", str(work / f"annotated{seed}.mcap")], ""),
+                (["listen", str(bag), "--llm", "none", "--wav", str(folder / "missing.wav")], ""),
+            ]
+            args, piped = rng.choice(more)
+            outcomes.append(run_cli(args, piped))
     finally:
+        for extra in (work / f"triage{seed}", work / f"annotated{seed}.mcap"):
+            if extra.is_dir():
+                shutil.rmtree(extra, ignore_errors=True)
+            elif extra.exists():
+                extra.unlink()
         shutil.rmtree(folder, ignore_errors=True)
     return outcomes
 
