@@ -7,6 +7,8 @@ cause that was found.
 
 from __future__ import annotations
 
+import math
+
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.detectors import Finding, Run
@@ -22,8 +24,30 @@ def _said(f: Finding) -> str:
     return f"{ev.item}" if ev is not None else ""
 
 
+PROGRESS_RADIUS_M = 0.5  # Nav2's SimpleProgressChecker default required_movement_radius
+
+
+def stalled_seconds(run: Run) -> float | None:
+    """How long the robot had stayed within the progress checker's radius when it gave up, from `/amcl_pose`:
+    None when the recording holds no pose before the first `Failed to make progress`."""
+    line = run.first(("Failed to make progress",))
+    if line is None:
+        return None
+    before = [p for p in run.poses if p.t <= line.t]
+    if not before:
+        return None
+    last = before[-1]
+    moved = [p for p in before if math.hypot(p.x - last.x, p.y - last.y) > PROGRESS_RADIUS_M]
+    since = moved[-1].t if moved else before[0].t
+    return (line.t - since) / 1e9
+
+
 def _progress_seconds(run: Run) -> str:
-    # The allowance is a parameter the recording does not hold; Nav2's default is 10 s.
+    stalled = stalled_seconds(run)
+    if stalled is not None and stalled >= 1:
+        # measured from the recorded poses; the allowance itself is a parameter the recording does not hold
+        return (f"{stalled:.0f} s (my recorded position stayed within {PROGRESS_RADIUS_M} m for that long; "
+                "Nav2's movement time allowance is 10 s by default)")
     return "longer than its movement time allowance (10 s by default)"
 
 

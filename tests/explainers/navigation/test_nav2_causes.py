@@ -250,3 +250,22 @@ def test_amcl_waiting_for_an_initial_pose_says_so_and_how_to_fix_it(tmp_path: Pa
     answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
     assert answer.causes == [g.POOR_LOCALISATION]
     assert "never received an initial pose" in answer.text and "initial pose" in (answer.fix or "")
+
+
+def test_no_progress_says_how_long_the_recorded_position_stood_still(tmp_path: Path) -> None:
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    step = [("navigate_to_pose", {"x": 5.0, "y": 0.0}, "Running", "")]
+    b.task_info(t, task_msg("t1", "go to the door", step))
+    b.log(t + sec_ns(0.1), "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (5.00, 0.00)")
+    for i in range(100):  # 5 Hz: drives 0.4 m/s for 5 s up to x = 2.0, then stands there (1 cm jitter)
+        x = min(0.08 * i, 2.0) + (0.01 * (i % 2) if i > 25 else 0.0)
+        b.pose(t + sec_ns(0.5 + i * 0.2), x, 0.0, 0.0, 0.01, 0.01, 0.01)
+    b.log(t + sec_ns(20.5), "controller_server", ERROR, "Failed to make progress")
+    b.log(t + sec_ns(21), "bt_navigator", ERROR, "Goal failed")
+    b.task_info(t + sec_ns(21.1), task_msg("t1", "go to the door", [(*step[0][:2], "failed", "aborted")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
+    assert answer.causes == [g.NO_PROGRESS]
+    # the last pose farther than 0.5 m from where it stood: x = 1.44 at 4.1 s; the failure at 20.5 s
+    assert "made no progress for 16 s (my recorded position stayed within 0.5 m" in answer.text
