@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Any
 
 import pytest
 from rich.console import Console
@@ -18,20 +17,13 @@ from hexar.evals.scenarios.suite import record
 from hexar.events import contract as c
 from hexar.safe_text import json_dumps, safe, visible
 from tests.events.helpers import T0, task_msg
-from tests.fuzz.harness import _bad_char
+from tests.fuzz.harness import _bad_char, _strict
 
 CLIPBOARD = "\x1b]52;c;ZWNobyBwd25lZA==\x07"  # OSC 52: writes the user's clipboard
 TITLE = "\x1b]0;pwned\x07"
 RED = "\x1b[31m"
 HOSTILE = f"{RED}{TITLE}{CLIPBOARD}[/] [bold]\u202e"
 _T = TYPESTORE.types
-
-
-def _strict(text: str) -> Any:
-    def refuse(name: str) -> Any:
-        raise AssertionError(f"non-standard JSON constant {name}")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 @pytest.fixture(scope="module")

@@ -3,7 +3,6 @@ Nav2 goals (tasks) than a page answered one page at a time."""
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 from typing import Any
 
@@ -11,20 +10,14 @@ import pytest
 from mcp import ClientSession
 
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events.records import INFO
 from hexar.mcp_server import resource_uri
 from hexar.workspace import PAGE
 from tests.cli.test_mcp_server import call, error_of, run, stdio_session
 from tests.events.helpers import T0, task_msg
+from tests.fuzz.harness import _strict
 
 GOALS = PAGE + 17
-INFO = 20
-
-
-def _strict(text: str) -> Any:
-    def refuse(constant: str) -> Any:
-        raise AssertionError(f"not strict JSON: {constant}")
-
-    return json.loads(text, parse_constant=refuse)
 
 
 @pytest.fixture(scope="module")

@@ -3,22 +3,19 @@ with a warning, never as `NaN` (which the browser's JSON.parse rejects, leaving 
 
 from __future__ import annotations
 
-import json
 import urllib.request
 from pathlib import Path
 from typing import Any
 
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from tests.events.helpers import T0, task_msg
+from tests.fuzz.harness import _strict
 from tests.web.browser import served
 
 
 def _strict_get(url: str) -> Any:
-    def refuse(constant: str) -> Any:
-        raise AssertionError(f"not strict JSON: {constant}")
-
     with urllib.request.urlopen(url, timeout=60) as r:
-        return json.loads(r.read(), parse_constant=refuse)
+        return _strict(r.read().decode("utf-8"))
 
 
 def test_non_finite_recorded_numbers_are_null_on_the_page(tmp_path: Path) -> None:
