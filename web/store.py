@@ -151,8 +151,7 @@ class Store:
     def run(self, name: str, ref: str | None, since: str | None = None) -> dict[str, Any]:
         if self.live is not None and name == LIVE:
             return self.live_run(self.live, ref, since)
-        log, task = self.task(name, ref)
-        detail = run_detail(name, log, task, self.findings.get(name, log, task))
+        detail = run_detail(name, *self.explained(name, ref))
         detail["chat"] = {"recording_path": str(self.path(name)), "checkpoints": str(self.checkpoints)}
         return detail
 
