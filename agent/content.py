@@ -59,7 +59,7 @@ def _rank(run: SkillRun) -> int:
     return 0 if run.state == "succeeded" else 1 if _started(run) else 2
 
 
-def _join(words: list[str]) -> str:
+def join_words(words: list[str]) -> str:
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
@@ -74,11 +74,11 @@ def trips_words(task: Task) -> str:
         if run.skill in NAV_SKILLS and isinstance(loc, str):
             place = place_name(loc)
             (reached if run.state == "succeeded" else tried if _started(run) else never).append(place)
-    parts = [f"I went to {_join(reached)}"] if reached else []
+    parts = [f"I went to {join_words(reached)}"] if reached else []
     if tried:
-        parts.append(f"I tried to go to {_join(tried)} but didn't get there")
+        parts.append(f"I tried to go to {join_words(tried)} but didn't get there")
     if never:
-        parts.append(f"I never set off for {_join(never)}")
+        parts.append(f"I never set off for {join_words(never)}")
     if not parts:
         return "I didn't drive anywhere"
     return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + ", and " + parts[-1]

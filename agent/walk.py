@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from hexar.agent.content import task_name
+from hexar.agent.content import join_words, task_name
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Context, Explanation
@@ -95,7 +95,7 @@ def findings(registry: Registry, question: str, log: EventLog, task: Task) -> li
     skipped = [r for r in task.skills if r.time_of("running") is None]
     if task.valid and skipped and task.failed_skill is not None:
         named = [f"{r.index + 1} (to {step_words(r, short=True)})" for r in skipped]
-        steps = named[0] if len(named) == 1 else ", ".join(named[:-1]) + " and " + named[-1]
+        steps = join_words(named)
         word = "Step" if len(skipped) == 1 else "Steps"
         out.append(Finding("", Explanation(
             explainer="planner", causes=["planner.plan_ok"],
