@@ -14,6 +14,7 @@ from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import (
     NAV_SKILLS,
     Trip,
+    join_words,
     last_pose,
     place_name,
     plan_words,
@@ -57,10 +58,6 @@ def _started(run: SkillRun) -> bool:
 def _rank(run: SkillRun) -> int:
     """Which step answers "why did you go to X?" best: one that got there, then one that set off, then a plan."""
     return 0 if run.state == "succeeded" else 1 if _started(run) else 2
-
-
-def join_words(words: list[str]) -> str:
-    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " and " + words[-1]
 
 
 def trips_words(task: Task) -> str:

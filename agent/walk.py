@@ -9,12 +9,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from hexar.agent.content import join_words, task_name
+from hexar.agent.content import task_name
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.planner import task_findings
-from hexar.explainers.recorded import NAV_SKILLS, place_name, step_words, trips_inside, utterances
+from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, step_words, trips_inside, utterances
 from hexar.explainers.registry import Registry
 from hexar.explainers.tts import compare
 

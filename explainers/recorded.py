@@ -132,6 +132,11 @@ def step_words(run: SkillRun, short: bool = False) -> str:
     return run.skill.replace("_", " ")
 
 
+def join_words(words: list[str], last: str = "and") -> str:
+    """"a", "a and b", "a, b and c" (or `last` = "or")."""
+    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} {last} {words[-1]}"
+
+
 def sentence(text: str) -> str:
     """End with one full stop, also after a quote that ends in its own (`say "Hi."`)."""
     return text if text.rstrip('"').endswith((".", "!", "?")) else text + "."

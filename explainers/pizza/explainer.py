@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, ClassVar
 from hexar.events.contract import PIZZA_EVENTS, PIZZA_STATUS_NAME
 from hexar.events.records import StatusRecord
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.recorded import join_words
 
 if TYPE_CHECKING:
     from hexar.explainers.pizza.recommender import PizzaRecommender
@@ -38,10 +39,6 @@ def a_pizza(name: str) -> str:
     return f"{'an' if name[:1].lower() in 'aeio' else 'a'} {name}"
 
 
-def join(words: list[str], last: str = "and") -> str:
-    return words[0] if len(words) == 1 else f"{', '.join(words[:-1])} {last} {words[-1]}"
-
-
 def _strength(weight: float, strongest: float) -> str:
     share = abs(weight) / strongest if strongest > 0 else 0.0
     return "strongly" if share >= 0.5 else "somewhat" if share >= MIN_SHARE else "slightly"
@@ -58,10 +55,10 @@ def weighed(pizza: str, weights: list[Weight], strongest: float, most: int = 4) 
 
     pro = [words(w) for w in named if w.weight > 0][:most]
     con = [words(w) for w in named if w.weight < 0][:most - 1]
-    out = [f"What weighed most for {a_pizza(pizza)}: {join(pro)}." if pro else
+    out = [f"What weighed most for {a_pizza(pizza)}: {join_words(pro)}." if pro else
            f"Nothing you have spoke clearly for {a_pizza(pizza)}."]
     if con:
-        out.append(f"What weighed against it: {join(con)}.")
+        out.append(f"What weighed against it: {join_words(con)}.")
     return out
 
 
@@ -172,12 +169,12 @@ class PizzaRecommenderExplainer:
         rec = default_recommender()
         known, unknown = rec.known(available)
         predicted = rec.recommend(known)
-        had = join([pretty(a) for a in available]) if available else "no ingredients at all"
+        had = join_words([pretty(a) for a in available]) if available else "no ingredients at all"
         model = ("my recipe model still picks the same for them" if predicted == pizza
                  else f"my recipe model picks {a_pizza(predicted)} for them")
         details = [f"You told me you had {had}.", f"I recommended {a_pizza(pizza)}, and {model}."]
         if unknown:
-            details.append(f"{join([pretty(u) for u in unknown]).capitalize()} "
+            details.append(f"{join_words([pretty(u) for u in unknown]).capitalize()} "
                            f"{'is' if len(unknown) == 1 else 'are'} not in my recipe data, so I left "
                            f"{'it' if len(unknown) == 1 else 'them'} out.")
         if predicted != pizza:
@@ -205,7 +202,7 @@ class PizzaRecommenderExplainer:
         reasons = [w.ingredient for w in strong if w.present][:3]
         missing = [w.ingredient for w in strong if not w.present][:2]
 
-        have = join([pretty(r) for r in reasons]) if reasons else ""
+        have = join_words([pretty(r) for r in reasons]) if reasons else ""
         sentences = []
         if predicted == pizza:
             if reasons:
@@ -222,7 +219,7 @@ class PizzaRecommenderExplainer:
                 sentences.append(f"What speaks for {a_pizza(pizza)} is that you have {have}.")
         if missing:
             also = " also" if reasons else ""
-            sentences.append(f"Not having {join([pretty(m) for m in missing], 'or')}{also} pointed to it.")
+            sentences.append(f"Not having {join_words([pretty(m) for m in missing], 'or')}{also} pointed to it.")
         causes = [CAUSE] if predicted == pizza else [CAUSE, MISMATCH]
         return Explanation(
             explainer=self.name,
