@@ -245,6 +245,8 @@ NAV_CAUSES = frozenset({
     "navigation.goal_unreachable", "navigation.off_costmap", "navigation.transform_error",
     "navigation.commands_not_reaching_base", "navigation.configuration_error", "navigation.collision_ahead",
     "navigation.controller_failure", "navigation.docking_failure", "navigation.no_progress",
+    # issue 20: a start pose on occupied/unknown cells, and a node of the stack that never came up
+    "navigation.start_in_obstacle", "navigation.bringup_failure",
 })
 
 
