@@ -140,7 +140,8 @@ def evaluate(excerpts: Sequence[Excerpt], runs: Path, ask: Ask, step: Callable[[
             r = ask(path, question)
             answer, error, causes = str(r.get("answer", "")), str(r.get("error", "")), tuple(r.get("causes", ()))
         except USER_ERRORS as err:  # e.g. no task to explain: that excerpt is answered by nothing
-            answer, error, causes = "", f"{type(err).__name__}: {err}", ()
+            # the recording's temporary folder is no part of the result: name the excerpt instead
+            answer, error, causes = "", f"{type(err).__name__}: {err}".replace(str(path), ex.id), ()
         claims = tuple(sorted(read_claims(answer).affirmed))
         out.append(Result(ex.id, ex.distro, ex.cause, ex.outcome, ex.logs_show_cause, task, question, answer,
                           error, causes, claims, grade(ex, claims, answer), grade(ex, causes)))
