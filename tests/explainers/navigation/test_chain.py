@@ -198,3 +198,15 @@ def test_without_a_goal_end_the_last_error_is_still_quoted(tmp_path: Path) -> No
     assert answer.causes == [UNEXPLAINED]
     assert answer.text.startswith("The recording does not show whether my navigation")
     assert "the last error my logs show came from sllidar_node" in answer.text
+
+
+def test_a_recording_of_a_stack_that_never_came_up_has_a_task_to_explain(tmp_path: Path) -> None:
+    # no /task_info and no goal: the bring-up error itself is the navigation that failed (events.nav_goals)
+    b = BagBuilder()
+    for i, (name, level, msg) in enumerate(DIED):
+        b.log(T0 + sec_ns(i), name, level, msg)
+    log = read_recording(b.write(tmp_path / "bag"))
+    task = log.task()
+    assert task.derived and task.skills[0].state == "failed"
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, task))
+    assert answer.causes == [g.BRINGUP] and "controller_server died" in answer.text
