@@ -336,7 +336,8 @@ def eval_(
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
-                                       "threads) or real-nav2-heldout (threads never tuned on); the real-nav2 "
+                                       "threads), real-nav2-heldout (threads never tuned on) or real-nav2-blind "
+                                       "(issue 20's blind set); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",
 ) -> None:
