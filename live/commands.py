@@ -45,20 +45,19 @@ def pick_transport(kind: str) -> str:
 def make_transport(kind: str, domain: int | None, tts_topic: str | None, record: Path | None = None) -> Transport:
     if tts_topic is not None and not tts_topic.startswith("/"):
         raise BadOptionError(f"--tts-topic must be an absolute ROS topic such as /tts_text, not {tts_topic!r}")
-    if pick_transport(kind) == "rclpy":
-        if record is not None:
-            raise BadOptionError("--record works with --transport dds; on the robot, run ros2 bag record")
-        from hexar.live.ros import RclpyTransport
-
-        return RclpyTransport(tts_topic=tts_topic)
-    from hexar.live.dds import DdsTransport
-
+    chosen, domain = pick_transport(kind), domain_id(domain)
     recorder = None
     if record is not None:
         from hexar.live.recorder import RollingRecorder
 
         recorder = RollingRecorder(record)
-    return DdsTransport(domain_id(domain), tts_topic=tts_topic, recorder=recorder)
+    if chosen == "rclpy":
+        from hexar.live.ros import RclpyTransport
+
+        return RclpyTransport(domain, tts_topic=tts_topic, recorder=recorder)
+    from hexar.live.dds import DdsTransport
+
+    return DdsTransport(domain, tts_topic=tts_topic, recorder=recorder)
 
 
 @dataclass
@@ -119,8 +118,7 @@ def serve(opts: ServeOptions) -> int:
         ears.start()
     print(f"hexar serve: listening over {transport.name}; answers on /hexar/answer; writes only "
           f"{', '.join(transport.writer_topics())}", file=sys.stderr, flush=True)
-    stop = threading.Event()
-    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+    stop = _stop_on_signals()
     try:
         deadline = None if opts.duration_s is None else time.monotonic() + opts.duration_s
         while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
@@ -136,6 +134,15 @@ def serve(opts: ServeOptions) -> int:
     return 0
 
 
+def _stop_on_signals() -> threading.Event:
+    """SIGTERM and SIGINT end the command through its normal path, so the transport closes its DDS participant
+    (a ROS 2 node left to the interpreter's exit aborts, and Fast DDS leaves its shared memory behind)."""
+    stop = threading.Event()
+    for sig in (signal.SIGTERM, signal.SIGINT):
+        signal.signal(sig, lambda *_: stop.set())
+    return stop
+
+
 def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float) -> int:
     from hexar.events.reader import resolve_path
     from hexar.live.replay import DdsReplayer, replay
@@ -149,11 +156,12 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
     if pick_transport(transport) == "rclpy":
         from hexar.live.ros import RclpyReplayer
 
-        writer = RclpyReplayer()
+        writer = RclpyReplayer(domain_id(domain))
     else:
         writer = DdsReplayer(domain_id(domain))
+    stop = _stop_on_signals()
     try:
-        stats = replay(run, writer, rate=rate, start_s=start_s)
+        stats = replay(run, writer, rate=rate, start_s=start_s, should_stop=stop.is_set)
     finally:
         writer.close()
     skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""

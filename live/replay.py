@@ -135,6 +135,9 @@ class DdsReplayer:
         ros_type = c.TYPE_OF[topic]  # a ROS 1 log goes out as rcl_interfaces/Log, a TwistStamped as Twist
         self.endpoint.writer(topic, ros_type, QOS_OF[topic]).write(msg, timestamp=t)
 
+    def matched(self, topic: str) -> int:
+        return len(self.endpoint.writers[topic].get_matched_subscriptions())
+
     def prepare(self) -> None:
         """Create every writer up front, so readers have matched them before the first message."""
         for topic, qos in QOS_OF.items():
@@ -156,7 +159,20 @@ class DdsReplayer:
         self.endpoint.close()
 
 
-def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 0.5,
+def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3) -> bool:
+    """Wait (at most `timeout_s`) until /rosout and /task_info each have a matched reader, then `settle_s` more
+    for the other topics: discovery across DDS vendors takes a second or more, and what a volatile topic
+    carries before its reader matched is lost. False when no reader came (a replay to nobody still plays)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if all(writer.matched(topic) for topic in (c.ROSOUT, c.TASK_INFO)):
+            time.sleep(settle_s)
+            return True
+        time.sleep(0.02)
+    return False
+
+
+def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 3.0,
            on_message: Callable[[str, int, float], None] | None = None,
            should_stop: Callable[[], bool] | None = None) -> ReplayStats:
     """Publish `path` through `writer` (DdsReplayer or the rclpy one) at `rate` x real time.
@@ -167,7 +183,7 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
         raise BadOptionError(f"--rate must be above 0, not {rate}")
     messages, skipped, _ = bag_messages(path, start_s)
     writer.prepare()
-    time.sleep(warmup_s)  # DDS discovery: readers and writers find each other in a few hundred milliseconds
+    wait_for_readers(writer, warmup_s)
     stats = ReplayStats(skipped_topics=tuple(skipped))
     started = time.monotonic()
     first: int | None = None

@@ -70,6 +70,8 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
 QUESTION_QOS = TopicQos(depth=100)  # keep-last: a burst of questions must not push earlier ones out
 ANSWER_QOS = TopicQos(durability="transient_local", depth=10)
 TTS_QOS = TopicQos(depth=10)
+# /clock: read best-effort, which matches what rclcpp's ClockQoS (best effort) and a reliable publisher offer
+CLOCK_QOS = TopicQos(reliable=False, depth=10)
 # The replayer offers what the robot's publishers offer, so a reader that matches it matches the robot.
 PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.ROSOUT: TopicQos(durability="transient_local", depth=1000),

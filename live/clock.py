@@ -1,0 +1,128 @@
+"""One timeline for the live log, whatever clock the robot runs on.
+
+A recording dates an unstamped message (`/task_info`, the Bool flags, the action status) by the time the
+recorder received it, on the robot's clock; the live transports have the DDS source timestamp instead, the
+publisher's wall clock. The two agree on a robot that runs live. They do not when the robot's clock is not its
+wall clock:
+- `ros2 bag play` of an old recording republishes header and /rosout stamps of the recording day, while the
+  source timestamps are today (and, at `--rate 10`, advance ten times slower than the stamps);
+- simulated time (`use_sim_time`, /clock from Gazebo or from `ros2 bag play --clock`): stamps count from the
+  simulation's start.
+Dated by source time, a failing /task_info then lands days away from its log lines, and every failure reads
+"no log lines and no localisation data for that time".
+
+So unstamped messages are dated on the robot's clock, mapped from their source time through reference points
+(source time, robot time): each /clock message is one (the robot's clock itself), and so is each /rosout line
+(rcl stamps a line when it is logged, just before it is published). Robot time = the latest reference's robot
+time + rate x (source time - its source time), the rate fitted over the recent references (1 on a live robot,
+10 at `--rate 10`). A robot whose references agree with the source times within `same_clock_s` runs live: its
+source times are used as they are. Until a first reference arrives, unstamped records wait (at most `hold_s`),
+so a plan published before the first log line is not dated on the wrong day.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from collections.abc import Callable
+from typing import Any
+
+from hexar.events import contract as c
+from hexar.events.records import LogLine, stamp_ns
+from hexar.live.convert import Record, to_records
+
+NS = 1_000_000_000
+CLOCK = "/clock"  # rosgraph_msgs/msg/Clock: the simulation's or `ros2 bag play --clock`'s time
+CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
+# The topics whose records carry their own stamp whenever the publisher set one.
+STAMPED = frozenset({c.ROSOUT, c.AMCL_POSE, c.ODOM, c.GOAL_POSE}) | frozenset(
+    topic for topic, typ in c.TYPE_OF.items() if typ == c.DIAG_TYPE)
+
+
+class Timeline:
+    """Source times -> robot times. Not thread-safe: each transport calls it from its one receive thread."""
+
+    def __init__(self, same_clock_s: float = 10.0, hold_s: float = 1.0, window: int = 64) -> None:
+        self.same_clock_ns = int(same_clock_s * NS)
+        self.hold_ns = int(hold_s * NS)
+        self._clock: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from /clock
+        self._logs: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from /rosout
+        self._pending: list[tuple[str, Any, int, int]] = []  # (topic, msg, source, monotonic ns received)
+        self.offset_ns = 0  # robot time - source time at the latest reference: for the node's messages
+        self.rate = 1.0
+
+    # -- references -----------------------------------------------------------------------------------------
+
+    def clock(self, robot: int, source: int) -> None:
+        _append(self._clock, source, robot, self.same_clock_ns)
+
+    def stamped(self, robot: int, source: int) -> None:
+        if robot > 0 and source > 0:
+            _append(self._logs, source, robot, self.same_clock_ns)
+
+    def _refs(self) -> deque[tuple[int, int]]:
+        # /clock, once heard, is the robot's clock; /rosout stamps are the fallback
+        return self._clock if self._clock else self._logs
+
+    @property
+    def known(self) -> bool:
+        return bool(self._clock or self._logs)
+
+    def date(self, source: int) -> int:
+        """The robot time of a message written at `source` (DDS source timestamp, ns)."""
+        refs = self._refs()
+        if not refs or source <= 0:
+            return source
+        ref_source, ref_robot = refs[-1]
+        if not self._clock and all(abs(r - s) <= self.same_clock_ns for s, r in refs):
+            self.offset_ns, self.rate = 0, 1.0
+            return source  # the robot runs live: its source times are its clock
+        first_source, first_robot = refs[0]
+        span = ref_source - first_source
+        rate = (ref_robot - first_robot) / span if span >= NS // 2 else 1.0
+        self.rate = min(max(rate, 0.01), 1000.0)
+        self.offset_ns = ref_robot - ref_source
+        return ref_robot + int(self.rate * (source - ref_source))
+
+    # -- records --------------------------------------------------------------------------------------------
+
+    def records(self, topic: str, msg: Any, source: int) -> list[Record]:
+        """The records of one message, dated on the robot's clock; [] for /clock and for held messages."""
+        if topic == CLOCK:
+            self.clock(stamp_ns(msg.clock.sec, msg.clock.nanosec), source)
+            return self.flush()
+        if topic not in STAMPED and not self.known:
+            self._pending.append((topic, msg, source, time.monotonic_ns()))
+            return self.flush()
+        records = to_records(topic, msg, self.date(source))
+        if topic == c.ROSOUT and stamp_ns(msg.stamp.sec, msg.stamp.nanosec):
+            for record in records:
+                if isinstance(record, LogLine):
+                    self.stamped(record.t, source)
+        return self.flush() + records
+
+    def flush(self) -> list[Record]:
+        """The held records, once a reference came or they waited `hold_s` (then dated by source time);
+        the transports also call it when idle."""
+        if not self._pending or (not self.known and time.monotonic_ns() - self._pending[0][3] < self.hold_ns):
+            return []
+        held, self._pending = self._pending, []
+        return [r for topic, msg, source, _ in held for r in to_records(topic, msg, self.date(source))]
+
+
+def _append(refs: deque[tuple[int, int]], source: int, robot: int, same_ns: int) -> None:
+    """Add a reference; one whose offset differs from the last by more than `same_ns` starts a new clock (the
+    robot restarted, a bag play began or looped), so the old references are dropped."""
+    if refs and abs((robot - source) - (refs[-1][1] - refs[-1][0])) > same_ns:
+        refs.clear()
+    refs.append((source, robot))
+
+
+def add_all(records: list[Record], add: Callable[[Record], bool], on_record: Callable[[Record], None]) -> bool:
+    """Add records to the log, telling the node of each new one; True when any was new."""
+    fresh = False
+    for record in records:
+        if add(record):
+            fresh = True
+            on_record(record)
+    return fresh
