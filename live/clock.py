@@ -54,11 +54,22 @@ class Timeline:
     # -- references -----------------------------------------------------------------------------------------
 
     def clock(self, robot: int, source: int) -> None:
-        _append(self._clock, source, robot, self.same_clock_ns)
+        self._append(self._clock, source, robot)
 
     def stamped(self, robot: int, source: int) -> None:
         if robot > 0 and source > 0:
-            _append(self._logs, source, robot, self.same_clock_ns)
+            self._append(self._logs, source, robot)
+
+    def _append(self, refs: deque[tuple[int, int]], source: int, robot: int) -> None:
+        """Add a reference. One far (`same_clock_s`) from where the fitted clock puts it, or going back in
+        robot time, starts a new clock (the robot restarted, a bag play began or looped): the old references
+        are dropped."""
+        if refs:
+            fitted = len(refs) >= 2 and refs[-1][0] - refs[0][0] >= NS // 2
+            off = abs(robot - self._map(refs, source)) > self.same_clock_ns if fitted else False
+            if off or robot < refs[-1][1] - self.same_clock_ns:
+                refs.clear()
+        refs.append((source, robot))
 
     def _refs(self) -> deque[tuple[int, int]]:
         # /clock, once heard, is the robot's clock; /rosout stamps are the fallback
@@ -73,10 +84,14 @@ class Timeline:
         refs = self._refs()
         if not refs or source <= 0:
             return source
-        ref_source, ref_robot = refs[-1]
         if not self._clock and all(abs(r - s) <= self.same_clock_ns for s, r in refs):
             self.offset_ns, self.rate = 0, 1.0
             return source  # the robot runs live: its source times are its clock
+        return self._map(refs, source)
+
+    def _map(self, refs: deque[tuple[int, int]], source: int) -> int:
+        """The latest reference's robot time plus the fitted rate times the source time since."""
+        ref_source, ref_robot = refs[-1]
         first_source, first_robot = refs[0]
         span = ref_source - first_source
         rate = (ref_robot - first_robot) / span if span >= NS // 2 else 1.0
@@ -108,14 +123,6 @@ class Timeline:
             return []
         held, self._pending = self._pending, []
         return [r for topic, msg, source, _ in held for r in to_records(topic, msg, self.date(source))]
-
-
-def _append(refs: deque[tuple[int, int]], source: int, robot: int, same_ns: int) -> None:
-    """Add a reference; one whose offset differs from the last by more than `same_ns` starts a new clock (the
-    robot restarted, a bag play began or looped), so the old references are dropped."""
-    if refs and abs((robot - source) - (refs[-1][1] - refs[-1][0])) > same_ns:
-        refs.clear()
-    refs.append((source, robot))
 
 
 def add_all(records: list[Record], add: Callable[[Record], bool], on_record: Callable[[Record], None]) -> bool:

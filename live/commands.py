@@ -143,7 +143,8 @@ def _stop_on_signals() -> threading.Event:
     return stop
 
 
-def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float) -> int:
+def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float,
+                   clock_hz: float = 0.0) -> int:
     from hexar.events.reader import resolve_path
     from hexar.live.replay import DdsReplayer, replay
 
@@ -152,6 +153,8 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
         raise BadOptionError(f"--rate must be above 0, not {rate}")
     if start_s < 0:
         raise BadOptionError(f"--start must not be negative, not {start_s}")
+    if clock_hz < 0:
+        raise BadOptionError(f"--clock must be 0 (off) or a rate in Hz, not {clock_hz}")
     writer: Any
     if pick_transport(transport) == "rclpy":
         from hexar.live.ros import RclpyReplayer
@@ -161,7 +164,7 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
         writer = DdsReplayer(domain_id(domain))
     stop = _stop_on_signals()
     try:
-        stats = replay(run, writer, rate=rate, start_s=start_s, should_stop=stop.is_set)
+        stats = replay(run, writer, rate=rate, start_s=start_s, should_stop=stop.is_set, clock_hz=clock_hz)
     finally:
         writer.close()
     skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""

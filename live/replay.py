@@ -138,6 +138,13 @@ class DdsReplayer:
     def matched(self, topic: str) -> int:
         return len(self.endpoint.writers[topic].get_matched_subscriptions())
 
+    def clock(self, t: int) -> None:
+        from hexar.live import msgs
+        from hexar.live.clock import CLOCK, CLOCK_TYPE
+        from hexar.live.topics import CLOCK_QOS
+
+        self.endpoint.writer(CLOCK, CLOCK_TYPE, CLOCK_QOS).write(msgs.Clock(clock=msgs.time_of(t)), timestamp=t)
+
     def prepare(self) -> None:
         """Create every writer up front, so readers have matched them before the first message."""
         for topic, qos in QOS_OF.items():
@@ -174,10 +181,12 @@ def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3) -> bo
 
 def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 3.0,
            on_message: Callable[[str, int, float], None] | None = None,
-           should_stop: Callable[[], bool] | None = None) -> ReplayStats:
+           should_stop: Callable[[], bool] | None = None, clock_hz: float = 0.0) -> ReplayStats:
     """Publish `path` through `writer` (DdsReplayer or the rclpy one) at `rate` x real time.
 
-    `on_message(topic, bag_time, wall_time)` sees each message right after it was written.
+    `on_message(topic, bag_time, wall_time)` sees each message right after it was written. With `clock_hz`,
+    the recording's time also goes out on /clock, at most `clock_hz` times per second of recording time and
+    before each message (as `ros2 bag play --clock` publishes it).
     """
     if not rate > 0:
         raise BadOptionError(f"--rate must be above 0, not {rate}")
@@ -187,6 +196,8 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
     stats = ReplayStats(skipped_topics=tuple(skipped))
     started = time.monotonic()
     first: int | None = None
+    clock_every = int(1e9 / clock_hz) if clock_hz > 0 else 0
+    last_clock = -clock_every
     for topic, msgtype, t, m in messages:
         if should_stop is not None and should_stop():
             break
@@ -195,6 +206,9 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
         delay = due - time.monotonic()
         if delay > 0:
             time.sleep(delay)
+        if clock_every and t - last_clock >= clock_every:
+            writer.clock(t)
+            last_clock = t
         writer.write(topic, msgtype, to_dds(msgtype, m) if writer.wants_dds else m, t)
         stats.published += 1
         if on_message is not None:

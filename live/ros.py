@@ -54,7 +54,8 @@ def _bootstrap_paths() -> str | None:
     except ImportError:
         return None
     paths = str(boot.get_ros_paths())
-    return None if paths == os.environ.get("LD_LIBRARY_PATH", "") else paths
+    have = set(os.environ.get("LD_LIBRARY_PATH", "").split(os.pathsep))
+    return None if set(paths.split(os.pathsep)) <= have else paths
 
 
 def import_rclpy() -> Any:
@@ -245,6 +246,13 @@ class RclpyReplayer:
 
     def matched(self, topic: str) -> int:
         return int(self._pubs[topic].get_subscription_count())
+
+    def clock(self, t: int) -> None:
+        if CLOCK not in self._pubs:
+            self._pubs[CLOCK] = self.ros.node.create_publisher(_msg_class(CLOCK_TYPE), CLOCK, _profile(CLOCK_QOS))
+        stamp = self._humble.types["builtin_interfaces/msg/Time"](sec=t // 1_000_000_000, nanosec=t % 1_000_000_000)
+        msg = self._humble.types[CLOCK_TYPE](clock=stamp)
+        self._pubs[CLOCK].publish(bytes(self._humble.serialize_cdr(msg, CLOCK_TYPE)))
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
         ros_type = c.TYPE_OF[topic]
