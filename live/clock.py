@@ -13,11 +13,11 @@ Dated by source time, a failing /task_info then lands days away from its log lin
 
 So unstamped messages are dated on the robot's clock, mapped from their source time through reference points
 (source time, robot time): each /clock message is one (the robot's clock itself), and so is each /rosout line
-(rcl stamps a line when it is logged, just before it is published). Robot time = the latest reference's robot
-time + rate x (source time - its source time), the rate fitted over the recent references (1 on a live robot,
-10 at `--rate 10`). A robot whose references agree with the source times within `same_clock_s` runs live: its
-source times are used as they are. Until a first reference arrives, unstamped records wait (at most `hold_s`),
-so a plan published before the first log line is not dated on the wrong day.
+(rcl stamps a line when it is logged, just before it is published) and each diagnostic array. Robot time =
+the latest reference's robot time + rate x (source time - its source time), the rate fitted over the recent
+references (1 on a live robot, 10 at `--rate 10`). A robot whose references agree with the source times within `same_clock_s` runs live: its
+source times are used as they are. Until the references can date them, unstamped records wait (at most
+`hold_s`, then dated as best known), so a plan published before the first log line is not dated on the wrong day.
 """
 
 from __future__ import annotations
@@ -28,15 +28,19 @@ from collections.abc import Callable
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.records import LogLine, stamp_ns
+from hexar.events.records import stamp_ns
 from hexar.live.convert import Record, to_records
 
 NS = 1_000_000_000
+MIN_SPAN = NS // 20  # references this far apart in source time fit a rate (source stamps are exact to µs)
 CLOCK = "/clock"  # rosgraph_msgs/msg/Clock: the simulation's or `ros2 bag play --clock`'s time
 CLOCK_TYPE = "rosgraph_msgs/msg/Clock"
 # The topics whose records carry their own stamp whenever the publisher set one.
-STAMPED = frozenset({c.ROSOUT, c.AMCL_POSE, c.ODOM, c.GOAL_POSE}) | frozenset(
-    topic for topic, typ in c.TYPE_OF.items() if typ == c.DIAG_TYPE)
+DIAGNOSTICS = frozenset(topic for topic, typ in c.TYPE_OF.items() if typ == c.DIAG_TYPE)
+STAMPED = frozenset({c.ROSOUT, c.AMCL_POSE, c.ODOM, c.GOAL_POSE}) | DIAGNOSTICS
+# The stamped topics whose stamp is taken when the message is published: /rosout lines and diagnostic arrays
+# (a pose is stamped with its sensor's time, which lags by up to a scan period and is no reference).
+REFERENCES = frozenset({c.ROSOUT}) | DIAGNOSTICS
 
 
 class Timeline:
@@ -46,7 +50,7 @@ class Timeline:
         self.same_clock_ns = int(same_clock_s * NS)
         self.hold_ns = int(hold_s * NS)
         self._clock: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from /clock
-        self._logs: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from /rosout
+        self._logs: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from REFERENCES
         self._pending: list[tuple[str, Any, int, int]] = []  # (topic, msg, source, monotonic ns received)
         self.offset_ns = 0  # robot time - source time at the latest reference: for the node's messages
         self.rate = 1.0
@@ -65,7 +69,7 @@ class Timeline:
         robot time, starts a new clock (the robot restarted, a bag play began or looped): the old references
         are dropped."""
         if refs:
-            fitted = len(refs) >= 2 and refs[-1][0] - refs[0][0] >= NS // 2
+            fitted = len(refs) >= 2 and refs[-1][0] - refs[0][0] >= MIN_SPAN
             off = abs(robot - self._map(refs, source)) > self.same_clock_ns if fitted else False
             if off or robot < refs[-1][1] - self.same_clock_ns:
                 refs.clear()
@@ -76,8 +80,14 @@ class Timeline:
         return self._clock if self._clock else self._logs
 
     @property
-    def known(self) -> bool:
-        return bool(self._clock or self._logs)
+    def ready(self) -> bool:
+        """Whether an unstamped message can be dated now: the robot runs live, or a rate is fitted."""
+        refs = self._refs()
+        if not refs:
+            return False
+        if not self._clock and all(abs(r - s) <= self.same_clock_ns for s, r in refs):
+            return True
+        return len(refs) >= 2 and refs[-1][0] - refs[0][0] >= MIN_SPAN
 
     def date(self, source: int) -> int:
         """The robot time of a message written at `source` (DDS source timestamp, ns)."""
@@ -90,14 +100,20 @@ class Timeline:
         return self._map(refs, source)
 
     def _map(self, refs: deque[tuple[int, int]], source: int) -> int:
-        """The latest reference's robot time plus the fitted rate times the source time since."""
+        """Robot time on the line fitted (least squares) through the references: the rate is its slope, and
+        publishing jitter, which the rate multiplies (x10 in a bag play at --rate 10), averages out."""
         ref_source, ref_robot = refs[-1]
-        first_source, first_robot = refs[0]
-        span = ref_source - first_source
-        rate = (ref_robot - first_robot) / span if span >= NS // 2 else 1.0
-        self.rate = min(max(rate, 0.01), 1000.0)
         self.offset_ns = ref_robot - ref_source
-        return ref_robot + int(self.rate * (source - ref_source))
+        if len(refs) < 2 or ref_source - refs[0][0] < MIN_SPAN:
+            self.rate = 1.0
+            return ref_robot + (source - ref_source)
+        xs = [(s - ref_source) / NS for s, _ in refs]
+        ys = [(r - ref_robot) / NS for _, r in refs]
+        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+        var = sum((x - mx) ** 2 for x in xs)
+        rate = sum((x - mx) * (y - my) for x, y in zip(xs, ys, strict=True)) / var if var > 0 else 1.0
+        self.rate = min(max(rate, 0.01), 1000.0)
+        return ref_robot + int((my + self.rate * ((source - ref_source) / NS - mx)) * NS)
 
     # -- records --------------------------------------------------------------------------------------------
 
@@ -106,20 +122,19 @@ class Timeline:
         if topic == CLOCK:
             self.clock(stamp_ns(msg.clock.sec, msg.clock.nanosec), source)
             return self.flush()
-        if topic not in STAMPED and not self.known:
+        if topic not in STAMPED and (self._pending or not self.ready):
             self._pending.append((topic, msg, source, time.monotonic_ns()))
             return self.flush()
         records = to_records(topic, msg, self.date(source))
-        if topic == c.ROSOUT and stamp_ns(msg.stamp.sec, msg.stamp.nanosec):
-            for record in records:
-                if isinstance(record, LogLine):
-                    self.stamped(record.t, source)
+        if topic in REFERENCES:
+            stamp = msg.stamp if topic == c.ROSOUT else msg.header.stamp
+            self.stamped(stamp_ns(stamp.sec, stamp.nanosec), source)
         return self.flush() + records
 
     def flush(self) -> list[Record]:
         """The held records, once a reference came or they waited `hold_s` (then dated by source time);
         the transports also call it when idle."""
-        if not self._pending or (not self.known and time.monotonic_ns() - self._pending[0][3] < self.hold_ns):
+        if not self._pending or (not self.ready and time.monotonic_ns() - self._pending[0][3] < self.hold_ns):
             return []
         held, self._pending = self._pending, []
         return [r for topic, msg, source, _ in held for r in to_records(topic, msg, self.date(source))]

@@ -76,7 +76,12 @@ def import_rclpy() -> Any:
 
 def rclpy_available() -> bool:
     """Whether rclpy can be imported here, without importing it (it costs a quarter of a second)."""
-    return importlib.util.find_spec("rclpy") is not None
+    if "rclpy" in sys.modules:
+        return sys.modules["rclpy"] is not None
+    try:
+        return importlib.util.find_spec("rclpy") is not None
+    except (ImportError, ValueError):
+        return False
 
 
 def _msg_class(ros_type: str) -> Any:

@@ -1,5 +1,7 @@
-"""Faults on real DDS traffic: the replayer killed and restarted mid-task, duplicated and reordered messages,
-a 10 MB log line. The node keeps answering, with the same causes, and never prints a traceback."""
+"""Faults on real DDS traffic, for a node on each transport: the replayer killed and restarted mid-task,
+duplicated and reordered messages, a 10 MB log line. The node keeps answering, with the same causes, and never
+prints a traceback. The faulty robot is a Cyclone participant: it writes each message at its recording time, so
+a copy sent again is the same message (a robot on rclpy would stamp the copy with a new source time)."""
 
 from __future__ import annotations
 
@@ -16,12 +18,12 @@ from tests.live.test_replay_explains import QUESTION, expected
 RUN = "bagfile_5_1"  # navigation: the path is blocked; ~70 s of traffic
 
 
-def test_replayer_killed_mid_task_and_restarted(suite: Path) -> None:
+def test_replayer_killed_mid_task_and_restarted(suite: Path, transport: str) -> None:
     failures, asked = expected(suite / RUN)
     domain = fresh_domain()
     listener = Listener(domain)
     try:
-        with live_node(domain) as node:
+        with live_node(domain, transport=transport) as node:
             first = replay_process(suite / RUN, domain, 20.0)
             deadline = time.monotonic() + 30
             while node.log.stats()["tasks"] == 0 and time.monotonic() < deadline:
@@ -45,13 +47,13 @@ def test_replayer_killed_mid_task_and_restarted(suite: Path) -> None:
         listener.close()
 
 
-def test_duplicated_reordered_and_a_10_mb_line(suite: Path) -> None:
+def test_duplicated_reordered_and_a_10_mb_line(suite: Path, transport: str) -> None:
     failures, asked = expected(suite / RUN)
     domain = fresh_domain()
     listener = Listener(domain)
     writer = DdsReplayer(domain)
     try:
-        with live_node(domain) as node:
+        with live_node(domain, transport=transport) as node:
             writer.prepare()
             time.sleep(0.5)
             messages = list(bag_messages(suite / RUN)[0])

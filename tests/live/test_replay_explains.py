@@ -1,8 +1,11 @@
-"""Recordings replayed at x10 into the node, on each transport, by a robot stand-in on the other DDS vendor:
-each failure is explained unasked, with the cause `hexar ask` gives on the recording; a later question gets the
-answer `hexar ask` gives. The rclpy stand-in publishes as `ros2 bag play` does (the recording's stamps, today's
-source times), with and without /clock. One recording per module here; all 60 in the slow test (latencies in
-scripts/bench_live.py)."""
+"""Recordings replayed at x10 into the node, on each transport: each failure is explained unasked, with the cause
+`hexar ask` gives on the recording; a later question gets the answer `hexar ask` gives. The rclpy stand-in
+publishes as `ros2 bag play` does (the recording's stamps, today's source times), with and without /clock. One
+recording per module here; all 60 in the slow test (latencies in scripts/bench_live.py).
+
+With bag-play stamps an unstamped message is dated through the fitted clock, so its publishing jitter counts ten
+times at x10: a step that starts 50 ms of robot time before its event (the pizza recording) may be dated after it
+on a loaded machine. Failures span seconds and are checked under every clock."""
 
 from __future__ import annotations
 
@@ -58,7 +61,9 @@ def check_run(run: Path, transport: str = "dds", robot: str | None = None, *extr
 
 
 def test_one_recording_per_module(suite: Path, transport: str) -> None:
-    latencies = [lat for name in ONE_PER_MODULE for lat in check_run(suite / name, transport)]
+    # the stand-in writes at the recording's times (live stamps): on Cyclone, so a node on rclpy hears Fast DDS
+    # <- Cyclone; the other clocks are in test_every_robot_clock
+    latencies = [lat for name in ONE_PER_MODULE for lat in check_run(suite / name, transport, "dds")]
     assert len(latencies) >= 4  # the pizza recording has no failure
 
 
@@ -71,6 +76,7 @@ def test_every_robot_clock(suite: Path, transport: str, clock: str) -> None:
     robot = "dds" if clock == "live" else "rclpy"
     extra = ("--clock", "40") if clock.endswith("--clock") else ()
     assert len(check_run(suite / "bagfile_11_1", transport, robot, *extra)) == 1
+    assert len(check_run(suite / "bagfile_5_1", transport, robot, *extra)) == 1
 
 
 @pytest.mark.slow
