@@ -13,11 +13,11 @@ Dated by source time, a failing /task_info then lands days away from its log lin
 
 So unstamped messages are dated on the robot's clock, mapped from their source time through reference points
 (source time, robot time): each /clock message is one (the robot's clock itself), and so is each /rosout line
-(rcl stamps a line when it is logged, just before it is published) and each diagnostic array. Robot time =
-the latest reference's robot time + rate x (source time - its source time), the rate fitted over the recent
-references (1 on a live robot, 10 at `--rate 10`). A robot whose references agree with the source times within `same_clock_s` runs live: its
-source times are used as they are. Until the references can date them, unstamped records wait (at most
-`hold_s`, then dated as best known), so a plan published before the first log line is not dated on the wrong day.
+(rcl stamps a line when it is logged, just before it is published) and each diagnostic array. Robot time lies
+on the line fitted through the recent references; its slope is the rate (1 on a live robot, 10 at `--rate 10`).
+A robot whose references agree with the source times within `same_clock_s` runs live: its source times are used
+as they are. Until the references can date them, unstamped records wait (at most `hold_s`, then dated as best
+known), so a plan published before the first log line is not dated on the wrong day.
 """
 
 from __future__ import annotations

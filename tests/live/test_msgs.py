@@ -15,8 +15,8 @@ from hexar.live.dds import IDL
 from hexar.live.ros import ROS_TYPES
 
 pytest.importorskip("rclpy")
-from cyclonedds.idl import IdlStruct  # noqa: E402
-from cyclonedds.idl.types import array, sequence  # noqa: E402
+from cyclonedds.idl import IdlStruct
+from cyclonedds.idl.types import array, sequence
 
 # the names cyclonedds uses for primitive kinds, as rosidl writes them
 PRIMITIVE = {"byte": "octet", "float64": "double", "int8": "int8", "uint8": "uint8", "int32": "int32",
