@@ -20,6 +20,7 @@ from hexar.live.topics import (
     HEXAR_PREFIX,
     QUESTION,
     QUESTION_QOS,
+    READ_ORDER,
     SUBSCRIBED,
     TTS_QOS,
     TopicQos,
@@ -175,7 +176,7 @@ class DdsTransport:
 
     def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
         self._types = {t.topic: t.type for t in SUBSCRIBED}
-        readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
+        readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in READ_ORDER]
         readers.append((CLOCK, self.endpoint.reader(CLOCK, CLOCK_TYPE, CLOCK_QOS)))
         readers.append((QUESTION, self.endpoint.reader(QUESTION, c.STRING_TYPE, QUESTION_QOS)))
         self._thread = threading.Thread(target=self._loop, args=(readers, log, on_record, on_question),

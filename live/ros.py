@@ -29,7 +29,7 @@ from hexar.live.topics import (
     HEXAR_PREFIX,
     QUESTION,
     QUESTION_QOS,
-    SUBSCRIBED,
+    READ_ORDER,
     TTS_QOS,
     TopicQos,
 )
@@ -41,6 +41,7 @@ ROS_TYPES = {
     c.ODOM_TYPE: ("nav_msgs.msg", "Odometry"), c.POSE_STAMPED_TYPE: ("geometry_msgs.msg", "PoseStamped"),
     c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"), CLOCK_TYPE: ("rosgraph_msgs.msg", "Clock"),
 }
+TAKE_BATCH = 256  # at most this many more messages of one topic per callback
 NO_ROS = ("--transport rclpy needs rclpy: on Linux x86_64 pip install 'hexar[ros]' (the ROS 2 Kilted wheels); "
           "elsewhere source a ROS 2 install (source /opt/ros/<distro>/setup.bash), or use --transport dds")
 
@@ -179,10 +180,13 @@ class RclpyTransport:
         from hexar.events.reader import _humble
 
         self._humble = _humble()
-        for spec in SUBSCRIBED:
-            self.node.create_subscription(_msg_class(spec.type), spec.topic,
-                                          self._callback(spec.topic, spec.type, log, on_record), _profile(spec.qos),
-                                          raw=True)
+        # rclpy's executor hands over one message per ready subscription per wait, in creation order: the
+        # callback takes the rest of its topic's backlog itself, and the triggers come last (topics.READ_ORDER)
+        for spec in READ_ORDER:
+            holder: list[Any] = []
+            holder.append(self.node.create_subscription(
+                _msg_class(spec.type), spec.topic, self._callback(spec.topic, spec.type, log, on_record, holder),
+                _profile(spec.qos), raw=True))
         self.node.create_subscription(_msg_class(CLOCK_TYPE), CLOCK, self._callback(CLOCK, CLOCK_TYPE, log, on_record),
                                       _profile(CLOCK_QOS), raw=True)
 
@@ -200,9 +204,9 @@ class RclpyTransport:
 
         self.ros.spin(self._report, idle, done)
 
-    def _callback(self, topic: str, ros_type: str, log: LiveLog,
-                  on_record: Callable[[Any], None]) -> Callable[[bytes, Any], None]:
-        def handle(raw: bytes, info: Any) -> None:
+    def _callback(self, topic: str, ros_type: str, log: LiveLog, on_record: Callable[[Any], None],
+                  holder: list[Any] | None = None) -> Callable[[bytes, Any], None]:
+        def one(raw: bytes, info: Any) -> None:
             try:
                 msg = self._humble.deserialize_cdr(raw, ros_type)
                 source = int(info["source_timestamp"])
@@ -212,6 +216,18 @@ class RclpyTransport:
                     self.recorder.write(topic, ros_type, bytes(raw), self.timeline.date(source))
             except Exception as err:  # one bad message is reported and skipped; the node keeps listening
                 self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+
+        def handle(raw: bytes, info: Any) -> None:
+            one(raw, info)
+            if not holder:
+                return
+            sub: Any = holder[0]
+            for _ in range(TAKE_BATCH):
+                with sub.handle:
+                    taken = sub.handle.take_message(sub.msg_type, True)
+                if taken is None:
+                    return
+                one(*taken)
 
         return handle
 

@@ -65,6 +65,12 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
 )
 
+# The order a transport reads its topics in: the evidence first, the triggers (a failing /task_info, an aborted
+# goal) last. A transport takes what arrived on each topic in turn, so a failure is seen only after the log
+# lines and skill events that arrived with it, and the explanation that it triggers already has them.
+TRIGGERS = frozenset({c.TASK_INFO, c.NAV_STATUS})
+READ_ORDER: tuple[LiveTopic, ...] = tuple(sorted(SUBSCRIBED, key=lambda t: t.topic in TRIGGERS))
+
 # What the node and the replayer offer. Answers are transient-local so a display that starts later still
 # gets the last few; the question topic is an ordinary ROS default publisher's.
 QUESTION_QOS = TopicQos(depth=100)  # keep-last: a burst of questions must not push earlier ones out
