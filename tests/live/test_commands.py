@@ -4,6 +4,7 @@ for bad input."""
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import os
 import signal
@@ -156,3 +157,17 @@ def test_chat_live_without_a_node_says_so(capsys: pytest.CaptureFixture[str]) ->
         chat_live(fresh_domain(), ["why?"], print, timeout=1.0)
     assert main(["chat"]) == 2
     assert "give a recording, or --live" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(importlib.util.find_spec("ros_wheels_bootstrapper") is None,
+                    reason="only the ROS 2 Kilted wheels re-execute Python at start-up")
+def test_rclpy_serve_works_when_python_starts_without_the_wheels_reexecution() -> None:
+    """With _ROS_WHEELS_BOOTSTRAP_COMPLETE set, no Python start pays the wheels' re-execution (`hexar ask`
+    included); `hexar serve --transport rclpy` then re-executes itself once with the wheels' library path."""
+    env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
+    env["_ROS_WHEELS_BOOTSTRAP_COMPLETE"] = "1"
+    done = subprocess.run([sys.executable, "-m", "hexar", "serve", "--transport", "rclpy", "--domain",
+                           str(fresh_domain()), "--duration", "1"], env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "listening over rclpy" in done.stderr and "Traceback" not in done.stderr
