@@ -16,8 +16,10 @@ So unstamped messages are dated on the robot's clock, mapped from their source t
 (rcl stamps a line when it is logged, just before it is published) and each diagnostic array. Robot time lies
 on the line fitted through the recent references; its slope is the rate (1 on a live robot, 10 at `--rate 10`).
 A robot whose references agree with the source times within `same_clock_s` runs live: its source times are used
-as they are. Until the references can date them, unstamped records wait (at most `hold_s`, then dated as best
-known), so a plan published before the first log line is not dated on the wrong day.
+as they are. Otherwise an unstamped record waits for the next reference (at most `hold_s`) and is kept between
+the references written just before and after it: at x10 a few milliseconds of publishing jitter would
+otherwise move it by tens of milliseconds of robot time, past the skill event it came with. A plan published
+before the first log line waits too, so it is not dated on the wrong day.
 """
 
 from __future__ import annotations
@@ -79,25 +81,40 @@ class Timeline:
         # /clock, once heard, is the robot's clock; /rosout stamps are the fallback
         return self._clock if self._clock else self._logs
 
+    def _live(self) -> bool:
+        """The robot runs live: no /clock, and its references agree with their source times."""
+        refs = self._logs
+        return not self._clock and bool(refs) and all(abs(r - s) <= self.same_clock_ns for s, r in refs)
+
     @property
     def ready(self) -> bool:
         """Whether an unstamped message can be dated now: the robot runs live, or a rate is fitted."""
         refs = self._refs()
-        if not refs:
-            return False
-        if not self._clock and all(abs(r - s) <= self.same_clock_ns for s, r in refs):
-            return True
-        return len(refs) >= 2 and refs[-1][0] - refs[0][0] >= MIN_SPAN
+        return self._live() or (len(refs) >= 2 and refs[-1][0] - refs[0][0] >= MIN_SPAN)
 
     def date(self, source: int) -> int:
         """The robot time of a message written at `source` (DDS source timestamp, ns)."""
         refs = self._refs()
         if not refs or source <= 0:
             return source
-        if not self._clock and all(abs(r - s) <= self.same_clock_ns for s, r in refs):
+        if self._live():
             self.offset_ns, self.rate = 0, 1.0
             return source  # the robot runs live: its source times are its clock
         return self._map(refs, source)
+
+    def _bracketed(self, source: int) -> int:
+        """`date(source)`, kept between the references written just before and just after it: a message goes
+        out after what was stamped and published before it and before what is published after it, whatever
+        the jitter that the fitted clock multiplies by the rate."""
+        refs = self._refs()
+        t = self.date(source)
+        before = [r for s, r in refs if s <= source]
+        after = [r for s, r in refs if s >= source]
+        if before:
+            t = max(t, max(before))
+        if after:
+            t = min(t, min(after))
+        return t
 
     def _map(self, refs: deque[tuple[int, int]], source: int) -> int:
         """Robot time on the line fitted (least squares) through the references: the rate is its slope, and
@@ -118,11 +135,16 @@ class Timeline:
     # -- records --------------------------------------------------------------------------------------------
 
     def records(self, topic: str, msg: Any, source: int) -> list[Record]:
-        """The records of one message, dated on the robot's clock; [] for /clock and for held messages."""
+        """The records of one message, dated on the robot's clock; [] for /clock and for held messages.
+
+        On a live robot an unstamped message is dated at once by its source time. Otherwise it waits until a
+        reference written after it arrives (or `hold_s`), so that it can be dated between its neighbours."""
         if topic == CLOCK:
             self.clock(stamp_ns(msg.clock.sec, msg.clock.nanosec), source)
             return self.flush()
-        if topic not in STAMPED and (self._pending or not self.ready):
+        if topic not in STAMPED:
+            if self._live() and not self._pending:
+                return to_records(topic, msg, source)
             self._pending.append((topic, msg, source, time.monotonic_ns()))
             return self.flush()
         records = to_records(topic, msg, self.date(source))
@@ -132,13 +154,24 @@ class Timeline:
         return self.flush() + records
 
     def flush(self) -> list[Record]:
-        """The held records, once a reference came or they waited `hold_s` (then dated by source time);
-        the transports also call it when idle."""
-        if not self._pending or (not self.ready and time.monotonic_ns() - self._pending[0][3] < self.hold_ns):
-            return []
-        held, self._pending = self._pending, []
-        return [r for topic, msg, source, _ in held for r in to_records(topic, msg, self.date(source))]
-
+        """The held records that can be dated now, in the order they came; the transports also call it when
+        idle, so a held message waits at most `hold_s`."""
+        out: list[Record] = []
+        now = time.monotonic_ns()
+        while self._pending:
+            topic, msg, source, got = self._pending[0]
+            refs = self._refs()
+            if self._live():
+                t = source
+            elif self.ready and refs[-1][0] >= source:
+                t = self._bracketed(source)
+            elif now - got >= self.hold_ns:
+                t = self._bracketed(source) if refs else source
+            else:
+                break
+            self._pending.pop(0)
+            out.extend(to_records(topic, msg, t))
+        return out
 
 def add_all(records: list[Record], add: Callable[[Record], bool], on_record: Callable[[Record], None]) -> bool:
     """Add records to the log, telling the node of each new one; True when any was new."""
