@@ -92,13 +92,14 @@ def one_case(suite: Path, runs: list[str], node: str, vendor: str, clock: str,
             n_q = len(listener.answers("question"))
             listener.ask(QUESTION)
             answer = listener.wait_answers(n_q + 1, "question", timeout=15.0)[n_q:]
-            ok_q = bool(answer) and answer[0]["causes"] == asked
+            ok_q = bool(answer) and answer[0].get("causes") == asked
             for a in got:
-                right = failures.get(a["task_id"]) == a["causes"]
+                right = failures.get(a.get("task_id", "")) == a.get("causes")
                 good += int(right and ok_q)
                 if not right or not ok_q:
-                    print(f"  {name}: unasked {a['causes']} (want {failures.get(a['task_id'])}), "
-                          f"asked {answer[0]['causes'] if answer else None} (want {asked})", flush=True)
+                    want = failures.get(a.get("task_id", ""))
+                    print(f"  {name}: unasked {a.get('causes')} {a.get('error', '')[:80]} (want {want}), "
+                          f"asked {answer[0].get('causes') if answer else None} (want {asked})", flush=True)
             for received, a in listener.answers("failure")[before:]:
                 key = next((k for k in listener.heard.failures if k.startswith(a["task_id"] + ":")), None)
                 if key is not None:
