@@ -50,6 +50,14 @@ class LiveChat:
                     self._mine.set()
             self._stop.wait(0.02)
 
+    def wait_for_node(self, timeout: float) -> None:
+        """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery
+        matched it is lost, and discovery across DDS vendors (a node on rclpy) takes a second or more."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline and not self._questions.get_matched_subscriptions():
+            time.sleep(0.05)
+        time.sleep(0.2)  # the node's reader has matched; let it match the rest of this participant too
+
     def ask(self, question: str, timeout: float = 30.0) -> bool:
         """Send one question and wait for its answer; False when the node did not answer in time."""
         self._mine.clear()
@@ -69,7 +77,7 @@ def chat_live(domain: int, lines: Iterable[str], show: Callable[[dict[str, Any]]
 
     chat = LiveChat(domain, show)
     try:
-        time.sleep(0.5)  # discovery
+        chat.wait_for_node(timeout)
         for line in lines:
             if line.strip() and not chat.ask(line.strip(), timeout):
                 raise LiveError(f"no answer from hexar serve on DDS domain {domain} within {timeout:.0f} s")

@@ -7,6 +7,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -22,16 +23,23 @@ SHM = Path("/dev/shm")
 
 
 def shm_leftovers(before: set[str]) -> set[str]:
-    """Files new in /dev/shm that no running process maps: what a participant that did not shut down leaves
-    (Fast DDS's segments and their semaphores). Segments other processes still use are not leftovers."""
-    mapped: set[str] = set()
-    for maps in Path("/proc").glob("[0-9]*/maps"):
+    """Fast DDS participant segments new in /dev/shm that no running process maps or holds open: what a
+    participant that did not shut down leaves (`fastdds_<16 hex>` and its `_el` lock file). The port segments
+    and their semaphores (`fastdds_port<N>`, `sem.fastdds_port<N>_mutex`) are shared by every Fast DDS process
+    on the machine, and one that ends while another opens them may leave them; they are not this test's."""
+    used: set[str] = set()
+    for proc in Path("/proc").glob("[0-9]*"):
         try:
-            lines = [line for line in maps.read_text().splitlines() if "/dev/shm/" in line]
-            mapped |= {line.rsplit("/", 1)[-1].split()[0] for line in lines}
+            lines = [line for line in (proc / "maps").read_text().splitlines() if "/dev/shm/" in line]
+            used |= {line.rsplit("/", 1)[-1].split()[0] for line in lines}
+            for fd in (proc / "fd").iterdir():
+                target = os.readlink(fd)
+                if target.startswith("/dev/shm/"):
+                    used.add(target.rsplit("/", 1)[-1])
         except OSError:
             continue  # a process that ended meanwhile, or one of another user
-    return {name for name in set(os.listdir(SHM)) - before if name not in mapped}
+    own = re.compile(r"fastdds_[0-9a-f]{16}(_el)?")
+    return {name for name in set(os.listdir(SHM)) - before if name not in used and own.fullmatch(name)}
 
 
 def serve_process(transport: str, domain: int) -> subprocess.Popen[str]:
