@@ -49,7 +49,15 @@ class StandIn:
         return int(self.writer.matched(topic))
 
     def clock(self, t: int) -> None:
-        self.writer.clock(t)
+        if self.vendor == "rclpy":
+            self.writer.clock(t)
+            return
+        from hexar.live import msgs
+        from hexar.live.clock import CLOCK, CLOCK_TYPE
+        from hexar.live.topics import CLOCK_QOS
+
+        # as `ros2 bag play --clock`: the recording's time inside, the time of writing as source time
+        self.writer.endpoint.writer(CLOCK, CLOCK_TYPE, CLOCK_QOS).write(msgs.Clock(clock=msgs.time_of(t)))
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
         if self.clock_mode == "live":
@@ -101,7 +109,7 @@ def one_case(suite: Path, runs: list[str], node: str, vendor: str, clock: str,
                     print(f"  {name}: unasked {a.get('causes')} {a.get('error', '')[:80]} (want {want}), "
                           f"asked {answer[0].get('causes') if answer else None} (want {asked})", flush=True)
             for received, a in listener.answers("failure")[before:]:
-                key = next((k for k in listener.heard.failures if k.startswith(a["task_id"] + ":")), None)
+                key = next((k for k in listener.heard.failures if k.startswith(a.get("task_id", "") + ":")), None)
                 if key is not None:
                     latencies.append(received - listener.heard.failures[key])
     finally:
