@@ -54,9 +54,12 @@ class LiveChat:
         """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery
         matched it is lost, and discovery across DDS vendors (a node on rclpy) takes a second or more."""
         deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline and not self._questions.get_matched_subscriptions():
+        while time.monotonic() < deadline and not (self._questions.get_matched_subscriptions()
+                                                   and self._answers.get_matched_publications()):
             time.sleep(0.05)
-        time.sleep(0.2)  # the node's reader has matched; let it match the rest of this participant too
+        # the node's last answers come as transient-local history once matched: an unasked explanation among
+        # them sets the thread a "why?" continues, so it must be read before the first question goes out
+        time.sleep(0.5)
 
     def ask(self, question: str, timeout: float = 30.0) -> bool:
         """Send one question and wait for its answer; False when the node did not answer in time."""
