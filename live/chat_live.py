@@ -29,6 +29,7 @@ class LiveChat:
         self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, ANSWER_QOS)
         self._questions = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
         self._mine = threading.Event()
+        self._asked = self.thread
         self._stop = threading.Event()
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
@@ -45,7 +46,10 @@ class LiveChat:
                 if result.get("trigger") == "failure":
                     self.thread = str(result.get("thread") or self.thread)  # "why?" continues that thread
                     self.show(result)
-                elif result.get("thread") == self.thread:
+                elif result.get("thread") == self._asked:
+                    # the answer to this chat's question: a "why?" continues it, even if an older unasked
+                    # explanation came in (as history) while it was on its way
+                    self.thread = self._asked
                     self.show(result)
                     self._mine.set()
             self._stop.wait(0.02)
@@ -64,6 +68,7 @@ class LiveChat:
     def ask(self, question: str, timeout: float = 30.0) -> bool:
         """Send one question and wait for its answer; False when the node did not answer in time."""
         self._mine.clear()
+        self._asked = self.thread
         self._questions.write(self._string(data=json.dumps({"question": question, "thread": self.thread})))
         return self._mine.wait(timeout)
 
