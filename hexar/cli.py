@@ -302,13 +302,15 @@ def replay(
     transport: Annotated[str, typer.Option(help="auto (rclpy if importable), rclpy or dds")] = "auto",
     domain: Annotated[int | None, typer.Option(help="DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
     start: Annotated[float, typer.Option(help="skip this many seconds of the recording")] = 0.0,
+    clock: Annotated[float, typer.Option(help="also publish the recording's time on /clock at this rate (Hz), "
+                                              "like `ros2 bag play --clock`; 0: no /clock")] = 0.0,
 ) -> None:
     """Publish a recording onto the live topics, like `ros2 bag play`."""
 
     def body() -> int:
         from hexar.live.commands import replay_command
 
-        return replay_command(run, rate, transport, domain, start)
+        return replay_command(run, rate, transport, domain, start, clock)
 
     raise typer.Exit(guarded(body))
 

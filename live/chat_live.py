@@ -29,6 +29,7 @@ class LiveChat:
         self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, ANSWER_QOS)
         self._questions = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
         self._mine = threading.Event()
+        self._asked = self.thread
         self._stop = threading.Event()
         self._reader = threading.Thread(target=self._read, daemon=True)
         self._reader.start()
@@ -45,14 +46,29 @@ class LiveChat:
                 if result.get("trigger") == "failure":
                     self.thread = str(result.get("thread") or self.thread)  # "why?" continues that thread
                     self.show(result)
-                elif result.get("thread") == self.thread:
+                elif result.get("thread") == self._asked:
+                    # the answer to this chat's question: a "why?" continues it, even if an older unasked
+                    # explanation came in (as history) while it was on its way
+                    self.thread = self._asked
                     self.show(result)
                     self._mine.set()
             self._stop.wait(0.02)
 
+    def wait_for_node(self, timeout: float) -> None:
+        """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery
+        matched it is lost, and discovery across DDS vendors (a node on rclpy) takes a second or more."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline and not (self._questions.get_matched_subscriptions()
+                                                   and self._answers.get_matched_publications()):
+            time.sleep(0.05)
+        # the node's last answers come as transient-local history once matched: an unasked explanation among
+        # them sets the thread a "why?" continues, so it must be read before the first question goes out
+        time.sleep(0.5)
+
     def ask(self, question: str, timeout: float = 30.0) -> bool:
         """Send one question and wait for its answer; False when the node did not answer in time."""
         self._mine.clear()
+        self._asked = self.thread
         self._questions.write(self._string(data=json.dumps({"question": question, "thread": self.thread})))
         return self._mine.wait(timeout)
 
@@ -69,7 +85,7 @@ def chat_live(domain: int, lines: Iterable[str], show: Callable[[dict[str, Any]]
 
     chat = LiveChat(domain, show)
     try:
-        time.sleep(0.5)  # discovery
+        chat.wait_for_node(timeout)
         for line in lines:
             if line.strip() and not chat.ask(line.strip(), timeout):
                 raise LiveError(f"no answer from hexar serve on DDS domain {domain} within {timeout:.0f} s")

@@ -7,6 +7,8 @@ import signal
 import sys
 import threading
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, cast
@@ -45,20 +47,19 @@ def pick_transport(kind: str) -> str:
 def make_transport(kind: str, domain: int | None, tts_topic: str | None, record: Path | None = None) -> Transport:
     if tts_topic is not None and not tts_topic.startswith("/"):
         raise BadOptionError(f"--tts-topic must be an absolute ROS topic such as /tts_text, not {tts_topic!r}")
-    if pick_transport(kind) == "rclpy":
-        if record is not None:
-            raise BadOptionError("--record works with --transport dds; on the robot, run ros2 bag record")
-        from hexar.live.ros import RclpyTransport
-
-        return RclpyTransport(tts_topic=tts_topic)
-    from hexar.live.dds import DdsTransport
-
+    chosen, domain = pick_transport(kind), domain_id(domain)
     recorder = None
     if record is not None:
         from hexar.live.recorder import RollingRecorder
 
         recorder = RollingRecorder(record)
-    return DdsTransport(domain_id(domain), tts_topic=tts_topic, recorder=recorder)
+    if chosen == "rclpy":
+        from hexar.live.ros import RclpyTransport
+
+        return RclpyTransport(domain, tts_topic=tts_topic, recorder=recorder)
+    from hexar.live.dds import DdsTransport
+
+    return DdsTransport(domain, tts_topic=tts_topic, recorder=recorder)
 
 
 @dataclass
@@ -82,10 +83,6 @@ class ServeOptions:
 
 def serve(opts: ServeOptions) -> int:
     """Run the node until Ctrl-C (or `duration_s`); answers are also printed, one JSON line each."""
-    from hexar.live.log import Limits, LiveLog
-    from hexar.live.node import LiveNode
-    from hexar.live.speech import Ears, make_speakers
-
     if opts.proactive not in PROACTIVE:
         raise BadOptionError(f"unknown --proactive {opts.proactive!r}: use off, publish or speak")
     if opts.voice not in VOICES:
@@ -95,7 +92,18 @@ def serve(opts: ServeOptions) -> int:
     if opts.keep_tasks < 1 or opts.horizon_s <= 0:
         raise BadOptionError("--keep-tasks must be at least 1 and --horizon above 0")
     ears_wanted = opts.mic or bool(opts.wavs)
+    # handlers before the node exists: a signal during start-up still ends it through node.stop()
+    with _stop_on_signals() as stop:
+        return _run(opts, stop, ears_wanted)
+
+
+def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
+    from hexar.live.log import Limits, LiveLog
+    from hexar.live.node import LiveNode
+    from hexar.live.speech import Ears, make_speakers
+
     transport = make_transport(opts.transport, opts.domain, opts.tts_topic, opts.record)
+    node: LiveNode | None = None
     try:
         speakers = make_speakers(transport, opts.tts_topic, opts.voice, opts.out_dir,
                                  need_voice=ears_wanted or opts.proactive == "speak")
@@ -111,16 +119,17 @@ def serve(opts: ServeOptions) -> int:
         node = LiveNode(transport, log, NodeOptions(llm=opts.llm, proactive=proactive), speakers=speakers,
                         on_answer=show)
         ears = Ears(node.ask, opts.wavs, opts.mic, opts.vosk_model) if ears_wanted else None
+        node.start()
     except BaseException:
-        transport.close()
+        if node is not None:
+            node.stop()  # closes the transport too
+        else:
+            transport.close()
         raise
-    node.start()
     if ears is not None:
         ears.start()
     print(f"hexar serve: listening over {transport.name}; answers on /hexar/answer; writes only "
           f"{', '.join(transport.writer_topics())}", file=sys.stderr, flush=True)
-    stop = threading.Event()
-    signal.signal(signal.SIGTERM, lambda *_: stop.set())
     try:
         deadline = None if opts.duration_s is None else time.monotonic() + opts.duration_s
         while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
@@ -136,7 +145,25 @@ def serve(opts: ServeOptions) -> int:
     return 0
 
 
-def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float) -> int:
+@contextmanager
+def _stop_on_signals() -> Iterator[threading.Event]:
+    """SIGTERM and SIGINT end the command through its normal path, so the transport closes its DDS participant
+    (a ROS 2 node left to the interpreter's exit aborts, and Fast DDS leaves its shared memory behind). The
+    previous handlers come back afterwards (the CLI also runs inside tests)."""
+    stop = threading.Event()
+    if threading.current_thread() is not threading.main_thread():
+        yield stop  # signals reach the main thread only; a caller elsewhere stops by other means
+        return
+    previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGTERM, signal.SIGINT)}
+    try:
+        yield stop
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
+def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float,
+                   clock_hz: float = 0.0) -> int:
     from hexar.events.reader import resolve_path
     from hexar.live.replay import DdsReplayer, replay
 
@@ -145,15 +172,18 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
         raise BadOptionError(f"--rate must be above 0, not {rate}")
     if start_s < 0:
         raise BadOptionError(f"--start must not be negative, not {start_s}")
+    if clock_hz < 0:
+        raise BadOptionError(f"--clock must be 0 (off) or a rate in Hz, not {clock_hz}")
     writer: Any
     if pick_transport(transport) == "rclpy":
         from hexar.live.ros import RclpyReplayer
 
-        writer = RclpyReplayer()
+        writer = RclpyReplayer(domain_id(domain))
     else:
         writer = DdsReplayer(domain_id(domain))
     try:
-        stats = replay(run, writer, rate=rate, start_s=start_s)
+        with _stop_on_signals() as stop:
+            stats = replay(run, writer, rate=rate, start_s=start_s, should_stop=stop.is_set, clock_hz=clock_hz)
     finally:
         writer.close()
     skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""

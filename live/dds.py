@@ -3,21 +3,24 @@ robot's network without a ROS install (and the tests drive it with real DDS traf
 
 from __future__ import annotations
 
+import os
 import sys
 import threading
 from collections.abc import Callable
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.live.convert import to_records
+from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
 from hexar.live.topics import (
     ANSWER,
     ANSWER_QOS,
+    CLOCK_QOS,
     HEXAR_PREFIX,
     QUESTION,
     QUESTION_QOS,
+    READ_ORDER,
     SUBSCRIBED,
     TTS_QOS,
     TopicQos,
@@ -26,7 +29,7 @@ from hexar.live.topics import (
 
 try:
     from cyclonedds.core import InstanceState, Policy, Qos, ReadCondition, SampleState, ViewState, WaitSet
-    from cyclonedds.domain import DomainParticipant
+    from cyclonedds.domain import Domain, DomainParticipant
     from cyclonedds.pub import DataWriter
     from cyclonedds.sub import DataReader
     from cyclonedds.topic import Topic
@@ -41,8 +44,21 @@ IDL: dict[str, type[Any]] = {
     c.LOG_TYPE: msgs.Log, c.STRING_TYPE: msgs.String, c.BOOL_TYPE: msgs.Bool,
     c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
     c.TWIST_TYPE: msgs.Twist, c.ODOM_TYPE: msgs.Odometry, c.POSE_STAMPED_TYPE: msgs.PoseStamped,
-    c.GOAL_STATUS_TYPE: msgs.GoalStatusArray,
+    c.GOAL_STATUS_TYPE: msgs.GoalStatusArray, CLOCK_TYPE: msgs.Clock,
 }
+# Match ROS 2 peers on topic and type name, as ROS 2's RMWs do (rmw_cyclonedds sends no type information at
+# all: "not yet providing type discovery, assignability checking", ros2/rmw_cyclonedds
+# rmw_cyclonedds_cpp/src/serdata.cpp:646@rolling). The binding always attaches XTypes type information to a
+# topic, and Fast DDS (vendor 1.15) sends its own: Cyclone rejects Fast DDS's plain sequence and array type
+# identifiers (their element flags have both try-construct bits 0, which Cyclone's validation refuses unless
+# Compatibility/AllowInvalidTryConstruct is set, ddsi_typewrap.c xt_valid_member_flags@11.0.1) and, accepting
+# them, still finds the two vendors' type objects of e.g. Odometry not assignable, so every type with a
+# sequence or an array never matched. Cyclone ignores the type information of the vendors listed below and
+# matches their endpoints by type name: eProsima Fast DDS (1.15, rmw_fastrtps) and RTI Connext (1.1,
+# rmw_connextdds). The user's CYCLONEDDS_URI still applies; this fragment is added after it.
+ROS_COMPATIBILITY = "<Compatibility><IgnoreTypeInformation>1.1,1.15</IgnoreTypeInformation></Compatibility>"
+_DOMAINS: dict[int, Any] = {}  # a Domain deletes its participants when collected: kept for the process
+_DOMAINS_LOCK = threading.Lock()
 MAX_BLOCKING_NS = 100_000_000  # rmw_cyclonedds' default for reliable writers
 UNLIMITED = -1  # DDS_LENGTH_UNLIMITED
 
@@ -63,9 +79,11 @@ def dds_qos(q: TopicQos) -> Qos:
 
 
 def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.Event,
-              handle: Callable[[str, Any, int], None], report: Callable[[str], None]) -> None:
+              handle: Callable[[str, Any, int], None], report: Callable[[str], None],
+              idle: Callable[[], None] | None = None) -> None:
     """Wait on every reader and hand each valid sample to `handle(topic, sample, source_stamp_ns)` until `stop`;
-    a sample the binding cannot decode, or one `handle` fails on, is reported and skipped, never a traceback."""
+    a sample the binding cannot decode, or one `handle` fails on, is reported and skipped, never a traceback.
+    `idle` runs after every wait (at least every 50 ms)."""
     ws = WaitSet(participant)
     mask = SampleState.Any | ViewState.Any | InstanceState.Any
     conditions = [ReadCondition(r, mask) for _, r in readers]
@@ -73,6 +91,11 @@ def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.
         ws.attach(cond)
     while not stop.is_set():
         ws.wait(50_000_000)
+        if idle is not None:
+            try:
+                idle()
+            except Exception as err:
+                report(f"{type(err).__name__}: {err}")
         for (topic, reader), cond in zip(readers, conditions, strict=True):
             try:
                 samples = reader.take(TakeBatch, condition=cond)
@@ -89,6 +112,14 @@ def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.
                     report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
 
 
+def _configure(domain_id: int) -> None:
+    """Create the process's Domain for `domain_id` once, with the user's configuration plus ROS_COMPATIBILITY."""
+    with _DOMAINS_LOCK:
+        if domain_id not in _DOMAINS:
+            user = os.environ.get("CYCLONEDDS_URI", "").strip()
+            _DOMAINS[domain_id] = Domain(domain_id, f"{user},{ROS_COMPATIBILITY}" if user else ROS_COMPATIBILITY)
+
+
 class DdsEndpoint:
     """A domain participant with lazily created topics, readers and writers."""
 
@@ -96,6 +127,7 @@ class DdsEndpoint:
         if not 0 <= domain_id <= 232:
             raise BadOptionError(f"DDS domain id {domain_id} is out of range (0-232, as ROS_DOMAIN_ID)")
         try:
+            _configure(domain_id)
             self.participant = DomainParticipant(domain_id)
         except Exception as err:  # cyclonedds raises DDSException on a bad CYCLONEDDS_URI or no interface
             raise TransportUnavailableError(f"cannot join DDS domain {domain_id}: {err}") from err
@@ -134,6 +166,7 @@ class DdsTransport:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self.errors = 0
+        self.timeline = Timeline()
         self._answer = self.endpoint.writer(ANSWER, c.STRING_TYPE, ANSWER_QOS)
         self._tts = self.endpoint.writer(tts_topic, c.STRING_TYPE, TTS_QOS) if tts_topic else None
 
@@ -143,7 +176,8 @@ class DdsTransport:
 
     def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
         self._types = {t.topic: t.type for t in SUBSCRIBED}
-        readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
+        readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in READ_ORDER]
+        readers.append((CLOCK, self.endpoint.reader(CLOCK, CLOCK_TYPE, CLOCK_QOS)))
         readers.append((QUESTION, self.endpoint.reader(QUESTION, c.STRING_TYPE, QUESTION_QOS)))
         self._thread = threading.Thread(target=self._loop, args=(readers, log, on_record, on_question),
                                         name="hexar-dds", daemon=True)
@@ -155,15 +189,16 @@ class DdsTransport:
             if topic == QUESTION:
                 on_question(str(sample.data))
                 return
-            fresh = False
-            for record in to_records(topic, sample, t):
-                if log.add(record):
-                    fresh = True
-                    on_record(record)
-            if fresh and self.recorder is not None:
-                self.recorder.write(topic, self._types[topic], sample.serialize(), t)
+            records = self.timeline.records(topic, sample, t)
+            fresh = add_all(records, log.add, on_record)
+            if (fresh or not records) and self.recorder is not None and topic != CLOCK:
+                # on the robot's clock, as `ros2 bag record` on the robot would have stamped it
+                self.recorder.write(topic, self._types[topic], sample.serialize(), self.timeline.date(t))
 
-        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report)
+        def idle() -> None:
+            add_all(self.timeline.flush(), log.add, on_record)
+
+        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
         if self.recorder is not None:
             self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 import threading
 from collections import deque
 from collections.abc import Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TypeVar
 
@@ -74,6 +74,7 @@ class LiveLog:
         self._goals: list[GoalPose] = []
         self._goal_statuses: list[GoalStatus] = []
         self._tasks: dict[str, list[TaskUpdate]] = {}  # insertion order = order first seen
+        self._runs: dict[str, tuple[str, int]] = {}  # task id as published -> (its current run's id, run number)
         self._counts: dict[str, int] = {}
         self._seen: set[int] = set()
         self._seen_order: deque[int] = deque()
@@ -118,6 +119,8 @@ class LiveLog:
 
     def _add(self, r: Record) -> bool:
         self.received += 1
+        if isinstance(r, TaskUpdate):
+            r = self._run_of(r)
         key = self._key(r)
         if key in self._seen:
             self.duplicates += 1
@@ -160,6 +163,21 @@ class LiveLog:
             self._prune()
             self._since_prune = 0
         return True
+
+    def _run_of(self, r: TaskUpdate) -> TaskUpdate:
+        """A robot that restarts numbers its tasks again from the start: an update that starts a task anew after
+        the task of that id finished (failed, succeeded, canceled or invalid), later on the robot's clock, is a
+        new task, kept as `<id>#2`, `<id>#3`... instead of merging two runs into one. A re-sent copy (same
+        time) stays a duplicate."""
+        run_id, n = self._runs.get(r.task_id, (r.task_id, 1))
+        updates = self._tasks.get(run_id)
+        if updates and _finished(updates[-1]) and _starts(r) and r.t > updates[-1].t:
+            n += 1
+            run_id = f"{r.task_id}#{n}"
+            self.warnings.append(f"task {r.task_id} started again after it ended: kept as a new task {run_id}")
+        if n > 1 or r.task_id in self._runs:
+            self._runs[r.task_id] = (run_id, n)
+        return r if run_id == r.task_id else replace(r, task_id=run_id)
 
     def _count(self, topic: str) -> None:
         self._counts[topic] = self._counts.get(topic, 0) + 1
@@ -264,6 +282,17 @@ class LiveLog:
                     "tasks": len(self._tasks), "statuses": sum(len(v) for v in self._statuses.values()),
                     "twists": len(self._twists), "odometry": len(self._odom), "goals": len(self._goals),
                     "goal_statuses": len(self._goal_statuses)}
+
+
+def _finished(u: TaskUpdate) -> bool:
+    states = [step.state for step in u.skills]
+    return not u.valid or "failed" in states or "canceled" in states or (bool(states) and all(
+        s == "succeeded" for s in states))
+
+
+def _starts(u: TaskUpdate) -> bool:
+    """An update that could be a task's first: an invalid plan, or one with no skill done, failed or canceled."""
+    return not u.valid or not any(step.state in {"succeeded", "failed", "canceled"} for step in u.skills)
 
 
 def _trim(items: list[S], oldest: int, max_records: int, keep_one: bool = False) -> list[S]:

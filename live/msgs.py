@@ -1,11 +1,13 @@
-"""The ROS 2 message types HEXAR reads and writes, as DDS sees them from rmw_cyclonedds.
+"""The ROS 2 message types HEXAR reads and writes, as DDS sees them from rmw_cyclonedds and rmw_fastrtps.
 
-rmw_cyclonedds names a ROS type `<pkg>::msg::dds_::<Type>_` and a topic `rt/<topic>` and sends plain CDR
-(XCDR1) of final structs; the field order below is the .msg field order (/work/shared/reference/msg_definitions.md
-in the project notes: rcl_interfaces/Log, builtin_interfaces/Time, std_msgs/String|Bool|Header,
-geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray, geometry_msgs/Twist|Vector3|PoseStamped,
-action_msgs/GoalStatusArray|GoalStatus|GoalInfo, unique_identifier_msgs/UUID; nav_msgs/Odometry and
-geometry_msgs/TwistWithCovariance as rosbags' Humble type store defines them).
+Both RMWs name a ROS type `<pkg>::msg::dds_::<Type>_` and a topic `rt/<topic>` and send plain CDR (XCDR1) of
+final structs. Each field has the IDL type rosidl gives it: `byte` is an octet, `uint8` a uint8, fixed arrays
+(`float64[36]`, `uint8[16]`) are arrays, `T[]` unbounded sequences. The field order is the .msg field order
+(the project's shared reference msg_definitions.md: rcl_interfaces/Log, builtin_interfaces/Time,
+std_msgs/String|Bool|Header, geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray,
+geometry_msgs/Twist|Vector3|PoseStamped, action_msgs/GoalStatusArray|GoalStatus|GoalInfo,
+unique_identifier_msgs/UUID; nav_msgs/Odometry and geometry_msgs/TwistWithCovariance as rosbags' Humble type
+store defines them). A test checks each against the Kilted rclpy message classes (tests/live/test_msgs.py).
 """
 
 # No `from __future__ import annotations` here: cyclonedds resolves field annotations by name in this
@@ -14,7 +16,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cyclonedds.idl import IdlStruct
-from cyclonedds.idl.types import array, float64, int8, int32, sequence, uint8, uint32
+from cyclonedds.idl.types import array, byte, float64, int8, int32, sequence, uint8, uint32
 
 
 def _dds(ros_type: str) -> str:
@@ -110,7 +112,7 @@ else:
 
 @dataclass
 class DiagnosticStatus(IdlStruct, typename=_dds("diagnostic_msgs/msg/DiagnosticStatus")):
-    level: uint8 = 0  # `byte` in the .msg; both map to an octet in CDR
+    level: byte = 0  # `byte` in the .msg: an IDL octet (XTypes TK_BYTE), not uint8 (TK_UINT8)
     name: str = ""
     message: str = ""
     hardware_id: str = ""
@@ -194,6 +196,11 @@ else:
 @dataclass
 class GoalStatusArray(IdlStruct, typename=_dds("action_msgs/msg/GoalStatusArray")):
     status_list: GoalStatuses = field(default_factory=list)
+
+
+@dataclass
+class Clock(IdlStruct, typename=_dds("rosgraph_msgs/msg/Clock")):
+    clock: Time = field(default_factory=Time)
 
 
 def time_of(t: int) -> Time:

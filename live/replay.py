@@ -135,6 +135,16 @@ class DdsReplayer:
         ros_type = c.TYPE_OF[topic]  # a ROS 1 log goes out as rcl_interfaces/Log, a TwistStamped as Twist
         self.endpoint.writer(topic, ros_type, QOS_OF[topic]).write(msg, timestamp=t)
 
+    def matched(self, topic: str) -> int:
+        return len(self.endpoint.writers[topic].get_matched_subscriptions())
+
+    def clock(self, t: int) -> None:
+        from hexar.live import msgs
+        from hexar.live.clock import CLOCK, CLOCK_TYPE
+        from hexar.live.topics import CLOCK_QOS
+
+        self.endpoint.writer(CLOCK, CLOCK_TYPE, CLOCK_QOS).write(msgs.Clock(clock=msgs.time_of(t)), timestamp=t)
+
     def prepare(self) -> None:
         """Create every writer up front, so readers have matched them before the first message."""
         for topic, qos in QOS_OF.items():
@@ -156,21 +166,38 @@ class DdsReplayer:
         self.endpoint.close()
 
 
-def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 0.5,
+def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3) -> bool:
+    """Wait (at most `timeout_s`) until /rosout and /task_info each have a matched reader, then `settle_s` more
+    for the other topics: discovery across DDS vendors takes a second or more, and what a volatile topic
+    carries before its reader matched is lost. False when no reader came (a replay to nobody still plays)."""
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if all(writer.matched(topic) for topic in (c.ROSOUT, c.TASK_INFO)):
+            time.sleep(settle_s)
+            return True
+        time.sleep(0.02)
+    return False
+
+
+def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 3.0,
            on_message: Callable[[str, int, float], None] | None = None,
-           should_stop: Callable[[], bool] | None = None) -> ReplayStats:
+           should_stop: Callable[[], bool] | None = None, clock_hz: float = 0.0) -> ReplayStats:
     """Publish `path` through `writer` (DdsReplayer or the rclpy one) at `rate` x real time.
 
-    `on_message(topic, bag_time, wall_time)` sees each message right after it was written.
+    `on_message(topic, bag_time, wall_time)` sees each message right after it was written. With `clock_hz`,
+    the recording's time also goes out on /clock, at most `clock_hz` times per second of recording time and
+    before each message (as `ros2 bag play --clock` publishes it).
     """
     if not rate > 0:
         raise BadOptionError(f"--rate must be above 0, not {rate}")
     messages, skipped, _ = bag_messages(path, start_s)
     writer.prepare()
-    time.sleep(warmup_s)  # DDS discovery: readers and writers find each other in a few hundred milliseconds
+    wait_for_readers(writer, warmup_s)
     stats = ReplayStats(skipped_topics=tuple(skipped))
     started = time.monotonic()
     first: int | None = None
+    clock_every = int(1e9 / clock_hz) if clock_hz > 0 else 0
+    last_clock = -clock_every
     for topic, msgtype, t, m in messages:
         if should_stop is not None and should_stop():
             break
@@ -179,6 +206,9 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
         delay = due - time.monotonic()
         if delay > 0:
             time.sleep(delay)
+        if clock_every and t - last_clock >= clock_every:
+            writer.clock(t)
+            last_clock = t
         writer.write(topic, msgtype, to_dds(msgtype, m) if writer.wants_dds else m, t)
         stats.published += 1
         if on_message is not None:

@@ -1,60 +1,88 @@
-"""The rclpy transport: a normal ROS 2 node `hexar` on the robot. Import-guarded: rclpy comes from a ROS 2
-install, which cannot be installed here, so this file is not exercised by the tests (the DDS transport shares
-everything but the subscription code and is tested with real traffic).
+"""The rclpy transport and replayer: a normal ROS 2 node `hexar` on the robot.
+
+rclpy comes from a ROS 2 install or, on Linux x86_64, from the `ros` extra (the ROS 2 Kilted Python wheels,
+Fast DDS). The node subscribes raw: each message arrives as its CDR bytes and is decoded with the same Humble
+type store as a recording (rosbags), so a live record and the recording's record are decoded by one code path,
+and the DDS source timestamp comes with it (rclpy's MessageInfo). Each transport has its own rclpy Context,
+initialised without rclpy's signal handlers (the CLI handles SIGINT/SIGTERM) and shut down on close, which
+ends the DDS participant cleanly: no "terminate called without an active exception", no Fast DDS shared-memory
+files left in /dev/shm.
 """
 
 from __future__ import annotations
 
 import importlib
+import os
+import sys
 import threading
-import time
 from collections.abc import Callable
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.live.convert import to_records
+from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
-from hexar.live.topics import ANSWER, ANSWER_QOS, HEXAR_PREFIX, QUESTION, QUESTION_QOS, SUBSCRIBED, TTS_QOS, TopicQos
+from hexar.live.topics import (
+    ANSWER,
+    ANSWER_QOS,
+    CLOCK_QOS,
+    HEXAR_PREFIX,
+    QUESTION,
+    QUESTION_QOS,
+    READ_ORDER,
+    TTS_QOS,
+    TopicQos,
+)
 
 ROS_TYPES = {
     c.LOG_TYPE: ("rcl_interfaces.msg", "Log"), c.STRING_TYPE: ("std_msgs.msg", "String"),
     c.BOOL_TYPE: ("std_msgs.msg", "Bool"), c.POSE_COV_TYPE: ("geometry_msgs.msg", "PoseWithCovarianceStamped"),
     c.DIAG_TYPE: ("diagnostic_msgs.msg", "DiagnosticArray"), c.TWIST_TYPE: ("geometry_msgs.msg", "Twist"),
     c.ODOM_TYPE: ("nav_msgs.msg", "Odometry"), c.POSE_STAMPED_TYPE: ("geometry_msgs.msg", "PoseStamped"),
-    c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"),
+    c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"), CLOCK_TYPE: ("rosgraph_msgs.msg", "Clock"),
 }
+TAKE_BATCH = 256  # at most this many more messages of one topic per callback
+NO_ROS = ("--transport rclpy needs rclpy: on Linux x86_64 pip install 'hexar[ros]' (the ROS 2 Kilted wheels); "
+          "elsewhere source a ROS 2 install (source /opt/ros/<distro>/setup.bash), or use --transport dds")
+
+
+def _bootstrap_paths() -> str | None:
+    """The LD_LIBRARY_PATH the Kilted wheels need, when they are installed but this process started without it
+    (their ros_wheels_bootstrapper re-executes every Python start to set it, unless
+    _ROS_WHEELS_BOOTSTRAP_COMPLETE is set, which keeps `hexar ask` from paying for the re-execution)."""
+    try:
+        boot: Any = importlib.import_module("ros_wheels_bootstrapper")
+    except ImportError:
+        return None
+    paths = str(boot.get_ros_paths())
+    have = set(os.environ.get("LD_LIBRARY_PATH", "").split(os.pathsep))
+    return None if set(paths.split(os.pathsep)) <= have else paths
+
+
+def import_rclpy() -> Any:
+    """rclpy, or a one-line TransportUnavailableError. When the wheels' libraries are not on the library path
+    (the bootstrap was skipped), this process re-executes itself once with them, as the wheels' own .pth would
+    have done at start-up."""
+    try:
+        return importlib.import_module("rclpy")
+    except ImportError as err:
+        paths = _bootstrap_paths()
+        if paths is not None and not os.environ.get("_HEXAR_ROS_REEXEC"):
+            env = dict(os.environ, LD_LIBRARY_PATH=paths, _ROS_WHEELS_BOOTSTRAP_COMPLETE="1", _HEXAR_ROS_REEXEC="1")
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os.execve(sys.executable, sys.orig_argv, env)
+        raise TransportUnavailableError(f"{NO_ROS} ({err})") from err
 
 
 def rclpy_available() -> bool:
+    """Whether rclpy can be imported here, without importing it (it costs a quarter of a second)."""
+    if "rclpy" in sys.modules:
+        return sys.modules["rclpy"] is not None
     try:
-        importlib.import_module("rclpy")
-    except ImportError:
+        return importlib.util.find_spec("rclpy") is not None
+    except (ImportError, ValueError):
         return False
-    return True
-
-
-class RobotClock:
-    """Dates unstamped messages on the robot's clock when only the receive time is known.
-
-    rclpy (Humble) hands a subscription callback the message without its source timestamp, so `/task_info` is
-    dated from the newest stamped message (`/rosout`, `/amcl_pose`) plus the time received since; with no stamped
-    message in the last few seconds the receive time itself is used (the node runs on the robot's clock).
-    """
-
-    def __init__(self, fresh_s: float = 5.0) -> None:
-        self.fresh_ns = int(fresh_s * 1e9)
-        self._stamp = 0
-        self._recv = 0
-
-    def stamped(self, stamp: int, recv: int) -> None:
-        if stamp >= self._stamp:
-            self._stamp, self._recv = stamp, recv
-
-    def now(self, recv: int) -> int:
-        if self._stamp and recv - self._recv <= self.fresh_ns:
-            return self._stamp + max(recv - self._recv, 0)
-        return recv
 
 
 def _msg_class(ros_type: str) -> Any:
@@ -75,56 +103,137 @@ def _profile(q: TopicQos) -> Any:
     )
 
 
-class RclpyTransport:  # pragma: no cover -- needs a ROS 2 install
+class RosNode:
+    """An rclpy node in its own context on `domain_id`, and the thread that spins it."""
+
+    def __init__(self, name: str, domain_id: int) -> None:
+        if not 0 <= domain_id <= 232:
+            raise BadOptionError(f"DDS domain id {domain_id} is out of range (0-232, as ROS_DOMAIN_ID)")
+        self.rclpy = import_rclpy()
+        signals: Any = importlib.import_module("rclpy.signals")
+        self.context = importlib.import_module("rclpy.context").Context()
+        try:
+            self.rclpy.init(context=self.context, domain_id=domain_id,
+                            signal_handler_options=signals.SignalHandlerOptions.NO)
+            self.node = self.rclpy.create_node(name, context=self.context)
+        except Exception as err:  # rclpy raises RCLError on a bad RMW or middleware configuration
+            self.context.try_shutdown()
+            raise TransportUnavailableError(f"cannot start the ROS 2 node {name}: {err}") from err
+        self.domain_id = domain_id
+        self._executor: Any = None
+        self._thread: threading.Thread | None = None
+        self._stop = threading.Event()
+
+    def spin(self, report: Callable[[str], None], idle: Callable[[], None] | None = None,
+             done: Callable[[], None] | None = None) -> None:
+        executors: Any = importlib.import_module("rclpy.executors")
+        self._executor = executors.SingleThreadedExecutor(context=self.context)
+        self._executor.add_node(self.node)
+
+        def loop() -> None:
+            while not self._stop.is_set():
+                try:
+                    self._executor.spin_once(timeout_sec=0.05)
+                    if idle is not None:
+                        idle()
+                except (executors.ExternalShutdownException, executors.ShutdownException):
+                    break
+                except Exception as err:  # never let the receive thread die: report and go on
+                    report(f"{type(err).__name__}: {err}")
+            if done is not None:
+                done()
+
+        self._thread = threading.Thread(target=loop, name=f"hexar-rclpy-{self.node.get_name()}", daemon=True)
+        self._thread.start()
+
+    def close(self) -> None:
+        self._stop.set()
+        if self._thread is not None:
+            self._thread.join(timeout=5.0)
+        if self._executor is not None:
+            self._executor.shutdown(timeout_sec=2.0)
+        self.node.destroy_node()
+        self.context.try_shutdown()
+
+
+class RclpyTransport:
     name = "rclpy"
 
-    def __init__(self, tts_topic: str | None = None, node_name: str = "hexar") -> None:
-        try:
-            self._rclpy: Any = importlib.import_module("rclpy")
-        except ImportError as err:
-            raise TransportUnavailableError(
-                "--transport rclpy needs a ROS 2 install (source /opt/ros/<distro>/setup.bash); "
-                "without one use --transport dds") from err
-        if not self._rclpy.ok():
-            self._rclpy.init()
-        self.node = self._rclpy.create_node(node_name)
+    def __init__(self, domain_id: int = 0, tts_topic: str | None = None, node_name: str = "hexar",
+                 recorder: Any = None) -> None:
+        self.ros = RosNode(node_name, domain_id)
+        self.node = self.ros.node
         self.tts_topic = tts_topic
-        self.clock = RobotClock()
+        self.recorder = recorder
+        self.timeline = Timeline()
+        self.errors = 0
+        self._humble: Any = None
         self._string = _msg_class(c.STRING_TYPE)
         self._pubs: dict[str, Any] = {ANSWER: self.node.create_publisher(self._string, ANSWER, _profile(ANSWER_QOS))}
         if tts_topic:
             self._pubs[tts_topic] = self.node.create_publisher(self._string, tts_topic, _profile(TTS_QOS))
-        self._executor: Any = None
-        self._thread: threading.Thread | None = None
 
     def writer_topics(self) -> list[str]:
         return sorted(self._pubs)
 
     def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
-        for spec in SUBSCRIBED:
-            self.node.create_subscription(_msg_class(spec.type), spec.topic,
-                                          self._callback(spec.topic, log, on_record), _profile(spec.qos))
-        self.node.create_subscription(self._string, QUESTION, lambda m: on_question(str(m.data)),
-                                      _profile(QUESTION_QOS))
-        executors: Any = importlib.import_module("rclpy.executors")
-        self._executor = executors.SingleThreadedExecutor()
-        self._executor.add_node(self.node)
-        self._thread = threading.Thread(target=self._executor.spin, name="hexar-rclpy", daemon=True)
-        self._thread.start()
+        from hexar.events.reader import _humble
 
-    def _callback(self, topic: str, log: LiveLog, on_record: Callable[[Any], None]) -> Callable[[Any], None]:
-        stamped = topic in {c.ROSOUT, c.AMCL_POSE, c.ODOM, c.GOAL_POSE} or c.TYPE_OF.get(topic) == c.DIAG_TYPE
+        self._humble = _humble()
+        # rclpy's executor hands over one message per ready subscription per wait, in creation order: the
+        # callback takes the rest of its topic's backlog itself, and the triggers come last (topics.READ_ORDER)
+        for spec in READ_ORDER:
+            holder: list[Any] = []
+            holder.append(self.node.create_subscription(
+                _msg_class(spec.type), spec.topic, self._callback(spec.topic, spec.type, log, on_record, holder),
+                _profile(spec.qos), raw=True))
+        self.node.create_subscription(_msg_class(CLOCK_TYPE), CLOCK, self._callback(CLOCK, CLOCK_TYPE, log, on_record),
+                                      _profile(CLOCK_QOS), raw=True)
 
-        def handle(msg: Any) -> None:
-            recv = time.time_ns()
-            records = to_records(topic, msg, self.clock.now(recv))
-            for record in records:
-                if stamped:
-                    self.clock.stamped(record.t, recv)
-                if log.add(record):
-                    on_record(record)
+        def question(msg: Any) -> None:
+            on_question(str(msg.data))
+
+        self.node.create_subscription(self._string, QUESTION, question, _profile(QUESTION_QOS))
+
+        def idle() -> None:
+            add_all(self.timeline.flush(), log.add, on_record)
+
+        def done() -> None:
+            if self.recorder is not None:
+                self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
+
+        self.ros.spin(self._report, idle, done)
+
+    def _callback(self, topic: str, ros_type: str, log: LiveLog, on_record: Callable[[Any], None],
+                  holder: list[Any] | None = None) -> Callable[[bytes, Any], None]:
+        def one(raw: bytes, info: Any) -> None:
+            try:
+                msg = self._humble.deserialize_cdr(raw, ros_type)
+                source = int(info["source_timestamp"])
+                records = self.timeline.records(topic, msg, source)
+                fresh = add_all(records, log.add, on_record)
+                if (fresh or not records) and self.recorder is not None and topic != CLOCK:
+                    self.recorder.write(topic, ros_type, bytes(raw), self.timeline.date(source))
+            except Exception as err:  # one bad message is reported and skipped; the node keeps listening
+                self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+
+        def handle(raw: bytes, info: Any) -> None:
+            one(raw, info)
+            if not holder:
+                return
+            sub: Any = holder[0]
+            for _ in range(TAKE_BATCH):
+                with sub.handle:
+                    taken = sub.handle.take_message(sub.msg_type, True)
+                if taken is None:
+                    return
+                one(*taken)
 
         return handle
+
+    def _report(self, line: str) -> None:
+        self.errors += 1
+        print(f"hexar serve: {line}", file=sys.stderr, flush=True)
 
     def publish(self, topic: str, text: str) -> None:
         if topic not in self._pubs:
@@ -132,39 +241,57 @@ class RclpyTransport:  # pragma: no cover -- needs a ROS 2 install
         self._pubs[topic].publish(self._string(data=text))
 
     def close(self) -> None:
-        if self._executor is not None:
-            self._executor.shutdown(timeout_sec=2.0)
-        self.node.destroy_node()
+        self.ros.close()
+        if self.recorder is not None and self.ros._thread is None:
+            self.recorder.close()
 
 
-class RclpyReplayer:  # pragma: no cover -- needs a ROS 2 install
-    """Publishes a recording's raw CDR through rclpy publishers (rclpy accepts serialized bytes)."""
+class RclpyReplayer:
+    """Publishes a recording's raw CDR through rclpy publishers, as `ros2 bag play` does: the source timestamps
+    are the time of publishing, the stamps inside the messages the recording's."""
 
     wants_dds = False
 
-    def __init__(self) -> None:
+    def __init__(self, domain_id: int = 0) -> None:
+        from hexar.events.reader import _humble
         from hexar.live.replay import QOS_OF
 
-        try:
-            self._rclpy: Any = importlib.import_module("rclpy")
-        except ImportError as err:
-            raise TransportUnavailableError("--transport rclpy needs a ROS 2 install; use --transport dds") from err
-        if not self._rclpy.ok():
-            self._rclpy.init()
-        self.node = self._rclpy.create_node("hexar_replay")
+        self.ros = RosNode("hexar_replay", domain_id)
+        self._humble = _humble()
         self._qos = QOS_OF
         self._pubs: dict[str, Any] = {}
 
     def prepare(self) -> None:
         for topic, qos in self._qos.items():
-            self._pubs[topic] = self.node.create_publisher(_msg_class(c.TYPE_OF[topic]), topic, _profile(qos))
+            self._pubs[topic] = self.ros.node.create_publisher(_msg_class(c.TYPE_OF[topic]), topic, _profile(qos))
+
+    def matched(self, topic: str) -> int:
+        return int(self._pubs[topic].get_subscription_count())
+
+    def clock(self, t: int) -> None:
+        if CLOCK not in self._pubs:
+            self._pubs[CLOCK] = self.ros.node.create_publisher(_msg_class(CLOCK_TYPE), CLOCK, _profile(CLOCK_QOS))
+        stamp = self._humble.types["builtin_interfaces/msg/Time"](sec=t // 1_000_000_000, nanosec=t % 1_000_000_000)
+        msg = self._humble.types[CLOCK_TYPE](clock=stamp)
+        self._pubs[CLOCK].publish(bytes(self._humble.serialize_cdr(msg, CLOCK_TYPE)))
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
-        from hexar.events.reader import _humble
+        ros_type = c.TYPE_OF[topic]
+        if msgtype == c.TWIST_STAMPED_TYPE:
+            msg = msg.twist  # the live topic carries Humble's Twist; the header's stamp is not sent
+        elif msgtype == c.ROS1_LOG_TYPE:
+            msg = self._humble.types[c.LOG_TYPE](
+                stamp=msg.header.stamp, level=c.ROS1_LEVELS.get(int(msg.level), int(msg.level)), name=msg.name,
+                msg=msg.msg, file=msg.file, function=msg.function, line=int(msg.line))
+        # rclpy publishes serialized messages given as bytes (a memoryview is refused)
+        self._pubs[topic].publish(bytes(self._humble.serialize_cdr(msg, ros_type)))
 
-        if msgtype != c.TYPE_OF[topic]:
-            return  # a ROS 1 log or a TwistStamped has no publisher of its type here
-        self._pubs[topic].publish(_humble().serialize_cdr(msg, msgtype))
+    def close(self, linger_s: float = 2.0) -> None:
+        """Wait (at most `linger_s`) until reliable readers acknowledged the tail, then leave the domain."""
+        for pub in self._pubs.values():
+            try:
+                pub.wait_for_all_acked(importlib.import_module("rclpy.duration").Duration(seconds=linger_s))
+            except Exception:  # an RMW without the call: the linger is best effort
+                continue
+        self.ros.close()
 
-    def close(self) -> None:
-        self.node.destroy_node()

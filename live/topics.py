@@ -65,11 +65,19 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
 )
 
+# The order a transport reads its topics in: the evidence first, the triggers (a failing /task_info, an aborted
+# goal) last. A transport takes what arrived on each topic in turn, so a failure is seen only after the log
+# lines and skill events that arrived with it, and the explanation that it triggers already has them.
+TRIGGERS = frozenset({c.TASK_INFO, c.NAV_STATUS})
+READ_ORDER: tuple[LiveTopic, ...] = tuple(sorted(SUBSCRIBED, key=lambda t: t.topic in TRIGGERS))
+
 # What the node and the replayer offer. Answers are transient-local so a display that starts later still
 # gets the last few; the question topic is an ordinary ROS default publisher's.
 QUESTION_QOS = TopicQos(depth=100)  # keep-last: a burst of questions must not push earlier ones out
 ANSWER_QOS = TopicQos(durability="transient_local", depth=10)
 TTS_QOS = TopicQos(depth=10)
+# /clock: read best-effort, which matches what rclcpp's ClockQoS (best effort) and a reliable publisher offer
+CLOCK_QOS = TopicQos(reliable=False, depth=10)
 # The replayer offers what the robot's publishers offer, so a reader that matches it matches the robot.
 PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.ROSOUT: TopicQos(durability="transient_local", depth=1000),

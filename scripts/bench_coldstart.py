@@ -14,6 +14,7 @@ embedded <= 3 s (failure check) and <= 4 s (model routes).
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import re
@@ -38,9 +39,9 @@ def hexar() -> list[str]:
     return [str(exe)] if exe.is_file() else [sys.executable, "-m", "hexar"]
 
 
-def timed(argv: list[str]) -> tuple[float, str]:
+def timed(argv: list[str], env: dict[str, str] | None = None) -> tuple[float, str]:
     began = time.perf_counter()
-    done = subprocess.run(argv, capture_output=True, text=True, timeout=600)
+    done = subprocess.run(argv, capture_output=True, text=True, timeout=600, env=env)
     took = time.perf_counter() - began
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(argv)} exited {done.returncode}: {done.stderr.strip()[-300:]}")
@@ -124,6 +125,13 @@ def main() -> None:
         "ask --llm none": lambda: timed([*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "none"])[0],
         "chat (to first prompt)": lambda: chat_first_prompt(suite / FAILED, tmp / "threads.sqlite"),
     }
+    if importlib.util.find_spec("ros_wheels_bootstrapper") is not None:
+        # The `ros` extra's wheels re-execute every Python start to set LD_LIBRARY_PATH, unless
+        # _ROS_WHEELS_BOOTSTRAP_COMPLETE is set. This script inherits it from its own start, so the rows above
+        # run without the re-execution; this one starts as from a shell that never set it.
+        shell = {k: v for k, v in os.environ.items() if k not in {"LD_LIBRARY_PATH", "_ROS_WHEELS_BOOTSTRAP_COMPLETE"}}
+        cmds["ask --llm none, ROS wheels re-exec"] = lambda: timed(
+            [*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "none"], env=shell)[0]
     if embedded:
         cmds["ask --llm embedded (failure check)"] = lambda: timed(
             [*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "embedded"])[0]

@@ -14,8 +14,8 @@ sys.path.insert(0, str(ROOT))
 from tests.live.dds_helpers import Listener  # noqa: E402  -- the same listener the tests use
 
 
-def start_serve(domain: int, *extra: str) -> subprocess.Popen[str]:
-    proc = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "dds", "--domain", str(domain),
+def start_serve(domain: int, *extra: str, transport: str = "dds") -> subprocess.Popen[str]:
+    proc = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", transport, "--domain", str(domain),
                              "--quiet", *extra], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                             text=True)
     assert proc.stderr is not None

@@ -1,5 +1,6 @@
 """Real DDS participants for the live tests: a listener on the node's answers and the robot's /task_info, a
-question writer, the replayer in its own process. Every test uses its own DDS domain so tests never cross-talk."""
+question writer, the node on either transport, the replayer in its own process. Every test uses its own DDS
+domain so tests never cross-talk."""
 
 from __future__ import annotations
 
@@ -21,7 +22,8 @@ from hexar.events.reader import parse_task_info
 from hexar.live import msgs
 from hexar.live.dds import DdsEndpoint, DdsTransport
 from hexar.live.log import Limits, LiveLog
-from hexar.live.node import LiveNode, NodeOptions, failure_key
+from hexar.live.node import LiveNode, NodeOptions, Transport, failure_key
+from hexar.live.ros import rclpy_available
 from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS, TopicQos
 
 # 233 domains; start from the process id so two test runs on one machine are unlikely to share one
@@ -91,9 +93,32 @@ class Listener:
         self.endpoint.close()
 
 
+def other(transport: str) -> str:
+    """The robot stand-in's transport for a node on `transport`: the other DDS vendor where rclpy exists."""
+    return "dds" if transport == "rclpy" or not rclpy_available() else "rclpy"
+
+
+def make_transport(kind: str, domain: int, tts_topic: str | None = None, recorder: Any = None) -> Transport:
+    if kind == "rclpy":
+        from hexar.live.ros import RclpyTransport
+
+        return RclpyTransport(domain, tts_topic=tts_topic, recorder=recorder)
+    return DdsTransport(domain, tts_topic=tts_topic, recorder=recorder)
+
+
+def make_replayer(kind: str, domain: int) -> Any:
+    if kind == "rclpy":
+        from hexar.live.ros import RclpyReplayer
+
+        return RclpyReplayer(domain)
+    from hexar.live.replay import DdsReplayer
+
+    return DdsReplayer(domain)
+
+
 @contextmanager
-def live_node(domain: int, limits: Limits | None = None, **options: Any) -> Iterator[LiveNode]:
-    node = LiveNode(DdsTransport(domain, tts_topic=options.pop("tts_topic", None)), LiveLog(limits),
+def live_node(domain: int, limits: Limits | None = None, transport: str = "dds", **options: Any) -> Iterator[LiveNode]:
+    node = LiveNode(make_transport(transport, domain, tts_topic=options.pop("tts_topic", None)), LiveLog(limits),
                     NodeOptions(llm="none", **options))
     node.start()
     try:
@@ -102,15 +127,18 @@ def live_node(domain: int, limits: Limits | None = None, **options: Any) -> Iter
         node.stop()
 
 
-def replay_process(run: Path, domain: int, rate: float = 10.0, *extra: str) -> subprocess.Popen[str]:
-    """`hexar replay` in its own process: the traffic crosses process boundaries as a robot's would."""
-    cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", str(rate), "--transport", "dds",
+def replay_process(run: Path, domain: int, rate: float = 10.0, *extra: str,
+                   transport: str = "dds") -> subprocess.Popen[str]:
+    """`hexar replay` in its own process: the traffic crosses process boundaries as a robot's would. Over rclpy
+    it is `ros2 bag play`'s kind of traffic: stamps of the recording day, source times of now."""
+    cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", str(rate), "--transport", transport,
            "--domain", str(domain), *extra]
     return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
-def replay(run: Path, domain: int, rate: float = 10.0, timeout: float = 120.0) -> str:
-    proc = replay_process(run, domain, rate)
+def replay(run: Path, domain: int, rate: float = 10.0, timeout: float = 120.0, transport: str = "dds",
+           *extra: str) -> str:
+    proc = replay_process(run, domain, rate, *extra, transport=transport)
     out, err = proc.communicate(timeout=timeout)
     assert proc.returncode == 0, err
     assert "Traceback" not in err

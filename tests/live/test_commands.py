@@ -1,9 +1,13 @@
-"""`hexar serve` and `hexar replay` as a user runs them: two processes over DDS, and one-line errors for bad
-input."""
+"""`hexar serve` and `hexar replay` as a user runs them: two processes, on each transport, each ended by a signal
+(exit 0, nothing left in /dev/shm, no abort); `hexar serve` on rclpy is the ROS 2 node `hexar`; one-line errors
+for bad input."""
 
 from __future__ import annotations
 
+import importlib.util
 import json
+import os
+import re
 import signal
 import subprocess
 import sys
@@ -13,19 +17,62 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
-from tests.live.dds_helpers import Listener, fresh_domain, replay
+from tests.live.dds_helpers import Listener, fresh_domain, other, replay
+
+SHM = Path("/dev/shm")
 
 
-def test_serve_and_replay_processes(suite: Path) -> None:
+def shm_leftovers(before: set[str]) -> set[str]:
+    """Fast DDS participant segments new in /dev/shm that no running process maps or holds open: what a
+    participant that did not shut down leaves (`fastdds_<16 hex>` and its `_el` lock file). The port segments
+    and their semaphores (`fastdds_port<N>`, `sem.fastdds_port<N>_mutex`) are shared by every Fast DDS process
+    on the machine, and one that ends while another opens them may leave them; they are not this test's."""
+    used: set[str] = set()
+    for proc in Path("/proc").glob("[0-9]*"):
+        try:
+            lines = [line for line in (proc / "maps").read_text().splitlines() if "/dev/shm/" in line]
+            used |= {line.rsplit("/", 1)[-1].split()[0] for line in lines}
+            for fd in (proc / "fd").iterdir():
+                target = os.readlink(fd)
+                if target.startswith("/dev/shm/"):
+                    used.add(target.rsplit("/", 1)[-1])
+        except OSError:
+            continue  # a process that ended meanwhile, or one of another user
+    own = re.compile(r"fastdds_[0-9a-f]{16}(_el)?")
+    return {name for name in set(os.listdir(SHM)) - before if name not in used and own.fullmatch(name)}
+
+
+def serve_process(transport: str, domain: int) -> subprocess.Popen[str]:
+    return subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", transport, "--domain",
+                             str(domain), "--duration", "120"], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+
+
+def node_names(domain: int) -> list[str]:
+    from hexar.live.ros import RosNode
+
+    spy = RosNode("hexar_test_spy", domain)
+    try:
+        deadline = time.monotonic() + 10
+        while "hexar" not in spy.node.get_node_names() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        return sorted(set(spy.node.get_node_names()) - {"hexar_test_spy"})
+    finally:
+        spy.close()
+
+
+def test_serve_and_replay_processes(suite: Path, transport: str) -> None:
     domain = fresh_domain()
-    serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "dds", "--domain", str(domain),
-                              "--duration", "120"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    before = set(os.listdir(SHM)) if SHM.is_dir() else set()
+    serve = serve_process(transport, domain)
     listener = Listener(domain)
     try:
         assert serve.stderr is not None
         line = serve.stderr.readline()  # printed once the node listens
-        assert "listening over dds" in line and "writes only /hexar/answer" in line
-        assert "replayed" in replay(suite / "bagfile_7_1", domain, rate=20.0)
+        assert f"listening over {transport}" in line and "writes only /hexar/answer" in line
+        if transport == "rclpy":
+            assert node_names(domain) == ["hexar"]  # as `ros2 node list` shows it
+        assert "replayed" in replay(suite / "bagfile_7_1", domain, rate=20.0, transport=other(transport))
         failure = listener.wait_answers(1, "failure")
         listener.ask("Why didn't you bring me the coffee?")
         question = listener.wait_answers(1, "question", timeout=15)
@@ -38,11 +85,32 @@ def test_serve_and_replay_processes(suite: Path) -> None:
     assert question[0]["causes"] == ["navigation.charging"]
     printed = [json.loads(x) for x in out.splitlines()]
     assert [p["trigger"] for p in printed] == ["failure", "question"]
-    assert serve.returncode == 0 and "Traceback" not in err
+    assert serve.returncode == 0 and "Traceback" not in err and "terminate called" not in err
+    if SHM.is_dir():
+        assert shm_leftovers(before) == set()
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> None:
+    """Ctrl-C or a service manager's SIGTERM: exit 0, the summary line, no abort, nothing left behind."""
+    domain = fresh_domain()
+    before = set(os.listdir(SHM)) if SHM.is_dir() else set()
+    serve = serve_process(transport, domain)
+    assert serve.stderr is not None
+    assert "listening" in serve.stderr.readline()
+    serve.send_signal(sig)
+    _, err = serve.communicate(timeout=30)
+    assert serve.returncode == 0, err
+    assert "hexar serve: received 0 records" in err
+    assert "Traceback" not in err and "terminate called" not in err
+    if SHM.is_dir():
+        assert shm_leftovers(before) == set()
 
 
 @pytest.mark.parametrize(("argv", "message"), [
-    (["serve", "--transport", "rclpy"], "needs a ROS 2 install"),
+    (["serve", "--transport", "rclpy"], "needs rclpy"),
+    (["serve", "--transport", "rclpy", "--domain", "500"], "out of range"),
+    (["replay", "RUN", "--clock", "-1"], "--clock must be 0"),
     (["serve", "--transport", "zenoh"], "unknown transport"),
     (["serve", "--transport", "dds", "--domain", "500"], "out of range"),
     (["serve", "--proactive", "loud"], "unknown --proactive"),
@@ -74,14 +142,14 @@ def test_not_a_recording(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
     assert "has no metadata.yaml" in capsys.readouterr().err
 
 
-def test_chat_live_talks_with_the_running_node(suite: Path) -> None:
+def test_chat_live_talks_with_the_running_node(suite: Path, transport: str) -> None:
     from hexar.live.chat_live import chat_live
     from tests.live.dds_helpers import live_node
 
     domain = fresh_domain()
     shown: list[dict[str, object]] = []
-    with live_node(domain):
-        replay(suite / "bagfile_19_1", domain, rate=40.0)
+    with live_node(domain, transport=transport):
+        replay(suite / "bagfile_19_1", domain, rate=40.0, transport=other(transport))
         time.sleep(1.0)
         assert chat_live(domain, ["Why didn't you tell Maria?", "why?"], shown.append) == 0
     answers = [a for a in shown if a["trigger"] == "question"]
@@ -97,3 +165,17 @@ def test_chat_live_without_a_node_says_so(capsys: pytest.CaptureFixture[str]) ->
         chat_live(fresh_domain(), ["why?"], print, timeout=1.0)
     assert main(["chat"]) == 2
     assert "give a recording, or --live" in capsys.readouterr().err
+
+
+@pytest.mark.skipif(importlib.util.find_spec("ros_wheels_bootstrapper") is None,
+                    reason="only the ROS 2 Kilted wheels re-execute Python at start-up")
+def test_rclpy_serve_works_when_python_starts_without_the_wheels_reexecution() -> None:
+    """With _ROS_WHEELS_BOOTSTRAP_COMPLETE set, no Python start pays the wheels' re-execution (`hexar ask`
+    included); `hexar serve --transport rclpy` then re-executes itself once with the wheels' library path."""
+    env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
+    env["_ROS_WHEELS_BOOTSTRAP_COMPLETE"] = "1"
+    done = subprocess.run([sys.executable, "-m", "hexar", "serve", "--transport", "rclpy", "--domain",
+                           str(fresh_domain()), "--duration", "1"], env=env, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "listening over rclpy" in done.stderr and "Traceback" not in done.stderr

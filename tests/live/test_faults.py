@@ -1,11 +1,16 @@
-"""Faults on real DDS traffic: the replayer killed and restarted mid-task, duplicated and reordered messages,
-a 10 MB log line. The node keeps answering, with the same causes, and never prints a traceback."""
+"""Faults on real DDS traffic, for a node on each transport: the replayer killed and restarted mid-task,
+duplicated and reordered messages, a 10 MB log line. The node keeps answering, with the same causes, and never
+prints a traceback. The faulty robot is a Cyclone participant: it writes each message at its recording time, so
+a copy sent again is the same message (a robot on rclpy would stamp the copy with a new source time)."""
 
 from __future__ import annotations
 
 import signal
 import time
+import types
 from pathlib import Path
+
+import pytest
 
 from hexar.events import contract as c
 from hexar.live import msgs
@@ -16,12 +21,12 @@ from tests.live.test_replay_explains import QUESTION, expected
 RUN = "bagfile_5_1"  # navigation: the path is blocked; ~70 s of traffic
 
 
-def test_replayer_killed_mid_task_and_restarted(suite: Path) -> None:
+def test_replayer_killed_mid_task_and_restarted(suite: Path, transport: str) -> None:
     failures, asked = expected(suite / RUN)
     domain = fresh_domain()
     listener = Listener(domain)
     try:
-        with live_node(domain) as node:
+        with live_node(domain, transport=transport) as node:
             first = replay_process(suite / RUN, domain, 20.0)
             deadline = time.monotonic() + 30
             while node.log.stats()["tasks"] == 0 and time.monotonic() < deadline:
@@ -45,13 +50,13 @@ def test_replayer_killed_mid_task_and_restarted(suite: Path) -> None:
         listener.close()
 
 
-def test_duplicated_reordered_and_a_10_mb_line(suite: Path) -> None:
+def test_duplicated_reordered_and_a_10_mb_line(suite: Path, transport: str) -> None:
     failures, asked = expected(suite / RUN)
     domain = fresh_domain()
     listener = Listener(domain)
     writer = DdsReplayer(domain)
     try:
-        with live_node(domain) as node:
+        with live_node(domain, transport=transport) as node:
             writer.prepare()
             time.sleep(0.5)
             messages = list(bag_messages(suite / RUN)[0])
@@ -82,3 +87,54 @@ def test_duplicated_reordered_and_a_10_mb_line(suite: Path) -> None:
     finally:
         writer.close()
         listener.close()
+
+
+def test_a_message_rclpy_cannot_decode_is_reported_and_the_node_keeps_listening() -> None:
+    """A publisher whose DiagnosticArray has another layout (ROS 2 matches by type name only): the rclpy
+    transport reports the message it cannot decode, skips it, and still hears the next good one."""
+    pytest.importorskip("rclpy")
+    from dataclasses import dataclass
+
+    from cyclonedds.idl import IdlStruct
+    from cyclonedds.idl.types import uint32
+
+    from hexar.live.log import LiveLog
+    from hexar.live.topics import TopicQos
+    from tests.live.dds_helpers import make_transport
+
+    # one uint32, read by a DiagnosticArray decoder as a stamp whose nanoseconds and frame id lie past the end;
+    # built with real annotations (this module's are strings, which cyclonedds cannot resolve here)
+    name = {"typename": "diagnostic_msgs::msg::dds_::DiagnosticArray_"}
+    body = {"__annotations__": {"count": uint32}, "count": 0xFFFFFFFF}
+    Other = dataclass(types.new_class("Other", (IdlStruct,), name, lambda ns: ns.update(body)))
+
+    domain = fresh_domain()
+    transport, log = make_transport("rclpy", domain), LiveLog()
+    transport.start(log, lambda r: None, lambda q: None)
+    bad = DdsReplayer(domain)
+    try:
+        from cyclonedds.pub import DataWriter
+        from cyclonedds.topic import Topic
+
+        from hexar.live.dds import dds_qos
+        from hexar.live.topics import dds_name
+
+        participant = bad.endpoint.participant
+        writer = DataWriter(participant, Topic(participant, dds_name(c.DIAGNOSTICS), Other), dds_qos(TopicQos()))
+        deadline = time.monotonic() + 10
+        while not writer.get_matched_subscriptions() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        writer.write(Other())
+        while transport.errors == 0 and time.monotonic() < deadline:  # type: ignore[attr-defined]
+            time.sleep(0.05)
+        flag = bad.endpoint.writer(c.IS_CHARGING, c.BOOL_TYPE, TopicQos())
+        while not flag.get_matched_subscriptions() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        flag.write(msgs.Bool(data=True), timestamp=123 * 10**9)
+        while log.stats()["received"] == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+    finally:
+        transport.close()
+        bad.close()
+    assert transport.errors == 1  # type: ignore[attr-defined]
+    assert [s.value for s in log.snapshot().flags[c.IS_CHARGING]] == [True]

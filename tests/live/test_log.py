@@ -8,11 +8,10 @@ from pathlib import Path
 
 from hexar.events import contract as c
 from hexar.events import read_recording
-from hexar.events.records import BoolSample, LogLine, TaskUpdate
+from hexar.events.records import BoolSample, LogLine, SkillStep, TaskUpdate
 from hexar.live.convert import to_records
 from hexar.live.log import NS, Limits, LiveLog
 from hexar.live.replay import bag_messages
-from hexar.live.ros import RobotClock
 
 
 def records_of(run: Path) -> list[object]:
@@ -99,9 +98,20 @@ def test_a_latched_old_flag_is_no_clock_jump() -> None:
     assert snap.view({c.JOY_PRIORITY}).flag_at(c.JOY_PRIORITY, 5003 * NS) == BoolSample(10 * NS, c.JOY_PRIORITY, True)
 
 
-def test_robot_clock_dates_unstamped_messages_from_the_stamped_ones() -> None:
-    clock = RobotClock(fresh_s=5.0)
-    assert clock.now(123) == 123  # nothing stamped yet: the receive time
-    clock.stamped(1_000 * NS, recv=50_000 * NS)
-    assert clock.now(50_000 * NS + 200) == 1_000 * NS + 200
-    assert clock.now(50_010 * NS) == 50_010 * NS  # stale: back to the receive time
+def _finished_task(t_s: float, task_id: str, state: str) -> TaskUpdate:
+    raw = f'{{"task_id": "{task_id}", "skill_sequence": [{{"skill": "say", "status": "{state}"}}]}}'
+    return TaskUpdate(int(t_s * NS), task_id, "say hi", "valid", "", (SkillStep("say", {}, state),), raw)
+
+
+def test_a_task_id_repeated_after_a_restart_is_a_new_task() -> None:
+    live = LiveLog()
+    for t_s, state in ((10.0, "pending"), (11.0, "running"), (12.0, "failed")):
+        live.add(_finished_task(t_s, "1", state))
+    live.add(_finished_task(12.0, "1", "failed"))  # a copy sent again: a duplicate, not a task
+    # the robot restarted and numbers its tasks from 1 again: the same JSON, later
+    for t_s, state in ((100.0, "pending"), (101.0, "running"), (102.0, "succeeded")):
+        live.add(_finished_task(t_s, "1", state))
+    snap = live.snapshot()
+    assert [(t.task_id, t.outcome) for t in snap.tasks] == [("1", "failed"), ("1#2", "succeeded")]
+    assert live.duplicates == 1
+    assert any("started again" in w for w in snap.warnings)

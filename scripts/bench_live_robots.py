@@ -1,0 +1,152 @@
+"""Acceptance run of `hexar serve` on each transport against stand-in robots on both DDS vendors and clocks.
+
+    .venv/bin/python scripts/bench_live_robots.py [--suite DIR] [--rate 10] [--runs bagfile_5_1 ...]
+
+For each node transport (rclpy/Fast DDS, dds/Cyclone) x robot vendor (rclpy, Cyclone) x robot clock, one
+`hexar serve` process hears a stand-in robot replaying failing simulated recordings at `--rate`:
+- live: every stamp is the publishing time (a robot running now), source times are now;
+- bag-play: the recording's stamps, source times of now (`ros2 bag play` of an old recording);
+- bag-play+clock: the same with /clock at 40 Hz (`ros2 bag play --clock`).
+Each failure must be explained unasked with the cause `hexar ask` gives on the recording, and a question after
+it must get `hexar ask`'s answer. Latency is failing /task_info -> /hexar/answer as a Cyclone listener sees both;
+medians and p95 per node transport. The stand-in robots publish through HEXAR's replayer writers (rclpy raw CDR,
+or the Cyclone IDL types), restamping the messages themselves.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import statistics
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+from live_common import Listener, percentile, start_serve
+
+from hexar.events import contract as c
+from hexar.live.replay import QOS_OF, replay, to_dds
+from tests.live.dds_helpers import fresh_domain, make_replayer
+from tests.live.test_replay_explains import QUESTION, expected
+
+RUNS = ("bagfile_2_1", "bagfile_5_1", "bagfile_11_1", "bagfile_19_1")  # planner, navigation, ask human, TTS
+CLOCKS = ("live", "bag-play", "bag-play+clock")
+
+
+class StandIn:
+    """A robot on `vendor`: restamps (live clock) and writes with today's source time, as a ROS 2 node does."""
+
+    def __init__(self, vendor: str, domain: int, clock: str) -> None:
+        self.writer = make_replayer(vendor, domain)
+        self.vendor, self.clock_mode = vendor, clock
+        self.wants_dds = False
+
+    def prepare(self) -> None:
+        self.writer.prepare()
+
+    def matched(self, topic: str) -> int:
+        return int(self.writer.matched(topic))
+
+    def clock(self, t: int) -> None:
+        if self.vendor == "rclpy":
+            self.writer.clock(t)
+            return
+        from hexar.live import msgs
+        from hexar.live.clock import CLOCK, CLOCK_TYPE
+        from hexar.live.topics import CLOCK_QOS
+
+        # as `ros2 bag play --clock`: the recording's time inside, the time of writing as source time
+        self.writer.endpoint.writer(CLOCK, CLOCK_TYPE, CLOCK_QOS).write(msgs.Clock(clock=msgs.time_of(t)))
+
+    def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
+        if self.clock_mode == "live":
+            _restamp(msg, time.time_ns())
+        if self.vendor == "rclpy":
+            self.writer.write(topic, msgtype, msg, t)
+            return
+        # Cyclone: the source timestamp is the time of writing, not the recording's
+        self.writer.endpoint.writer(topic, c.TYPE_OF[topic], QOS_OF[topic]).write(to_dds(msgtype, msg))
+
+    def close(self) -> None:
+        self.writer.close()
+
+
+def _restamp(msg: Any, now: int) -> None:
+    stamp = msg.stamp if hasattr(msg, "stamp") else getattr(getattr(msg, "header", None), "stamp", None)
+    if stamp is not None:
+        stamp.sec, stamp.nanosec = now // 1_000_000_000, now % 1_000_000_000
+
+
+def one_case(suite: Path, runs: list[str], node: str, vendor: str, clock: str,
+             rate: float) -> tuple[int, int, list[float]]:
+    """(failures explained right, failures in all, proactive latencies in s) for one serve process."""
+    domain = fresh_domain()
+    serve = start_serve(domain, transport=node)
+    listener = Listener(domain)
+    good = total = 0
+    latencies: list[float] = []
+    try:
+        for name in runs:
+            failures, asked = expected(suite / name)
+            total += len(failures)
+            before = len(listener.answers("failure"))
+            robot = StandIn(vendor, domain, clock)
+            try:
+                replay(suite / name, robot, rate=rate, clock_hz=40.0 if clock.endswith("clock") else 0.0)
+            finally:
+                robot.close()
+            got = listener.wait_answers(before + len(failures), "failure", timeout=10.0)[before:]
+            n_q = len(listener.answers("question"))
+            listener.ask(QUESTION)
+            answer = listener.wait_answers(n_q + 1, "question", timeout=15.0)[n_q:]
+            ok_q = bool(answer) and answer[0].get("causes") == asked
+            for a in got:
+                right = failures.get(a.get("task_id", "")) == a.get("causes")
+                good += int(right and ok_q)
+                if not right or not ok_q:
+                    want = failures.get(a.get("task_id", ""))
+                    print(f"  {name}: unasked {a.get('causes')} {a.get('error', '')[:80]} (want {want}), "
+                          f"asked {answer[0].get('causes') if answer else None} (want {asked})", flush=True)
+            for received, a in listener.answers("failure")[before:]:
+                key = next((k for k in listener.heard.failures if k.startswith(a.get("task_id", "") + ":")), None)
+                if key is not None:
+                    latencies.append(received - listener.heard.failures[key])
+    finally:
+        listener.close()
+        serve.send_signal(signal.SIGTERM)
+        _, err = serve.communicate(timeout=60)
+        if serve.returncode != 0 or "terminate called" in err:
+            print(f"  serve exited {serve.returncode}: {err.strip()[-300:]}", flush=True)
+    return good, total, latencies
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--suite", type=Path, default=None, help="folder of `hexar simulate` recordings")
+    ap.add_argument("--rate", type=float, default=10.0)
+    ap.add_argument("--runs", nargs="*", default=list(RUNS))
+    args = ap.parse_args()
+    suite = args.suite
+    if suite is None:
+        from hexar.evals.scenarios.suite import simulate_suite
+
+        suite = Path(tempfile.mkdtemp()) / "suite"
+        simulate_suite(suite)
+    per_node: dict[str, list[float]] = {"rclpy": [], "dds": []}
+    print(f"{'node':6} {'robot':6} {'clock':15} explained  median   p95", flush=True)
+    for node in ("rclpy", "dds"):
+        for vendor in ("rclpy", "dds"):
+            for clock in CLOCKS:
+                good, total, lat = one_case(suite, args.runs, node, vendor, clock, args.rate)
+                per_node[node] += lat
+                med = statistics.median(lat) * 1000 if lat else float("nan")
+                p95 = percentile(lat, 0.95) * 1000
+                print(f"{node:6} {vendor:6} {clock:15} {good:3}/{total:<3}  {med:6.0f} ms {p95:5.0f} ms", flush=True)
+    for node, lat in per_node.items():
+        print(f"node on {node}: failure -> /hexar/answer median {statistics.median(lat) * 1000:.0f} ms, "
+              f"p95 {percentile(lat, 0.95) * 1000:.0f} ms over {len(lat)} failures")
+
+
+if __name__ == "__main__":
+    main()
