@@ -15,3 +15,7 @@ USER_ERRORS: tuple[type[Exception], ...] = (HexarError, EventsError, ExplainerEr
 
 class InputFileError(HexarError):
     """A file or folder argument that is missing, of the wrong kind, unreadable, binary or wrongly encoded."""
+
+
+class BadJsonError(HexarError):
+    """JSON from outside (a recording, a topic, a request) that is malformed, too large or nested too deep."""
