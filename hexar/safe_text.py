@@ -8,7 +8,9 @@ as `[/]` breaks or restyles the output. Every command prints recorded strings th
   visible escapes (`\\x1b[31m`), for plain `print`, files and web pages (which escape HTML on top);
 - `safe(text)`: `visible` plus rich markup escaped, for anything handed to a rich Console, Table or Panel;
 - `json_dumps(obj)`: strict JSON (`allow_nan=False`); a non-finite number becomes null and the enclosing
-  top-level object gets a `warnings` entry naming where it was.
+  top-level object gets a `warnings` entry naming where it was; every string in it goes through `visible`
+  (newlines kept), so the VALUES a client parses (a dashboard, a robot's TTS reading /hexar/answer, an MCP
+  client) hold no escape sequence or bidi override either, not only the JSON text.
 
 This module imports nothing heavy, so a web page or a live node can use it without the CLI.
 """
@@ -64,7 +66,10 @@ def safe(text: object, keep_newlines: bool = False) -> str:
 
 
 def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
-    """A copy of `obj` with NaN and infinities replaced by None; their paths are appended to `found`."""
+    """A copy of `obj` with NaN and infinities replaced by None (their paths appended to `found`) and every
+    string, keys included, made `visible` with its newlines kept."""
+    if isinstance(obj, str):
+        return visible(obj, keep_newlines=True)
     if isinstance(obj, float):
         if math.isfinite(obj):
             return obj
@@ -72,7 +77,7 @@ def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
             found.append(f"{where or 'value'} was {obj!r}")
         return None
     if isinstance(obj, dict):
-        return {k: finite(v, f"{where}.{k}" if where else str(k), found) for k, v in obj.items()}
+        return {finite(k): finite(v, f"{where}.{k}" if where else str(k), found) for k, v in obj.items()}
     if isinstance(obj, list | tuple):
         return [finite(v, f"{where}[{i}]", found) for i, v in enumerate(obj)]
     return obj
