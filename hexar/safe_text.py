@@ -60,6 +60,12 @@ def escape_markup(text: str) -> str:
     return out
 
 
+def clip(text: str, limit: int = 300) -> str:
+    """At most `limit` characters for a table or a heading, with the length of what was left out: a
+    recorded 10 MB instruction is shown as its start, not wrapped into 100,000 terminal lines."""
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text) - limit} more characters)"
+
+
 def safe(text: object, keep_newlines: bool = False) -> str:
     """Recorded text ready for a rich Console, Table or Panel: controls visible and markup escaped."""
     return escape_markup(visible(text, keep_newlines))
