@@ -20,7 +20,6 @@ MAX_FAILURES = 32  # waiting proactive explanations (each failure is explained o
 BURST = 3  # questions a source may ask at once
 PER_SECOND = 1.0  # and then one a second
 MAX_SOURCES = 1024  # sources remembered (the least recent are forgotten, and start afresh)
-GLOBAL_PER_SECOND = 20.0  # all sources together: random thread ids do not make a flood many sources
 
 
 class Kinded(Protocol):
@@ -47,11 +46,12 @@ class Bucket:
 
 
 class RateLimit:
-    """A bucket per source (at most MAX_SOURCES remembered) and one for everybody."""
+    """A bucket per source (at most MAX_SOURCES remembered). There is no bucket for everybody: a flood would
+    empty it and refuse the person asking right after; made-up sources are bounded by the queue instead, which
+    keeps the newest questions."""
 
-    def __init__(self, burst: float = BURST, rate: float = PER_SECOND, overall: float = GLOBAL_PER_SECOND) -> None:
+    def __init__(self, burst: float = BURST, rate: float = PER_SECOND) -> None:
         self.burst, self.rate = burst, rate
-        self._all = Bucket(overall, overall, time.monotonic())
         self._sources: OrderedDict[str, Bucket] = OrderedDict()
         self._lock = threading.Lock()
 
@@ -64,7 +64,7 @@ class RateLimit:
                 while len(self._sources) > MAX_SOURCES:
                     self._sources.popitem(last=False)
             self._sources.move_to_end(source)
-            return bucket.take(now) and self._all.take(now)
+            return bucket.take(now)
 
 
 class JobQueue(Generic[J]):

@@ -59,7 +59,8 @@ def test_a_question_flood_leaves_the_node_bounded_and_answering(suite: Path) -> 
         listener.close()
     assert mine and mine[0]["causes"] == ["navigation.charging"]  # the person's question, after the flood
     assert most_waiting <= MAX_QUESTIONS + 1  # never more waiting than the queue holds (plus the failure)
-    assert node.refused > 0 and answered < 1_000  # the flood was mostly refused, not queued
+    # the flood was refused (one source over its rate) or dropped (made-up sources past the queue), not queued
+    assert node.refused > 0 and node._jobs.dropped > 0 and answered < 5_000
     assert len(threads) <= KEEP_THREADS and max(histories) <= KEEP_TURNS
     assert all(len(cps) == 1 for ns in threads.values() for cps in ns.values())  # the latest checkpoint only
 
