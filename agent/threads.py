@@ -39,19 +39,17 @@ def keep_latest(saver: Any, thread_id: str) -> None:
             for old in [k for k in checkpoints if k != last]:
                 del checkpoints[old]
             versions = set(kept.get("channel_versions", {}).items())
-            for key in [k for k in saver.writes if k[0] == thread_id and k[1] == ns and k[2] != last]:
-                del saver.writes[key]
-            for key in [k for k in saver.blobs if k[0] == thread_id and k[1] == ns and (k[2], k[3]) not in versions]:
-                del saver.blobs[key]
+            for wkey in [k for k in saver.writes if k[0] == thread_id and k[1] == ns and k[2] != last]:
+                del saver.writes[wkey]
+            for bkey in [k for k in saver.blobs if k[0] == thread_id and k[1] == ns and (k[2], k[3]) not in versions]:
+                del saver.blobs[bkey]
 
 
 class ThreadBook:
     """When each thread of a conversation file was last used, and the pruning of old ones."""
 
-    def __init__(self, conn: sqlite3.Connection, saver: Any, max_threads: int = MAX_THREADS,
-                 max_age_s: float = MAX_AGE_S) -> None:
+    def __init__(self, conn: sqlite3.Connection, saver: Any) -> None:
         self.conn, self.saver = conn, saver
-        self.max_threads, self.max_age_s = max_threads, max_age_s
         with conn:
             conn.execute("CREATE TABLE IF NOT EXISTS hexar_threads (thread_id TEXT PRIMARY KEY, used REAL)")
 
@@ -62,7 +60,7 @@ class ThreadBook:
             self.conn.execute("INSERT OR REPLACE INTO hexar_threads VALUES (?, ?)", (thread_id, now))
             rows = self.conn.execute("SELECT thread_id, used FROM hexar_threads ORDER BY used DESC").fetchall()
         old = [t for i, (t, used) in enumerate(rows)
-               if t != thread_id and (i >= self.max_threads or used < now - self.max_age_s)]
+               if t != thread_id and (i >= MAX_THREADS or used < now - MAX_AGE_S)]
         for t in old:
             self.saver.delete_thread(t)
         if old:

@@ -179,3 +179,51 @@ def test_symlinks_out_of_the_folder_are_refused(webroot: Path, tmp_path: Path) -
             status, _, data = request(url, "POST", "/api/chat", json.dumps({"name": name, "question": "Why?"})
                                       .encode(), {"Content-Type": "application/json"})
             assert status == 400 and "outside the served folder" in data["error"]
+
+
+def test_many_posts_leave_the_conversation_file_bounded(webroot: Path, tmp_path: Path,
+                                                        monkeypatch: pytest.MonkeyPatch) -> None:
+    from hexar.agent import threads
+
+    monkeypatch.setattr(threads, "MAX_THREADS", 10)
+    checkpoints = tmp_path / "t.sqlite"
+    with served(webroot, checkpoints) as url:
+        same = request(url, "POST", "/api/chat", CHAT, {"Content-Type": "application/json"})[2]["thread"]
+        for i in range(60):  # new threads, and one thread continued, as a flood of posts would
+            body = {"name": "bagfile_5_1", "question": "Why did you fail?", **({"thread": same} if i % 2 else {})}
+            status, _, _ = request(url, "POST", "/api/chat", json.dumps(body).encode(),
+                                   {"Content-Type": "application/json"})
+            assert status == 200
+    assert thread_count(checkpoints) <= 10
+    with sqlite3.connect(checkpoints) as db:
+        per_thread = db.execute("SELECT MAX(n) FROM (SELECT COUNT(*) AS n FROM checkpoints GROUP BY thread_id)")
+        assert per_thread.fetchone()[0] == 1
+
+
+def test_control_and_bidi_characters_never_reach_the_json_values(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+
+    root = tmp_path / "root"
+    b = BagBuilder()
+    t0 = sec_ns(1_741_600_000)
+    step = {"skill": "navigate_to_zone", "params": {"zone": "kitchen\x1b[31m"}, "status": "failed",
+            "error_msg": "Goal failed\x1b]52;c;ZWNobyBwd25lZA==\x07 \u202eevil"}
+    b.task_info(t0, {"instruction": "Bring me \u202ethe coffee", "task_id": "t1", "task_status": "valid",
+                     "task_error_msg": "", "skill_sequence": [step]})
+    b.log(t0 + sec_ns(1), "bt_navigator", 40, "Goal failed\x1b[2J\u2066")
+    b.write(root / "hostile")
+    with served(root, tmp_path / "t.sqlite") as url:
+        bodies = [request(url, "GET", p)[2] for p in ("/api/runs", "/api/run?name=hostile", "/api/lines?name=hostile")]
+        bodies.append(request(url, "POST", "/api/chat", json.dumps({"name": "hostile", "question": "What happened?"})
+                              .encode(), {"Content-Type": "application/json"})[2])
+
+    def strings(value: Any) -> list[str]:
+        if isinstance(value, dict):
+            return [*value.keys(), *(s for v in value.values() for s in strings(v))]
+        if isinstance(value, list):
+            return [s for v in value for s in strings(v)]
+        return [value] if isinstance(value, str) else []
+
+    texts = [s for body in bodies for s in strings(body)]
+    assert any("\\x1b" in s for s in texts)  # the hostile text is shown, made visible
+    assert not any(ch in s for s in texts for ch in ("\x1b", "\x07", "\u202e", "\u2066"))
