@@ -54,7 +54,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
         except USER_ERRORS as err:
             raise ToolError(_clean(ws, err)) from err
         # the SDK writes NaN and Infinity into the text content: strict JSON, with a warning where one was
-        return dict(finite_with_warnings(result))
+        return dict(finite_with_warnings(result, clean=True))  # values without control or bidi characters
 
     @server.tool()
     def list_recordings(offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
@@ -115,7 +115,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
 
     def resource(fn: Any, recording: str) -> str:
         try:
-            return json_dumps(fn(unquote(recording)), indent=1)
+            return json_dumps(fn(unquote(recording)), indent=1, clean=True)
         except USER_ERRORS as err:
             raise ResourceError(_clean(ws, err)) from err
 

@@ -316,9 +316,9 @@ class LiveNode:
         """Out on /hexar/answer with every recorded string made visible: a dashboard or a robot's TTS reading
         the values gets no escape sequence or bidi override from a hostile log line."""
         self.answers += 1
-        clean = dict(finite_with_warnings(result))
+        clean = dict(finite_with_warnings(result, clean=True))
         result.clear()
         result.update(clean)  # the caller speaks the same, cleaned answer
-        self.transport.publish(ANSWER, json_dumps(result))
+        self.transport.publish(ANSWER, json_dumps(result, clean=True))
         if self.on_answer is not None:
             self.on_answer(result)

@@ -118,7 +118,7 @@ class Handler(BaseHTTPRequestHandler):
     def _json(self, data: Any, status: int = 200) -> None:
         from hexar.safe_text import json_dumps  # strict JSON: a NaN from a recording becomes null, with a warning
 
-        self._send(status, json_dumps(data).encode(), "application/json")
+        self._send(status, json_dumps(data, clean=True).encode(), "application/json")
 
     def _refuse(self, status: int, message: str) -> None:
         self.close_connection = True  # a body left unread must not be parsed as the next request
