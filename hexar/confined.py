@@ -6,11 +6,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hexar.errors import HexarError
-
-
-class OutsideFolderError(HexarError):
-    """The path leaves the served folder (`..`, an absolute path elsewhere, or a symlink pointing out)."""
+from hexar.errors import LinkOutsideError
 
 
 def leaving(root: Path, path: Path) -> Path | None:
@@ -30,9 +26,9 @@ def leaving(root: Path, path: Path) -> Path | None:
 
 
 def confine(root: Path, path: Path, shown: str) -> Path:
-    """`path`, or OutsideFolderError naming it as `shown` when it or a file of it links out of `root`."""
+    """`path`, or LinkOutsideError naming it as `shown` when it or a file of it links out of `root`."""
     out = leaving(root, path)
     if out is not None:
         what = shown if out == path else f"{shown}/{out.name}"
-        raise OutsideFolderError(f"{what!r} is a link to a file outside the served folder: refused")
+        raise LinkOutsideError(f"{what!r} is a link to a file outside the served folder: refused")
     return path

@@ -17,7 +17,7 @@ from urllib.parse import quote, unquote
 from mcp.server.fastmcp import FastMCP
 from mcp.server.fastmcp.exceptions import ResourceError, ToolError
 
-from hexar.errors import USER_ERRORS, HexarError
+from hexar.errors import USER_ERRORS, McpOptionError
 from hexar.safe_text import finite_with_warnings, json_dumps
 from hexar.workspace import PAGE, Workspace
 
@@ -139,10 +139,6 @@ def resource_uri(recording: str, kind: str) -> str:
 
 LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
 MIN_TOKEN = 16
-
-
-class McpOptionError(HexarError):
-    """`hexar mcp` options that would expose the recordings: HTTP off loopback without a token."""
 
 
 class BearerToken:
