@@ -35,6 +35,7 @@ _SOURCE = {
     "/skills/recommend_pizza/events": "my pizza recommender",
 }
 CONFIDENT = 0.45
+KEEP_TURNS = 20  # the turns of a conversation kept in its saved state
 BUILTIN = {"planner", "navigation", "ask_human_for_help", "text_to_speech", "pizza_recommender"}
 
 
@@ -203,7 +204,13 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     turn = {"question": state["question"], "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
-            "history": [*state.get("history", []), turn], "timings_ms": _timings(state, "answer", start)}
+            "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start)}
+
+
+def remembered(state: AgentState, turn: Any) -> list[Any]:
+    """The thread's history with `turn`, its last KEEP_TURNS only: a conversation's saved state stays bounded
+    however long it goes on (a follow-up reads the last answers, never the first of hundreds)."""
+    return [*state.get("history", []), turn][-KEEP_TURNS:]
 
 
 def _direct(state: AgentState, exp: Explanation, key: str, start: float) -> dict[str, Any]:
@@ -211,7 +218,7 @@ def _direct(state: AgentState, exp: Explanation, key: str, start: float) -> dict
     turn = {"question": state["question"], "answer": exp.text, "explainers": [exp.explainer]}
     return {"explanations": [exp.model_dump()], "answer": exp.text, "route": "followup", "depth": 0,
             "selected": [], "told": [*state.get("told", []), *exp.causes],
-            "history": [*state.get("history", []), turn], "timings_ms": _timings(state, key, start)}
+            "history": remembered(state, turn), "timings_ms": _timings(state, key, start)}
 
 
 def walk(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -266,7 +273,7 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             text = ""
         text = text or "That's everything I recorded about it; I don't have enough information to go deeper."
     turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
-    return {"answer": text, "depth": depth, "route": "followup", "history": [*state.get("history", []), turn],
+    return {"answer": text, "depth": depth, "route": "followup", "history": remembered(state, turn),
             "timings_ms": _timings(state, "followup", start)}
 
 

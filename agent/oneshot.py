@@ -17,6 +17,7 @@ from typing import Any, cast
 from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.errors import AgentError
+from hexar.agent.questions import bounded
 from hexar.agent.routing import END, FIRST, NEXT, NODES
 from hexar.agent.state import AgentState
 from hexar.explainers.base import Explanation
@@ -85,7 +86,7 @@ class OneShot:
         thread = uuid.uuid4().hex[:12]
         started = time.perf_counter()
         self.context.started = time.monotonic()
-        update: dict[str, Any] = {"question": question}
+        update: dict[str, Any] = {"question": bounded(question)}
         if task is not None:
             update["task_ref"] = task
         state = walk(update, self.context, self.settings.recursion_limit)

@@ -17,6 +17,9 @@ def _words(text: str) -> frozenset[str]:
     return frozenset(text.split())
 
 
+MAX_QUESTION = 1000
+"""The longest question read, in characters (CLI, chat, web, MCP and live alike): a longer one is refused
+before any regular expression or model sees it, and no error message repeats more than its start."""
 EXAMPLE = 'e.g. "Why didn\'t you bring me the coffee?" or "what happened"'
 _WORD = re.compile(r"[a-z]+(?:'[a-z]+)?")
 # Sounds and transcript markers that carry no words (whisper writes "[BLANK_AUDIO]" or "(static)" for noise).
@@ -154,19 +157,33 @@ def _asks(q: str, words: list[str]) -> bool:
     return about or any(w in _EVENTS for w in words)
 
 
+def bounded(question: str) -> str:
+    """At most one character more than MAX_QUESTION: enough for check_question to refuse it, and nothing
+    larger kept in a conversation's saved state."""
+    return question[:MAX_QUESTION + 1]
+
+
+def quoted(question: str, limit: int = 80) -> str:
+    """The question in quotes for an error message, its start only when it is long."""
+    q = question.strip()
+    return repr(q) if len(q) <= limit else repr(q[:limit]) + "..."
+
+
 def check_question(question: str) -> str:
     """The question, trimmed and normalised; raises BadQuestionError with a one-line reason otherwise."""
     if not question.strip():
         raise BadQuestionError(f"empty question: ask me why I did something, {EXAMPLE}")
+    if len(question) > MAX_QUESTION:
+        raise BadQuestionError(f"that question is too long: ask in at most {MAX_QUESTION} characters, {EXAMPLE}")
     q = normalise(question)
     words = _WORD.findall(q.lower())
     if not words:
-        raise BadQuestionError(f"I can't read {question.strip()!r} as a question: ask me why I did something, "
+        raise BadQuestionError(f"I can't read {quoted(question)} as a question: ask me why I did something, "
                                f"{EXAMPLE}")
     known = sum(1 for w in words if _known(w))
     if known / len(words) < 0.5 or (len(words) == 1 and not _known(words[0])):
-        raise BadQuestionError(f"I don't understand {question.strip()!r}: ask me in words why I did something, "
+        raise BadQuestionError(f"I don't understand {quoted(question)}: ask me in words why I did something, "
                                f"{EXAMPLE}")
     if _SMALL_TALK.match(q.lower()) or not _asks(q.lower(), words):
-        raise BadQuestionError(f"{question.strip()!r} is not a question: ask me why I did something, {EXAMPLE}")
+        raise BadQuestionError(f"{quoted(question)} is not a question: ask me why I did something, {EXAMPLE}")
     return q

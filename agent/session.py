@@ -16,7 +16,9 @@ from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.graph import build
 from hexar.agent.oneshot import result_of
+from hexar.agent.questions import bounded
 from hexar.agent.state import AgentState
+from hexar.agent.threads import ThreadBook, keep_latest
 from hexar.events.log import EventLog
 
 
@@ -35,12 +37,14 @@ class Session:
         if log is not None:  # an event log built elsewhere (the live node's snapshot), not read from a file
             self.use_log(log)
         self.context.log  # noqa: B018 -- decode once, so a bad recording fails before the first question
+        self._book: ThreadBook | None = None
         if checkpoints is None:
             self._saver: Any = InMemorySaver()
         else:
             checkpoints.parent.mkdir(parents=True, exist_ok=True)
             self._conn = sqlite3.connect(str(checkpoints), check_same_thread=False)
             self._saver = SqliteSaver(self._conn)
+            self._book = ThreadBook(self._conn, self._saver)
         self.graph = build(self._saver)
 
     def use_log(self, log: EventLog) -> None:
@@ -54,12 +58,16 @@ class Session:
         thread = thread or self.new_thread()
         started = time.perf_counter()
         self.context.started = time.monotonic()
-        update: dict[str, Any] = {"question": question}
+        update: dict[str, Any] = {"question": bounded(question)}
         if task is not None:
             update["task_ref"] = task
         config: RunnableConfig = {"configurable": {"thread_id": f"{self.settings.recording}::{thread}"},
                                   "recursion_limit": self.settings.recursion_limit}
         state = self.graph.invoke(cast(AgentState, update), config, context=self.context)
+        thread_id = config["configurable"]["thread_id"]
+        keep_latest(self._saver, thread_id)
+        if self._book is not None:
+            self._book.used(thread_id)
         return self._result(dict(state), thread, started)
 
     def switch(self, thread: str, task_id: str) -> None:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import itertools
-import json
 import math
 import sqlite3
 from collections.abc import Iterable, Iterator
@@ -107,10 +106,13 @@ def _yaw(qz: float, qw: float) -> float:
 
 
 def parse_task_info(t: int, data: str) -> TaskUpdate | None:
-    """A `/task_info` JSON update, or None when the text is no task update."""
+    """A `/task_info` JSON update, or None when the text is no task update (or too large or too deep to read)."""
+    from hexar.bounded_json import loads
+    from hexar.errors import BadJsonError
+
     try:
-        obj = json.loads(data)
-    except json.JSONDecodeError:
+        obj = loads(data)
+    except BadJsonError:
         return None
     if not isinstance(obj, dict) or "task_id" not in obj:
         return None

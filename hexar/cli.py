@@ -97,7 +97,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
     def body() -> int:
         from hexar.errors import HexarError
         from hexar.events import EventsError, read_tasks
-        from hexar.safe_text import json_dumps, safe
+        from hexar.safe_text import clip, json_dumps, safe
 
         if not folder.is_dir():
             raise HexarError(f"not a folder: {folder}")
@@ -123,7 +123,7 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
             return 0
         table = Table("recording", "tasks", "latest task", "outcome")
         for r in rows:
-            table.add_row(safe(r["recording"]), str(r["tasks"]), safe(r["instruction"]), safe(r["outcome"]))
+            table.add_row(safe(r["recording"]), str(r["tasks"]), safe(clip(r["instruction"])), safe(clip(r["outcome"])))
         out.print(table)
         return 0
 
@@ -375,13 +375,15 @@ def mcp(
     llm: Annotated[str, typer.Option(envvar="HEXAR_LLM", help="the `ask` tool's LLM: auto, embedded, "
                                      "ollama[:model] or none")] = "auto",
     explainers: Annotated[Path | None, typer.Option(help="a modules.toml registering more explainers")] = None,
+    token: Annotated[str | None, typer.Option(envvar="HEXAR_MCP_TOKEN", help="with --http: every request must "
+                                              "send Authorization: Bearer TOKEN (required off loopback)")] = None,
 ) -> None:
     """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
 
     def body() -> int:
         from hexar.mcp_server import serve
 
-        return serve(folder, http, port, host, llm, explainers)
+        return serve(folder, http, port, host, llm, explainers, token)
 
     raise typer.Exit(guarded(body))
 

@@ -15,3 +15,15 @@ USER_ERRORS: tuple[type[Exception], ...] = (HexarError, EventsError, ExplainerEr
 
 class InputFileError(HexarError):
     """A file or folder argument that is missing, of the wrong kind, unreadable, binary or wrongly encoded."""
+
+
+class BadJsonError(HexarError):
+    """JSON from outside (a recording, a topic, a request) that is malformed, too large or nested too deep."""
+
+
+class LinkOutsideError(HexarError):
+    """A served recording that is, or holds, a symlink to a file outside the served folder."""
+
+
+class McpOptionError(HexarError):
+    """`hexar mcp` options that would expose the recordings: HTTP off loopback without a token."""

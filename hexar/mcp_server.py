@@ -7,7 +7,9 @@ Imported only by the `hexar mcp` command body: it pulls in the MCP SDK.
 
 from __future__ import annotations
 
+import hmac
 import logging
+import sys
 from pathlib import Path
 from typing import Any
 from urllib.parse import quote, unquote
@@ -15,7 +17,7 @@ from urllib.parse import quote, unquote
 from mcp.server.fastmcp import FastMCP
 from mcp.server.fastmcp.exceptions import ResourceError, ToolError
 
-from hexar.errors import USER_ERRORS
+from hexar.errors import USER_ERRORS, McpOptionError
 from hexar.safe_text import finite_with_warnings, json_dumps
 from hexar.workspace import PAGE, Workspace
 
@@ -52,7 +54,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
         except USER_ERRORS as err:
             raise ToolError(_clean(ws, err)) from err
         # the SDK writes NaN and Infinity into the text content: strict JSON, with a warning where one was
-        return dict(finite_with_warnings(result))
+        return dict(finite_with_warnings(result, clean=True))  # values without control or bidi characters
 
     @server.tool()
     def list_recordings(offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
@@ -113,7 +115,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
 
     def resource(fn: Any, recording: str) -> str:
         try:
-            return json_dumps(fn(unquote(recording)), indent=1)
+            return json_dumps(fn(unquote(recording)), indent=1, clean=True)
         except USER_ERRORS as err:
             raise ResourceError(_clean(ws, err)) from err
 
@@ -135,7 +137,57 @@ def resource_uri(recording: str, kind: str) -> str:
     return f"hexar://recording/{quote(recording, safe='')}/{kind}"
 
 
-def serve(root: Path, http: bool, port: int, host: str, llm: str, explainers: Path | None = None) -> int:
+LOOPBACK = frozenset({"127.0.0.1", "localhost", "::1"})
+MIN_TOKEN = 16
+
+
+class BearerToken:
+    """ASGI middleware: every HTTP request must carry `Authorization: Bearer <token>`; 401 otherwise. Off
+    loopback anyone on the network (or a web page, by DNS rebinding) could otherwise read the recordings."""
+
+    def __init__(self, app: Any, token: str) -> None:
+        self.app, self.expected = app, f"Bearer {token}".encode()
+
+    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+        if scope["type"] == "http":
+            got = dict(scope.get("headers") or []).get(b"authorization", b"")
+            if not hmac.compare_digest(got, self.expected):
+                body = b'{"error": "ERROR: this HEXAR MCP server needs the header Authorization: Bearer <token>"}'
+                await send({"type": "http.response.start", "status": 401,
+                            "headers": [(b"content-type", b"application/json"), (b"www-authenticate", b"Bearer"),
+                                        (b"content-length", str(len(body)).encode())]})
+                await send({"type": "http.response.body", "body": body})
+                return
+        await self.app(scope, receive, send)
+
+
+def check_http(host: str, token: str | None) -> None:
+    """HTTP off loopback needs a token (and says so); a token is long enough to resist guessing."""
+    if token is not None and len(token) < MIN_TOKEN:
+        raise McpOptionError(f"--token must be at least {MIN_TOKEN} characters (e.g. `openssl rand -hex 16`)")
+    if host not in LOOPBACK and not token:
+        raise McpOptionError(f"--host {host} lets other machines read these recordings: give --token SECRET "
+                             "(or HEXAR_MCP_TOKEN); clients then send the header Authorization: Bearer SECRET")
+
+
+def serve(root: Path, http: bool, port: int, host: str, llm: str, explainers: Path | None = None,
+          token: str | None = None) -> int:
+    if http:
+        check_http(host, token)
+    elif token:
+        raise McpOptionError("--token is for --http; a stdio server is reached only by the client that started it")
     server = build(root, llm, host=host, port=port, explainers=explainers)
-    server.run("streamable-http" if http else "stdio")
+    if not http:
+        server.run("stdio")
+        return 0
+    import anyio
+    import uvicorn
+
+    app: Any = server.streamable_http_app()
+    if token:
+        app = BearerToken(app, token)
+        print(f"HEXAR MCP on http://{host}:{port}/mcp: clients must send Authorization: Bearer <the token>",
+              file=sys.stderr, flush=True)
+    config = uvicorn.Config(app, host=host, port=port, log_level="warning")
+    anyio.run(uvicorn.Server(config).serve)
     return 0

@@ -13,7 +13,7 @@ from rich.table import Table
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
-from hexar.safe_text import json_dumps, safe, visible
+from hexar.safe_text import clip, json_dumps, safe, visible
 
 __all__ = ["clock", "json_dumps", "log_dict", "print_inspection", "safe", "task_dict", "visible"]
 
@@ -84,15 +84,15 @@ def print_inspection(console: Console, log: EventLog) -> None:
         topics.add_row(safe(info.topic), safe(info.type), str(info.count))
     console.print(topics)
     for task in log.tasks:
-        label = "recovery task" if task.is_recovery else f"\"{safe(task.instruction)}\""
+        label = "recovery task" if task.is_recovery else f"\"{safe(clip(task.instruction))}\""
         if task.derived:
-            goal = safe(task.instruction.removesuffix(" (derived from Nav2)"))
+            goal = safe(clip(task.instruction.removesuffix(" (derived from Nav2)")))
             label = f"Nav2 goal: {goal} [dim](derived from Nav2: no /task_info)[/dim]"
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
         console.print(f"\n[bold]Task {task.order}[/bold] {safe(task.task_id)}: {label}  "
                       f"[{colour}]{safe(task.outcome)}[/{colour}]")
         if not task.valid:
-            console.print(f"  invalid plan: {safe(task.error_msg)}")
+            console.print(f"  invalid plan: {safe(clip(task.error_msg))}")
         console.print(_steps(log, task))
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
@@ -121,7 +121,7 @@ def _steps(log: EventLog, task: Task) -> Table:
         for key, value in run.params.items():
             grid.add_row("", Padding(f"{safe(str(key))}: {safe(repr(value))}", (0, 0, 0, 2)))
         if run.error_msg:
-            grid.add_row("", Padding(f"[red]error:[/red] {safe(run.error_msg)}", (0, 0, 0, 2)))
+            grid.add_row("", Padding(f"[red]error:[/red] {safe(clip(run.error_msg))}", (0, 0, 0, 2)))
         for fact in step_facts(log, task, run):
             grid.add_row("", Padding(f"[dim]{safe(fact)}[/dim]", (0, 0, 0, 2)))
     return grid

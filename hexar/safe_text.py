@@ -8,7 +8,9 @@ as `[/]` breaks or restyles the output. Every command prints recorded strings th
   visible escapes (`\\x1b[31m`), for plain `print`, files and web pages (which escape HTML on top);
 - `safe(text)`: `visible` plus rich markup escaped, for anything handed to a rich Console, Table or Panel;
 - `json_dumps(obj)`: strict JSON (`allow_nan=False`); a non-finite number becomes null and the enclosing
-  top-level object gets a `warnings` entry naming where it was.
+  top-level object gets a `warnings` entry naming where it was; with `clean=True` (the page, MCP,
+  /hexar/answer) every string in it goes through `visible` (newlines kept), so the VALUES another program
+  parses (a dashboard, a robot's TTS, an MCP client) hold no escape sequence or bidi override either.
 
 This module imports nothing heavy, so a web page or a live node can use it without the CLI.
 """
@@ -58,13 +60,22 @@ def escape_markup(text: str) -> str:
     return out
 
 
+def clip(text: str, limit: int = 300) -> str:
+    """At most `limit` characters for a table or a heading, with the length of what was left out: a
+    recorded 10 MB instruction is shown as its start, not wrapped into 100,000 terminal lines."""
+    return text if len(text) <= limit else f"{text[:limit]}... ({len(text) - limit} more characters)"
+
+
 def safe(text: object, keep_newlines: bool = False) -> str:
     """Recorded text ready for a rich Console, Table or Panel: controls visible and markup escaped."""
     return escape_markup(visible(text, keep_newlines))
 
 
-def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
-    """A copy of `obj` with NaN and infinities replaced by None; their paths are appended to `found`."""
+def finite(obj: Any, where: str = "", found: list[str] | None = None, clean: bool = False) -> Any:
+    """A copy of `obj` with NaN and infinities replaced by None (their paths appended to `found`); with `clean`
+    every string, keys included, made `visible` with its newlines kept."""
+    if isinstance(obj, str):
+        return visible(obj, keep_newlines=True) if clean else obj
     if isinstance(obj, float):
         if math.isfinite(obj):
             return obj
@@ -72,24 +83,28 @@ def finite(obj: Any, where: str = "", found: list[str] | None = None) -> Any:
             found.append(f"{where or 'value'} was {obj!r}")
         return None
     if isinstance(obj, dict):
-        return {k: finite(v, f"{where}.{k}" if where else str(k), found) for k, v in obj.items()}
+        return {finite(k, clean=clean): finite(v, f"{where}.{k}" if where else str(k), found, clean)
+                for k, v in obj.items()}
     if isinstance(obj, list | tuple):
-        return [finite(v, f"{where}[{i}]", found) for i, v in enumerate(obj)]
+        return [finite(v, f"{where}[{i}]", found, clean) for i, v in enumerate(obj)]
     return obj
 
 
-def finite_with_warnings(obj: Any) -> Any:
+def finite_with_warnings(obj: Any, clean: bool = False) -> Any:
     """`finite(obj)`; a dict also gets a `warnings` entry for each non-finite number replaced."""
     found: list[str] = []
-    clean = finite(obj, "", found)
-    if found and isinstance(clean, dict):
+    out = finite(obj, "", found, clean)
+    if found and isinstance(out, dict):
         notes = [f"non-finite number replaced by null: {visible(f)}" for f in found]
-        old = clean.get("warnings")
-        clean["warnings"] = [*old, *notes] if isinstance(old, list) else notes
-    return clean
+        old = out.get("warnings")
+        out["warnings"] = [*old, *notes] if isinstance(old, list) else notes
+    return out
 
 
-def json_dumps(obj: Any, indent: int | None = None) -> str:
-    """Strict JSON of `obj`: never NaN or Infinity; a list's objects get their own `warnings`."""
-    clean = [finite_with_warnings(v) for v in obj] if isinstance(obj, list | tuple) else finite_with_warnings(obj)
-    return json.dumps(clean, indent=indent, allow_nan=False, default=str)
+def json_dumps(obj: Any, indent: int | None = None, clean: bool = False) -> str:
+    """Strict JSON of `obj`: never NaN or Infinity; a list's objects get their own `warnings`. `clean` for JSON
+    that leaves HEXAR to be read by others (the page, MCP, /hexar/answer): string values made `visible` too.
+    Without it (`--json`, the dialogue log) strings stay exact: JSON escapes every control character."""
+    out = ([finite_with_warnings(v, clean) for v in obj] if isinstance(obj, list | tuple)
+           else finite_with_warnings(obj, clean))
+    return json.dumps(out, indent=indent, allow_nan=False, default=str)

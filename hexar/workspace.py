@@ -12,6 +12,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from hexar.confined import leaving
 from hexar.errors import HexarError
 from hexar.events import EventLog, EventsError, Task, read_recording, read_tasks
 from hexar.events import contract as c
@@ -94,6 +95,9 @@ class Workspace:
             path = path.parent
         if not is_recording(path):
             raise WorkspaceError(f"{recording!r} is not a recording (a rosbag2 folder or a ROS 1 .bag)")
+        out = leaving(self.root, path)  # the folder is inside; its metadata.yaml or .db3 may still link out
+        if out is not None:
+            raise OutsideFolderError(f"{recording!r} holds {out.name!r}, a link to a file outside the served folder")
         return path
 
     def name(self, path: Path) -> str:
@@ -121,6 +125,11 @@ class Workspace:
         rows: list[dict[str, Any]] = []
         for path in page["recordings"]:
             row: dict[str, Any] = {"recording": self.name(path)}
+            out = leaving(self.root, path)
+            if out is not None:
+                row["error"] = f"{out.name!r} is a link to a file outside the served folder: not read"
+                rows.append(row)
+                continue
             try:
                 log = read_tasks(path)  # one task per Nav2 goal without /task_info, as `hexar runs` sees it
                 tasks = _page(log.tasks, 0, PAGE, "tasks")  # the rest through list_tasks

@@ -9,6 +9,8 @@ import uuid
 from collections.abc import Callable, Iterable
 from typing import Any
 
+from hexar.bounded_json import loads
+from hexar.errors import BadJsonError
 from hexar.events import contract as c
 from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS
 
@@ -39,20 +41,28 @@ class LiveChat:
             for sample in self._answers.take(16):
                 if not sample.sample_info.valid_data:
                     continue
-                try:
-                    result = json.loads(str(sample.data))
-                except json.JSONDecodeError:
+                try:  # anyone on the domain can publish here: deep, huge or non-object JSON is skipped
+                    result = loads(str(sample.data))
+                except BadJsonError:
                     continue
-                if result.get("trigger") == "failure":
-                    self.thread = str(result.get("thread") or self.thread)  # "why?" continues that thread
-                    self.show(result)
-                elif result.get("thread") == self._asked:
-                    # the answer to this chat's question: a "why?" continues it, even if an older unasked
-                    # explanation came in (as history) while it was on its way
-                    self.thread = self._asked
-                    self.show(result)
-                    self._mine.set()
+                if not isinstance(result, dict):
+                    continue
+                try:
+                    self._take(result)
+                except (TypeError, ValueError, KeyError, AttributeError):  # an answer of the wrong shape
+                    continue
             self._stop.wait(0.02)
+
+    def _take(self, result: dict[str, Any]) -> None:
+        if result.get("trigger") == "failure":
+            self.thread = str(result.get("thread") or self.thread)[:64]  # "why?" continues that thread
+            self.show(result)
+        elif result.get("thread") == self._asked:
+            # the answer to this chat's question: a "why?" continues it, even if an older unasked
+            # explanation came in (as history) while it was on its way
+            self.thread = self._asked
+            self.show(result)
+            self._mine.set()
 
     def wait_for_node(self, timeout: float) -> None:
         """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery

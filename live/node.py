@@ -1,13 +1,14 @@
 """The live node: a LiveLog fed by a transport, proactive explanations of failures, and questions answered.
 
 One worker thread runs the agent, so answers come out in the order their triggers arrived and the agent's
-session (its threads of dialogue) is never used from two threads at once.
+session (its threads of dialogue) is never used from two threads at once. What waits for it is bounded
+(live/jobs.py): a few questions per source and a short queue, so a flood on /hexar/question costs neither
+memory nor the next real question's answer.
 """
 
 from __future__ import annotations
 
 import json
-import queue
 import sys
 import threading
 import time
@@ -20,13 +21,17 @@ from hexar.events import contract as c
 from hexar.events.errors import EventsError
 from hexar.events.reader import parse_task_info
 from hexar.events.records import GoalStatus, StatusRecord, TaskUpdate
+from hexar.live.jobs import MAX_FAILURES, MAX_QUESTIONS, JobQueue, RateLimit
 from hexar.live.log import NS, LiveLog
 from hexar.live.topics import ANSWER
+from hexar.safe_text import finite_with_warnings, json_dumps
 
 Proactive = Literal["off", "publish", "speak"]
 FAILURE_QUESTION = "Why did the task fail?"
 INVALID_QUESTION = "Why couldn't you do the task?"
 KEEP_THREADS = 20
+FOLLOW_UP_S = 120.0  # a question without a thread continues the current dialogue only this long after its answer
+MAX_QUESTION_JSON = 8 * 1024  # `{"question": ..., "thread": ...}`: a question of MAX_QUESTION characters fits
 GOAL_ABORTED = 6  # action_msgs/GoalStatus STATUS_ABORTED: Nav2's "Goal failed"
 GOAL_ACTIVE = frozenset({1, 2, 3})  # accepted, executing, canceling
 
@@ -101,7 +106,10 @@ class LiveNode:
         self.thread: str | None = None  # the current dialogue: a follow-up "why?" continues it
         self.answers = 0
         self.errors = 0
-        self._jobs: queue.Queue[Job] = queue.Queue()
+        self._jobs: JobQueue[Job] = JobQueue({"question": MAX_QUESTIONS, "failure": MAX_FAILURES})
+        self._rate = RateLimit()
+        self.refused = 0  # questions over a source's rate
+        self._last_answer = 0.0
         self._explained: set[str] = set()
         self._active_goals: set[str] = set()  # NavigateToPose goals this node saw before they ended
         self._session: Any = None
@@ -206,19 +214,33 @@ class LiveNode:
         return str(min(failed, key=lambda task: abs(task.last_update - t)).task_id)
 
     def on_question(self, text: str) -> None:
+        from hexar.agent.questions import bounded
+        from hexar.bounded_json import loads
+        from hexar.errors import BadJsonError
+
         thread = None
-        stripped = text.strip()
+        stripped = text[:MAX_QUESTION_JSON].strip()
         if stripped.startswith("{"):  # `{"question": ..., "thread": ...}` from `hexar chat --live`
             try:
-                obj = json.loads(stripped)
+                obj = loads(stripped, max_chars=MAX_QUESTION_JSON)
+            except BadJsonError:
+                obj = None
+            if isinstance(obj, dict):
                 stripped, thread = str(obj.get("question", "")), obj.get("thread")
-            except (json.JSONDecodeError, AttributeError):
-                pass
-        self._jobs.put(Job("question", text=stripped, thread=str(thread) if thread else None))
+        thread_id = str(thread)[:64] if thread else None
+        self._enqueue(bounded(stripped), thread_id, thread_id or "/hexar/question")
+
+    def _enqueue(self, question: str, thread: str | None, source: str) -> None:
+        if not self._rate.allow(source):
+            self.refused += 1
+            return
+        self._jobs.put(Job("question", text=question, thread=thread))
 
     def ask(self, question: str) -> None:
-        """A question from the microphone or a test, queued like one from /hexar/question."""
-        self.on_question(question)
+        """A question from the microphone or a test, queued like one from /hexar/question (its own source)."""
+        from hexar.agent.questions import bounded
+
+        self._enqueue(bounded(question.strip()), None, "microphone")
 
     # -- the worker -----------------------------------------------------------------------------------------
 
@@ -245,13 +267,17 @@ class LiveNode:
             self.thread = self._session.new_thread()
             thread, task = self.thread, job.task_id or None
         else:
-            thread = job.thread or self.thread or self._session.new_thread()
+            # no thread named: the current dialogue goes on only while it is fresh (a spoken "why?" after an
+            # answer), so questions from nowhere do not all pile into one thread for the node's lifetime
+            fresh = self.thread is not None and time.monotonic() - self._last_answer < FOLLOW_UP_S
+            thread = job.thread or (self.thread if fresh else None) or self._session.new_thread()
             self.thread, task = thread, None
         self._remember(thread)
         try:
             result = dict(self._session.ask(job.text, thread=thread, task=task))
         except EventsError as err:  # no task yet: say so instead of guessing
             result = {"answer": str(err), "error": str(err), "thread": thread}
+        self._last_answer = time.monotonic()
         result["trigger"] = job.kind
         result["recording"] = self.log.name
         result["latency_ms"] = round((time.monotonic() - job.received) * 1000, 1)
@@ -287,7 +313,12 @@ class LiveNode:
                 print(f"hexar serve: cannot speak with {speaker.name}: {err}", file=sys.stderr)
 
     def _publish(self, result: dict[str, Any]) -> None:
+        """Out on /hexar/answer with every recorded string made visible: a dashboard or a robot's TTS reading
+        the values gets no escape sequence or bidi override from a hostile log line."""
         self.answers += 1
-        self.transport.publish(ANSWER, json.dumps(result))
+        clean = dict(finite_with_warnings(result, clean=True))
+        result.clear()
+        result.update(clean)  # the caller speaks the same, cleaned answer
+        self.transport.publish(ANSWER, json_dumps(result, clean=True))
         if self.on_answer is not None:
             self.on_answer(result)

@@ -1,14 +1,23 @@
 """A rolling rosbag2 recording of what the live node received, so a live answer can be replayed and checked
-later with `hexar ask`. One bag per `chunk_s` of robot time; only the newest `keep` bags stay on disk."""
+later with `hexar ask`. One bag per `chunk_s` of this machine's time; only the newest `keep` bags stay on disk.
+
+Chunks follow our own clock, not the messages' stamps: a stamp is whatever the publisher wrote, and stamps
+alternating +/-1000 s once rotated the bag on every message, so the kept bags held one junk message each and
+everything recorded before was deleted. Bag names carry a counter that never repeats in a session and skip a
+name already taken, so a clash cannot switch recording off.
+"""
 
 from __future__ import annotations
 
 import shutil
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
 from hexar.live.errors import BadOptionError
+
+MAX_STAMP = 2**63 - 1
 
 
 class RollingRecorder:
@@ -23,16 +32,19 @@ class RollingRecorder:
         self.bags: list[Path] = []
         self._writer: Any = None
         self._conns: dict[str, Any] = {}
-        self._start = 0
+        self._started = 0  # time.monotonic_ns() when the current bag was opened
+        self._count = 0
         self.failed = False
 
     def write(self, topic: str, ros_type: str, raw: bytes, t: int) -> None:
         """`raw`: the message's CDR (with its 4-byte encapsulation header), as rosbag2 stores it."""
         if self.failed:
             return
+        if not 0 <= t <= MAX_STAMP:  # a stamp rosbag2 cannot store is recorded at its arrival
+            t = time.time_ns()
         try:
-            if self._writer is None or t - self._start >= self.chunk_ns or t < self._start:
-                self._rotate(t)
+            if self._writer is None or time.monotonic_ns() - self._started >= self.chunk_ns:
+                self._rotate()
             conn = self._conns.get(topic)
             if conn is None:
                 from hexar.events.reader import _humble
@@ -43,14 +55,22 @@ class RollingRecorder:
             self.failed = True
             print(f"hexar serve: recording stopped: {type(err).__name__}: {err}", file=sys.stderr)
 
-    def _rotate(self, t: int) -> None:
+    def _next_path(self) -> Path:
+        stamp = time.strftime("%Y%m%d_%H%M%S", time.gmtime())
+        while True:
+            self._count += 1
+            path = self.folder / f"live_{stamp}_{self._count:04d}"
+            if not path.exists():
+                return path
+
+    def _rotate(self) -> None:
         from rosbags.rosbag2 import Writer
 
         self.close()
-        path = self.folder / f"live_{t // 1_000_000_000}_{len(self.bags):04d}"
+        path = self._next_path()
         self._writer = Writer(path, version=9)
         self._writer.open()
-        self._conns, self._start = {}, t
+        self._conns, self._started = {}, time.monotonic_ns()
         self.bags.append(path)
         while len(self.bags) > self.keep:
             shutil.rmtree(self.bags.pop(0), ignore_errors=True)

@@ -1,9 +1,13 @@
-"""Flood `hexar serve` with /rosout lines over DDS and check that it keeps answering with flat memory.
+"""Flood `hexar serve` over DDS and check that it keeps answering with flat memory.
 
-    .venv/bin/python scripts/flood_live.py [--rate 10000] [--seconds 10]
+    .venv/bin/python scripts/flood_live.py [--rate 10000] [--seconds 10]           # /rosout lines
+    .venv/bin/python scripts/flood_live.py --questions [--rate 2000] [--seconds 60]  # /hexar/question
 
 Prints the send rate reached, what the node received, its RSS before/during/after, and the answer latency of
-questions asked before, during and after the flood.
+questions asked before, during and after the flood. With --questions the flood is questions on /hexar/question
+(half plain text, half JSON with made-up thread ids, as anyone on the domain can send), and after it a person's
+questions (their own thread) are asked one by one: their median latency, against the same questions asked
+before the flood, is what the flood cost them.
 """
 
 from __future__ import annotations
@@ -30,12 +34,77 @@ def ask(listener: Listener, n_before: int) -> float:
     return (listener.answers("question")[-1][0] - sent) if len(got) > n_before else float("inf")
 
 
+def ask_as(listener: Listener, thread: str, question: str = QUESTION, timeout: float = 30.0) -> float:
+    """Latency of one question sent with its own thread id, found among any number of other answers."""
+    import json
+
+    sent = time.monotonic()
+    listener.ask(json.dumps({"question": question, "thread": thread}))
+    deadline = sent + timeout
+    while time.monotonic() < deadline:
+        got = [t for t, a in listener.answers("question") if a.get("thread") == thread]
+        if got:
+            return got[0] - sent
+        time.sleep(0.005)
+    return float("inf")
+
+
+def question_flood(args: argparse.Namespace) -> int:
+    import json
+
+    serve = start_serve(args.domain)
+    sampler = RssSampler(serve.pid)
+    listener = Listener(args.domain)
+    time.sleep(1.5)
+    before = [ask_as(listener, f"before{i}") for i in range(5)]
+    rss_before = rss_mb(serve.pid)
+    sent, started = 0, time.monotonic()
+    while (now := time.monotonic()) - started < args.seconds:
+        due = int((now - started) * args.rate)
+        while sent < due:
+            listener.ask(QUESTION if sent % 2 else json.dumps({"question": QUESTION, "thread": f"flood{sent}"}))
+            sent += 1
+        time.sleep(0.001)
+    elapsed = time.monotonic() - started
+    rss_flood = max(mb for _, mb in sampler.samples)
+    after = [ask_as(listener, f"person{i}") for i in range(5)]
+    rss_after = rss_mb(serve.pid)
+    samples = sampler.stop()
+    answered = len(listener.answers("question"))
+    listener.close()
+    serve.send_signal(signal.SIGTERM)
+    _, err = serve.communicate(timeout=30)
+    ok_before = [x for x in before if x != float("inf")]
+    ok_after = [x for x in after if x != float("inf")]
+    base = percentile(ok_before, 0.5)
+    print(f"sent {sent} questions in {elapsed:.1f} s = {sent / elapsed:.0f}/s (asked for {args.rate:.0f}); "
+          f"answers published {answered}")
+    print(f"node: {err.strip().splitlines()[-1] if err.strip() else '(no summary)'}")
+    print(f"RSS MB: before {rss_before:.0f}, peak during {rss_flood:.0f}, after {rss_after:.0f} "
+          f"(after/before {rss_after / rss_before:.2f}); samples "
+          f"{[round(mb) for _, mb in samples[:: max(1, len(samples) // 12)]]}")
+    after_ms = percentile(ok_after, 0.5) * 1000
+    print(f"a person's question: answered {len(ok_after)}/{len(after)} after the flood, median {after_ms:.0f} ms "
+          f"(max {max(ok_after, default=float('inf')) * 1000:.0f} ms); before the flood median {base * 1000:.0f} ms; "
+          f"ratio {percentile(ok_after, 0.5) / base:.2f}")
+    print("traceback in node output:", "Traceback" in err)
+    return 0 if len(ok_after) == len(after) and "Traceback" not in err else 1
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
-    ap.add_argument("--rate", type=float, default=10_000.0, help="lines per second to send")
-    ap.add_argument("--seconds", type=float, default=10.0)
+    ap.add_argument("--rate", type=float, default=None, help="lines (or questions) per second to send "
+                    "[10000 lines, 2000 questions]")
+    ap.add_argument("--seconds", type=float, default=None, help="[10 for lines, 60 for questions]")
+    ap.add_argument("--questions", action="store_true", help="flood /hexar/question instead of /rosout")
     ap.add_argument("--domain", type=int, default=os.getpid() % 100 + 120)
     args = ap.parse_args()
+    if args.questions:
+        args.rate = args.rate or 2_000.0
+        args.seconds = args.seconds or 60.0
+        return question_flood(args)
+    args.rate = args.rate or 10_000.0
+    args.seconds = args.seconds or 10.0
 
     serve = start_serve(args.domain)
     sampler = RssSampler(serve.pid)

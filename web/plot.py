@@ -86,7 +86,7 @@ def _draw_path(fig: PathFigure, ax: Any, log: EventLog, task: Task) -> None:
     if tr.stop is not None:
         failed = task.failed_skill is not None
         (fig.stop,) = ax.plot(tr.stop.x, tr.stop.y, "X" if failed else "*", color="#c62828" if failed else "#2e7d32",
-                              ms=14, label=tr.stop_label)
+                              ms=14, label=tr.stop_label.replace("$", r"\$"))  # a legend reads $...$ as mathtext
     ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
 
 

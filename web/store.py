@@ -10,12 +10,26 @@ from collections import OrderedDict
 from pathlib import Path
 from typing import Any
 
+from hexar.confined import confine, leaving
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.live import LIVE, LiveSource, Snapshot
 from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
+
+
+def shown(path: Path) -> str:
+    """A path as the page may show it: relative to where the server was started, `~/...` under the home folder,
+    else only its last two parts; never this machine's absolute layout (a page can be read by other sites'
+    scripts if anything goes wrong, and screenshots travel)."""
+    if not path.is_absolute():
+        return path.as_posix()
+    for base, prefix in ((Path.cwd(), ""), (Path.home(), "~/")):
+        if path.is_relative_to(base) and path != base:
+            return prefix + path.relative_to(base).as_posix()
+    return "/".join(path.parts[-2:])
+
 
 KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
 
@@ -47,11 +61,19 @@ class Store:
     def _recordings(self) -> list[Path]:
         return [] if self.root is None else recordings(self.root)
 
+    def clean(self, message: str) -> str:
+        """An error message with the served folder's absolute location replaced by its shown name."""
+        if self.root is None:
+            return message
+        for where in sorted({str(self.root.resolve()), str(self.root.absolute())}, key=len, reverse=True):
+            message = message.replace(where, shown(self.root))
+        return message
+
     def path(self, name: str) -> Path:
         """A recording of the folder by name; nothing outside the folder can be named."""
         for p in self._recordings():
-            if p.name == name:
-                return p
+            if p.name == name and self.root is not None:
+                return confine(self.root, p, name)
         where = f"in {self.root}" if self.root is not None else "here: only the live robot is shown"
         raise WebError(f"no recording named {name!r} {where}")
 
@@ -83,6 +105,12 @@ class Store:
         cached = self._rows.get(path.name)
         if cached and cached[0] == stamp:
             return cached[1]
+        out = leaving(self.root, path) if self.root is not None else None
+        if out is not None:
+            row = {"recording": path.name, "tasks": 0, "latest": None, "modules": [],
+                   "error": f"ERROR: {out.name!r} is a link to a file outside the served folder: not read"}
+            self._rows[path.name] = (stamp, row)
+            return row
         try:
             log = read_tasks(path)  # tasks derived from Nav2 goals too, as `hexar runs` lists them
             task = log.task() if log.tasks else None
@@ -90,7 +118,7 @@ class Store:
                    "latest": task_summary(task) if task else None,
                    "modules": self.findings.modules(task) if task else []}
         except EventsError as e:
-            row = {"recording": path.name, "tasks": 0, "error": str(e), "latest": None, "modules": []}
+            row = {"recording": path.name, "tasks": 0, "error": self.clean(str(e)), "latest": None, "modules": []}
         self._rows[path.name] = (stamp, row)
         return row
 
@@ -107,7 +135,7 @@ class Store:
             self._start_worker()
         if self.live is not None:
             rows.insert(0, self._live_row(self.live))
-        return {"root": "" if self.root is None else str(self.root), "runs": rows, "pending": pending}
+        return {"root": "" if self.root is None else shown(self.root), "runs": rows, "pending": pending}
 
     def _live_row(self, live: LiveSource) -> dict[str, Any]:
         snap = live.snapshot()
@@ -152,7 +180,7 @@ class Store:
         if self.live is not None and name == LIVE:
             return self.live_run(self.live, ref, since)
         detail = run_detail(name, *self.explained(name, ref))
-        detail["chat"] = {"recording_path": str(self.path(name)), "checkpoints": str(self.checkpoints)}
+        detail["chat"] = {"recording_path": shown(self.path(name)), "checkpoints": shown(self.checkpoints)}
         return detail
 
     def live_run(self, live: LiveSource, ref: str | None, since: str | None) -> dict[str, Any]:
@@ -175,11 +203,11 @@ class Store:
         else:
             view = run_detail(LIVE, snap.log, task, snap.explain(task))
             view.update(head)
-            view["chat"] = {"recording_path": None, "checkpoints": str(self.checkpoints)}
+            view["chat"] = {"recording_path": None, "checkpoints": shown(self.checkpoints)}
         # the version is what the page shows: a robot that only publishes poses and log lines after the task
         # ended changes the snapshot, not the task's view, and the page is then not redrawn
-        shown = {k: v for k, v in view.items() if k not in {"start_ns", "duration_s"}}
-        digest = hashlib.sha1(json.dumps(shown, sort_keys=True).encode(), usedforsecurity=False)
+        drawn = {k: v for k, v in view.items() if k not in {"start_ns", "duration_s"}}
+        digest = hashlib.sha1(json.dumps(drawn, sort_keys=True).encode(), usedforsecurity=False)
         view["version"] = digest.hexdigest()[:16]
         return view
 
@@ -224,6 +252,8 @@ class Store:
             if self.live is not None and name == LIVE:
                 session.use_log(self.live.snapshot(fresh=True).log)  # as the live node does: the newest data
             result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
+        if "recording" in result and name != LIVE:
+            result["recording"] = shown(Path(result["recording"]))
         for ev in result["evidence"]:
             ev["key"] = f"{ev['topic']}|{ev['t']}"  # the page's row id: JavaScript numbers cannot hold a ns stamp
         return result

@@ -7,6 +7,7 @@ Each example is drawn from `random.Random(seed)`, so a finding is reproduced by 
 - `damage`: random byte damage to the .db3 or .mcap file (overwrites, zeroed blocks, truncation, insertions),
   MCAP files carrying the CRCs a real rosbag2 recorder writes half of the time;
 - `question`: hostile questions on the command line and in `--questions` files of any encoding.
+A third of the examples also drive the web page's HTTP API and the MCP tools (tests/fuzz/surfaces.py).
 
 Properties of every command run: no exception escapes `main`, exit code 0 or 2, no "internal error", no raw
 control or invisible character in anything printed, strict JSON with `--json`, and every cause of an answer backed
@@ -321,7 +322,25 @@ def grounded(result: dict[str, Any], log: EventLog) -> list[str]:
 
 
 def _cited(log: EventLog, ev: Evidence) -> bool:
-    """evidence_check.exists, plus /task_info text as decoded (its raw JSON escapes non-ASCII text)."""
+    """evidence_check.exists, plus /task_info text as decoded (its raw JSON escapes non-ASCII text), plus the
+    recorded text as it leaves HEXAR: JSON values carry control characters as visible escapes."""
+    return _cited_raw(log, ev) or any(ev.item and (ev.item in v or v in ev.item)
+                                      for v in (visible(x, keep_newlines=True) for x in _texts_at(log, ev)) if v)
+
+
+def _texts_at(log: EventLog, ev: Evidence) -> list[str]:
+    texts = [line.render() for line in log.logs if line.t == ev.t]
+    texts += [render_status(r) for r in log.statuses.get(ev.topic, []) if r.t == ev.t]
+    for u in log.task_updates:
+        if u.t == ev.t:
+            texts += [u.instruction, u.task_error_msg, u.task_id]
+            for step in u.skills:
+                texts += [step.skill, step.status, step.error_msg, str(step.params), step.label()]
+                texts += [f"{k}={v}" for k, v in step.params.items()] + [str(v) for v in step.params.values()]
+    return texts
+
+
+def _cited_raw(log: EventLog, ev: Evidence) -> bool:
     if exists(log, ev):
         return True
     if ev.topic in log.statuses:
@@ -425,6 +444,13 @@ def example(seed: int, work: Path) -> list[Outcome]:
             ]
             args, piped = rng.choice(more)
             outcomes.append(run_cli(args, piped))
+        # The web page's API and the MCP tools over the same recording and question; drawn last, so earlier
+        # seeds still run what they ran before
+        if rng.random() < 0.35:
+            from tests.fuzz.surfaces import mcp, web
+
+            outcomes.append(web(folder, bag, question, _read(bag)) if rng.random() < 0.5 else
+                            mcp(folder, bag, question, rng))
     finally:
         for extra in (work / f"triage{seed}", work / f"annotated{seed}.mcap"):
             if extra.is_dir():

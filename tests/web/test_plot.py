@@ -97,6 +97,26 @@ def test_hostile_text_is_drawn_not_parsed(tmp_path: Path) -> None:
     assert (tmp_path / "h.png").read_bytes()[:8] == PNG_MAGIC
 
 
+def test_a_dollar_in_a_skill_name_is_drawn_not_parsed(tmp_path: Path) -> None:
+    """The stop point's legend names the failed skill; a legend reads `$...$` as mathtext."""
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+
+    skill = "go$\\frac{$_to"  # two dollars: mathtext between them, and unbalanced
+    b = BagBuilder()
+    t0 = sec_ns(1_741_600_000)
+    for t, status in ((t0, "Running"), (t0 + sec_ns(6), "failed")):
+        b.task_info(t, {"instruction": "go", "task_id": "d1", "task_status": "valid", "task_error_msg": "",
+                        "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": "x$"}]})
+    for i in range(30):
+        b.pose(t0 + i * 200_000_000, 0.1 * i, 0.0, 0.0, 0.02, 0.02, 0.01)
+    log = read_recording(b.write(tmp_path / "dollar"))
+    fig = build(log, log.task(), {"answer": "", "causes": [], "evidence": []})
+    fig.save(tmp_path / "d.png")
+    legend = [t.get_text() for ax in fig.figure.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
+    assert any(skill in t.replace("\\$", "$") for t in legend)
+    assert (tmp_path / "d.png").read_bytes()[:8] == PNG_MAGIC
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (["ask", "RUN", "why?", "--llm", "none", "--plot", "/definitely/not/here/x.png"], "cannot write the figure"),
     (["ask", "RUN", "--questions", "Q", "--llm", "none", "--plot", "x.png"], "--plot draws one answer"),

@@ -1,0 +1,97 @@
+"""The live node's work, bounded: a job queue that keeps only the newest few questions and failures, and a
+per-source rate for questions.
+
+Anyone on the robot's DDS domain can publish on /hexar/question. Unbounded, a flood of 10,000 questions queued
+10,000 agent runs, and a person's real question after it waited behind all of them. Here a source (the
+conversation thread a question names, or the plain-text topic as one source) gets a few questions at once and
+then one a second; past the queue's limit the oldest waiting question is dropped, since its asker has given
+up long before it would be answered, while the newest (a person's, after a flood) is kept.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import OrderedDict, deque
+from typing import Generic, Protocol, TypeVar
+
+MAX_QUESTIONS = 4  # waiting questions; a fifth drops the oldest
+MAX_FAILURES = 32  # waiting proactive explanations (each failure is explained once, see LiveNode._explained)
+BURST = 3  # questions a source may ask at once
+PER_SECOND = 1.0  # and then one a second
+MAX_SOURCES = 1024  # sources remembered (the least recent are forgotten, and start afresh)
+
+
+class Kinded(Protocol):
+    @property
+    def kind(self) -> str: ...
+
+
+J = TypeVar("J", bound=Kinded)
+
+
+class Bucket:
+    """A token bucket: `take()` is True when the source may ask now."""
+
+    def __init__(self, burst: float, rate: float, now: float) -> None:
+        self.burst, self.rate, self.tokens, self.t = burst, rate, burst, now
+
+    def take(self, now: float) -> bool:
+        self.tokens = min(self.burst, self.tokens + (now - self.t) * self.rate)
+        self.t = now
+        if self.tokens < 1.0:
+            return False
+        self.tokens -= 1.0
+        return True
+
+
+class RateLimit:
+    """A bucket per source (at most MAX_SOURCES remembered). There is no bucket for everybody: a flood would
+    empty it and refuse the person asking right after; made-up sources are bounded by the queue instead, which
+    keeps the newest questions."""
+
+    def __init__(self, burst: float = BURST, rate: float = PER_SECOND) -> None:
+        self.burst, self.rate = burst, rate
+        self._sources: OrderedDict[str, Bucket] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def allow(self, source: str) -> bool:
+        now = time.monotonic()
+        with self._lock:
+            bucket = self._sources.get(source)
+            if bucket is None:
+                bucket = self._sources[source] = Bucket(self.burst, self.rate, now)
+                while len(self._sources) > MAX_SOURCES:
+                    self._sources.popitem(last=False)
+            self._sources.move_to_end(source)
+            return bucket.take(now)
+
+
+class JobQueue(Generic[J]):
+    """FIFO of jobs with a limit per kind: over it, the oldest job of that kind is dropped (and counted)."""
+
+    def __init__(self, limits: dict[str, int]) -> None:
+        self.limits = limits
+        self.dropped = 0
+        self._jobs: deque[J] = deque()
+        self._ready = threading.Condition()
+
+    def put(self, job: J) -> None:
+        with self._ready:
+            limit = self.limits.get(job.kind)
+            if limit is not None and sum(1 for j in self._jobs if j.kind == job.kind) >= limit:
+                oldest = next(j for j in self._jobs if j.kind == job.kind)
+                self._jobs.remove(oldest)
+                self.dropped += 1
+            self._jobs.append(job)
+            self._ready.notify()
+
+    def get(self) -> J:
+        with self._ready:
+            while not self._jobs:
+                self._ready.wait()
+            return self._jobs.popleft()
+
+    def __len__(self) -> int:
+        with self._ready:
+            return len(self._jobs)
