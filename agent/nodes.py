@@ -12,6 +12,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, task_ref_of
+from hexar.agent.overview import asks_fix, helped, recovery, steps_summary, whole_task
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
@@ -101,6 +102,13 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
     task = ctx.log.task(state["task_id"])
     name = ctx.registry.failure_explainer(task)
     selected = [name] if name else []
+    if not selected and task.is_recovery:
+        # the robot's own recovery task is explained by the failure it recovers from ("why did you say sorry?")
+        found = recovery(ctx.log, task, ctx.probe, state["question"])
+        if found is not None:
+            return {"selected": [], "explanations": [found.model_dump()], "route": "recovery", "depth": 0,
+                    "used": [*state.get("used", []), found.explainer],
+                    "timings_ms": _timings(state, "failure_check", start)}
     return {"selected": selected, "route": "failure_check" if selected else "none",
             "timings_ms": _timings(state, "failure_check", start)}
 
@@ -153,10 +161,12 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     """Only when nothing failed: choose an explainer from the question (LLM or classifier), else from findings."""
     start = time.perf_counter()
     ctx = runtime.context
-    choice = _llm_choice(ctx, state)
+    # a question about the whole task names no module: the finding worth hearing, not a model's guess at one
+    whole = whole_task(state["question"])
+    choice = None if whole else _llm_choice(ctx, state)
     route = "llm"
     if choice is None:
-        label, share = ctx.classifier.choose(state["question"], state["candidates"])
+        label, share = (GENERIC, 0.0) if whole else ctx.classifier.choose(state["question"], state["candidates"])
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
@@ -200,7 +210,13 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         kept.append(exp.model_dump())
     texts = list(dict.fromkeys(e["text"] for e in kept))
     text = " ".join(texts) if texts else "I don't have enough information to say."
-    turn = {"question": state["question"], "answer": text, "explainers": [e["explainer"] for e in kept]}
+    question = state["question"]
+    if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
+        text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN_ANSWERS, text)}".strip()
+    if whole_task(question) and state.get("route") != "recovery":  # every step's outcome, then the finding
+        summary = steps_summary(ctx.log.task(state["task_id"]))
+        text = f"{summary} {text}" if summary else text
+    turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
             "history": [*state.get("history", []), turn], "timings_ms": _timings(state, "answer", start)}
@@ -246,13 +262,7 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
-        parts = [p for e in exps for p in (e.counterfactual, e.fix) if p]
-        if parts:
-            text = " ".join(parts)
-        elif exps and all(set(e.causes) <= BENIGN_ANSWERS for e in exps):
-            text = "Nothing went wrong there, so I have nothing to suggest changing."
-        else:
-            text = "I have no fix or change to suggest: what I recorded does not show what would have helped."
+        text = helped(exps, BENIGN_ANSWERS)
     else:
         depth += 1
         if depth == 1:

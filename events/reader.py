@@ -6,7 +6,8 @@ import itertools
 import json
 import math
 import sqlite3
-from collections.abc import Iterable, Iterator
+import tempfile
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,7 @@ from hexar.events.errors import (
 )
 from hexar.events.log import EventLog, TopicInfo
 from hexar.events.mcap_index import check_mcap, mcap_messages
+from hexar.events.recover import holds_storage, is_cut_short, salvage_mcap, storage_files, write_whole
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -75,12 +77,13 @@ def _same_layout(ts: Typestore, msgtype: str) -> bool:
         return False
 
 
-def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str],
+                   fast: bool = True) -> tuple[EventLog, bool]:
     """`_read`, again without each connection found unreadable, which is then named in the warnings."""
     skip: dict[int, str] = {}
     while True:
         try:
-            return _read(reader, src, wanted, skip)
+            return _read(reader, src, wanted, skip, fast)
         except _Unreadable as bad:
             if bad.conn.id in skip:
                 raise CorruptRecordingError(f"cannot read {src}: {bad.reason}") from bad
@@ -94,11 +97,11 @@ def resolve_path(path: Path) -> Path:
     if path.is_file():
         if path.suffix == ".bag":
             return path
-        if path.suffix in {".db3", ".mcap"} and (path.parent / "metadata.yaml").is_file():
-            return path.parent
+        if path.suffix in {".db3", ".mcap"}:
+            return path.parent  # its folder's metadata.yaml, or the metadata rebuilt from the storage files
         raise NotARecordingError(f"not a recording: {path} (expected a rosbag2 folder or a ROS 1 .bag file)")
-    if not (path / "metadata.yaml").is_file():
-        raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml")
+    if not (path / "metadata.yaml").is_file() and not holds_storage(path):
+        raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml and no .db3 or .mcap file")
     return path
 
 
@@ -161,19 +164,16 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     """
     wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
     src = resolve_path(Path(path))
+    cut = [f for f in src.glob("*.mcap") if is_cut_short(f)] if src.is_dir() else []
+    if cut or holds_storage(src):
+        return _guarded(src, lambda: _read_recovered(src, wanted, cut))
+    return _guarded(src, lambda: _read_whole(src, wanted))
+
+
+def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
+    """One error class per kind of damage, whatever the storage library raised."""
     try:
-        for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
-            check_mcap(file, crc=False)
-        with AnyReader([src], default_typestore=_humble()) as reader:
-            log, complete = _read_skipping(reader, src, wanted)
-        if not complete:
-            # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
-            # rosbags then matches no message to its connection; the storage files alone are consistent.
-            files = sorted([*src.glob("*.db3"), *src.glob("*.mcap")])
-            if files:
-                with AnyReader(files, default_typestore=_humble()) as reader:
-                    log, _ = _read_skipping(reader, src, wanted)
-        return log
+        return read()
     except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError,
             CorruptRecordingError):
         raise
@@ -183,8 +183,56 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
-    """The log, and whether every message the index promised for the selected topics was read.
+def _read_recovered(src: Path, wanted: frozenset[str], cut: list[Path]) -> EventLog:
+    """A recording cut short, read from its storage files as `ros2 bag reindex` rebuilds it (events/recover.py);
+    each recovery is the first warning of the log."""
+    notes: list[str] = []
+    with tempfile.TemporaryDirectory(prefix="hexar-recover-") as tmp:
+        files: list[Path] = []
+        for file in storage_files(src):
+            if file not in cut:
+                files.append(file)
+                continue
+            salvage = salvage_mcap(file)
+            if not salvage.messages:
+                raise CorruptRecordingError(f"cannot recover {src}: {file.name} was cut at byte {salvage.cut_at}, "
+                                            "before any whole message")
+            whole = Path(tmp) / file.name
+            write_whole(salvage, whole)
+            files.append(whole)
+            lost = "; the messages of the chunk being written when it was cut are lost" if salvage.lost_chunk else ""
+            notes.append(f"recovered: {file.name} ends at byte {salvage.cut_at} without its MCAP footer (the "
+                         f"recorder stopped before closing it); read the {salvage.messages} messages written before "
+                         f"the cut, as `ros2 bag reindex` would{lost}")
+        if not (src / "metadata.yaml").is_file():
+            names = ", ".join(f.name for f in storage_files(src))
+            notes.insert(0, f"recovered: {src.name} has no metadata.yaml (the recorder stopped before writing it); "
+                            f"the metadata was rebuilt from {names}, as `ros2 bag reindex` does")
+        with AnyReader(files, default_typestore=_humble()) as reader:
+            log, _ = _read_skipping(reader, src, wanted, fast=False)
+    log.warnings[:0] = notes
+    return log
+
+
+def _read_whole(src: Path, wanted: frozenset[str]) -> EventLog:
+    for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
+        check_mcap(file, crc=False)
+    with AnyReader([src], default_typestore=_humble()) as reader:
+        log, complete = _read_skipping(reader, src, wanted)
+    if not complete:
+        # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
+        # rosbags then matches no message to its connection; the storage files alone are consistent.
+        files = storage_files(src)
+        if files:
+            with AnyReader(files, default_typestore=_humble()) as reader:
+                log, _ = _read_skipping(reader, src, wanted)
+    return log
+
+
+def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str],
+          fast: bool = True) -> tuple[EventLog, bool]:
+    """The log, and whether every message the index promised for the selected topics was read. `fast` reads the
+    storage files of `src` directly (a recovered recording's are not those rosbags reads).
 
     Connections in `skip` are left out and reported: their messages fit neither the standard definition nor
     one stored in the recording, and misreading them could invent a cause.
@@ -237,7 +285,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
     if not selected:
         return log, True
     ros2 = reader.is2
-    messages = (_sqlite_messages(src, selected) or _mcap_messages(src, selected)) if ros2 else None
+    messages = (_sqlite_messages(src, selected) or _mcap_messages(src, selected)) if ros2 and fast else None
     if messages is None:
         messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
