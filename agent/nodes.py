@@ -6,6 +6,7 @@ import json
 import time
 from typing import TYPE_CHECKING, Any
 
+from hexar import progress
 from hexar.agent import content as answers
 from hexar.agent import guard
 from hexar.agent.classifier import GENERIC
@@ -163,7 +164,10 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     ctx = runtime.context
     # a question about the whole task names no module: the finding worth hearing, not a model's guess at one
     whole = whole_task(state["question"])
-    choice = None if whole else _llm_choice(ctx, state)
+    choice = None
+    if not whole and ctx.backend.model is not None:
+        with progress.step(f"asking the model ({ctx.backend.name}) which of my modules this question is about"):
+            choice = _llm_choice(ctx, state)
     route = "llm"
     if choice is None:
         label, share = (GENERIC, 0.0) if whole else ctx.classifier.choose(state["question"], state["candidates"])
@@ -266,7 +270,9 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     else:
         depth += 1
         if depth == 1:
-            items = [_recorded(ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item][:3]
+            # the explainers' first three items (the strongest), told in the order they happened
+            cited = list(dict.fromkeys((ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item))
+            items = [_recorded(*ev) for ev in sorted(cited[:3])]
             text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
         elif depth == 2:
             # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)

@@ -2,16 +2,13 @@
 
 from __future__ import annotations
 
-import itertools
 import json
 import math
 import sqlite3
-import tempfile
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Any
 
-import yaml
 from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
 from rosbags.serde import SerdeError
@@ -28,8 +25,7 @@ from hexar.events.errors import (
     UnknownMessageTypeError,
 )
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.mcap_index import check_mcap, mcap_messages
-from hexar.events.recover import holds_storage, is_cut_short, salvage_mcap, storage_files, write_whole
+from hexar.events.mcap_index import check_mcap
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -43,6 +39,8 @@ from hexar.events.records import (
     TwistSample,
     stamp_ns,
 )
+from hexar.events.recover import holds_storage, is_cut_short, read_recovered, storage_files
+from hexar.events.storage_rows import mcap_rows, sqlite_messages
 
 _HUMBLE: Typestore | None = None
 
@@ -166,7 +164,7 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     src = resolve_path(Path(path))
     cut = [f for f in src.glob("*.mcap") if is_cut_short(f)] if src.is_dir() else []
     if cut or holds_storage(src):
-        return _guarded(src, lambda: _read_recovered(src, wanted, cut))
+        return _guarded(src, lambda: read_recovered(src, cut, lambda files: _read_files(files, src, wanted)))
     return _guarded(src, lambda: _read_whole(src, wanted))
 
 
@@ -183,35 +181,10 @@ def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read_recovered(src: Path, wanted: frozenset[str], cut: list[Path]) -> EventLog:
-    """A recording cut short, read from its storage files as `ros2 bag reindex` rebuilds it (events/recover.py);
-    each recovery is the first warning of the log."""
-    notes: list[str] = []
-    with tempfile.TemporaryDirectory(prefix="hexar-recover-") as tmp:
-        files: list[Path] = []
-        for file in storage_files(src):
-            if file not in cut:
-                files.append(file)
-                continue
-            salvage = salvage_mcap(file)
-            if not salvage.messages:
-                raise CorruptRecordingError(f"cannot recover {src}: {file.name} was cut at byte {salvage.cut_at}, "
-                                            "before any whole message")
-            whole = Path(tmp) / file.name
-            write_whole(salvage, whole)
-            files.append(whole)
-            lost = "; the messages of the chunk being written when it was cut are lost" if salvage.lost_chunk else ""
-            notes.append(f"recovered: {file.name} ends at byte {salvage.cut_at} without its MCAP footer (the "
-                         f"recorder stopped before closing it); read the {salvage.messages} messages written before "
-                         f"the cut, as `ros2 bag reindex` would{lost}")
-        if not (src / "metadata.yaml").is_file():
-            names = ", ".join(f.name for f in storage_files(src))
-            notes.insert(0, f"recovered: {src.name} has no metadata.yaml (the recorder stopped before writing it); "
-                            f"the metadata was rebuilt from {names}, as `ros2 bag reindex` does")
-        with AnyReader(files, default_typestore=_humble()) as reader:
-            log, _ = _read_skipping(reader, src, wanted, fast=False)
-    log.warnings[:0] = notes
-    return log
+def _read_files(files: list[Path], src: Path, wanted: frozenset[str]) -> EventLog:
+    """The recording at `src` read from other storage files (a recovered copy): rosbags only, no fast paths."""
+    with AnyReader(files, default_typestore=_humble()) as reader:
+        return _read_skipping(reader, src, wanted, fast=False)[0]
 
 
 def _read_whole(src: Path, wanted: frozenset[str]) -> EventLog:
@@ -285,7 +258,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
     if not selected:
         return log, True
     ros2 = reader.is2
-    messages = (_sqlite_messages(src, selected) or _mcap_messages(src, selected)) if ros2 and fast else None
+    messages = (sqlite_messages(src, selected) or mcap_rows(src, selected)) if ros2 and fast else None
     if messages is None:
         messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
@@ -400,54 +373,6 @@ def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, 
         log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
     else:
         _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
-
-
-def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
-    """Rows of the selected topics straight from uncompressed sqlite3 storage, in file order.
-
-    rosbags walks the timestamp index and visits every row in time order, so a big unsubscribed topic (camera
-    images interleaved with the logs) slows it down; a filter on topic_id alone reads only the rows we need.
-    Records are sorted by their own stamps afterwards anyway.
-    """
-    files = sorted(src.glob("*.db3")) if src.is_dir() else []
-    meta = src / "metadata.yaml"
-    if not files or not meta.is_file():
-        return None
-    info = yaml.safe_load(meta.read_text()).get("rosbag2_bagfile_information", {})
-    if info.get("compression_format") or info.get("compression_mode"):
-        return None
-    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
-
-    def rows() -> Iterator[tuple[Connection, int, bytes]]:
-        for file in files:
-            db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
-            try:
-                ids = {tid: wanted[(name, typ)] for tid, name, typ in db.execute("SELECT id, name, type FROM topics")
-                       if (name, typ) in wanted}
-                if not ids:
-                    continue
-                marks = ",".join("?" * len(ids))
-                query = f"SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN ({marks})"
-                for tid, t, data in db.execute(query, list(ids)):
-                    yield ids[tid], t, data
-            finally:
-                db.close()
-
-    return rows()
-
-
-def _mcap_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
-    """Rows of the selected topics from indexed MCAP files without rosbags' per-chunk heap merge."""
-    files = sorted(src.glob("*.mcap")) if src.is_dir() else []
-    if not files:
-        return None
-    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
-    parts = [mcap_messages(f, wanted) for f in files]
-    if any(p is None for p in parts):
-        for f in files:
-            check_mcap(f)  # rosbags reads on without checking CRCs or truncation
-        return None
-    return itertools.chain.from_iterable(p for p in parts if p is not None)
 
 
 def _text(value: object) -> str:

@@ -14,12 +14,15 @@ like an MCAP file, a chunk that fails its CRC) is never "recovered": it stays th
 from __future__ import annotations
 
 import mmap
+import tempfile
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from struct import Struct
 from typing import Any
 
 from hexar.events.errors import CorruptRecordingError
+from hexar.events.log import EventLog
 from hexar.events.mcap_index import MAGIC, _chunk_records, _decompressor
 
 _RECORD = Struct("<BQ")
@@ -137,3 +140,33 @@ def write_whole(salvage: Salvage, out: Path) -> None:
         for rec in salvage.records:
             f.write(rec)
         f.write(data_end + footer + MAGIC)
+
+
+def read_recovered(src: Path, cut: list[Path], read: Callable[[list[Path]], EventLog]) -> EventLog:
+    """A recording cut short, read from its storage files as `ros2 bag reindex` rebuilds it (events/recover.py);
+    each recovery is the first warning of the log. `read` reads the recording from a list of storage files."""
+    notes: list[str] = []
+    with tempfile.TemporaryDirectory(prefix="hexar-recover-") as tmp:
+        files: list[Path] = []
+        for file in storage_files(src):
+            if file not in cut:
+                files.append(file)
+                continue
+            salvage = salvage_mcap(file)
+            if not salvage.messages:
+                raise CorruptRecordingError(f"cannot recover {src}: {file.name} was cut at byte {salvage.cut_at}, "
+                                            "before any whole message")
+            whole = Path(tmp) / file.name
+            write_whole(salvage, whole)
+            files.append(whole)
+            lost = "; the messages of the chunk being written when it was cut are lost" if salvage.lost_chunk else ""
+            notes.append(f"recovered: {file.name} ends at byte {salvage.cut_at} without its MCAP footer (the "
+                         f"recorder stopped before closing it); read the {salvage.messages} messages written before "
+                         f"the cut, as `ros2 bag reindex` would{lost}")
+        if not (src / "metadata.yaml").is_file():
+            names = ", ".join(f.name for f in storage_files(src))
+            notes.insert(0, f"recovered: {src.name} has no metadata.yaml (the recorder stopped before writing it); "
+                            f"the metadata was rebuilt from {names}, as `ros2 bag reindex` does")
+        log = read(files)
+    log.warnings[:0] = notes
+    return log
