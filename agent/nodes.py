@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import time
 from typing import TYPE_CHECKING, Any
 
@@ -286,9 +287,14 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             "timings_ms": _timings(state, "followup", start)}
 
 
+# A count of nothing is no finding: "I tried 0 recovery manoeuvres" says what the log does not hold. Said as what
+# was not recorded, so a recording of only /rosout is not taken to prove the robot never tried.
+_NONE_COUNTED = re.compile(r"^I tried 0 recovery manoeuvres (\([^)]*\)) and then gave up")
+
+
 def _sentence(detail: str) -> str:
     """Details are written as notes; spoken one after another each must end as a sentence."""
-    detail = detail.strip()
+    detail = _NONE_COUNTED.sub(r"My log records no recovery manoeuvre \1 before I gave up", detail.strip())
     if not detail:
         return detail
     detail = detail[0].upper() + detail[1:]

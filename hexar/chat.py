@@ -12,6 +12,7 @@ from rich.console import Console
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
+from hexar.agent.questions import small_talk_reply
 from hexar.errors import USER_ERRORS
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
@@ -130,6 +131,10 @@ def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints
             continue
         if line == "/why":
             line = "why?"
+        reply = small_talk_reply(line)
+        if reply is not None:  # "ok thanks": a reply, not a refusal
+            console.print(reply)
+            continue
         try:
             with progress.step("working out the answer"):
                 result = session.ask(line, thread=thread)
