@@ -88,5 +88,5 @@ def test_damage_in_the_middle_is_not_recovered(whole_mcap: Path, tmp_path: Path)
 def test_a_folder_with_no_storage_is_still_no_recording(tmp_path: Path) -> None:
     (tmp_path / "notes").mkdir()
     (tmp_path / "notes" / "readme.txt").write_text("not a bag")
-    with pytest.raises(NotARecordingError, match="no metadata.yaml and no .db3 or .mcap file"):
+    with pytest.raises(NotARecordingError, match=r"no metadata\.yaml and no \.db3 or \.mcap file"):
         read_recording(tmp_path / "notes")
