@@ -24,8 +24,9 @@ def recordings_in(folder: Path) -> list[Path]:
     """The recordings directly inside a folder: rosbag2 folders and ROS 1 .bag files."""
     if not folder.is_dir():
         raise HexarError(f"not a folder: {folder}")
-    found = sorted(p for p in folder.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file())
-                   or p.suffix in {".bag", ".mcap", ".db3"})
+    from hexar.workspace import is_recording
+
+    found = sorted(p for p in folder.iterdir() if is_recording(p) or p.suffix in {".mcap", ".db3"})
     if not found:
         raise HexarError(f"no recordings in {folder}")
     return found

@@ -124,7 +124,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
 
     for lc_tool in tools_for(ws.registry()):
         server.add_tool(explainer_tool(explainer_of_tool(lc_tool.name)), name=lc_tool.name, description=(
-            f"{inspect.cleandoc(lc_tool.description)}\n\nArguments: recording (path in the served folder), "
+            f"{_described(lc_tool.description)}\n\nArguments: recording (path in the served folder), "
             "question, task (id, order number, 'first' or 'latest'; default latest), evidence_offset (evidence is "
             f"paged by {PAGE}). "
             "Returns the structured explanation: text, causes, evidence (cause, topic, t in ns, item), "

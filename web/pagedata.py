@@ -26,10 +26,13 @@ LIME_LINE = re.compile(r"^\s+(\S+), (present|absent), ([+-]\d+\.\d+)$")
 
 
 def recordings(root: Path) -> list[Path]:
-    """The recordings directly under `root`: rosbag2 folders and ROS 1 bags, by name."""
+    """The recordings directly under `root`: rosbag2 folders (a crashed one without metadata.yaml too) and ROS 1
+    bags, by name; a folder that holds no recording (a virtualenv) is not one."""
+    from hexar.workspace import is_recording
+
     if not root.is_dir():
         raise WebError(f"not a folder: {root}")
-    found = [p for p in root.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file()) or p.suffix == ".bag"]
+    found = [p for p in root.iterdir() if is_recording(p)]
     return sorted(found, key=lambda p: [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", p.name)])
 
 
