@@ -148,8 +148,9 @@ def _goal_words(run: SkillRun) -> str:
     p = run.params
     if p.get("location"):
         return "in " + place_name(p["location"])
-    if isinstance(p.get("x"), int | float) and isinstance(p.get("y"), int | float):
-        return f"at ({float(p['x']):.2f}, {float(p['y']):.2f}) on my map"
+    x, y = p.get("x"), p.get("y")
+    if isinstance(x, int | float) and isinstance(y, int | float):
+        return f"at ({float(x):.2f}, {float(y):.2f}) on my map"
     return "at a position the recording does not give"
 
 
