@@ -78,3 +78,12 @@ def test_plain_nav2_follow_ups_say_what_is_not_recorded(plain_nav2: Path) -> Non
     assert "I tried 0" not in said and "where I started" not in said
     assert "My log records no recovery manoeuvre" in str(deepest["answer"])
     assert "My position is not recorded: this recording has no /amcl_pose messages." in str(where["answer"])
+
+
+def test_the_evidence_of_a_why_is_told_in_time_order(suite: Path) -> None:
+    import re
+
+    _, why = _ask(suite / "bagfile_14_1", "what happened", "why?")
+    times = re.findall(r"at (\d\d:\d\d:\d\d\.\d{3})", str(why["answer"]))
+    assert len(times) == 3 and times == sorted(times)
+    assert "navigation_failure = True" in str(why["answer"])  # the explainer's own strongest items are kept
