@@ -39,6 +39,15 @@ _STATE = {"succeeded": "done", "failed": "failed", "running": "still running whe
           "canceled": "canceled", "waiting": "never started"}
 
 
+_WHY = re.compile(r"\b(why|how come|what for|reason|sorry|apologi[sz]e)\b")
+
+
+def asks_why(question: str) -> bool:
+    """A question about why the robot did something, or what happened ("what was your plan?" is not one)."""
+    q = question.strip().lower()
+    return _WHY.search(q) is not None or whole_task(q)
+
+
 def whole_task(question: str) -> bool:
     return _WHOLE.search(question.strip().lower()) is not None
 
@@ -98,7 +107,7 @@ def recovery(log: EventLog, task: Task, registry: object, question: str) -> Expl
     """Why the robot did its own recovery task: the failure of the task before it, as its explainer says it."""
     from hexar.explainers.registry import Registry
 
-    if not task.is_recovery or not isinstance(registry, Registry):
+    if not task.is_recovery or not isinstance(registry, Registry) or not asks_why(question):
         return None
     prev = previous_task(log, task)
     if prev is None:
