@@ -218,9 +218,12 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     question = state["question"]
     if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
         text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN_ANSWERS, text)}".strip()
-    if whole_task(question) and state.get("route") != "recovery":  # every step's outcome, then the finding
+    if whole_task(question) and state.get("route") != "recovery":  # what became of every step, too
         summary = steps_summary(ctx.log.task(state["task_id"]))
-        text = f"{summary} {text}" if summary else text
+        # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
+        # failed opens with every step done, which answers "did everything go ok?"
+        failed = state.get("route") == "failure_check"
+        text = (f"{text} {summary}" if failed else f"{summary} {text}") if summary else text
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,

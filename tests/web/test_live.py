@@ -50,7 +50,7 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
             failed = [s for s in run["spans"] if s["status"] == "failed"]
             assert [(s["skill"], s["error_msg"]) for s in failed] == [(NAV, "Navigation to kitchen failed")]
             # the failure first; the planner's finding on this one-step plan for a fetch follows it
-            assert [f["causes"] for f in run["findings"]][0] == [BLOCKED]
+            assert run["findings"][0]["causes"] == [BLOCKED]
             assert any("Failed to make progress" in e["item"] for e in run["events"])
             assert run["path"]["poses"] >= 10 and run["path"]["stop_label"].startswith("stopped here")
             _, runs = get(url + "api/runs")
