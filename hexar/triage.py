@@ -123,7 +123,8 @@ def triage_recording(path: Path, rel: str) -> dict[str, Any]:
         log = read_recording(path)
         reg = registry()
         # A recording without tasks is readable, just not explainable: it is counted, not listed as bad.
-        return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": ""}
+        return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": "",
+                "recovered": [w for w in log.warnings if w.startswith("recovered:")]}
     except (EventsError, ExplainerError) as err:
         return {"recording": rel, "rows": [], "error": str(err).splitlines()[0] if str(err) else type(err).__name__}
     except Exception as err:  # an explainer bug on odd data must not stop a fleet run: report it as that run's
@@ -145,7 +146,7 @@ def _matches(inputs: Iterable[str]) -> Iterator[tuple[Path, Path]]:
                 yield path, path.parent
             else:
                 base = path.parent if glob.has_magic(raw) else path
-                for rec in find_recordings(path):
+                for rec in find_recordings(path, follow_links=True):  # a fleet folder of links to recordings
                     yield rec, base
 
 

@@ -16,7 +16,7 @@ from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.live import LIVE, LiveSource, Snapshot
-from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
+from hexar.web.pagedata import Findings, cause_words, filtered_lines, recordings, run_detail, task_summary
 
 
 def shown(path: Path) -> str:
@@ -135,7 +135,9 @@ class Store:
             self._start_worker()
         if self.live is not None:
             rows.insert(0, self._live_row(self.live))
-        return {"root": "" if self.root is None else shown(self.root), "runs": rows, "pending": pending}
+        words = {cid: cause_words(cid) for r in rows for cid in r["causes"] or []}  # the list shows words, not ids
+        return {"root": "" if self.root is None else shown(self.root), "runs": rows, "pending": pending,
+                "cause_words": words}
 
     def _live_row(self, live: LiveSource) -> dict[str, Any]:
         snap = live.snapshot()
