@@ -1,0 +1,144 @@
+"""Bring-up problems any explainer can cite: a node of the stack that never came up (stable API).
+
+    bringup_findings(lines, before=None) -> list[BringupFinding]
+
+A node that never came up explains every later failure that depends on it (a controller server whose params file
+did not parse cannot follow a path; a move group whose configure callback threw cannot plan), so an explainer asks
+for these first and cites them before anything it reads in its own logs. Each finding is one decisive log line,
+read through the mined stack catalogue (its entries of cause `stack.bringup_failure`, and the rcl/lifecycle/launch
+wordings below), with the node it concerns and its time:
+
+    kind     params_file            rcl could not parse a `--params-file` (or another --ros-args rule): the node
+                                    exits before it exists
+             lifecycle_transition   a lifecycle transition failed or its callback threw (rclcpp_lifecycle's
+                                    "Caught exception in callback for transition", with its "Original error: ..."),
+                                    or a lifecycle manager could not bring its nodes up
+             process_died           launch reports the node's process died (with its exit code)
+             node_failed            another bring-up line of the catalogue (e.g. a costmap that failed to configure)
+    node     the node the line is about: the logger name, or the process launch names (`controller_server-3` ->
+             `controller_server`), or the node a lifecycle manager names; "" when the line names none
+    t        the line's time (ns), line: the LogLine itself, entry: its catalogue entry (source file:line@branch)
+    detail   what the line adds: the original error, the exit code, the transition ("" when nothing)
+
+Lines are taken in time order; `before` (ns) keeps only those at or before that time (a goal's start or end).
+Repeats of one (kind, node) are folded into the first, which is the decisive one.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from hexar.events.records import ERROR, LogLine
+from hexar.explainers.stack.catalogue import StackEntry, stack_catalogue
+
+BRINGUP = "stack.bringup_failure"
+KINDS = ("params_file", "lifecycle_transition", "process_died", "node_failed")
+
+_PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
+_EXIT = re.compile(r"exit code (?P<code>-?\d+)")
+_NAMED_NODE = re.compile(r"(?:for node|node)[: ]+'?(?P<node>[/\w]+)'?")
+_PROCESS_IN_MSG = re.compile(r"process\[(?P<node>[\w./-]+?)(?:-\d+)?\]")
+_ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
+_TRANSITION = re.compile(r"transition (?P<id>\d+)")
+# lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
+TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: "shutdown", 10: "configure",
+               11: "cleanup", 12: "activate", 13: "deactivate", 14: "unconfigured_shutdown",
+               15: "inactive_shutdown", 16: "active_shutdown"}
+
+
+@dataclass(frozen=True)
+class BringupFinding:
+    """One node that never came up (fields: see the module's docstring)."""
+
+    kind: str
+    node: str
+    t: int
+    line: LogLine
+    entry: StackEntry | None
+    detail: str = ""
+    cause: str = BRINGUP
+
+    def describe(self) -> str:
+        """One sentence for a person: what failed, for which node."""
+        who = self.node or "a node"
+        if self.kind == "params_file":
+            return f"{who} could not parse its parameters file, so it never started"
+        if self.kind == "process_died":
+            code = f" ({self.detail})" if self.detail else ""
+            return f"the process of {who} died{code}"
+        if self.kind == "lifecycle_transition":
+            why = f": {self.detail}" if self.detail else ""
+            return f"{who} failed a lifecycle transition and never became active{why}"
+        return f"{who} failed to come up"
+
+
+def _kind(line: LogLine, entry: StackEntry) -> str:
+    if entry.layer == "rcl" and ("params file" in entry.text or "parse" in entry.text):
+        return "params_file"
+    if entry.layer == "launch":
+        return "process_died"
+    if entry.layer == "lifecycle" or "lifecycle" in entry.package or "bring up" in entry.text \
+            or "Aborting bringup" in entry.text or "change state" in entry.text:
+        return "lifecycle_transition"
+    return "node_failed"
+
+
+def _node(line: LogLine, kind: str) -> str:
+    named = _NAMED_NODE.search(line.msg)
+    if kind == "lifecycle_transition" and named and "lifecycle_manager" in line.name:
+        return named["node"].strip("/").rstrip(".")
+    inside = _PROCESS_IN_MSG.search(line.msg)
+    if inside:
+        return inside["node"]
+    name = line.name.strip("/").split("/")[-1]
+    if kind == "process_died" or name.endswith(tuple(f"-{i}" for i in range(10))):
+        m = _PROCESS.match(name)
+        if m:
+            return m["node"]
+    return "" if name in ("", "launch", "rcl") else name
+
+
+def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
+    if kind == "process_died":
+        m = _EXIT.search(line.msg)
+        return f"exit code {m['code']}" if m else ""
+    if kind == "params_file":
+        return line.msg.split("Error: ", 1)[1].strip() if "Error: " in line.msg else ""
+    if kind == "lifecycle_transition":
+        original = _ORIGINAL.search(line.msg) or next(
+            (m for m in (_ORIGINAL.search(f.msg) for f in following if f.name == line.name) if m), None)
+        transition = _TRANSITION.search(line.msg)
+        parts = []
+        if transition and int(transition["id"]) in TRANSITIONS:
+            parts.append(f"transition {TRANSITIONS[int(transition['id'])]}")
+        if original:
+            parts.append(original["error"].strip())
+        return ": ".join(parts)
+    return ""
+
+
+def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
+    """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
+    cat = stack_catalogue()
+    ordered = sorted((ln for ln in lines if before is None or ln.t <= before), key=lambda ln: ln.t)
+    out: list[BringupFinding] = []
+    seen: set[tuple[str, str]] = set()
+    for i, line in enumerate(ordered):
+        entry = cat.match(line.msg)
+        if entry is None or entry.cause != BRINGUP or (line.level < ERROR and entry.level == "WARN"):
+            continue
+        if entry.text.startswith("Original error"):
+            continue  # the second half of "Caught exception in callback ...": read as that line's detail
+        kind = _kind(line, entry)
+        if kind == "params_file" and "Couldn't parse" not in line.msg:
+            # rcl's "Failed to parse global arguments" comes first; the line naming the file and its error follows
+            line = next((f for f in ordered[i:i + 5] if "Couldn't parse" in f.msg), line)
+            entry = next((e for e in cat.matches(line.msg) if e.text.startswith("Couldn't parse")), entry)
+        node = _node(line, kind)
+        if (kind, node) in seen:
+            continue
+        seen.add((kind, node))
+        out.append(BringupFinding(kind, node, line.t, line, entry, _detail(line, kind, ordered[i + 1:i + 4])))
+    return out

@@ -1,0 +1,167 @@
+"""The mined catalogue of the ROS 2 stack (stack_catalogue.json, written by scripts/mine_catalogue.py).
+
+One entry per logged format string (WARN/ERROR/FATAL logging calls, thrown/raised exception texts, rcl error
+messages) of the repositories and distro branches listed in sources.yaml:
+
+    pattern  Python regex of the message: literal text escaped, each printf/`{}` field a lazy `.*?` (searched,
+             not anchored: an exception text arrives wrapped in other messages, e.g. "Original error: <text>")
+    text     the message as written, each field shown as `…`
+    level    WARN | ERROR | FATAL (exception texts and rcl error messages: ERROR)
+    form     log | throw | error_msg | reason (a string constant printed by a log call elsewhere)
+    layer    nav2, rcl, rclcpp, lifecycle, tf, message_filters, launch, robot_localization, slam_toolbox, twist_mux,
+             ros_gz
+    package  the package folder it was read from
+    source   file:line@branch (the newest branch that holds it)
+    distros  the ROS 2 distros whose branch holds it
+    role     cause (a line that can explain a failure) | symptom (what a failure produces; never told as its cause)
+             | noise (printed by healthy systems too)
+    cause    a stack-level cause id (stack.bringup_failure, stack.transform_error, ...) or null: for role `cause`,
+             null means a decisive line whose meaning is not catalogued (quote it, do not interpret it)
+
+Any explainer may load it (`stack_catalogue()`), match lines (`match`) and map the stack-level cause ids onto its own
+cause words. Loading is a JSON parse; each pattern is compiled only when a line holds its longest literal.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from collections.abc import Iterable
+from dataclasses import dataclass
+from functools import cache, cached_property
+from importlib import resources
+from typing import Any
+
+from hexar.explainers.stack.errors import StackCatalogueError
+
+ROLES = ("cause", "symptom", "noise")
+LEVELS = ("WARN", "ERROR", "FATAL")
+FILE = "stack_catalogue.json"
+_ANSI = re.compile(r"\x1b\[[0-9;]*m")
+_LITERAL = re.compile(r"(?:\\.|[^\\.*?()\[\]{}|+^$])+")
+
+
+@dataclass(frozen=True)
+class StackEntry:
+    """One mined format string (fields: see the module's docstring)."""
+
+    pattern: str
+    text: str
+    level: str
+    form: str
+    layer: str
+    package: str
+    source: str
+    distros: tuple[str, ...]
+    role: str
+    cause: str | None
+
+    @cached_property
+    def regex(self) -> re.Pattern[str]:
+        return re.compile(self.pattern, re.S)
+
+    @cached_property
+    def key(self) -> str:
+        """The pattern's longest literal run (unescaped): a message without it cannot match."""
+        runs = [re.sub(r"\\(.)", r"\1", r) for r in _LITERAL.findall(self.pattern)]
+        return max(runs, key=len, default="")
+
+    @cached_property
+    def specificity(self) -> int:
+        """Letters and digits of the pattern's literal text: of two matching entries the more specific one is the
+        reading (a helper's "[…] [ActionServer] …" frame says less than the "Aborting handle." it carries)."""
+        return sum(ch.isalnum() for ch in re.sub(r"\.\*\?", "", self.pattern))
+
+
+def _rank(e: StackEntry) -> tuple[bool, int]:
+    return e.cause is not None, e.specificity
+
+
+def _entry(raw: Any) -> StackEntry:
+    entry = StackEntry(pattern=str(raw["pattern"]), text=str(raw["text"]), level=str(raw["level"]),
+                       form=str(raw["form"]), layer=str(raw["layer"]), package=str(raw["package"]),
+                       source=str(raw["source"]), distros=tuple(str(d) for d in raw["distros"]),
+                       role=str(raw["role"]), cause=None if raw.get("cause") is None else str(raw["cause"]))
+    if entry.role not in ROLES or entry.level not in LEVELS:
+        raise ValueError(f"entry {entry.source}: role {entry.role!r} / level {entry.level!r}")
+    return entry
+
+
+class StackCatalogue:
+    """The parsed catalogue, with a matcher that reads a message as its most specific entry."""
+
+    def __init__(self, raw: Any) -> None:
+        try:
+            self.distros: tuple[str, ...] = tuple(raw["distros"])
+            self.mined: tuple[str, ...] = tuple(raw["mined"])
+            self.entries: tuple[StackEntry, ...] = tuple(_entry(e) for e in raw["entries"])
+        except (KeyError, TypeError, ValueError, AttributeError) as err:
+            raise StackCatalogueError(f"malformed stack catalogue: {err}") from err
+        self._seen: dict[str, StackEntry | None] = {}
+
+    @cached_property
+    def _by_key(self) -> dict[str, list[StackEntry]]:
+        out: dict[str, list[StackEntry]] = {}
+        for e in self.entries:
+            out.setdefault(e.key, []).append(e)
+        return out
+
+    def match(self, msg: str) -> StackEntry | None:
+        """The entry whose pattern the message (ANSI colours removed) holds: one with a cause id before one without
+        (an rcl parse error quoted inside "Couldn't parse params file: ..."), then the most specific; else None."""
+        if msg in self._seen:
+            return self._seen[msg]
+        text = _ANSI.sub("", msg) if "\x1b" in msg else msg
+        best: StackEntry | None = None
+        for key, entries in self._by_key.items():
+            if key not in text:
+                continue
+            for e in entries:
+                if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
+                    best = e
+        if len(self._seen) > 20_000:
+            self._seen.clear()
+        self._seen[msg] = best
+        return best
+
+    def matches(self, msg: str) -> list[StackEntry]:
+        """Every entry the message holds, best reading first (a message may quote several: an exception's text
+        inside the line that caught it)."""
+        text = _ANSI.sub("", msg) if "\x1b" in msg else msg
+        found = [e for key, entries in self._by_key.items() if key in text for e in entries if e.regex.search(text)]
+        return sorted(found, key=_rank, reverse=True)
+
+    def with_cause(self, cause: str) -> list[StackEntry]:
+        return [e for e in self.entries if e.cause == cause]
+
+    def layers(self) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for e in self.entries:
+            out[e.layer] = out.get(e.layer, 0) + 1
+        return out
+
+
+def load(text: str) -> StackCatalogue:
+    """A catalogue from its JSON text (StackCatalogueError when it is not one)."""
+    try:
+        raw = json.loads(text)
+    except json.JSONDecodeError as err:
+        raise StackCatalogueError(f"malformed stack catalogue: {err}") from err
+    return StackCatalogue(raw)
+
+
+@cache
+def stack_catalogue() -> StackCatalogue:
+    """The catalogue shipped with HEXAR (parsed once)."""
+    return load(resources.files("hexar.explainers.stack").joinpath(FILE).read_text("utf-8"))
+
+
+def compile_all(entries: Iterable[StackEntry]) -> list[str]:
+    """The sources of entries whose pattern does not compile (empty when all do)."""
+    bad = []
+    for e in entries:
+        try:
+            re.compile(e.pattern)
+        except re.error:
+            bad.append(e.source)
+    return bad

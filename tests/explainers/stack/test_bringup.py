@@ -1,0 +1,95 @@
+"""bringup_findings on recordings written with rosbags from real console lines of public threads: a params file
+rcl could not parse, a configure callback that threw, a process that died, and a healthy bring-up (no finding)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hexar.evals.real_nav2 import Excerpt, write_recording
+from hexar.events import contract as c
+from hexar.events import read_recording
+from hexar.events.records import LogLine
+from hexar.explainers.stack import bringup_findings
+
+# turtlebot/turtlebot4#341: the params file had a value before ros__parameters.
+PARAMS = "\n".join([
+    '[smoother_server-2] [ERROR] [1705629351.512110213] [rcl]: Failed to parse global arguments',
+    "[smoother_server-2] terminate called after throwing an instance of 'rclcpp::exceptions::RCLInval"
+    "idROSArgsError'",
+    '[planner_server-3] [ERROR] [1705629351.516292793] [rcl]: Failed to parse global arguments',
+    "[planner_server-3] terminate called after throwing an instance of 'rclcpp::exceptions::RCLInvali"
+    "dROSArgsError'",
+    "[planner_server-3]   what():  failed to initialize rcl: Couldn't parse params file: '--params-fi"
+    "le /tmp/launch_params_pl1tbamm'. Error: Cannot have a value before ros__parameters at line 85, a"
+    't ./src/parse.c:805, at ./src/rcl/arguments.c:',
+]) + "\n"
+# turtlebot/turtlebot4#591 (corpus entry tb4-591-jazzy-no-footprint): the configure callback threw.
+LIFECYCLE = "\n".join([
+    '[controller_server-1] [ERROR] [1746882382.323839447] [controller_server]: Caught exception in ca'
+    'llback for transition 10',
+    '[controller_server-1] [ERROR] [1746882382.323941469] [controller_server]: Original error: Consid'
+    'ering footprint in collision checking but no robot footprint provided in the costmap.',
+    '[lifecycle_manager-10] [ERROR] [1746882382.327852169] [lifecycle_manager_navigation]: Failed to '
+    'change state for node: controller_server',
+    '[lifecycle_manager-10] [ERROR] [1746882382.328004271] [lifecycle_manager_navigation]: Failed to '
+    'bring up all requested nodes. Aborting bringup.',
+]) + "\n"
+# turtlebot/turtlebot4#632 (Jazzy): the controller server's process died at start.
+DIED = "\n".join([
+    '[INFO] [controller_server-1]: process started with pid [6474]',
+    "[ERROR] [controller_server-1]: process has died [pid 6474, exit code -4, cmd '/opt/ros/jazzy/lib"
+    '/nav2_controller/controller_server --ros-args --log-level info --ros-args -r __ns:=/ -p use_sim_'
+    'time:=False --params-file /tmp/launch_params_di0ju_uk -r /global_costmap/scan:=/scan -r /local_c'
+    "ostmap/scan:=/scan -r /tf:=tf -r /tf_static:=tf_static -r cmd_vel:=cmd_vel_nav'].",
+]) + "\n"
+# The lifecycle manager's lines of a healthy start (nav2_lifecycle_manager/src/lifecycle_manager.cpp, INFO).
+HEALTHY = "\n".join([
+    '[lifecycle_manager-10] [INFO] [1746882380.1] [lifecycle_manager_navigation]: Starting managed no'
+    'des bringup...',
+    '[lifecycle_manager-10] [INFO] [1746882381.2] [lifecycle_manager_navigation]: Managed nodes are a'
+    'ctive',
+]) + "\n"
+
+
+def _logs(tmp: Path, lines: str) -> list[LogLine]:
+    ex = Excerpt(id="t", source="test", url="", distro="unknown", outcome="failed",
+                 cause="navigation.bringup_failure", cause_quote="", logs_show_cause=True, lines=lines)
+    log = read_recording(write_recording(ex, tmp / "bag", task=False))
+    return log.view(frozenset({c.ROSOUT})).logs()
+
+
+def test_a_params_file_rcl_could_not_parse(tmp_path: Path) -> None:
+    logs = _logs(tmp_path, PARAMS)
+    [f] = bringup_findings(logs)
+    assert f.kind == "params_file"
+    assert "Couldn't parse params file" in f.line.msg and f.t == f.line.t
+    assert f.detail.startswith("Cannot have a value before ros__parameters at line 85")
+    assert f.entry is not None and f.entry.source.startswith("rcl/src/rcl/arguments.c:")
+    assert "could not parse its parameters file" in f.describe()
+
+
+def test_a_configure_callback_that_threw_names_node_transition_and_error(tmp_path: Path) -> None:
+    logs = _logs(tmp_path, LIFECYCLE)
+    first, *rest = bringup_findings(logs)
+    assert (first.kind, first.node) == ("lifecycle_transition", "controller_server")
+    assert first.detail == ("transition configure: Considering footprint in collision checking but no robot "
+                            "footprint provided in the costmap.")
+    assert first.t == logs[0].t
+    assert all(f.t >= first.t for f in rest)
+    assert "controller_server failed a lifecycle transition" in first.describe()
+
+
+def test_a_process_that_died_names_its_node_and_exit_code(tmp_path: Path) -> None:
+    [f] = bringup_findings(_logs(tmp_path, DIED))
+    assert (f.kind, f.node, f.detail) == ("process_died", "controller_server", "exit code -4")
+    assert f.describe() == "the process of controller_server died (exit code -4)"
+
+
+def test_before_keeps_only_lines_up_to_that_time(tmp_path: Path) -> None:
+    logs = _logs(tmp_path, LIFECYCLE)
+    assert bringup_findings(logs, before=logs[0].t - 1) == []
+    assert len(bringup_findings(logs, before=logs[0].t)) == 1
+
+
+def test_a_healthy_bringup_has_no_finding(tmp_path: Path) -> None:
+    assert bringup_findings(_logs(tmp_path, HEALTHY)) == []

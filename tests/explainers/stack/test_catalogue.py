@@ -1,0 +1,60 @@
+"""The mined stack catalogue: it loads, every pattern compiles, and real lines of each layer read as what they are."""
+
+from __future__ import annotations
+
+import pytest
+
+from hexar.explainers.stack.catalogue import LEVELS, ROLES, compile_all, load, stack_catalogue
+from hexar.explainers.stack.errors import StackCatalogueError
+
+
+def test_the_shipped_catalogue_loads_and_every_pattern_compiles() -> None:
+    cat = stack_catalogue()
+    assert len(cat.entries) > 1000
+    assert compile_all(cat.entries) == []
+    for e in cat.entries:
+        assert e.role in ROLES and e.level in LEVELS, e.source
+        assert e.distros and set(e.distros) <= set(cat.distros), e.source
+        assert "@" in e.source and ":" in e.source.split("@")[0], e.source
+        assert e.cause is None or e.cause.startswith("stack."), e.source
+
+
+def test_every_layer_the_issue_names_was_mined() -> None:
+    layers = stack_catalogue().layers()
+    for layer in ("nav2", "rcl", "rclcpp", "lifecycle", "tf", "message_filters", "launch", "robot_localization",
+                  "slam_toolbox", "twist_mux", "ros_gz"):
+        assert layers.get(layer, 0) > 0, layer
+
+
+# Real lines from public threads (turtlebot/turtlebot4#341, #632; ros-navigation/navigation2 corpus threads).
+@pytest.mark.parametrize(("msg", "role", "cause", "layer"), [
+    ("failed to initialize rcl: Couldn't parse params file: '--params-file /tmp/launch_params_pl1tbamm'. Error: "
+     "Cannot have a value before ros__parameters at line 85, at ./src/parse.c:805", "cause", "stack.bringup_failure",
+     "rcl"),
+    ("Caught exception in callback for transition 10", "cause", "stack.bringup_failure", "lifecycle"),
+    ("process has died [pid 6474, exit code -4, cmd '/opt/ros/jazzy/lib/nav2_controller/controller_server "
+     "--ros-args']. ", "cause", "stack.bringup_failure", "launch"),
+    ("Transform data too old when converting from odom to map", "cause", "stack.transform_error", "nav2"),
+    ("Message Filter dropping message: frame 'rplidar_link' at time 1725246931.465 for reason 'the timestamp on "
+     "the message is earlier than all the data in the transform cache'", "symptom", "stack.transform_error", "tf"),
+    ("RegulatedPurePursuitController detected collision ahead!", "cause", "stack.collision_ahead", "nav2"),
+    ("GridBased: failed to create plan, no valid path found.", "symptom", None, "nav2"),
+    ("[follow_path] [ActionServer] Aborting handle.", "symptom", None, "nav2"),
+    ("Failed to make progress", "symptom", None, "nav2"),
+])
+def test_real_lines_read_as_their_role(msg: str, role: str, cause: str | None, layer: str) -> None:
+    e = stack_catalogue().match(msg)
+    assert e is not None and (e.role, e.cause, e.layer) == (role, cause, layer), e
+
+
+def test_a_line_no_source_prints_is_not_matched() -> None:
+    assert stack_catalogue().match("the coffee machine is out of beans") is None
+
+
+@pytest.mark.parametrize("text", ["", "[]", '{"distros": []}', '{"distros": [], "mined": [], "entries": [{}]}',
+                                  '{"distros": [], "mined": [], "entries": [{"pattern": "x", "text": "x", '
+                                  '"level": "LOUD", "form": "log", "layer": "l", "package": "p", "source": "s", '
+                                  '"distros": [], "role": "cause"}]}'])
+def test_a_malformed_catalogue_is_a_clear_error(text: str) -> None:
+    with pytest.raises(StackCatalogueError, match="malformed stack catalogue"):
+        load(text)

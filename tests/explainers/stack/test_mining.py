@@ -1,0 +1,66 @@
+"""Reading format strings out of source text: each logging form the mined repositories use, with real message
+strings (printf fields, streams, throttled and named macros, exceptions, Python logger calls and raises)."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.explainers.stack.mining import WILD, cpp_calls, literals, py_calls, to_display, to_pattern
+
+
+def _one(calls: list[object]) -> object:
+    assert len(calls) == 1, calls
+    return calls[0]
+
+
+def test_printf_macro_across_lines_skips_the_logger() -> None:
+    src = ('void f() {\n  RCLCPP_ERROR(\n    rclcpp::get_logger("nav2_costmap_2d"),\n'
+           '    "Transform data too old when converting from %s to %s", a.c_str(), b.c_str());\n}\n')
+    [call] = list(cpp_calls(src))
+    assert (call.line, call.level, call.form) == (2, "ERROR", "log")
+    assert to_display(call.text) == "Transform data too old when converting from … to …"
+    assert re.search(to_pattern(call.text), "Transform data too old when converting from odom to map")
+
+
+def test_throttled_stream_and_adjacent_literals() -> None:
+    src = ('RCLCPP_WARN_THROTTLE(logger_, *clock_, 1000, "Robot is out of bounds " "of the costmap!");\n'
+           'RCLCPP_ERROR_STREAM(logger_, "Failed to create controller. Exception: " << ex.what());\n')
+    first, second = list(cpp_calls(src))
+    assert (first.level, first.text) == ("WARN", "Robot is out of bounds of the costmap!")
+    assert second.text == "Failed to create controller. Exception: " + WILD
+
+
+def test_info_and_debug_are_not_mined_and_exceptions_are() -> None:
+    src = ('RCLCPP_INFO(get_logger(), "Begin navigating");\n'
+           'throw nav2_core::StartOccupied("Start occupied");\n'
+           'RCL_SET_ERROR_MSG_WITH_FORMAT_STRING("Couldn\'t parse params file: \'%s %s\'. Error: %s", a, b, c);\n')
+    throw, err = list(cpp_calls(src))
+    assert (throw.form, throw.text) == ("throw", "Start occupied")
+    assert err.form == "error_msg" and to_display(err.text) == "Couldn't parse params file: '… …'. Error: …"
+
+
+def test_a_repositorys_own_helpers_are_mined_as_their_level() -> None:
+    src = 'if (x) {\n  warn_msg("Aborting handle.");\n  info_msg("Goal accepted");\n}\n'
+    [call] = list(cpp_calls(src, {"warn_msg": "WARN", "info_msg": "INFO"}))
+    assert (call.line, call.level, call.text) == (2, "WARN", "Aborting handle.")
+
+
+def test_python_logger_format_and_raise() -> None:
+    src = ('        self.__logger.error("process has died [pid {}, exit code {}, cmd \'{}\'].".format(\n'
+           "            pid, code, cmd))\n"
+           '    raise RuntimeError(f"Invalid frame {frame} given")\n')
+    died, raised = list(py_calls(src))
+    assert died.level == "ERROR" and to_display(died.text) == "process has died [pid …, exit code …, cmd '…']."
+    assert raised.form == "throw" and to_display(raised.text) == "Invalid frame … given"
+
+
+def test_string_constants_a_log_call_prints_elsewhere() -> None:
+    src = 'case X:\n  return "the timestamp on the message is earlier than all the data in the transform cache";\n'
+    [(line, text)] = list(literals(src, r'return\s+"([^"]{10,})"'))
+    assert line == 2 and text.startswith("the timestamp on the message")
+
+
+def test_patterns_escape_regex_characters_and_keep_spaces() -> None:
+    pattern = to_pattern("Sensor origin at (" + WILD + ") is out of map bounds [" + WILD + "]. ")
+    assert pattern == r"Sensor origin at \(.*?\) is out of map bounds \[.*?\]\."
+    assert re.search(pattern, "Sensor origin at (1.0, 2.0) is out of map bounds [x]. The costmap")

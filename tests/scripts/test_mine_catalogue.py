@@ -1,0 +1,86 @@
+"""scripts/mine_catalogue.py on a small git repository made here: distro branches merged into one entry, rules
+giving roles, tests skipped, and bad input a one-line ERROR."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import sys
+from pathlib import Path
+from types import ModuleType
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_catalogue.py"
+CONFIG = """
+min_literal: 10
+repos:
+  - name: someone/robot_nav
+    layer: nav2
+    branches: {humble: [humble], jazzy: [jazzy], lyrical: [rolling]}
+    packages: []
+rules:
+  - {text: "Failed to make progress", role: symptom}
+  - {text: "Transform data too old", role: cause, cause: stack.transform_error}
+"""
+
+
+def _script() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("mine_catalogue", SCRIPT)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules["mine_catalogue"] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+def _git(repo: Path, *args: str) -> None:
+    subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True)
+
+
+def _repo(root: Path) -> None:
+    repo = root / "someone+robot_nav" / "repo"
+    (repo / "pkg" / "src").mkdir(parents=True)
+    (repo / "pkg" / "test").mkdir()
+    _git(repo, "init", "-q", "-b", "humble")
+    _git(repo, "config", "user.email", "t@example.com")
+    _git(repo, "config", "user.name", "t")
+    (repo / "pkg" / "src" / "a.cpp").write_text(
+        'RCLCPP_ERROR(logger_, "Transform data too old when converting from %s to %s", a, b);\n'
+        'RCLCPP_WARN(logger_, "Failed to make progress");\nRCLCPP_ERROR(logger_, "short");\n')
+    (repo / "pkg" / "test" / "t.cpp").write_text('RCLCPP_ERROR(logger_, "a test-only message here");\n')
+    _git(repo, "add", ".")
+    _git(repo, "commit", "-q", "-m", "humble")
+    _git(repo, "branch", "jazzy")
+
+
+def test_mines_branches_into_entries_with_roles(tmp_path: Path) -> None:
+    _repo(tmp_path)
+    (tmp_path / "sources.yaml").write_text(CONFIG)
+    out = tmp_path / "out.json"
+    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"), "--out", str(out)])
+    assert rc == 0
+    data = json.loads(out.read_text())
+    assert data["mined"] == ["someone/robot_nav"]
+    by_text = {e["text"]: e for e in data["entries"]}
+    assert set(by_text) == {"Transform data too old when converting from … to …", "Failed to make progress"}
+    tf = by_text["Transform data too old when converting from … to …"]
+    assert (tf["role"], tf["cause"], tf["level"], tf["distros"]) == ("cause", "stack.transform_error", "ERROR",
+                                                                      ["humble", "jazzy"])
+    assert tf["source"] == "pkg/src/a.cpp:1@jazzy" and tf["package"] == "pkg"
+    assert by_text["Failed to make progress"]["role"] == "symptom"
+
+
+def test_no_mirror_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "sources.yaml").write_text(CONFIG)
+    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"),
+                         "--out", str(tmp_path / "o.json")])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc == 1 and err[-1].startswith("ERROR: no repository") and not (tmp_path / "o.json").exists()
+
+
+def test_a_config_without_repos_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    (tmp_path / "sources.yaml").write_text("rules: []\n")
+    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml")])
+    assert rc == 1 and capsys.readouterr().err.startswith("ERROR: sources.yaml: a mapping with a `repos` list")
