@@ -20,6 +20,7 @@ from hexar.events.tasks import SkillRun, StatusChange, Task
 
 MOVE_ARM = "move_arm"
 FOLLOW = "follow_joint_trajectory"
+BRING_UP = "bring_up_controllers"
 _STATUS_END = {4: "succeeded", 5: "canceled", 6: "failed"}
 _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "end_server"}
 # move_group's "Execution completed: <status>" names how the execution ended (moveit_controller_manager's
@@ -110,7 +111,9 @@ def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> li
 
 
 def _activity(logs: list[LogLine]) -> list[_Goal]:
-    """Catalogued cause lines with no goal line: one goal, failed at the first error if any."""
+    """No goal line: catalogued cause lines make one goal (MoveIt's a move_arm, ros2_control's a
+    follow_joint_trajectory), failed at the first error; without them, the robot's own errors (a bring-up
+    failure, a driver that cannot open its device) make one `bring_up_controllers` goal failed at the first."""
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -122,7 +125,13 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
                 active.append((line, skill))
                 break
     if not active:
-        return []
+        from hexar.explainers.stack_causes import stack_cause
+
+        stack = stack_cause(logs)
+        errors = sorted([ln for ln in logs if ln.level >= ERROR] + ([stack.line] if stack else []), key=lambda ln: ln.t)
+        if not errors:
+            return []
+        return [_Goal(BRING_UP, errors[0].t, "error lines (no goal line)", errors[-1].t, "failed", errors[0].msg)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
     goal = _Goal(skill, active[0][0].t, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
@@ -146,10 +155,11 @@ def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Ta
     arm_statuses = [s for s in statuses if c.topic_key(s.topic) in c.ARM_STATUS_TOPICS]
     tasks = []
     for order, goal in enumerate(_goals(logs, arm_statuses), start=1):
-        source = "moveit" if goal.skill == MOVE_ARM else "ros2_control"
+        source = {MOVE_ARM: "moveit", FOLLOW: "ros2_control", BRING_UP: "bringup"}[goal.skill]
         params: dict[str, object] = {"source": source, "derived_from": goal.via}
-        what = "Move the arm" if goal.skill == MOVE_ARM else "Follow a joint trajectory"
-        instruction = f"{what} (derived from {'MoveIt' if goal.skill == MOVE_ARM else 'ros2_control'})"
+        instruction = {MOVE_ARM: "Move the arm (derived from MoveIt)",
+                       FOLLOW: "Follow a joint trajectory (derived from ros2_control)",
+                       BRING_UP: "Start the robot (derived from its error lines)"}[goal.skill]
         history = [StatusChange(goal.start, "running", "")]
         if goal.end is not None:
             history.append(StatusChange(goal.end, goal.state, goal.error))
@@ -166,14 +176,14 @@ def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Ta
 
 
 def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
-    """Nav2's and the arm's derived tasks in time order. Without an arm task, Nav2's are returned unchanged;
-    an arm task found only from activity is kept only when Nav2 showed no goal, and a Nav2 task found only
-    from activity gives way to arm goals (its lines were probably not Nav2's goal at all)."""
-    if not arm:
+    """Nav2's and the arm's derived tasks in time order. Without a Nav2 task, the arm's are all there is. With
+    one, only arm tasks of goal lines or statuses join it (activity is Nav2's to explain), and a Nav2 task
+    found only from activity gives way to arm goals (its lines were probably no Nav2 goal at all)."""
+    if not nav or not arm:
+        return nav or arm
+    arm_goals = [t for t in arm if "no goal line" not in str(t.skills[0].params.get("derived_from"))]
+    if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]
-    arm_from_goals = [t for t in arm if t.skills[0].params.get("derived_from") != "log (no goal line)"]
-    if not arm_from_goals and real_nav:
-        return nav
-    merged = sorted(real_nav + arm, key=lambda t: t.created)
+    merged = sorted(real_nav + arm_goals, key=lambda t: t.created)
     return [dataclasses.replace(t, order=i) for i, t in enumerate(merged, start=1)]

@@ -16,6 +16,7 @@ from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
+from hexar.explainers.stack_causes import stack_cause, stack_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -57,6 +58,10 @@ class ModuleExplainer:
     def catalogues(self) -> list[ModuleCatalogue]:
         raise NotImplementedError
 
+    def refine(self, readings: list[Reading]) -> list[Reading]:
+        """A module's reading of what a line's numbers say (e.g. MoveIt's state-monitor times)."""
+        return readings
+
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         raise NotImplementedError
 
@@ -65,9 +70,17 @@ class ModuleExplainer:
         lines = view.logs()
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        readings = [r for r in read(lines, self.catalogues()) if not _other_module(r)]
+        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         run = focus(context, self.skills)
         d = diagnose(readings, run.state if run is not None else None)
+        if d.outcome == "succeeded":
+            # a goal that completed: warnings and errors on the way did not stop it (many healthy arms print some)
+            d = Diagnosis("succeeded", end=d.end)
+        else:
+            stack = stack_cause(lines)
+            if stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
+                d.cause, d.decisive, d.support = stack.cause, stack, []
+                d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
         if d.cause is not None and not d.cause.startswith(self.prefix):
             asked = self._ask_owner(question, context, d)
             if asked is not None:
@@ -120,10 +133,10 @@ class ModuleExplainer:
             return Explanation(explainer=self.name, text=text, causes=[cause], fix=fix, details=details,
                                evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
         cause = d.cause
-        text, fix, details = self.words(cause, d, self._what(run))
+        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         decisive = d.decisive
         assert decisive is not None
-        ev = [Evidence.of_log(cause, decisive.line)] + evidence_of(cause, d.support) + evidence_of(cause, d.symptoms)
+        ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
         if d.end is not None and all(e.t != d.end.t for e in ev):
             ev.append(Evidence.of_log(cause, d.end))
         source = decisive.entry.source if decisive.entry is not None else ""
@@ -140,6 +153,8 @@ class ModuleExplainer:
     def _what(self, run: SkillRun | None) -> str:
         if run is None:
             return self.module_words
+        if run.skill == "bring_up_controllers":
+            return "starting my drivers and controllers"
         obj = run.params.get("object")
         if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
             return f"{'picking up' if run.skill == 'pick' else 'putting down'} the {obj.replace('_', ' ')}"

@@ -211,6 +211,15 @@ def to_regex(pieces: list[str | None]) -> tuple[str, str]:
     parts: list[str] = []
     shown: list[str] = []
     for p in pieces:
+        if p and "\n" in p and "".join(shown).strip():
+            # a console prints each line of a message as a line of its own: match the first one
+            head = p.split("\n", 1)[0]
+            if head:
+                parts.append(re.escape(head).replace("\\ ", " "))
+                shown.append(head)
+            break
+        if p and "\n" in p:
+            p = p.lstrip("\n").split("\n", 1)[0]
         if p is None or p == "":
             if p is None and (not parts or parts[-1] != WILD):
                 parts.append(WILD)
@@ -332,7 +341,8 @@ def main(argv: list[str] | None = None) -> int:
     for module, mcfg in cfg["modules"].items():
         rows = classify(collect(cfg, args.mirror, module), cfg, module)
         doc = {"about": mcfg["about"], "distros": list(dict.fromkeys(cfg["distro_of_branch"].values())),
-               "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}), "messages": rows}
+               "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}),
+               "refinements": mcfg.get("refinements", []), "messages": rows}
         target = ROOT / mcfg["out"]
         text = dump(doc)
         if args.check:
