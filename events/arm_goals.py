@@ -128,7 +128,8 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         from hexar.explainers.stack_causes import stack_cause
 
         stack = stack_cause(logs)
-        errors = sorted([ln for ln in logs if ln.level >= ERROR] + ([stack.line] if stack else []), key=lambda ln: ln.t)
+        errors = sorted([ln for ln in logs if ln.level >= ERROR and not _nav2(ln)] + ([stack.line] if stack else []),
+                        key=lambda ln: ln.t)
         if not errors:
             return []
         return [_Goal(BRING_UP, errors[0].t, "error lines (no goal line)", errors[-1].t, "failed", errors[0].msg)]
@@ -138,6 +139,15 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     if failed is not None:
         goal.end, goal.state, goal.error = active[-1][0].t, "failed", failed.msg
     return [goal]
+
+
+def _nav2(line: LogLine) -> bool:
+    """A Nav2 line (its logger's Nav2 role, or its text in the Nav2 catalogue): navigation's, not the robot's
+    bring-up."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    cat = nav2()
+    return cat.role(line.name) is not None or cat.match(line.msg) is not None
 
 
 def _goals(logs: list[LogLine], statuses: list[GoalStatus]) -> list[_Goal]:

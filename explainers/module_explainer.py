@@ -113,7 +113,7 @@ class ModuleExplainer:
             quoted = (f" The first error was '{said(first)}' at {at(first, start)}." if first is not None else "")
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
-                text=f"{self.module_words.capitalize()} failed, but my {self.name} logs do not show a cause I know."
+                text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
                      + quoted,
                 fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
                 else "Record /rosout at INFO level from move_group and the controller manager.",
@@ -171,6 +171,10 @@ class ModuleExplainer:
         out.append("Log (oldest first):")
         out += [line.render() for line in lines[-MAX_FACT_LINES:]]
         return "\n".join(out)
+
+
+def _upper(text: str) -> str:
+    return text[:1].upper() + text[1:]
 
 
 def _other_module(r: Reading) -> bool:

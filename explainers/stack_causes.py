@@ -15,7 +15,8 @@ from hexar.events.records import LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error",
-              "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died", "node_failed": "bringup.lifecycle_transition_failed"}
+              "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
+              "node_failed": "bringup.lifecycle_transition_failed"}
 PERMISSION = "system.device_permission"
 _DENIED = "Permission denied"  # strerror(EACCES)
 

@@ -55,6 +55,7 @@ class Entry:
     text: str
     level: str
     package: str
+    open_end: bool = False
     sources: list[str] = field(default_factory=list)
     branches: list[str] = field(default_factory=list)
 
@@ -206,8 +207,14 @@ def _py_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
                 yield level, text.count("\n", 0, m.start()) + 1, pieces
 
 
-def to_regex(pieces: list[str | None]) -> tuple[str, str]:
-    """(regex, the literal text with '…' for each expression) of a message's pieces."""
+START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
+GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
+
+
+def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
+    """(regex, the literal text with '…' for each expression, whether it ends in an expression) of a message's
+    pieces. A message that begins with its literal is matched from the message's start only (a short format such
+    as "Received request" must not match inside another module's line)."""
     parts: list[str] = []
     shown: list[str] = []
     for p in pieces:
@@ -227,11 +234,15 @@ def to_regex(pieces: list[str | None]) -> tuple[str, str]:
             continue
         parts.append(re.escape(p).replace("\\ ", " "))
         shown.append(p)
+    open_start = bool(parts) and parts[0] == WILD
+    open_end = bool(parts) and parts[-1] == WILD
     while parts and parts[0] == WILD:
         parts.pop(0)
     while parts and parts[-1] == WILD:
         parts.pop()
-    return "".join(parts), "".join(shown).strip("…").strip()
+    if not parts:
+        return "", "", open_end
+    return ("" if open_start else START) + "".join(parts), "".join(shown).strip("…").strip(), open_end
 
 
 def _longest_literal(pieces: list[str | None]) -> int:
@@ -268,12 +279,12 @@ def collect(cfg: dict[str, Any], mirror: Path, module: str) -> list[Entry]:
         repo = mirror / repo_cfg["mirror"] / "repo"
         for branch in repo_cfg["branches"]:
             for found in mine_repo(repo, branch, repo_cfg):
-                pattern, text = to_regex(found.pieces)
+                pattern, text, open_end = to_regex(found.pieces)
                 if not pattern:
                     continue
                 e = entries.get(pattern)
                 if e is None:
-                    e = entries[pattern] = Entry(pattern, text, found.level, package_of(found.file))
+                    e = entries[pattern] = Entry(pattern, text, found.level, package_of(found.file), open_end)
                 elif LEVEL_NAMES[found.level] > LEVEL_NAMES[e.level] and found.level != "THROW":
                     e.level = found.level
                 if branch not in e.branches:
@@ -315,7 +326,9 @@ def classify(entries: list[Entry], cfg: dict[str, Any], module: str) -> list[dic
             "kind": rule["kind"] if rule else "other", "strength": rule.get("strength", "strong") if rule else "weak",
             "cause": rule.get("cause") if rule else None,
             "meaning": rule["meaning"] if rule else f"a {e.level.lower()} of {e.package} (no cause assigned)",
-            "distros": distros, "pattern": e.pattern, "text": e.text, "source": _sources(e.sources),
+            # a goal's begin or end line is matched whole: its words recur inside other lines
+            "distros": distros,
+            "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""), "text": e.text, "source": _sources(e.sources),
         }
         out.append(row)
     unused = [m for m in (r["match"] for r in cfg["modules"][module]["rules"]) if m not in used]

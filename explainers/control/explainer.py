@@ -19,7 +19,7 @@ from hexar.explainers.logcause import Diagnosis, ModuleCatalogue
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer
 
-SKILLS = ("follow_joint_trajectory", "bring_up_controllers")
+SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
 
 
 class ControlExplainer(ModuleExplainer):
