@@ -185,6 +185,17 @@ def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Ta
     return tasks
 
 
+def _arms_line(task: Task) -> bool:
+    """A Nav2 task found from activity alone whose failing line the arm's catalogues tie to a cause."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    run = task.skills[0]
+    if run.params.get("derived_from") != "Nav2 log (no goal line)" or not run.error_msg:
+        return False
+    return any(cat.cause_of(run.error_msg, cat.match(run.error_msg)) is not None for cat in (moveit(), control()))
+
+
 def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
     """Nav2's and the arm's derived tasks in time order. Without a Nav2 task, the arm's are all there is. With
     one, only arm tasks of goal lines or statuses join it (activity is Nav2's to explain), and a Nav2 task
@@ -192,6 +203,8 @@ def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
     if not nav or not arm:
         return nav or arm
     arm_goals = [t for t in arm if "no goal line" not in str(t.skills[0].params.get("derived_from"))]
+    if not arm_goals and len(nav) == 1 and _arms_line(nav[0]) and arm[0].skills[0].skill != BRING_UP:
+        return arm  # Nav2's "activity" was a line of the arm's catalogues (a controller that failed to activate)
     if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]

@@ -328,7 +328,8 @@ def classify(entries: list[Entry], cfg: dict[str, Any], module: str) -> list[dic
             "meaning": rule["meaning"] if rule else f"a {e.level.lower()} of {e.package} (no cause assigned)",
             # a goal's begin or end line is matched whole: its words recur inside other lines
             "distros": distros,
-            "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""), "text": e.text, "source": _sources(e.sources),
+            "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""),
+            "text": e.text, "source": _sources(e.sources),
         }
         out.append(row)
     unused = [m for m in (r["match"] for r in cfg["modules"][module]["rules"]) if m not in used]
