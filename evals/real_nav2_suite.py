@@ -24,12 +24,14 @@ from hexar.agent.backends import Backend
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
-from hexar.evals.real_nav2 import DISTROS, Excerpt, corpus, heldout, task_plan, write_recording
+from hexar.evals.real_nav2 import DISTROS, Excerpt, blind, corpus, heldout, task_plan, write_recording
 
 SUITE = "real-nav2"
 # The same suite on threads the catalogue was never tuned on (evals/data/real_nav2/heldout.yaml).
 HELDOUT_SUITE = "real-nav2-heldout"
-SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout)}
+# Issue 20's blind set (evals/data/real_nav2/blind.yaml), measured before and after tuning on the corpus.
+BLIND_SUITE = "real-nav2-blind"
+SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})
@@ -138,7 +140,8 @@ def evaluate(excerpts: Sequence[Excerpt], runs: Path, ask: Ask, step: Callable[[
             r = ask(path, question)
             answer, error, causes = str(r.get("answer", "")), str(r.get("error", "")), tuple(r.get("causes", ()))
         except USER_ERRORS as err:  # e.g. no task to explain: that excerpt is answered by nothing
-            answer, error, causes = "", f"{type(err).__name__}: {err}", ()
+            # the recording's temporary folder is no part of the result: name the excerpt instead
+            answer, error, causes = "", f"{type(err).__name__}: {err}".replace(str(path), ex.id), ()
         claims = tuple(sorted(read_claims(answer).affirmed))
         out.append(Result(ex.id, ex.distro, ex.cause, ex.outcome, ex.logs_show_cause, task, question, answer,
                           error, causes, claims, grade(ex, claims, answer), grade(ex, causes)))

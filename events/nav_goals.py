@@ -110,9 +110,21 @@ def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose
     return goals or _activity(logs)
 
 
+def _bringup_error(line: LogLine) -> bool:
+    """An error of a node of the stack that never came up (a params file rcl could not parse, a lifecycle
+    transition that threw, a process that died: the mined stack catalogue), which the navigation explains too."""
+    if line.level < ERROR:
+        return False
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    entry = stack_catalogue().match(line.msg)
+    return entry is not None and entry.cause == "stack.bringup_failure"
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
-    """Nav2 at work without any goal line (the recording began after the goal was sent): one goal over the
-    lines the catalogue ties to a cause or to the progress checker (at any level: consoles pasted without
+    """Nav2 at work without any goal line (the recording began after the goal was sent, or a node never came up so
+    no goal could start): one goal over the lines the catalogue ties to a cause or to the progress checker, and the
+    bring-up errors of the stack catalogue (at any level: consoles pasted without
     levels are read as INFO); failed when Nav2 logged an error or an abort, else still running as far as the
     recording shows."""
     from hexar.explainers.navigation.catalogue import catalogue
@@ -123,7 +135,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     for line in logs:
         entry = cat.match(line.msg)
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
-        if not nav2 and "[ActionServer] Aborting handle" not in line.msg:
+        if not nav2 and "[ActionServer] Aborting handle" not in line.msg and not _bringup_error(line):
             continue
         active.append(line)
         if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg):

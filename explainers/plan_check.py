@@ -32,6 +32,8 @@ CATALOGUE: dict[str, tuple[str, ...]] = {
 }
 # Skills that get an object into the robot's hands: a person's help, or its own arm.
 FETCHING = ("ask_human_for_help", "pick")
+# skill -> parameters it may carry besides the mandatory ones: a NavigateToPose goal's pose.
+OPTIONAL: dict[str, tuple[str, ...]] = {"navigate_to_pose": ("x", "y", "yaw", "frame_id", "source")}
 # Actions that need arms or hands; the robot can only move, talk, look and ask people.
 MANIPULATION_VERBS = frozenset(
     [
@@ -130,7 +132,7 @@ def _step_findings(index: int, skill: str, params: Mapping[str, object]) -> list
                     "planner.invalid_parameter", index, f"step {index + 1} ({skill}) is missing its {name!r} parameter"
                 )
             )
-    unknown = sorted(set(params) - set(CATALOGUE[skill]) - {"value"})
+    unknown = sorted(set(params) - set(CATALOGUE[skill]) - set(OPTIONAL.get(skill, ())) - {"value"})
     for name in unknown:
         out.append(
             Finding(

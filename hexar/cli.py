@@ -346,8 +346,9 @@ def eval_(
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
-                                       "threads), real-nav2-heldout (threads never tuned on), real-modules or "
-                                       "real-modules-heldout (MoveIt 2, ros2_control, bring-up); the real-nav2 "
+                                       "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind "
+                                       "(issue 20's blind set), real-modules or real-modules-heldout (MoveIt 2, "
+                                       "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",
 ) -> None:

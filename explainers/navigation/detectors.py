@@ -42,8 +42,13 @@ _SPEED_WORDS = re.compile(
     re.I,
 )
 PROGRESS = ("Failed to make progress", "Controller patience exceeded")
-_DISTURBANCE = ("No valid trajectories", "Controller patience exceeded", "Received request to clear entirely",
-                "Running spin", "Running backup", "Running wait", "detected collision ahead")
+# What shows something in the way of the controller (its trajectories rejected, a collision check stopping it):
+# on a goal reached in the end, things that moved into the way and out again. Planner retries, costmap clears and
+# recoveries alone show no obstacle: a slow run with only those is not told as people moving into my way.
+_DISTURBANCE = ("No valid trajectories", "Trajectory Hits Obstacle", "detected collision ahead", "Robot to stop",
+                "Robot to slowdown")
+_RETRIES = ("Controller patience exceeded", "Received request to clear entirely", "Running spin", "Running backup",
+            "Running wait", "Passing new path")
 
 Outcome = Literal["reached", "failed", "unknown"]
 
@@ -69,6 +74,7 @@ class Finding:
     cause: str
     evidence: list[Evidence] = field(default_factory=list)
     facts: dict[str, float] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)  # sentences the evidence supports (a node that never came up)
 
 
 @dataclass
@@ -189,8 +195,19 @@ def poor_localisation(run: Run) -> Finding | None:
     return found
 
 
+_PLANNED = ("Passing new path to controller", "Received a goal, begin computing control effort")
+
+
+def plan_failures(run: Run) -> list[LogLine]:
+    """The planner's "no path" lines (catalogue kind plan_failed): a symptom with several causes."""
+    cat = catalogue()
+    return [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "plan_failed"]
+
+
 def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
-    """No valid path (the planner's words), not a goal outside the map: an obstacle on the way."""
+    """An obstacle on the way: the controller's obstacle critic before it gave up, or a planner that had planned
+    to this goal from here and then found no path any more, even after clearing its maps (so neither the goal nor
+    the start is the trouble: the way got blocked). A planner that never found a path is only a symptom."""
     if run.outcome == "reached":
         return None
     gave_up = [ln.t for ln in run.matching((*PROGRESS, "[follow_path] [ActionServer] Aborting handle"))]
@@ -198,6 +215,10 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
                # DWB's obstacle critic is an obstacle on the way only when the controller then gave up; while
                # it keeps driving, rejected trajectories are the controller's own trouble (or a passer-by)
                and (n.entry.kind != "disturbance" or any(t >= n.line.t for t in gave_up))]
+    failed = plan_failures(run)
+    planned = run.first(_PLANNED)
+    if strength == "strong" and failed and planned is not None and planned.t < failed[0].t:
+        planner = sorted({*planner, *failed}, key=lambda ln: ln.t)
     if not planner:
         return None
     found = Finding(BLOCKED)
@@ -217,10 +238,11 @@ def moving_obstacles(run: Run) -> Finding | None:
     events = run.matching(_DISTURBANCE)
     if len(events) < 2:
         return None
+    events = sorted([*events, *run.matching(_RETRIES)], key=lambda ln: ln.t)
     found = Finding(MOVING_OBSTACLES, [Evidence.of_log(MOVING_OBSTACLES, ln) for ln in events[:8]])
     if run.end is not None:
         found.evidence.append(Evidence.of_log(MOVING_OBSTACLES, run.end))
-    found.facts = {"disturbances": float(len(events)),
+    found.facts = {"disturbances": float(len(run.matching(_DISTURBANCE))),
                    "new_paths": float(len(run.matching(("Passing new path",))))}
     return found
 

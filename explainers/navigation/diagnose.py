@@ -27,9 +27,14 @@ DOCKING = "navigation.docking_failure"
 NO_PROGRESS = "navigation.no_progress"
 BLOCKED = "navigation.blocked_path"
 POOR_LOCALISATION = "navigation.poor_localisation"
+START_IN_OBSTACLE = "navigation.start_in_obstacle"
+BRINGUP = "navigation.bringup_failure"
 
-ORDER = (CONFIGURATION, TRANSFORM, POOR_LOCALISATION, OFF_COSTMAP, GOAL_UNREACHABLE, DOCKING, BLOCKED,
-         COLLISION_AHEAD, CONTROLLER, NOT_REACHING_BASE)
+# A node that never came up explains everything after it; then the stack's faults in the order in which one
+# produces the next (a TF fault makes the planner and controller fail; a start on occupied cells or a goal outside
+# the map makes planning fail).
+ORDER = (BRINGUP, CONFIGURATION, TRANSFORM, POOR_LOCALISATION, OFF_COSTMAP, START_IN_OBSTACLE, GOAL_UNREACHABLE,
+         DOCKING, BLOCKED, COLLISION_AHEAD, CONTROLLER, NOT_REACHING_BASE)
 MAX_EVIDENCE = 4
 
 # Motion thresholds for "commanded but did not move": Nav2's default progress checker wants 0.5 m in 10 s.

@@ -4,18 +4,27 @@ Every line is read through the Nav2 message catalogue (nav2_catalogue.json), by 
 Causes, each with its evidence from the recording (a cause is claimed only when lines or motion support it):
 - navigation.joystick: `/joy_priority` True while the goal did not complete (plus the relay's toggle line).
 - navigation.charging: `/power/is_charging` True while the goal did not complete.
-- a goal that did not succeed, first cause with strong lines in diagnose.ORDER, then weak ones:
-  configuration_error (bring-up, plugins, BT XML, lifecycle), transform_error (TF, clocks),
-  poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap (the robot's start off the map),
-  goal_unreachable (goal outside the map or in lethal cost), docking_failure, blocked_path (the planner found
-  no valid path), collision_ahead, controller_failure, commands_not_reaching_base (/cmd_vel commanding while
+- a goal that did not succeed, first cause with strong lines in diagnose.ORDER, then weak ones (a ranked chain:
+  a node that never came up before the goal explains everything after it):
+  bringup_failure (a params file rcl could not parse, a process that died: hexar.explainers.stack's
+  bringup_findings, over the whole recording up to the goal's end), configuration_error (plugins, BT XML,
+  parameters, a lifecycle transition that failed), transform_error (TF, clocks; also tf2/tf_help/message-filter
+  lines of the mined stack catalogue), poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap
+  (the robot's start off the map), start_in_obstacle (the start on occupied cells), goal_unreachable (goal outside
+  the map or in lethal cost), docking_failure, blocked_path (DWB's obstacle critic before the controller gave up,
+  or a planner that had a path to this goal and lost it even after clearing its maps), collision_ahead (RPP's
+  lookahead, the collision monitor, a behaviour's checker - but not a behaviour's "Collision Ahead" during the
+  recoveries after no progress), controller_failure, commands_not_reaching_base (/cmd_vel commanding while
   /odom is still; never from logs alone).
-- navigation.no_progress: `Failed to make progress` and nothing that says why: the checks a person can make.
+- symptoms are never the cause: a planner that never found a path (unexplained_failure naming the candidates and
+  what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make).
+  Either quotes the decisive unknown ERROR/FATAL line with its node and time when there is one (chain.py).
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
-- navigation.moving_obstacles: the goal was reached after at least two transient trajectory failures,
-  costmap clears or recoveries.
+- navigation.moving_obstacles: the goal was reached after at least two transient obstacle events of the
+  controller (trajectories hitting obstacles, a collision check stopping it); planner retries and recoveries alone
+  are a slow run whose logs do not show what was in the way.
 - navigation.nominal_speed: a clean successful run asked about speed or time: configured limit (from
   `/diagnostics`, key `max_vel_x`), distance travelled and average speed from `/amcl_pose`.
 - navigation.nominal: a clean successful run asked anything else: a truthful "it went fine" with figures.
@@ -32,6 +41,7 @@ from hexar.events.log import View
 from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.navigation import chain
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.filter import tag_logs, weak_noise
@@ -133,12 +143,14 @@ class NavigationExplainer:
                 self.name, "The recording has no log lines and no localisation data for that time.")
         tagged = tag_logs(raw)
         lines = [ln for ln, _ in tagged]
-        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw))
+        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw) + chain.stack_notes(tagged))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
         if not lines and not poses and not flags:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
-        findings = flags + self._others(question, view, run, bool(flags))
+        until = run.end.t if run.end is not None else window[1]
+        before = [ln for ln in context.log.logs if ln.t <= until]
+        findings = flags + self._others(question, view, run, bool(flags), before, raw)
         for f in findings:
             if f.cause == d.UNEXPLAINED and not f.evidence:
                 f.evidence += _status_evidence(context, d.UNEXPLAINED)
@@ -149,30 +161,49 @@ class NavigationExplainer:
         grounded = self._compose(question, context, run, findings, lines)
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
-    def _others(self, question: str, view: View, run: d.Run, flagged: bool) -> list[d.Finding]:
+    def _others(self, question: str, view: View, run: d.Run, flagged: bool, before: list[LogLine],
+                raw: list[LogLine]) -> list[d.Finding]:
         if flagged:
             return []
         if run.outcome != "reached":
-            found = self._failure(view, run)
+            found = self._failure(view, run, before)
             if found is not None:
-                return [found]
+                return [chain.with_last_error(found, raw, run)]
         else:
-            problem = d.poor_localisation(run) or _held_by_collision_monitor(run) or d.moving_obstacles(run)
+            problem = d.poor_localisation(run) or _held_by_collision_monitor(run) or d.moving_obstacles(run) \
+                or chain.slow_retries(run)
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":
-            return [d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])]
+            found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])
+            return [chain.with_last_error(found, raw, run)]
+        if run.outcome == "unknown":
+            # no goal end and no task status: an error line is still worth quoting rather than "I can't tell"
+            found = chain.with_last_error(d.Finding(d.UNEXPLAINED), raw, run)
+            if found.notes:
+                return [found]
         cause = d.NOMINAL_SPEED if d.asks_about_speed(question) else d.NOMINAL
         return [d.speed(run, view.statuses(c.DIAGNOSTICS), cause)]
 
     @staticmethod
-    def _failure(view: View, run: d.Run) -> d.Finding | None:
-        """The first cause, in diagnose.ORDER, that the window's lines (or its motion) support: strong lines
-        first, then weak ones; `Failed to make progress` alone is no_progress, never an obstacle."""
+    def _failure(view: View, run: d.Run, before: list[LogLine]) -> d.Finding | None:
+        """The first cause, in diagnose.ORDER, that the window's lines (or its motion, or a node that never came up
+        before the goal ended) support: strong lines first, then weak ones. Symptoms are never the cause: a
+        planner that found no path names its candidates, `Failed to make progress` alone is no_progress, and a
+        behaviour's "Collision Ahead" after the controller had already stopped making progress is a recovery's
+        trouble, not the reason the goal failed."""
+        progress = run.first(d.PROGRESS)
         for strength in ("strong", "weak"):
             for cause in g.ORDER:
                 found: d.Finding | None = None
-                if cause == g.POOR_LOCALISATION:
+                if cause == g.BRINGUP:
+                    specific = chain.config_specific((n.line, n.entry) for n in run.notes)
+                    found = chain.bringup(before, None) if strength == "strong" and not specific else None
+                elif cause == g.COLLISION_AHEAD:
+                    lines = [ln for ln in g.supporting(run.notes, cause, strength) if progress is None
+                             or ln.t <= progress.t or not ln.msg.startswith("Collision Ahead - Exiting")]
+                    found = d.Finding(cause, g.evidence(cause, lines)) if lines else None
+                elif cause == g.POOR_LOCALISATION:
                     found = d.poor_localisation(run) if strength == "strong" else None
                 elif cause == g.BLOCKED:
                     found = d.blocked_path(run, strength)
@@ -187,12 +218,19 @@ class NavigationExplainer:
                         if line is not None and all(e.t != line.t for e in found.evidence):
                             found.evidence.append(Evidence.of_log(cause, line))
                     return found
-        progress = run.matching(("Failed to make progress",))
-        if progress:
-            found = d.Finding(g.NO_PROGRESS, [Evidence.of_log(g.NO_PROGRESS, progress[0])])
+        plans = d.plan_failures(run)
+        if plans:
+            found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln in plans[:2]])
+            found.facts = {"plan_failures": float(len(plans))}
+            if run.end is not None and run.outcome == "failed":
+                found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
+            return found
+        stuck = run.matching(("Failed to make progress",))
+        if stuck:
+            found = d.Finding(g.NO_PROGRESS, [Evidence.of_log(g.NO_PROGRESS, stuck[0])])
             if run.end is not None and run.outcome == "failed":
                 found.evidence.append(Evidence.of_log(g.NO_PROGRESS, run.end))
-            found.facts = {"progress_failures": float(len(progress))}
+            found.facts = {"progress_failures": float(len(stuck))}
             return found
         return None
 

@@ -55,9 +55,75 @@ def _held(seconds: float) -> str:
     return " for less than a second" if seconds < 1 else f" for {seconds:.0f} s"
 
 
+# What tells apart the causes of a planner that found no path (each needs its own line to be claimed).
+PLAN_CANDIDATES = ("the goal may lie inside an obstacle or outside my map, my own start pose may sit on occupied "
+                   "cells, my position estimate may be wrong, or something may stand in the way")
+PLAN_CHECKS = ("What tells them apart: a planner line naming the start or the goal (e.g. 'Start occupied', 'Goal "
+               "Coordinates ... outside bounds'), AMCL's covariance and warnings, and the global costmap around my "
+               "start and the goal.")
+
+
+def _honest(f: Finding) -> str:
+    """The decisive error quoted (chain.quote_last_error), as the end of a sentence."""
+    return next((n for n in f.notes if n.startswith("the last error")), "")
+
+
+def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
+    what = f.notes[0] if f.notes else "a node of my navigation never came up"
+    return (f"I couldn't reach {place} because a node of my navigation never came up: {what}.",
+            "Fix the error quoted from the failing node (its parameters file, its configure step, or why its "
+            "process died) and restart the navigation until the lifecycle manager reports 'Managed nodes are "
+            "active'.",
+            [f"Also: {n}." for n in f.notes[1:]] + [f"The decisive line: {_said(f)}"])
+
+
+def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
+    """Answers for what a failure produced when no line says what caused it: candidates, and the last error."""
+    last = _honest(f)
+    if f.cause == g.NO_PROGRESS and last:
+        return (f"My navigation to {place} gave up because my controller made no progress for "
+                f"{_progress_seconds(run)}. I can't tell what caused it for sure, but {last}.",
+                "Check that error first; then that cmd_vel reaches the base and that TF is fresh.",
+                ["Nav2's progress checker gave up; no catalogued line names a cause."])
+    if f.cause != "navigation.unexplained_failure":
+        return None
+    if "reached" in f.facts:
+        return (f"I reached {place}, but it took longer: my planner could not compute a route "
+                f"{int(f.facts['plan_failures'])} times and I ran {int(f.facts['recoveries'])} recovery steps "
+                "before it worked. I can't tell what was in the way from my logs alone.",
+                None, ["Retries and recoveries alone do not show what held me up."])
+    if "plan_failures" in f.facts:
+        tail = f" {last[0].upper()}{last[1:]}." if last else ""
+        return (f"I couldn't reach {place}: my planner could not compute a route to it "
+                f"({int(f.facts['plan_failures'])} times), and I can't tell why from my logs alone: "
+                f"{PLAN_CANDIDATES}.{tail}",
+                PLAN_CHECKS, [f"Nav2 said: {_said(f)}"])
+    if last and run.outcome == "unknown":
+        return (f"The recording does not show whether my navigation to {place} finished. I can't tell what went "
+                f"wrong for sure, but {last}.",
+                "Start from that error: it is the last one any node printed in the recording.", [])
+    if last:
+        verb = "failed" if run.outcome == "failed" else "did not finish"
+        return (f"My navigation to {place} {verb}. I can't tell what caused it for sure, but {last}.",
+                "Start from that error: it is the last one any node printed before the goal ended.",
+                [f"The last navigation message was {quote(run.end)}."] if run.end else [])
+    return None
+
+
 def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     said = _said(f)
     seen = [f"Nav2 said: {said}"] if said else []
+    if f.cause == g.BRINGUP:
+        return _bringup(f, place)
+    if f.cause == g.START_IN_OBSTACLE:
+        return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap, so "
+                "no plan could start from it.",
+                "Check where the robot is on the map (its pose estimate), and clear or re-inflate the costmap "
+                "around it; if it really stands in an obstacle's inflation, drive it out by hand.",
+                seen)
+    symptom = _symptom(f, place, run)
+    if symptom is not None:
+        return symptom
     if f.cause == g.GOAL_UNREACHABLE:
         return (f"I couldn't reach {place} because the goal itself cannot be reached: it lies outside my map or "
                 "inside an obstacle, so planning to it always fails.",
@@ -75,6 +141,11 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Check the TF tree (ros2 run tf2_tools view_frames), that every node uses the same clock "
                 "(use_sim_time everywhere or nowhere) and that odometry and localisation publish their transforms.",
                 seen)
+    if f.cause == g.CONFIGURATION and f.notes:
+        return (f"I couldn't reach {place} because my navigation stack was not fully brought up: {f.notes[0]}.",
+                "Fix the error quoted from that node (often its parameters or plugins) and restart the navigation "
+                "until the lifecycle manager reports 'Managed nodes are active'.",
+                [f"Also: {n}." for n in f.notes[1:]] + seen)
     if f.cause == g.CONFIGURATION:
         return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
                 "up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",
@@ -87,6 +158,12 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "was inside its stop zone, so it detected a collision ahead and held me until the way was clear.",
                 "Look at what entered the collision monitor's stop polygon (or at the polygon's size, if "
                 "nothing was there).",
+                seen)
+    if f.cause == g.COLLISION_AHEAD and "detected collision ahead" in said:
+        return (f"I couldn't reach {place} because my controller's collision check stopped me: it detected a "
+                "collision ahead on my path and would not drive on.",
+                "Look at what is on the path just ahead; if nothing is there, check the robot's footprint and the "
+                "costmap's inflation, which can make a free path look blocked to the controller.",
                 seen)
     if f.cause == g.COLLISION_AHEAD:
         return (f"I couldn't reach {place} because my collision checking stopped me: it detected a collision "

@@ -70,7 +70,7 @@ class BringupFinding:
             return f"the process of {who} died{code}"
         if self.kind == "lifecycle_transition":
             why = f": {self.detail}" if self.detail else ""
-            return f"{who} failed a lifecycle transition and never became active{why}"
+            return f"{who} stopped in a lifecycle transition and never became active{why}"
         return f"{who} failed to come up"
 
 

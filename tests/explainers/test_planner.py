@@ -35,3 +35,11 @@ def test_plan_steps_said_as_sentences(suite: Path) -> None:
     for said in (exp.text, *exp.details):
         assert "(input=" not in said and "navigate_to_zone" not in said and "location=" not in said
     assert all(exists(log, e) for e in exp.evidence)
+
+
+def test_a_navigate_to_pose_goal_may_carry_its_pose_but_nothing_else() -> None:
+    from hexar.explainers.plan_check import check_plan
+
+    assert check_plan("go to the goal", [("navigate_to_pose", {"x": 1.46, "y": 0.05})]) == []
+    [bad] = check_plan("go to the goal", [("navigate_to_pose", {"x": 1.0, "y": 2.0, "speed": 3})])
+    assert bad.cause == "planner.invalid_parameter" and "'speed'" in bad.message

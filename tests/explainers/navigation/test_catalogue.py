@@ -14,7 +14,7 @@ from hexar.explainers.navigation.catalogue import Entry, catalogue
 
 CORPUS = Path(__file__).resolve().parents[3] / "evals" / "data" / "real_nav2" / "corpus.yaml"
 KINDS = {"begin", "succeeded", "failed", "canceled", "progress", "recovery", "replan", "clear", "disturbance",
-         "cause", "info"}
+         "cause", "info", "plan_failed"}
 
 
 def test_every_entry_is_well_formed() -> None:

@@ -76,7 +76,7 @@ def test_a_configure_callback_that_threw_names_node_transition_and_error(tmp_pat
                             "footprint provided in the costmap.")
     assert first.t == logs[0].t
     assert all(f.t >= first.t for f in rest)
-    assert "controller_server failed a lifecycle transition" in first.describe()
+    assert first.describe().startswith("controller_server stopped in a lifecycle transition and never became active")
 
 
 def test_a_process_that_died_names_its_node_and_exit_code(tmp_path: Path) -> None:

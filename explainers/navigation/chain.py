@@ -1,0 +1,156 @@
+"""The chain of evidence beyond Nav2's own words: lines of the ROS 2 stack under it, nodes that never came up, and
+the decisive error to quote when no catalogued line explains a failure.
+
+- A line the Nav2 catalogue does not know is read through the mined stack catalogue (hexar.explainers.stack):
+  a transform or clock fault of tf2/tf_help/message filters supports navigation.transform_error like Nav2's own
+  lines; other mined causes (a rule-given meaning, not a hand-checked one) count as weak evidence only.
+- A node that never came up (bringup_findings: a params file rcl could not parse, a lifecycle transition that
+  failed or threw, a process that died) before or during the goal explains every later failure: it is the first
+  link of the chain, unless a catalogued configuration line says why the node failed (then it is that
+  configuration error, and the answer says which node never became active).
+- When nothing catalogued decides, the decisive ERROR/FATAL line (the last before the goal ended that is neither a
+  symptom nor noise) is quoted with its node and time, never "the logs do not show why" while it is there.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterable
+
+from hexar.events.records import ERROR, LogLine
+from hexar.explainers.base import Evidence
+from hexar.explainers.navigation.catalogue import Entry, catalogue
+from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.diagnose import NO_PROGRESS
+from hexar.explainers.stack import bringup_findings, stack_catalogue
+from hexar.explainers.stack.catalogue import StackEntry
+
+BRINGUP = "navigation.bringup_failure"
+CONFIGURATION = "navigation.configuration_error"
+# Stack-level cause ids of the mined catalogue -> the navigation explainer's words. Commands that never reach the
+# base are never read from logs (only /cmd_vel against /odom shows them); bring-up has its own reading.
+STACK_TO_NAV = {
+    "stack.transform_error": "navigation.transform_error",
+    "stack.off_costmap": "navigation.off_costmap",
+    "stack.goal_unreachable": "navigation.goal_unreachable",
+    "stack.start_in_obstacle": "navigation.start_in_obstacle",
+    "stack.collision_ahead": "navigation.collision_ahead",
+    "stack.docking_failure": "navigation.docking_failure",
+    "stack.localisation": "navigation.poor_localisation",
+    "stack.configuration_error": CONFIGURATION,
+    "stack.controller_failure": "navigation.controller_failure",
+}
+# Mined causes decided by the source's own words for a fault (transforms), not by a keyword rule: strong.
+STRONG_STACK = frozenset({"stack.transform_error"})
+# Lines that say which configuration was wrong, as opposed to the lifecycle manager's "Failed to change state for
+# node", a process that died, or a server that is not there / not active (what a node that never came up produces).
+_GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "bt.action_unavailable",
+                                  "bt.action_server_inactive", "beh.inactive"})
+_END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
+
+
+def stack_entry(line: LogLine) -> StackEntry | None:
+    return stack_catalogue().match(line.msg)
+
+
+def _as_nav(entry: StackEntry) -> Entry | None:
+    cause = STACK_TO_NAV.get(entry.cause or "")
+    if cause is None or entry.role == "noise":
+        return None
+    strong = entry.cause in STRONG_STACK and entry.role == "cause"
+    return Entry(id=f"stack:{entry.source}", role=entry.layer, meaning=entry.text, cause=cause, kind="cause",
+                 strength="strong" if strong else "weak", distros=entry.distros, source=entry.source,
+                 raw=entry.pattern)
+
+
+def stack_notes(tagged: Iterable[tuple[LogLine, Entry | None]]) -> list[tuple[LogLine, Entry]]:
+    """Kept lines the Nav2 catalogue gives no cause, read through the mined stack catalogue."""
+    out = []
+    for line, entry in tagged:
+        if entry is not None and (entry.cause is not None or entry.kind != "info"):
+            continue
+        mined = stack_entry(line)
+        nav = _as_nav(mined) if mined is not None else None
+        if nav is not None:
+            out.append((line, nav))
+    return out
+
+
+def config_specific(notes: Iterable[tuple[LogLine, Entry]]) -> list[LogLine]:
+    """Lines that name a configuration fault (not merely that a node did not come up)."""
+    return [ln for ln, e in notes if e.cause == CONFIGURATION and e.id not in _GENERIC_BRINGUP_IDS]
+
+
+def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
+    """The first node that never came up (before `until`, the goal's end), with its decisive line: a bring-up
+    failure, or a configuration error when it is a lifecycle transition that failed (notes: what failed)."""
+    logs_list = [ln for ln in logs if until is None or ln.t <= until]
+    found = bringup_findings(logs_list)
+    if not found:
+        return None
+    first = found[0]
+    if any("Managed nodes are active" in ln.msg and ln.t > first.t for ln in logs_list):
+        return None  # the stack was brought up again after the failure: the node did come up
+    # A lifecycle transition that failed is what the configuration_error words ("not brought up", "lifecycle
+    # nodes not active") were made for; a params file rcl could not parse and a process that died are not.
+    cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
+    finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
+    finding.notes = [first.describe()] + [f.describe() for f in found[1:3]]
+    return finding
+
+
+def decisive_errors(logs: Iterable[LogLine], until: int | None) -> list[LogLine]:
+    """ERROR/FATAL lines up to `until` that neither catalogue reads as a symptom, noise or a goal's end: the lines
+    to quote when nothing catalogued explains a failure (oldest first)."""
+    out = []
+    cat = catalogue()
+    for line in logs:
+        if line.level < ERROR or (until is not None and line.t > until) or any(k in line.msg for k in _END):
+            continue
+        nav = cat.match(line.msg)
+        if nav is not None and nav.kind not in ("cause", "info"):
+            continue  # a goal's begin/end, a recovery, a planner that found no path: symptoms
+        mined = stack_entry(line)
+        if mined is not None and mined.role != "cause":
+            continue
+        out.append(line)
+    return out
+
+
+def clock(t: int) -> str:
+    """A log time as a person reads it (UTC wall clock, to the millisecond)."""
+    return time.strftime("%H:%M:%S", time.gmtime(t // 1_000_000_000)) + f".{t % 1_000_000_000 // 1_000_000:03d}"
+
+
+def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
+    """'the last error before I gave up came from amcl: '...' (at 10:33:12.345 UTC)' (or '... my logs show ...'
+    when the recording does not show the goal ending)."""
+    line = lines[-1]
+    who = line.name.strip("/") or "a node that gave no name"
+    when = "before I gave up" if gave_up else "my logs show"
+    return f"the last error {when} came from {who}: '{line.msg.strip()}' (at {clock(line.t)} UTC)"
+
+
+def slow_retries(run: Run) -> Finding | None:
+    """A goal reached after the planner failed and recoveries ran, with nothing that shows what was in the way."""
+    plans = plan_failures(run)
+    recoveries = run.matching(("Running ", "Received request to clear entirely"))
+    if not plans and len(recoveries) < 2:
+        return None
+    found = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in (plans[:2] + recoveries[:2])])
+    if run.end is not None:
+        found.evidence.append(Evidence.of_log(UNEXPLAINED, run.end))
+    found.facts = {"plan_failures": float(len(plans)), "recoveries": float(len(recoveries)), "reached": 1.0}
+    return found
+
+
+def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
+    """An honest finding (no progress, no path, unexplained) with the decisive error line quoted, if there is one."""
+    if found.cause not in (UNEXPLAINED, NO_PROGRESS):
+        return found
+    until = run.end.t if run.end is not None else None
+    errors = decisive_errors(raw, until)
+    if errors:
+        found.notes.append(quote_last_error(errors, gave_up=run.outcome == "failed"))
+        found.evidence.append(Evidence.of_log(found.cause, errors[-1]))
+    return found

@@ -1,0 +1,52 @@
+"""The blind real-Nav2 excerpts of issue 20 (evals/data/real_nav2/blind.yaml): they load, share no source with the
+corpus or the held-out set, every one becomes a rosbag2 recording read back line for line, `hexar eval --suite
+real-nav2-blind` reports on them and its committed baselines (before and after tuning) are this suite's. Their
+accuracy is measured, never pinned here."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from hexar.cli import main
+from hexar.evals.real_nav2 import NAV_CAUSES, Excerpt, blind, corpus, heldout, parse_console, stamped, write_recording
+from hexar.evals.real_nav2_cli import read_baseline
+from hexar.events import contract as c
+from hexar.events import read_recording
+
+BASELINES = Path(__file__).resolve().parents[2] / "evals" / "baselines"
+
+
+def test_blind_loads_and_shares_no_excerpt_with_the_other_sets() -> None:
+    excerpts = blind()
+    assert len(excerpts) >= 40 and {e.cause for e in excerpts} <= NAV_CAUSES
+    assert sum(e.outcome != "failed" for e in excerpts) * 5 >= len(excerpts)  # successes and slow runs: a fifth
+    others = corpus() + heldout()
+    assert not {e.id for e in excerpts} & {e.id for e in others}
+    assert not {e.url for e in excerpts} & {e.url for e in others}
+
+
+@pytest.mark.parametrize("excerpt", blind(), ids=lambda e: e.id)
+def test_every_blind_excerpt_becomes_a_readable_recording(excerpt: Excerpt, tmp_path: Path) -> None:
+    expected = stamped(parse_console(excerpt.lines))
+    log = read_recording(write_recording(excerpt, tmp_path / "bag", task=False))
+    assert [line.msg for line in log.view(frozenset({c.ROSOUT})).logs()] == [r.msg for r in expected]
+
+
+def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    runs = tmp_path / "runs"
+    assert main(["eval", "--suite", "real-nav2-blind", "--llm", "none", "--out", str(out), "--runs", str(runs)]) == 0
+    text = (out / "report.json").read_text(encoding="utf-8")
+    report = json.loads(text)
+    assert report["suite"] == "real-nav2-blind" and report["data"] == "blind.yaml"
+    assert [e["id"] for e in report["excerpts"]] == [e.id for e in blind()]
+    assert str(runs) not in text  # an unanswered excerpt's error names the excerpt, not the recording's folder
+
+
+@pytest.mark.parametrize("name", ["real_nav2_blind_none_before.json", "real_nav2_blind_none.json"])
+def test_the_committed_blind_baselines_are_this_suites(name: str) -> None:
+    baseline = read_baseline(BASELINES / name, "real-nav2-blind")
+    assert set(baseline["excerpts"]) == {e.id for e in blind()}

@@ -1,0 +1,212 @@
+"""The chain of evidence on recordings written with rosbags from REAL lines (each cited): a node that never came up
+before the goal, the stack's own layers (rcl, rclcpp_lifecycle, launch, tf_help), symptoms never told as causes
+(a planner that found no path, a behaviour's "Collision Ahead" after no progress, planning retries on a slow run),
+and the fallback that quotes the decisive unknown error with its node and time."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.causes import stated_causes
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events.reader import read_recording
+from hexar.events.records import ERROR, INFO, WARN
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.navigation import NavigationExplainer
+from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.detectors import BLOCKED, MOVING_OBSTACLES, UNEXPLAINED
+from tests.events.helpers import task_msg
+
+T0 = 1_700_000_000_000_000_000
+Line = tuple[str, int, str]
+BEGIN: Line = ("bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+FAILED: Line = ("bt_navigator", ERROR, "Goal failed")
+SUCCEEDED: Line = ("bt_navigator", INFO, "Goal succeeded")
+
+
+def _explain(tmp_path: Path, before: list[Line], during: list[Line], end: Line | None = FAILED,
+             question: str = "Why didn't you get there?") -> Explanation:
+    """Bring-up lines, then a task whose goal runs `during` and ends with `end` (None: no end, no task)."""
+    b = BagBuilder()
+    for i, (name, level, msg) in enumerate(before):
+        b.log(T0 + sec_ns(0.1 * (i + 1)), name, level, msg)
+    t = T0 + sec_ns(5)
+    task = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    if end is not None:
+        b.task_info(t, task_msg("t1", "go to the door", task))
+    for i, (name, level, msg) in enumerate([BEGIN, *during, *([end] if end else [])]):
+        b.log(t + sec_ns(0.1 + i), name, level, msg)
+    done = t + sec_ns(2 + len(during))
+    state = "succeeded" if end is SUCCEEDED else "failed"
+    if end is not None:
+        b.task_info(done, task_msg("t1", "go to the door", [(*task[0][:2], state, "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    return NavigationExplainer().explain(question, Context.for_task(log, log.task()))
+
+
+def _quoted(answer: Explanation, msg: str) -> bool:
+    return any(e.topic == "/rosout" and msg in e.item for e in answer.evidence)
+
+
+# turtlebot/turtlebot4#341: the planner server's params file did not parse (rcl), so it never started.
+PARAMS: list[Line] = [
+    ("rcl", ERROR, "Failed to parse global arguments"),
+    ("", ERROR, "terminate called after throwing an instance of 'rclcpp::exceptions::RCLInvalidROSArgsError'\n"
+     "what():  failed to initialize rcl: Couldn't parse params file: '--params-file /tmp/launch_params_pl1tbamm'. "
+     "Error: Cannot have a value before ros__parameters at line 85, at ./src/parse.c:805")]
+# turtlebot/turtlebot4#632 (Jazzy): the controller server's process died (exit code -4).
+DIED: list[Line] = [
+    ("controller_server-1", ERROR, "process has died [pid 6474, exit code -4, cmd '/opt/ros/jazzy/lib/"
+     "nav2_controller/controller_server --ros-args --log-level info --params-file /tmp/launch_params_di0ju_uk']."),
+]
+# turtlebot/turtlebot4#591 (corpus tb4-591-jazzy-no-footprint): configure threw in the controller server.
+THREW: list[Line] = [
+    ("controller_server", ERROR, "Caught exception in callback for transition 10"),
+    ("controller_server", ERROR, "Original error: Considering footprint in collision checking but no robot "
+     "footprint provided in the costmap."),
+    ("lifecycle_manager_navigation", ERROR, "Failed to change state for node: controller_server"),
+    ("lifecycle_manager_navigation", ERROR, "Failed to bring up all requested nodes. Aborting bringup."),
+]
+# what the navigator then says (nav2_behavior_tree bt_action_node.hpp@humble: "\"%s\" action server not available
+# after waiting for %.2fs")
+UNAVAILABLE: list[Line] = [("bt_navigator_navigate_to_pose_rclcpp_node", WARN,
+                            "\"compute_path_to_pose\" action server not available after waiting for 1.00s")]
+
+
+def test_a_params_file_rcl_could_not_parse_is_a_bringup_failure(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, PARAMS, UNAVAILABLE)
+    assert answer.causes == [g.BRINGUP]
+    assert "never came up" in answer.text and "could not parse its parameters file" in answer.text
+    assert stated_causes(answer.text) >= {g.BRINGUP}
+    assert _quoted(answer, "Couldn't parse params file")
+
+
+def test_a_process_that_died_names_the_node_and_exit_code(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, DIED, UNAVAILABLE)
+    assert answer.causes == [g.BRINGUP]
+    assert "the process of controller_server died (exit code -4)" in answer.text
+    assert _quoted(answer, "process has died [pid 6474, exit code -4")
+
+
+def test_a_configure_callback_that_threw_is_the_node_not_brought_up(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, THREW, UNAVAILABLE)
+    assert answer.causes == [g.CONFIGURATION]
+    assert "not fully brought up: controller_server stopped in a lifecycle transition" in answer.text
+    assert "no robot footprint provided in the costmap" in answer.text
+    assert _quoted(answer, "Caught exception in callback for transition 10")
+
+
+def test_a_stack_brought_up_again_afterwards_is_no_bringup_failure(tmp_path: Path) -> None:
+    healthy = [("lifecycle_manager_navigation", INFO, "Managed nodes are active")]
+    answer = _explain(tmp_path, THREW + healthy, [("controller_server", ERROR, "Failed to make progress")])
+    assert g.CONFIGURATION not in answer.causes and g.BRINGUP not in answer.causes
+
+
+def test_tf_help_transform_too_old_is_a_transform_error(tmp_path: Path) -> None:
+    # the issue's example: nav_2d_utils tf_help.cpp:70@humble "Transform data too old when converting from %s to %s"
+    answer = _explain(tmp_path, [], [("controller_server", ERROR,
+                                      "Transform data too old when converting from odom to map"),
+                                     ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.TRANSFORM] and _quoted(answer, "Transform data too old")
+
+
+def test_start_on_occupied_cells(tmp_path: Path) -> None:
+    # planner_server.cpp:511@humble's format around smac a_star.cpp:219@humble's exception text
+    line = ('GridBased plugin failed to plan calculation to (1.00, 2.00): "Starting point in lethal space! Cannot '
+            'create feasible plan."')
+    answer = _explain(tmp_path, [], [("planner_server", WARN, line)])
+    assert answer.causes == [g.START_IN_OBSTACLE]
+    assert stated_causes(answer.text) == {g.START_IN_OBSTACLE}
+
+
+def test_rpp_collision_ahead_is_a_collision_check_not_a_controller_failure(tmp_path: Path) -> None:
+    # heldout nav2-3115-humble-rpp-false-collision's line
+    answer = _explain(tmp_path, [], [("controller_server", WARN,
+                                      "RegulatedPurePursuitController detected collision ahead!")])
+    assert answer.causes == [g.COLLISION_AHEAD]
+    assert g.CONTROLLER not in stated_causes(f"{answer.text} {answer.fix}")
+    assert "footprint" in (answer.fix or "")
+
+
+# heldout tutorials-108-gps-goal-off-costmap's planner lines without the line that said why
+NO_PATH: list[Line] = [
+    ("planner_server", WARN, "GridBased: failed to create plan with tolerance 0.50."),
+    ("planner_server", WARN, "Planning algorithm GridBased failed to generate a valid path to (-693.34, 1110546.90)"),
+    ("planner_server", WARN, "[compute_path_to_pose] [ActionServer] Aborting handle."),
+]
+
+
+def test_a_planner_that_never_found_a_path_is_a_symptom_with_candidates(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], NO_PATH)
+    assert answer.causes == [UNEXPLAINED]
+    said = stated_causes(answer.text)
+    assert BLOCKED not in said and g.GOAL_UNREACHABLE not in said and g.START_IN_OBSTACLE not in said
+    assert "can't tell why" in answer.text and "occupied cells" in answer.text
+    assert "What tells them apart" in (answer.fix or "")
+
+
+def test_a_planner_that_lost_a_path_it_had_is_a_blocked_way(tmp_path: Path) -> None:
+    planned = [("controller_server", INFO, "Received a goal, begin computing control effort."),
+               ("controller_server", INFO, "Passing new path to controller."),
+               ("controller_server", ERROR, "Failed to make progress")]
+    assert _explain(tmp_path, [], planned + NO_PATH).causes == [BLOCKED]
+
+
+def test_collision_ahead_in_a_backup_after_no_progress_is_not_the_cause(tmp_path: Path) -> None:
+    # the issue's case: no progress first, then the backup recovery's collision checker (drive_on_heading.hpp:167)
+    lines = [("controller_server", ERROR, "Failed to make progress"),
+             ("behavior_server", INFO, "Running backup"),
+             ("behavior_server", WARN, "Collision Ahead - Exiting DriveOnHeading")]
+    answer = _explain(tmp_path, [], lines)
+    assert answer.causes == [g.NO_PROGRESS]
+    assert g.COLLISION_AHEAD not in stated_causes(answer.text)
+
+
+# sllidar_ros2's driver error (sllidar_node.cpp, RCLCPP_ERROR "Error, operation time out. RESULT_OPERATION_TIMEOUT! ")
+LIDAR: Line = ("sllidar_node", ERROR, "Error, operation time out. RESULT_OPERATION_TIMEOUT! ")
+
+
+@pytest.mark.parametrize("during", [[LIDAR, ("controller_server", ERROR, "Failed to make progress")], [LIDAR]],
+                         ids=["no_progress", "unexplained"])
+def test_the_decisive_unknown_error_is_quoted_with_node_and_time(tmp_path: Path, during: list[Line]) -> None:
+    answer = _explain(tmp_path, [], during)
+    assert answer.causes in ([g.NO_PROGRESS], [UNEXPLAINED])
+    assert "the last error before I gave up came from sllidar_node: 'Error, operation time out." in answer.text
+    assert " UTC)" in answer.text and "do not show why" not in answer.text
+    assert _quoted(answer, "RESULT_OPERATION_TIMEOUT")
+
+
+def test_without_any_error_the_answer_stays_honest(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [])
+    assert answer.causes == [UNEXPLAINED] and "do not show why" in answer.text
+
+
+def test_a_slow_run_with_planning_retries_is_not_people_moving(tmp_path: Path) -> None:
+    retries = [*NO_PATH[:2], ("behavior_server", INFO, "Running spin"),
+               ("global_costmap.global_costmap", INFO, "Received request to clear entirely the global_costmap"),
+               ("controller_server", INFO, "Passing new path to controller.")]
+    answer = _explain(tmp_path, [], retries, end=SUCCEEDED, question="Why did it take so long?")
+    assert MOVING_OBSTACLES not in answer.causes
+    assert MOVING_OBSTACLES not in stated_causes(answer.text)
+    assert "took longer" in answer.text and "can't tell what was in the way" in answer.text
+
+
+def test_without_a_goal_end_the_last_error_is_still_quoted(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [LIDAR], end=None)
+    assert answer.causes == [UNEXPLAINED]
+    assert answer.text.startswith("The recording does not show whether my navigation")
+    assert "the last error my logs show came from sllidar_node" in answer.text
+
+
+def test_a_recording_of_a_stack_that_never_came_up_has_a_task_to_explain(tmp_path: Path) -> None:
+    # no /task_info and no goal: the bring-up error itself is the navigation that failed (events.nav_goals)
+    b = BagBuilder()
+    for i, (name, level, msg) in enumerate(DIED):
+        b.log(T0 + sec_ns(i), name, level, msg)
+    log = read_recording(b.write(tmp_path / "bag"))
+    task = log.task()
+    assert task.derived and task.skills[0].state == "failed"
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, task))
+    assert answer.causes == [g.BRINGUP] and "controller_server died" in answer.text
