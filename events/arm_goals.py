@@ -12,6 +12,7 @@ joint state that never came) with no goal line at all, one task failed at the fi
 from __future__ import annotations
 
 import dataclasses
+import re
 from dataclasses import dataclass
 
 from hexar.events import contract as c
@@ -113,7 +114,8 @@ def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> li
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """No goal line: catalogued cause lines make one goal (MoveIt's a move_arm, ros2_control's a
     follow_joint_trajectory), failed at the first error; without them, the robot's own errors (a bring-up
-    failure, a driver that cannot open its device) make one `bring_up_controllers` goal failed at the first."""
+    failure, a driver that cannot open its device: explainers/stack_causes.py) make one `bring_up_controllers` goal
+    failed at the first, unless the recording is a Nav2 robot's (navigation explains those)."""
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -127,27 +129,19 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     if not active:
         from hexar.explainers.stack_causes import stack_cause
 
+        if any(_nav2_own(ln) for ln in logs):
+            return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
         stack = stack_cause(logs)
-        errors = sorted([ln for ln in logs if ln.level >= ERROR and not _nav2(ln)] + ([stack.line] if stack else []),
-                        key=lambda ln: ln.t)
-        if not errors:
-            return []
-        return [_Goal(BRING_UP, errors[0].t, "error lines (no goal line)", errors[-1].t, "failed", errors[0].msg)]
+        if stack is None:
+            return []  # any other error may be anybody's: no task is claimed from it
+        last = max(ln.t for ln in logs)
+        return [_Goal(BRING_UP, stack.line.t, "bring-up lines (no goal line)", last, "failed", stack.line.msg)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
     goal = _Goal(skill, active[0][0].t, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
     if failed is not None:
         goal.end, goal.state, goal.error = active[-1][0].t, "failed", failed.msg
     return [goal]
-
-
-def _nav2(line: LogLine) -> bool:
-    """A Nav2 line (its logger's Nav2 role, or its text in the Nav2 catalogue): navigation's, not the robot's
-    bring-up."""
-    from hexar.explainers.navigation.catalogue import catalogue as nav2
-
-    cat = nav2()
-    return cat.role(line.name) is not None or cat.match(line.msg) is not None
 
 
 def _goals(logs: list[LogLine], statuses: list[GoalStatus]) -> list[_Goal]:
@@ -194,6 +188,18 @@ def _arms_line(task: Task) -> bool:
     if run.params.get("derived_from") != "Nav2 log (no goal line)" or not run.error_msg:
         return False
     return any(cat.cause_of(run.error_msg, cat.match(run.error_msg)) is not None for cat in (moveit(), control()))
+
+
+def _nav2_own(line: LogLine) -> bool:
+    """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
+    (launch's generic "process has died" is anybody's)."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    cat = nav2()
+    if cat.role(line.name) is not None or cat.role(re.sub(r"-\d+$", "", line.name)) is not None:
+        return True
+    entry = cat.match(line.msg)
+    return entry is not None and not entry.id.startswith("launch.")
 
 
 def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:

@@ -64,8 +64,11 @@ def test_nav2_goals_stay_nav2_tasks_when_no_arm_goal_is_recorded(tmp_path: Path)
     assert [t.skills[0].skill for t in tasks] == ["navigate_to_pose"]
 
 
-def test_a_robot_with_only_its_own_errors_gets_a_bring_up_task(tmp_path: Path) -> None:
+def test_a_device_the_os_would_not_open_gives_a_bring_up_task_an_unknown_error_none(tmp_path: Path) -> None:
     b = BagBuilder()
-    b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")
-    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    b.log(T0, "v4l2_camera", ERROR, "Cannot open '/dev/video0': 13, Permission denied")
+    tasks = read_recording(b.write(tmp_path / "a")).tasks
     assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
+    b = BagBuilder()
+    b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")  # anybody's: no task is claimed from it
+    assert read_recording(b.write(tmp_path / "b")).tasks == []
