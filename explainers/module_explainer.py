@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
-from hexar.events.records import LogLine
+from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
@@ -78,7 +78,11 @@ class ModuleExplainer:
             d = Diagnosis("succeeded", end=d.end)
         else:
             stack = stack_cause(lines)
-            if stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
+            if stack is not None and stack.cause == "bringup.process_died" and d.decisive is None \
+                    and d.unknown is not None and d.unknown.t < stack.line.t and d.unknown.level >= ERROR:
+                # a process that died after an error no catalogue explains: the death is that error's consequence
+                d.symptoms = [stack, *d.symptoms][:2]
+            elif stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
                 d.cause, d.decisive, d.support = stack.cause, stack, []
                 d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
         if d.cause is not None and not d.cause.startswith(self.prefix):
@@ -110,7 +114,9 @@ class ModuleExplainer:
             first = d.unknown
             ev = [Evidence.of_log(cause, first)] if first is not None else []
             ev += evidence_of(cause, d.symptoms)
-            quoted = (f" The first error was '{said(first)}' at {at(first, start)}." if first is not None else "")
+            # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
+            quoted = (f" The first error was '{said(first).splitlines()[0][:200]}' at {at(first, start)}."
+                      if first is not None else "")
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
                 text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
