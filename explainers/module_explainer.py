@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
+from hexar.events.log import EventLog
 from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
@@ -57,6 +58,14 @@ class ModuleExplainer:
 
     def catalogues(self) -> list[ModuleCatalogue]:
         raise NotImplementedError
+
+    def applies(self, log: EventLog) -> bool:
+        """Whether the recording shows this module at all: a line its catalogues tie to a cause, a symptom or a
+        goal, or an arm action's status. A robot without an arm is not asked (the all-components baseline)."""
+        if any(c.topic_key(s.topic) in c.ARM_STATUS_TOPICS for s in log.goal_statuses):
+            return True
+        cats = self.catalogues()
+        return any(e is not None and e.kind != "other" for ln in log.logs for e in (cat.match(ln.msg) for cat in cats))
 
     def refine(self, readings: list[Reading]) -> list[Reading]:
         """A module's reading of what a line's numbers say (e.g. MoveIt's state-monitor times)."""
