@@ -110,8 +110,7 @@ ACCEPTED_TYPES: dict[str, frozenset[str]] = {
 ACCEPTED_TYPES[CMD_VEL] = frozenset({TWIST_TYPE, TWIST_STAMPED_TYPE})
 ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
 # The ordinary Nav2 topics: optional; another type under one of these names is skipped with a warning.
-NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS, MOVE_ACTION_STATUS,
-                                         EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})
+NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
 # What deriving tasks from Nav2 goals reads (recordings without /task_info).
 NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})
 ARM_STATUS_TOPICS: frozenset[str] = frozenset({MOVE_ACTION_STATUS, EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})
