@@ -197,8 +197,7 @@ def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     if not own or any(ln.level >= WARN for ln in own):
         return None
     nodes = list(dict.fromkeys(cat.role(ln.name) or ln.name for ln in own))
-    their = "their" if len(nodes) > 1 else "its"
-    text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} logged {their} work "
-            "and none of them logged a warning or an error. The recording shows no goal's end, so it does not show "
-            "whether a goal was reached.")
+    said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"
+    text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} {said} a warning "
+            "or an error. The recording shows no goal's end, so it does not show whether a goal was reached.")
     return text, [own[0], own[-1]]
