@@ -138,6 +138,9 @@ class AllComponentsMethod:
         task = log.task()
         outputs: list[str] = []
         for name in self.registry.names:
+            applies = getattr(self.registry.get(name), "applies", None)
+            if applies is not None and not applies(log):
+                continue  # a module this robot's recording never shows (an arm on the paper's TIAGo runs)
             try:
                 exp = self.registry.get(name).explain(case.question, Context.for_task(log, task, self.registry))
                 outputs.append(f"- {name}: {exp.text}")

@@ -3,8 +3,9 @@ graded against the cause each public thread diagnosed.
 
 Per excerpt, from the answer's text (the claims reader the paper's graders use, hexar/claims.py):
 - cause named: the answer affirms the diagnosed cause; counted over the excerpts whose pasted lines show it.
-- unsupported cause: the answer affirms a cause that is not the diagnosed one (nor one it implies, nor an honest
-  "not enough information" finding), or says nothing went wrong of a failed run / that a finished run failed.
+- unsupported cause: the answer affirms a cause that is not the diagnosed one (nor one it implies, nor one that
+  implies it, i.e. the same cause in more detail, nor an honest "not enough information" finding), or says nothing
+  went wrong of a failed run / that a finished run failed.
 - honest not-enough: the answer names no unsupported cause and says the logs do not show why
   (navigation.no_progress, navigation.unexplained_failure, or those words); counted apart from wrong.
 Each excerpt ends in one verdict: `named`, `honest` or `wrong`. The cause ids HEXAR returned are graded the same
@@ -50,8 +51,16 @@ def implied(cause: str) -> frozenset[str]:
     return frozenset(known.implies) if known is not None else frozenset()
 
 
+def refinements(cause: str) -> frozenset[str]:
+    """Causes that imply `cause`: the same cause told in more detail (a node that never came up is the stack "not
+    brought up" of configuration_error), never a different one; an honest label ("nothing says why") has none."""
+    if cause in HONEST_CAUSES:
+        return frozenset()
+    return frozenset(c for c, known in vocabulary().items() if cause in known.implies)
+
+
 def unsupported(excerpt: Excerpt, claims: Iterable[str]) -> list[str]:
-    allowed = {excerpt.cause, *implied(excerpt.cause), *HONEST_CAUSES, *NEVER_FALSE}
+    allowed = {excerpt.cause, *implied(excerpt.cause), *refinements(excerpt.cause), *HONEST_CAUSES, *NEVER_FALSE}
     out = []
     for c in claims:
         if c == ALL_FINE:

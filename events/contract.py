@@ -23,6 +23,12 @@ CMD_VEL = "/cmd_vel"
 ODOM = "/odom"
 GOAL_POSE = "/goal_pose"
 NAV_STATUS = "/navigate_to_pose/_action/status"
+# MoveIt's and the arm controllers' action statuses: arm tasks are derived from them (events/arm_goals.py).
+MOVE_ACTION_STATUS = "/move_action/_action/status"
+EXECUTE_TRAJECTORY_STATUS = "/execute_trajectory/_action/status"
+# Every controller has its own: /<controller>/follow_joint_trajectory/_action/status, read under this one key.
+FJT_STATUS = "/*/follow_joint_trajectory/_action/status"
+_FJT_SUFFIX = "/follow_joint_trajectory/_action/status"
 
 LOG_TYPE = "rcl_interfaces/msg/Log"
 STRING_TYPE = "std_msgs/msg/String"
@@ -78,7 +84,20 @@ CONTRACT: tuple[TopicSpec, ...] = (
               "a navigation goal (RViz's Nav2 Goal); tasks are derived from goals when /task_info is absent"),
     TopicSpec(NAV_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
               "NavigateToPose goals and how they ended (4 succeeded, 5 canceled, 6 aborted)"),
+    TopicSpec(MOVE_ACTION_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
+              "MoveIt's MoveGroup (plan and execute) goals; arm tasks are derived from them"),
+    TopicSpec(EXECUTE_TRAJECTORY_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
+              "MoveIt's ExecuteTrajectory goals"),
+    TopicSpec(FJT_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
+              "each joint trajectory controller's FollowJointTrajectory goals (any controller name)"),
 )
+
+
+def topic_key(topic: str) -> str:
+    """The contract's name for a recorded topic: a controller's own follow_joint_trajectory status reads as
+    FJT_STATUS; every other topic is its own key."""
+    return FJT_STATUS if topic.endswith(_FJT_SUFFIX) and topic != _FJT_SUFFIX else topic
+
 
 TYPE_OF: dict[str, str] = {spec.topic: spec.type for spec in CONTRACT}
 # ROS 1 recordings carry /rosout as rosgraph_msgs/Log (levels 1/2/4/8/16), accepted as well.
@@ -94,3 +113,6 @@ ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
 NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
 # What deriving tasks from Nav2 goals reads (recordings without /task_info).
 NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})
+ARM_STATUS_TOPICS: frozenset[str] = frozenset({MOVE_ACTION_STATUS, EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})
+# What deriving tasks reads without /task_info: Nav2 goals and MoveIt's and the controllers' goals.
+GOAL_TOPICS: frozenset[str] = NAV_GOAL_TOPICS | ARM_STATUS_TOPICS

@@ -84,12 +84,16 @@ class EventLog:
 
     @cached_property
     def tasks(self) -> list[Task]:
-        """The /task_info tasks; without any, one task per Nav2 navigation goal (derived, marked as such)."""
+        """The /task_info tasks; without any, one task per Nav2 navigation goal and per MoveIt or arm controller
+        goal (derived, marked as such)."""
         if self.task_updates:
             return build_tasks(self.task_updates)
-        from hexar.events.nav_goals import derive_tasks  # only recordings without /task_info need it
+        # only recordings without /task_info need these
+        from hexar.events.arm_goals import derive_arm_tasks, merge_tasks
+        from hexar.events.nav_goals import derive_tasks
 
-        return derive_tasks(self.logs, self.goal_statuses, self.goals)
+        nav = derive_tasks(self.logs, [s for s in self.goal_statuses if s.topic == c.NAV_STATUS], self.goals)
+        return merge_tasks(nav, derive_arm_tasks(self.logs, self.goal_statuses))
 
     def task(self, ref: str | None = None) -> Task:
         """A task by id, by its 1-based order, or by `first`/`latest`; default: the latest user task.

@@ -122,11 +122,11 @@ def _bringup_error(line: LogLine) -> bool:
 
 
 def _activity(logs: list[LogLine]) -> list[_Goal]:
-    """Nav2 at work without any goal line (the recording began after the goal was sent, or a node never came up so
-    no goal could start): one goal over the lines the catalogue ties to a cause or to the progress checker, and the
-    bring-up errors of the stack catalogue (at any level: consoles pasted without
-    levels are read as INFO); failed when Nav2 logged an error or an abort, else still running as far as the
-    recording shows."""
+    """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
+    no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
+    a cause or to the progress checker, the lines of Nav2's own nodes, and the bring-up errors of the stack
+    catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
+    an abort, else still running as far as the recording shows."""
     from hexar.explainers.navigation.catalogue import catalogue
 
     cat = catalogue()
@@ -135,6 +135,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     for line in logs:
         entry = cat.match(line.msg)
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
+        # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no
+        # catalogued line: a stack that came up and ran normally has a navigation to tell about too
+        nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None)
         if not nav2 and "[ActionServer] Aborting handle" not in line.msg and not _bringup_error(line):
             continue
         active.append(line)

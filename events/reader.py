@@ -228,16 +228,18 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
         if conn.id in skip:
             warnings.append(f"{conn.topic} is unreadable and was not used: {skip[conn.id]}")
             continue
-        if conn.topic not in wanted:
+        key = c.topic_key(conn.topic)
+        if key not in wanted:
             if conn.msgtype not in known and conn.msgtype not in humble.fielddefs:
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
             continue
-        expected = c.TYPE_OF.get(conn.topic)
-        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic] and conn.topic in c.NAV2_TOPICS:
+        expected = c.TYPE_OF.get(key)
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[key] and (key in c.NAV2_TOPICS
+                                                                                  or key in c.ARM_STATUS_TOPICS):
             # an ordinary topic name that this robot uses for another type: not ours to read, not an error
             warnings.append(f"skipped {conn.topic}: type {conn.msgtype}, HEXAR reads it as {expected}")
             continue
-        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[conn.topic]:
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[key]:
             raise UnknownMessageTypeError(
                 f"{conn.topic} has type {conn.msgtype}, but HEXAR reads it as {expected}"
             )
@@ -320,7 +322,7 @@ def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw:
         for s in m.status_list:
             gid = bytes(bytearray(s.goal_info.goal_id.uuid)).hex()
             accepted = stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)
-            log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status)))
+            log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status), topic))
 
 
 def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, ros2: bool, standard: bool,
@@ -402,4 +404,4 @@ def read_tasks(path: str | Path) -> EventLog:
     """Only what the recording's tasks need: `/task_info`, else the Nav2 log and goal topics that tasks are
     derived from (a recording without `/task_info`), so listing many recordings stays cheap."""
     log = read_recording(path, topics={c.TASK_INFO})
-    return log if log.tasks else read_recording(path, topics=c.NAV_GOAL_TOPICS)
+    return log if log.tasks else read_recording(path, topics=c.GOAL_TOPICS)

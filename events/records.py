@@ -149,6 +149,7 @@ class GoalStatus:
     goal_id: str
     accepted: int
     status: int  # 1 accepted, 2 executing, 3 canceling, 4 succeeded, 5 canceled, 6 aborted
+    topic: str = "/navigate_to_pose/_action/status"  # which action: Nav2's, MoveIt's or a controller's
 
 
 @dataclass(frozen=True, slots=True)

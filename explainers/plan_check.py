@@ -22,7 +22,16 @@ CATALOGUE: dict[str, tuple[str, ...]] = {
     "look_for_human": ("patterns",),
     "recommend_pizza": (),
     "explain": ("question",),
+    # a mobile manipulator's arm (modules.toml: manipulation, control); tasks derived from MoveIt's and the
+    # controllers' goals carry the last three
+    "pick": ("object",),
+    "place": ("object",),
+    "move_arm": (),
+    "follow_joint_trajectory": (),
+    "bring_up_controllers": (),
 }
+# Skills that get an object into the robot's hands: a person's help, or its own arm.
+FETCHING = ("ask_human_for_help", "pick")
 # skill -> parameters it may carry besides the mandatory ones: a NavigateToPose goal's pose.
 OPTIONAL: dict[str, tuple[str, ...]] = {"navigate_to_pose": ("x", "y", "yaw", "frame_id", "source")}
 # Actions that need arms or hands; the robot can only move, talk, look and ask people.
@@ -171,7 +180,7 @@ def _fulfilment(instruction: str, plan: Sequence[tuple[str, Mapping[str, object]
                 )
             )
     if _BRING.search(instruction):
-        if "ask_human_for_help" not in skills:
+        if not any(s in skills for s in FETCHING):
             out.append(
                 Finding(
                     "planner.plan_not_fulfilling_request",
@@ -180,7 +189,7 @@ def _fulfilment(instruction: str, plan: Sequence[tuple[str, Mapping[str, object]
                 )
             )
         else:
-            ask = skills.index("ask_human_for_help")
+            ask = min(skills.index(s) for s in FETCHING if s in skills)
             if not any(i > ask for i, _ in visits):
                 out.append(
                     Finding(

@@ -51,6 +51,8 @@ def simulate(
     storage: Annotated[str, typer.Option(help="sqlite3 or mcap")] = "sqlite3",
     seed: Annotated[int, typer.Option(help="changes timings and values, never the scenario")] = 0,
     scenario: Annotated[list[int] | None, typer.Option(help="only these scenarios (1-20)")] = None,
+    arm: Annotated[bool, typer.Option("--arm", help="write the arm's fetch recordings instead (pick and place "
+                                      "with MoveIt 2 and ros2_control; not among the paper's 20)")] = False,
 ) -> None:
     """Write the paper's 20 scenarios x 3 variants as rosbag2 recordings of a simulated TIAGo."""
 
@@ -62,6 +64,14 @@ def simulate(
         if storage not in {"sqlite3", "mcap"}:
             raise HexarError(f"unknown storage {storage!r}: use sqlite3 or mcap")
         output_dir(out_dir, "--out")
+        if arm:
+            from hexar.evals.scenarios.arm import simulate_arm_suite
+
+            if scenario:
+                raise HexarError("--scenario names the paper's scenarios; --arm writes the arm's recordings")
+            written = simulate_arm_suite(out_dir, storage, seed)  # type: ignore[arg-type]
+            out.print(f"wrote {len(written)} recordings to {out_dir}")
+            return 0
         wanted = set(scenario or [])
         written = simulate_suite(out_dir, storage, seed,  # type: ignore[arg-type]
                                  only=(lambda s, v: s in wanted) if wanted else None)
@@ -356,14 +366,23 @@ def eval_(
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
-                                       "threads), real-nav2-heldout (threads never tuned on) or real-nav2-blind "
-                                       "(issue 20's blind set); the real-nav2 "
+                                       "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind "
+                                       "(issue 20's blind set), real-modules or real-modules-heldout (MoveIt 2, "
+                                       "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",
 ) -> None:
     """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
 
     def body() -> int:
+        if suite.startswith("real-modules"):
+            from hexar.evals.real_modules_cli import real_modules_main
+
+            return real_modules_main(suite, out_dir, runs, llm, out,
+                                     others={"--method": method, "--scenario": scenario, "--module": module,
+                                             "--kind": kind, "--first": first, "--judge": judge,
+                                             "--audit": audit or None, "--baseline": baseline,
+                                             "--write-baseline": write_baseline})
         if suite != "paper":
             from hexar.evals.real_nav2_cli import real_nav2_main
 

@@ -93,6 +93,9 @@ class Robot:
     moved: bool = False
     navigations: int = 0
     log: list[str] = field(default_factory=list)
+    # the arm's fetch task (evals/scenarios/arm.py): its pick step's situation, and its first trip's
+    arm_situation: str = "nominal"
+    first_navigation: str | None = None
 
     def task_id(self) -> str:
         return "".join(self.rng.choice(string.ascii_letters + string.digits) for _ in range(16))
@@ -143,6 +146,12 @@ class Robot:
             return tts.simulate_say(self.b, self.rng, self.t, text)
         if skill == "ask_human_for_help":
             return self.ask_for_help(str(params.get("question", "")))
+        if skill in {"pick", "place"}:
+            from hexar.evals.scenarios.arm import simulate_arm
+
+            situation = self.arm_situation if skill == "pick" else "nominal"
+            return simulate_arm(self.b, self.rng, self.t, skill, str(params.get("object", "")), situation,
+                                wall_clock_s=self.t / 1e9)
         if skill == "recommend_pizza":
             available = pizza.scenario_ingredients(self.variant, self.rng)
             result = pizza.simulate_recommend_pizza(self.b, self.rng, self.t, available)
@@ -154,6 +163,8 @@ class Robot:
 
     def navigate(self, location: str, situation: str | None = None) -> SkillResult:
         self.navigations += 1
+        if situation is None and self.navigations == 1 and self.first_navigation is not None:
+            situation = self.first_navigation
         if situation is None:
             situation = NAV_SITUATION.get(self.sid, "nominal") if self.navigations == 1 else "nominal"
         goal = ROOMS[location]

@@ -17,7 +17,7 @@ from __future__ import annotations
 import time
 from collections.abc import Iterable
 
-from hexar.events.records import ERROR, LogLine
+from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import Entry, catalogue
 from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
@@ -46,6 +46,10 @@ STRONG_STACK = frozenset({"stack.transform_error"})
 # node", a process that died, or a server that is not there / not active (what a node that never came up produces).
 _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "bt.action_unavailable",
                                   "bt.action_server_inactive", "beh.inactive"})
+# Configuration lines that come from bring-up itself: a plugin library that cannot be loaded (loaded in
+# on_configure), the lifecycle manager aborting the bring-up, a process that died.
+_AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
+NEVER_CAME_UP = "never_came_up"
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
 
 
@@ -63,10 +67,15 @@ def _as_nav(entry: StackEntry) -> Entry | None:
                  raw=entry.pattern)
 
 
-def stack_notes(tagged: Iterable[tuple[LogLine, Entry | None]]) -> list[tuple[LogLine, Entry]]:
-    """Kept lines the Nav2 catalogue gives no cause, read through the mined stack catalogue."""
+def stack_notes(tagged: list[tuple[LogLine, Entry | None]], raw: Iterable[LogLine] = ()
+                ) -> list[tuple[LogLine, Entry]]:
+    """Kept lines the Nav2 catalogue gives no cause, read through the mined stack catalogue; and the warnings and
+    errors the filter dropped (e.g. nav2_util's tf_help, whose role the filter does not keep) that it reads as a
+    cause: a decisive line is never dropped unread."""
+    kept = {id(line) for line, _ in tagged}
+    dropped: list[tuple[LogLine, Entry | None]] = [(ln, None) for ln in raw if id(ln) not in kept and ln.level >= WARN]
     out = []
-    for line, entry in tagged:
+    for line, entry in sorted([*tagged, *dropped], key=lambda p: p[0].t):
         if entry is not None and (entry.cause is not None or entry.kind != "info"):
             continue
         mined = stack_entry(line)
@@ -96,7 +105,31 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
     finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
     finding.notes = [first.describe()] + [f.describe() for f in found[1:3]]
+    if first.kind == "process_died" and not [ln for ln in decisive_errors(logs_list, first.line.t)
+                                             if ln.t < first.line.t]:
+        # launch reports the exit code only: with no error before it, nothing says why the process died
+        finding.notes[0] += "; nothing in my logs says why it died"
+    finding.facts[NEVER_CAME_UP] = 1.0
     return finding
+
+
+def never_came_up(notes: Iterable[tuple[LogLine, Entry]], logs: Iterable[LogLine]) -> bool:
+    """Whether a configuration error kept a node from coming up: Nav2 loads its plugins (BT node libraries,
+    planners, controllers) in on_configure, and the lifecycle manager says when a bring-up was aborted; or a
+    node's lifecycle transition / params file / process failed (the stack catalogue)."""
+    if any(e.id in _AT_BRINGUP_IDS for _, e in notes):
+        return True
+    logs_list = list(logs)
+    return bool(bringup_findings(logs_list)) and not any("Managed nodes are active" in ln.msg for ln in logs_list)
+
+
+def with_bringup(finding: Finding) -> list[tuple[str, list[Evidence]]]:
+    """The finding's cause ids with their evidence: a configuration error that kept a node from coming up is a
+    bring-up failure too (navigation.bringup_failure implies navigation.configuration_error), said with it."""
+    out = [(finding.cause, finding.evidence)]
+    if finding.cause == CONFIGURATION and finding.facts.get(NEVER_CAME_UP):
+        out.append((BRINGUP, [e.model_copy(update={"cause": BRINGUP}) for e in finding.evidence]))
+    return out
 
 
 def decisive_errors(logs: Iterable[LogLine], until: int | None) -> list[LogLine]:
@@ -154,3 +187,17 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
         found.notes.append(quote_last_error(errors, gave_up=run.outcome == "failed"))
         found.evidence.append(Evidence.of_log(found.cause, errors[-1]))
     return found
+
+
+def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
+    """A stack that came up and ran with no goal's end recorded: which Nav2 nodes logged their work, when none of
+    them logged a warning or an error (None otherwise, or when no Nav2 node logged at all)."""
+    cat = catalogue()
+    own = [ln for ln in lines if ln.name and cat.role(ln.name) is not None]
+    if not own or any(ln.level >= WARN for ln in own):
+        return None
+    nodes = list(dict.fromkeys(cat.role(ln.name) or ln.name for ln in own))
+    said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"
+    text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} {said} a warning "
+            "or an error. The recording shows no goal's end, so it does not show whether a goal was reached.")
+    return text, [own[0], own[-1]]

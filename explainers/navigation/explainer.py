@@ -143,7 +143,7 @@ class NavigationExplainer:
                 self.name, "The recording has no log lines and no localisation data for that time.")
         tagged = tag_logs(raw)
         lines = [ln for ln, _ in tagged]
-        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw) + chain.stack_notes(tagged))
+        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw) + chain.stack_notes(tagged, raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
         if not lines and not poses and not flags:
@@ -155,9 +155,13 @@ class NavigationExplainer:
             if f.cause == d.UNEXPLAINED and not f.evidence:
                 f.evidence += _status_evidence(context, d.UNEXPLAINED)
         if run.outcome == "unknown" and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
-            # neither a navigator line nor the skill's status says how the trip ended: "it went fine" would be
-            # a claim without evidence
-            return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal.")
+            # neither a navigator line nor the skill's status says how the trip ended: "I reached it" would be a
+            # claim without evidence; a stack whose nodes ran without a warning is told as just that
+            quiet = chain.ran_quietly(raw)
+            if quiet is None:
+                return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal.")
+            return Explanation(explainer=self.name, text=quiet[0], causes=[d.NOMINAL], confidence=0.6,
+                               evidence=[Evidence.of_log(d.NOMINAL, ln) for ln in quiet[1]])
         grounded = self._compose(question, context, run, findings, lines)
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
@@ -214,6 +218,9 @@ class NavigationExplainer:
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
                 if found is not None:
+                    notes = ((n.line, n.entry) for n in run.notes)
+                    if found.cause == g.CONFIGURATION and chain.never_came_up(notes, before):
+                        found.facts[chain.NEVER_CAME_UP] = 1.0
                     for line in (run.first(d.PROGRESS), run.end if run.outcome == "failed" else None):
                         if line is not None and all(e.t != line.t for e in found.evidence):
                             found.evidence.append(Evidence.of_log(cause, line))
@@ -249,8 +256,8 @@ class NavigationExplainer:
         return Explanation(
             explainer=self.name,
             text=" ".join(texts[:2]),
-            causes=[f.cause for f in findings],
-            evidence=[e for f in findings for e in f.evidence],
+            causes=[cause for f in findings for cause, _ in chain.with_bringup(f)],
+            evidence=[e for f in findings for _, ev in chain.with_bringup(f) for e in ev],
             fix=" ".join(fixes) or None,
             details=details,
             confidence={d.UNEXPLAINED: 0.4, g.NO_PROGRESS: 0.5}.get(findings[0].cause, 0.9) if findings else 0.9,

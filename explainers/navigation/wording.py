@@ -142,11 +142,17 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "(use_sim_time everywhere or nowhere) and that odometry and localisation publish their transforms.",
                 seen)
     if f.cause == g.CONFIGURATION and f.notes:
-        return (f"I couldn't reach {place} because my navigation stack was not fully brought up: "
-                f"{f.notes[0].rstrip('.')}.",
+        return (f"I couldn't reach {place} because my navigation stack was misconfigured and a node of it never "
+                f"came up: {f.notes[0].rstrip('.')}.",
                 "Fix the error quoted from that node (often its parameters or plugins) and restart the navigation "
                 "until the lifecycle manager reports 'Managed nodes are active'.",
                 [f"Also: {n}." for n in f.notes[1:]] + seen)
+    if f.cause == g.CONFIGURATION and f.facts.get("never_came_up"):
+        return (f"I couldn't reach {place} because my navigation stack was misconfigured, so a node of it never "
+                "came up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",
+                "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
+                "restart the navigation until the lifecycle manager reports 'Managed nodes are active'.",
+                seen)
     if f.cause == g.CONFIGURATION:
         return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
                 "up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",

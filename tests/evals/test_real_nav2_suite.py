@@ -42,6 +42,31 @@ def test_saying_the_logs_do_not_show_why_is_honest_not_wrong(answer: str) -> Non
     assert graded("navigation.transform_error", answer) == ("honest", ())
 
 
+NEVER_CAME_UP = ("I couldn't reach my goal because my navigation stack was misconfigured, so a node of it never "
+                 "came up (a configuration error: a plugin, behaviour tree or lifecycle node failed).")
+
+
+@pytest.mark.parametrize("label", ["navigation.bringup_failure", "navigation.configuration_error"])
+def test_a_node_that_never_came_up_for_its_configuration_is_either_label(label: str) -> None:
+    # bringup_failure implies configuration_error ("misconfigured or not brought up"): under either label the
+    # answer that states both is named, neither id is unsupported
+    assert graded(label, NEVER_CAME_UP) == ("named", ())
+
+
+def test_a_bringup_failure_alone_under_a_configuration_label_is_no_false_claim() -> None:
+    verdict, bad = graded("navigation.configuration_error",
+                          "I couldn't reach my goal because a node of my navigation never came up: the process of "
+                          "amcl died (exit code -11); nothing in my logs says why it died.")
+    assert verdict == "honest" and bad == ()
+
+
+def test_a_detail_of_an_honest_label_is_still_unsupported() -> None:
+    # commands_not_reaching_base implies no_progress, but "nothing says why" is no cause to tell in more detail
+    verdict, bad = graded("navigation.no_progress", "I couldn't reach my goal because my velocity commands never "
+                          "reached my base: odometry showed no motion.")
+    assert verdict == "wrong" and bad == ("navigation.commands_not_reaching_base",)
+
+
 def test_an_answer_that_says_nothing_is_wrong() -> None:
     assert graded("navigation.transform_error", "")[0] == "wrong"
 

@@ -81,6 +81,17 @@ def test_recording_with_task_info_keeps_its_tasks(tmp_path: Path) -> None:
     assert [t.task_id for t in log.tasks] == ["a1"] and not log.tasks[0].derived
 
 
+def test_nav2_nodes_at_work_without_a_goal_line_are_a_navigation_still_running(tmp_path: Path) -> None:
+    # ros-navigation/docs.nav2.org#404's planner_server bring-up (planner_server.cpp@galactic: "Configuring"), and
+    # a node that is not Nav2's beside it
+    b = BagBuilder()
+    b.log(T0, "planner_server", INFO, "Creating")
+    b.log(T0 + sec_ns(1), "planner_server", INFO, "Configuring")
+    b.log(T0 + sec_ns(2), "minimal_publisher", INFO, "Publishing: 'Hello, world! 0'")
+    task = read_recording(b.write(tmp_path / "bag")).task()
+    assert task.derived and task.skills[0].state == "running"
+
+
 def test_no_nav2_activity_still_no_task(tmp_path: Path) -> None:
     b = BagBuilder()
     b.log(T0, "minimal_publisher", INFO, "Publishing: 'Hello, world! 0'")

@@ -16,7 +16,7 @@ from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.navigation import NavigationExplainer
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation.detectors import BLOCKED, MOVING_OBSTACLES, UNEXPLAINED
+from hexar.explainers.navigation.detectors import BLOCKED, MOVING_OBSTACLES, NOMINAL, UNEXPLAINED
 from tests.events.helpers import task_msg
 
 T0 = 1_700_000_000_000_000_000
@@ -92,10 +92,48 @@ def test_a_process_that_died_names_the_node_and_exit_code(tmp_path: Path) -> Non
 
 def test_a_configure_callback_that_threw_is_the_node_not_brought_up(tmp_path: Path) -> None:
     answer = _explain(tmp_path, THREW, UNAVAILABLE)
-    assert answer.causes == [g.CONFIGURATION]
-    assert "not fully brought up: controller_server stopped in a lifecycle transition" in answer.text
+    # both ids, each with the lines: a configuration error that kept a node from coming up
+    assert answer.causes == [g.CONFIGURATION, g.BRINGUP]
+    assert {e.cause for e in answer.evidence} == {g.CONFIGURATION, g.BRINGUP}
+    assert "never came up: controller_server stopped in a lifecycle transition" in answer.text
     assert "no robot footprint provided in the costmap" in answer.text
+    assert stated_causes(answer.text) >= {g.CONFIGURATION, g.BRINGUP}
     assert _quoted(answer, "Caught exception in callback for transition 10")
+
+
+# ros-navigation/navigation2#1948-style: a BT node library that bt_navigator cannot load at configure (the
+# Nav2 catalogue's bt.plugin_load), then the lifecycle manager aborts the bring-up.
+PLUGIN: list[Line] = [
+    ("bt_navigator", ERROR, "Original error: Could not load library: /opt/ros/humble/lib/"
+     "libnav2_compute_path_to_pose_action_bt_node.so: undefined symbol: _ZTIN2BT14CoroActionNodeE"),
+    ("lifecycle_manager_navigation", ERROR, "Failed to change state for node: bt_navigator"),
+]
+
+
+def test_a_plugin_that_cannot_be_loaded_is_a_configuration_error_and_a_node_that_never_came_up(
+        tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], PLUGIN)
+    assert answer.causes == [g.CONFIGURATION, g.BRINGUP]
+    assert stated_causes(answer.text) >= {g.CONFIGURATION, g.BRINGUP}
+    assert _quoted(answer, "Could not load library")
+
+
+def test_a_process_that_died_with_no_error_before_says_the_logs_do_not_show_why(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, DIED, UNAVAILABLE)
+    assert "nothing in my logs says why it died" in answer.text
+    answer = _explain(tmp_path / "b", [("controller_server", ERROR, "Original error: Considering footprint in "
+                                        "collision checking but no robot footprint provided in the costmap."),
+                                       *DIED], UNAVAILABLE)
+    assert "nothing in my logs says why it died" not in answer.text
+
+
+def test_tf_help_dropped_by_the_filter_is_still_read(tmp_path: Path) -> None:
+    # pf-robotics/kachaka-api#106's shape: nav_2d_utils' tf_help logs under its own logger (role tf), which the
+    # log filter does not keep; its "Transform data too old" (tf_help.cpp:70@humble) still decides
+    answer = _explain(tmp_path, [], [("tf_help", ERROR, "Transform data too old when converting from odom to map"),
+                                     ("tf_help", ERROR, "Data time: 1721806792s 88418722ns, Transform time: "
+                                      "1721806791s 859294000ns")])
+    assert answer.causes[0] == g.TRANSFORM and _quoted(answer, "Transform data too old")
 
 
 def test_a_stack_brought_up_again_afterwards_is_no_bringup_failure(tmp_path: Path) -> None:
@@ -210,3 +248,30 @@ def test_a_recording_of_a_stack_that_never_came_up_has_a_task_to_explain(tmp_pat
     assert task.derived and task.skills[0].state == "failed"
     answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, task))
     assert answer.causes == [g.BRINGUP] and "controller_server died" in answer.text
+
+
+# ros-navigation/navigation2's system tests (nav2_system_tests, test_bt_navigator): a controller working, no goal
+# line recorded (controller_server.cpp@humble: "Passing new path to controller.").
+QUIET: list[Line] = [("controller_server", INFO, "Passing new path to controller."),
+                     ("controller_server", INFO, "Passing new path to controller.")]
+
+
+def _without_task(tmp_path: Path, lines: list[Line]) -> Explanation:
+    b = BagBuilder()
+    for i, (name, level, msg) in enumerate(lines):
+        b.log(T0 + sec_ns(i), name, level, msg)
+    log = read_recording(b.write(tmp_path / "bag"))
+    return NavigationExplainer().explain("How did the navigation go?", Context.for_task(log, log.task()))
+
+
+def test_a_stack_that_ran_without_a_goal_line_or_a_warning_is_told_as_it_ran(tmp_path: Path) -> None:
+    answer = _without_task(tmp_path, QUIET)
+    assert answer.causes == [NOMINAL]
+    assert "controller_server logged its work" in answer.text and "does not show whether a goal" in answer.text
+    assert _quoted(answer, "Passing new path to controller")
+
+
+def test_a_warning_of_the_stack_is_no_quiet_run(tmp_path: Path) -> None:
+    answer = _without_task(tmp_path, [*QUIET, ("controller_server", WARN, "Control loop missed its desired rate "
+                                               "of 20.0000Hz")])
+    assert NOMINAL not in answer.causes

@@ -1,0 +1,254 @@
+"""`hexar eval --suite real-modules` (and `real-modules-heldout`): HEXAR on recordings made from real console
+excerpts of the arm's modules (MoveIt 2, ros2_control, bring-up, the system), graded against the cause each public
+thread diagnosed (evals/data/real_modules/README.md).
+
+The corpus format is real_nav2's (evals/real_nav2.py reads the consoles) plus `module`: manipulation, control,
+bringup or system. Half of the excerpts of each outcome get a task on /task_info whose one step is the module's
+skill (`move_arm` for manipulation, `follow_joint_trajectory` for control, `bring_up_controllers` for bring-up
+and the system: the robot's own record of what it was doing, never the diagnosis); the others get none, and their
+tasks are derived from the logs (events/arm_goals.py) or there is no task to explain.
+
+Grading, from the answer's text (hexar/claims.py), as in real-nav2: `named` (the diagnosed cause affirmed),
+`honest` (no unsupported cause, and an honest "my logs do not show a cause I know"), `wrong` (an unsupported cause,
+a failure told as fine, or nothing named). The cause ids HEXAR returned are graded the same way (`structured`).
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+import tempfile
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import asdict, dataclass
+from functools import cache
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from hexar.causes import vocabulary
+from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
+from hexar.errors import USER_ERRORS, HexarError
+from hexar.evals.real_nav2 import DISTROS, NS, OUTCOMES, parse_console, stamped, task_plan
+
+SUITE = "real-modules"
+HELDOUT_SUITE = "real-modules-heldout"
+FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml"}
+MODULES = ("manipulation", "control", "bringup", "system")
+SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
+         "system": "bring_up_controllers"}
+PREFIXES = ("manipulation.", "control.", "bringup.", "system.")
+HONEST_CAUSES = frozenset({"manipulation.unexplained_failure", "control.unexplained_failure"})
+HONEST_WORDS = re.compile(r"logs do not show a cause I know|(not|n't) (have )?enough information|"
+                          r"(can(no|')t|could ?n[o']t) tell (why|what)|do(es)? not show (why|what)", re.I)
+QUESTIONS = {"failed": "Why didn't that work?", "succeeded": "How did it go?", "slow": "Why did it take so long?"}
+_REQUIRED = ("id", "source", "url", "distro", "module", "outcome", "cause", "cause_quote", "logs_show_cause", "lines")
+
+
+@dataclass(frozen=True)
+class Excerpt:
+    id: str
+    source: str
+    url: str
+    distro: str
+    module: str
+    outcome: str
+    cause: str
+    cause_quote: str
+    logs_show_cause: bool
+    lines: str
+    notes: str = ""
+
+
+def _excerpt(entry: Any, n: int) -> Excerpt:
+    if not isinstance(entry, dict):
+        raise HexarError(f"real-modules entry {n} is not a mapping")
+    missing = [k for k in _REQUIRED if k not in entry]
+    if missing:
+        raise HexarError(f"real-modules entry {entry.get('id', n)!r} lacks {', '.join(missing)}")
+    ex = Excerpt(**{k: entry[k] for k in (*_REQUIRED, "notes") if k in entry})
+    if ex.distro not in DISTROS or ex.outcome not in OUTCOMES or ex.module not in MODULES:
+        raise HexarError(f"real-modules entry {ex.id!r}: distro, outcome or module is not one of the known values")
+    if ex.cause not in vocabulary() or not ex.cause.startswith(PREFIXES):
+        raise HexarError(f"real-modules entry {ex.id!r}: unknown cause {ex.cause!r}")
+    if not isinstance(ex.logs_show_cause, bool) or not parse_console(ex.lines):
+        raise HexarError(f"real-modules entry {ex.id!r}: logs_show_cause must be true/false, lines not empty")
+    return ex
+
+
+def parse_corpus(text: str) -> tuple[Excerpt, ...]:
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as err:
+        raise HexarError(f"the real-modules corpus is not valid YAML: {err}") from err
+    if not isinstance(data, list) or not data:
+        raise HexarError("the real-modules corpus must be a non-empty list of excerpts")
+    out = tuple(_excerpt(e, i) for i, e in enumerate(data))
+    ids = [e.id for e in out]
+    if dupes := sorted({i for i in ids if ids.count(i) > 1}):
+        raise HexarError(f"duplicate real-modules ids: {', '.join(dupes)}")
+    return out
+
+
+@cache
+def load_excerpts(suite: str) -> tuple[Excerpt, ...]:
+    if suite not in FILES:
+        raise HexarError(f"unknown suite {suite!r}")
+    folder = resources.files("hexar.evals").joinpath("data/real_modules")
+    try:
+        text = folder.joinpath(FILES[suite]).read_text(encoding="utf-8")
+    except OSError as err:
+        raise HexarError(f"cannot read evals/data/real_modules/{FILES[suite]}: {err}") from err
+    return parse_corpus(text)
+
+
+def _task(task_id: str, skill: str, status: str, error: str) -> dict[str, Any]:
+    return {"instruction": "move the arm" if skill != "bring_up_controllers" else "start the robot's drivers",
+            "task_id": task_id, "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": error}]}
+
+
+def write_recording(excerpt: Excerpt, out: Path, task: bool, storage: str = "sqlite3") -> Path:
+    """`excerpt` as a rosbag2 recording at `out`: /rosout, and /task_info when `task` (the skill's own outcome,
+    "The skill has been aborted" on failure, never the diagnosis)."""
+    from hexar.evals.scenarios.bag import BagBuilder
+
+    records = stamped(parse_console(excerpt.lines))
+    b = BagBuilder()
+    for r in records:
+        assert r.stamp_ns is not None
+        b.log(r.stamp_ns, r.name, r.level, r.msg)
+    if task:
+        first = min(r.stamp_ns or 0 for r in records)
+        last = max(r.stamp_ns or 0 for r in records)
+        task_id = re.sub(r"[^A-Za-z0-9]", "", excerpt.id)[-16:].rjust(16, "0")
+        skill = SKILL[excerpt.module]
+        ok = excerpt.outcome != "failed"
+        b.task_info(first - NS, _task(task_id, skill, "waiting", ""))
+        b.task_info(first - NS // 2, _task(task_id, skill, "Running", ""))
+        b.task_info(last + NS // 2, _task(task_id, skill, "succeeded" if ok else "failed",
+                                          "" if ok else "The skill has been aborted"))
+    return Path(b.write(out, "mcap" if storage == "mcap" else "sqlite3"))
+
+
+def unsupported(excerpt: Excerpt, claims: Iterable[str]) -> list[str]:
+    known = vocabulary().get(excerpt.cause)
+    allowed = {excerpt.cause, *(known.implies if known else ()), *HONEST_CAUSES}
+    out = []
+    for c in claims:
+        if c == ALL_FINE:
+            wrong = excerpt.outcome == "failed"
+        elif c == TASK_FAILED:
+            wrong = excerpt.outcome != "failed"
+        else:
+            wrong = c in vocabulary() and c not in allowed
+        if wrong:
+            out.append(c)
+    return sorted(out)
+
+
+@dataclass(frozen=True)
+class Grade:
+    named: bool
+    honest: bool
+    unsupported: tuple[str, ...]
+    verdict: str  # named | honest | wrong
+
+
+def grade(excerpt: Excerpt, claims: Iterable[str], text: str = "") -> Grade:
+    claims = set(claims)
+    bad = tuple(unsupported(excerpt, claims))
+    named = excerpt.cause in claims
+    honest = not bad and (bool(claims & HONEST_CAUSES) or bool(HONEST_WORDS.search(text)))
+    verdict = "wrong" if bad else "named" if named else "honest" if honest else "wrong"
+    return Grade(named, honest, bad, verdict)
+
+
+@dataclass(frozen=True)
+class Result:
+    id: str
+    module: str
+    distro: str
+    cause: str
+    outcome: str
+    logs_show_cause: bool
+    with_task: bool
+    question: str
+    answer: str
+    error: str
+    causes: tuple[str, ...]
+    claims: tuple[str, ...]
+    text: Grade
+    structured: Grade
+
+
+Ask = Callable[[Path, str], dict[str, Any]]
+
+
+def evaluate(excerpts: Sequence[Excerpt], runs: Path, ask: Ask) -> list[Result]:
+    out: list[Result] = []
+    for ex, task in zip(excerpts, task_plan(excerpts), strict=True):  # type: ignore[arg-type]
+        path = runs / ex.id
+        if path.exists():
+            shutil.rmtree(path)
+        write_recording(ex, path, task)
+        question = QUESTIONS[ex.outcome]
+        try:
+            r = ask(path, question)
+            answer, error, causes = str(r.get("answer", "")), str(r.get("error", "")), tuple(r.get("causes", ()))
+        except USER_ERRORS as err:  # e.g. no task to explain
+            answer, error, causes = "", f"{type(err).__name__}: {err}", ()
+        claims = tuple(sorted(read_claims(answer).affirmed))
+        out.append(Result(ex.id, ex.module, ex.distro, ex.cause, ex.outcome, ex.logs_show_cause, task, question,
+                          answer, error, causes, claims, grade(ex, claims, answer), grade(ex, causes)))
+    return out
+
+
+def summarise(results: Sequence[Result], key: Callable[[Result], str] | None = None) -> dict[str, dict[str, Any]]:
+    groups: dict[str, list[Result]] = {}
+    for r in results:
+        groups.setdefault(key(r) if key else "all", []).append(r)
+    out: dict[str, dict[str, Any]] = {}
+    for name, rs in groups.items():
+        shown = [r for r in rs if r.logs_show_cause]
+        row: dict[str, Any] = {"n": len(rs), "n_shown": len(shown)}
+        for kind in ("text", "structured"):
+            g = [getattr(r, kind) for r in rs]
+            named = sum(getattr(r, kind).named for r in shown)
+            row[kind] = {"named": named, "named_all": sum(x.named for x in g),
+                         "named_rate": named / len(shown) if shown else None,
+                         "no_unsupported": sum(not x.unsupported for x in g),
+                         "honest": sum(x.verdict == "honest" for x in g),
+                         "wrong": sum(x.verdict == "wrong" for x in g)}
+        out[name] = row
+    return out
+
+
+def build_report(results: Sequence[Result], backend: str, suite: str) -> dict[str, Any]:
+    return {"suite": suite, "data": FILES[suite], "backend": backend, "n": len(results),
+            "summary": summarise(results)["all"],
+            "by_module": dict(sorted(summarise(results, key=lambda r: r.module).items())),
+            "by_cause": dict(sorted(summarise(results, key=lambda r: r.cause).items())),
+            "excerpts": [asdict(r) for r in results]}
+
+
+def hexar_asker(backend: Any) -> Ask:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+
+    def ask(recording: Path, question: str) -> dict[str, Any]:
+        return Session(RunSettings(recording=recording, llm=backend.name), backend=backend).ask(question)
+
+    return ask
+
+
+def run_suite(backend: Any, suite: str = SUITE, runs: Path | None = None, ask: Ask | None = None,
+              excerpts: Sequence[Excerpt] | None = None) -> dict[str, Any]:
+    excerpts = load_excerpts(suite) if excerpts is None else excerpts
+    ask = ask or hexar_asker(backend)
+    if runs is None:
+        with tempfile.TemporaryDirectory(prefix="hexar-real-modules-") as tmp:
+            return build_report(evaluate(excerpts, Path(tmp), ask), backend.name, suite)
+    runs.mkdir(parents=True, exist_ok=True)
+    return build_report(evaluate(excerpts, runs, ask), backend.name, suite)

@@ -1,0 +1,218 @@
+"""Tasks derived from MoveIt's and the arm controllers' goals, for recordings that have no `/task_info`.
+
+As with Nav2 goals (events/nav_goals.py), each goal becomes a task of one step: a MoveIt goal (`move_action`,
+`execute_trajectory`) a `move_arm` step explained by `manipulation`, a joint trajectory controller's own goal
+(`follow_joint_trajectory`, sent without MoveIt) a `follow_joint_trajectory` step explained by `control`.
+Sources, best first: the lines that begin and end a goal in MoveGroupInterface's and move_group's words and the
+joint trajectory controller's (the mined catalogues, kinds begin/succeeded/failed/canceled), then the actions'
+status topics, then activity: lines of the catalogues that carry a cause (a controller that never loaded, a
+joint state that never came) with no goal line at all, one task failed at the first error.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from dataclasses import dataclass
+
+from hexar.events import contract as c
+from hexar.events.records import ERROR, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.tasks import SkillRun, StatusChange, Task
+
+MOVE_ARM = "move_arm"
+FOLLOW = "follow_joint_trajectory"
+BRING_UP = "bring_up_controllers"
+_STATUS_END = {4: "succeeded", 5: "canceled", 6: "failed"}
+_BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "end_server"}
+# move_group's "Execution completed: <status>" names how the execution ended (moveit_controller_manager's
+# ExecutionStatus::asString: SUCCEEDED, PREEMPTED, TIMED_OUT, ABORTED, FAILED, UNKNOWN, RUNNING)
+_EXECUTION_END = {"SUCCEEDED": "succeeded", "PREEMPTED": "canceled"}
+_SAME_END_NS = 1_000_000_000
+
+
+@dataclass
+class _Goal:
+    skill: str
+    start: int
+    via: str
+    end: int | None = None
+    state: str = "running"
+    error: str = ""
+
+
+def _kind(line: LogLine) -> tuple[str, str] | None:
+    """(skill, kind) of a goal line in either catalogue, else None."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
+        entry = cat.match(line.msg)
+        if entry is None:
+            continue
+        kind = entry.kind
+        if kind == "end_server":
+            status = line.msg.rsplit(":", 1)[-1].strip()
+            kind = _EXECUTION_END.get(status, "failed")
+        elif skill == FOLLOW and entry.cause == "control.tolerance_violated" and entry.strength == "strong" \
+                and line.msg.startswith("Aborted"):
+            kind = "failed"  # the controller aborts the goal it was following
+        if kind in _BEGIN or kind in _END:
+            return skill, ("begin" if kind in _BEGIN else kind)
+    return None
+
+
+def _events(logs: list[LogLine]) -> list[tuple[int, str, str, str]]:
+    """(t, skill, kind, line) of the goal lines; a MoveIt goal's lines hide its controller's goal lines."""
+    out = []
+    for line in logs:
+        found = _kind(line)
+        if found is not None:
+            out.append((line.t, found[0], found[1], line.msg))
+    if any(skill == MOVE_ARM for _, skill, _, _ in out):
+        out = [e for e in out if e[1] == MOVE_ARM]
+    return out
+
+
+def _status_events(statuses: list[GoalStatus]) -> list[tuple[int, str, str, str]]:
+    moveit = [s for s in statuses if s.topic in {c.MOVE_ACTION_STATUS, c.EXECUTE_TRAJECTORY_STATUS}]
+    chosen = moveit or [s for s in statuses if c.topic_key(s.topic) == c.FJT_STATUS]
+    skill = MOVE_ARM if moveit else FOLLOW
+    seen: dict[str, str] = {}
+    out: list[tuple[int, str, str, str]] = []
+    for s in chosen:
+        state = _STATUS_END.get(s.status, "running")
+        if s.goal_id in seen and (seen[s.goal_id] == state or seen[s.goal_id] != "running"):
+            continue
+        if s.goal_id not in seen:
+            out.append((s.accepted or s.t, skill, "begin", s.topic))
+        if state != "running":
+            out.append((s.t, skill, state, f"{s.topic}: goal {state}"))
+        seen[s.goal_id] = state
+    return out
+
+
+def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> list[_Goal]:
+    goals: list[_Goal] = []
+    open_goal: _Goal | None = None
+    for t, skill, kind, msg in sorted(events, key=lambda e: (e[0], e[2] != "begin")):
+        if kind == "begin":
+            if open_goal is None:
+                open_goal = _Goal(skill, t, via)
+                goals.append(open_goal)
+            continue  # the server's and the client's begin lines of one goal
+        if open_goal is None:
+            if goals and goals[-1].end is not None and t - goals[-1].end < _SAME_END_NS:
+                continue  # another line (or the status topic) telling the same end
+            open_goal = _Goal(skill, min(first_t, t), via)  # began before the recording did
+            goals.append(open_goal)
+        open_goal.end, open_goal.state = t, kind
+        open_goal.error = msg if kind != "succeeded" else ""
+        open_goal = None
+    return goals
+
+
+def _activity(logs: list[LogLine]) -> list[_Goal]:
+    """No goal line: catalogued cause lines make one goal (MoveIt's a move_arm, ros2_control's a
+    follow_joint_trajectory), failed at the first error; without them, the robot's own errors (a bring-up
+    failure, a driver that cannot open its device: explainers/stack_causes.py) make one `bring_up_controllers` goal
+    failed at the first, unless the recording is a Nav2 robot's (navigation explains those)."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    active: list[tuple[LogLine, str]] = []
+    for line in logs:
+        for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
+            entry = cat.match(line.msg)
+            if entry is not None and entry.cause is not None:
+                active.append((line, skill))
+                break
+    if not active:
+        from hexar.explainers.stack_causes import stack_cause
+
+        if any(_nav2_own(ln) for ln in logs):
+            return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
+        stack = stack_cause(logs)
+        if stack is None:
+            return []  # any other error may be anybody's: no task is claimed from it
+        last = max(ln.t for ln in logs)
+        return [_Goal(BRING_UP, stack.line.t, "bring-up lines (no goal line)", last, "failed", stack.line.msg)]
+    skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
+    goal = _Goal(skill, active[0][0].t, "log (no goal line)")
+    failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
+    if failed is not None:
+        goal.end, goal.state, goal.error = active[-1][0].t, "failed", failed.msg
+    return [goal]
+
+
+def _goals(logs: list[LogLine], statuses: list[GoalStatus]) -> list[_Goal]:
+    first = logs[0].t if logs else 0
+    events = _events(logs)
+    if any(kind == "begin" for _, _, kind, _ in events) or not statuses:
+        goals = _pair(events, first, "log")
+    else:
+        goals = _pair([e for e in events if e[2] != "begin"] + _status_events(statuses), first, "action status")
+    return goals or _activity(logs)
+
+
+def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Task]:
+    """One task per MoveIt (or controller) goal, in time order; empty when the recording shows none."""
+    arm_statuses = [s for s in statuses if c.topic_key(s.topic) in c.ARM_STATUS_TOPICS]
+    tasks = []
+    for order, goal in enumerate(_goals(logs, arm_statuses), start=1):
+        source = {MOVE_ARM: "moveit", FOLLOW: "ros2_control", BRING_UP: "bringup"}[goal.skill]
+        params: dict[str, object] = {"source": source, "derived_from": goal.via}
+        instruction = {MOVE_ARM: "Move the arm (derived from MoveIt)",
+                       FOLLOW: "Follow a joint trajectory (derived from ros2_control)",
+                       BRING_UP: "Start the robot (derived from its error lines)"}[goal.skill]
+        history = [StatusChange(goal.start, "running", "")]
+        if goal.end is not None:
+            history.append(StatusChange(goal.end, goal.state, goal.error))
+        run = SkillRun(0, goal.skill, params, tuple(history))
+        task_id = f"{source}-goal-{order}"
+        updates = [TaskUpdate(ch.t, task_id, instruction, "valid", "",
+                              (SkillStep(goal.skill, params, ch.status, ch.error_msg),), raw="") for ch in history]
+        last = max((ln.t for ln in logs), default=goal.start)
+        if goal.end is None and last > goal.start:
+            updates.append(TaskUpdate(last, task_id, instruction, "valid", "",
+                                      (SkillStep(goal.skill, params, "running", ""),), raw=""))
+        tasks.append(Task(task_id, instruction, tuple(updates), (run,), order, derived=True))
+    return tasks
+
+
+def _arms_line(task: Task) -> bool:
+    """A Nav2 task found from activity alone whose failing line the arm's catalogues tie to a cause."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    run = task.skills[0]
+    if run.params.get("derived_from") != "Nav2 log (no goal line)" or not run.error_msg:
+        return False
+    return any(cat.cause_of(run.error_msg, cat.match(run.error_msg)) is not None for cat in (moveit(), control()))
+
+
+def _nav2_own(line: LogLine) -> bool:
+    """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
+    (launch's generic "process has died" is anybody's)."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    cat = nav2()
+    if cat.role(line.name) is not None or cat.role(re.sub(r"-\d+$", "", line.name)) is not None:
+        return True
+    entry = cat.match(line.msg)
+    return entry is not None and not entry.id.startswith("launch.")
+
+
+def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
+    """Nav2's and the arm's derived tasks in time order. Without a Nav2 task, the arm's are all there is. With
+    one, only arm tasks of goal lines or statuses join it (activity is Nav2's to explain), and a Nav2 task
+    found only from activity gives way to arm goals (its lines were probably no Nav2 goal at all)."""
+    if not nav or not arm:
+        return nav or arm
+    arm_goals = [t for t in arm if "no goal line" not in str(t.skills[0].params.get("derived_from"))]
+    if not arm_goals and len(nav) == 1 and _arms_line(nav[0]) and arm[0].skills[0].skill != BRING_UP:
+        return arm  # Nav2's "activity" was a line of the arm's catalogues (a controller that failed to activate)
+    if not arm_goals:
+        return nav
+    real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]
+    merged = sorted(real_nav + arm_goals, key=lambda t: t.created)
+    return [dataclasses.replace(t, order=i) for i, t in enumerate(merged, start=1)]

@@ -1,0 +1,43 @@
+"""The control (ros2_control) component explainer: controller_manager, the spawners, hardware interfaces and the
+stock controllers (joint_trajectory_controller first), read from /rosout through the mined ros2_control catalogue.
+
+Causes, by the earliest decisive line (explainers/logcause.py; the spawner's "Failed loading controller" or
+"Failed to activate controller" is a symptom of the controller manager's line before it): controller_load_failed,
+controller_activation_failed, hardware_failure, tolerance_violated, configuration_error, nominal, and
+unexplained_failure (the first error no catalogue explains, quoted with its node and time). A bring-up or device
+line before them is cited first. MoveIt's lines in the window (the control explainer asked by manipulation) are
+read too, so that its symptoms are recognised as such.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from hexar.explainers.control.catalogue import catalogue
+from hexar.explainers.control.wording import template
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue
+from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
+from hexar.explainers.module_explainer import ModuleExplainer
+
+SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
+
+
+class ControlExplainer(ModuleExplainer):
+    """Explains the robot's controllers and hardware interfaces (ros2_control)."""
+
+    name: ClassVar[str] = "control"
+    skills: ClassVar[tuple[str, ...]] = SKILLS
+    prefix: ClassVar[str] = "control."
+    module_words: ClassVar[str] = "my arm controllers"
+    description: ClassVar[str] = (
+        "Explains the robot's motor controllers and hardware interfaces (ros2_control): why a controller could "
+        "not be loaded or activated, why the hardware interface failed, why a joint trajectory was aborted "
+        "(tolerance violated), and whether a trajectory was followed fine. Use it for questions about the "
+        "controllers, joints, motors or hardware."
+    )
+
+    def catalogues(self) -> list[ModuleCatalogue]:
+        return [catalogue(), moveit_catalogue()]
+
+    def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
+        return template(cause, d, what)

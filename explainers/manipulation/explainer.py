@@ -1,0 +1,102 @@
+"""The manipulation (MoveIt 2) component explainer: move_group, planning pipelines, kinematics, the planning
+scene and trajectory execution, read from /rosout through the mined MoveIt catalogue.
+
+Causes (explainers/logcause.py decides by the earliest decisive line; symptoms such as "MoveGroupInterface::move()
+failed or timeout reached" or "Plan and Execute request aborted" are never the answer when a cause precedes them):
+planning_failed, ik_failed, start_state_in_collision, goal_state_invalid, no_joint_states, stale_robot_state,
+execution_failed, controllers_not_found, configuration_error, nominal, and unexplained_failure (the first error no
+catalogue explains, quoted with its node and time). A controller's line (a tolerance abort) is told by the control
+explainer, asked through the registry; a bring-up or device line before any of them is cited first.
+
+The state monitor's numbers decide between two causes: "Requested time R, but latest received state has time L"
+with L = 0 and R a simulated time (small) means no joint state ever arrived; R a wall-clock time (an epoch) with L
+a simulated time or 0, or any L older than R, means the times were mixed (stale_robot_state).
+
+A pick or place that failed for want of reach (IK, planning, an invalid goal) after a navigation step of the same
+task asks navigation about that trip: a base that stopped in the wrong place is part of the answer.
+"""
+
+from __future__ import annotations
+
+import re
+from typing import ClassVar
+
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.control.catalogue import catalogue as control_catalogue
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
+from hexar.explainers.manipulation.catalogue import catalogue
+from hexar.explainers.manipulation.wording import template
+from hexar.explainers.module_explainer import ModuleExplainer, focus
+
+SKILLS = ("pick", "place", "move_arm")
+NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
+REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "manipulation.goal_state_invalid"})
+NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
+_TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
+                    r"(?P<last>\d+(?:\.\d+)?)")
+WALL_CLOCK_S = 1e9  # an epoch in seconds (2001 onwards): a wall-clock time, not a simulation's
+
+
+def state_monitor_cause(msg: str) -> str | None:
+    """no_joint_states or stale_robot_state from the numbers of MoveIt's state-monitor line (None: no numbers)."""
+    m = _TIMES.search(msg)
+    if m is None:
+        return None
+    requested, latest = float(m["req"]), float(m["last"])
+    if latest == 0.0 and requested < WALL_CLOCK_S:
+        return "manipulation.no_joint_states"
+    return "manipulation.stale_robot_state"
+
+
+class ManipulationExplainer(ModuleExplainer):
+    """Explains what the robot's arm did (MoveIt 2)."""
+
+    name: ClassVar[str] = "manipulation"
+    skills: ClassVar[tuple[str, ...]] = SKILLS
+    prefix: ClassVar[str] = "manipulation."
+    module_words: ClassVar[str] = "my arm's motion"
+    description: ClassVar[str] = (
+        "Explains the robot's arm (MoveIt 2 motion planning and execution): why it could not pick up or put down "
+        "an object or move its arm (no motion plan found, no inverse-kinematics solution, a start or goal in "
+        "collision, no or out-of-date joint states, no controller for the arm, trajectory execution failures, "
+        "MoveIt set-up problems), and whether an arm motion went fine. Use it for questions about grasping, "
+        "picking, placing, reaching or moving the arm."
+    )
+
+    def catalogues(self) -> list[ModuleCatalogue]:
+        return [catalogue(), control_catalogue()]
+
+    def refine(self, readings: list[Reading]) -> list[Reading]:
+        out = []
+        for r in readings:
+            cause = state_monitor_cause(r.line.msg) if r.cause == "manipulation.stale_robot_state" else None
+            out.append(Reading(r.line, r.entry, cause, r.catalogue) if cause is not None else r)
+        return out
+
+    def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
+        return template(cause, d, what)
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        found = super().explain(question, context)
+        if not set(found.causes) & REACH:
+            return found
+        return self._with_navigation(question, context, found)
+
+    def _with_navigation(self, question: str, context: Context, found: Explanation) -> Explanation:
+        """Ask navigation about the trip that brought the base to this pick or place."""
+        run = focus(context, SKILLS)
+        if run is None or self.registry is None or "navigation" not in self.registry.classes:
+            return found
+        trips = [r for r in context.task.skills[:run.index] if r.skill in NAV_SKILLS and r.state == "succeeded"]
+        if not trips:
+            return found
+        trip = trips[-1]
+        nav = self.registry.get("navigation").explain(question, context.with_window(context.task.skill_window(trip)))
+        if not nav.enough_information or set(nav.causes) <= NAV_FINE:
+            return found
+        return found.model_copy(update={
+            "text": f"{found.text} My base had stopped where my arm could not work well: {nav.text}",
+            "causes": [*found.causes, *[c for c in nav.causes if c not in found.causes]],
+            "evidence": [*found.evidence, *nav.evidence],
+            "details": [*found.details, "I asked my navigation explainer about the trip before it.", *nav.details],
+        })

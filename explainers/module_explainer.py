@@ -1,0 +1,203 @@
+"""The shared flow of the log-reading component explainers of the arm (manipulation: MoveIt 2; control:
+ros2_control): read the window's /rosout through the module's mined catalogue, decide by evidence
+(explainers/logcause.py), word the finding, and ask another explainer when the decisive line is its module's.
+
+What each subclass gives: its name, topics and description, its skills (the plan steps it explains), the
+catalogues to read with (its own first), its cause prefix, and `words(cause, ...)` -> (sentence, fix, details).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, ClassVar
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import ERROR, LogLine
+from hexar.events.tasks import SkillRun
+from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
+from hexar.explainers.phrasing import phrase
+from hexar.explainers.stack_causes import stack_cause, stack_words
+
+if TYPE_CHECKING:
+    from hexar.explainers.registry import Registry
+
+MAX_FACT_LINES = 40
+# Which explainer tells a cause of another module (the manipulation explainer asks control for a controller's).
+OWNER = {"manipulation.": "manipulation", "control.": "control"}
+
+
+def focus(context: Context, skills: tuple[str, ...]) -> SkillRun | None:
+    """The step this window is about: the failed one of these skills, else the last one inside the window."""
+    failed = context.task.failed_skill
+    if failed is not None and failed.skill in skills:
+        return failed
+    lo, hi = context.window
+    inside = [r for r in context.task.skills if r.skill in skills and r.history
+              and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
+    return inside[-1] if inside else None
+
+
+def evidence_of(cause: str, readings: list[Reading]) -> list[Evidence]:
+    return [Evidence.of_log(cause, r.line) for r in readings]
+
+
+class ModuleExplainer:
+    """Base of the arm's log explainers (see the module docstring)."""
+
+    name: ClassVar[str]
+    topics: ClassVar[frozenset[str]] = frozenset({c.ROSOUT})
+    description: ClassVar[str]
+    skills: ClassVar[tuple[str, ...]]
+    prefix: ClassVar[str]
+    module_words: ClassVar[str]  # "my arm's motion", "my arm controllers"
+
+    def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
+        self.model = model
+        self.registry = registry
+
+    def catalogues(self) -> list[ModuleCatalogue]:
+        raise NotImplementedError
+
+    def applies(self, log: EventLog) -> bool:
+        """Whether the recording shows this module at all: a line its catalogues tie to a cause, a symptom or a
+        goal, or an arm action's status. A robot without an arm is not asked (the all-components baseline)."""
+        if any(c.topic_key(s.topic) in c.ARM_STATUS_TOPICS for s in log.goal_statuses):
+            return True
+        cats = self.catalogues()
+        return any(e is not None and e.kind != "other" for ln in log.logs for e in (cat.match(ln.msg) for cat in cats))
+
+    def refine(self, readings: list[Reading]) -> list[Reading]:
+        """A module's reading of what a line's numbers say (e.g. MoveIt's state-monitor times)."""
+        return readings
+
+    def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
+        raise NotImplementedError
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        view = context.view(self.topics)
+        lines = view.logs()
+        if not lines:
+            return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
+        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
+        run = focus(context, self.skills)
+        d = diagnose(readings, run.state if run is not None else None)
+        if d.outcome == "succeeded":
+            # a goal that completed: warnings and errors on the way did not stop it (many healthy arms print some)
+            d = Diagnosis("succeeded", end=d.end)
+        else:
+            stack = stack_cause(lines)
+            if stack is not None and stack.cause == "bringup.process_died" and d.decisive is None \
+                    and d.unknown is not None and d.unknown.t < stack.line.t and d.unknown.level >= ERROR:
+                # a process that died after an error no catalogue explains: the death is that error's consequence
+                d.symptoms = [stack, *d.symptoms][:2]
+            elif stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
+                d.cause, d.decisive, d.support = stack.cause, stack, []
+                d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
+        if d.cause is not None and not d.cause.startswith(self.prefix):
+            asked = self._ask_owner(question, context, d)
+            if asked is not None:
+                return asked
+        grounded = self._compose(context, d, readings, run)
+        return phrase(self.model, self.name, question, self._facts(lines, grounded), grounded)
+
+    def _ask_owner(self, question: str, context: Context, d: Diagnosis) -> Explanation | None:
+        """The decisive line is another module's (a controller's tolerance abort under a MoveIt execution):
+        that module's explainer tells it, with this module's symptom kept as the first detail."""
+        owner = next((name for pre, name in OWNER.items() if d.cause and d.cause.startswith(pre)), None)
+        if owner is None or self.registry is None or owner not in self.registry.classes or owner == self.name:
+            return None
+        theirs = self.registry.get(owner).explain(question, context)
+        if not theirs.enough_information or d.cause not in theirs.causes:
+            return None
+        symptom = next((r for r in d.symptoms), None)
+        first = (f"I asked my {owner} explainer, because the decisive line was {owner}'s"
+                 + (f"; my own log then said '{said(symptom.line)}'." if symptom else "."))
+        return theirs.model_copy(update={"explainer": self.name, "details": [first, *theirs.details]})
+
+    def _compose(self, context: Context, d: Diagnosis, readings: list[Reading], run: SkillRun | None
+                 ) -> Explanation:
+        start = context.task.created
+        if d.cause is None and d.outcome == "failed":
+            cause = f"{self.prefix}unexplained_failure"
+            first = d.unknown
+            ev = [Evidence.of_log(cause, first)] if first is not None else []
+            ev += evidence_of(cause, d.symptoms)
+            # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
+            quoted = (f" The first error was '{said(first).splitlines()[0][:200]}' at {at(first, start)}."
+                      if first is not None else "")
+            return Explanation(
+                explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
+                text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
+                     + quoted,
+                fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
+                else "Record /rosout at INFO level from move_group and the controller manager.",
+                details=[f"The last line about it was '{said(d.end)}'." if d.end else
+                         "No line of the catalogue names a cause."])
+        if d.cause is None:
+            if d.outcome == "unknown" and not any(r.entry is not None for r in readings):
+                return Explanation.not_enough(
+                    self.name, f"The recording does not show what {self.module_words} did then.")
+            if d.outcome == "unknown":
+                return Explanation.not_enough(
+                    self.name, f"The recording ends before {self.module_words} finished, and shows no error.")
+            cause = f"{self.prefix}nominal"
+            ends = [r.line for r in readings if r.kind in {"begin", "begin_server", "succeeded", "end_server"}]
+            d.decisive = None
+            text, fix, details = self.words(cause, d, self._what(run))
+            return Explanation(explainer=self.name, text=text, causes=[cause], fix=fix, details=details,
+                               evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
+        cause = d.cause
+        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
+        decisive = d.decisive
+        assert decisive is not None
+        ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
+        if d.end is not None and all(e.t != d.end.t for e in ev):
+            ev.append(Evidence.of_log(cause, d.end))
+        source = decisive.entry.source if decisive.entry is not None else ""
+        details = [*details, f"The decisive line, at {at(decisive.line, start)}: '{said(decisive.line)}'"
+                   + (f" (its source: {source.split(' (')[0]})." if source else ".")]
+        if d.symptoms:
+            details.append(f"What followed it is a consequence, not the cause: '{said(d.symptoms[0].line)}'.")
+        if d.outcome == "unknown":
+            text = (f"The recording ends before {self.module_words} finished; on the way my logs show a problem. "
+                    + text)
+        return Explanation(explainer=self.name, text=text, causes=[cause], evidence=ev, fix=fix, details=details,
+                           confidence=0.9 if decisive.strong else 0.6)
+
+    def _what(self, run: SkillRun | None) -> str:
+        if run is None:
+            return self.module_words
+        if run.skill == "bring_up_controllers":
+            return "starting my drivers and controllers"
+        obj = run.params.get("object")
+        if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
+            return f"{'picking up' if run.skill == 'pick' else 'putting down'} the {obj.replace('_', ' ')}"
+        return self.module_words
+
+    @staticmethod
+    def _facts(lines: list[LogLine], grounded: Explanation) -> str:
+        out = ["Findings (the only causes you may state):"]
+        out += [f"- {cause}" for cause in grounded.causes]
+        out += [f"- {detail}" for detail in grounded.details]
+        out.append(f"Template answer: {grounded.text}")
+        if grounded.fix:
+            out.append(f"Suggested fix: {grounded.fix}")
+        out.append("Log (oldest first):")
+        out += [line.render() for line in lines[-MAX_FACT_LINES:]]
+        return "\n".join(out)
+
+
+def _upper(text: str) -> str:
+    return text[:1].upper() + text[1:]
+
+
+def _other_module(r: Reading) -> bool:
+    """A Nav2 line (by its text or its logger's Nav2 role) is navigation's to explain, never an unknown error
+    of the arm."""
+    if r.catalogue is not None:
+        return False
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    cat = nav2()
+    return cat.role(r.line.name) is not None or cat.match(r.line.msg) is not None

@@ -1,0 +1,58 @@
+"""Bring-up and system causes that any log explainer of the arm cites before its own module's lines.
+
+Bring-up comes from the stack's `bringup_findings` (explainers/stack: a params file not parsed, a lifecycle
+transition that failed, a process that died), each mapped onto this project's cause ids. A device the operating
+system would not open is read from the C library's strerror(EACCES) text, "Permission denied", on a line that
+names a device file (/dev/...). Network causes (DDS discovery, a firewall blocking a reverse connection) leave no
+line of their own in the logs, so none is claimed from them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+from hexar.events.records import LogLine
+from hexar.explainers.logcause import Diagnosis, Reading, said
+
+KIND_CAUSE = {"params_file": "bringup.configuration_error",
+              "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
+              "node_failed": "bringup.lifecycle_transition_failed"}
+PERMISSION = "system.device_permission"
+_DENIED = "Permission denied"  # strerror(EACCES)
+
+
+def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
+    """The earliest bring-up or device-permission line, as a reading with its cause; None when there is none."""
+    from hexar.explainers.stack import bringup_findings
+
+    found: list[Reading] = []
+    findings = bringup_findings(lines)
+    if findings:
+        f = findings[0]
+        found.append(Reading(f.line, None, KIND_CAUSE.get(f.kind, "bringup.configuration_error"), "stack"))
+    denied = next((ln for ln in lines if _DENIED in ln.msg and "/dev/" in ln.msg), None)
+    if denied is not None:
+        found.append(Reading(denied, None, PERMISSION, "system"))
+    return min(found, key=lambda r: r.line.t) if found else None
+
+
+def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
+    """(sentence, fix, details) for a bring-up or system cause; None for a module's own cause."""
+    line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
+    head = f"{what[:1].upper()}{what[1:]} failed because"
+    if cause == "bringup.process_died":
+        return (f"{head} one of my processes died during bring-up or the run, so the software it runs was gone.",
+                "Read that process's last lines before it died (a crash, an exception, a missing library).", line)
+    if cause == "bringup.lifecycle_transition_failed":
+        return (f"{head} a node's lifecycle transition (configure or activate) failed, so it never became active.",
+                "Read the node's error around the transition and bring it up in order (configure, then activate).",
+                line)
+    if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.catalogue == "stack":
+        return (f"{head} a parameter never reached one of my nodes: its parameter file could not be parsed.",
+                "Fix the parameter file's YAML (the quoted error names the line) and the node's namespace in it.",
+                line)
+    if cause == PERMISSION:
+        return (f"{head} the operating system denied access to a device: permission denied on its device file.",
+                "Give the user (or the container) access to the device: its group (dialout, video) or a udev rule.",
+                line)
+    return None

@@ -1,0 +1,374 @@
+"""Mine the MoveIt 2 and ros2_control message catalogues from mirrored sources (facts only, never their code).
+
+    .venv/bin/python scripts/mine_modules.py --mirror DIR [--check]
+
+DIR holds bare mirrors named `owner+name/repo` (e.g. moveit+moveit2/repo, ros-controls+ros2_control/repo,
+ros-controls+ros2_controllers/repo). For every branch of `scripts/modules_mining.yaml` the script greps the C++
+sources for RCLCPP_/RCUTILS_ log macros (ERROR/WARN/FATAL, also _STREAM/_THROTTLE/_ONCE/_EXPRESSION, and INFO
+in the files named for goal and controller bookkeeping), `throw X("...")` texts, and the Python spawners'
+`logger.error/warn/info(...)`; each format string becomes a regex (printf conversions, streamed and `+`-joined
+expressions and f-string fields become `[\\s\\S]*?`), deduplicated across branches with `file:line@branch` for
+each. The curated rules of the config then give an entry its cause, its kind (cause | symptom | noise | goal
+bookkeeping) and its meaning; the rest stay in the catalogue as recognised lines with no cause, so an explainer
+can tell a known MoveIt line from an unknown one. Writes explainers/manipulation/moveit_catalogue.json and
+explainers/control/ros2_control_catalogue.json; `--check` fails when the written files differ.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+ROOT = Path(__file__).resolve().parents[1]
+CONFIG = ROOT / "scripts" / "modules_mining.yaml"
+WILD = r"[\s\S]*?"
+LEVEL_NAMES = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50, "THROW": 40}
+CPP_MACRO = re.compile(r"\b(?:RCLCPP|RCUTILS_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
+CPP_THROW = re.compile(r"\bthrow\s+(?:[\w:]+)\s*[({]")
+PY_LOG = re.compile(r"\.(error|warn|warning|fatal|info)\(")
+PY_RAISE = re.compile(r"\braise\s+\w+\(")
+PRINTF = re.compile(r"%[-+ #0]*(?:\d+|\*)?(?:\.(?:\d+|\*))?(?:hh|h|ll|l|z|j|t|L|PRI\w+)?[diouxXeEfFgGcsp]")
+ESCAPES = {"n": "\n", "t": "\t", '"': '"', "'": "'", "\\": "\\", "r": "", "0": ""}
+
+
+@dataclass
+class Found:
+    level: str
+    file: str
+    line: int
+    branch: str
+    pieces: list[str | None]  # literal text, or None for an expression the format does not fix
+
+
+@dataclass
+class Entry:
+    pattern: str
+    text: str
+    level: str
+    package: str
+    open_end: bool = False
+    sources: list[str] = field(default_factory=list)
+    branches: list[str] = field(default_factory=list)
+
+
+def git(repo: Path, *args: str) -> str:
+    return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout
+
+
+def _close(text: str, start: int) -> int:
+    """Index of the bracket closing the one before `start`, skipping string and char literals."""
+    depth, i = 1, start
+    while i < len(text):
+        ch = text[i]
+        if ch in "\"'":
+            i = _skip_literal(text, i)
+            continue
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+            if depth == 0:
+                return i
+        i += 1
+    return len(text)
+
+
+def _skip_literal(text: str, i: int) -> int:
+    quote = text[i]
+    i += 1
+    while i < len(text) and text[i] != quote:
+        i += 2 if text[i] == "\\" else 1
+    return i + 1
+
+
+ANSI = re.compile(r"\x1b\[[0-9;]*m")
+
+
+def _unescape(body: str) -> str:
+    """A literal's text, without the ANSI colours some spawners wrap it in (the explainers match lines with their
+    colour codes removed)."""
+    out, i = [], 0
+    while i < len(body):
+        if body[i:i + 2] == "\\x" and re.match(r"[0-9a-fA-F]{2}", body[i + 2:i + 4]):
+            out.append(chr(int(body[i + 2:i + 4], 16)))
+            i += 4
+        elif body[i] == "\\" and i + 1 < len(body):
+            out.append(ESCAPES.get(body[i + 1], body[i + 1]))
+            i += 2
+        else:
+            out.append(body[i])
+            i += 1
+    return ANSI.sub("", "".join(out))
+
+
+def _split_args(text: str) -> list[str]:
+    args, depth, start, i = [], 0, 0, 0
+    while i < len(text):
+        ch = text[i]
+        if ch in "\"'":
+            i = _skip_literal(text, i)
+            continue
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        elif ch == "," and depth == 0:
+            args.append(text[start:i])
+            start = i + 1
+        i += 1
+    args.append(text[start:])
+    return args
+
+
+_CPP_LIT = re.compile(r'(?:u8|u|U|L)?"((?:[^"\\\n]|\\.)*)"')
+
+
+def _cpp_pieces(expr: str, printf: bool) -> list[str | None]:
+    """Literal runs of a C++ expression (adjacent literals join), None for whatever lies between them."""
+    pieces: list[str | None] = []
+    pos = 0
+    for m in _CPP_LIT.finditer(expr):
+        between = expr[pos:m.start()]
+        if re.sub(r"[\s<+]", "", between) or (pieces and "<<" in between and re.search(r"\w", between)):
+            pieces.append(None)
+        elif pieces and pieces[-1] is None and not between.strip():
+            pass
+        text = _unescape(m[1])
+        if printf:
+            parts = PRINTF.split(text.replace("%%", "\x00"))
+            for k, part in enumerate(parts):
+                if k:
+                    pieces.append(None)
+                pieces.append(part.replace("\x00", "%"))
+        else:
+            pieces.append(text)
+        pos = m.end()
+    if re.sub(r"[\s<+;)]", "", expr[pos:]):
+        pieces.append(None)
+    return pieces
+
+
+def _cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    for m in CPP_MACRO.finditer(text):
+        level, suffix = m[1], m[2]
+        body = text[m.end():_close(text, m.end())]
+        args = _split_args(body)
+        line = text.count("\n", 0, m.start()) + 1
+        if "STREAM" in suffix:
+            pieces = _cpp_pieces(args[-1] if len(args) > 1 else body, printf=False)
+        else:
+            fmt_at = next((k for k, a in enumerate(args) if k and _CPP_LIT.match(a.strip())), None)
+            if fmt_at is None:
+                continue
+            fmt = args[fmt_at]
+            pieces = _cpp_pieces(fmt, printf=True)
+        yield level, line, pieces
+    for m in CPP_THROW.finditer(text):
+        body = text[m.end():_close(text, m.end())]
+        if '"' not in body:
+            continue
+        line = text.count("\n", 0, m.start()) + 1
+        yield "THROW", line, _cpp_pieces(body, printf="%" in body and "format" in body)
+
+
+_PY_LIT = re.compile(r'(f?)("""|"|\')((?:(?!\2)[^\\]|\\.)*)\2', re.S)
+
+
+def _py_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    for regex, fixed in ((PY_LOG, None), (PY_RAISE, "THROW")):
+        for m in regex.finditer(text):
+            body = text[m.end():_close(text, m.end())]
+            level = fixed or m[1].upper()
+            pieces: list[str | None] = []
+            pos = 0
+            for lit in _PY_LIT.finditer(body):
+                if re.sub(r"[\s+()]", "", body[pos:lit.start()]):
+                    pieces.append(None)
+                value = _unescape(lit[3])
+                # f-string fields, str.format's {} and %-conversions are all values the format does not fix
+                fields = r"\{[^{}]*\}" if lit[1] else r"\{\}|" + PRINTF.pattern
+                for k, part in enumerate(re.split(fields, value)):
+                    if k:
+                        pieces.append(None)
+                    pieces.append(part)
+                pos = lit.end()
+            if re.sub(r"[\s+()]", "", body[pos:]):
+                pieces.append(None)
+            if pieces:
+                yield level, text.count("\n", 0, m.start()) + 1, pieces
+
+
+START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
+GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
+
+
+def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
+    """(regex, the literal text with '…' for each expression, whether it ends in an expression) of a message's
+    pieces. A message that begins with its literal is matched from the message's start only (a short format such
+    as "Received request" must not match inside another module's line)."""
+    parts: list[str] = []
+    shown: list[str] = []
+    for p in pieces:
+        if p and "\n" in p and "".join(shown).strip():
+            # a console prints each line of a message as a line of its own: match the first one
+            head = p.split("\n", 1)[0]
+            if head:
+                parts.append(re.escape(head).replace("\\ ", " "))
+                shown.append(head)
+            break
+        if p and "\n" in p:
+            p = p.lstrip("\n").split("\n", 1)[0]
+        if p is None or p == "":
+            if p is None and (not parts or parts[-1] != WILD):
+                parts.append(WILD)
+                shown.append("…")
+            continue
+        parts.append(re.escape(p).replace("\\ ", " "))
+        shown.append(p)
+    open_start = bool(parts) and parts[0] == WILD
+    open_end = bool(parts) and parts[-1] == WILD
+    while parts and parts[0] == WILD:
+        parts.pop(0)
+    while parts and parts[-1] == WILD:
+        parts.pop()
+    if not parts:
+        return "", "", open_end
+    return ("" if open_start else START) + "".join(parts), "".join(shown).strip("…").strip(), open_end
+
+
+def _longest_literal(pieces: list[str | None]) -> int:
+    return max((len(p.strip()) for p in pieces if p), default=0)
+
+
+def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
+    skip = re.compile(cfg["skip_paths"])
+    info_files = re.compile(cfg.get("info_files", "^$"))
+    files = [f for f in git(repo, "ls-tree", "-r", "--name-only", branch).splitlines()
+             if f.endswith((".cpp", ".hpp", ".h", ".py")) and not skip.search(f)]
+    for f in files:
+        text = git(repo, "show", f"{branch}:{f}")
+        calls = _py_calls(text) if f.endswith(".py") else _cpp_calls(text)
+        for level, line, pieces in calls:
+            if level in {"DEBUG"} or (level == "INFO" and not info_files.search(f)):
+                continue
+            if _longest_literal(pieces) < 6:
+                continue  # "%s" alone, or a stream of variables: nothing to recognise a line by
+            yield Found(level, f, line, branch, pieces)
+
+
+def package_of(path: str) -> str:
+    parts = path.split("/")
+    for k in range(len(parts) - 1, 0, -1):
+        if parts[k] in {"src", "include", "controller_manager", "hardware_interface"} and k:
+            return parts[k - 1] if parts[k] != parts[k - 1] else parts[k]
+    return parts[0]
+
+
+def collect(cfg: dict[str, Any], mirror: Path, module: str) -> list[Entry]:
+    entries: dict[str, Entry] = {}
+    for repo_cfg in cfg["modules"][module]["repos"]:
+        repo = mirror / repo_cfg["mirror"] / "repo"
+        for branch in repo_cfg["branches"]:
+            for found in mine_repo(repo, branch, repo_cfg):
+                pattern, text, open_end = to_regex(found.pieces)
+                if not pattern:
+                    continue
+                e = entries.get(pattern)
+                if e is None:
+                    e = entries[pattern] = Entry(pattern, text, found.level, package_of(found.file), open_end)
+                elif LEVEL_NAMES[found.level] > LEVEL_NAMES[e.level] and found.level != "THROW":
+                    e.level = found.level
+                if branch not in e.branches:
+                    e.branches.append(branch)
+                    e.sources.append(f"{repo_cfg['name']}/{found.file}:{found.line}@{branch}")
+    return list(entries.values())
+
+
+def _sources(sources: list[str]) -> str:
+    """`repo/path:L@branch (L2@branch2, ...)`: the path once when the branches agree on it."""
+    first_path = sources[0].rsplit(":", 1)[0]
+    rest = [s.rsplit(":", 1)[1] if s.rsplit(":", 1)[0] == first_path else s for s in sources[1:]]
+    return sources[0] + (f" ({', '.join(rest)})" if rest else "")
+
+
+def _slug(text: str) -> str:
+    words = re.findall(r"[a-z0-9]+", text.lower())[:6]
+    return "_".join(words) or "line"
+
+
+def classify(entries: list[Entry], cfg: dict[str, Any], module: str) -> list[dict[str, Any]]:
+    rules = [(re.compile(r["match"]), r) for r in cfg["modules"][module]["rules"]]
+    used: set[str] = set()
+    order = cfg["distro_of_branch"]
+    out = []
+    ids: set[str] = set()
+    for e in sorted(entries, key=lambda x: (x.package, x.text)):
+        rule = next((r for rx, r in rules if rx.search(e.text)), None)
+        if rule is not None:
+            used.add(rule["match"])
+        base = f"{e.package}.{_slug(e.text)}"
+        ident, k = base, 2
+        while ident in ids:
+            ident, k = f"{base}_{k}", k + 1
+        ids.add(ident)
+        distros = sorted({order[b] for b in e.branches}, key=list(order.values()).index)
+        row: dict[str, Any] = {
+            "id": ident, "role": e.package, "level": e.level, "package": e.package,
+            "kind": rule["kind"] if rule else "other", "strength": rule.get("strength", "strong") if rule else "weak",
+            "cause": rule.get("cause") if rule else None,
+            "meaning": rule["meaning"] if rule else f"a {e.level.lower()} of {e.package} (no cause assigned)",
+            # a goal's begin or end line is matched whole: its words recur inside other lines
+            "distros": distros,
+            "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""),
+            "text": e.text, "source": _sources(e.sources),
+        }
+        out.append(row)
+    unused = [m for m in (r["match"] for r in cfg["modules"][module]["rules"]) if m not in used]
+    if unused:
+        raise SystemExit(f"ERROR: {module}: rules that match no mined line: {unused}")
+    return out
+
+
+def dump(doc: dict[str, Any]) -> str:
+    """JSON with one message per line: diffs of a re-mine read line by line."""
+    head = {k: v for k, v in doc.items() if k != "messages"}
+    body = ",\n".join("  " + json.dumps(m, ensure_ascii=False) for m in doc["messages"])
+    return json.dumps(head, ensure_ascii=False)[:-1] + ', "messages": [\n' + body + "\n]}\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--mirror", type=Path, required=True, help="folder of owner+name/repo bare mirrors")
+    ap.add_argument("--check", action="store_true", help="fail when the committed catalogues differ")
+    args = ap.parse_args(argv)
+    cfg = yaml.safe_load(CONFIG.read_text(encoding="utf-8"))
+    status = 0
+    for module, mcfg in cfg["modules"].items():
+        rows = classify(collect(cfg, args.mirror, module), cfg, module)
+        doc = {"about": mcfg["about"], "distros": list(dict.fromkeys(cfg["distro_of_branch"].values())),
+               "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}),
+               "refinements": mcfg.get("refinements", []), "messages": rows}
+        target = ROOT / mcfg["out"]
+        text = dump(doc)
+        if args.check:
+            if not target.is_file() or target.read_text(encoding="utf-8") != text:
+                print(f"ERROR: {target.relative_to(ROOT)} is not what the miner writes", file=sys.stderr)
+                status = 1
+            continue
+        target.write_text(text, encoding="utf-8")
+        with_cause = sum(r["cause"] is not None for r in rows)
+        print(f"{module}: {len(rows)} messages, {with_cause} with a cause -> {target.relative_to(ROOT)}")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,70 @@
+"""The arm's fetch recordings (evals/scenarios/arm.py) through the interfaces a person uses: `hexar ask` (the
+agent's graph), piped `hexar chat`, and `hexar triage`; each shows the manipulation finding."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from rich.console import Console
+
+from hexar.cli import main
+from hexar.evals.scenarios.arm import arm_recording_name, simulate_arm_suite
+from hexar.triage_cmd import TriageOptions, triage_command
+
+HEXAR = str(Path(sys.executable).with_name("hexar"))
+PICKED = {("controllers_not_found", 1), ("tolerance", 1), ("out_of_reach", 2), ("nominal", 1)}
+
+
+@pytest.fixture(scope="module")
+def arm_runs(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("arm")
+    simulate_arm_suite(out, only=lambda s, v: (s, v) in PICKED)
+    return out
+
+
+def _ask(run: Path, question: str, capsys: pytest.CaptureFixture[str]) -> dict[str, object]:
+    assert main(["ask", str(run), question, "--llm", "none", "--json"]) == 0
+    return json.loads(capsys.readouterr().out)  # type: ignore[no-any-return]
+
+
+def test_ask_names_the_arm_cause_through_the_failure_check(arm_runs: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    r = _ask(arm_runs / arm_recording_name("controllers_not_found", 1), "Why didn't you bring me the cup?", capsys)
+    assert r["causes"] == ["manipulation.controllers_not_found"] and r["explainers"] == ["manipulation"]
+    assert r["route"] == "failure_check"
+    assert "found no controllers for my arm's joints" in str(r["answer"])
+
+
+def test_a_failed_pick_after_a_bad_trip_asks_navigation(arm_runs: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    r = _ask(arm_runs / arm_recording_name("out_of_reach", 2), "What happened?", capsys)
+    assert r["causes"] == ["manipulation.planning_failed", "navigation.poor_localisation"]
+    assert "not sure where I was on my map" in str(r["answer"])
+
+
+def test_piped_chat_answers_and_goes_deeper(arm_runs: Path, tmp_path: Path) -> None:
+    env = {**os.environ, "HEXAR_LLM": "none"}
+    done = subprocess.run([HEXAR, "chat", str(arm_runs / arm_recording_name("tolerance", 1)), "--llm", "none",
+                           "--checkpoints", str(tmp_path / "t.sqlite")], input="Why didn't you bring it?\nwhy?\n",
+                          capture_output=True, text=True, env=env, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    assert "beyond the controller's tolerance" in done.stdout
+    deeper = done.stdout.split("you> why?", 1)[1]
+    assert "State tolerances failed for joint" in deeper  # "why?" goes to the controller's own recorded lines
+
+
+def test_triage_counts_the_arm_causes(arm_runs: Path, tmp_path: Path) -> None:
+    out = tmp_path / "triage"
+    assert triage_command(TriageOptions((str(arm_runs),), out, workers=1, figures=False, progress=False),
+                          Console(quiet=True)) == 0
+    df = pd.read_parquet(out / "tasks.parquet")
+    user = df[~df["recovery"]]
+    causes = set(user["cause"])
+    assert {"manipulation.controllers_not_found", "control.tolerance_violated",
+            "manipulation.planning_failed"} <= causes
+    row = user[user["cause"] == "manipulation.controllers_not_found"].iloc[0]
+    assert row["failed_skill"] == "pick" and row["explainer"] == "manipulation"

@@ -1,0 +1,59 @@
+"""The real-modules suite: the corpus parses, every excerpt becomes a recording, answers are graded from their
+text, and the CLI writes its report; bad input is one ERROR line."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.cli import main
+from hexar.errors import HexarError
+from hexar.evals.real_modules import SUITE, Excerpt, grade, load_excerpts, parse_corpus, write_recording
+from hexar.events import read_recording
+
+
+def test_the_corpus_parses_with_cause_ids_of_the_vocabulary() -> None:
+    excerpts = load_excerpts(SUITE)
+    assert len(excerpts) >= 20
+    assert {e.module for e in excerpts} <= {"manipulation", "control", "bringup", "system"}
+
+
+def test_an_excerpt_becomes_a_recording_with_or_without_a_task(tmp_path: Path) -> None:
+    ex = load_excerpts(SUITE)[0]
+    with_task = read_recording(write_recording(ex, tmp_path / "a", True))
+    without = read_recording(write_recording(ex, tmp_path / "b", False))
+    assert with_task.task_updates and not without.task_updates
+    assert [ln.msg for ln in with_task.logs] == [ln.msg for ln in without.logs]
+    assert not any(ex.cause in u.raw for u in with_task.task_updates)  # the diagnosis is never recorded
+
+
+def _ex(cause: str, outcome: str = "failed") -> Excerpt:
+    return Excerpt("x", "s", "u", "unknown", "control", outcome, cause, "q", True, "[ERROR] [1.0] [a]: b")
+
+
+def test_grading_named_wrong_and_honest() -> None:
+    assert grade(_ex("control.tolerance_violated"), {"control.tolerance_violated"}).verdict == "named"
+    wrong = grade(_ex("control.tolerance_violated"), {"manipulation.planning_failed"})
+    assert wrong.verdict == "wrong" and wrong.unsupported == ("manipulation.planning_failed",)
+    honest = grade(_ex("control.hardware_failure"), set(), "My controllers failed, but my control logs do not "
+                                                           "show a cause I know.")
+    assert honest.verdict == "honest"
+
+
+def test_a_corpus_that_names_an_unknown_cause_is_refused() -> None:
+    with pytest.raises(HexarError, match="unknown cause"):
+        parse_corpus("- {id: a, source: s, url: u, distro: humble, module: control, outcome: failed, "
+                     "cause: control.nonsense, cause_quote: q, logs_show_cause: true, lines: 'x'}")
+
+
+def test_the_suite_runs_from_the_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["eval", "--suite", "real-modules", "--out", str(tmp_path / "out")]) == 0
+    text = (tmp_path / "out" / "results.md").read_text()
+    assert "### By module" in text and "| manipulation |" in text and "| control |" in text
+
+
+def test_options_of_the_paper_suite_are_one_error_line(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["eval", "--suite", "real-modules", "--first", "2"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["ERROR: --first do not apply to --suite real-modules"]

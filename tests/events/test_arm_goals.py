@@ -1,0 +1,74 @@
+"""Tasks derived from MoveIt's and the arm controllers' goals (no /task_info): from their goal lines, from the
+actions' status topics, and from activity; Nav2's own goals are untouched."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events import contract as c
+from hexar.events import read_recording
+from hexar.events.reader import read_tasks
+from hexar.events.records import ERROR, INFO
+
+T0 = 1_700_000_000_000_000_000
+MGI = "move_group_interface"
+
+
+def _status_msg(t: int, goal: int, status: int):  # type: ignore[no-untyped-def]
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_HUMBLE)
+    m = ts.types
+    info = m["action_msgs/msg/GoalInfo"](
+        goal_id=m["unique_identifier_msgs/msg/UUID"](uuid=__import__("numpy").array([goal] * 16, dtype="uint8")),
+        stamp=m["builtin_interfaces/msg/Time"](sec=t // 1_000_000_000, nanosec=t % 1_000_000_000))
+    return m["action_msgs/msg/GoalStatusArray"](status_list=[m["action_msgs/msg/GoalStatus"](goal_info=info,
+                                                                                               status=status)])
+
+
+def test_each_plan_and_execute_goal_becomes_a_move_arm_task(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, MGI, INFO, "Plan and Execute request accepted")
+    b.log(T0 + sec_ns(3), MGI, INFO, "Plan and Execute request complete!")
+    b.log(T0 + sec_ns(5), MGI, INFO, "Plan and Execute request accepted")
+    b.log(T0 + sec_ns(6), "moveit.ompl_planning.model_based_planning_context", ERROR,
+          "Unable to solve the planning problem")
+    b.log(T0 + sec_ns(7), MGI, INFO, "Plan and Execute request aborted")
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [(t.task_id, t.skills[0].skill, t.outcome) for t in tasks] == [
+        ("moveit-goal-1", "move_arm", "succeeded"), ("moveit-goal-2", "move_arm", "failed")]
+    assert tasks[1].skills[0].error_msg == "Plan and Execute request aborted"
+    assert tasks[0].instruction == "Move the arm (derived from MoveIt)"
+
+
+def test_a_controllers_goal_status_topic_alone_gives_its_task(tmp_path: Path) -> None:
+    b = BagBuilder()
+    topic = "/arm_controller/follow_joint_trajectory/_action/status"
+    b.raw(T0, topic, c.GOAL_STATUS_TYPE, _status_msg(T0, 7, 2))
+    b.raw(T0 + sec_ns(2), topic, c.GOAL_STATUS_TYPE, _status_msg(T0, 7, 6))
+    b.log(T0 + sec_ns(1), "some_node", INFO, "hello")
+    path = b.write(tmp_path / "run")
+    tasks = read_tasks(path).tasks
+    assert [(t.skills[0].skill, t.outcome, t.skills[0].params["derived_from"]) for t in tasks] == [
+        ("follow_joint_trajectory", "failed", "action status")]
+    log = read_recording(path)
+    assert {s.topic for s in log.goal_statuses} == {topic}
+
+
+def test_nav2_goals_stay_nav2_tasks_when_no_arm_goal_is_recorded(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (2.00, 1.00)")
+    b.log(T0 + sec_ns(5), "bt_navigator", INFO, "Goal succeeded")
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [t.skills[0].skill for t in tasks] == ["navigate_to_pose"]
+
+
+def test_a_device_the_os_would_not_open_gives_a_bring_up_task_an_unknown_error_none(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "v4l2_camera", ERROR, "Cannot open '/dev/video0': 13, Permission denied")
+    tasks = read_recording(b.write(tmp_path / "a")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
+    b = BagBuilder()
+    b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")  # anybody's: no task is claimed from it
+    assert read_recording(b.write(tmp_path / "b")).tasks == []

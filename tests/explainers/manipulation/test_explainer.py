@@ -1,0 +1,89 @@
+"""The manipulation explainer on real rosbag2 recordings of MoveIt's own lines (texts of the mined catalogue,
+moveit2 file:line@branch in moveit_catalogue.json): the earliest decisive line is the answer, symptoms never are,
+an unknown error is quoted with its node and time, and a controller's line is told by the control explainer."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events import read_recording
+from hexar.events.records import ERROR, INFO, WARN
+from hexar.explainers.base import Context
+from hexar.explainers.manipulation.explainer import state_monitor_cause
+from hexar.explainers.registry import Registry
+
+T0 = 1_700_000_000_000_000_000
+MGI = "move_group_interface"
+
+
+def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str = "Why did it fail?"):  # type: ignore[no-untyped-def]
+    b = BagBuilder()
+    for s, name, level, msg in lines:
+        b.log(T0 + sec_ns(s), name, level, msg)
+    log = read_recording(b.write(tmp_path / "run"))
+    registry = Registry.load()
+    task = log.task()
+    return task, registry.get("manipulation").explain(question, Context.for_task(log, task, registry))
+
+
+def _aborted(at: float) -> list[tuple[float, str, int, str]]:
+    return [(at, MGI, INFO, "Plan and Execute request aborted"),
+            (at + 0.01, MGI, ERROR, "MoveGroupInterface::move() failed or timeout reached")]
+
+
+def test_earliest_decisive_line_beats_the_symptoms_after_it(tmp_path: Path) -> None:
+    task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "moveit.ompl_planning.model_based_planning_context", ERROR, "Unable to solve the planning problem"),
+        *_aborted(2)])
+    assert task.derived and task.skills[0].skill == "move_arm" and task.outcome == "failed"
+    assert found.causes == ["manipulation.planning_failed"]
+    assert found.evidence[0].item.endswith("Unable to solve the planning problem")
+    assert "motion planner found no solution" in found.text
+    assert any("consequence, not the cause" in d and "request aborted" in d for d in found.details)
+
+
+def test_no_joint_states_and_a_time_mix_are_told_apart_by_the_state_monitor_numbers(tmp_path: Path) -> None:
+    line = ("Didn't receive robot state (joint angles) with recent timestamp within 1.000000 seconds. "
+            "Requested time {0}, but latest received state has time {1}.")
+    assert state_monitor_cause(line.format("63.529000", "0.000000")) == "manipulation.no_joint_states"
+    assert state_monitor_cause(line.format("1739369238.330760", "0.000000")) == "manipulation.stale_robot_state"
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "moveit_ros.current_state_monitor", INFO, line.format("1700000001.000000", "812.400000")),
+        (1.1, MGI, ERROR, "Failed to fetch current robot state"), *_aborted(2)])
+    assert found.causes == ["manipulation.stale_robot_state"]
+    assert "wall-clock time were mixed" in found.text
+
+
+def test_an_error_no_catalogue_knows_is_quoted_with_its_node_and_time_not_guessed(tmp_path: Path) -> None:
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (3.5, "my_gripper_driver", ERROR, "gripper fingers jammed at 12 mm"), *_aborted(4)])
+    assert found.causes == ["manipulation.unexplained_failure"]
+    assert "do not show a cause I know" in found.text
+    assert "'[my_gripper_driver] gripper fingers jammed at 12 mm' at 3.5 s" in found.text
+    assert found.confidence < 0.5
+
+
+def test_a_controller_tolerance_abort_is_told_by_the_control_explainer(tmp_path: Path) -> None:
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "arm_controller", INFO, "Received new action goal"),
+        (2, "arm_controller", WARN, "Aborted due to state tolerance violation"),
+        (2.1, "moveit.simple_controller_manager.follow_joint_trajectory_controller_handle", WARN,
+         "Controller 'arm_controller' failed with error PATH_TOLERANCE_VIOLATED: "), *_aborted(2.5)])
+    assert found.explainer == "manipulation" and found.causes == ["control.tolerance_violated"]
+    assert "tolerance" in found.text
+    assert found.details[0].startswith("I asked my control explainer")
+
+
+def test_a_goal_that_completed_is_nominal_despite_warnings(tmp_path: Path) -> None:
+    _, found = _explain(tmp_path, [
+        (0, "moveit_ros.planning_scene_monitor", WARN,
+         "The complete state of the robot is not yet known.  Missing BASE_TF_joint"),
+        (1, MGI, INFO, "Plan and Execute request accepted"),
+        (4, MGI, INFO, "Plan and Execute request complete!")], "How did it go?")
+    assert found.causes == ["manipulation.nominal"]
+    assert "without any problem" in found.text

@@ -1,0 +1,109 @@
+"""scripts/mine_modules.py on a small git repository made here: log macros (printf, stream, throttle), throws and
+Python spawner logs become anchored regexes, branches merge into one entry with file:line@branch each, rules
+give causes, and a rule that matches nothing stops the miner."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+import pytest
+
+SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_modules.py"
+CPP_A = """
+void f() {
+  RCLCPP_ERROR(get_logger(), "Loader for controller '%s' not found.", name.c_str());
+  RCLCPP_WARN_STREAM_THROTTLE(logger_, *clock, 1000, "Controller '" << name_ << "' failed with error " << code);
+  throw std::runtime_error("Joint '" + joint + "' not found in URDF");
+  RCLCPP_INFO(get_logger(), "Loading controller '%s'", name.c_str());
+}
+"""
+CPP_B = """
+void f() {
+  RCLCPP_ERROR(get_logger(), "Loader for controller '%s' (type '%s') not found.", name.c_str(), t.c_str());
+  RCLCPP_WARN_STREAM_THROTTLE(logger_, *clock, 1000, "Controller '" << name_ << "' failed with error " << code);
+}
+"""
+PY = 'def main():\n    logger.error(bcolors.FAIL + f"Failed loading controller {name}" + bcolors.ENDC)\n'
+
+
+def _module() -> ModuleType:
+    spec = importlib.util.spec_from_file_location("mine_modules", SCRIPT)
+    assert spec is not None and spec.loader is not None
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules["mine_modules"] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def _git(repo: Path, *args: str) -> None:
+    subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True)
+
+
+@pytest.fixture
+def mirror(tmp_path: Path) -> Path:
+    repo = tmp_path / "me+ctl" / "repo"
+    (repo / "cm" / "src").mkdir(parents=True)
+    _git(repo, "init", "-q", "-b", "humble")
+    _git(repo, "config", "user.email", "t@t")
+    _git(repo, "config", "user.name", "t")
+    (repo / "cm" / "src" / "cm.cpp").write_text(CPP_A)
+    (repo / "cm" / "spawner.py").write_text(PY)
+    (repo / "cm" / "test").mkdir()
+    (repo / "cm" / "test" / "test_cm.cpp").write_text('RCLCPP_ERROR(l, "only in a test %d", 1);')
+    _git(repo, "add", ".")
+    _git(repo, "commit", "-qm", "a")
+    _git(repo, "checkout", "-qb", "jazzy")
+    (repo / "cm" / "src" / "cm.cpp").write_text("\n" + CPP_B)
+    _git(repo, "commit", "-qam", "b")
+    return tmp_path
+
+
+def _config(rules: list[dict[str, Any]]) -> dict[str, Any]:
+    return {"distro_of_branch": {"humble": "humble", "jazzy": "jazzy"},
+            "modules": {"control": {"out": "x.json", "about": "t", "roles": {}, "rules": rules, "repos": [
+                {"name": "ctl", "mirror": "me+ctl", "branches": ["humble", "jazzy"],
+                 "skip_paths": "(^|/)test(/|$)", "info_files": r"cm\.cpp"}]}}}
+
+
+def test_messages_become_anchored_patterns_with_their_sources(mirror: Path) -> None:
+    mod = _module()
+    rules = [{"match": "^Loader for controller", "kind": "cause", "cause": "control.controller_load_failed",
+              "meaning": "m"}]
+    rows = {r["text"]: r for r in mod.classify(mod.collect(_config(rules), mirror, "control"), _config(rules),
+                                                "control")}
+    assert "only in a test" not in " ".join(rows)
+    old, new = rows["Loader for controller '…' not found."], rows["Loader for controller '…' (type '…') not found."]
+    assert old["cause"] == new["cause"] == "control.controller_load_failed"
+    assert old["distros"] == ["humble"] and new["distros"] == ["jazzy"]
+    assert re.search(new["pattern"], "Loader for controller 'jsb' (type 'jsb/JSB') not found.")
+    assert not re.search(new["pattern"], "my node says: Loader for controller 'a' (type 'b') not found.")
+    both = rows["Controller '…' failed with error"]
+    assert both["distros"] == ["humble", "jazzy"] and both["level"] == "WARN"
+    assert both["source"] == "ctl/cm/src/cm.cpp:4@humble (5@jazzy)"
+    assert "Joint '…' not found in URDF" in rows and rows["Joint '…' not found in URDF"]["level"] == "THROW"
+    spawner = rows["Failed loading controller"]
+    assert spawner["level"] == "ERROR" and "\\x1b" not in spawner["pattern"]
+    assert rows["Loading controller '…'"]["level"] == "INFO"  # INFO only from the configured files
+
+
+def test_a_rule_that_matches_nothing_stops_the_miner(mirror: Path) -> None:
+    mod = _module()
+    cfg = _config([{"match": "^No such line$", "kind": "cause", "cause": "control.nominal", "meaning": "m"}])
+    with pytest.raises(SystemExit, match="rules that match no mined line"):
+        mod.classify(mod.collect(cfg, mirror, "control"), cfg, "control")
+
+
+def test_the_committed_catalogues_cite_a_file_line_and_branch_for_every_message() -> None:
+    root = SCRIPT.parents[1]
+    for path in ("explainers/manipulation/moveit_catalogue.json", "explainers/control/ros2_control_catalogue.json"):
+        doc = json.loads((root / path).read_text(encoding="utf-8"))
+        assert doc["messages"]
+        assert all(re.match(r"[\w/.+-]+:\d+@[\w.]+", m["source"]) for m in doc["messages"])
+        assert all(re.compile(m["pattern"]) for m in doc["messages"])
