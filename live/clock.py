@@ -150,10 +150,11 @@ class Timeline:
                 return self._dated(topic, msg, source)
             self._pending.append((topic, msg, source, time.monotonic_ns()))
             return self.flush()
-        records = self._dated(topic, msg, self.date(source))
+        stamp = msg.stamp if topic == c.ROSOUT else getattr(getattr(msg, "header", None), "stamp", None)
+        robot = stamp_ns(stamp.sec, stamp.nanosec) if stamp is not None else 0
+        records = self._dated(topic, msg, robot or self.date(source))
         if topic in REFERENCES:
-            stamp = msg.stamp if topic == c.ROSOUT else msg.header.stamp
-            self.stamped(stamp_ns(stamp.sec, stamp.nanosec), source)
+            self.stamped(robot, source)
         return self.flush() + records
 
     def flush(self) -> list[Record]:

@@ -31,7 +31,8 @@ class RollingRecorder:
         if self.failed:
             return
         try:
-            if self._writer is None or t - self._start >= self.chunk_ns or t < self._start:
+            # a new bag per chunk, and on a clock that went back by a chunk (messages a little out of order stay)
+            if self._writer is None or t - self._start >= self.chunk_ns or t < self._start - self.chunk_ns:
                 self._rotate(t)
             conn = self._conns.get(topic)
             if conn is None:
