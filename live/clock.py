@@ -48,7 +48,10 @@ REFERENCES = frozenset({c.ROSOUT}) | DIAGNOSTICS
 class Timeline:
     """Source times -> robot times. Not thread-safe: each transport calls it from its one receive thread."""
 
-    def __init__(self, same_clock_s: float = 10.0, hold_s: float = 1.0, window: int = 64) -> None:
+    def __init__(self, same_clock_s: float = 10.0, hold_s: float = 1.0, window: int = 64,
+                 on_dated: Callable[[str, Any, int], None] | None = None) -> None:
+        # on_dated(topic, msg, robot time): each message once dated, held ones included (the rolling recorder)
+        self.on_dated = on_dated
         self.same_clock_ns = int(same_clock_s * NS)
         self.hold_ns = int(hold_s * NS)
         self._clock: deque[tuple[int, int]] = deque(maxlen=window)  # (source, robot) from /clock
@@ -144,13 +147,14 @@ class Timeline:
             return self.flush()
         if topic not in STAMPED:
             if self._live() and not self._pending:
-                return to_records(topic, msg, source)
+                return self._dated(topic, msg, source)
             self._pending.append((topic, msg, source, time.monotonic_ns()))
             return self.flush()
-        records = to_records(topic, msg, self.date(source))
+        stamp = msg.stamp if topic == c.ROSOUT else getattr(getattr(msg, "header", None), "stamp", None)
+        robot = stamp_ns(stamp.sec, stamp.nanosec) if stamp is not None else 0
+        records = self._dated(topic, msg, robot or self.date(source))
         if topic in REFERENCES:
-            stamp = msg.stamp if topic == c.ROSOUT else msg.header.stamp
-            self.stamped(stamp_ns(stamp.sec, stamp.nanosec), source)
+            self.stamped(robot, source)
         return self.flush() + records
 
     def flush(self) -> list[Record]:
@@ -170,8 +174,13 @@ class Timeline:
             else:
                 break
             self._pending.pop(0)
-            out.extend(to_records(topic, msg, t))
+            out.extend(self._dated(topic, msg, t))
         return out
+
+    def _dated(self, topic: str, msg: Any, t: int) -> list[Record]:
+        if self.on_dated is not None:
+            self.on_dated(topic, msg, t)
+        return to_records(topic, msg, t)
 
 def add_all(records: list[Record], add: Callable[[Record], bool], on_record: Callable[[Record], None]) -> bool:
     """Add records to the log, telling the node of each new one; True when any was new."""

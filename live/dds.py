@@ -166,7 +166,7 @@ class DdsTransport:
         self._stop = threading.Event()
         self._thread: threading.Thread | None = None
         self.errors = 0
-        self.timeline = Timeline()
+        self.timeline = Timeline(on_dated=self._record)
         self._answer = self.endpoint.writer(ANSWER, c.STRING_TYPE, ANSWER_QOS)
         self._tts = self.endpoint.writer(tts_topic, c.STRING_TYPE, TTS_QOS) if tts_topic else None
 
@@ -189,11 +189,7 @@ class DdsTransport:
             if topic == QUESTION:
                 on_question(str(sample.data))
                 return
-            records = self.timeline.records(topic, sample, t)
-            fresh = add_all(records, log.add, on_record)
-            if (fresh or not records) and self.recorder is not None and topic != CLOCK:
-                # on the robot's clock, as `ros2 bag record` on the robot would have stamped it
-                self.recorder.write(topic, self._types[topic], sample.serialize(), self.timeline.date(t))
+            add_all(self.timeline.records(topic, sample, t), log.add, on_record)
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
@@ -201,6 +197,11 @@ class DdsTransport:
         take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
         if self.recorder is not None:
             self.recorder.close()  # sqlite wants the thread that wrote the bag to close it
+
+    def _record(self, topic: str, sample: Any, t: int) -> None:
+        """Into the rolling recording, on the robot's clock, as `ros2 bag record` on the robot stamps it."""
+        if self.recorder is not None:
+            self.recorder.write(topic, c.TYPE_OF[topic], sample.serialize(), t)
 
     def _report(self, line: str) -> None:
         self.errors += 1

@@ -165,7 +165,7 @@ class RclpyTransport:
         self.node = self.ros.node
         self.tts_topic = tts_topic
         self.recorder = recorder
-        self.timeline = Timeline()
+        self.timeline = Timeline(on_dated=self._record)
         self.errors = 0
         self._humble: Any = None
         self._string = _msg_class(c.STRING_TYPE)
@@ -210,10 +210,7 @@ class RclpyTransport:
             try:
                 msg = self._humble.deserialize_cdr(raw, ros_type)
                 source = int(info["source_timestamp"])
-                records = self.timeline.records(topic, msg, source)
-                fresh = add_all(records, log.add, on_record)
-                if (fresh or not records) and self.recorder is not None and topic != CLOCK:
-                    self.recorder.write(topic, ros_type, bytes(raw), self.timeline.date(source))
+                add_all(self.timeline.records(topic, msg, source), log.add, on_record)
             except Exception as err:  # one bad message is reported and skipped; the node keeps listening
                 self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
 
@@ -230,6 +227,12 @@ class RclpyTransport:
                 one(*taken)
 
         return handle
+
+    def _record(self, topic: str, msg: Any, t: int) -> None:
+        """Into the rolling recording, on the robot's clock, as `ros2 bag record` on the robot stamps it."""
+        if self.recorder is not None:
+            ros_type = c.TYPE_OF[topic]
+            self.recorder.write(topic, ros_type, bytes(self._humble.serialize_cdr(msg, ros_type)), t)
 
     def _report(self, line: str) -> None:
         self.errors += 1

@@ -27,7 +27,7 @@ def test_replayer_killed_mid_task_and_restarted(suite: Path, transport: str) -> 
     listener = Listener(domain)
     try:
         with live_node(domain, transport=transport) as node:
-            first = replay_process(suite / RUN, domain, 20.0)
+            first = replay_process(suite / RUN, domain, 5.0)  # slow enough to be killed before the failure
             deadline = time.monotonic() + 30
             while node.log.stats()["tasks"] == 0 and time.monotonic() < deadline:
                 time.sleep(0.05)
