@@ -203,5 +203,5 @@ def test_a_recording_without_task_info_is_listed_with_its_nav2_goal(tmp_path: Pa
             time.sleep(0.3)
     row = data["runs"][0]
     assert row["tasks"] == 1 and row["latest"]["outcome"] == "failed" and row["modules"] == ["navigation"]
-    # a planner that found no path is a symptom: with nothing else in the lines no cause is claimed (issue 20)
+    # a planner that found no path is a symptom, never told as the cause (issue 20): the honest finding
     assert row["causes"] == ["navigation.unexplained_failure"]
