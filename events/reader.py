@@ -7,17 +7,17 @@ import json
 import math
 import sqlite3
 from collections.abc import Iterable, Iterator
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-import yaml
-from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
 from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
+from hexar.events.bag import Reader, metadata
 from hexar.events.cdr import LayoutError, decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
 from hexar.events.errors import (
     CorruptRecordingError,
@@ -64,6 +64,7 @@ class _Unreadable(Exception):
 _MISFIT = (LayoutError, SerdeError, AttributeError, TypeError, KeyError)
 
 
+@lru_cache(maxsize=256)  # typestores are shared between recordings (events.bag), and hashing one is not cheap
 def _same_layout(ts: Typestore, msgtype: str) -> bool:
     """Whether the recording's definition of `msgtype` is the standard (Humble) one the fast decoders assume."""
     humble = _humble()
@@ -75,7 +76,7 @@ def _same_layout(ts: Typestore, msgtype: str) -> bool:
         return False
 
 
-def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+def _read_skipping(reader: Reader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
     """`_read`, again without each connection found unreadable, which is then named in the warnings."""
     skip: dict[int, str] = {}
     while True:
@@ -164,14 +165,14 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     try:
         for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
             check_mcap(file, crc=False)
-        with AnyReader([src], default_typestore=_humble()) as reader:
+        with Reader([src], default_typestore=_humble()) as reader:
             log, complete = _read_skipping(reader, src, wanted)
         if not complete:
             # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
             # rosbags then matches no message to its connection; the storage files alone are consistent.
             files = sorted([*src.glob("*.db3"), *src.glob("*.mcap")])
             if files:
-                with AnyReader(files, default_typestore=_humble()) as reader:
+                with Reader(files, default_typestore=_humble()) as reader:
                     log, _ = _read_skipping(reader, src, wanted)
         return log
     except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError,
@@ -183,7 +184,7 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
+def _read(reader: Reader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
     """The log, and whether every message the index promised for the selected topics was read.
 
     Connections in `skip` are left out and reported: their messages fit neither the standard definition nor
@@ -365,7 +366,7 @@ def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Co
     meta = src / "metadata.yaml"
     if not files or not meta.is_file():
         return None
-    info = yaml.safe_load(meta.read_text()).get("rosbag2_bagfile_information", {})
+    info = metadata(meta).get("rosbag2_bagfile_information", {})
     if info.get("compression_format") or info.get("compression_mode"):
         return None
     wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
