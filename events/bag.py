@@ -23,6 +23,7 @@ from rosbags.highlevel.anyreader import AnyReaderError
 from rosbags.interfaces import Connection, ConnectionExtRosbag2, MessageDefinition, MessageDefinitionFormat
 from rosbags.rosbag2.metadata import ReaderMetadata, parse_qos
 from rosbags.rosbag2.reader import DirectoryReader
+from rosbags.rosbag2.reader import Reader as Reader2
 from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
@@ -32,7 +33,8 @@ _IDL_SEPARATOR = "=" * 80 + "\n"
 SETS_KEPT = 32  # distinct definition sets whose typestores stay built: a few per robot software version
 
 
-_LIBYAML = getattr(yaml, "CSafeLoader", None)
+LIBYAML = hasattr(yaml, "CSafeLoader")  # PyYAML built with libyaml, as its wheels are
+_LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
 class Reader(AnyReader):
@@ -41,9 +43,9 @@ class Reader(AnyReader):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         for reader in self.readers:
-            storage = getattr(reader, "storage", None)
-            if type(storage) is DirectoryReader and _LIBYAML is not None:
-                reader.storage = Directory(storage.path)
+            if (isinstance(reader, Reader2) and type(reader.storage) is DirectoryReader and LIBYAML
+                    and isinstance(reader.storage.path, Path)):
+                reader.storage = Directory(reader.storage.path)
 
     def _open(self) -> None:
         assert self.stack
@@ -96,7 +98,7 @@ class Directory(DirectoryReader):
     """A rosbag2 folder whose metadata.yaml libyaml reads, when it is plain; else rosbags reads it itself."""
 
     def open(self) -> None:
-        parsed = _plain_metadata(self.path / "metadata.yaml")
+        parsed = _plain_metadata(self.path / "metadata.yaml") if isinstance(self.path, Path) else None
         if parsed is None:
             super().open()
             return
@@ -165,7 +167,7 @@ def _plain_metadata(path: Path) -> tuple[dict[str, Any], list[Path], list[Any]] 
         for t in info["topics_with_message_count"]:
             meta = t["topic_metadata"]
             given = meta.get("offered_qos_profiles", [])
-            qos.append(yaml.load(given, Loader=_LIBYAML) if isinstance(given, str) and given else given)
+            qos.append(yaml.load(given, Loader=_LOADER) if isinstance(given, str) and given else given)
             if not (isinstance(meta["name"], str) and isinstance(meta["type"], str) and type(t["message_count"]) is int
                     and meta["serialization_format"] == "cdr" and isinstance(meta.get("type_description_hash", ""), str)
                     and isinstance(qos[-1], list)):
@@ -191,4 +193,4 @@ def metadata(path: Path) -> Any:
 
 @lru_cache(maxsize=4)
 def _parsed(path: str, mtime_ns: int, size: int) -> Any:
-    return yaml.load(Path(path).read_text(), Loader=_LIBYAML or yaml.SafeLoader)
+    return yaml.load(Path(path).read_text(), Loader=_LOADER)
