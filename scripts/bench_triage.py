@@ -187,7 +187,7 @@ def variants(base: Path) -> dict[str, list[Path]]:
 SCALE_CHILD = """
 import json, statistics, sys, time
 from pathlib import Path
-from hexar.triage import triage_recording
+from hexar.fleet.work import triage_recording
 paths = [Path(p) for p in sys.argv[1:]]
 triage_recording(paths[0], "warm")
 per = []

@@ -15,8 +15,9 @@ from rosbags.highlevel import AnyReader
 from hexar.cli import main
 from hexar.events import reader
 from hexar.explainers.ask_human.causal import CausalModel
-from hexar.triage import expand, triage_recording
-from hexar.triage_cmd import RESULTS
+from hexar.fleet.command import RESULTS
+from hexar.fleet.inputs import expand
+from hexar.fleet.work import triage_recording
 
 
 def _by_recording(results: list[dict[str, Any]]) -> dict[str, tuple[str, list[dict[str, Any]]]]:
