@@ -11,6 +11,7 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
+from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
 from rosbags.serde import SerdeError
 from rosbags.typesys import Stores, get_typestore
@@ -76,7 +77,7 @@ def _same_layout(ts: Typestore, msgtype: str) -> bool:
         return False
 
 
-def _read_skipping(reader: Reader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
     """`_read`, again without each connection found unreadable, which is then named in the warnings."""
     skip: dict[int, str] = {}
     while True:
@@ -184,7 +185,7 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read(reader: Reader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
+def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
     """The log, and whether every message the index promised for the selected topics was read.
 
     Connections in `skip` are left out and reported: their messages fit neither the standard definition nor

@@ -10,7 +10,7 @@ from typing import Any
 import pandas as pd
 
 from hexar.fleet.errors import TriageError
-from hexar.fleet.report import flag, md
+from hexar.fleet.report import _md, flag
 
 _PERIOD = re.compile(r"^(\d{4}-\d{2}-\d{2})(?:\.\.(\d{4}-\d{2}-\d{2}))?$")
 
@@ -49,7 +49,7 @@ def compare(a: str, b: str, base: Path | None) -> dict[str, Any]:
 
 
 def compare_markdown(result: dict[str, Any]) -> str:
-    lines = [f"# Triage: {md(result['a'])} vs {md(result['b'])}", "",
+    lines = [f"# Triage: {_md(result['a'])} vs {_md(result['b'])}", "",
              f"Tasks: {result['tasks_a']} -> {result['tasks_b']}; failed: {result['failed_a']} -> "
              f"{result['failed_b']}.", ""]
     if result["new"]:

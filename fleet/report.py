@@ -46,14 +46,14 @@ def summary(df: pd.DataFrame, results: list[dict[str, Any]]) -> dict[str, int]:
             "failed": int((df["kind"] == "failure").sum()), "findings": int((df["kind"] == "finding").sum())}
 
 
-def md(text: object) -> str:
+def _md(text: object) -> str:
     """Recorded text in a Markdown table cell: no pipes, no newlines, no HTML."""
     return re.sub(r"[|<>\n\r`]", " ", visible(text)).strip()
 
 
 def _counts(series: pd.Series, title: str, what: str) -> list[str]:
     lines = [f"### By {title}", "", f"| {what} | tasks |", "|---|---:|"]
-    lines += [f"| {md(k) or '(none)'} | {v} |" for k, v in series.value_counts().items()]
+    lines += [f"| {_md(k) or '(none)'} | {v} |" for k, v in series.value_counts().items()]
     return [*lines, ""]
 
 
@@ -93,8 +93,8 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
     lines += ["## Most frequent causes", ""]
     for cause, n in flagged["cause"].value_counts().head(TOP).items():
         ex = flagged[flagged["cause"] == cause].iloc[0]
-        lines += [f"- **{md(cause)}**: {n} tasks. Example, {md(ex['recording'])} ({ex['time']}): "
-                  f"\"{md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
+        lines += [f"- **{_md(cause)}**: {n} tasks. Example, {_md(ex['recording'])} ({ex['time']}): "
+                  f"\"{_md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
     lines += ["", "## Counts", ""]
     lines += _counts(flagged["cause"], "cause", "cause")
     lines += _counts(flagged["explainer"], "module (explainer)", "explainer")
@@ -105,12 +105,12 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
     lines += ["## Recordings to look at first", "", "| recording | robot | time | failures | findings | cause | "
               "explanation |", "|---|---|---|---:|---:|---|---|"]
     for rec, row in look_first(df).iterrows():
-        lines.append(f"| {md(rec)} | {md(row['robot'])} | {row['time']} | {row['failures']} | {row['findings']} | "
-                     f"{md(row['cause'])} | {md(row['explanation'])} |")
+        lines.append(f"| {_md(rec)} | {_md(row['robot'])} | {row['time']} | {row['failures']} | {row['findings']} | "
+                     f"{_md(row['cause'])} | {_md(row['explanation'])} |")
     bad = [r for r in results if r["error"]]
     if bad:
         lines += ["", "## Unreadable recordings", "", "| recording | error |", "|---|---|"]
-        lines += [f"| {md(r['recording'])} | {md(r['error'])} |" for r in bad]
+        lines += [f"| {_md(r['recording'])} | {_md(r['error'])} |" for r in bad]
     if pictures:
         lines += ["", "## Figures", ""] + [f"![{p}]({p})" for p in pictures]
     return "\n".join(lines) + "\n"
