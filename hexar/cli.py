@@ -376,7 +376,7 @@ def mcp(
     """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
 
     def body() -> int:
-        from hexar.mcp_server import serve
+        from hexar.tools.mcp_server import serve
 
         return serve(folder, http, port, host, llm, explainers)
 
