@@ -118,8 +118,13 @@ def work(path: str, rel: str) -> dict[str, Any]:
 
 
 def warm() -> None:
-    """Load the explainers and the help-seeking causal model before forking, so no worker pays for it."""
-    registry()
-    from hexar.explainers.ask_human.explainer import shipped_model
+    """Load the explainers and their models before forking (the help-seeking causal model; the pizza tree, with
+    scikit-learn and LIME, a second and more to import): forked workers share them instead of each loading its own."""
+    import lime.lime_tabular  # noqa: F401 - what a pizza explanation imports
 
+    from hexar.explainers.ask_human.explainer import shipped_model
+    from hexar.explainers.pizza.recommender import default_recommender
+
+    registry()
     shipped_model()
+    default_recommender()
