@@ -44,15 +44,20 @@ class EmbeddedModel:
         if self._loaded is None:
             import time
 
-            from llama_cpp import Llama
+            from hexar import progress
 
             began = time.perf_counter()
-            # llama.cpp reuses the evaluated prefix of the previous prompt, so a fixed system prompt costs once.
-            # (LlamaRAMCache would keep more prefixes, but each saved state carries n_ctx x n_vocab logits: GBs.)
-            self._loaded = Llama(model_path=self._file, n_ctx=self._n_ctx, n_threads=self._threads, seed=0,
-                                 verbose=False)
+            with progress.step(f"loading the embedded model ({os.path.basename(self._file)}), once per process"):
+                self._loaded = self._load()
             self.load_s = round(time.perf_counter() - began, 3)
         return self._loaded
+
+    def _load(self) -> Any:
+        from llama_cpp import Llama
+
+        # llama.cpp reuses the evaluated prefix of the previous prompt, so a fixed system prompt costs once.
+        # (LlamaRAMCache would keep more prefixes, but each saved state carries n_ctx x n_vocab logits: GBs.)
+        return Llama(model_path=self._file, n_ctx=self._n_ctx, n_threads=self._threads, seed=0, verbose=False)
 
     def chat(self, messages: Sequence[Mapping[str, str]], *, schema: Mapping[str, Any] | None = None,
              max_tokens: int = 160) -> str:

@@ -143,35 +143,49 @@ def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Expla
                        details=[f"Step {run.index + 1} of task {task.order}, {step_words(run)}: {run.state}."])
 
 
+def _goal_words(run: SkillRun) -> str:
+    """Where a navigation step was sent: a named place, a map position (a goal derived from Nav2), or neither."""
+    p = run.params
+    if p.get("location"):
+        return "in " + place_name(p["location"])
+    x, y = p.get("x"), p.get("y")
+    if isinstance(x, int | float) and isinstance(y, int | float):
+        return f"at ({float(x):.2f}, {float(y):.2f}) on my map"
+    return "at a position the recording does not give"
+
+
 def where(log: EventLog) -> Explanation:
-    """Where the robot is at the end of the recording: its last goal, whether it got there, its last pose."""
+    """Where the robot is at the end of the recording: its last goal, whether it got there, its last pose; with
+    no pose recorded (an ordinary recording of only /rosout), that the position is not recorded."""
     goals: list[tuple[int, str, bool | None]] = []  # (when, "in the kitchen" / "by the person at ...", reached)
     for task in log.tasks:
         for run in task.skills:
             start = run.time_of("running")
             if start is None:
                 continue
-            if run.skill in NAV_SKILLS and run.params.get("location"):
-                goals.append((start, "in " + place_name(run.params["location"]),
-                              {"succeeded": True, "failed": False}.get(run.state)))
+            if run.skill in NAV_SKILLS:
+                goals.append((start, _goal_words(run), {"succeeded": True, "failed": False}.get(run.state)))
             inner = [] if run.skill in NAV_SKILLS else trips_inside(log, task.skill_window(run))
             goals += [(trip.t, "by " + trip.describe(), _reached(log, trip)) for trip in inner]
     pose = last_pose(log)
     at = f" My last recorded position is ({pose.x:.2f}, {pose.y:.2f}) on my map, at {clock(pose.t)}." \
-        if pose is not None else ""
+        if pose is not None else f" My position is not recorded: this recording has no {c.AMCL_POSE} messages."
     evidence = [Evidence(cause="navigation.nominal", topic=c.AMCL_POSE, t=pose.t,
                          item=f"x = {pose.x:.2f}, y = {pose.y:.2f}")] if pose is not None else []
     if not goals:
-        text = "I didn't drive anywhere in this recording, so I'm where I started." + at
+        text = ("I didn't drive anywhere in this recording, so I'm where I started." + at if pose is not None else
+                "I can't tell where I am: this recording holds neither my position (no "
+                f"{c.AMCL_POSE} messages) nor a goal I was sent to.")
     else:
         _, goal, reached = max(goals, key=lambda g: g[0])
+        target = goal.removeprefix("in ").removeprefix("by ").removeprefix("at ")
         if reached:
             text = f"I'm {goal}: that was the last place I drove to, and I got there." + at
         else:
-            target = goal.removeprefix("in ").removeprefix("by ")
             text = (f"My last goal was {target}; the recording does not show whether I got there." if reached is None
                     else f"My last goal was {target}, but I didn't get there, so I'm somewhere on the way.") + at
-    return Explanation(explainer="navigation", text=text, causes=["navigation.nominal"], evidence=evidence)
+    return Explanation(explainer="navigation", text=text, causes=["navigation.nominal"], evidence=evidence,
+                       enough_information=pose is not None or bool(goals))
 
 
 def said(question: str, log: EventLog, task: Task) -> Explanation:

@@ -73,7 +73,9 @@ def assemble(target: Path | None = None) -> Path:
 
 if __name__ == "__main__":
     try:
-        print(assemble())
+        made = assemble()
+        # a sentence, not a bare path: setup prints this line among its others
+        print(f"embedded model ready: {made} ({made.stat().st_size / 1e9:.2f} GB, SHA-256 checked)")
     except (FileNotFoundError, ValueError) as e:
         print(f"ERROR: {e}", file=sys.stderr)
         sys.exit(2)

@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 import json
+import re
 import time
 from typing import TYPE_CHECKING, Any
 
+from hexar import progress
 from hexar.agent import content as answers
 from hexar.agent import guard
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, task_ref_of
+from hexar.agent.overview import asks_fix, helped, recovery, steps_summary, whole_task
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
@@ -101,6 +104,13 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
     task = ctx.log.task(state["task_id"])
     name = ctx.registry.failure_explainer(task)
     selected = [name] if name else []
+    if not selected and task.is_recovery:
+        # the robot's own recovery task is explained by the failure it recovers from ("why did you say sorry?")
+        found = recovery(ctx.log, task, ctx.probe, state["question"])
+        if found is not None:
+            return {"selected": [], "explanations": [found.model_dump()], "route": "recovery", "depth": 0,
+                    "used": [*state.get("used", []), found.explainer],
+                    "timings_ms": _timings(state, "failure_check", start)}
     return {"selected": selected, "route": "failure_check" if selected else "none",
             "timings_ms": _timings(state, "failure_check", start)}
 
@@ -153,10 +163,15 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     """Only when nothing failed: choose an explainer from the question (LLM or classifier), else from findings."""
     start = time.perf_counter()
     ctx = runtime.context
-    choice = _llm_choice(ctx, state)
+    # a question about the whole task names no module: the finding worth hearing, not a model's guess at one
+    whole = whole_task(state["question"])
+    choice = None
+    if not whole and ctx.backend.model is not None:
+        with progress.step(f"asking the model ({ctx.backend.name}) which of my modules this question is about"):
+            choice = _llm_choice(ctx, state)
     route = "llm"
     if choice is None:
-        label, share = ctx.classifier.choose(state["question"], state["candidates"])
+        label, share = (GENERIC, 0.0) if whole else ctx.classifier.choose(state["question"], state["candidates"])
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
@@ -200,7 +215,16 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         kept.append(exp.model_dump())
     texts = list(dict.fromkeys(e["text"] for e in kept))
     text = " ".join(texts) if texts else "I don't have enough information to say."
-    turn = {"question": state["question"], "answer": text, "explainers": [e["explainer"] for e in kept]}
+    question = state["question"]
+    if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
+        text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN_ANSWERS, text)}".strip()
+    if whole_task(question) and state.get("route") != "recovery":  # what became of every step, too
+        summary = steps_summary(ctx.log.task(state["task_id"]))
+        # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
+        # failed opens with every step done, which answers "did everything go ok?"
+        failed = state.get("route") == "failure_check"
+        text = (f"{text} {summary}" if failed else f"{summary} {text}") if summary else text
+    turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
             "history": [*state.get("history", []), turn], "timings_ms": _timings(state, "answer", start)}
@@ -246,17 +270,13 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
-        parts = [p for e in exps for p in (e.counterfactual, e.fix) if p]
-        if parts:
-            text = " ".join(parts)
-        elif exps and all(set(e.causes) <= BENIGN_ANSWERS for e in exps):
-            text = "Nothing went wrong there, so I have nothing to suggest changing."
-        else:
-            text = "I have no fix or change to suggest: what I recorded does not show what would have helped."
+        text = helped(exps, BENIGN_ANSWERS)
     else:
         depth += 1
         if depth == 1:
-            items = [_recorded(ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item][:3]
+            # the explainers' first three items (the strongest), told in the order they happened
+            cited = list(dict.fromkeys((ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item))
+            items = [_recorded(*ev) for ev in sorted(cited[:3])]
             text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
         elif depth == 2:
             # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)
@@ -270,9 +290,14 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             "timings_ms": _timings(state, "followup", start)}
 
 
+# A count of nothing is no finding: "I tried 0 recovery manoeuvres" says what the log does not hold. Said as what
+# was not recorded, so a recording of only /rosout is not taken to prove the robot never tried.
+_NONE_COUNTED = re.compile(r"^I tried 0 recovery manoeuvres (\([^)]*\)) and then gave up")
+
+
 def _sentence(detail: str) -> str:
     """Details are written as notes; spoken one after another each must end as a sentence."""
-    detail = detail.strip()
+    detail = _NONE_COUNTED.sub(r"My log records no recovery manoeuvre \1 before I gave up", detail.strip())
     if not detail:
         return detail
     detail = detail[0].upper() + detail[1:]

@@ -130,11 +130,44 @@ def normalise(question: str) -> str:
         low = w.lower()
         if low in _FILLERS:
             return ""
-        return _SPELLING.get(low, w)
+        return _SPELLING.get(low) or _question_word(low) or w
 
     text = re.sub(r"[A-Za-z]+(?:'[A-Za-z]+)?", word, text)
     text = re.sub(r"\s+([,.?!])", r"\1", re.sub(r"\s+", " ", text)).strip()
     return text.lstrip(" ,.;:-")
+
+
+_QUESTION_WORDS = ("where", "what", "why", "when", "which", "how")
+
+
+@cache
+def _question_word(word: str) -> str | None:
+    """A question word typed one letter off ("wher", "whta"): the word meant. Only words the vocabulary does not
+    know are corrected ("were" stays "were")."""
+    if len(word) < 3 or word in vocabulary():
+        return None
+    for meant in _QUESTION_WORDS:
+        if sorted(word) == sorted(meant):  # two letters swapped: "whta", "hwy"
+            return meant
+    close = difflib.get_close_matches(word, _QUESTION_WORDS, n=1, cutoff=0.85) if len(word) >= 4 else []
+    return close[0] if close else None
+
+
+# What to say to small talk in a conversation instead of refusing it: thanks, greetings, acknowledgements.
+_THANKS = re.compile(r"\b(thanks?|thank you|thx|ty|cheers)\b")
+_HELLO = re.compile(r"^(hi|hello|hey|yo|good (morning|afternoon|evening))\b")
+
+
+def small_talk_reply(text: str) -> str | None:
+    """A reply to a turn that is only small talk ("ok thanks", "hi"), or None for anything else."""
+    q = normalise(text).lower()
+    if not q or not _SMALL_TALK.match(q):
+        return None
+    if _THANKS.search(q):
+        return "You're welcome. Ask me anything else about this run, or press Ctrl-D to stop."
+    if _HELLO.match(q):
+        return f"Hello! Ask me why I did something, {EXAMPLE}."
+    return f"OK. Ask me why I did something, {EXAMPLE}, or press Ctrl-D to stop."
 
 
 def _asks(q: str, words: list[str]) -> bool:

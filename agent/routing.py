@@ -28,7 +28,9 @@ def after_context(state: AgentState) -> Literal["failure_check", "walk", "conten
     return "content" if intent == "content" else "failure_check"
 
 
-def after_failure_check(state: AgentState) -> Literal["tools", "router"]:
+def after_failure_check(state: AgentState) -> Literal["tools", "router", "answer"]:
+    if state.get("route") == "recovery":  # the recovery task's answer is the failure before it, already found
+        return "answer"
     return "tools" if state.get("selected") else "router"
 
 

@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-import itertools
 import json
 import math
 import sqlite3
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -18,7 +17,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
-from hexar.events.bag import Reader, metadata
+from hexar.events.bag import Reader
 from hexar.events.cdr import LayoutError, decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
 from hexar.events.errors import (
     CorruptRecordingError,
@@ -28,7 +27,7 @@ from hexar.events.errors import (
     UnknownMessageTypeError,
 )
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.mcap_index import check_mcap, mcap_messages
+from hexar.events.mcap_index import check_mcap
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -42,6 +41,8 @@ from hexar.events.records import (
     TwistSample,
     stamp_ns,
 )
+from hexar.events.recover import holds_storage, is_cut_short, read_recovered, storage_files
+from hexar.events.storage_rows import mcap_rows, sqlite_messages
 
 _HUMBLE: Typestore | None = None
 
@@ -77,12 +78,13 @@ def _same_layout(ts: Typestore, msgtype: str) -> bool:
         return False
 
 
-def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str]) -> tuple[EventLog, bool]:
+def _read_skipping(reader: AnyReader, src: Path, wanted: frozenset[str],
+                   fast: bool = True) -> tuple[EventLog, bool]:
     """`_read`, again without each connection found unreadable, which is then named in the warnings."""
     skip: dict[int, str] = {}
     while True:
         try:
-            return _read(reader, src, wanted, skip)
+            return _read(reader, src, wanted, skip, fast)
         except _Unreadable as bad:
             if bad.conn.id in skip:
                 raise CorruptRecordingError(f"cannot read {src}: {bad.reason}") from bad
@@ -96,11 +98,11 @@ def resolve_path(path: Path) -> Path:
     if path.is_file():
         if path.suffix == ".bag":
             return path
-        if path.suffix in {".db3", ".mcap"} and (path.parent / "metadata.yaml").is_file():
-            return path.parent
+        if path.suffix in {".db3", ".mcap"}:
+            return path.parent  # its folder's metadata.yaml, or the metadata rebuilt from the storage files
         raise NotARecordingError(f"not a recording: {path} (expected a rosbag2 folder or a ROS 1 .bag file)")
-    if not (path / "metadata.yaml").is_file():
-        raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml")
+    if not (path / "metadata.yaml").is_file() and not holds_storage(path):
+        raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml and no .db3 or .mcap file")
     return path
 
 
@@ -163,19 +165,16 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     """
     wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
     src = resolve_path(Path(path))
+    cut = [f for f in src.glob("*.mcap") if is_cut_short(f)] if src.is_dir() else []
+    if cut or holds_storage(src):
+        return _guarded(src, lambda: read_recovered(src, cut, lambda files: _read_files(files, src, wanted)))
+    return _guarded(src, lambda: _read_whole(src, wanted))
+
+
+def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
+    """One error class per kind of damage, whatever the storage library raised."""
     try:
-        for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
-            check_mcap(file, crc=False)
-        with Reader([src], default_typestore=_humble()) as reader:
-            log, complete = _read_skipping(reader, src, wanted)
-        if not complete:
-            # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
-            # rosbags then matches no message to its connection; the storage files alone are consistent.
-            files = sorted([*src.glob("*.db3"), *src.glob("*.mcap")])
-            if files:
-                with Reader(files, default_typestore=_humble()) as reader:
-                    log, _ = _read_skipping(reader, src, wanted)
-        return log
+        return read()
     except (RecordingNotFoundError, NotARecordingError, UnknownMessageTypeError, EmptyRecordingError,
             CorruptRecordingError):
         raise
@@ -185,8 +184,31 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
 
 
-def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str]) -> tuple[EventLog, bool]:
-    """The log, and whether every message the index promised for the selected topics was read.
+def _read_files(files: list[Path], src: Path, wanted: frozenset[str]) -> EventLog:
+    """The recording at `src` read from other storage files (a recovered copy): rosbags only, no fast paths."""
+    with AnyReader(files, default_typestore=_humble()) as reader:
+        return _read_skipping(reader, src, wanted, fast=False)[0]
+
+
+def _read_whole(src: Path, wanted: frozenset[str]) -> EventLog:
+    for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
+        check_mcap(file, crc=False)
+    with Reader([src], default_typestore=_humble()) as reader:
+        log, complete = _read_skipping(reader, src, wanted)
+    if not complete:
+        # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
+        # rosbags then matches no message to its connection; the storage files alone are consistent.
+        files = storage_files(src)
+        if files:
+            with Reader(files, default_typestore=_humble()) as reader:
+                log, _ = _read_skipping(reader, src, wanted)
+    return log
+
+
+def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, str],
+          fast: bool = True) -> tuple[EventLog, bool]:
+    """The log, and whether every message the index promised for the selected topics was read. `fast` reads the
+    storage files of `src` directly (a recovered recording's are not those rosbags reads).
 
     Connections in `skip` are left out and reported: their messages fit neither the standard definition nor
     one stored in the recording, and misreading them could invent a cause.
@@ -239,7 +261,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
     if not selected:
         return log, True
     ros2 = reader.is2
-    messages = (_sqlite_messages(src, selected) or _mcap_messages(src, selected)) if ros2 else None
+    messages = (sqlite_messages(src, selected) or mcap_rows(src, selected)) if ros2 and fast else None
     if messages is None:
         messages = reader.messages(connections=selected)
     promised = sum(conn.msgcount or 0 for conn in selected)
@@ -354,54 +376,6 @@ def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, 
         log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
     else:
         _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
-
-
-def _sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
-    """Rows of the selected topics straight from uncompressed sqlite3 storage, in file order.
-
-    rosbags walks the timestamp index and visits every row in time order, so a big unsubscribed topic (camera
-    images interleaved with the logs) slows it down; a filter on topic_id alone reads only the rows we need.
-    Records are sorted by their own stamps afterwards anyway.
-    """
-    files = sorted(src.glob("*.db3")) if src.is_dir() else []
-    meta = src / "metadata.yaml"
-    if not files or not meta.is_file():
-        return None
-    info = metadata(meta).get("rosbag2_bagfile_information", {})
-    if info.get("compression_format") or info.get("compression_mode"):
-        return None
-    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
-
-    def rows() -> Iterator[tuple[Connection, int, bytes]]:
-        for file in files:
-            db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
-            try:
-                ids = {tid: wanted[(name, typ)] for tid, name, typ in db.execute("SELECT id, name, type FROM topics")
-                       if (name, typ) in wanted}
-                if not ids:
-                    continue
-                marks = ",".join("?" * len(ids))
-                query = f"SELECT topic_id, timestamp, data FROM messages WHERE topic_id IN ({marks})"
-                for tid, t, data in db.execute(query, list(ids)):
-                    yield ids[tid], t, data
-            finally:
-                db.close()
-
-    return rows()
-
-
-def _mcap_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Connection, int, bytes]] | None:
-    """Rows of the selected topics from indexed MCAP files without rosbags' per-chunk heap merge."""
-    files = sorted(src.glob("*.mcap")) if src.is_dir() else []
-    if not files:
-        return None
-    wanted = {(conn.topic, conn.msgtype): conn for conn in selected}
-    parts = [mcap_messages(f, wanted) for f in files]
-    if any(p is None for p in parts):
-        for f in files:
-            check_mcap(f)  # rosbags reads on without checking CRCs or truncation
-        return None
-    return itertools.chain.from_iterable(p for p in parts if p is not None)
 
 
 def _text(value: object) -> str:

@@ -104,6 +104,9 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
                   f"{summary['findings']} with a finding; {len(bad)} unreadable")
     for r in bad[:20]:
         console.print(f"  [yellow]unreadable[/yellow] {escape(r['recording'])}: {escape(r['error'])}")
+    for r in [r for r in results if r.get("recovered")][:20]:
+        how = r["recovered"][0].removeprefix("recovered: ")
+        console.print(f"  [cyan]recovered[/cyan] {escape(r['recording'])}: {escape(how)}")
     if len(bad) > 20:
         console.print(f"  ... and {len(bad) - 20} more in {opts.out / 'report.md'}")
     console.print(f"wrote {opts.out / 'tasks.parquet'}, tasks.jsonl, report.md" if parquet else

@@ -41,7 +41,7 @@ def _matches(inputs: Iterable[str]) -> Iterator[tuple[Path, Path]]:
                 yield path, path.parent
             else:
                 base = path.parent if glob.has_magic(raw) else path
-                for rec in find_recordings(path):
+                for rec in find_recordings(path, follow_links=True):  # a fleet folder of links to recordings
                     yield rec, base
 
 

@@ -95,7 +95,10 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
         ex = flagged[flagged["cause"] == cause].iloc[0]
         lines += [f"- **{_md(cause)}**: {n} tasks. Example, {_md(ex['recording'])} ({ex['time']}): "
                   f"\"{_md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
-    lines += ["", "## Counts", ""]
+    lines += ["", "## Counts", "",
+              f"The tables by cause, module, robot and day count the {len(flagged)} tasks worth a look (a failure, "
+              f"a wrong plan or a finding); the other {s['tasks'] - len(flagged)} of the {s['tasks']} tasks went as "
+              "planned and are counted only under Outcomes.", ""]
     lines += _counts(flagged["cause"], "cause", "cause")
     lines += _counts(flagged["explainer"], "module (explainer)", "explainer")
     lines += _counts(flagged["robot"], "robot", "robot")
@@ -111,6 +114,12 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
     if bad:
         lines += ["", "## Unreadable recordings", "", "| recording | error |", "|---|---|"]
         lines += [f"| {_md(r['recording'])} | {_md(r['error'])} |" for r in bad]
+    recovered = [(r["recording"], w) for r in results for w in r.get("recovered", [])]
+    if recovered:
+        lines += ["", "## Recovered recordings", "", "Cut short by a crash or power loss and read as `ros2 bag "
+                  "reindex` recovers them; their tasks are in the tables above.", "", "| recording | recovery |",
+                  "|---|---|"]
+        lines += [f"| {_md(rec)} | {_md(w.removeprefix('recovered: '))} |" for rec, w in recovered]
     if pictures:
         lines += ["", "## Figures", ""] + [f"![{p}]({p})" for p in pictures]
     return "\n".join(lines) + "\n"

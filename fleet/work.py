@@ -103,7 +103,8 @@ def triage_recording(path: Path, rel: str) -> dict[str, Any]:
         log = read_recording(path)
         reg = registry()
         # A recording without tasks is readable, just not explainable: it is counted, not listed as bad.
-        return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": ""}
+        return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": "",
+                "recovered": [w for w in log.warnings if w.startswith("recovered:")]}
     except (EventsError, ExplainerError) as err:
         return {"recording": rel, "rows": [], "error": str(err).splitlines()[0] if str(err) else type(err).__name__}
     except Exception as err:  # an explainer bug on odd data must not stop a fleet run: report it as that run's

@@ -24,8 +24,9 @@ def recordings_in(folder: Path) -> list[Path]:
     """The recordings directly inside a folder: rosbag2 folders and ROS 1 .bag files."""
     if not folder.is_dir():
         raise HexarError(f"not a folder: {folder}")
-    found = sorted(p for p in folder.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file())
-                   or p.suffix in {".bag", ".mcap", ".db3"})
+    from hexar.workspace import is_recording
+
+    found = sorted(p for p in folder.iterdir() if is_recording(p) or p.suffix in {".mcap", ".db3"})
     if not found:
         raise HexarError(f"no recordings in {folder}")
     return found
@@ -47,32 +48,48 @@ def split_targets(targets: list[str], questions: Path | None, runs: Path | None)
     return paths, question
 
 
-def read_questions(path: Path) -> list[str]:
+def read_questions(path: Path) -> list[tuple[int, str]]:
+    """The questions of a file with their line numbers in it (blank lines are skipped, not renumbered)."""
     from hexar.inputs import read_text_arg
 
-    return [ln.strip() for ln in read_text_arg(path, "--questions").splitlines() if ln.strip()]
+    return [(n, ln.strip()) for n, ln in enumerate(read_text_arg(path, "--questions").splitlines(), start=1)
+            if ln.strip()]
 
 
 def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str | None, llm: str,
         as_json: bool, verbose: bool, console: Console, phrase: bool | None = None,
         plot: Path | None = None) -> int:
+    from hexar import progress
+
+    with progress.shown():
+        return _ask(targets, questions, runs, task, llm, as_json, verbose, console, phrase, plot)
+
+
+def _ask(targets: list[str], questions: Path | None, runs: Path | None, task: str | None, llm: str,
+         as_json: bool, verbose: bool, console: Console, phrase: bool | None, plot: Path | None) -> int:
+    from hexar import progress
     from hexar.agent.backends import resolve
     from hexar.agent.oneshot import OneShot
 
     paths, question = split_targets(targets, questions, runs)
-    lines = read_questions(questions) if questions is not None else [question or ""]
-    backend = resolve(llm)  # one backend (and one model load) for every recording
+    lines = read_questions(questions) if questions is not None else [(1, question or "")]
+    with progress.step(f"finding the LLM backend ({llm})"):
+        backend = resolve(llm)  # one backend (and one model load) for every recording
     if plot is not None and (questions is not None or len(paths) > 1):
         raise HexarError("--plot draws one answer: give one recording and one question")
     if len(paths) == 1 and questions is None:
-        agent = OneShot(RunSettings(recording=paths[0], llm=llm, phrase=phrase), backend)
-        result = agent.ask(lines[0], task=task)
+        with progress.step(f"reading {paths[0].name}"):
+            agent = OneShot(RunSettings(recording=paths[0], llm=llm, phrase=phrase), backend)
+        _say_recovered(agent)
+        with progress.step("working out the answer"):
+            result = agent.ask(lines[0][1], task=task)
         if result["error"]:
             raise BadQuestionError(result["error"])
         if plot is not None:
             from hexar.web.explain import plot_task
 
             plot_task(agent.context.log, result, plot)
+            print(f"wrote the figure of this answer to {visible(plot)}", file=sys.stderr)
         if as_json:
             print(json_dumps(result, indent=2))
         else:
@@ -83,14 +100,17 @@ def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str
     worst = 0
     for path in paths:
         try:
-            agent = OneShot(RunSettings(recording=path, llm=llm, phrase=phrase), backend)
+            with progress.step(f"reading {path.name}"):
+                agent = OneShot(RunSettings(recording=path, llm=llm, phrase=phrase), backend)
         except USER_ERRORS as err:
             worst = 2
             _refused({"recording": str(path), "error": str(err)}, as_json)
             continue
-        for n, line in enumerate(lines, start=1):
+        _say_recovered(agent)
+        for n, line in lines:
             try:
-                result = agent.ask(line, task=task)
+                with progress.step(f"answering line {n}"):
+                    result = agent.ask(line, task=task)
             except USER_ERRORS as err:  # e.g. --task names a task this recording does not have
                 result = {"answer": "", "error": str(err), "recording": str(path)}
             result = {**result, "question": line, "line": n}
@@ -107,6 +127,13 @@ def ask(targets: list[str], questions: Path | None, runs: Path | None, task: str
                 answer = visible(result["answer"], keep_newlines=True)
                 print(f"{visible(path.name)}: {answer}" if len(paths) > 1 else answer)
     return worst
+
+
+def _say_recovered(agent: Any) -> None:
+    """A recording cut short and recovered (events/recover.py) is answered, with a note on stderr saying so."""
+    for warning in agent.context.log.warnings:
+        if warning.startswith("recovered:"):
+            print(f"note: {visible(agent.context.log.path.name)}: {visible(warning)}", file=sys.stderr)
 
 
 def _refused(result: dict[str, Any], as_json: bool) -> None:

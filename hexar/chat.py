@@ -12,6 +12,7 @@ from rich.console import Console
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
+from hexar.agent.questions import small_talk_reply
 from hexar.errors import USER_ERRORS
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
@@ -23,15 +24,35 @@ HELP = ("Ask why I did something. Commands: /task [ID] (switch or list tasks), /
         "/why (go deeper), /reset (new conversation), /thread (show its id), /help. Ctrl-D quits.")
 
 
+SHOWN_EVIDENCE = 6  # /evidence in a chat; `ask --verbose` shows every item
+
+
 def render_answer(console: Console, result: dict[str, Any], evidence: bool, verbose: bool = False) -> None:
+    from rich.table import Table
+
     console.print(Panel(safe(result["answer"], keep_newlines=True), title="HEXAR", title_align="left",
                         border_style="cyan"))
     if evidence:
-        for ev in result["evidence"][:6]:
-            console.print(f"  [dim]{clock(ev['t'])} {safe(ev['topic'])}[/dim]  {safe(ev['item'])}")
+        # in time order, each item wrapped in its own column so a long log line never runs under the times
+        items = sorted(result["evidence"], key=lambda ev: ev["t"])
+        shown = items if verbose else items[:SHOWN_EVIDENCE]
+        grid = Table.grid(padding=(0, 1))
+        grid.add_column(no_wrap=True, style="dim")
+        grid.add_column(no_wrap=True, style="dim")
+        grid.add_column(overflow="fold")
+        for ev in shown:
+            grid.add_row(f"  {clock(ev['t'])}", safe(ev["topic"]), safe(ev["item"]))
+        if shown:
+            console.print(grid)
+        if len(items) > len(shown):
+            console.print(f"  [dim]… and {len(items) - len(shown)} more (ask --verbose or --json shows them "
+                          "all)[/dim]")
         for figure in result.get("figures", []):
             console.print(f"  [dim]{safe(figure)}[/dim]")
     if verbose:
+        for label, key in (("Would have helped", "counterfactual"), ("Fix", "fix")):
+            if result.get(key):
+                console.print(f"  [bold]{label}:[/bold] {safe(result[key])}")
         console.print(safe(f"  route={result['route']} explainers={','.join(result['explainers'])} "
                            f"backend={result['backend']} causes={','.join(result['causes'])} "
                            f"total={result['timings_ms'].get('total')} ms"), style="dim")
@@ -39,10 +60,21 @@ def render_answer(console: Console, result: dict[str, Any], evidence: bool, verb
 
 def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None = None,
          phrase: bool | None = None) -> int:
-    from hexar.agent.session import Session, default_checkpoints
+    from hexar import progress
 
-    session = Session(RunSettings(recording=run, llm=llm, phrase=phrase),
-                      checkpoints=checkpoints or default_checkpoints())
+    with progress.shown():
+        return _chat(run, thread, llm, console, checkpoints, phrase)
+
+
+def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints: Path | None,
+          phrase: bool | None) -> int:
+    from hexar import progress
+
+    with progress.step(f"reading {run.name} and starting the conversation"):
+        from hexar.agent.session import Session, default_checkpoints
+
+        session = Session(RunSettings(recording=run, llm=llm, phrase=phrase),
+                          checkpoints=checkpoints or default_checkpoints())
     thread = thread or session.new_thread()
     log = session.context.log
     task = log.task()
@@ -99,8 +131,13 @@ def chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints:
             continue
         if line == "/why":
             line = "why?"
+        reply = small_talk_reply(line)
+        if reply is not None:  # "ok thanks": a reply, not a refusal
+            console.print(reply)
+            continue
         try:
-            result = session.ask(line, thread=thread)
+            with progress.step("working out the answer"):
+                result = session.ask(line, thread=thread)
         except USER_ERRORS as err:
             console.print(f"[yellow]{safe(err)}[/yellow]")
             continue

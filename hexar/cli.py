@@ -26,6 +26,14 @@ def guarded(fn: Callable[[], int]) -> int:
 
     try:
         return fn()
+    except BrokenPipeError:
+        # the reader went away (`hexar inspect RUN --json | head -2`): what it wanted was written; stop quietly,
+        # and point stdout at nothing so the interpreter's final flush does not raise again
+        import os
+
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
     except USER_ERRORS as e:
         # the message may quote the recording (task ids, file names): never let it drive the terminal
         print(f"ERROR: {visible(e)}", file=sys.stderr)
@@ -74,11 +82,13 @@ def inspect(
     def body() -> int:
         from hexar.events import read_recording
         from hexar.render import json_dumps, log_dict, print_inspection
+        from hexar.safe_text import visible
 
         if plot is not None:
             from hexar.web.explain import plot_latest
 
             plot_latest(run, plot)
+            print(f"wrote the figure of the latest task to {visible(plot)}", file=sys.stderr)
         log = read_recording(run)
         if as_json:
             print(json_dumps(log_dict(log), indent=2))
@@ -104,7 +114,11 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
         from hexar.render import natural_key
 
         rows: list[dict[str, Any]] = []
-        paths = sorted((p for p in folder.iterdir() if p.is_dir() or p.suffix == ".bag"), key=natural_key)
+        from hexar.web.pagedata import verdict
+        from hexar.workspace import is_recording
+
+        # only what holds a recording: a folder of other things (a virtualenv, notes) is no unreadable recording
+        paths = sorted((p for p in folder.iterdir() if is_recording(p)), key=natural_key)
         if not paths and not as_json:
             out.print(f"No recordings in {folder}: record one, or write the simulated suite with "
                       "`hexar simulate --out FOLDER`.")
@@ -115,7 +129,10 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
                 task = log.task() if log.tasks else None
                 rows.append({"recording": path.name, "instruction": task.instruction if task else "",
                              "outcome": task.outcome if task else "no task", "tasks": len(log.tasks),
-                             "derived_from_nav2": bool(task and task.derived)})
+                             "derived_from_nav2": bool(task and task.derived),
+                             # "wrong plan": it succeeded as the robot counts it, on a plan that missed the request
+                             "verdict": verdict(task) if task else "no task",
+                             "recovered": any(w.startswith("recovered:") for w in log.warnings)})
             except EventsError as e:
                 rows.append({"recording": path.name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
         if as_json:
@@ -123,7 +140,8 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
             return 0
         table = Table("recording", "tasks", "latest task", "outcome")
         for r in rows:
-            table.add_row(safe(r["recording"]), str(r["tasks"]), safe(r["instruction"]), safe(r["outcome"]))
+            shown = r.get("verdict", r["outcome"]) + (" (recovered)" if r.get("recovered") else "")
+            table.add_row(safe(r["recording"]), str(r["tasks"]), safe(r["instruction"]), safe(shown))
         out.print(table)
         return 0
 

@@ -31,15 +31,35 @@ class OutsideFolderError(WorkspaceError):
 
 
 def is_recording(path: Path) -> bool:
-    return (path.is_dir() and (path / "metadata.yaml").is_file()) or (path.is_file() and path.suffix == ".bag")
+    """A rosbag2 folder (with its metadata.yaml, or storage files whose recorder never wrote it) or a ROS 1 bag."""
+    from hexar.events.recover import holds_storage
+
+    return (path.is_dir() and ((path / "metadata.yaml").is_file() or holds_storage(path))) or \
+        (path.is_file() and path.suffix == ".bag")
 
 
-def find_recordings(root: Path) -> Iterator[Path]:
-    """Every rosbag2 folder and ROS 1 bag under `root`, nested at any depth, in name order; symlinked folders
-    are not followed, so a link cannot lead the walk out of `root` or round in circles."""
-    for dirpath, dirnames, filenames in os.walk(root):
+def find_recordings(root: Path, follow_links: bool = False) -> Iterator[Path]:
+    """Every rosbag2 folder and ROS 1 bag under `root`, nested at any depth, in name order. Symlinked folders are
+    followed only with `follow_links` (a fleet folder of links to recordings), each real folder once, so a link
+    cannot lead the walk round in circles; without it, a link cannot lead the walk out of `root`. A folder the
+    walk cannot open is yielded too, so the caller reports it instead of skipping it."""
+    seen: set[str] = set()
+    unreadable: list[Path] = []
+
+    def failed(err: OSError) -> None:
+        if err.filename:
+            unreadable.append(Path(err.filename))
+
+    for dirpath, dirnames, filenames in os.walk(root, onerror=failed, followlinks=follow_links):
         here = Path(dirpath)
-        if (here / "metadata.yaml").is_file():
+        real = os.path.realpath(here)
+        if real in seen:
+            dirnames[:] = []
+            continue
+        seen.add(real)
+        yield from unreadable
+        unreadable.clear()
+        if is_recording(here):
             dirnames[:] = []
             yield here
             continue
@@ -47,6 +67,7 @@ def find_recordings(root: Path) -> Iterator[Path]:
         for name in sorted(filenames):
             if name.endswith(".bag"):
                 yield here / name
+    yield from unreadable
 
 
 def _page(items: list[Any], offset: int, limit: int, key: str) -> dict[str, Any]:

@@ -8,14 +8,18 @@ Imported only by the `hexar mcp` command body: it pulls in the MCP SDK.
 
 from __future__ import annotations
 
+import inspect
 import logging
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Annotated, Any
 from urllib.parse import quote, unquote
 
 from mcp.server.fastmcp import FastMCP
 from mcp.server.fastmcp.exceptions import ResourceError, ToolError
+from pydantic import Field
 
+from hexar import __version__
 from hexar.errors import USER_ERRORS
 from hexar.safe_text import finite_with_warnings, json_dumps
 from hexar.workspace import PAGE, Workspace
@@ -25,6 +29,24 @@ INSTRUCTIONS = (
     "then call the explain_* tool of the module in question (or `ask` for the whole agent). Every answer comes "
     "with evidence: the recorded topic, time (ns) and item that support each cause. Read-only."
 )
+
+
+# What each parameter is, as the client's model reads it in the tool's input schema.
+Recording = Annotated[str, Field(description="a recording's path inside the served folder, as list_recordings "
+                                             "gives it")]
+Offset = Annotated[int, Field(description="where the page starts: 0, then the next_offset the last page returned")]
+Limit = Annotated[int, Field(description=f"at most this many entries per call (up to {PAGE})")]
+TaskRef = Annotated[str | None, Field(description="a task id, its order number, 'first' or 'latest' (the default)")]
+TasksOffset = Annotated[int, Field(description="where the page of task ids starts: 0, then tasks_next_offset")]
+Question = Annotated[str, Field(description="the question, as a person asks it (\"why did you stop?\")")]
+Thread = Annotated[str | None, Field(description="the thread an earlier answer returned, for a follow-up such as "
+                                                 "\"why?\"; none starts a new conversation")]
+EvidenceOffset = Annotated[int, Field(description=f"where the page of evidence starts (paged by {PAGE})")]
+
+
+def _described(text: str) -> str:
+    """A docstring as one paragraph: no indentation of its continuation lines, no hard line breaks."""
+    return " ".join(inspect.cleandoc(text).split())
 
 
 def _clean(ws: Workspace, err: Exception) -> str:
@@ -46,6 +68,10 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
     ws = Workspace(root, llm, explainers)
     logging.getLogger("mcp.server.fastmcp.server").addFilter(_OneLine())
     server = FastMCP("hexar", instructions=INSTRUCTIONS, host=host, port=port, log_level="WARNING")
+    server._mcp_server.version = __version__  # what `initialize` reports: HEXAR's version, not the SDK's
+
+    def tool(fn: Callable[..., Any]) -> Callable[..., Any]:
+        return server.tool(description=_described(fn.__doc__ or ""))(fn)
 
     def call(fn: Any, *args: Any, **kwargs: Any) -> dict[str, Any]:
         try:
@@ -55,35 +81,35 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
         # the SDK writes NaN and Infinity into the text content: strict JSON, with a warning where one was
         return dict(finite_with_warnings(result))
 
-    @server.tool()
-    def list_recordings(offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+    @tool
+    def list_recordings(offset: Offset = 0, limit: Limit = PAGE) -> dict[str, Any]:
         """List the recordings in the served folder (nested folders included) with their tasks: task id,
         instruction, outcome (succeeded, failed, invalid, running, waiting) and the failed skill. Paged; each
         recording shows its first page of tasks and tasks_total; list_tasks pages on."""
         return call(ws.list_recordings, offset, limit)
 
-    @server.tool()
-    def list_tasks(recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+    @tool
+    def list_tasks(recording: Recording, offset: Offset = 0, limit: Limit = PAGE) -> dict[str, Any]:
         """List one recording's tasks (id, order, instruction, outcome, failed skill), at most `limit` per call;
         page on with `offset` = the returned next_offset. A recording without /task_info has one task per Nav2
         navigation goal."""
         return call(ws.list_tasks, recording, offset, limit)
 
-    @server.tool()
-    def inspect_task(recording: str, task: str | None = None, tasks_offset: int = 0) -> dict[str, Any]:
+    @tool
+    def inspect_task(recording: Recording, task: TaskRef = None, tasks_offset: TasksOffset = 0) -> dict[str, Any]:
         """Show one task of a recording: its plan, each step's status history with times (ns), errors, and the
         time window HEXAR explains. `task`: a task id, its order number, 'first' or 'latest' (default). The ids
         of the recording's tasks come paged: tasks_offset = the returned tasks_next_offset."""
         return call(ws.inspect_task, recording, task, tasks_offset)
 
-    @server.tool()
-    def timeline(recording: str, offset: int = 0, limit: int = PAGE) -> dict[str, Any]:
+    @tool
+    def timeline(recording: Recording, offset: Offset = 0, limit: Limit = PAGE) -> dict[str, Any]:
         """The recording's events in time order (task and step status changes, /rosout lines, joystick and
         charging flags), at most `limit` entries per call; page on with `offset` = the returned next_offset."""
         return call(ws.timeline, recording, offset, limit)
 
-    @server.tool()
-    def topic_contract(recording: str) -> dict[str, Any]:
+    @tool
+    def topic_contract(recording: Recording) -> dict[str, Any]:
         """Which topics of the HEXAR topic contract the recording holds, with the expected type, and how many
         messages: whether HEXAR can explain it, and what is missing."""
         return call(ws.contract, recording)
@@ -91,22 +117,23 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
     from hexar.tools.explainer_tools import tool_specs
 
     def explainer_tool(name: str) -> Any:
-        def explain(recording: str, question: str, task: str | None = None,
-                    evidence_offset: int = 0) -> dict[str, Any]:
+        def explain(recording: Recording, question: Question, task: TaskRef = None,
+                    evidence_offset: EvidenceOffset = 0) -> dict[str, Any]:
             return call(ws.explain, name, recording, question, task, evidence_offset)
 
         return explain
 
     for spec in tool_specs(ws.registry()):
         server.add_tool(explainer_tool(spec.explainer), name=spec.name, description=(
-            f"{spec.description}\n\nArguments: recording (path in the served folder), question, task (id, "
-            f"order number, 'first' or 'latest'; default latest), evidence_offset (evidence is paged by {PAGE}). "
+            f"{_described(spec.description)}\n\nArguments: recording (path in the served folder), "
+            "question, task (id, order number, 'first' or 'latest'; default latest), evidence_offset (evidence is "
+            f"paged by {PAGE}). "
             "Returns the structured explanation: text, causes, evidence (cause, topic, t in ns, item), "
             "counterfactual, fix, details."))
 
-    @server.tool()
-    def ask(recording: str, question: str, task: str | None = None, thread: str | None = None,
-            evidence_offset: int = 0) -> dict[str, Any]:
+    @tool
+    def ask(recording: Recording, question: Question, task: TaskRef = None, thread: Thread = None,
+            evidence_offset: EvidenceOffset = 0) -> dict[str, Any]:
         """Ask HEXAR's whole agent one question about a recording: it checks for a failure, routes to the right
         explainer, guards the answer against the evidence, and keeps a conversation. Pass the returned `thread`
         back for follow-ups such as "why?"."""

@@ -19,6 +19,9 @@ _CONTRACTIONS = ((re.compile(r"\b(would|could|should|might|must)'ve\b", re.I), r
 FOLLOW_UPS = ("why", "why is that", "why was that", "tell me more", "what would have helped",
               "what could have helped", "what could i have done", "how do you know", "what do you mean",
               "what else", "anything else", "what happened", "go on", "explain that")
+# "why" said alone has no context either, and whisper writes it as another short word: "Right." most of all.
+# Alone, none of these is a question to the robot, so each is taken as the "why?" it was.
+MISHEARD_WHY = frozenset({"right", "white", "wide", "wise", "why'd", "y", "wine", "while"})
 _MAX_REPAIR_WORDS = 6
 _MIN_RATIO = 0.8
 
@@ -43,6 +46,8 @@ def repair(transcript: str) -> str:
     for pattern, repl in _CONTRACTIONS:
         text = pattern.sub(repl, text)
     norm = normalise(text)
+    if norm in MISHEARD_WHY:
+        return "why?"
     if not norm or len(norm.split()) > _MAX_REPAIR_WORDS or norm in FOLLOW_UPS:
         return text
     best = max(FOLLOW_UPS, key=lambda f: difflib.SequenceMatcher(None, norm, f).ratio())

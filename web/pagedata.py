@@ -26,23 +26,49 @@ LIME_LINE = re.compile(r"^\s+(\S+), (present|absent), ([+-]\d+\.\d+)$")
 
 
 def recordings(root: Path) -> list[Path]:
-    """The recordings directly under `root`: rosbag2 folders and ROS 1 bags, by name."""
+    """The recordings directly under `root`: rosbag2 folders (a crashed one without metadata.yaml too) and ROS 1
+    bags, by name; a folder that holds no recording (a virtualenv) is not one."""
+    from hexar.workspace import is_recording
+
     if not root.is_dir():
         raise WebError(f"not a folder: {root}")
-    found = [p for p in root.iterdir() if (p.is_dir() and (p / "metadata.yaml").is_file()) or p.suffix == ".bag"]
+    found = [p for p in root.iterdir() if is_recording(p)]
     return sorted(found, key=lambda p: [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", p.name)])
 
 
 def explainers_for(registry: Any, task: Task) -> list[str]:
-    """The explainers the agent's failure check would pick, or every started module's when nothing failed."""
-    if not task.valid:
-        return ["planner"]
-    failed = task.failed_skill
-    skills = [failed.skill] if failed is not None else [r.skill for r in task.skills if r.state != "waiting"]
-    names: list[str] = []
-    for skill in skills or ["planner"]:
-        names.extend(n for n in registry.for_module(skill) if n not in names)
+    """Every explainer with something to say about the task: the one the agent's failure check picks first (a
+    wrong plan goes to the planner even when every step succeeded), then every started module's, and the planner
+    whenever it faults the plan, so what `hexar ask` and triage find is on the page too."""
+    from hexar.explainers.planner import task_findings
+
+    first = registry.failure_explainer(task)
+    names: list[str] = [first] if first else []
+    if task.valid:
+        for skill in [r.skill for r in task.skills if r.state != "waiting"]:
+            names.extend(n for n in registry.for_module(skill) if n not in names)
+    if "planner" not in names and (not names or task_findings(task)):
+        names.append("planner")
     return names
+
+
+def cause_words(cause: str) -> str:
+    """A cause id in words for the page ("the plan used a skill the robot does not have"): its meaning in the
+    cause vocabulary, else the id's own words ("plan ok")."""
+    from hexar.causes import vocabulary
+
+    known = vocabulary().get(cause)
+    return known.means if known is not None else cause.split(".", 1)[-1].replace("_", " ")
+
+
+def verdict(task: Task) -> str:
+    """The outcome a person should see: a task that ran to its end on a plan that did not match the request
+    (or asked the impossible) succeeded only as the robot counts it, so it is shown as "wrong plan"."""
+    from hexar.explainers.planner import task_findings
+
+    if task.outcome == "succeeded" and task.valid and task_findings(task):
+        return "wrong plan"
+    return task.outcome
 
 
 class Findings:
@@ -154,8 +180,10 @@ def _pose(p: PoseSample | None) -> dict[str, Any] | None:
 
 
 def task_summary(task: Task) -> dict[str, Any]:
+    """`outcome` as the robot reported it; `verdict` what the page shows (see `verdict`)."""
     return {"task_id": task.task_id, "order": task.order, "instruction": task.instruction,
-            "outcome": task.outcome, "recovery": task.is_recovery, "valid": task.valid, "error_msg": task.error_msg}
+            "outcome": task.outcome, "verdict": verdict(task), "recovery": task.is_recovery, "valid": task.valid,
+            "error_msg": task.error_msg}
 
 
 def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, Any]]) -> dict[str, Any]:
@@ -172,6 +200,7 @@ def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, An
                  "window_ns": list(task.window())},
         "spans": [s.as_dict() for s in spans(task)],
         "findings": findings,
+        "cause_words": {cid: cause_words(cid) for f in findings for cid in f["causes"]},
         "events": _events(findings),
         "flags": _flags(log, window),
         "ask_human": _records(log, c.EPISODIC_MEMORY, window),

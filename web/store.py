@@ -15,7 +15,7 @@ from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.live import LIVE, LiveSource, Snapshot
-from hexar.web.pagedata import Findings, filtered_lines, recordings, run_detail, task_summary
+from hexar.web.pagedata import Findings, cause_words, filtered_lines, recordings, run_detail, task_summary
 
 KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
 
@@ -107,7 +107,9 @@ class Store:
             self._start_worker()
         if self.live is not None:
             rows.insert(0, self._live_row(self.live))
-        return {"root": "" if self.root is None else str(self.root), "runs": rows, "pending": pending}
+        words = {cid: cause_words(cid) for r in rows for cid in r["causes"] or []}  # the list shows words, not ids
+        return {"root": "" if self.root is None else str(self.root), "runs": rows, "pending": pending,
+                "cause_words": words}
 
     def _live_row(self, live: LiveSource) -> dict[str, Any]:
         snap = live.snapshot()

@@ -17,7 +17,7 @@ def test_a_bad_line_fails_only_itself(suite: Path, tmp_path: Path, capsys: pytes
     code = main(["ask", str(suite / "bagfile_5_1"), "--questions", str(questions), "--llm", "none", "--json"])
     rows = [json.loads(line) for line in capsys.readouterr().out.splitlines()]
     assert code == 2  # some line was refused
-    assert [r["line"] for r in rows] == [1, 2, 3, 4]
+    assert [r["line"] for r in rows] == [1, 2, 3, 5]  # the file's own line numbers: line 4 is blank
     assert [bool(r["error"]) for r in rows] == [False, True, False, True]
     assert rows[1]["question"] == "asdf qwer zxcv" and "ask me" in rows[1]["error"]
     assert all("navigation.blocked_path" in r["causes"] for r in (rows[0], rows[2]))

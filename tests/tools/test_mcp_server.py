@@ -101,7 +101,8 @@ def test_tools_explain_a_failed_run_per_module_with_evidence_from_the_recording(
             tools = {t.name: t for t in (await s.list_tools()).tools}
             assert set(PER_MODULE.values()) | {"list_recordings", "inspect_task", "ask", "timeline"} <= set(tools)
             for agent_tool in tools_for(Registry.load()):  # the agent's router reads the same descriptions
-                assert agent_tool.description in (tools[agent_tool.name].description or "")
+                said = " ".join(agent_tool.description.split())  # the same words, as one paragraph
+                assert said in (tools[agent_tool.name].description or "")
             listing = await call(s, "list_recordings")
             names = {r["recording"]: r for r in listing["recordings"]}
             assert "tiago-1/bagfile_5_1" in names and names["tiago-1/bagfile_5_1"]["tasks"][0]["outcome"] == "failed"
@@ -249,3 +250,22 @@ def test_the_mcp_answer_equals_hexar_ask_json(served: Path) -> None:
 def test_hexar_mcp_on_a_missing_folder_is_one_line(tmp_path: Path) -> None:
     done = subprocess.run([HEXAR, "mcp", str(tmp_path / "nope")], capture_output=True, text=True, timeout=60)
     assert done.returncode == 2 and done.stderr.startswith("ERROR: not a folder") and done.stderr.count("\n") == 1
+
+
+def test_tools_read_cleanly_and_the_server_is_hexar(served: Path) -> None:
+    """Descriptions as one paragraph each (no docstring indentation), every parameter described, and the
+    server named with HEXAR's version, not the SDK's."""
+    from hexar import __version__
+
+    async def go() -> None:
+        params = StdioServerParameters(command=HEXAR, args=["mcp", str(served), "--llm", "none"], env=_env(),
+                                       cwd=str(ROOT))
+        async with stdio_client(params) as (read, write), ClientSession(read, write) as s:
+            info = await s.initialize()
+            assert info.serverInfo.name == "hexar" and info.serverInfo.version == __version__
+            for tool in (await s.list_tools()).tools:
+                assert tool.description and "\n    " not in tool.description, tool.name
+                props = tool.inputSchema["properties"]
+                assert props and all(p.get("description") for p in props.values()), tool.name
+
+    run(go)

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
 from hexar.voice.transcripts import is_stop, repair
 from hexar.voice.utterances import MAX_WORDS, clean, spoken
 
@@ -69,3 +73,13 @@ def test_questions_are_not_stop_words(text: str) -> None:
 ])
 def test_repair(heard: str, asked: str) -> None:
     assert repair(heard) == asked
+
+
+def test_a_spoken_why_heard_as_right_is_a_why(suite: Path) -> None:
+    assert repair("Right.") == "why?" and repair("right") == "why?"
+    assert repair("all right then, what happened at the door") == "all right then, what happened at the door"
+    session = Session(RunSettings(recording=suite / "bagfile_5_1", llm="none"))
+    thread = session.new_thread()
+    session.ask("what happened", thread=thread)
+    again = session.ask(repair("Right."), thread=thread)
+    assert again["intent"] == "deeper" and "Here is what I recorded" in str(again["answer"])

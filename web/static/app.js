@@ -42,7 +42,12 @@ function clock(tns) {
   return `${pad(d.getUTCHours(), 2)}:${pad(d.getUTCMinutes(), 2)}:${pad(d.getUTCSeconds(), 2)}.${pad(ms % 1000, 3)}`;
 }
 function secs(tns, t0) { return `+${((tns - t0) / 1e9).toFixed(1)} s`; }
-function badge(outcome) { return el("span", { class: `badge ${outcome || "none"}` }, outcome || "no task"); }
+function badge(outcome) { return el("span", { class: `badge ${(outcome || "none").replace(/ /g, "-")}` }, outcome || "no task"); }
+// What a task's badge says: the robot's outcome, except a run that "succeeded" on a plan that did not match the
+// request, shown as "wrong plan" (the server's verdict; older servers send only the outcome).
+function verdict(t) { return t ? (t.verdict || t.outcome) : null; }
+// A cause in words ("the plan used a skill the robot does not have"), its stable id on hover.
+function causeWords(c, words) { return (words && words[c]) || c.replace(/^[^.]*\./, "").replace(/_/g, " "); }
 
 // ---------------------------------------------------------------------------------------------- runs list
 async function showRuns() {
@@ -64,10 +69,11 @@ async function showRuns() {
   const f = state.filters;
   const select = (key, label, values) => el("label", {}, label, " ",
     el("select", { id: `filter-${key}`, on: { change: (e) => { f[key] = e.target.value; draw(); } } },
-      el("option", { value: "" }, "all"), values.map((v) => el("option", { value: v, selected: f[key] === v }, v))));
+      el("option", { value: "" }, "all"), values.map((v) => el("option", { value: v, selected: f[key] === v, title: key === "cause" ? v : null },
+        key === "cause" ? causeWords(v, data.cause_words) : v))));
   const search = el("input", { id: "filter-text", type: "search", placeholder: "search instruction or name",
     value: f.text, on: { input: (e) => { f.text = e.target.value; draw(); } } });
-  const bar = el("div", { class: "filters" }, select("outcome", "outcome", ["failed", "succeeded", "invalid", "running"]),
+  const bar = el("div", { class: "filters" }, select("outcome", "outcome", ["failed", "wrong plan", "succeeded", "invalid", "running"]),
     select("module", "module", modules), select("cause", "cause", causes), search,
     data.pending ? el("span", { class: "muted" }, `finding causes… ${data.pending} runs left`) : null);
   const body = el("tbody");
@@ -76,7 +82,7 @@ async function showRuns() {
   const count = el("p", { class: "muted" });
   function draw() {
     const text = f.text.toLowerCase();
-    const shown = rows.filter((r) => (!f.outcome || (r.latest && r.latest.outcome === f.outcome))
+    const shown = rows.filter((r) => (!f.outcome || (r.latest && verdict(r.latest) === f.outcome))
       && (!f.module || r.modules.includes(f.module)) && (!f.cause || (r.causes || []).includes(f.cause))
       && (!text || r.recording.toLowerCase().includes(text) || (r.latest && r.latest.instruction.toLowerCase().includes(text))));
     body.replaceChildren(...shown.map((r) => el("tr", { class: "run", dataset: { name: r.recording }, tabindex: "0",
@@ -85,9 +91,10 @@ async function showRuns() {
       el("td", { class: "mono" }, r.recording, r.live ? el("span", { class: "badge live", title: "the robot, followed over DDS" }, "live") : null),
       el("td", {}, r.tasks),
       el("td", {}, r.error ? el("span", { class: "error" }, r.error) : (r.latest ? r.latest.instruction || "(recovery)" : (r.live ? "no task yet" : ""))),
-      el("td", {}, r.error ? badge("unreadable") : badge(r.latest && r.latest.outcome)),
+      el("td", {}, r.error ? badge("unreadable") : badge(verdict(r.latest))),
       el("td", { class: "small" }, r.modules.join(", ")),
-      el("td", { class: "small" }, r.causes === null ? el("span", { class: "muted" }, "…") : r.causes.join(", ")))));
+      el("td", { class: "small causes" }, r.causes === null ? el("span", { class: "muted" }, "…")
+        : r.causes.map((c, i) => el("span", { class: "cause", title: c, dataset: { cause: c } }, i ? "; " : "", causeWords(c, data.cause_words)))))));
     count.textContent = `${shown.length} of ${rows.length} recordings`;
   }
   draw();
@@ -164,7 +171,10 @@ function highlightCause(cause) {
   rows.forEach((r) => r.classList.add("hl"));
 }
 
-function causeChip(c) { return el("button", { class: "chip cause", title: "show its evidence on the timeline", on: { click: () => highlightCause(c) } }, c); }
+function causeChip(c, words) {
+  const meaning = words && words[c] ? `${words[c]} · ` : "";
+  return el("button", { class: "chip cause", title: `${meaning}show its evidence on the timeline`, on: { click: () => highlightCause(c) } }, c);
+}
 
 function findingsCard(run) {
   return el("section", { class: "card", id: "findings" }, el("h2", {}, "What the explainers found"),
@@ -172,7 +182,8 @@ function findingsCard(run) {
     run.findings.map((f) => el("article", { class: `finding ${f.enough_information ? "" : "thin"}` },
       el("h3", {}, f.explainer, " ", el("span", { class: "muted small" }, `confidence ${f.confidence.toFixed(2)} · ${f.phrased_by}`)),
       el("p", { class: "answer" }, f.text),
-      f.causes.length ? el("p", {}, f.causes.map(causeChip)) : null,
+      f.causes.length ? el("p", {}, f.causes.map((c) => causeChip(c, run.cause_words))) : null,
+      f.causes.length && run.cause_words ? el("p", { class: "muted small meaning" }, f.causes.map((c) => causeWords(c, run.cause_words)).join("; ")) : null,
       f.counterfactual ? el("p", {}, el("b", {}, "Would have helped: "), f.counterfactual) : null,
       f.fix ? el("p", {}, el("b", {}, "Fix: "), f.fix) : null,
       f.details.length ? el("details", {}, el("summary", {}, `details (${f.details.length})`), el("ul", { class: "small" }, f.details.map((d) => el("li", { class: "pre" }, d)))) : null)),
@@ -263,12 +274,14 @@ function pathCard(run) {
   return el("section", { class: "card", id: "path" }, el("div", { class: "row" }, el("h2", {}, "Path"),
       el("a", { href: png, target: "_blank", rel: "noopener", id: "png-link" }, "figure for a bug report (PNG)")),
     el("div", { class: "pathwrap" }, pathSvg(run),
-      el("div", { class: "legend small" },
-        el("p", {}, el("span", { class: "key route" }), "path from /amcl_pose"),
-        el("p", {}, el("span", { class: "key ell" }), "2σ covariance (red: above 0.2)"),
-        el("p", {}, el("span", { class: "key begin" }), "trip began"), el("p", {}, el("span", { class: "key end" }), "trip ended"),
-        el("p", {}, el("span", { class: "key stop" }), "where it stopped / ended"),
-        el("p", {}, el("span", { class: "key marker" }), "where it was at the chosen evidence"),
+      // the legend names only what the drawing holds: a run without trips shows no trip keys, and so on
+      el("div", { class: "legend small", id: "path-legend" },
+        p.points.length ? el("p", {}, el("span", { class: "key route" }), "path from /amcl_pose") : null,
+        p.ellipses.length ? el("p", {}, el("span", { class: "key ell" }), "2σ covariance (red: above 0.2)") : null,
+        p.trips.length ? el("p", {}, el("span", { class: "key begin" }), "trip began") : null,
+        p.trips.length ? el("p", {}, el("span", { class: "key end" }), "trip ended") : null,
+        p.stop ? el("p", {}, el("span", { class: "key stop" }), "where it stopped / ended") : null,
+        p.points.length && run.events.length ? el("p", {}, el("span", { class: "key marker" }), "where it was at the evidence you pick") : null,
         el("p", { class: "muted" }, `${p.poses} poses from /amcl_pose${p.points.length < p.poses ? `, ${p.points.length} drawn` : ""}.`),
         p.trips.map((t) => el("p", { class: "flag" }, `trip ${t.index + 1} (${t.skill}, ${t.status}): (${t.begin.x.toFixed(2)}, ${t.begin.y.toFixed(2)}) → (${t.end.x.toFixed(2)}, ${t.end.y.toFixed(2)})`)),
         p.stop ? el("p", { class: `flag ${p.stop_label.startsWith("stopped") ? "stop" : "end"}` }, `${p.stop_label} at (${p.stop.x.toFixed(2)}, ${p.stop.y.toFixed(2)}), covariance ${p.stop.cov_xy.toFixed(3)}`) : null)));
@@ -402,15 +415,17 @@ function runHead(name, run) {
   const tabs = el("nav", { class: "tabs" }, run.tasks.map((t) => el("a", {
     class: `tab ${run.task && t.task_id === run.task.task_id ? "active" : ""}`,
     href: `#/run/${encodeURIComponent(name)}/${encodeURIComponent(t.task_id)}` },
-    `${t.order}. ${t.instruction || "(recovery)"} `, badge(t.outcome))));
+    `${t.order}. ${t.instruction || "(recovery)"} `, badge(verdict(t)))));
   const where = run.live ? `the robot, live · ${run.duration_s === undefined ? "nothing kept yet" : `${run.duration_s.toFixed(1)} s kept, from ${clock(run.start_ns)} UTC`}`
     : `${run.storage} · ${run.duration_s.toFixed(1)} s from ${clock(run.start_ns)} UTC`;
   return el("section", { class: "runhead" }, el("a", { href: "#/" }, "← runs"),
-    el("h1", {}, run.recording, " ", run.live ? el("span", { class: "badge live" }, "live") : null, " ", run.task ? badge(run.task.outcome) : null),
+    el("h1", {}, run.recording, " ", run.live ? el("span", { class: "badge live" }, "live") : null, " ", run.task ? badge(verdict(run.task)) : null),
     el("p", { class: "muted" }, where),
     run.warnings.map((w) => el("p", { class: "warn" }, w)), tabs,
     run.task ? el("p", { class: "instruction" }, "\u201c", run.task.instruction || "(the robot's own recovery task)", "\u201d",
-      run.task.valid ? null : el("span", { class: "error" }, ` invalid plan: ${run.task.error_msg}`)) : null);
+      run.task.valid ? null : el("span", { class: "error" }, ` invalid plan: ${run.task.error_msg}`),
+      run.task.valid && verdict(run.task) === "wrong plan" ? el("span", { class: "error", id: "wrong-plan" },
+        ` the robot reported "${run.task.outcome}", but its plan did not match the request (see the planner below)`) : null) : null);
 }
 
 function renderRun(name, run) {

@@ -1,0 +1,126 @@
+"""Answers about a whole task rather than one explainer's part of it.
+
+- "did everything go ok?", "what happened" on a task of several steps: what became of every step, then the one
+  finding worth hearing (the router's pick), instead of one step's finding alone;
+- a question about the robot's own recovery task ("why did you say sorry?"): the failure of the task before it,
+  which is why the recovery exists;
+- "how can I fix this?", "what would have helped?" asked as a first question: the cause with its fix, not the
+  cause alone.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.explainers.base import Context, Evidence, Explanation
+from hexar.explainers.recorded import join_words, plan_words, sentence, step_words
+
+# Questions about the task as a whole ("what happened" asks for the whole story, not one step of it).
+_WHOLE = re.compile(
+    r"\b(did|has|have|was|is) (everything|it all|all|all of it|the task|the whole thing|it) (go|gone|went|going|been|"
+    r"work|worked|run|ok|okay|fine|alright|all right|good|well)\b|"
+    r"\bhow did (it|that|the task|everything|things|your task|the job) go\b|"
+    r"\b(everything|all) (ok|okay|fine|alright|all right|good|went well)\b|"
+    r"\bany (problems?|issues?|trouble)\b|"
+    r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$"
+)
+# A fix asked for: the same words as a "what would have helped?" follow-up (agent/followups.py).
+_FIX = re.compile(
+    r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
+    r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|"
+    r"how (can|could|do|would|should) (i|we|you|one) (fix|solve|repair|avoid|prevent)|"
+    r"how (can|could) (it|this|that) be (fixed|solved|avoided|prevented)|what should i (do|change)|"
+    r"what('s| is) the (fix|solution)|how to fix"
+)
+_STATE = {"succeeded": "done", "failed": "failed", "running": "still running when the recording ends",
+          "canceled": "canceled", "waiting": "never started"}
+
+
+_WHY = re.compile(r"\b(why|how come|what for|reason|sorry|apologi[sz]e)\b")
+
+
+def asks_why(question: str) -> bool:
+    """A question about why the robot did something, or what happened ("what was your plan?" is not one)."""
+    q = question.strip().lower()
+    return _WHY.search(q) is not None or whole_task(q)
+
+
+def whole_task(question: str) -> bool:
+    return _WHOLE.search(question.strip().lower()) is not None
+
+
+def asks_fix(question: str) -> bool:
+    return _FIX.search(question.strip().lower()) is not None
+
+
+def helped(exps: Sequence[Explanation], benign: set[str], said: str = "") -> str:
+    """What would have helped, as the explainers found it: their counterfactuals and fixes (less what `said`
+    already holds), or why there is none."""
+    parts = [p for e in exps for p in (e.counterfactual, e.fix) if p and _new(p, said)]
+    if parts:
+        return " ".join(dict.fromkeys(parts))
+    if any(e.counterfactual or e.fix for e in exps):
+        return ""  # all of it was said already
+    if exps and not all(e.enough_information for e in exps):
+        return ("The recording does not show what went wrong, so I can't say what would have helped: it holds "
+                "too little about this task.")
+    if exps and all(set(e.causes) <= benign for e in exps):
+        return "Nothing went wrong there, so I have nothing to suggest changing."
+    return "I have no fix or change to suggest: what I recorded does not show what would have helped."
+
+
+def _new(part: str, said: str) -> bool:
+    """Whether a counterfactual or fix adds to what was said (the cause's text often holds its counterfactual,
+    without the odds that the counterfactual adds in brackets)."""
+    return part.split(" (")[0].rstrip(".") not in said
+
+
+def steps_summary(task: Task) -> str:
+    """Every step of a task of several steps and what became of it, in one sentence ("" for one step)."""
+    runs = list(task.skills)
+    if len(runs) < 2:
+        return ""
+    if all(r.state == "succeeded" for r in runs):
+        return sentence(f"I did all {len(runs)} steps of my plan: {plan_words(task)}")
+    done = [r for r in runs if r.state == "succeeded"]
+    ended = [f"step {r.index + 1} (to {step_words(r, short=True)}) {_STATE[r.state]}" for r in runs
+             if r.state in {"failed", "running", "canceled"}]
+    never = [str(r.index + 1) for r in runs if r.state not in _STATE or r.state == "waiting"]
+    if never:
+        ended.append(f"step {never[0]} never started" if len(never) == 1 else
+                     f"steps {join_words(never)} never started")
+    lead = f"I did {len(done)} of the {len(runs)} steps of my plan" if done else \
+        f"I did none of the {len(runs)} steps of my plan"
+    return sentence(f"{lead}: {'; '.join(ended)}")
+
+
+def previous_task(log: EventLog, task: Task) -> Task | None:
+    """The task a recovery task recovers from: the last task the person asked for before it."""
+    before = [t for t in log.tasks if t.order < task.order and not t.is_recovery]
+    return before[-1] if before else None
+
+
+def recovery(log: EventLog, task: Task, registry: object, question: str) -> Explanation | None:
+    """Why the robot did its own recovery task: the failure of the task before it, as its explainer says it."""
+    from hexar.explainers.registry import Registry
+
+    if not task.is_recovery or not isinstance(registry, Registry) or not asks_why(question):
+        return None
+    prev = previous_task(log, task)
+    if prev is None:
+        return None
+    name = registry.failure_explainer(prev)
+    if name is None:
+        return None
+    cause = registry.get(name).explain(question, Context.for_task(log, prev, registry))
+    did = plan_words(task)
+    text = (f"I did my own recovery task ({did}) because my task before it, \"{prev.instruction}\", "
+            f"{'was rejected' if prev.outcome == 'invalid' else 'failed'}: {cause.text}")
+    item = prev.instruction or prev.task_id
+    evidence = [*cause.evidence, Evidence(cause=cause.causes[0] if cause.causes else "planner.plan_ok",
+                                          topic="/task_info", t=task.created, item=f"recovery task after: {item}")]
+    return cause.model_copy(update={"text": text, "evidence": evidence,
+                                    "details": [f"My recovery plan was to {did}.", *cause.details]})

@@ -1,0 +1,90 @@
+"""Whole-task answers (issue 24): a fix asked for as a first question, "did everything go ok?" and "what happened"
+about every step, the robot's recovery task explained by the failure before it, and a recording of only
+/rosout answered with what it does not hold."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
+from hexar.cli import main
+from hexar.evals.real_nav2 import corpus, write_recording
+
+
+def _ask(run: Path, *questions: str, task: str | None = None) -> list[dict[str, object]]:
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    if task is not None:
+        session.switch(thread, task)
+    return [session.ask(q, thread=thread) for q in questions]
+
+
+@pytest.mark.parametrize("question", ["how can I fix this", "what would have helped?"])
+def test_a_fix_question_is_answered_with_the_fix(suite: Path, question: str,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["ask", str(suite / "bagfile_5_1"), question, "--llm", "none"]) == 0
+    out = " ".join(capsys.readouterr().out.replace("│", " ").split())
+    assert "something blocked my path" in out and "Clear the way to the kitchen and ask me again." in out
+    # a counterfactual the cause already says is not said twice
+    assert main(["ask", str(suite / "bagfile_14_1"), question, "--llm", "none"]) == 0
+    out = " ".join(capsys.readouterr().out.replace("│", " ").split())
+    assert out.count("If my navigation to the person had succeeded") == 1
+    assert "Clear the way to the person and ask me again." in out
+
+
+def test_did_everything_go_ok_is_about_every_step(suite: Path) -> None:
+    ok, happened, slow = _ask(suite / "bagfile_10_1", "did everything go ok?", "what happened",
+                              "why did it take so long?")
+    for answer in (ok, happened):
+        text = str(answer["answer"])
+        assert text.startswith("I did all 4 steps of my plan: go to the kitchen, ask someone for help")
+        assert 'go to the living room and then say "Here is your coffee."' in text
+        assert answer["route"] == "findings"  # no guess at one module for a question about the whole task
+    assert "4 steps" not in str(slow["answer"])  # a question about one thing is answered about that thing
+
+
+def test_what_happened_on_a_failed_task_names_every_step(suite: Path) -> None:
+    (happened,) = _ask(suite / "bagfile_14_1", "what happened")
+    text = str(happened["answer"])
+    # the cause first (speech keeps only the first sentences), then every step
+    assert text.startswith("I could not get help: my navigation to the person failed.")
+    assert text.endswith("I did 1 of the 4 steps of my plan: step 2 (to ask someone for help) failed; steps 3 "
+                         "and 4 never started.")
+
+
+def test_why_did_you_say_sorry_is_the_failure_before_it(suite: Path) -> None:
+    sorry, fix = _ask(suite / "bagfile_5_1", "why did you say sorry", "what would have helped?", task="2")
+    text = str(sorry["answer"])
+    assert text.startswith('I did my own recovery task (say "Sorry, I could not complete the task.") because my '
+                           'task before it, "Bring me a coffee from the kitchen", failed: I couldn\'t reach the '
+                           'kitchen')
+    assert sorry["route"] == "recovery" and sorry["causes"] == ["navigation.blocked_path"]
+    assert "second" not in text  # no speech timing
+    assert str(fix["answer"]) == "Clear the way to the kitchen and ask me again."
+
+
+@pytest.fixture(scope="module")
+def plain_nav2(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """An ordinary Nav2 recording of only /rosout (a real log excerpt): no /task_info, no poses."""
+    excerpt = next(e for e in corpus() if e.id == "tb4-679-humble-trajectory-hits-obstacle")
+    return write_recording(excerpt, tmp_path_factory.mktemp("plain") / "bag", task=False)  # type: ignore[no-any-return]
+
+
+def test_plain_nav2_follow_ups_say_what_is_not_recorded(plain_nav2: Path) -> None:
+    first, deeper, deepest, where = _ask(plain_nav2, "what happened", "why?", "why?", "where are you now?")
+    said = " ".join(str(t["answer"]) for t in (first, deeper, deepest, where))
+    assert "I tried 0" not in said and "where I started" not in said
+    assert "My log records no recovery manoeuvre" in str(deepest["answer"])
+    assert "My position is not recorded: this recording has no /amcl_pose messages." in str(where["answer"])
+
+
+def test_the_evidence_of_a_why_is_told_in_time_order(suite: Path) -> None:
+    import re
+
+    _, why = _ask(suite / "bagfile_14_1", "what happened", "why?")
+    times = re.findall(r"at (\d\d:\d\d:\d\d\.\d{3})", str(why["answer"]))
+    assert len(times) == 3 and times == sorted(times)
+    assert "navigation_failure = True" in str(why["answer"])  # the explainer's own strongest items are kept
