@@ -22,6 +22,8 @@ from hexar.web.store import Store
 
 STATIC = {"index.html": "text/html; charset=utf-8", "app.js": "text/javascript; charset=utf-8",
           "style.css": "text/css; charset=utf-8"}
+# The page's other ES modules (app.js imports them; a module script must come with a JavaScript type)
+STATIC |= {f"{name}.js": STATIC["app.js"] for name in ("common", "runs", "run", "timeline", "path", "cards", "chat")}
 MAX_BODY = 64 * 1024
 # The page's own script and style only: a recorded string that slipped into markup still could not run.
 CSP = "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; object-src 'none'"
