@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import sqlite3
 from collections.abc import Callable, Iterable
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -15,6 +16,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
+from hexar.events.bag import Reader
 from hexar.events.cdr import LayoutError, decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
 from hexar.events.errors import (
     CorruptRecordingError,
@@ -63,6 +65,7 @@ class _Unreadable(Exception):
 _MISFIT = (LayoutError, SerdeError, AttributeError, TypeError, KeyError)
 
 
+@lru_cache(maxsize=256)  # typestores are shared between recordings (events.bag), and hashing one is not cheap
 def _same_layout(ts: Typestore, msgtype: str) -> bool:
     """Whether the recording's definition of `msgtype` is the standard (Humble) one the fast decoders assume."""
     humble = _humble()
@@ -192,14 +195,14 @@ def _read_files(files: list[Path], src: Path, wanted: frozenset[str]) -> EventLo
 def _read_whole(src: Path, wanted: frozenset[str]) -> EventLog:
     for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
         check_mcap(file, crc=False)
-    with AnyReader([src], default_typestore=_humble()) as reader:
+    with Reader([src], default_typestore=_humble()) as reader:
         log, complete = _read_skipping(reader, src, wanted)
     if not complete:
         # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
         # rosbags then matches no message to its connection; the storage files alone are consistent.
         files = storage_files(src)
         if files:
-            with AnyReader(files, default_typestore=_humble()) as reader:
+            with Reader(files, default_typestore=_humble()) as reader:
                 log, _ = _read_skipping(reader, src, wanted)
     return log
 

@@ -7,9 +7,9 @@ import sqlite3
 from collections.abc import Iterator
 from pathlib import Path
 
-import yaml
 from rosbags.interfaces import Connection
 
+from hexar.events.bag import metadata
 from hexar.events.mcap_index import check_mcap, mcap_messages
 
 
@@ -24,7 +24,7 @@ def sqlite_messages(src: Path, selected: list[Connection]) -> Iterator[tuple[Con
     meta = src / "metadata.yaml"
     if not files or not meta.is_file():
         return None
-    info = yaml.safe_load(meta.read_text()).get("rosbag2_bagfile_information", {})
+    info = metadata(meta).get("rosbag2_bagfile_information", {})
     if info.get("compression_format") or info.get("compression_mode"):
         return None
     wanted = {(conn.topic, conn.msgtype): conn for conn in selected}

@@ -418,7 +418,7 @@ def mcp(
     """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
 
     def body() -> int:
-        from hexar.mcp_server import serve
+        from hexar.tools.mcp_server import serve
 
         return serve(folder, http, port, host, llm, explainers, token)
 
@@ -444,15 +444,15 @@ def triage(
         from hexar.errors import HexarError
 
         if compare is not None:
-            from hexar.triage_report import compare as run_compare
-            from hexar.triage_report import compare_markdown
+            from hexar.fleet.compare import compare as run_compare
+            from hexar.fleet.compare import compare_markdown
 
             text = compare_markdown(run_compare(compare[0], compare[1], out_dir))
             print(text)
             return 0
         if not inputs:
             raise HexarError("give folders or globs of recordings, or --compare A B")
-        from hexar.triage_cmd import TriageOptions, ray_target, triage_command
+        from hexar.fleet.command import TriageOptions, ray_target, triage_command
 
         given, where = ray_target(inputs, ray, ray_address)
         if not given:

@@ -1,13 +1,19 @@
-"""Benchmark: `hexar triage` over 1,000 simulated recordings, and what its per-recording cost scales with.
+"""Benchmark: `hexar triage` throughput on the simulated fleet, and what its per-recording cost scales with.
 
-1. Throughput: `hexar triage` in a fresh process on 1,000 recordings (17 simulator seeds of the 60 scenarios,
-   cut to 1,000), locally with 1 and 2 workers and on a local Ray instance; recordings/s (median of --runs) and
-   the peak memory of the whole process tree (driver, workers, Ray's own processes), sampled from /proc.
+1. Throughput: `hexar triage` in a fresh process on the 60 recordings of `hexar simulate` (seed 0) and on 1,000
+   (17 simulator seeds of the 60 scenarios, cut to 1,000), locally with 1 and 2 workers (and on a local Ray
+   instance unless --skip-ray). Per configuration, the median of --runs of: recordings/s of wall time (start-up
+   included), recordings per CPU-second of the whole process tree (driver and workers: what one core does, so
+   it holds on a shared machine where wall time does not), and peak memory of the process tree, from /proc.
+   The marginal rate, (1,000 - 60) recordings over the difference of the two fleets' wall times, is the
+   per-recording throughput without the fixed start-up (interpreter, imports, report). `--baseline HEXAR`
+   runs another `hexar` (the code before a change, installed elsewhere) on the same recordings in the same run
+   and prints the ratios. The read-only floor: reading every message of the same recordings from their storage.
 2. Scaling: the per-recording cost, in-process, of the same 40 recordings (a) as simulated, (b) with camera
    images on an unsubscribed topic, (c) with extra /rosout lines (a subscribed topic). The cost should follow the
    bytes of subscribed topics, not the camera data.
 
-    .venv/bin/python scripts/bench_triage.py [--runs 3] [--dir DIR] [--skip-ray]
+    .venv/bin/python scripts/bench_triage.py [--runs 3] [--dir DIR] [--skip-ray] [--baseline OLD/bin/hexar]
 """
 
 from __future__ import annotations
@@ -15,7 +21,9 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import resource
 import shutil
+import sqlite3
 import statistics
 import subprocess
 import sys
@@ -67,32 +75,83 @@ def tree_rss_mb(pid: int) -> float:
     return total / 1024
 
 
-def run_triage(fleet: Path, out: Path, extra: list[str]) -> dict[str, float]:
+def _children_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str, float]:
+    """One `hexar triage` in a fresh process. The CPU time covers the process and every worker it waited for
+    (Ray's own daemons are not its children: a Ray run's CPU time counts the driver only)."""
     shutil.rmtree(out, ignore_errors=True)
-    start = time.perf_counter()
-    proc = subprocess.Popen([HEXAR, "triage", str(fleet), "--out", str(out), "--no-figures", *extra],
+    cpu0, start = _children_cpu(), time.perf_counter()
+    proc = subprocess.Popen([hexar, "triage", str(fleet), "--out", str(out), "--no-figures", *extra],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     peak = 0.0
     while proc.poll() is None:
         peak = max(peak, tree_rss_mb(proc.pid))
-        time.sleep(0.2)
-    wall = time.perf_counter() - start
+        time.sleep(0.05)
+    wall, cpu = time.perf_counter() - start, _children_cpu() - cpu0
     if proc.returncode != 0:
         raise SystemExit(f"triage failed: {proc.stderr.read().decode() if proc.stderr else ''}")
     done = len((out / "results.jsonl").read_text().splitlines())
-    return {"wall_s": wall, "recordings_per_s": done / wall, "peak_rss_mb": peak}
+    return {"wall_s": wall, "recordings_per_s": done / wall, "per_cpu_s": done / cpu, "peak_rss_mb": peak}
 
 
-def throughput(fleet: Path, base: Path, runs: int, ray: bool) -> dict[str, dict[str, float]]:
-    configs = {"local, 1 worker": ["--workers", "1"], "local, 2 workers": ["--workers", "2"]}
+def read_floor(fleet: Path, runs: int) -> float:
+    """Recordings/s of reading every message of every recording from its sqlite3 storage, nothing decoded."""
+    files = sorted(fleet.rglob("*.db3"))
+    rates = []
+    for _ in range(runs):
+        start = time.perf_counter()
+        for file in files:
+            db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
+            for _row in db.execute("SELECT topic_id, timestamp, data FROM messages"):
+                pass
+            db.close()
+        rates.append(len(files) / (time.perf_counter() - start))
+    return round(statistics.median(rates), 1)
+
+
+def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
+               baseline: str | None) -> dict[str, dict[str, float]]:
+    configs = {"1 worker": ["--workers", "1"], "2 workers": ["--workers", "2"]}
     if ray:
         configs["Ray local, 2 CPUs"] = ["--ray", "local", "--workers", "2"]
+    codes = {"new": HEXAR, **({"old": baseline} if baseline else {})}
     out: dict[str, dict[str, float]] = {}
-    for name, extra in configs.items():
-        samples = [run_triage(fleet, base / "out", extra) for _ in range(runs)]
-        out[name] = {k: round(statistics.median(s[k] for s in samples), 2) for k in samples[0]}
-        print(f"{name:20s} {out[name]}", flush=True)
+    for fleet_name, fleet in fleets.items():
+        for name, extra in configs.items():
+            for code, hexar in codes.items():
+                # interleaved, so that a change of load on a shared machine hits both codes alike
+                samples = [run_triage(hexar, fleet, base / "out", extra) for _ in range(runs)]
+                key = f"{fleet_name}, {name}, {code}"
+                out[key] = {k: round(statistics.median(s[k] for s in samples), 2) for k in samples[0]}
+                print(f"{key:34s} {out[key]}", flush=True)
     return out
+
+
+def summarise(result: dict[str, dict[str, float]], sizes: dict[str, int], baseline: bool) -> dict[str, float]:
+    """Scaling with workers, the marginal rate without start-up, and the ratios to the baseline."""
+    small, large = sizes
+    codes = ["new", "old"] if baseline else ["new"]
+    lines: dict[str, float] = {}
+    for code in codes:
+        for workers in ("1 worker", "2 workers"):
+            a, b = result[f"{small}, {workers}, {code}"], result[f"{large}, {workers}, {code}"]
+            lines[f"marginal {workers}, {code}"] = round((sizes[large] - sizes[small]) / (b["wall_s"] - a["wall_s"]), 1)
+        for fleet in (small, large):
+            one, two = result[f"{fleet}, 1 worker, {code}"], result[f"{fleet}, 2 workers, {code}"]
+            lines[f"2 workers / 1, {fleet}, {code}"] = round(two["recordings_per_s"] / one["recordings_per_s"], 2)
+    if baseline:
+        for key, row in result.items():
+            if key.endswith(", new") and key[:-5] + ", old" in result:
+                old = result[key[:-5] + ", old"]
+                lines[f"new/old {key[:-5]}, wall"] = round(row["recordings_per_s"] / old["recordings_per_s"], 2)
+                lines[f"new/old {key[:-5]}, CPU"] = round(row["per_cpu_s"] / old["per_cpu_s"], 2)
+    for k, v in lines.items():
+        print(f"{k:40s} {v}")
+    return lines
 
 
 def variants(base: Path) -> dict[str, list[Path]]:
@@ -128,7 +187,7 @@ def variants(base: Path) -> dict[str, list[Path]]:
 SCALE_CHILD = """
 import json, statistics, sys, time
 from pathlib import Path
-from hexar.triage import triage_recording
+from hexar.fleet.work import triage_recording
 paths = [Path(p) for p in sys.argv[1:]]
 triage_recording(paths[0], "warm")
 per = []
@@ -173,21 +232,31 @@ def main() -> int:
     ap.add_argument("--dir", type=Path, default=None, help="keep the recordings here between runs")
     ap.add_argument("--skip-ray", action="store_true")
     ap.add_argument("--skip-throughput", action="store_true")
+    ap.add_argument("--skip-scaling", action="store_true")
+    ap.add_argument("--baseline", default=None, help="another hexar executable to compare with, in the same run")
     args = ap.parse_args()
     base = args.dir or Path(tempfile.mkdtemp(prefix="hexar-triage-bench-"))
     t = time.perf_counter()
     fleet = make_fleet(base)
     print(f"{N} recordings in {fleet} ({time.perf_counter() - t:.0f} s to simulate); {os.cpu_count()} CPUs; "
           f"load average {os.getloadavg()[0]:.1f}", flush=True)
+    fleets = {"60": fleet / "robot-00", str(N): fleet}  # robot-00 is `hexar simulate --seed 0`
     result: dict[str, object] = {"recordings": N, "cpus": os.cpu_count(), "runs": args.runs}
+    floor = {name: read_floor(path, args.runs) for name, path in fleets.items()}
+    print(f"read-only floor, recordings/s: {floor}", flush=True)
+    result["read_floor"] = floor
     if not args.skip_throughput:
-        result["throughput"] = throughput(fleet, base, args.runs, not args.skip_ray)
-    result["scaling"] = sc = scaling(base, args.runs)
-    ratio_camera = sc["camera"]["ms_per_recording"] / sc["plain"]["ms_per_recording"]
-    ratio_logs = sc["more_rosout"]["ms_per_recording"] / sc["plain"]["ms_per_recording"]
-    print(f"camera data x{sc['camera']['total_mb'] / sc['plain']['total_mb']:.0f} bytes -> time x{ratio_camera:.2f}; "
-          f"subscribed /rosout x{sc['more_rosout']['subscribed_kb'] / sc['plain']['subscribed_kb']:.1f} bytes -> "
-          f"time x{ratio_logs:.2f}")
+        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline)
+        result["throughput"] = tp
+        result["summary"] = summarise(tp, {name: len(list(path.rglob("metadata.yaml")))
+                                           for name, path in fleets.items()}, args.baseline is not None)
+    if not args.skip_scaling:
+        result["scaling"] = sc = scaling(base, args.runs)
+        ratio_camera = sc["camera"]["ms_per_recording"] / sc["plain"]["ms_per_recording"]
+        ratio_logs = sc["more_rosout"]["ms_per_recording"] / sc["plain"]["ms_per_recording"]
+        more = sc["more_rosout"]["subscribed_kb"] / sc["plain"]["subscribed_kb"]
+        print(f"camera data x{sc['camera']['total_mb'] / sc['plain']['total_mb']:.0f} bytes -> time "
+              f"x{ratio_camera:.2f}; subscribed /rosout x{more:.1f} bytes -> time x{ratio_logs:.2f}")
     print(json.dumps(result))
     return 0
 

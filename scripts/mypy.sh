@@ -7,5 +7,5 @@ tree=$(mktemp -d)
 trap 'rm -rf "$tree"' EXIT
 mkdir -p "$tree/hexar"
 for f in hexar/*.py hexar/py.typed hexar/*.yaml; do ln -s "$PWD/$f" "$tree/hexar/"; done
-for d in agent tools explainers prompts voice evals events web live; do ln -s "$PWD/$d" "$tree/hexar/$d"; done
+for d in agent tools explainers prompts voice evals events web live fleet; do ln -s "$PWD/$d" "$tree/hexar/$d"; done
 MYPYPATH="$tree" .venv/bin/mypy --config-file pyproject.toml -p hexar

@@ -1,4 +1,7 @@
-"""Each component explainer as a LangGraph tool. The docstring is what the LLM router reads.
+"""Each component explainer as a tool: one list (`tool_specs`: name, explainer, description) from which both the
+agent's LangGraph tools (`tools_for`) and the MCP server's tools (tools/mcp_server.py) are built. A built-in
+explainer's description is the docstring of its function below, which is what the LLM router reads; a further
+explainer's is the description the registry gives.
 
 The tools run inside the agent's tool node, which sets the scope (the explainers and the context vector C of
 the task being explained) for the duration of the call; the tools themselves take only the question.
@@ -8,7 +11,8 @@ an LLM runs the same explainers through `run_explainer` and never pays that impo
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import textwrap
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass
@@ -100,20 +104,40 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(name)
 
 
+@dataclass(frozen=True)
+class ToolSpec:
+    name: str
+    explainer: str
+    description: str
+    function: Callable[[str], dict[str, Any]] | None = None  # a built-in tool's function; None: run by name
+
+
+def tool_specs(registry: Registry) -> list[ToolSpec]:
+    """The five tools above plus one for every further explainer registered by entry point or config. A built-in
+    description is its docstring as LangChain reads one (dedented, stripped), so both protocols say the same."""
+    out = [ToolSpec(fn.__name__, TOOL_EXPLAINER[fn.__name__], textwrap.dedent(fn.__doc__ or "").strip(), fn)
+           for fn in _FUNCTIONS]
+    known = set(TOOL_EXPLAINER.values())
+    out += [ToolSpec(f"explain_{name}", name, description) for name, description in registry.descriptions().items()
+            if name not in known]
+    return out
+
+
 def tools_for(registry: Registry) -> list[BaseTool]:
-    """The five tools above plus one for every further explainer registered by entry point or config."""
+    """`tool_specs` as LangChain tools for the agent's router and tool node."""
     from langchain_core.tools import StructuredTool
 
-    out = list(builtin_tools())
-    known = set(TOOL_EXPLAINER.values())
-    for name, description in registry.descriptions().items():
-        if name in known:
+    builtin = {t.name: t for t in builtin_tools()}
+    out: list[BaseTool] = []
+    for spec in tool_specs(registry):
+        if spec.function is not None:
+            out.append(builtin[spec.name])
             continue
 
-        def _run(question: str, _name: str = name) -> dict[str, Any]:
+        def _run(question: str, _name: str = spec.explainer) -> dict[str, Any]:
             return run_explainer(_name, question)
 
-        out.append(StructuredTool.from_function(_run, name=f"explain_{name}", description=description))
+        out.append(StructuredTool.from_function(_run, name=spec.name, description=spec.description))
     return out
 
 

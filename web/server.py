@@ -28,6 +28,8 @@ from hexar.web.store import Store
 
 STATIC = {"index.html": "text/html; charset=utf-8", "app.js": "text/javascript; charset=utf-8",
           "style.css": "text/css; charset=utf-8"}
+# The page's other ES modules (app.js imports them; a module script must come with a JavaScript type)
+STATIC |= {f"{name}.js": STATIC["app.js"] for name in ("common", "runs", "run", "timeline", "path", "cards", "chat")}
 MAX_BODY = 64 * 1024
 REQUEST_S = 20.0  # to send one request, headers and body; an idle keep-alive connection is closed after it too
 # The page's own script and style only: a recorded string that slipped into markup still could not run; and no

@@ -24,6 +24,7 @@ TRAINING_SEED = 11
 EQUIVALENT_SAMPLE_SIZE = 1.0
 SUCCESS_THRESHOLD = 0.5
 MODEL_FILE = "model.json"
+ANSWERS_KEPT = 65_536  # memoised queries: a few MB at most
 
 # The state machine as a DAG: what each recorded value depends on, and which values decide each transition.
 EDGES: tuple[tuple[str, str], ...] = (
@@ -130,6 +131,7 @@ class CausalModel:
         self._edges = [tuple(e) for e in edges]
         self._specs: dict[str, Any] = dict(specs) if specs is not None else _cpd_specs(network)
         self._tables = _tables_of(self._specs)
+        self._answers: dict[tuple[Any, ...], float] = {}
 
     @classmethod
     def fit(cls, rows: Sequence[Mapping[str, str]], **meta: Any) -> CausalModel:
@@ -205,7 +207,17 @@ class CausalModel:
     def probability(
         self, var: str, value: str, do: Mapping[str, str], evidence: Mapping[str, str] | None = None
     ) -> float:
-        """P(var = value | do(do), evidence)."""
+        """P(var = value | do(do), evidence), computed once per query: the tables never change, and a fleet asks
+        the same few queries of thousands of recordings (planning the sum takes longer than computing it)."""
+        key = (var, value, tuple(sorted(do.items())), tuple(sorted((evidence or {}).items())))
+        answer = self._answers.get(key)
+        if answer is None:
+            if len(self._answers) >= ANSWERS_KEPT:
+                self._answers.clear()
+            answer = self._answers[key] = self._probability(var, value, do, evidence)
+        return answer
+
+    def _probability(self, var: str, value: str, do: Mapping[str, str], evidence: Mapping[str, str] | None) -> float:
         import numpy as np
 
         known = {**(evidence or {}), **do}

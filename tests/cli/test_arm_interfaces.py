@@ -15,7 +15,7 @@ from rich.console import Console
 
 from hexar.cli import main
 from hexar.evals.scenarios.arm import arm_recording_name, simulate_arm_suite
-from hexar.triage_cmd import TriageOptions, triage_command
+from hexar.fleet.command import TriageOptions, triage_command
 
 HEXAR = str(Path(sys.executable).with_name("hexar"))
 PICKED = {("controllers_not_found", 1), ("tolerance", 1), ("out_of_reach", 2), ("nominal", 1)}

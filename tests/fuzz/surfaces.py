@@ -88,7 +88,7 @@ def web(folder: Path, bag: Path, question: str, log: EventLog | None) -> Outcome
 def mcp(folder: Path, bag: Path, question: str, rng: random.Random) -> Outcome:
     from mcp.server.fastmcp.exceptions import ToolError
 
-    from hexar.mcp_server import build
+    from hexar.tools.mcp_server import build
 
     o = Outcome(["mcp", str(bag)], 0, "", "")
     server = build(folder, "none")

@@ -139,8 +139,26 @@ def test_static_page_has_no_inline_script_and_a_strict_policy(webroot: Path, tmp
     with served(webroot, tmp_path / "t.sqlite") as url, urllib.request.urlopen(url) as r:
         html = r.read().decode()
         policy = r.headers["Content-Security-Policy"]
-    assert "script-src 'self'" in policy and "<script src=\"/static/app.js\">" in html
+    assert "script-src 'self'" in policy and "<script type=\"module\" src=\"/static/app.js\">" in html
     assert "<script>" not in html
+
+
+def test_every_module_of_the_page_is_served_as_javascript(webroot: Path, tmp_path: Path) -> None:
+    """app.js and every module it imports, transitively: a browser runs a module only with a JavaScript type."""
+    import re
+
+    seen: set[str] = set()
+    todo = ["app.js"]
+    with served(webroot, tmp_path / "t.sqlite") as url:
+        while todo:
+            name = todo.pop()
+            seen.add(name)
+            with urllib.request.urlopen(f"{url}static/{name}") as r:
+                assert r.headers["Content-Type"].startswith("text/javascript")
+                text = r.read().decode()
+            assert ".innerHTML" not in text and "insertAdjacentHTML" not in text  # recorded text stays text
+            todo += [m for m in re.findall(r'^import .* from "\./([\w-]+\.js)";$', text, re.M) if m not in seen]
+    assert {"app.js", "common.js", "runs.js", "run.js", "timeline.js", "path.js", "chat.js"} <= seen
 
 
 @pytest.mark.parametrize(("args", "message"), [

@@ -22,7 +22,7 @@ from mcp.client.streamable_http import streamable_http_client
 from hexar.agent.questions import MAX_QUESTION
 from hexar.evals.scenarios.bag import _T, BagBuilder, sec_ns
 from hexar.events import contract as c
-from tests.cli.test_mcp_server import HEXAR, ROOT, _env, _free_port, call, error_of, run, stdio_session
+from tests.tools.test_mcp_server import HEXAR, ROOT, _env, _free_port, call, error_of, run, stdio_session
 
 T0 = sec_ns(1_741_600_000)
 DEEP = "[" * 2000 + "]" * 2000

@@ -14,7 +14,7 @@ import pytest
 
 from hexar.cli import main
 from hexar.evals.scenarios.bag import BagBuilder
-from hexar.triage import first_sentence
+from hexar.fleet.work import first_sentence
 from tests.events.helpers import T0, two_skill_task
 
 DAYS = ("2025-03-10", "2025-03-11_08-30-00")

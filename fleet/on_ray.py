@@ -11,7 +11,8 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
-from hexar.triage import TriageError
+from hexar.fleet.errors import TriageError
+from hexar.fleet.work import warm, work
 
 IN_FLIGHT_PER_CPU = 4  # submitted but unfinished tasks: bounded, so the driver's memory stays flat
 
@@ -22,8 +23,6 @@ def run_ray(todo: list[tuple[str, str]], address: str, workers: int | None,
         import ray
     except ImportError as err:
         raise TriageError("--ray needs Ray: pip install 'hexar[fleet]'") from err
-    from hexar.triage_cmd import _work, warm
-
     started = not ray.is_initialized()
     try:
         if started:
@@ -37,7 +36,7 @@ def run_ray(todo: list[tuple[str, str]], address: str, workers: int | None,
     @ray.remote(num_cpus=1)
     def triage_task(path: str, rel: str) -> dict[str, Any]:
         warm()
-        return _work(path, rel)
+        return work(path, rel)
 
     try:
         cpus = ray.cluster_resources().get("CPU", 1)  # type: ignore[no-untyped-call]

@@ -20,9 +20,9 @@ from rich.console import Console
 
 from hexar.cli import main
 from hexar.evals.cases import scenario
-from hexar.triage import first_sentence
-from hexar.triage_cmd import RESULTS, TriageOptions, triage_command
-from hexar.triage_report import compare
+from hexar.fleet.command import RESULTS, TriageOptions, triage_command
+from hexar.fleet.compare import compare
+from hexar.fleet.work import first_sentence
 
 HEXAR = str(Path(sys.executable).with_name("hexar"))
 BROKEN = {"robot-c/truncated", "robot-c/garbage", "robot-c/empty_meta"}
@@ -207,7 +207,7 @@ def test_globs_and_nested_folders(fleet: Path, tmp_path: Path) -> None:
                                             for n in (11, 12)]
     assert set(df["robot"]) == {"robot-a", "robot-b"}
     assert len(df[~df["recovery"]]) == 4  # two robots, two scenarios
-    from hexar.triage import expand
+    from hexar.fleet.inputs import expand
 
     named = {rel for _, rel in expand([str(fleet / "robot-[ab]")])}
     assert "robot-a/seed-1/bagfile_5_1" in named and "robot-b/seed-2/bagfile_5_1" in named

@@ -9,9 +9,6 @@ from __future__ import annotations
 import json
 import os
 import re
-import signal
-from collections.abc import Callable, Iterator
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TextIO
@@ -20,7 +17,9 @@ from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeRemainingColumn
 
-from hexar.triage import TriageError, expand, registry, robot_of, triage_recording
+from hexar.fleet.errors import TriageError
+from hexar.fleet.inputs import expand, robot_of
+from hexar.fleet.local import default_workers, run_local
 
 RESULTS = "results.jsonl"
 
@@ -33,10 +32,6 @@ class TriageOptions:
     ray: str | None = None  # None: local pool; "": a local Ray instance; else a cluster address
     figures: bool = True
     progress: bool = True
-
-
-def default_workers() -> int:
-    return max(1, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1))
 
 
 def load_results(out: Path) -> list[dict[str, Any]]:
@@ -53,56 +48,6 @@ def load_results(out: Path) -> list[dict[str, Any]]:
         if isinstance(item, dict) and "key" in item:
             done[item["key"]] = item
     return list(done.values())
-
-
-def _ignore_sigint() -> None:
-    """Workers leave Ctrl-C to the parent, which stops handing out work and keeps what is finished."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-
-
-def _work(path: str, rel: str) -> dict[str, Any]:
-    result = triage_recording(Path(path), rel)
-    result["key"] = path
-    return result
-
-
-def warm() -> None:
-    """Load the explainers and the help-seeking causal model before forking, so no worker pays for it."""
-    registry()
-    from hexar.explainers.ask_human.explainer import shipped_model
-
-    shipped_model()
-
-
-def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[dict[str, Any]], None]) -> None:
-    if workers == 1:
-        for path, rel in todo:
-            on_done(_work(path, rel))
-        return
-    import multiprocessing
-
-    warm()
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
-                             initializer=_ignore_sigint) as pool:
-        pending: set[Future[dict[str, Any]]] = set()
-        queue: Iterator[tuple[str, str]] = iter(todo)
-        try:
-            # A bounded window of submitted work: memory stays flat for any number of recordings.
-            for path, rel in queue:
-                pending.add(pool.submit(_work, path, rel))
-                if len(pending) >= workers * 4:
-                    break
-            while pending:
-                finished, pending = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in finished:
-                    on_done(fut.result())
-                    nxt = next(queue, None)
-                    if nxt is not None:
-                        pending.add(pool.submit(_work, *nxt))
-        except KeyboardInterrupt:
-            for fut in pending:
-                fut.cancel()
-            raise
 
 
 def triage_command(opts: TriageOptions, console: Console) -> int:
@@ -142,14 +87,14 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
 
         try:
             if opts.ray is not None and todo:  # nothing left to do: no cluster to start or reach
-                from hexar.triage_ray import run_ray
+                from hexar.fleet.on_ray import run_ray
 
                 run_ray(todo, opts.ray, opts.workers, on_done)
             else:
                 run_local(todo, workers, on_done)
         except KeyboardInterrupt:
             interrupted = True
-    from hexar.triage_report import write_outputs
+    from hexar.fleet.report import write_outputs
 
     labels = dict(found)  # the report is about these inputs, whatever else --out holds
     results = [relabel(r, labels[r["key"]]) for r in load_results(opts.out) if r["key"] in labels]

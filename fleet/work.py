@@ -1,34 +1,26 @@
 """Fleet triage, one recording at a time: every task's outcome and, with no LLM, the explanation of what went wrong.
 
-This is the unit of work of `hexar triage`: the local process pool and Ray both call `triage_recording` and get
-plain rows (dicts of str/int/float/list) back, so results travel between processes without pickling events.
+This is the unit of work of `hexar triage`: the local process pool and Ray both call `work` and get plain rows
+(dicts of str/int/float/list) back, so results travel between processes without pickling events.
 """
 
 from __future__ import annotations
 
-import glob
-import os
 import re
-from collections.abc import Iterable, Iterator
 from datetime import UTC, datetime
 from functools import cache
 from pathlib import Path
 from typing import Any
 
-from hexar.errors import HexarError
 from hexar.events import EventLog, EventsError, Task, read_recording
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ExplainerError
 from hexar.explainers.registry import Registry
-from hexar.workspace import find_recordings, is_recording
+from hexar.fleet.inputs import robot_of
 
 QUESTION = "What happened?"
 # What an explainer reports when nothing went wrong: not worth a look in a fleet report.
 BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
-
-
-class TriageError(HexarError):
-    """Bad triage input: nothing to triage, a bad option, an unreadable results folder."""
 
 
 @cache
@@ -56,22 +48,10 @@ def _iso(t: int) -> str:
     return datetime.fromtimestamp(t / 1e9, tz=UTC).isoformat(timespec="seconds")
 
 
-# A folder named by a date, with an optional time (2025-03-10, 2025-03-10_14-30, 2025-03-10T14:30:00Z): never a robot.
-_DATE = re.compile(r"\d{4}-\d{2}-\d{2}(?:[T_ -]?\d{2}[-:_.]?\d{2}(?:[-:_.]?\d{2}(?:\.\d+)?)?(?:Z|[+-]\d{2}:?\d{2})?)?")
 # A sentence ends at . ! or ? (and any closing quote or bracket) before a space and a capital, or at the end;
 # "0.5 m" has no space after its point, and these abbreviations end no sentence.
 _SENTENCE_END = re.compile(r"[.!?][\"')\]]*(?=\s+[\"'(\[]?[A-Z]|\s*$)")
 _ABBREVIATIONS = ("e.g.", "i.e.", "vs.", "approx.", "cf.", "etc.", "No.", "Dr.", "St.", "Mr.", "Ms.")
-
-
-def is_date(name: str) -> bool:
-    return _DATE.fullmatch(name) is not None
-
-
-def robot_of(rel: str) -> str:
-    """Fleets keep recordings as [FLEET/]ROBOT/[DATE/...]RECORDING: the first folder of the recording's label that
-    is not a date (`expand` makes every label start at or above its robot)."""
-    return next((part for part in rel.split("/")[:-1] if not is_date(part)), "")
 
 
 def first_sentence(text: str) -> str:
@@ -131,55 +111,21 @@ def triage_recording(path: Path, rel: str) -> dict[str, Any]:
         return {"recording": rel, "rows": [], "error": f"{type(err).__name__}: {err}".splitlines()[0]}
 
 
-def _matches(inputs: Iterable[str]) -> Iterator[tuple[Path, Path]]:
-    """Every recording under the inputs with the folder it was found from: a plain folder itself; for a glob,
-    the matched folder's parent (`fleet/robot-*` names robots); for a recording, its own folder."""
-    for raw in inputs:
-        matches = sorted(glob.glob(raw, recursive=True)) if glob.has_magic(raw) else [raw]
-        if not matches:
-            raise TriageError(f"no recordings match {raw!r}")
-        for match in matches:
-            path = Path(os.path.abspath(match))
-            if not Path(match).exists():
-                raise TriageError(f"no such folder or recording: {raw}")
-            if is_recording(path):
-                yield path, path.parent
-            else:
-                base = path.parent if glob.has_magic(raw) else path
-                for rec in find_recordings(path, follow_links=True):  # a fleet folder of links to recordings
-                    yield rec, base
+def work(path: str, rel: str) -> dict[str, Any]:
+    """`triage_recording` keyed by the recording's resolved path, as the results file keeps it."""
+    result = triage_recording(Path(path), rel)
+    result["key"] = path
+    return result
 
 
-def _robot_folder(folder: Path) -> Path:
-    """The nearest folder at or above `folder` that is not a date: the robot of a robot folder given directly,
-    or of a glob over robots and dates."""
-    while is_date(folder.name) and folder.parent != folder:
-        folder = folder.parent
-    return folder
+def warm() -> None:
+    """Load the explainers and their models before forking (the help-seeking causal model; the pizza tree, with
+    scikit-learn and LIME, a second and more to import): forked workers share them instead of each loading its own."""
+    import lime.lime_tabular  # noqa: F401 - what a pizza explanation imports
 
+    from hexar.explainers.ask_human.explainer import shipped_model
+    from hexar.explainers.pizza.recommender import default_recommender
 
-def expand(inputs: Iterable[str]) -> list[tuple[Path, str]]:
-    """Recordings under folders or globs, nested at any depth, each with a label unique in this run: its path under
-    the inputs' common folder, starting at or above its robot (see `robot_of`)."""
-    found: list[tuple[Path, Path]] = []
-    seen: set[Path] = set()
-    for rec, base in _matches(inputs):
-        real = rec.resolve()
-        if real not in seen:
-            seen.add(real)
-            found.append((rec, base))
-    if not found:
-        return []
-    root = Path(os.path.commonpath([str(base) for _, base in found]))
-    above = _robot_folder(root).parent  # where a label starts that has no robot folder under the common one
-    labels: set[str] = set()
-    named: list[tuple[Path, str]] = []
-    for rec, _ in found:
-        rel = rec.relative_to(root).as_posix()
-        if not robot_of(rel):
-            rel = rec.relative_to(above).as_posix()
-        if rel in labels:  # only a folder repeating its parent's name can get here; the full path is unique
-            rel = rec.as_posix().lstrip("/")
-        labels.add(rel)
-        named.append((rec, rel))
-    return named
+    registry()
+    shipped_model()
+    default_recommender()

@@ -1,7 +1,8 @@
 """`hexar mcp`: HEXAR's explainers as Model Context Protocol tools, so any MCP client gets grounded answers.
 
 The tools and resources are thin wrappers over `hexar.workspace.Workspace`; one tool per registered explainer is
-generated from the same registry and the same tool names and descriptions the agent's router uses.
+built from `tool_specs` (tools/explainer_tools.py), the list the agent's LangGraph tools are built from: the same
+names and descriptions the router reads.
 Imported only by the `hexar mcp` command body: it pulls in the MCP SDK.
 """
 
@@ -115,7 +116,7 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
         messages: whether HEXAR can explain it, and what is missing."""
         return call(ws.contract, recording)
 
-    from hexar.tools.explainer_tools import explainer_of_tool, tools_for
+    from hexar.tools.explainer_tools import tool_specs
 
     def explainer_tool(name: str) -> Any:
         def explain(recording: Recording, question: Question, task: TaskRef = None,
@@ -124,9 +125,9 @@ def build(root: Path, llm: str = "none", host: str = "127.0.0.1", port: int = 80
 
         return explain
 
-    for lc_tool in tools_for(ws.registry()):
-        server.add_tool(explainer_tool(explainer_of_tool(lc_tool.name)), name=lc_tool.name, description=(
-            f"{_described(lc_tool.description)}\n\nArguments: recording (path in the served folder), "
+    for spec in tool_specs(ws.registry()):
+        server.add_tool(explainer_tool(spec.explainer), name=spec.name, description=(
+            f"{_described(spec.description)}\n\nArguments: recording (path in the served folder), "
             "question, task (id, order number, 'first' or 'latest'; default latest), evidence_offset (evidence is "
             f"paged by {PAGE}). "
             "Returns the structured explanation: text, causes, evidence (cause, topic, t in ns, item), "

@@ -26,8 +26,8 @@ from hexar.evals.cases import scenario
 from hexar.events import EventLog, read_recording
 from hexar.events import contract as c
 from hexar.explainers.registry import Registry
-from hexar.mcp_server import resource_uri
 from hexar.tools.explainer_tools import tools_for
+from hexar.tools.mcp_server import resource_uri
 
 ROOT = Path(__file__).resolve().parents[2]
 HEXAR = str(Path(sys.executable).with_name("hexar"))

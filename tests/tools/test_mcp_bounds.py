@@ -11,11 +11,11 @@ from mcp import ClientSession
 
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.records import INFO
-from hexar.mcp_server import resource_uri
+from hexar.tools.mcp_server import resource_uri
 from hexar.workspace import PAGE
-from tests.cli.test_mcp_server import call, error_of, run, stdio_session
 from tests.events.helpers import T0, task_msg
 from tests.fuzz.harness import _strict
+from tests.tools.test_mcp_server import call, error_of, run, stdio_session
 
 GOALS = PAGE + 17
 

@@ -1,0 +1,196 @@
+"""rosbags' AnyReader, opened at a fraction of the cost for a fleet of small recordings, with the same results.
+
+Two costs of rosbags' open dwarf reading a small recording's messages:
+- it parses every stored message definition and generates, registers and compiles Python classes for it, and the
+  fresh typestore then generates its decoders again. A fleet's recordings come from a handful of software
+  versions, so the typestore built for a set of definitions is kept (least recently used first out) and shared
+  with the decoders it has generated; a typestore is only read from once built, so sharing changes no result.
+- it reads metadata.yaml with ruamel's pure-Python parser. PyYAML's libyaml parser reads the same file about ten
+  times faster; where libyaml is missing, or the file is anything but a plain uncompressed rosbag2 recording with
+  the fields rosbags reads, rosbags opens it itself, so every error and its text stay rosbags'.
+"""
+
+from __future__ import annotations
+
+from contextlib import ExitStack, suppress
+from functools import lru_cache
+from pathlib import Path, PurePath
+from typing import Any
+
+import yaml
+from rosbags.highlevel import AnyReader
+from rosbags.highlevel.anyreader import AnyReaderError
+from rosbags.interfaces import Connection, ConnectionExtRosbag2, MessageDefinition, MessageDefinitionFormat
+from rosbags.rosbag2.metadata import ReaderMetadata, parse_qos
+from rosbags.rosbag2.reader import DirectoryReader
+from rosbags.rosbag2.reader import Reader as Reader2
+from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_typestore
+from rosbags.typesys.store import Typestore
+
+# (message type, definition format, definition text, type hash) of a connection that stores its definition
+Definition = tuple[str, MessageDefinitionFormat, str, str]
+_IDL_SEPARATOR = "=" * 80 + "\n"
+SETS_KEPT = 32  # distinct definition sets whose typestores stay built: a few per robot software version
+
+
+LIBYAML = hasattr(yaml, "CSafeLoader")  # PyYAML built with libyaml, as its wheels are
+_LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+
+class Reader(AnyReader):
+    """AnyReader, opened the same way and raising the same errors, with its typestore from the shared cache."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        for reader in self.readers:
+            if (isinstance(reader, Reader2) and type(reader.storage) is DirectoryReader and LIBYAML
+                    and isinstance(reader.storage.path, Path)):
+                reader.storage = Directory(reader.storage.path)
+
+    def _open(self) -> None:
+        assert self.stack
+        for reader in self.readers:
+            self.stack.enter_context(reader)
+        connections = [y for x in self.readers for y in x.connections]
+        if connections:
+            self.typestore = typestore_for(definitions(connections), self.is2, self.default_typestore)
+        self.connections = connections
+
+
+def definitions(connections: list[Connection]) -> tuple[Definition, ...]:
+    return tuple((conn.msgtype, conn.msgdef.format, conn.msgdef.data, conn.digest) for conn in connections
+                 if conn.msgdef.format != MessageDefinitionFormat.NONE)
+
+
+@lru_cache(maxsize=SETS_KEPT)
+def typestore_for(defs: tuple[Definition, ...], is2: bool, default: Typestore | None) -> Typestore:
+    """The typestore AnyReader builds for these stored definitions (else the default one), checked against the
+    hashes the recording stores. Only a store that was built is kept: an error is raised again on every open."""
+    types = {}
+    digests: dict[str, str] = {}
+    for msgtype, form, data, digest in defs:
+        if form == MessageDefinitionFormat.MSG:
+            types.update(get_types_from_msg(data, msgtype))
+        elif data.startswith(f"{_IDL_SEPARATOR}IDL: "):
+            for part in data.split(_IDL_SEPARATOR)[1:]:
+                header, idl = part.split("\n", 1)
+                assert header.startswith("IDL: ")
+                types.update(get_types_from_idl(idl))
+        else:
+            types.update(get_types_from_idl(data))
+        if digest:
+            digests[msgtype] = digest
+    if not defs:
+        if default is None:
+            raise AnyReaderError("Bag contains no type definitions. Instantiate AnyReader with a default_typestore "
+                                 "argument.")
+        types.update(default.fielddefs)
+    store = get_typestore(Stores.EMPTY)
+    store.register(types)
+    for msgtype, digest in digests.items():
+        have = store.hash_rihs01(msgtype) if is2 else store.generate_msgdef(msgtype)[1]
+        if have != digest:
+            raise AnyReaderError(f"Message type {msgtype!r} hash mismatch {have} != {digest}")
+    return store
+
+
+class Directory(DirectoryReader):
+    """A rosbag2 folder whose metadata.yaml libyaml reads, when it is plain; else rosbags reads it itself."""
+
+    def open(self) -> None:
+        parsed = _plain_metadata(self.path / "metadata.yaml") if isinstance(self.path, Path) else None
+        if parsed is None:
+            super().open()
+            return
+        self.stack = ExitStack()
+        try:
+            self._open(*parsed)
+        except BaseException:
+            with suppress(Exception):
+                self.close()
+            raise
+
+    def _open(self, info: dict[str, Any], paths: list[Path], qos: list[Any]) -> None:
+        assert self.stack is not None
+        self.connections = [
+            Connection(id=idx + 1, topic=t["topic_metadata"]["name"], msgtype=t["topic_metadata"]["type"],
+                       msgdef=MessageDefinition(MessageDefinitionFormat.NONE, ""),
+                       digest=t["topic_metadata"].get("type_description_hash", ""), msgcount=t["message_count"],
+                       ext=ConnectionExtRosbag2(serialization_format="cdr",
+                                                offered_qos_profiles=parse_qos(profiles)),
+                       owner=self)
+            for idx, (t, profiles) in enumerate(zip(info["topics_with_message_count"], qos, strict=True))]
+        duration, count = info["duration"]["nanoseconds"], info["message_count"]
+        start = info["starting_time"]["nanoseconds_since_epoch"]
+        mode = info.get("compression_mode", "").lower()  # "" or "none": uncompressed, as rosbags keeps it
+        self.metadata = ReaderMetadata(duration=duration + 1 if count else 0, start_time=start if count else 2**63 - 1,
+                                       end_time=start + duration + 1 if count else 0, message_count=count,
+                                       compression_format=None, compression_mode=None if mode == "none" else mode,
+                                       ros_distro=info.get("ros_distro"), custom=info.get("custom_data"))
+        self.files = info.get("files", [])[:]
+        plugin = self.STORAGE_PLUGINS[info["storage_identifier"]]
+        self.storages = []
+        for path in paths:
+            storage = plugin(path)
+            storage.open()
+            self.stack.callback(storage.close)
+            self.storages.append(storage)
+        for idx, conn in enumerate(self.connections):
+            stored = next((y.msgdef for x in self.storages for y in x.connections
+                           if y.msgtype == conn.msgtype and y.msgdef.format != MessageDefinitionFormat.NONE), None)
+            if stored:
+                self.connections[idx] = conn._replace(msgdef=stored)
+
+
+def _plain_metadata(path: Path) -> tuple[dict[str, Any], list[Path], list[Any]] | None:
+    """The metadata of an uncompressed rosbag2 recording of version 9 or older whose storage files are all there,
+    every field rosbags reads of the type it expects; None for anything else (rosbags then reads it, and names
+    what is wrong). Plain text fields are compared as libyaml reads them: a YAML 1.1 boolean or number where a
+    name belongs (ruamel reads YAML 1.2) sends the file to rosbags too."""
+    try:
+        info = metadata(path)["rosbag2_bagfile_information"]
+        if not (isinstance(info["version"], int) and info["version"] <= 9):
+            return None
+        if info.get("compression_format") or info.get("compression_mode", "").lower() not in ("", "none"):
+            return None
+        if info["storage_identifier"] not in DirectoryReader.STORAGE_PLUGINS:
+            return None
+        names = info["relative_file_paths"]
+        if not all(isinstance(n, str) for n in names):
+            return None
+        paths = [path.parent / PurePath(n).name for n in names]
+        numbers = (info["duration"]["nanoseconds"], info["starting_time"]["nanoseconds_since_epoch"],
+                   info["message_count"])
+        if any(type(n) is not int for n in numbers):
+            return None
+        qos = []
+        for t in info["topics_with_message_count"]:
+            meta = t["topic_metadata"]
+            given = meta.get("offered_qos_profiles", [])
+            qos.append(yaml.load(given, Loader=_LOADER) if isinstance(given, str) and given else given)
+            if not (isinstance(meta["name"], str) and isinstance(meta["type"], str) and type(t["message_count"]) is int
+                    and meta["serialization_format"] == "cdr" and isinstance(meta.get("type_description_hash", ""), str)
+                    and isinstance(qos[-1], list)):
+                return None
+        if not all(p.exists() for p in paths):
+            return None
+        if not (info.get("ros_distro") is None or isinstance(info.get("ros_distro"), str)):
+            return None
+        custom = info.get("custom_data")
+        if not (custom is None or all(isinstance(v, str) for v in custom.values())):
+            return None
+        return info, paths, qos
+    except (yaml.YAMLError, OSError, KeyError, TypeError, AttributeError, ValueError):
+        return None
+
+
+def metadata(path: Path) -> Any:
+    """metadata.yaml as libyaml (else PyYAML) reads it, parsed once while the file stays the same: opening a
+    recording and reading its messages both look at it."""
+    st = path.stat()
+    return _parsed(str(path), st.st_mtime_ns, st.st_size)
+
+
+@lru_cache(maxsize=4)
+def _parsed(path: str, mtime_ns: int, size: int) -> Any:
+    return yaml.load(Path(path).read_text(), Loader=_LOADER)
