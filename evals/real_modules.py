@@ -134,7 +134,10 @@ def write_recording(excerpt: Excerpt, out: Path, task: bool, storage: str = "sql
 
 def unsupported(excerpt: Excerpt, claims: Iterable[str]) -> list[str]:
     known = vocabulary().get(excerpt.cause)
-    allowed = {excerpt.cause, *(known.implies if known else ()), *HONEST_CAUSES}
+    # as in the real-nav2 grader (evals/real_nav2_suite.py): a cause that implies the label is the same cause told
+    # in more detail (a controller whose type was never defined is a controller set up wrongly)
+    finer = {c for c, k in vocabulary().items() if excerpt.cause in k.implies}
+    allowed = {excerpt.cause, *(known.implies if known else ()), *finer, *HONEST_CAUSES}
     out = []
     for c in claims:
         if c == ALL_FINE:

@@ -127,6 +127,11 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
                 active.append((line, skill))
                 break
     if not active:
+        # an error the arm's own software logs in its own words (a catalogued text with no cause of its own, e.g.
+        # a controller left unconfigured) still shows that the arm had something to do: the explainer then quotes it
+        active = [(line, skill) for line in logs if line.level >= ERROR
+                  for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())) if cat.match(line.msg) is not None][:1]
+    if not active:
         from hexar.explainers.stack_causes import stack_cause
 
         if any(_nav2_own(ln) for ln in logs):
@@ -190,6 +195,24 @@ def _arms_line(task: Task) -> bool:
     return any(cat.cause_of(run.error_msg, cat.match(run.error_msg)) is not None for cat in (moveit(), control()))
 
 
+# launch's "process has died [pid N, exit code N, cmd '<prefix>/lib/<package>/<executable> ...']"
+# (launch/launch/actions/execute_local.py): the package and executable of the process that died
+_DIED_PACKAGE = re.compile(r"process has died \[.*?cmd '\S*/lib/([^/\s]+)/([^/\s']+)")
+
+
+def _arms_process(task: Task) -> bool:
+    """A Nav2 task found from activity alone whose failing line is a process of the arm's catalogued packages
+    (controller_manager's ros2_control_node, MoveIt's move_group) dying: no Nav2 node is involved."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    run = task.skills[0]
+    found = _DIED_PACKAGE.search(run.error_msg or "")
+    if run.params.get("derived_from") != "Nav2 log (no goal line)" or found is None:
+        return False
+    return any(cat.role(name) is not None for cat in (moveit(), control()) for name in found.groups())
+
+
 def _nav2_own(line: LogLine) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
     (launch's generic "process has died" is anybody's)."""
@@ -211,6 +234,8 @@ def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
     arm_goals = [t for t in arm if "no goal line" not in str(t.skills[0].params.get("derived_from"))]
     if not arm_goals and len(nav) == 1 and _arms_line(nav[0]) and arm[0].skills[0].skill != BRING_UP:
         return arm  # Nav2's "activity" was a line of the arm's catalogues (a controller that failed to activate)
+    if not arm_goals and len(nav) == 1 and _arms_process(nav[0]):
+        return arm  # the only failure was a process of the arm's packages (ros2_control_node, move_group) dying
     if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]

@@ -13,8 +13,9 @@ def template(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list
     seen = [f"ros2_control said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what.capitalize()} could not run because"
     if cause == "control.controller_load_failed":
-        return (f"{head} a controller could not be loaded: its type is not installed, or was never defined in the "
-                "controller manager's parameters.",
+        # hexar/causes.yaml: controller_load_failed implies configuration_error, so the sentence says both
+        return (f"{head} a controller was set up wrongly: my controller manager could not load it, as its type is "
+                "not installed, or was never defined in the controller manager's parameters.",
                 "Install the controller's package (add it to package.xml) and declare the controller with its "
                 "'type' under controller_manager in the controllers yaml.", seen)
     if cause == "control.controller_activation_failed":

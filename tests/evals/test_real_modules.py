@@ -41,6 +41,18 @@ def test_grading_named_wrong_and_honest() -> None:
     assert honest.verdict == "honest"
 
 
+def test_a_cause_told_in_more_detail_is_no_false_claim_as_in_the_navigation_grader() -> None:
+    # hexar/causes.yaml: control.controller_load_failed implies control.configuration_error
+    finer = grade(_ex("control.configuration_error"), {"control.controller_load_failed"})
+    assert finer.unsupported == () and finer.verdict == "wrong"  # not false, but not the label either
+    both = grade(_ex("control.configuration_error"), {"control.controller_load_failed", "control.configuration_error"})
+    assert both.verdict == "named"
+    coarser = grade(_ex("control.controller_load_failed"), {"control.configuration_error"})
+    assert coarser.unsupported == ()
+    other = grade(_ex("control.configuration_error"), {"control.tolerance_violated"})
+    assert other.unsupported == ("control.tolerance_violated",)
+
+
 def test_a_corpus_that_names_an_unknown_cause_is_refused() -> None:
     with pytest.raises(HexarError, match="unknown cause"):
         parse_corpus("- {id: a, source: s, url: u, distro: humble, module: control, outcome: failed, "

@@ -72,3 +72,37 @@ def test_a_device_the_os_would_not_open_gives_a_bring_up_task_an_unknown_error_n
     b = BagBuilder()
     b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")  # anybody's: no task is claimed from it
     assert read_recording(b.write(tmp_path / "b")).tasks == []
+
+
+def test_a_catalogued_controller_manager_error_without_a_cause_still_gives_a_failed_arm_task(tmp_path: Path) -> None:
+    # controller_manager.cpp's "After configuring, controller ... expected inactive." names no cause of its own
+    b = BagBuilder()
+    b.log(T0, "controller_manager", INFO, "Loading controller 'arm_controller'")
+    line = "After configuring, controller 'arm_controller' is in state 'unconfigured' , expected inactive."
+    b.log(T0 + sec_ns(1), "controller_manager", ERROR, line)
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [(t.skills[0].skill, t.outcome, t.skills[0].error_msg) for t in tasks] == [
+        ("follow_joint_trajectory", "failed", line)]
+
+
+def _died(cmd: str) -> str:
+    # launch/launch/actions/execute_local.py: "process has died [pid {}, exit code {}, cmd '{}']."
+    return f"process has died [pid 251, exit code 127, cmd '{cmd} --ros-args']."
+
+
+def test_the_arms_own_process_dying_is_a_bring_up_task_not_a_navigation_one(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "launch", INFO, "All log files can be found below /root/.ros/log")
+    b.log(T0 + sec_ns(1), "ros2_control_node-1", ERROR,
+          _died("/opt/ros/rolling/lib/controller_manager/ros2_control_node"))
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
+
+
+def test_a_nav2_process_dying_stays_navigations(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "launch", INFO, "All log files can be found below /root/.ros/log")
+    b.log(T0 + sec_ns(1), "controller_server-1", ERROR,
+          _died("/opt/ros/humble/lib/nav2_controller/controller_server"))
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [(t.skills[0].skill, t.skills[0].params["source"]) for t in tasks] == [("navigate_to_pose", "nav2")]

@@ -33,7 +33,7 @@ def test_the_controller_managers_line_is_the_cause_and_the_spawners_its_symptom(
         (0.2, "spawner_joint_state_broadcaster", FATAL, "Failed loading controller joint_state_broadcaster")])
     assert found.causes == ["control.controller_load_failed"]
     assert found.evidence[0].item.startswith("[controller_manager] ERROR Loader for controller")
-    assert "could not be loaded" in found.text and "package.xml" in (found.fix or "")
+    assert "could not load it" in found.text and "package.xml" in (found.fix or "")
 
 
 def test_switch_timeout_is_an_activation_failure(tmp_path: Path) -> None:
