@@ -140,8 +140,8 @@ def _latched(view: View, topic: str, window: tuple[int, int]) -> list[BoolSample
 
 def _flag(view: View, topic: str, window: tuple[int, int], cause: str, run: Run) -> Finding | None:
     held = [s for s in _latched(view, topic, window) if s.value]
-    if not held or run.outcome == "reached":
-        return None
+    if not held or run.outcome == "reached" or (run.outcome == "unknown" and run.begin is None):
+        return None  # a flag explains only a goal that did not complete, not a window where no goal ran
     found = Finding(cause, [Evidence(cause=cause, topic=topic, t=held[0].t, item=flag_item(held[0]))])
     if len(held) > 1:
         found.evidence.append(Evidence(cause=cause, topic=topic, t=held[-1].t, item=flag_item(held[-1])))

@@ -1,6 +1,8 @@
 """The navigation (Nav2) component explainer: log filter, situation detectors, template or LLM phrasing.
 
 Every line is read through the Nav2 message catalogue (nav2_catalogue.json), by its text, whatever its logger.
+A task whose failed step is not a navigation (a `say` after the trip) has its trips told each in its own window,
+with its own /task_info outcome, never the other step's window.
 Causes, each with its evidence from the recording (a cause is claimed only when lines or motion support it):
 - navigation.joystick: `/joy_priority` True while the goal did not complete (plus the relay's toggle line).
 - navigation.charging: `/power/is_charging` True while the goal did not complete.
@@ -9,7 +11,8 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
   bringup_failure (a params file rcl could not parse, a process that died: hexar.explainers.stack's
   bringup_findings, over the whole recording up to the goal's end), configuration_error (plugins, BT XML,
   parameters, a lifecycle transition that failed), transform_error (TF, clocks; also tf2/tf_help/message-filter
-  lines of the mined stack catalogue), poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap
+  lines of the mined stack catalogue; tf2_ros's routine INFO drops only on a goal that failed or stalled, or in
+  numbers: filter.routine_drops), poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap
   (the robot's start off the map), start_in_obstacle (the start on occupied cells), goal_unreachable (goal outside
   the map or in lethal cost), docking_failure, blocked_path (DWB's obstacle critic before the controller gave up,
   or a planner that had a path to this goal and lost it even after clearing its maps), collision_ahead (RPP's
@@ -44,7 +47,7 @@ from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import chain
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation.filter import tag_logs, weak_noise
+from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
 from hexar.explainers.navigation.wording import template as nav2_template
 from hexar.explainers.phrasing import phrase
 
@@ -126,9 +129,12 @@ class NavigationExplainer:
     def explain(self, question: str, context: Context) -> Explanation:
         task = context.task
         trips = [r for r in task.skills if r.skill in NAV_SKILLS and r.state in {"succeeded", "failed"}]
-        if task.failed_skill is None and len(trips) > 1 and context.window == task.window():
-            # Several trips in one task: explain each on its own, and answer with the first one that was not
-            # a plain, problem-free drive.
+        failed = task.failed_skill
+        own = failed is not None and failed.skill not in NAV_SKILLS
+        if ((failed is None and len(trips) > 1) or (own and trips)) and context.window == task.window():
+            # Several trips in one task, or trips before another step failed (the task's window is then that
+            # step's, after the trips): explain each trip in its own window, with its own /task_info outcome,
+            # and answer with the first one that was not a plain, problem-free drive.
             parts = [self._explain(question, context.with_window(task.skill_window(r))) for r in trips]
             return next((p for p in parts if not set(p.causes) <= {d.NOMINAL, d.NOMINAL_SPEED}), parts[0])
         return self._explain(question, context)
@@ -143,7 +149,9 @@ class NavigationExplainer:
                 self.name, "The recording has no log lines and no localisation data for that time.")
         tagged = tag_logs(raw)
         lines = [ln for ln, _ in tagged]
-        run = d.summarise(tagged, poses, _skill_state(context), weak_noise(raw) + chain.stack_notes(tagged, raw))
+        state = _skill_state(context)
+        noise = routine_drops(weak_noise(raw), d.summarise(tagged, poses, state))
+        run = d.summarise(tagged, poses, state, noise + chain.stack_notes(tagged, raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
         if not lines and not poses and not flags:

@@ -12,9 +12,13 @@ one copy says as much as twenty).
 from __future__ import annotations
 
 from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 from hexar.events.records import WARN, LogLine
 from hexar.explainers.navigation.catalogue import Entry, catalogue
+
+if TYPE_CHECKING:
+    from hexar.explainers.navigation.detectors import Run
 
 # The loggers of the original HEXAR filter (hexar_interfaces.md); roles now cover their other spellings.
 NAV2_LOGGERS: frozenset[str] = frozenset({
@@ -86,3 +90,23 @@ def weak_noise(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry]]:
             if entry is not None and entry.cause is not None:
                 out.append((line, entry))
     return out
+
+
+# tf2_ros's MessageFilter logs every message it drops at INFO (signalFailure, RCLCPP_INFO "Message Filter dropping
+# message: frame '%s' at time %.3f for reason '%s'", tf2_ros/include/tf2_ros/message_filter.h:708@rolling,
+# :706@humble) and warns only when more than 95% of the messages of a 15 s period were dropped (checkFailures,
+# "Dropped %.2f%% of messages so far", :611-623@rolling). A few INFO drops are routine (a scan older than the
+# transform cache at start-up); many of them, or any at WARN and above, are a transform fault.
+_DROP = "Message Filter dropping message"
+MANY_DROPS = 10
+
+
+def routine_drops(noise: list[tuple[LogLine, Entry]], run: Run) -> list[tuple[LogLine, Entry]]:
+    """The noise lines that are evidence for this run: INFO message-filter drops only on a goal that failed or
+    never ended (a stalled one), or in numbers; a goal that succeeded or that the window does not show is not
+    explained by a few routine drops."""
+    drops = [ln for ln, _ in noise if _DROP in ln.msg and ln.level < WARN]
+    stalled = run.outcome == "unknown" and run.begin is not None
+    if run.outcome == "failed" or stalled or len(drops) >= MANY_DROPS:
+        return noise
+    return [(ln, e) for ln, e in noise if not (_DROP in ln.msg and ln.level < WARN)]

@@ -3,7 +3,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from hexar.events.records import INFO, WARN, LogLine
-from hexar.explainers.navigation.filter import NOISE, filter_logs
+from hexar.explainers.navigation.detectors import summarise
+from hexar.explainers.navigation.filter import MANY_DROPS, NOISE, filter_logs, routine_drops, tag_logs, weak_noise
 from tests.explainers.navigation.scenario import recording
 
 
@@ -65,3 +66,25 @@ def test_an_unknown_loggers_warnings_are_kept_its_chatter_is_not() -> None:
         _line(3, "bt_navigator", "Goal failed"),
     ]
     assert [ln.t for ln in filter_logs(lines)] == [1, 3]
+
+
+# tf2_ros MessageFilter::signalFailure's INFO line (message_filter.h:708@rolling), as amcl printed it in a real log.
+DROP = ("Message Filter dropping message: frame 'rplidar_link' at time 1725246931.465 for reason 'the timestamp on "
+        "the message is earlier than all the data in the transform cache'")
+
+
+def _drops_kept(lines: list[LogLine], state: str | None) -> int:
+    noise = weak_noise(lines)
+    return len(routine_drops(noise, summarise(tag_logs(lines), [], state)))
+
+
+def test_a_few_info_drops_are_evidence_only_on_a_goal_that_failed_or_stalled() -> None:
+    begin = _line(1, "bt_navigator", "Begin navigating from current location (0.00, 0.00) to (1.00, 1.00)")
+    drops = [_line(10 + i, "amcl", DROP) for i in range(2)]
+    assert _drops_kept(drops, "failed") == 2
+    assert _drops_kept([begin, *drops], None) == 2  # a goal that began and never ended
+    assert _drops_kept(drops, "succeeded") == 0
+    assert _drops_kept(drops, None) == 0  # no goal in the window at all (e.g. a `say` step after a trip)
+    assert _drops_kept([_line(10, "amcl", DROP, WARN)], "succeeded") == 1
+    many = [_line(10 + i, "amcl", DROP) for i in range(MANY_DROPS)]
+    assert _drops_kept(many, "succeeded") == MANY_DROPS
