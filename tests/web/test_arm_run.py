@@ -24,5 +24,7 @@ def test_the_page_shows_the_manipulation_finding(tmp_path: Path) -> None:
             time.sleep(0.5)
         _, run = get(url + f"api/run?name={name}")
     row = {r["recording"]: r for r in runs["runs"]}[name]
-    assert row["causes"] == ["manipulation.stale_robot_state"] and "manipulation" in row["modules"]
+    # the failed pick's cause leads; the trip before it, which succeeded, may be listed as the normal run it was
+    assert row["causes"][0] == "manipulation.stale_robot_state" and "manipulation" in row["modules"]
+    assert set(row["causes"][1:]) <= {"navigation.nominal"}
     assert run["findings"][0]["causes"] == ["manipulation.stale_robot_state"]
