@@ -30,7 +30,7 @@ import yaml
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS, HexarError
-from hexar.evals.real_nav2 import DISTROS, NS, OUTCOMES, parse_console, stamped, task_plan
+from hexar.evals.real_nav2 import DISTROS, OUTCOMES, TaskMaker, parse_console, stamped, task_plan, write_excerpt
 
 SUITE = "real-modules"
 HELDOUT_SUITE = "real-modules-heldout"
@@ -112,24 +112,11 @@ def _task(task_id: str, skill: str, status: str, error: str) -> dict[str, Any]:
 def write_recording(excerpt: Excerpt, out: Path, task: bool, storage: str = "sqlite3") -> Path:
     """`excerpt` as a rosbag2 recording at `out`: /rosout, and /task_info when `task` (the skill's own outcome,
     "The skill has been aborted" on failure, never the diagnosis)."""
-    from hexar.evals.scenarios.bag import BagBuilder
-
+    skill = SKILL[excerpt.module]
+    maker: TaskMaker = lambda task_id, status, error: _task(task_id, skill, status, error)  # noqa: E731
     records = stamped(parse_console(excerpt.lines))
-    b = BagBuilder()
-    for r in records:
-        assert r.stamp_ns is not None
-        b.log(r.stamp_ns, r.name, r.level, r.msg)
-    if task:
-        first = min(r.stamp_ns or 0 for r in records)
-        last = max(r.stamp_ns or 0 for r in records)
-        task_id = re.sub(r"[^A-Za-z0-9]", "", excerpt.id)[-16:].rjust(16, "0")
-        skill = SKILL[excerpt.module]
-        ok = excerpt.outcome != "failed"
-        b.task_info(first - NS, _task(task_id, skill, "waiting", ""))
-        b.task_info(first - NS // 2, _task(task_id, skill, "Running", ""))
-        b.task_info(last + NS // 2, _task(task_id, skill, "succeeded" if ok else "failed",
-                                          "" if ok else "The skill has been aborted"))
-    return Path(b.write(out, "mcap" if storage == "mcap" else "sqlite3"))
+    return Path(write_excerpt(records, excerpt.id, excerpt.outcome == "failed", out, maker if task else None,
+                              "The skill has been aborted", storage))
 
 
 def unsupported(excerpt: Excerpt, claims: Iterable[str]) -> list[str]:

@@ -16,7 +16,7 @@ logged before a node exists, e.g. `[ERROR] [stamp] []: Caught exception ...`).
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
@@ -323,28 +323,40 @@ def _goal(records: Sequence[ConsoleLine]) -> dict[str, float]:
     return {}
 
 
-def _task(t: int, task_id: str, goal: dict[str, float], status: str, error: str) -> dict[str, Any]:
+def _task(task_id: str, goal: dict[str, float], status: str, error: str) -> dict[str, Any]:
     return {"instruction": INSTRUCTION, "task_id": task_id, "task_status": "valid", "task_error_msg": "",
             "skill_sequence": [{"skill": "navigate_to_pose", "params": goal, "status": status, "error_msg": error}]}
 
 
-def write_recording(excerpt: Excerpt, out: Any, task: bool, storage: str = "sqlite3") -> Any:
-    """Writes `excerpt` as a rosbag2 recording at `out` (/rosout, and /task_info when `task`); returns the path."""
+TaskMaker = Callable[[str, str, str], dict[str, Any]]  # (task id, status, error) -> /task_info JSON
+
+
+def write_excerpt(records: Sequence[ConsoleLine], excerpt_id: str, failed: bool, out: Any, task: TaskMaker | None,
+                  error: str, storage: str = "sqlite3") -> Any:
+    """`records` (the excerpt's stamped lines) as a rosbag2 recording at `out`: /rosout, and with `task` a one-skill
+    /task_info that waits 1 s before the first line, runs from 0.5 s before it and ends 0.5 s after the last with
+    its outcome (`error` when `failed`, never the diagnosis); returns the path."""
     from hexar.evals.scenarios.bag import BagBuilder
 
-    records = stamped(parse_console(excerpt.lines))
     b = BagBuilder()
     for r in records:
         assert r.stamp_ns is not None
         b.log(r.stamp_ns, r.name, r.level, r.msg)
-    if task:
+    if task is not None:
         first = min(r.stamp_ns or 0 for r in records)
         last = max(r.stamp_ns or 0 for r in records)
-        task_id = re.sub(r"[^A-Za-z0-9]", "", excerpt.id)[-16:].rjust(16, "0")
-        goal = _goal(records)
-        b.task_info(first - NS, _task(first - NS, task_id, goal, "waiting", ""))
-        b.task_info(first - NS // 2, _task(first - NS // 2, task_id, goal, "Running", ""))
-        ok = excerpt.outcome != "failed"
-        b.task_info(last + NS // 2, _task(last + NS // 2, task_id, goal, "succeeded" if ok else "failed",
-                                          "" if ok else SKILL_ERROR))
+        task_id = re.sub(r"[^A-Za-z0-9]", "", excerpt_id)[-16:].rjust(16, "0")
+        ok = not failed
+        b.task_info(first - NS, task(task_id, "waiting", ""))
+        b.task_info(first - NS // 2, task(task_id, "Running", ""))
+        b.task_info(last + NS // 2, task(task_id, "succeeded" if ok else "failed", "" if ok else error))
     return b.write(out, "mcap" if storage == "mcap" else "sqlite3")
+
+
+def write_recording(excerpt: Excerpt, out: Any, task: bool, storage: str = "sqlite3") -> Any:
+    """Writes `excerpt` as a rosbag2 recording at `out` (/rosout, and /task_info when `task`); returns the path."""
+    records = stamped(parse_console(excerpt.lines))
+    goal = _goal(records)
+    maker: TaskMaker = lambda task_id, status, error: _task(task_id, goal, status, error)  # noqa: E731
+    return write_excerpt(records, excerpt.id, excerpt.outcome == "failed", out, maker if task else None,
+                         SKILL_ERROR, storage)
