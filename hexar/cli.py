@@ -462,8 +462,18 @@ def triage(
     raise typer.Exit(guarded(body))
 
 
+def release_ros_start_mark() -> None:
+    """Undo scripts/hexar_ros_lazy.pth's mark, so a Python program that hexar starts (a worker, a robot stand-in)
+    runs the ROS wheels' bootstrap as usual; this process re-executes itself if it comes to need rclpy."""
+    import os
+
+    if os.environ.pop("_HEXAR_ROS_LAZY", None):
+        os.environ.pop("_ROS_WHEELS_BOOTSTRAP_COMPLETE", None)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point; returns the exit code (usage errors: 2, bad input: 2, success: 0)."""
+    release_ros_start_mark()
     try:
         app(args=argv)
     except SystemExit as e:

@@ -128,10 +128,15 @@ def main() -> None:
     if importlib.util.find_spec("ros_wheels_bootstrapper") is not None:
         # The `ros` extra's wheels re-execute every Python start to set LD_LIBRARY_PATH, unless
         # _ROS_WHEELS_BOOTSTRAP_COMPLETE is set. This script inherits it from its own start, so the rows above
-        # run without the re-execution; this one starts as from a shell that never set it.
-        shell = {k: v for k, v in os.environ.items() if k not in {"LD_LIBRARY_PATH", "_ROS_WHEELS_BOOTSTRAP_COMPLETE"}}
-        cmds["ask --llm none, ROS wheels re-exec"] = lambda: timed(
-            [*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "none"], env=shell)[0]
+        # run without the re-execution; these two start as from a shell that never set it: `hexar` itself (which
+        # scripts/hexar_ros_lazy.pth keeps from re-executing) and the same command started through `python -c`,
+        # which the wheels' bootstrap re-executes as it did before that file existed.
+        shell = {k: v for k, v in os.environ.items()
+                 if k not in {"LD_LIBRARY_PATH", "_ROS_WHEELS_BOOTSTRAP_COMPLETE", "_HEXAR_ROS_LAZY"}}
+        ask = ["ask", str(suite / FAILED), QUESTION, "--llm", "none"]
+        cmds["ask --llm none, from a shell"] = lambda: timed([*hexar(), *ask], env=shell)[0]
+        cmds["ask --llm none, wheels' re-exec"] = lambda: timed(
+            [sys.executable, "-c", f"import sys; from hexar.cli import main; sys.exit(main({ask!r}))"], env=shell)[0]
     if embedded:
         cmds["ask --llm embedded (failure check)"] = lambda: timed(
             [*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "embedded"])[0]

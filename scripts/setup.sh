@@ -36,6 +36,12 @@ quiet() { local log; log="$(mktemp)"; "$@" >"$log" 2>&1 || { cat "$log"; rm -f "
 # regenerates it). HEXAR itself then installs without resolving anything, built by the locked setuptools.
 quiet $PIP install -q --require-hashes -r requirements.lock
 quiet $PIP install -q --no-deps --no-build-isolation -e .
+# The ROS 2 wheels (x86_64 Linux only) re-execute every Python start; keep that out of the `hexar` command's start.
+.venv/bin/python - <<'PY'
+import importlib.util, shutil, sysconfig
+if importlib.util.find_spec("ros_wheels_bootstrapper") is not None:
+    shutil.copyfile("scripts/hexar_ros_lazy.pth", sysconfig.get_paths()["purelib"] + "/hexar_ros_lazy.pth")
+PY
 
 if [ "$FULL" = 1 ]; then
   WHEELS="${XDG_CACHE_HOME:-$HOME/.cache}/hexar/wheels"

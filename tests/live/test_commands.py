@@ -169,11 +169,15 @@ def test_chat_live_without_a_node_says_so(capsys: pytest.CaptureFixture[str]) ->
 
 @pytest.mark.skipif(importlib.util.find_spec("ros_wheels_bootstrapper") is None,
                     reason="only the ROS 2 Kilted wheels re-execute Python at start-up")
-def test_rclpy_serve_works_when_python_starts_without_the_wheels_reexecution() -> None:
-    """With _ROS_WHEELS_BOOTSTRAP_COMPLETE set, no Python start pays the wheels' re-execution (`hexar ask`
-    included); `hexar serve --transport rclpy` then re-executes itself once with the wheels' library path."""
-    env = {k: v for k, v in os.environ.items() if k != "LD_LIBRARY_PATH"}
-    env["_ROS_WHEELS_BOOTSTRAP_COMPLETE"] = "1"
+@pytest.mark.parametrize("user_skips_bootstrap", [False, True], ids=["shell", "bootstrap-skipped"])
+def test_rclpy_serve_works_when_python_starts_without_the_wheels_reexecution(user_skips_bootstrap: bool) -> None:
+    """The `hexar` command starts without the wheels' re-execution (scripts/hexar_ros_lazy.pth, or the user's
+    _ROS_WHEELS_BOOTSTRAP_COMPLETE); `hexar serve --transport rclpy` then re-executes itself once with the wheels'
+    library path."""
+    drop = {"LD_LIBRARY_PATH", "_ROS_WHEELS_BOOTSTRAP_COMPLETE", "_HEXAR_ROS_LAZY", "_HEXAR_ROS_REEXEC"}
+    env = {k: v for k, v in os.environ.items() if k not in drop}
+    if user_skips_bootstrap:
+        env["_ROS_WHEELS_BOOTSTRAP_COMPLETE"] = "1"
     done = subprocess.run([sys.executable, "-m", "hexar", "serve", "--transport", "rclpy", "--domain",
                            str(fresh_domain()), "--duration", "1"], env=env, capture_output=True, text=True,
                           timeout=120)
