@@ -34,7 +34,8 @@ from hexar.evals.real_nav2 import DISTROS, OUTCOMES, TaskMaker, parse_console, s
 
 SUITE = "real-modules"
 HELDOUT_SUITE = "real-modules-heldout"
-FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml"}
+HELDOUT2_SUITE = "real-modules-heldout2"  # collected in a later round, measured once before and once after tuning
+FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}

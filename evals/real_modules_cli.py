@@ -60,7 +60,7 @@ def real_modules_main(suite: str, out: Path, runs: Path | None, llm: str, consol
     from hexar.agent.backends import resolve
 
     if suite not in FILES:
-        raise HexarError(f"unknown suite {suite!r}: use real-modules or real-modules-heldout")
+        raise HexarError(f"unknown suite {suite!r}: use {', '.join(FILES)}")
     if given := [name for name, value in others.items() if value]:
         raise HexarError(f"{', '.join(given)} do not apply to --suite {suite}")
     if out.exists() and not out.is_dir():

@@ -9,7 +9,7 @@ import pytest
 
 from hexar.cli import main
 from hexar.errors import HexarError
-from hexar.evals.real_modules import SUITE, Excerpt, grade, load_excerpts, parse_corpus, write_recording
+from hexar.evals.real_modules import FILES, SUITE, Excerpt, grade, load_excerpts, parse_corpus, write_recording
 from hexar.events import read_recording
 
 
@@ -17,6 +17,18 @@ def test_the_corpus_parses_with_cause_ids_of_the_vocabulary() -> None:
     excerpts = load_excerpts(SUITE)
     assert len(excerpts) >= 20
     assert {e.module for e in excerpts} <= {"manipulation", "control", "bringup", "system"}
+
+
+def test_the_held_out_sets_parse_and_share_no_excerpt_or_thread_with_the_corpus() -> None:
+    by_suite = {suite: load_excerpts(suite) for suite in FILES}
+    assert len(by_suite["real-modules-heldout2"]) >= 24
+    seen: dict[str, str] = {}
+    for suite, excerpts in by_suite.items():
+        for e in excerpts:
+            assert e.id not in seen, f"{e.id} is in {suite} and {seen[e.id]}"
+            seen[e.id] = suite
+    urls = {suite: {e.url for e in excerpts} for suite, excerpts in by_suite.items()}
+    assert not urls["real-modules-heldout2"] & (urls[SUITE] | urls["real-modules-heldout"])
 
 
 def test_an_excerpt_becomes_a_recording_with_or_without_a_task(tmp_path: Path) -> None:
