@@ -270,6 +270,9 @@ HELDOUT_FILE = "heldout.yaml"
 # Issue 20's blind set: collected by another hand from sources in neither file, measured once with the catalogue
 # frozen before it was read (README.md in the data folder).
 BLIND_FILE = "blind.yaml"
+# A second blind set, collected by another hand in the next round while the explainer was being tuned; measured
+# once before that round's changes and once after.
+BLIND2_FILE = "blind2.yaml"
 
 
 @cache
@@ -288,6 +291,10 @@ def heldout() -> tuple[Excerpt, ...]:
 
 def blind() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND_FILE)
+
+
+def blind2() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND2_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -25,14 +25,17 @@ from hexar.agent.backends import Backend
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
-from hexar.evals.real_nav2 import DISTROS, Excerpt, blind, corpus, heldout, task_plan, write_recording
+from hexar.evals.real_nav2 import DISTROS, Excerpt, blind, blind2, corpus, heldout, task_plan, write_recording
 
 SUITE = "real-nav2"
 # The same suite on threads the catalogue was never tuned on (evals/data/real_nav2/heldout.yaml).
 HELDOUT_SUITE = "real-nav2-heldout"
 # Issue 20's blind set (evals/data/real_nav2/blind.yaml), measured before and after tuning on the corpus.
 BLIND_SUITE = "real-nav2-blind"
-SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind)}
+# The second blind set (blind2.yaml), collected while the next round tuned the explainer.
+BLIND2_SUITE = "real-nav2-blind2"
+SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
+          BLIND2_SUITE: ("blind2.yaml", blind2)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})

@@ -11,7 +11,17 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
-from hexar.evals.real_nav2 import NAV_CAUSES, Excerpt, blind, corpus, heldout, parse_console, stamped, write_recording
+from hexar.evals.real_nav2 import (
+    NAV_CAUSES,
+    Excerpt,
+    blind,
+    blind2,
+    corpus,
+    heldout,
+    parse_console,
+    stamped,
+    write_recording,
+)
 from hexar.evals.real_nav2_cli import read_baseline
 from hexar.events import contract as c
 from hexar.events import read_recording
@@ -28,9 +38,19 @@ def test_blind_loads_and_shares_no_excerpt_with_the_other_sets() -> None:
     assert not {e.url for e in excerpts} & {e.url for e in others}
 
 
-@pytest.mark.parametrize("excerpt", blind(), ids=lambda e: e.id)
+def test_the_second_blind_set_shares_no_excerpt_with_the_other_three() -> None:
+    excerpts = blind2()
+    assert len(excerpts) >= 30 and {e.cause for e in excerpts} <= NAV_CAUSES
+    assert sum(e.outcome != "failed" for e in excerpts) * 5 >= len(excerpts)
+    others = corpus() + heldout() + blind()
+    assert not {e.id for e in excerpts} & {e.id for e in others}
+    assert not {e.url for e in excerpts} & {e.url for e in others}
+
+
+@pytest.mark.parametrize("excerpt", blind() + blind2(), ids=lambda e: e.id)
 def test_every_blind_excerpt_becomes_a_readable_recording(excerpt: Excerpt, tmp_path: Path) -> None:
-    expected = stamped(parse_console(excerpt.lines))
+    # a paste from several terminals is not in time order; the recording is, as a robot's /rosout would be
+    expected = sorted(stamped(parse_console(excerpt.lines)), key=lambda r: r.stamp_ns or 0)
     log = read_recording(write_recording(excerpt, tmp_path / "bag", task=False))
     assert [line.msg for line in log.view(frozenset({c.ROSOUT})).logs()] == [r.msg for r in expected]
 
@@ -46,7 +66,9 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
     assert str(runs) not in text  # an unanswered excerpt's error names the excerpt, not the recording's folder
 
 
-@pytest.mark.parametrize("name", ["real_nav2_blind_none_before.json", "real_nav2_blind_none.json"])
-def test_the_committed_blind_baselines_are_this_suites(name: str) -> None:
-    baseline = read_baseline(BASELINES / name, "real-nav2-blind")
-    assert set(baseline["excerpts"]) == {e.id for e in blind()}
+@pytest.mark.parametrize(("name", "suite"), [("real_nav2_blind_none_before.json", "real-nav2-blind"),
+                                             ("real_nav2_blind_none.json", "real-nav2-blind"),
+                                             ("real_nav2_blind2_none_before.json", "real-nav2-blind2")])
+def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
+    baseline = read_baseline(BASELINES / name, suite)
+    assert set(baseline["excerpts"]) == {e.id for e in (blind() if suite == "real-nav2-blind" else blind2())}
