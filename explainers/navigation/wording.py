@@ -154,8 +154,9 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "restart the navigation until the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
     if f.cause == g.CONFIGURATION:
+        what = f"my logs say: {said}" if said else "a plugin, behaviour tree or lifecycle node failed"
         return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
-                "up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",
+                f"up (a configuration error: {what}).",
                 "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
                 "check that the lifecycle manager reports 'Managed nodes are active'.",
                 seen)

@@ -14,6 +14,9 @@ wordings below), with the node it concerns and its time:
                                     "Caught exception in callback for transition", with its "Original error: ..."),
                                     or a lifecycle manager could not bring its nodes up
              process_died           launch reports the node's process died (with its exit code)
+             launch_failed          launch itself caught an exception while reading its descriptions (a YAML
+                                    file it could not parse, a package it could not find) and shut down: the
+                                    nodes it had not started yet never came up
              node_failed            another bring-up line of the catalogue (e.g. a costmap that failed to configure)
     node     the node the line is about: the logger name, or the process launch names (`controller_server-3` ->
              `controller_server`), or the node a lifecycle manager names; "" when the line names none
@@ -34,7 +37,7 @@ from hexar.events.records import ERROR, LogLine
 from hexar.explainers.stack.catalogue import StackEntry, stack_catalogue
 
 BRINGUP = "stack.bringup_failure"
-KINDS = ("params_file", "lifecycle_transition", "process_died", "node_failed")
+KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed")
 
 _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
 _EXIT = re.compile(r"exit code (?P<code>-?\d+)")
@@ -65,6 +68,9 @@ class BringupFinding:
         who = self.node or "a node"
         if self.kind == "params_file":
             return f"{who} could not parse its parameters file, so it never started"
+        if self.kind == "launch_failed":
+            why = f" ({self.detail})" if self.detail else ""
+            return f"my launch stopped with an error before it had started my navigation nodes{why}"
         if self.kind == "process_died":
             code = f" ({self.detail})" if self.detail else ""
             return f"the process of {who} died{code}"
@@ -78,7 +84,7 @@ def _kind(line: LogLine, entry: StackEntry) -> str:
     if entry.layer == "rcl" and ("params file" in entry.text or "parse" in entry.text):
         return "params_file"
     if entry.layer == "launch":
-        return "process_died"
+        return "launch_failed" if entry.text.startswith("Caught exception in launch") else "process_died"
     if entry.layer == "lifecycle" or "lifecycle" in entry.package or "bring up" in entry.text \
             or "Aborting bringup" in entry.text or "change state" in entry.text:
         return "lifecycle_transition"
@@ -106,6 +112,10 @@ def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
         return f"exit code {m['code']}" if m else ""
     if kind == "params_file":
         return line.msg.split("Error: ", 1)[1].strip() if "Error: " in line.msg else ""
+    if kind == "launch_failed":
+        # the exception's text follows the fixed words; a YAML error spans lines: its first line says what failed
+        text = line.msg.split("traceback):", 1)[-1].strip()
+        return " ".join(text.split())[:200]
     if kind == "lifecycle_transition":
         original = _ORIGINAL.search(line.msg) or next(
             (m for m in (_ORIGINAL.search(f.msg) for f in following if f.name == line.name) if m), None)
