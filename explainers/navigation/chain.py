@@ -16,13 +16,16 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterable
+from dataclasses import replace
 
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.detectors import INITIAL_POSE, UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS
+from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
+from hexar.explainers.stack.bringup import BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 
 BRINGUP = "navigation.bringup_failure"
@@ -50,6 +53,10 @@ _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "b
 # on_configure), the lifecycle manager aborting the bring-up, a process that died.
 _AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
 NEVER_CAME_UP = "never_came_up"
+# AMCL's "Please set the initial pose..." (a WARN) alone: what it means, and its two readings, as a symptom.
+AMCL_WAITING = ("AMCL kept saying it cannot publish a pose until an initial pose is set, which happens when no "
+                "initial pose was given, or when one was given but AMCL could not use it (its laser scans or the "
+                "odometry transforms not arriving in time)")
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
 
 
@@ -104,13 +111,19 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     # nodes not active") were made for; a params file rcl could not parse and a process that died are not.
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
     finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
-    finding.notes = [first.describe()] + [f.describe() for f in found[1:3]]
+    finding.notes = [_told(f) for f in found[:3]]
     if first.kind == "process_died" and not [ln for ln in decisive_errors(logs_list, first.line.t)
                                              if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
         finding.notes[0] += "; nothing in my logs says why it died"
     finding.facts[NEVER_CAME_UP] = 1.0
     return finding
+
+
+def _told(found: BringupFinding) -> str:
+    """What failed, with its detail (the original error, the exit code) unless the detail reads as another cause."""
+    said = found.describe()
+    return said if quotable(said, (BRINGUP, CONFIGURATION)) else replace(found, detail="").describe()
 
 
 def never_came_up(notes: Iterable[tuple[LogLine, Entry]], logs: Iterable[LogLine]) -> bool:
@@ -161,6 +174,8 @@ def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
     line = lines[-1]
     who = line.name.strip("/") or "a node that gave no name"
     when = "before I gave up" if gave_up else "my logs show"
+    if not quotable(line.msg):
+        return f"the last error {when} came from {who} (at {clock(line.t)} UTC; the line itself is in my evidence)"
     return f"the last error {when} came from {who}: '{line.msg.strip()}' (at {clock(line.t)} UTC)"
 
 
@@ -182,6 +197,8 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
     if found.cause not in (UNEXPLAINED, NO_PROGRESS):
         return found
     until = run.end.t if run.end is not None else None
+    if any(n.entry.id == INITIAL_POSE for n in run.notes) and not any(n.startswith("AMCL ") for n in found.notes):
+        found.notes.append(AMCL_WAITING)
     errors = decisive_errors(raw, until)
     if errors:
         found.notes.append(quote_last_error(errors, gave_up=run.outcome == "failed"))

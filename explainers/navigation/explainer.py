@@ -47,8 +47,8 @@ from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import chain
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
-from hexar.explainers.navigation.wording import template as nav2_template
 from hexar.explainers.phrasing import phrase
 
 if TYPE_CHECKING:
@@ -101,10 +101,6 @@ def _status_evidence(context: Context, cause: str) -> list[Evidence]:
     if change is None:
         return []
     return [Evidence(cause=cause, topic=c.TASK_INFO, t=change.t, item=change.error_msg or change.status)]
-
-
-def _quote(line: LogLine | None) -> str:
-    return f"'{line.msg.strip()}'" if line is not None else ""
 
 
 class NavigationExplainer:
@@ -296,17 +292,6 @@ def _unfinished(text: str, place: str) -> str:
             f"there; on the way my logs show a problem: {what}")
 
 
-def _speed_sentence(f: d.Finding) -> str:
-    parts = []
-    if "distance_m" in f.facts and "duration_s" in f.facts:
-        parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {f.facts['duration_s']:.0f} s")
-    if "average_speed" in f.facts:
-        parts.append(f"about {f.facts['average_speed']:.2f} m/s on average")
-    if "max_vel_x" in f.facts:
-        parts.append(f"my speed limit is {f.facts['max_vel_x']:.2f} m/s")
-    return (", ".join(parts) + ".") if parts else ""
-
-
 def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
     """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
     held the robot (until it let it continue)."""
@@ -338,73 +323,3 @@ def _stall(view: View, run: d.Run) -> d.Finding | None:
         Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
     found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
     return found
-
-
-def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[str]]:
-    """(sentence, fix, details) for one finding."""
-    nav2 = nav2_template(f, place, run)
-    if nav2 is not None:
-        return nav2
-    progress = run.first(("Failed to make progress",))
-    planner = run.first(("failed to generate a valid path",))
-    failed = run.outcome == "failed"
-    if f.cause == d.JOYSTICK:
-        return (f"I couldn't reach {place} because my joystick (manual mode) had priority over my wheels, so "
-                "my own driving commands were ignored.",
-                "Switch the joystick back to autonomous mode and ask me again.",
-                ["The joystick priority flag was on, which masks the navigation's velocity commands.",
-                 f"My base therefore did not move, and my controller reported {_quote(progress)}.",
-                 "My recovery manoeuvres could not move me either, so navigation gave up ('Goal failed')."])
-    if f.cause == d.CHARGING:
-        return (f"I couldn't reach {place} because I was plugged into my charger, which keeps me from "
-                "driving by myself.",
-                "Unplug me from the charger and ask me again.",
-                ["The charging flag was on during the whole attempt, and my base did not move.",
-                 f"My controller reported {_quote(progress)} and the recoveries did not help, so navigation "
-                 "gave up ('Goal failed')."])
-    if f.cause == d.BLOCKED:
-        details = [f"I stopped advancing towards {place}: my controller reported {_quote(progress)}."
-                   if progress else f"I could not advance towards {place}."]
-        if planner is not None:
-            details.append(f"My planner then found no valid path to the goal ({_quote(planner)}), even after "
-                           "clearing its maps.")
-        details.append(f"I tried {int(f.facts.get('recoveries', 0))} recovery manoeuvres (spinning, waiting, "
-                       "backing up) and then gave up ('Goal failed').")
-        return (f"I couldn't reach {place} because something blocked my path and I found no other way "
-                "around it.", f"Clear the way to {place} and ask me again.", details)
-    if f.cause == d.POOR_LOCALISATION:
-        how = f"I reached {place}, but slowly and unsteadily," if run.outcome == "reached" else \
-            f"I couldn't reach {place}"
-        if "no_initial_pose" in f.facts and "poses" not in f.facts:
-            return (f"{how} because my localisation (AMCL) never received an initial pose, so it could not tell "
-                    "where I was on my map.",
-                    "Set my initial pose (e.g. '2D Pose Estimate' in RViz, or /initialpose), and check that my "
-                    "laser scans and transforms reach AMCL with matching timestamps.",
-                    ["AMCL said it cannot publish a pose or update the transform until the initial pose is set."])
-        figs = (f"My position estimate was very uncertain for {int(f.facts['poses'])} consecutive updates "
-                f"({f.facts['seconds']:.0f} s, variance up to {f.facts['max_cov']:.2f})."
-                if "poses" in f.facts else "My localisation reported warnings.")
-        return (f"{how} because I was not sure where I was on my map.",
-                "Help me relocalise: set my position on the map, or drive me to a place I know well.",
-                [figs, "With an uncertain position my path and my view of the obstacles did not match, so "
-                 "I moved hesitantly."])
-    if f.cause == d.MOVING_OBSTACLES:
-        return (f"It took me longer to reach {place} because people or things kept moving into my way, so I "
-                "had to stop and find new paths around them.",
-                "Keep the way clear while I am moving, and I will be quicker.",
-                [f"My controller briefly found no safe movement {int(f.facts['disturbances'])} times "
-                 "(e.g. 'No valid trajectories'), and I cleared my maps and replanned.",
-                 "Each time the way opened again and I finally reached the goal."])
-    if f.cause == d.NOMINAL_SPEED:
-        return (f"Nothing went wrong on the way to {place}: {_speed_sentence(f)}".rstrip(": "), None,
-                ["I accelerate, turn along the path and slow down near the goal, so my average speed is "
-                 "below my speed limit."])
-    if f.cause == d.NOMINAL:
-        figures = _speed_sentence(f)
-        return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
-                ["My navigation logs show no failures, recoveries or warnings for this trip."])
-    verb = "failed" if failed else "did not finish"
-    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.",
-            "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
-            "and the planner's and controller's own logs at debug level." if failed else None,
-            [f"The last navigation message was {_quote(run.end)}."] if run.end else [])

@@ -8,7 +8,9 @@ cause that was found.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
+from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.detectors import Finding, Run
@@ -16,6 +18,13 @@ from hexar.explainers.navigation.detectors import Finding, Run
 
 def quote(line: LogLine | None) -> str:
     return f"'{line.msg.strip()}'" if line is not None else ""
+
+
+def quotable(msg: str, own: Iterable[str] = ()) -> bool:
+    """Whether a log line can be quoted inside an answer's sentence: it must not read as a cause other than `own`
+    (a behaviour-tree file named "..._w_replanning_and_recovery.xml" is no replanning; "detected collision" in an
+    unknown error is no finding). A line that does is told by its node and time, and quoted in the details only."""
+    return not read_claims(msg).causes - set(own)
 
 
 def _said(f: Finding) -> str:
@@ -154,7 +163,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "restart the navigation until the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
     if f.cause == g.CONFIGURATION:
-        what = f"my logs say: {said}" if said else "a plugin, behaviour tree or lifecycle node failed"
+        what = f"my logs say: {said}" if said and quotable(said, (g.CONFIGURATION, g.BRINGUP)) else \
+            "a plugin, behaviour tree or lifecycle node failed"
         return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
                 f"up (a configuration error: {what}).",
                 "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
