@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
-from hexar.events.records import LogLine
+from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import chain
@@ -55,6 +55,7 @@ if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
 
 NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
+NO_GOAL_LINE = "Nav2 log (no goal line)"  # events.nav_goals' `derived_from` for a goal inferred from activity
 MAX_FACT_LINES = 60
 
 
@@ -87,6 +88,13 @@ def _place(context: Context, lines: list[LogLine]) -> str:
         if m:
             return m.group(1)
     return "my goal"
+
+
+def _inferred(context: Context) -> bool:
+    """A goal that no goal line, action status or /task_info shows: inferred from Nav2's activity (events.nav_goals),
+    failed only because some node logged an error."""
+    run = _focus(context)
+    return run is not None and run.params.get("derived_from") == NO_GOAL_LINE
 
 
 def _skill_state(context: Context) -> str | None:
@@ -150,7 +158,12 @@ class NavigationExplainer:
         run = d.summarise(tagged, poses, state, noise + chain.stack_notes(tagged, raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
-        if not lines and not poses and not flags:
+        # Lines of the stack under Nav2 (tf2's drops on a failed goal, a rejected parameter) are navigation evidence
+        # too, for a goal the recording shows (not one inferred from an error line alone); and a step that
+        # /task_info reports succeeded with no node warning in its window is a normal trip.
+        stack = bool(run.notes) and not _inferred(context)
+        quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
+        if not lines and not poses and not flags and not stack and not quiet_success:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         until = run.end.t if run.end is not None else window[1]
         before = [ln for ln in context.log.logs if ln.t <= until]

@@ -79,7 +79,10 @@ def _honest(f: Finding) -> str:
 
 def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     what = f.notes[0] if f.notes else "a node of my navigation never came up"
-    return (f"I couldn't reach {place} because a node of my navigation never came up: {what.rstrip('.')}.",
+    # a process that died may have died mid-goal: said as what launch reported, not as a node that never came up
+    head = f"I couldn't reach {place} because " if what.startswith("the process of ") else \
+        f"I couldn't reach {place} because a node of my navigation never came up: "
+    return (f"{head}{what.rstrip('.')}.",
             "Fix the error quoted from the failing node (its parameters file, its configure step, or why its "
             "process died) and restart the navigation until the lifecycle manager reports 'Managed nodes are "
             "active'.",
@@ -178,8 +181,10 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "nothing was there).",
                 seen)
     if f.cause == g.COLLISION_AHEAD and "detected collision ahead" in said:
+        # the controller checks its costmap, not the world: the line says the check fired, not what was there
         return (f"I couldn't reach {place} because my controller's collision check stopped me: it detected a "
-                "collision ahead on my path and would not drive on.",
+                "collision ahead on my path and would not drive on. My logs do not say what it saw there: a real "
+                "object, or cost marked in my costmap where nothing stands (my footprint or its inflation).",
                 "Look at what is on the path just ahead; if nothing is there, check the robot's footprint and the "
                 "costmap's inflation, which can make a free path look blocked to the controller.",
                 seen)

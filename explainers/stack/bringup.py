@@ -34,9 +34,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from hexar.events.records import ERROR, LogLine
-from hexar.explainers.stack.catalogue import StackEntry, stack_catalogue
+from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_catalogue
 
 BRINGUP = "stack.bringup_failure"
+DIED = "process has died"
 KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed")
 
 _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
@@ -129,6 +130,13 @@ def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
     return ""
 
 
+def _process_died(cat: StackCatalogue) -> StackEntry | None:
+    """launch's process-died entry, for a line that keeps its fixed words but shortens its fields (a note's
+    "process has died [exit code -6]" for "process has died [pid …, exit code …, cmd '…']."; launch's
+    execute_local.py:596@rolling, execute_process.py:749@foxy)."""
+    return next((e for e in cat.entries if e.layer == "launch" and e.text.startswith(DIED)), None)
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
@@ -136,7 +144,7 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
     out: list[BringupFinding] = []
     seen: set[tuple[str, str]] = set()
     for i, line in enumerate(ordered):
-        entry = cat.match(line.msg)
+        entry = cat.match(line.msg) or (_process_died(cat) if DIED in line.msg else None)
         if entry is None or entry.cause != BRINGUP or (line.level < ERROR and entry.level == "WARN"):
             continue
         if entry.text.startswith("Original error"):
