@@ -288,3 +288,86 @@ def test_a_warning_of_the_stack_is_no_quiet_run(tmp_path: Path) -> None:
     answer = _without_task(tmp_path, [*QUIET, ("controller_server", WARN, "Control loop missed its desired rate "
                                                "of 20.0000Hz")])
     assert NOMINAL not in answer.causes
+
+
+def _task_only(tmp_path: Path, lines: list[Line], state: str) -> Explanation:
+    """A /task_info navigation step that ends in `state`, with `lines` in its window and no Nav2 goal line."""
+    b = BagBuilder()
+    task = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(T0, task_msg("t1", "go to the door", task))
+    for i, (name, level, msg) in enumerate(lines):
+        b.log(T0 + sec_ns(0.5 + i), name, level, msg)
+    b.task_info(T0 + sec_ns(1 + len(lines)), task_msg("t1", "go to the door", [(*task[0][:2], state, "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    question = "Why didn't you get there?" if state == "failed" else "How did the navigation go?"
+    return NavigationExplainer().explain(question, Context.for_task(log, log.task()))
+
+
+# ROBOTIS-GIT/turtlebot3#945 (Humble): launch could not parse the params file it substitutes, so nothing started.
+LAUNCH: list[Line] = [("launch", ERROR, "Caught exception in launch (see debug for traceback): while parsing a block "
+                       "mapping\n  in \"/opt/ros/humble/share/turtlebot3_navigation2/param/waffle.yaml\", line 2, "
+                       "column 3\nexpected <block end>, but found '<block mapping start>'")]
+
+
+def test_an_exception_in_launch_is_a_stack_that_never_came_up(tmp_path: Path) -> None:
+    answer = _task_only(tmp_path, LAUNCH, "failed")
+    assert answer.causes == [g.BRINGUP]
+    assert "my launch stopped with an error before it had started my navigation nodes" in answer.text
+    assert "waffle.yaml\", line 2, column 3" in answer.text
+    assert stated_causes(answer.text) >= {g.BRINGUP}
+
+
+# TheWindISeek/tianracer_ros2_ws docs/NAV2_ERRORS_AND_SOLUTIONS.md: nav2_costmap_2d's inflation layer rejects the
+# configured radius (ERROR), pasted cut short after "of your footprint".
+INFLATION: list[Line] = [("local_costmap.local_costmap", ERROR, "The configured inflation radius (0.050) is smaller "
+                          "than the computed inscribed radius (0.186) of your footprint")]
+
+
+def test_a_parameter_a_nav2_node_rejects_is_a_configuration_error_quoted(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [*INFLATION, ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes[0] == g.CONFIGURATION
+    assert "misconfigured" in answer.text and "inflation radius (0.050) is smaller" in answer.text
+    assert stated_causes(answer.text) <= {g.CONFIGURATION, g.BRINGUP}
+
+
+# turtlebot/turtlebot4#188 (corpus tb4-188): rviz's tf2_ros message filter drops scans waiting for a transform
+# (tf2_ros/message_filter.h: "discarding message because the queue is full"), logged at INFO.
+DROPS: list[Line] = [("rviz2", INFO, "Message Filter dropping message: frame 'rplidar_link' at time 1685961755.735 "
+                      "for reason 'discarding message because the queue is full'")] * 2
+
+
+def test_message_filter_drops_on_a_failed_goal_are_navigation_evidence(tmp_path: Path) -> None:
+    answer = _task_only(tmp_path, DROPS, "failed")
+    assert answer.enough_information and answer.causes == [g.TRANSFORM]
+    assert _quoted(answer, "discarding message because the queue is full")
+
+
+def test_a_step_reported_succeeded_with_no_warning_is_a_normal_trip(tmp_path: Path) -> None:
+    # the Nav2 docs' vector object tutorial: nodes loaded into the container, nothing else logged
+    loaded = [("launch_ros.actions.load_composable_nodes", INFO,
+               "Loaded node '/vector_object_server' in container 'nav2_container'")]
+    answer = _task_only(tmp_path, loaded, "succeeded")
+    assert answer.causes == [NOMINAL] and "without any problem" in answer.text
+    failed = _task_only(tmp_path / "f", loaded, "failed")
+    assert not failed.enough_information and not stated_causes(failed.text)
+
+
+def test_a_stack_error_alone_without_any_goal_is_not_read_as_a_failed_goal(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#4660: an empty source frame during SLAM while the robot navigates normally
+    # (nav2_util robot_utils.cpp transformPoseInTargetFrame); no goal line, no /task_info
+    answer = _without_task(tmp_path, [("transformPoseInTargetFrame", ERROR, "Failed to transform from  to base_link")])
+    assert g.TRANSFORM not in answer.causes and g.TRANSFORM not in stated_causes(answer.text)
+
+
+def test_rpp_collision_check_says_the_logs_do_not_show_what_it_saw(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [("controller_server", WARN,
+                                      "RegulatedPurePursuitController detected collision ahead!")])
+    assert "My logs do not say what it saw there" in answer.text
+    assert stated_causes(answer.text) == {g.COLLISION_AHEAD}
+
+
+def test_a_process_that_died_during_the_goal_is_not_told_as_never_having_come_up(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], DIED)
+    assert answer.causes == [g.BRINGUP]
+    assert "because the process of controller_server died (exit code -4)" in answer.text
+    assert "never came up" not in answer.text
