@@ -7,6 +7,7 @@ Sentences avoid the phrasings of other causes in hexar/causes.yaml, so the grade
 
 from __future__ import annotations
 
+from hexar.events.records import WARN
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation.wording import quote as _quote
 from hexar.explainers.navigation.wording import template as nav2_template
@@ -85,8 +86,11 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
                  "below my speed limit."])
     if f.cause == d.NOMINAL:
         figures = _speed_sentence(f)
-        return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
-                ["My navigation logs show no failures, recoveries or warnings for this trip."])
+        warned = [ln for ln in run.lines if ln.level >= WARN]
+        detail = (f"My navigation logged {len(warned)} warning(s) or error(s) on the way (the first: "
+                  f"{_quote(warned[0])}), none of which kept me from reaching the goal." if warned else
+                  "My navigation logs show no failures, recoveries or warnings for this trip.")
+        return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None, [detail])
     verb = "failed" if failed else "did not finish"
     waiting = next((n for n in f.notes if n.startswith("AMCL ")), None)
     if waiting is not None:

@@ -126,6 +126,15 @@ def _told(found: BringupFinding) -> str:
     return said if quotable(said, (BRINGUP, CONFIGURATION)) else replace(found, detail="").describe()
 
 
+def unresolved(transform_lines: list[LogLine], logs: Iterable[LogLine]) -> list[LogLine]:
+    """Transform lines the stack's bring-up did not resolve: a costmap's activation waits in a loop, logging
+    "Timed out waiting for transform ... to become available" until the transform exists (costmap_2d_ros.cpp:281
+    @humble, on_activate), so a transform fault logged before the lifecycle manager's later "Managed nodes are
+    active" was a wait at start-up that ended, not the reason a goal failed after it."""
+    active = [ln.t for ln in logs if ln.msg.startswith("Managed nodes are active")]
+    return [ln for ln in transform_lines if not any(t > ln.t for t in active)]
+
+
 def never_came_up(notes: Iterable[tuple[LogLine, Entry]], logs: Iterable[LogLine]) -> bool:
     """Whether a configuration error kept a node from coming up: Nav2 loads its plugins (BT node libraries,
     planners, controllers) in on_configure, and the lifecycle manager says when a bring-up was aborted; or a

@@ -232,6 +232,8 @@ class NavigationExplainer:
                     found = _stall(view, run) if strength == "strong" else None
                 else:
                     lines = g.supporting(run.notes, cause, strength)
+                    if cause == g.TRANSFORM:
+                        lines = chain.unresolved(lines, before)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
                 if found is not None:

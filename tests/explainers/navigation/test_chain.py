@@ -371,3 +371,21 @@ def test_a_process_that_died_during_the_goal_is_not_told_as_never_having_come_up
     assert answer.causes == [g.BRINGUP]
     assert "because the process of controller_server died (exit code -4)" in answer.text
     assert "never came up" not in answer.text
+
+
+# corpus nav2-1876's costmap line (costmap_2d_ros.cpp:281@humble: on_activate loops, logging it, until the transform
+# exists), then the lifecycle manager's "Managed nodes are active" (lifecycle_manager.cpp:288@humble).
+WAITED: list[Line] = [
+    ("global_costmap.global_costmap", INFO, "Timed out waiting for transform from base_link to map to become "
+     "available, tf error: Invalid frame ID \"map\" passed to canTransform argument target_frame - frame does not "
+     "exist")]
+ACTIVE: Line = ("lifecycle_manager_navigation", INFO, "Managed nodes are active")
+
+
+def test_a_transform_wait_that_bringup_got_past_is_not_the_cause(tmp_path: Path) -> None:
+    stuck = [("controller_server", ERROR, "Failed to make progress")]
+    answer = _explain(tmp_path, [*WAITED, ACTIVE], stuck)
+    assert answer.causes == [g.NO_PROGRESS] and g.TRANSFORM not in stated_causes(answer.text)
+    # without the bring-up finishing after it, the same wait is what held the navigation
+    answer = _explain(tmp_path / "b", [], [*WAITED, *stuck])
+    assert answer.causes == [g.TRANSFORM]
