@@ -14,6 +14,7 @@ the decisive error to quote when no catalogued line explains a failure.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Iterable
 from dataclasses import replace
@@ -53,6 +54,7 @@ _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "b
 # on_configure), the lifecycle manager aborting the bring-up, a process that died.
 _AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
 NEVER_CAME_UP = "never_came_up"
+_PROCESS_NAME = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 # AMCL's "Please set the initial pose..." (a WARN) alone: what it means, and its two readings, as a symptom.
 AMCL_WAITING = ("AMCL kept saying it cannot publish a pose until an initial pose is set, which happens when no "
                 "initial pose was given, or when one was given but AMCL could not use it (its laser scans or the "
@@ -112,12 +114,31 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
     finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
     finding.notes = [_told(f) for f in found[:3]]
+    last = last_words(logs_list, first) if first.kind == "process_died" else None
+    if last is not None:
+        finding.notes[0] += f" right after it logged '{last.msg.strip().splitlines()[0]}'"
+        finding.evidence.insert(0, Evidence.of_log(cause, last))
     if first.kind == "process_died" and not [ln for ln in decisive_errors(logs_list, first.line.t)
                                              if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
         finding.notes[0] += "; nothing in my logs says why it died"
     finding.facts[NEVER_CAME_UP] = 1.0
     return finding
+
+
+def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
+    """The node's own last line before launch reported its process dead (what it was doing when it died), unless
+    it is a line a catalogue reads (a symptom or a cause, told on its own) or one that reads as another cause."""
+    if not died.node:
+        return None
+    cat = catalogue()
+    before = [ln for ln in logs if ln.t <= died.t and ln is not died.line
+              and _PROCESS_NAME.sub("", ln.name.strip("/").split("/")[-1]) == died.node
+              and not ln.msg.startswith("process started with pid")]
+    line = before[-1] if before else None
+    if line is None or cat.match(line.msg) is not None or stack_entry(line) is not None or not quotable(line.msg):
+        return None
+    return line
 
 
 def _told(found: BringupFinding) -> str:

@@ -44,6 +44,8 @@ _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
 _EXIT = re.compile(r"exit code (?P<code>-?\d+)")
 _NAMED_NODE = re.compile(r"(?:for node|node)[: ]+'?(?P<node>[/\w]+)'?")
 _PROCESS_IN_MSG = re.compile(r"process\[(?P<node>[\w./-]+?)(?:-\d+)?\]")
+_CMD_NODE = re.compile(r"cmd '[^']*?__node:=(?P<node>[A-Za-z_]\w*)")
+_CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
 # lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
@@ -102,6 +104,12 @@ def _node(line: LogLine, kind: str) -> str:
     name = line.name.strip("/").split("/")[-1]
     if kind == "process_died" or name.endswith(tuple(f"-{i}" for i in range(10))):
         m = _PROCESS.match(name)
+        if m and m["node"] not in ("launch", "rcl"):
+            return m["node"]
+    if kind == "process_died":
+        # launch's line carries the command it ran ("cmd '.../bt_navigator --ros-args -r __node:=bt_navigator'"):
+        # the node it names, else the executable, when the console prefix that named the process was lost
+        m = _CMD_NODE.search(line.msg) or _CMD_EXE.search(line.msg)
         if m:
             return m["node"]
     return "" if name in ("", "launch", "rcl") else name

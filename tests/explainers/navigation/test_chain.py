@@ -389,3 +389,16 @@ def test_a_transform_wait_that_bringup_got_past_is_not_the_cause(tmp_path: Path)
     # without the bring-up finishing after it, the same wait is what held the navigation
     answer = _explain(tmp_path / "b", [], [*WAITED, *stuck])
     assert answer.causes == [g.TRANSFORM]
+
+
+def test_a_died_process_is_told_with_what_it_last_logged(tmp_path: Path) -> None:
+    # ros-navigation/docs.nav2.org's backtrace guide: the planner server's last line, then launch reports it dead
+    lines = [("planner_server", INFO, "Computing path to goal...."),
+             ("planner_server-13", ERROR, "process has died [pid 165734, exit code -11, cmd '/opt/overlay_ws/src/"
+              "navigation2/install/nav2_planner/lib/nav2_planner/planner_server --ros-args -r __node:=planner_server']."
+              )]
+    answer = _explain(tmp_path, [], lines)
+    assert answer.causes == [g.BRINGUP]
+    assert ("the process of planner_server died (exit code -11) right after it logged 'Computing path to goal....'; "
+            "nothing in my logs says why it died") in answer.text
+    assert _quoted(answer, "Computing path to goal")

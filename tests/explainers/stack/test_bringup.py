@@ -116,3 +116,13 @@ def test_a_died_process_with_shortened_fields_is_still_launchs_line(tmp_path: Pa
     [f] = bringup_findings(_logs(tmp_path, SHORT_DIED))
     assert (f.kind, f.detail) == ("process_died", "exit code -6")
     assert f.entry is not None and f.entry.source.startswith("launch/launch/actions/execute_local.py:")
+
+
+def test_a_died_process_whose_console_prefix_was_lost_is_named_from_launchs_command(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#3508 (Humble): the console line begins with a stamp, so no process prefix is read;
+    # launch's own message still names the node in the command it ran (execute_local.py:573@humble)
+    died = ("1679533274.4250224 [ERROR] [bt_navigator-28]: process has died [pid 81493, exit code -8, cmd '/opt/ros/"
+            "humble/lib/nav2_bt_navigator/bt_navigator --ros-args --log-level info --ros-args -r __node:=bt_navigator "
+            "--params-file /tmp/tmp9whtodqw -r /tf:=tf -r /tf_static:=tf_static'].\n")
+    [f] = bringup_findings(_logs(tmp_path, died))
+    assert (f.kind, f.node, f.detail) == ("process_died", "bt_navigator", "exit code -8")
