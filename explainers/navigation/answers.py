@@ -10,6 +10,7 @@ from __future__ import annotations
 from hexar.events.records import WARN
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation.wording import quote as _quote
+from hexar.explainers.navigation.wording import symptoms
 from hexar.explainers.navigation.wording import template as nav2_template
 
 
@@ -92,11 +93,12 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
                   "My navigation logs show no failures, recoveries or warnings for this trip.")
         return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None, [detail])
     verb = "failed" if failed else "did not finish"
-    waiting = next((n for n in f.notes if n.startswith("AMCL ")), None)
-    if waiting is not None:
+    waiting = symptoms(f)
+    if waiting:
         return (f"My navigation to {place} {verb}, and my logs do not show why for sure: {waiting}.",
-                "Set the initial pose (e.g. '2D Pose Estimate' in RViz); if AMCL still asks for it, check that "
-                "the laser's, the odometry's and this computer's clocks agree.", [])
+                "Start from what that line names: an initial pose (e.g. '2D Pose Estimate' in RViz), the sensor "
+                "data and its timestamps, and that the laser's, the odometry's and this computer's clocks agree.",
+                [])
     return (f"My navigation to {place} {verb}, but my navigation logs do not show why.",
             "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
             "and the planner's and controller's own logs at debug level." if failed else None,

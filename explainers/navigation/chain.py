@@ -22,9 +22,9 @@ from dataclasses import replace
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import INITIAL_POSE, UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS
-from hexar.explainers.navigation.wording import quotable
+from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
@@ -55,10 +55,6 @@ _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "b
 _AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
 NEVER_CAME_UP = "never_came_up"
 _PROCESS_NAME = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
-# AMCL's "Please set the initial pose..." (a WARN) alone: what it means, and its two readings, as a symptom.
-AMCL_WAITING = ("AMCL kept saying it cannot publish a pose until an initial pose is set, which happens when no "
-                "initial pose was given, or when one was given but AMCL could not use it (its laser scans or the "
-                "odometry transforms not arriving in time)")
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
 
 
@@ -227,8 +223,12 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
     if found.cause not in (UNEXPLAINED, NO_PROGRESS):
         return found
     until = run.end.t if run.end is not None else None
-    if any(n.entry.id == INITIAL_POSE for n in run.notes) and not any(n.startswith("AMCL ") for n in found.notes):
-        found.notes.append(AMCL_WAITING)
+    cat = catalogue()
+    for line in run.lines:
+        entry = cat.match(line.msg)
+        said = SYMPTOMS.get(entry.id) if entry is not None else None
+        if said is not None and said not in found.notes:
+            found.notes.append(said)
     errors = decisive_errors(raw, until)
     if errors:
         found.notes.append(quote_last_error(errors, gave_up=run.outcome == "failed"))

@@ -20,6 +20,27 @@ def quote(line: LogLine | None) -> str:
     return f"'{line.msg.strip()}'" if line is not None else ""
 
 
+# Lines that say what stopped the robot without saying why (each with its readings, from its source), told when no
+# catalogued line names a cause; never a cause themselves. Keyed by Nav2 catalogue id.
+SYMPTOMS = {
+    # amcl_node.cpp:926@humble (WARN): printed until a pose is set, and when the one set cannot be used
+    "amcl.set_initial_pose": (
+        "AMCL kept saying it cannot publish a pose until an initial pose is set, which happens when no initial pose "
+        "was given, or when one was given but AMCL could not use it (its laser scans or the odometry transforms not "
+        "arriving in time)"),
+    # collision_monitor_node.cpp:619@jazzy (WARN): a source with no valid data stops the robot, no object seen
+    "cmon.invalid_source": (
+        "my collision monitor held me still because one of its sensor sources gave no valid data (none published "
+        "yet, none recent enough, or none it could bring into my base frame); my logs do not say which"),
+}
+
+
+def symptoms(f: Finding) -> str:
+    """The SYMPTOMS sentences a finding carries, as one sentence tail ("" when none)."""
+    said = [n for n in f.notes if n in SYMPTOMS.values()]
+    return "; ".join(said)
+
+
 def quotable(msg: str, own: Iterable[str] = ()) -> bool:
     """Whether a log line can be quoted inside an answer's sentence: it must not read as a cause other than `own`
     (a behaviour-tree file named "..._w_replanning_and_recovery.xml" is no replanning; "detected collision" in an
@@ -92,9 +113,11 @@ def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
 def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     """Answers for what a failure produced when no line says what caused it: candidates, and the last error."""
     last = _honest(f)
+    seen_stop = symptoms(f)
     if f.cause == g.NO_PROGRESS and last:
+        also = f" Also, {seen_stop}." if seen_stop else ""
         return (f"My navigation to {place} gave up because my controller made no progress for "
-                f"{_progress_seconds(run)}. I can't tell what caused it for sure, but {last}.",
+                f"{_progress_seconds(run)}. I can't tell what caused it for sure, but {last}.{also}",
                 "Check that error first; then that cmd_vel reaches the base and that TF is fresh.",
                 ["Nav2's progress checker gave up; no catalogued line names a cause."])
     if f.cause != "navigation.unexplained_failure":
@@ -213,6 +236,11 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Check that cmd_vel reaches the base: the topic remapping, the velocity smoother's output and the "
                 "base driver.",
                 ["/cmd_vel carried motion commands while /odom stayed still."])
+    if f.cause == g.NO_PROGRESS and symptoms(f):
+        return (f"My navigation to {place} gave up because my controller made no progress for "
+                f"{_progress_seconds(run)}, and nothing in my logs says why for sure: {symptoms(f)}.",
+                "Check the data sources and transforms the line points to, then that cmd_vel reaches the base.",
+                ["Nav2's progress checker gave up; no catalogued line names a cause."])
     if f.cause == g.NO_PROGRESS:
         return (f"My navigation to {place} gave up because my controller made no progress for "
                 f"{_progress_seconds(run)}; nothing in my logs says why.",

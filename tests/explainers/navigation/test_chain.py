@@ -402,3 +402,20 @@ def test_a_died_process_is_told_with_what_it_last_logged(tmp_path: Path) -> None
     assert ("the process of planner_server died (exit code -11) right after it logged 'Computing path to goal....'; "
             "nothing in my logs says why it died") in answer.text
     assert _quoted(answer, "Computing path to goal")
+
+
+# nav2_collision_monitor/src/collision_monitor_node.cpp:619@jazzy (WARN, one message over three literals)
+INVALID_SOURCE: Line = ("collision_monitor", WARN, "Robot to stop due to invalid source. Either due to data not "
+                        "published yet, or to lack of new data received within the sensor timeout, or if impossible "
+                        "to transform data to base frame")
+
+
+def test_a_collision_monitor_stop_for_a_source_without_data_is_no_collision_ahead(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [INVALID_SOURCE, ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.NO_PROGRESS]
+    assert "one of its sensor sources gave no valid data" in answer.text
+    assert stated_causes(answer.text) <= {g.NO_PROGRESS}
+    # a polygon stop (collision_monitor_node.cpp:464@humble) is one
+    answer = _explain(tmp_path / "b", [], [("collision_monitor", INFO, "Robot to stop due to PolygonStop polygon"),
+                                           ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.COLLISION_AHEAD]

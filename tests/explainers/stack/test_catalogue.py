@@ -47,6 +47,12 @@ def test_every_layer_the_issue_names_was_mined() -> None:
      "footprint, it is highly recommended to set inflation radius to be at least as big as the inscribed radius to "
      "avoid collisions", "cause", "stack.configuration_error", "nav2"),
     ("GridBased: failed to create plan, no valid path found.", "symptom", None, "nav2"),
+    # navfn_planner.cpp@humble: the GOAL off the costmap, not the robot's start
+    ("The goal sent to the planner is off the global costmap. Planning will always fail to this goal.", "cause",
+     "stack.goal_unreachable", "nav2"),
+    # amcl_node.cpp@humble: a parameter AMCL replaces by its default is no localisation fault
+    ("You've set max_particles to be negative, this isn't allowed so it will be set to default value 2000.",
+     "symptom", None, "nav2"),
     ("[follow_path] [ActionServer] Aborting handle.", "symptom", None, "nav2"),
     ("Failed to make progress", "symptom", None, "nav2"),
 ])
