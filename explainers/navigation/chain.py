@@ -205,6 +205,58 @@ def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
     return f"the last error {when} came from {who}: '{line.msg.strip()}' (at {clock(line.t)} UTC)"
 
 
+def only_warned(found: Finding, run: Run) -> Finding | None:
+    """For a recording with no goal and no end: an honest finding quoting the last warning, when the finding's cause
+    rests on warnings only (None when an ERROR/FATAL line supports it, or it is already an honest one)."""
+    if found.cause in (UNEXPLAINED, NO_PROGRESS) or found.facts.get(NEVER_CAME_UP):
+        return None
+    times = {e.t for e in found.evidence}
+    notes = {id(n.line): n.entry for n in run.notes}
+    lines = [ln for ln in run.lines + [n.line for n in run.notes] if ln.t in times]
+    if not lines or any(ln.level >= ERROR or _decisive(notes.get(id(ln))) or _stuck_activation(ln, run.lines)
+                        or _clock_gap(ln.msg) > CLOCK_GAP_S for ln in lines):
+        return None
+    last = max(lines, key=lambda ln: ln.t)
+    honest = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(set(lines), key=lambda x: x.t)])
+    who = last.name.strip("/") or "a node that gave no name"
+    said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
+    honest.notes.append(f"{WARNED} came from {who}{said} (at {clock(last.t)} UTC)")
+    return honest
+
+
+WARNED = "the last warning my logs show"
+# Whose warnings decide without a goal's end: the servers that answer a goal say why they fail it (the planner's
+# "Planning will always fail", RPP's collision exception that the controller server answers by terminating the
+# action, controller_server.cpp:422@humble), the lifecycle manager says what did not come up, the collision monitor
+# says it held the robot. Costmaps, TF, AMCL and the velocity smoother warn in healthy runs too.
+DECIDING_ROLES = frozenset({"bt_navigator", "planner_server", "controller_server", "docking_server",
+                            "lifecycle_manager", "collision_monitor"})
+# ... and a clock that jumped back (tf2_ros buffer, "Detected jump back in time"): a clock fault stated, not a wait.
+DECIDING_IDS = frozenset({"tf.time_jump"})
+
+
+def _decisive(entry: Entry | None) -> bool:
+    return entry is not None and entry.cause is not None and (entry.role in DECIDING_ROLES
+                                                              or entry.id in DECIDING_IDS)
+# A transform's requested time and its data's time this far apart is a clock mismatch, not a lookup that came a
+# little early (transform tolerances are tenths of a second): e.g. sim time 0.2 s against wall time 1.6e9 s.
+CLOCK_GAP_S = 1.0
+_TIMES = re.compile(r"Requested time (?P<a>\d+(?:\.\d+)?) but the (?:earliest|latest) data is at time "
+                    r"(?P<b>\d+(?:\.\d+)?)")
+
+
+def _clock_gap(msg: str) -> float:
+    m = _TIMES.search(msg)
+    return abs(float(m["a"]) - float(m["b"])) if m else 0.0
+
+
+def _stuck_activation(line: LogLine, lines: list[LogLine]) -> bool:
+    """A costmap waiting for its transform in on_activate (costmap_2d_ros.cpp:281@humble, logged each loop) with no
+    later "Managed nodes are active": the stack never finished coming up, which decides by itself."""
+    return line.msg.startswith("Timed out waiting for transform from") and "to become available" in line.msg \
+        and not any(ln.t > line.t and ln.msg.startswith("Managed nodes are active") for ln in lines)
+
+
 def slow_retries(run: Run) -> Finding | None:
     """A goal reached after the planner failed and recoveries ran, with nothing that shows what was in the way."""
     plans = plan_failures(run)

@@ -92,9 +92,8 @@ def _place(context: Context, lines: list[LogLine]) -> str:
 
 def _inferred(context: Context) -> bool:
     """A goal that no goal line, action status or /task_info shows: inferred from Nav2's activity (events.nav_goals),
-    failed only because some node logged an error."""
-    run = _focus(context)
-    return run is not None and run.params.get("derived_from") == NO_GOAL_LINE
+    failed only because some node logged an error, or still running as far as the recording shows."""
+    return any(r.skill in NAV_SKILLS and r.params.get("derived_from") == NO_GOAL_LINE for r in context.task.skills)
 
 
 def _skill_state(context: Context) -> str | None:
@@ -161,13 +160,13 @@ class NavigationExplainer:
         # Lines of the stack under Nav2 (tf2's drops on a failed goal, a rejected parameter) are navigation evidence
         # too, for a goal the recording shows (not one inferred from an error line alone); and a step that
         # /task_info reports succeeded with no node warning in its window is a normal trip.
-        stack = bool(run.notes) and not _inferred(context)
+        stack = bool(run.notes) and not (_inferred(context) and state == "failed")
         quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
         if not lines and not poses and not flags and not stack and not quiet_success:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         until = run.end.t if run.end is not None else window[1]
         before = [ln for ln in context.log.logs if ln.t <= until]
-        findings = flags + self._others(question, view, run, bool(flags), before, raw)
+        findings = flags + self._others(question, view, run, bool(flags), before, raw, _inferred(context))
         for f in findings:
             if f.cause == d.UNEXPLAINED and not f.evidence:
                 f.evidence += _status_evidence(context, d.UNEXPLAINED)
@@ -183,11 +182,15 @@ class NavigationExplainer:
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
     def _others(self, question: str, view: View, run: d.Run, flagged: bool, before: list[LogLine],
-                raw: list[LogLine]) -> list[d.Finding]:
+                raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
         if run.outcome != "reached":
             found = self._failure(view, run, before)
+            if found is not None and inferred and run.outcome == "unknown":
+                # no goal, no end, no error: warnings alone do not show that anything failed (many a healthy robot
+                # prints them), so they are quoted, not read as a cause
+                found = chain.only_warned(found, run) or found
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:

@@ -113,6 +113,12 @@ def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
 def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     """Answers for what a failure produced when no line says what caused it: candidates, and the last error."""
     last = _honest(f)
+    warned = next((n for n in f.notes if n.startswith("the last warning")), "")
+    if warned and run.outcome == "unknown":
+        return (f"The recording does not show whether my navigation to {place} ended or anything went wrong: "
+                f"{warned}, and a warning alone does not say that a goal failed.",
+                "If a goal did fail, record its end (bt_navigator's 'Goal failed' or the action status) with the "
+                "lines before it.", [])
     seen_stop = symptoms(f)
     if f.cause == g.NO_PROGRESS and last:
         also = f" Also, {seen_stop}." if seen_stop else ""

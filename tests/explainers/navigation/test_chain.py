@@ -419,3 +419,31 @@ def test_a_collision_monitor_stop_for_a_source_without_data_is_no_collision_ahea
     answer = _explain(tmp_path / "b", [], [("collision_monitor", INFO, "Robot to stop due to PolygonStop polygon"),
                                            ("controller_server", ERROR, "Failed to make progress")])
     assert answer.causes == [g.COLLISION_AHEAD]
+
+
+# No goal line, no /task_info, no error: what a warning alone may claim.
+def test_a_background_warning_with_no_goal_is_quoted_not_read_as_a_cause(tmp_path: Path) -> None:
+    # dot-Ahope/jupiter_ws_ros2's guide (Humble): a global-costmap warning the guide calls harmless
+    # (obstacle_layer.cpp:637@humble)
+    answer = _without_task(tmp_path, [("global_costmap.global_costmap", WARN, "Sensor origin at (-0.03, 0.00) is out of "
+                                       "map bounds (-0.03, -1.50) to (2.55, 3.13). The costmap cannot raytrace for it.")])
+    assert answer.causes == [UNEXPLAINED] and not stated_causes(answer.text) - {UNEXPLAINED}
+    assert "the last warning my logs show came from global_costmap.global_costmap" in answer.text
+    assert "does not show whether" in answer.text
+
+
+def test_a_server_that_says_why_it_fails_decides_without_a_goal(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#3230 (corpus): the planner server's own words (navfn_planner.cpp:223@humble)
+    answer = _without_task(tmp_path, [("planner_server", WARN, "Cannot create a plan: the robot's start position is "
+                                       "off the global costmap. Planning will always fail, are you sure the robot has "
+                                       "been properly localized?")])
+    assert answer.causes == [g.OFF_COSTMAP]
+
+
+def test_a_transform_lookup_off_by_more_than_a_second_is_a_clock_fault(tmp_path: Path) -> None:
+    # create-robot (Foxy): tf2_echo on a real robot with use_sim_time set (sim time 0.2 s, data at wall time)
+    answer = _without_task(tmp_path, [("tf2_echo", INFO, "Waiting for transform map ->  base_footprint: Lookup would "
+                                       "require extrapolation into the past.  Requested time 0.200000 but the earliest "
+                                       "data is at time 1619986346.813953, when looking up transform from frame "
+                                       "[base_footprint] to frame [map]")])
+    assert answer.causes == [g.TRANSFORM]
