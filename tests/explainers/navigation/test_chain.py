@@ -425,8 +425,9 @@ def test_a_collision_monitor_stop_for_a_source_without_data_is_no_collision_ahea
 def test_a_background_warning_with_no_goal_is_quoted_not_read_as_a_cause(tmp_path: Path) -> None:
     # dot-Ahope/jupiter_ws_ros2's guide (Humble): a global-costmap warning the guide calls harmless
     # (obstacle_layer.cpp:637@humble)
-    answer = _without_task(tmp_path, [("global_costmap.global_costmap", WARN, "Sensor origin at (-0.03, 0.00) is out of "
-                                       "map bounds (-0.03, -1.50) to (2.55, 3.13). The costmap cannot raytrace for it.")])
+    origin = ("Sensor origin at (-0.03, 0.00) is out of map bounds (-0.03, -1.50) to (2.55, 3.13). The costmap cannot "
+              "raytrace for it.")
+    answer = _without_task(tmp_path, [("global_costmap.global_costmap", WARN, origin)])
     assert answer.causes == [UNEXPLAINED] and not stated_causes(answer.text) - {UNEXPLAINED}
     assert "the last warning my logs show came from global_costmap.global_costmap" in answer.text
     assert "does not show whether" in answer.text
