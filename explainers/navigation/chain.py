@@ -9,7 +9,10 @@ the decisive error to quote when no catalogued line explains a failure.
   link of the chain, unless a catalogued configuration line says why the node failed (then it is that
   configuration error, and the answer says which node never became active).
 - When nothing catalogued decides, the decisive ERROR/FATAL line (the last before the goal ended that is neither a
-  symptom nor noise) is quoted with its node and time, never "the logs do not show why" while it is there.
+  symptom nor noise) is quoted with its node and time, never "the logs do not show why" while it is there; a line
+  whose words read as another cause is told by node and time only (wording.quotable).
+- Over-reading guards: a transform wait logged before a later "Managed nodes are active" ended at bring-up
+  (`unresolved`); with no goal and no end, warnings of the background layers alone are quoted (`only_warned`).
 """
 
 from __future__ import annotations

@@ -20,8 +20,12 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
   recoveries after no progress), controller_failure, commands_not_reaching_base (/cmd_vel commanding while
   /odom is still; never from logs alone).
 - symptoms are never the cause: a planner that never found a path (unexplained_failure naming the candidates and
-  what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make).
+  what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make),
+  AMCL asking for an initial pose, the collision monitor stopping for a source without data (wording.SYMPTOMS).
   Either quotes the decisive unknown ERROR/FATAL line with its node and time when there is one (chain.py).
+- a recording with no goal line, no /task_info and no error: a background layer's warning alone (costmap, TF, AMCL)
+  is quoted, never read as a cause (chain.only_warned); a transform wait that bring-up got past is no cause
+  (chain.unresolved).
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
