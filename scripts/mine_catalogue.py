@@ -95,7 +95,8 @@ def read_blobs(repo: Path, branch: str, paths: list[str]) -> dict[str, str]:
 
 def classify(text: str, level: str, layer: str, package: str, rules: list[dict[str, Any]]) -> tuple[str, str | None]:
     for rule in rules:
-        if rule.get("layer") not in (None, layer) or rule.get("package") not in (None, package):
+        if rule.get("layer") not in (None, layer) or rule.get("package") not in (None, package) \
+                or rule.get("level") not in (None, level):
             continue
         if re.search(rule.get("text", ""), text):
             return str(rule["role"]), rule.get("cause")

@@ -9,20 +9,27 @@ the decisive error to quote when no catalogued line explains a failure.
   link of the chain, unless a catalogued configuration line says why the node failed (then it is that
   configuration error, and the answer says which node never became active).
 - When nothing catalogued decides, the decisive ERROR/FATAL line (the last before the goal ended that is neither a
-  symptom nor noise) is quoted with its node and time, never "the logs do not show why" while it is there.
+  symptom nor noise) is quoted with its node and time, never "the logs do not show why" while it is there; a line
+  whose words read as another cause is told by node and time only (wording.quotable).
+- Over-reading guards: a transform wait logged before a later "Managed nodes are active" ended at bring-up
+  (`unresolved`); with no goal and no end, warnings of the background layers alone are quoted (`only_warned`).
 """
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Iterable
+from dataclasses import replace
 
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import Entry, catalogue
 from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS
+from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
+from hexar.explainers.stack.bringup import BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 
 BRINGUP = "navigation.bringup_failure"
@@ -50,6 +57,7 @@ _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "b
 # on_configure), the lifecycle manager aborting the bring-up, a process that died.
 _AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
 NEVER_CAME_UP = "never_came_up"
+_PROCESS_NAME = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
 
 
@@ -104,13 +112,47 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     # nodes not active") were made for; a params file rcl could not parse and a process that died are not.
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
     finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
-    finding.notes = [first.describe()] + [f.describe() for f in found[1:3]]
+    finding.notes = [_told(f) for f in found[:3]]
+    last = last_words(logs_list, first) if first.kind == "process_died" else None
+    if last is not None:
+        finding.notes[0] += f" right after it logged '{last.msg.strip().splitlines()[0]}'"
+        finding.evidence.insert(0, Evidence.of_log(cause, last))
     if first.kind == "process_died" and not [ln for ln in decisive_errors(logs_list, first.line.t)
                                              if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
         finding.notes[0] += "; nothing in my logs says why it died"
     finding.facts[NEVER_CAME_UP] = 1.0
     return finding
+
+
+def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
+    """The node's own last line before launch reported its process dead (what it was doing when it died), unless
+    it is a line a catalogue reads (a symptom or a cause, told on its own) or one that reads as another cause."""
+    if not died.node:
+        return None
+    cat = catalogue()
+    before = [ln for ln in logs if ln.t <= died.t and ln is not died.line
+              and _PROCESS_NAME.sub("", ln.name.strip("/").split("/")[-1]) == died.node
+              and not ln.msg.startswith("process started with pid")]
+    line = before[-1] if before else None
+    if line is None or cat.match(line.msg) is not None or stack_entry(line) is not None or not quotable(line.msg):
+        return None
+    return line
+
+
+def _told(found: BringupFinding) -> str:
+    """What failed, with its detail (the original error, the exit code) unless the detail reads as another cause."""
+    said = found.describe()
+    return said if quotable(said, (BRINGUP, CONFIGURATION)) else replace(found, detail="").describe()
+
+
+def unresolved(transform_lines: list[LogLine], logs: Iterable[LogLine]) -> list[LogLine]:
+    """Transform lines the stack's bring-up did not resolve: a costmap's activation waits in a loop, logging
+    "Timed out waiting for transform ... to become available" until the transform exists (costmap_2d_ros.cpp:281
+    @humble, on_activate), so a transform fault logged before the lifecycle manager's later "Managed nodes are
+    active" was a wait at start-up that ended, not the reason a goal failed after it."""
+    active = [ln.t for ln in logs if ln.msg.startswith("Managed nodes are active")]
+    return [ln for ln in transform_lines if not any(t > ln.t for t in active)]
 
 
 def never_came_up(notes: Iterable[tuple[LogLine, Entry]], logs: Iterable[LogLine]) -> bool:
@@ -161,7 +203,61 @@ def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
     line = lines[-1]
     who = line.name.strip("/") or "a node that gave no name"
     when = "before I gave up" if gave_up else "my logs show"
+    if not quotable(line.msg):
+        return f"the last error {when} came from {who} (at {clock(line.t)} UTC; the line itself is in my evidence)"
     return f"the last error {when} came from {who}: '{line.msg.strip()}' (at {clock(line.t)} UTC)"
+
+
+def only_warned(found: Finding, run: Run) -> Finding | None:
+    """For a recording with no goal and no end: an honest finding quoting the last warning, when the finding's cause
+    rests on warnings only (None when an ERROR/FATAL line supports it, or it is already an honest one)."""
+    if found.cause in (UNEXPLAINED, NO_PROGRESS) or found.facts.get(NEVER_CAME_UP):
+        return None
+    times = {e.t for e in found.evidence}
+    notes = {id(n.line): n.entry for n in run.notes}
+    lines = [ln for ln in run.lines + [n.line for n in run.notes] if ln.t in times]
+    if not lines or any(ln.level >= ERROR or _decisive(notes.get(id(ln))) or _stuck_activation(ln, run.lines)
+                        or _clock_gap(ln.msg) > CLOCK_GAP_S for ln in lines):
+        return None
+    last = max(lines, key=lambda ln: ln.t)
+    honest = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(set(lines), key=lambda x: x.t)])
+    who = last.name.strip("/") or "a node that gave no name"
+    said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
+    honest.notes.append(f"{WARNED} came from {who}{said} (at {clock(last.t)} UTC)")
+    return honest
+
+
+WARNED = "the last warning my logs show"
+# Whose warnings decide without a goal's end: the servers that answer a goal say why they fail it (the planner's
+# "Planning will always fail", RPP's collision exception that the controller server answers by terminating the
+# action, controller_server.cpp:422@humble), the lifecycle manager says what did not come up, the collision monitor
+# says it held the robot. Costmaps, TF, AMCL and the velocity smoother warn in healthy runs too.
+DECIDING_ROLES = frozenset({"bt_navigator", "planner_server", "controller_server", "docking_server",
+                            "lifecycle_manager", "collision_monitor"})
+# ... and a clock that jumped back (tf2_ros buffer, "Detected jump back in time"): a clock fault stated, not a wait.
+DECIDING_IDS = frozenset({"tf.time_jump"})
+
+
+def _decisive(entry: Entry | None) -> bool:
+    return entry is not None and entry.cause is not None and (entry.role in DECIDING_ROLES
+                                                              or entry.id in DECIDING_IDS)
+# A transform's requested time and its data's time this far apart is a clock mismatch, not a lookup that came a
+# little early (transform tolerances are tenths of a second): e.g. sim time 0.2 s against wall time 1.6e9 s.
+CLOCK_GAP_S = 1.0
+_TIMES = re.compile(r"Requested time (?P<a>\d+(?:\.\d+)?) but the (?:earliest|latest) data is at time "
+                    r"(?P<b>\d+(?:\.\d+)?)")
+
+
+def _clock_gap(msg: str) -> float:
+    m = _TIMES.search(msg)
+    return abs(float(m["a"]) - float(m["b"])) if m else 0.0
+
+
+def _stuck_activation(line: LogLine, lines: list[LogLine]) -> bool:
+    """A costmap waiting for its transform in on_activate (costmap_2d_ros.cpp:281@humble, logged each loop) with no
+    later "Managed nodes are active": the stack never finished coming up, which decides by itself."""
+    return line.msg.startswith("Timed out waiting for transform from") and "to become available" in line.msg \
+        and not any(ln.t > line.t and ln.msg.startswith("Managed nodes are active") for ln in lines)
 
 
 def slow_retries(run: Run) -> Finding | None:
@@ -182,6 +278,12 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
     if found.cause not in (UNEXPLAINED, NO_PROGRESS):
         return found
     until = run.end.t if run.end is not None else None
+    cat = catalogue()
+    for line in run.lines:
+        entry = cat.match(line.msg)
+        said = SYMPTOMS.get(entry.id) if entry is not None else None
+        if said is not None and said not in found.notes:
+            found.notes.append(said)
     errors = decisive_errors(raw, until)
     if errors:
         found.notes.append(quote_last_error(errors, gave_up=run.outcome == "failed"))

@@ -164,6 +164,14 @@ def charging(view: View, window: tuple[int, int], run: Run) -> Finding | None:
     return _flag(view, c.IS_CHARGING, window, CHARGING, run)
 
 
+INITIAL_POSE = "amcl.set_initial_pose"
+
+
+def _asks_initial_pose(line: LogLine) -> bool:
+    entry = catalogue().match(line.msg)
+    return entry is not None and entry.id == INITIAL_POSE
+
+
 def poor_localisation(run: Run) -> Finding | None:
     best: list[PoseSample] = []
     current: list[PoseSample] = []
@@ -179,7 +187,9 @@ def poor_localisation(run: Run) -> Finding | None:
     cat = catalogue()
     warnings = [ln for ln in run.lines if cat.role(ln.name) == "amcl" and ln.level >= WARN and id(ln) not in other]
     warnings = sorted(set(warnings) | set(said), key=lambda ln: ln.t)
-    if len(best) < COV_MIN_RUN and not warnings:
+    if len(best) < COV_MIN_RUN and all(_asks_initial_pose(ln) for ln in warnings):
+        # AMCL only waiting for an initial pose (a WARN every healthy bring-up prints until one is set) is a
+        # symptom: none was given, or one was given and AMCL could not use it (scans or transforms out of time)
         return None
     found = Finding(POOR_LOCALISATION)
     if len(best) >= COV_MIN_RUN:
@@ -190,7 +200,7 @@ def poor_localisation(run: Run) -> Finding | None:
         found.facts = {"poses": float(len(best)), "max_cov": max(worst.cov_xy, worst.cov_yaw),
                        "seconds": (best[-1].t - best[0].t) / 1e9}
     found.evidence += [Evidence.of_log(POOR_LOCALISATION, ln) for ln in warnings[:3]]
-    if any(n.entry.id == "amcl.set_initial_pose" for n in run.notes):
+    if any(n.entry.id == INITIAL_POSE for n in run.notes):
         found.facts["no_initial_pose"] = 1.0  # AMCL never got a start pose: it was not localised at all
     return found
 

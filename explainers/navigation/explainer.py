@@ -20,8 +20,12 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
   recoveries after no progress), controller_failure, commands_not_reaching_base (/cmd_vel commanding while
   /odom is still; never from logs alone).
 - symptoms are never the cause: a planner that never found a path (unexplained_failure naming the candidates and
-  what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make).
+  what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make),
+  AMCL asking for an initial pose, the collision monitor stopping for a source without data (wording.SYMPTOMS).
   Either quotes the decisive unknown ERROR/FATAL line with its node and time when there is one (chain.py).
+- a recording with no goal line, no /task_info and no error: a background layer's warning alone (costmap, TF, AMCL)
+  is quoted, never read as a cause (chain.only_warned); a transform wait that bring-up got past is no cause
+  (chain.unresolved).
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
@@ -41,20 +45,21 @@ from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
-from hexar.events.records import LogLine
+from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import chain
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
-from hexar.explainers.navigation.wording import template as nav2_template
 from hexar.explainers.phrasing import phrase
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
 
 NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
+NO_GOAL_LINE = "Nav2 log (no goal line)"  # events.nav_goals' `derived_from` for a goal inferred from activity
 MAX_FACT_LINES = 60
 
 
@@ -89,6 +94,12 @@ def _place(context: Context, lines: list[LogLine]) -> str:
     return "my goal"
 
 
+def _inferred(context: Context) -> bool:
+    """A goal that no goal line, action status or /task_info shows: inferred from Nav2's activity (events.nav_goals),
+    failed only because some node logged an error, or still running as far as the recording shows."""
+    return any(r.skill in NAV_SKILLS and r.params.get("derived_from") == NO_GOAL_LINE for r in context.task.skills)
+
+
 def _skill_state(context: Context) -> str | None:
     run = _focus(context)
     return run.state if run is not None else None
@@ -101,10 +112,6 @@ def _status_evidence(context: Context, cause: str) -> list[Evidence]:
     if change is None:
         return []
     return [Evidence(cause=cause, topic=c.TASK_INFO, t=change.t, item=change.error_msg or change.status)]
-
-
-def _quote(line: LogLine | None) -> str:
-    return f"'{line.msg.strip()}'" if line is not None else ""
 
 
 class NavigationExplainer:
@@ -154,11 +161,16 @@ class NavigationExplainer:
         run = d.summarise(tagged, poses, state, noise + chain.stack_notes(tagged, raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
                  if f is not None]
-        if not lines and not poses and not flags:
+        # Lines of the stack under Nav2 (tf2's drops on a failed goal, a rejected parameter) are navigation evidence
+        # too, for a goal the recording shows (not one inferred from an error line alone); and a step that
+        # /task_info reports succeeded with no node warning in its window is a normal trip.
+        stack = bool(run.notes) and not (_inferred(context) and state == "failed")
+        quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
+        if not lines and not poses and not flags and not stack and not quiet_success:
             return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
         until = run.end.t if run.end is not None else window[1]
         before = [ln for ln in context.log.logs if ln.t <= until]
-        findings = flags + self._others(question, view, run, bool(flags), before, raw)
+        findings = flags + self._others(question, view, run, bool(flags), before, raw, _inferred(context))
         for f in findings:
             if f.cause == d.UNEXPLAINED and not f.evidence:
                 f.evidence += _status_evidence(context, d.UNEXPLAINED)
@@ -174,11 +186,15 @@ class NavigationExplainer:
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
     def _others(self, question: str, view: View, run: d.Run, flagged: bool, before: list[LogLine],
-                raw: list[LogLine]) -> list[d.Finding]:
+                raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
         if run.outcome != "reached":
             found = self._failure(view, run, before)
+            if found is not None and inferred and run.outcome == "unknown":
+                # no goal, no end, no error: warnings alone do not show that anything failed (many a healthy robot
+                # prints them), so they are quoted, not read as a cause
+                found = chain.only_warned(found, run) or found
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:
@@ -223,6 +239,8 @@ class NavigationExplainer:
                     found = _stall(view, run) if strength == "strong" else None
                 else:
                     lines = g.supporting(run.notes, cause, strength)
+                    if cause == g.TRANSFORM:
+                        lines = chain.unresolved(lines, before)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
                 if found is not None:
@@ -296,17 +314,6 @@ def _unfinished(text: str, place: str) -> str:
             f"there; on the way my logs show a problem: {what}")
 
 
-def _speed_sentence(f: d.Finding) -> str:
-    parts = []
-    if "distance_m" in f.facts and "duration_s" in f.facts:
-        parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {f.facts['duration_s']:.0f} s")
-    if "average_speed" in f.facts:
-        parts.append(f"about {f.facts['average_speed']:.2f} m/s on average")
-    if "max_vel_x" in f.facts:
-        parts.append(f"my speed limit is {f.facts['max_vel_x']:.2f} m/s")
-    return (", ".join(parts) + ".") if parts else ""
-
-
 def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
     """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
     held the robot (until it let it continue)."""
@@ -338,73 +345,3 @@ def _stall(view: View, run: d.Run) -> d.Finding | None:
         Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
     found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
     return found
-
-
-def _template(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[str]]:
-    """(sentence, fix, details) for one finding."""
-    nav2 = nav2_template(f, place, run)
-    if nav2 is not None:
-        return nav2
-    progress = run.first(("Failed to make progress",))
-    planner = run.first(("failed to generate a valid path",))
-    failed = run.outcome == "failed"
-    if f.cause == d.JOYSTICK:
-        return (f"I couldn't reach {place} because my joystick (manual mode) had priority over my wheels, so "
-                "my own driving commands were ignored.",
-                "Switch the joystick back to autonomous mode and ask me again.",
-                ["The joystick priority flag was on, which masks the navigation's velocity commands.",
-                 f"My base therefore did not move, and my controller reported {_quote(progress)}.",
-                 "My recovery manoeuvres could not move me either, so navigation gave up ('Goal failed')."])
-    if f.cause == d.CHARGING:
-        return (f"I couldn't reach {place} because I was plugged into my charger, which keeps me from "
-                "driving by myself.",
-                "Unplug me from the charger and ask me again.",
-                ["The charging flag was on during the whole attempt, and my base did not move.",
-                 f"My controller reported {_quote(progress)} and the recoveries did not help, so navigation "
-                 "gave up ('Goal failed')."])
-    if f.cause == d.BLOCKED:
-        details = [f"I stopped advancing towards {place}: my controller reported {_quote(progress)}."
-                   if progress else f"I could not advance towards {place}."]
-        if planner is not None:
-            details.append(f"My planner then found no valid path to the goal ({_quote(planner)}), even after "
-                           "clearing its maps.")
-        details.append(f"I tried {int(f.facts.get('recoveries', 0))} recovery manoeuvres (spinning, waiting, "
-                       "backing up) and then gave up ('Goal failed').")
-        return (f"I couldn't reach {place} because something blocked my path and I found no other way "
-                "around it.", f"Clear the way to {place} and ask me again.", details)
-    if f.cause == d.POOR_LOCALISATION:
-        how = f"I reached {place}, but slowly and unsteadily," if run.outcome == "reached" else \
-            f"I couldn't reach {place}"
-        if "no_initial_pose" in f.facts and "poses" not in f.facts:
-            return (f"{how} because my localisation (AMCL) never received an initial pose, so it could not tell "
-                    "where I was on my map.",
-                    "Set my initial pose (e.g. '2D Pose Estimate' in RViz, or /initialpose), and check that my "
-                    "laser scans and transforms reach AMCL with matching timestamps.",
-                    ["AMCL said it cannot publish a pose or update the transform until the initial pose is set."])
-        figs = (f"My position estimate was very uncertain for {int(f.facts['poses'])} consecutive updates "
-                f"({f.facts['seconds']:.0f} s, variance up to {f.facts['max_cov']:.2f})."
-                if "poses" in f.facts else "My localisation reported warnings.")
-        return (f"{how} because I was not sure where I was on my map.",
-                "Help me relocalise: set my position on the map, or drive me to a place I know well.",
-                [figs, "With an uncertain position my path and my view of the obstacles did not match, so "
-                 "I moved hesitantly."])
-    if f.cause == d.MOVING_OBSTACLES:
-        return (f"It took me longer to reach {place} because people or things kept moving into my way, so I "
-                "had to stop and find new paths around them.",
-                "Keep the way clear while I am moving, and I will be quicker.",
-                [f"My controller briefly found no safe movement {int(f.facts['disturbances'])} times "
-                 "(e.g. 'No valid trajectories'), and I cleared my maps and replanned.",
-                 "Each time the way opened again and I finally reached the goal."])
-    if f.cause == d.NOMINAL_SPEED:
-        return (f"Nothing went wrong on the way to {place}: {_speed_sentence(f)}".rstrip(": "), None,
-                ["I accelerate, turn along the path and slow down near the goal, so my average speed is "
-                 "below my speed limit."])
-    if f.cause == d.NOMINAL:
-        figures = _speed_sentence(f)
-        return (f"I reached {place} without any problem." + (f" {figures}" if figures else ""), None,
-                ["My navigation logs show no failures, recoveries or warnings for this trip."])
-    verb = "failed" if failed else "did not finish"
-    return (f"My navigation to {place} {verb}, but my navigation logs do not show why.",
-            "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
-            "and the planner's and controller's own logs at debug level." if failed else None,
-            [f"The last navigation message was {_quote(run.end)}."] if run.end else [])

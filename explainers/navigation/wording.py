@@ -8,7 +8,9 @@ cause that was found.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 
+from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.detectors import Finding, Run
@@ -16,6 +18,34 @@ from hexar.explainers.navigation.detectors import Finding, Run
 
 def quote(line: LogLine | None) -> str:
     return f"'{line.msg.strip()}'" if line is not None else ""
+
+
+# Lines that say what stopped the robot without saying why (each with its readings, from its source), told when no
+# catalogued line names a cause; never a cause themselves. Keyed by Nav2 catalogue id.
+SYMPTOMS = {
+    # amcl_node.cpp:926@humble (WARN): printed until a pose is set, and when the one set cannot be used
+    "amcl.set_initial_pose": (
+        "AMCL kept saying it cannot publish a pose until an initial pose is set, which happens when no initial pose "
+        "was given, or when one was given but AMCL could not use it (its laser scans or the odometry transforms not "
+        "arriving in time)"),
+    # collision_monitor_node.cpp:619@jazzy (WARN): a source with no valid data stops the robot, no object seen
+    "cmon.invalid_source": (
+        "my collision monitor held me still because one of its sensor sources gave no valid data (none published "
+        "yet, none recent enough, or none it could bring into my base frame); my logs do not say which"),
+}
+
+
+def symptoms(f: Finding) -> str:
+    """The SYMPTOMS sentences a finding carries, as one sentence tail ("" when none)."""
+    said = [n for n in f.notes if n in SYMPTOMS.values()]
+    return "; ".join(said)
+
+
+def quotable(msg: str, own: Iterable[str] = ()) -> bool:
+    """Whether a log line can be quoted inside an answer's sentence: it must not read as a cause other than `own`
+    (a behaviour-tree file named "..._w_replanning_and_recovery.xml" is no replanning; "detected collision" in an
+    unknown error is no finding). A line that does is told by its node and time, and quoted in the details only."""
+    return not read_claims(msg).causes - set(own)
 
 
 def _said(f: Finding) -> str:
@@ -70,7 +100,10 @@ def _honest(f: Finding) -> str:
 
 def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     what = f.notes[0] if f.notes else "a node of my navigation never came up"
-    return (f"I couldn't reach {place} because a node of my navigation never came up: {what.rstrip('.')}.",
+    # a process that died may have died mid-goal: said as what launch reported, not as a node that never came up
+    head = f"I couldn't reach {place} because " if what.startswith("the process of ") else \
+        f"I couldn't reach {place} because a node of my navigation never came up: "
+    return (f"{head}{what.rstrip('.')}.",
             "Fix the error quoted from the failing node (its parameters file, its configure step, or why its "
             "process died) and restart the navigation until the lifecycle manager reports 'Managed nodes are "
             "active'.",
@@ -80,9 +113,17 @@ def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
 def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     """Answers for what a failure produced when no line says what caused it: candidates, and the last error."""
     last = _honest(f)
+    warned = next((n for n in f.notes if n.startswith("the last warning")), "")
+    if warned and run.outcome == "unknown":
+        return (f"The recording does not show whether my navigation to {place} ended or anything went wrong: "
+                f"{warned}, and a warning alone does not say that a goal failed.",
+                "If a goal did fail, record its end (bt_navigator's 'Goal failed' or the action status) with the "
+                "lines before it.", [])
+    seen_stop = symptoms(f)
     if f.cause == g.NO_PROGRESS and last:
+        also = f" Also, {seen_stop}." if seen_stop else ""
         return (f"My navigation to {place} gave up because my controller made no progress for "
-                f"{_progress_seconds(run)}. I can't tell what caused it for sure, but {last}.",
+                f"{_progress_seconds(run)}. I can't tell what caused it for sure, but {last}.{also}",
                 "Check that error first; then that cmd_vel reaches the base and that TF is fresh.",
                 ["Nav2's progress checker gave up; no catalogued line names a cause."])
     if f.cause != "navigation.unexplained_failure":
@@ -154,8 +195,10 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "restart the navigation until the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
     if f.cause == g.CONFIGURATION:
+        what = f"my logs say: {said}" if said and quotable(said, (g.CONFIGURATION, g.BRINGUP)) else \
+            "a plugin, behaviour tree or lifecycle node failed"
         return (f"I couldn't reach {place} because my navigation stack was misconfigured or not fully brought "
-                "up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",
+                f"up (a configuration error: {what}).",
                 "Fix the configuration error quoted in the log (plugin names, behaviour-tree XML, parameters) and "
                 "check that the lifecycle manager reports 'Managed nodes are active'.",
                 seen)
@@ -167,8 +210,10 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "nothing was there).",
                 seen)
     if f.cause == g.COLLISION_AHEAD and "detected collision ahead" in said:
+        # the controller checks its costmap, not the world: the line says the check fired, not what was there
         return (f"I couldn't reach {place} because my controller's collision check stopped me: it detected a "
-                "collision ahead on my path and would not drive on.",
+                "collision ahead on my path and would not drive on. My logs do not say what it saw there: a real "
+                "object, or cost marked in my costmap where nothing stands (my footprint or its inflation).",
                 "Look at what is on the path just ahead; if nothing is there, check the robot's footprint and the "
                 "costmap's inflation, which can make a free path look blocked to the controller.",
                 seen)
@@ -197,6 +242,11 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Check that cmd_vel reaches the base: the topic remapping, the velocity smoother's output and the "
                 "base driver.",
                 ["/cmd_vel carried motion commands while /odom stayed still."])
+    if f.cause == g.NO_PROGRESS and symptoms(f):
+        return (f"My navigation to {place} gave up because my controller made no progress for "
+                f"{_progress_seconds(run)}, and nothing in my logs says why for sure: {symptoms(f)}.",
+                "Check the data sources and transforms the line points to, then that cmd_vel reaches the base.",
+                ["Nav2's progress checker gave up; no catalogued line names a cause."])
     if f.cause == g.NO_PROGRESS:
         return (f"My navigation to {place} gave up because my controller made no progress for "
                 f"{_progress_seconds(run)}; nothing in my logs says why.",

@@ -14,6 +14,9 @@ wordings below), with the node it concerns and its time:
                                     "Caught exception in callback for transition", with its "Original error: ..."),
                                     or a lifecycle manager could not bring its nodes up
              process_died           launch reports the node's process died (with its exit code)
+             launch_failed          launch itself caught an exception while reading its descriptions (a YAML
+                                    file it could not parse, a package it could not find) and shut down: the
+                                    nodes it had not started yet never came up
              node_failed            another bring-up line of the catalogue (e.g. a costmap that failed to configure)
     node     the node the line is about: the logger name, or the process launch names (`controller_server-3` ->
              `controller_server`), or the node a lifecycle manager names; "" when the line names none
@@ -31,15 +34,18 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from hexar.events.records import ERROR, LogLine
-from hexar.explainers.stack.catalogue import StackEntry, stack_catalogue
+from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_catalogue
 
 BRINGUP = "stack.bringup_failure"
-KINDS = ("params_file", "lifecycle_transition", "process_died", "node_failed")
+DIED = "process has died"
+KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed")
 
 _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
 _EXIT = re.compile(r"exit code (?P<code>-?\d+)")
 _NAMED_NODE = re.compile(r"(?:for node|node)[: ]+'?(?P<node>[/\w]+)'?")
 _PROCESS_IN_MSG = re.compile(r"process\[(?P<node>[\w./-]+?)(?:-\d+)?\]")
+_CMD_NODE = re.compile(r"cmd '[^']*?__node:=(?P<node>[A-Za-z_]\w*)")
+_CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
 # lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
@@ -65,6 +71,9 @@ class BringupFinding:
         who = self.node or "a node"
         if self.kind == "params_file":
             return f"{who} could not parse its parameters file, so it never started"
+        if self.kind == "launch_failed":
+            why = f" ({self.detail})" if self.detail else ""
+            return f"my launch stopped with an error before it had started my navigation nodes{why}"
         if self.kind == "process_died":
             code = f" ({self.detail})" if self.detail else ""
             return f"the process of {who} died{code}"
@@ -78,7 +87,7 @@ def _kind(line: LogLine, entry: StackEntry) -> str:
     if entry.layer == "rcl" and ("params file" in entry.text or "parse" in entry.text):
         return "params_file"
     if entry.layer == "launch":
-        return "process_died"
+        return "launch_failed" if entry.text.startswith("Caught exception in launch") else "process_died"
     if entry.layer == "lifecycle" or "lifecycle" in entry.package or "bring up" in entry.text \
             or "Aborting bringup" in entry.text or "change state" in entry.text:
         return "lifecycle_transition"
@@ -95,6 +104,12 @@ def _node(line: LogLine, kind: str) -> str:
     name = line.name.strip("/").split("/")[-1]
     if kind == "process_died" or name.endswith(tuple(f"-{i}" for i in range(10))):
         m = _PROCESS.match(name)
+        if m and m["node"] not in ("launch", "rcl"):
+            return m["node"]
+    if kind == "process_died":
+        # launch's line carries the command it ran ("cmd '.../bt_navigator --ros-args -r __node:=bt_navigator'"):
+        # the node it names, else the executable, when the console prefix that named the process was lost
+        m = _CMD_NODE.search(line.msg) or _CMD_EXE.search(line.msg)
         if m:
             return m["node"]
     return "" if name in ("", "launch", "rcl") else name
@@ -106,6 +121,10 @@ def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
         return f"exit code {m['code']}" if m else ""
     if kind == "params_file":
         return line.msg.split("Error: ", 1)[1].strip() if "Error: " in line.msg else ""
+    if kind == "launch_failed":
+        # the exception's text follows the fixed words; a YAML error spans lines: its first line says what failed
+        text = line.msg.split("traceback):", 1)[-1].strip()
+        return " ".join(text.split())[:200]
     if kind == "lifecycle_transition":
         original = _ORIGINAL.search(line.msg) or next(
             (m for m in (_ORIGINAL.search(f.msg) for f in following if f.name == line.name) if m), None)
@@ -119,6 +138,13 @@ def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
     return ""
 
 
+def _process_died(cat: StackCatalogue) -> StackEntry | None:
+    """launch's process-died entry, for a line that keeps its fixed words but shortens its fields (a note's
+    "process has died [exit code -6]" for "process has died [pid …, exit code …, cmd '…']."; launch's
+    execute_local.py:596@rolling, execute_process.py:749@foxy)."""
+    return next((e for e in cat.entries if e.layer == "launch" and e.text.startswith(DIED)), None)
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
@@ -126,7 +152,7 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
     out: list[BringupFinding] = []
     seen: set[tuple[str, str]] = set()
     for i, line in enumerate(ordered):
-        entry = cat.match(line.msg)
+        entry = cat.match(line.msg) or (_process_died(cat) if DIED in line.msg else None)
         if entry is None or entry.cause != BRINGUP or (line.level < ERROR and entry.level == "WARN"):
             continue
         if entry.text.startswith("Original error"):

@@ -38,6 +38,10 @@ ROLES = ("cause", "symptom", "noise")
 LEVELS = ("WARN", "ERROR", "FATAL")
 FILE = "stack_catalogue.json"
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
+# A message cut short is read as its entry only with this much of the entry's literal text (and this much of the
+# piece it stops in): less would read any sentence that shares a few words with a mined message.
+CUT_MIN_LITERAL = 30
+CUT_MIN_TAIL = 4
 _LITERAL = re.compile(r"(?:\\.|[^\\.*?()\[\]{}|+^$])+")
 
 
@@ -65,6 +69,27 @@ class StackEntry:
         """The pattern's longest literal run (unescaped): a message without it cannot match."""
         runs = [re.sub(r"\\(.)", r"\1", r) for r in _LITERAL.findall(self.pattern)]
         return max(runs, key=len, default="")
+
+    @cached_property
+    def pieces(self) -> tuple[str, ...]:
+        """The pattern's literal text between its fields (unescaped), in order."""
+        return tuple(re.sub(r"\\(.)", r"\1", p) for p in self.pattern.split(".*?"))
+
+    def cut_match(self, text: str) -> bool:
+        """Whether `text` is this message cut short (a console line pasted at its terminal's width, a note that
+        stops mid-sentence): its literal pieces in order up to the cut, then the start of the next piece (at
+        least CUT_MIN_TAIL characters of it), with at least CUT_MIN_LITERAL literal characters matched."""
+        pieces = self.pieces
+        at, matched = 0, 0
+        for i, piece in enumerate(pieces):
+            found = text.find(piece, at) if piece else at
+            if found < 0 or (i == 0 and piece and found != text.find(piece)):
+                rest = text[at:].rstrip(" .…")
+                tail = next((j for j in range(len(piece) - 1, CUT_MIN_TAIL - 1, -1)
+                             if rest.endswith(piece[:j])), 0)
+                return i > 0 and tail > 0 and matched + tail >= CUT_MIN_LITERAL
+            at, matched = found + len(piece), matched + len(piece)
+        return False
 
     @cached_property
     def specificity(self) -> int:
@@ -108,7 +133,8 @@ class StackCatalogue:
 
     def match(self, msg: str) -> StackEntry | None:
         """The entry whose pattern the message (ANSI colours removed) holds: one with a cause id before one without
-        (an rcl parse error quoted inside "Couldn't parse params file: ..."), then the most specific; else None."""
+        (an rcl parse error quoted inside "Couldn't parse params file: ..."), then the most specific; else the entry
+        the message is a cut-short copy of (StackEntry.cut_match); else None."""
         if msg in self._seen:
             return self._seen[msg]
         text = _ANSI.sub("", msg) if "\x1b" in msg else msg
@@ -119,6 +145,9 @@ class StackCatalogue:
             for e in entries:
                 if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
                     best = e
+        if best is None and len(text.rstrip(" .…")) >= CUT_MIN_LITERAL:
+            cut = [e for e in self.entries if e.pieces[0] and e.pieces[0] in text and e.cut_match(text)]
+            best = max(cut, key=_rank, default=None)
         if len(self._seen) > 20_000:
             self._seen.clear()
         self._seen[msg] = best

@@ -210,7 +210,7 @@ def py_calls(src: str) -> Iterator[Call]:
 def literals(src: str, regex: str) -> Iterator[tuple[int, str]]:
     """(line, text) of each string constant `regex` (one group) finds: messages built away from their log call."""
     for m in re.finditer(regex, src):
-        yield src.count("\n", 0, m.start()) + 1, m.group(1)
+        yield src.count("\n", 0, m.start()) + 1, _PYFIELD.sub(WILD, m.group(1))
 
 
 def literal_length(text: str) -> int:

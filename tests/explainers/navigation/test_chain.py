@@ -204,15 +204,28 @@ def test_collision_ahead_in_a_backup_after_no_progress_is_not_the_cause(tmp_path
 
 # sllidar_ros2's driver error (sllidar_node.cpp, RCLCPP_ERROR "Error, operation time out. RESULT_OPERATION_TIMEOUT! ")
 LIDAR: Line = ("sllidar_node", ERROR, "Error, operation time out. RESULT_OPERATION_TIMEOUT! ")
+# turtlebot4_node's error when a service it calls is missing (GNagahashi/study-ros2 jungle/tb4_memo.md, TurtleBot 4)
+CAMERA: Line = ("turtlebot4_node", ERROR, "Service oakd/start_camera unavailable.")
 
 
-@pytest.mark.parametrize("during", [[LIDAR, ("controller_server", ERROR, "Failed to make progress")], [LIDAR]],
+@pytest.mark.parametrize("during", [[CAMERA, ("controller_server", ERROR, "Failed to make progress")], [CAMERA]],
                          ids=["no_progress", "unexplained"])
 def test_the_decisive_unknown_error_is_quoted_with_node_and_time(tmp_path: Path, during: list[Line]) -> None:
     answer = _explain(tmp_path, [], during)
     assert answer.causes in ([g.NO_PROGRESS], [UNEXPLAINED])
-    assert "the last error before I gave up came from sllidar_node: 'Error, operation time out." in answer.text
+    assert "the last error before I gave up came from turtlebot4_node: 'Service oakd/start_camera unavailable." \
+        in answer.text
     assert " UTC)" in answer.text and "do not show why" not in answer.text
+    assert _quoted(answer, "oakd/start_camera")
+
+
+def test_an_error_that_reads_as_another_cause_is_told_by_node_and_time_only(tmp_path: Path) -> None:
+    # "operation time out" reads as a text-to-speech timeout (hexar/causes.yaml): quoted in the sentence, the answer
+    # would claim a cause nothing found; it names the node and the time, and the line stays in the evidence
+    answer = _explain(tmp_path, [], [LIDAR, ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.NO_PROGRESS]
+    assert "the last error before I gave up came from sllidar_node (at " in answer.text
+    assert "operation time out" not in answer.text and stated_causes(answer.text) <= {g.NO_PROGRESS}
     assert _quoted(answer, "RESULT_OPERATION_TIMEOUT")
 
 
@@ -275,3 +288,163 @@ def test_a_warning_of_the_stack_is_no_quiet_run(tmp_path: Path) -> None:
     answer = _without_task(tmp_path, [*QUIET, ("controller_server", WARN, "Control loop missed its desired rate "
                                                "of 20.0000Hz")])
     assert NOMINAL not in answer.causes
+
+
+def _task_only(tmp_path: Path, lines: list[Line], state: str) -> Explanation:
+    """A /task_info navigation step that ends in `state`, with `lines` in its window and no Nav2 goal line."""
+    b = BagBuilder()
+    task = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
+    b.task_info(T0, task_msg("t1", "go to the door", task))
+    for i, (name, level, msg) in enumerate(lines):
+        b.log(T0 + sec_ns(0.5 + i), name, level, msg)
+    b.task_info(T0 + sec_ns(1 + len(lines)), task_msg("t1", "go to the door", [(*task[0][:2], state, "")]))
+    log = read_recording(b.write(tmp_path / "bag"))
+    question = "Why didn't you get there?" if state == "failed" else "How did the navigation go?"
+    return NavigationExplainer().explain(question, Context.for_task(log, log.task()))
+
+
+# ROBOTIS-GIT/turtlebot3#945 (Humble): launch could not parse the params file it substitutes, so nothing started.
+LAUNCH: list[Line] = [("launch", ERROR, "Caught exception in launch (see debug for traceback): while parsing a block "
+                       "mapping\n  in \"/opt/ros/humble/share/turtlebot3_navigation2/param/waffle.yaml\", line 2, "
+                       "column 3\nexpected <block end>, but found '<block mapping start>'")]
+
+
+def test_an_exception_in_launch_is_a_stack_that_never_came_up(tmp_path: Path) -> None:
+    answer = _task_only(tmp_path, LAUNCH, "failed")
+    assert answer.causes == [g.BRINGUP]
+    assert "my launch stopped with an error before it had started my navigation nodes" in answer.text
+    assert "waffle.yaml\", line 2, column 3" in answer.text
+    assert stated_causes(answer.text) >= {g.BRINGUP}
+
+
+# TheWindISeek/tianracer_ros2_ws docs/NAV2_ERRORS_AND_SOLUTIONS.md: nav2_costmap_2d's inflation layer rejects the
+# configured radius (ERROR), pasted cut short after "of your footprint".
+INFLATION: list[Line] = [("local_costmap.local_costmap", ERROR, "The configured inflation radius (0.050) is smaller "
+                          "than the computed inscribed radius (0.186) of your footprint")]
+
+
+def test_a_parameter_a_nav2_node_rejects_is_a_configuration_error_quoted(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [*INFLATION, ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes[0] == g.CONFIGURATION
+    assert "misconfigured" in answer.text and "inflation radius (0.050) is smaller" in answer.text
+    assert stated_causes(answer.text) <= {g.CONFIGURATION, g.BRINGUP}
+
+
+# turtlebot/turtlebot4#188 (corpus tb4-188): rviz's tf2_ros message filter drops scans waiting for a transform
+# (tf2_ros/message_filter.h: "discarding message because the queue is full"), logged at INFO.
+DROPS: list[Line] = [("rviz2", INFO, "Message Filter dropping message: frame 'rplidar_link' at time 1685961755.735 "
+                      "for reason 'discarding message because the queue is full'")] * 2
+
+
+def test_message_filter_drops_on_a_failed_goal_are_navigation_evidence(tmp_path: Path) -> None:
+    answer = _task_only(tmp_path, DROPS, "failed")
+    assert answer.enough_information and answer.causes == [g.TRANSFORM]
+    assert _quoted(answer, "discarding message because the queue is full")
+
+
+def test_a_step_reported_succeeded_with_no_warning_is_a_normal_trip(tmp_path: Path) -> None:
+    # the Nav2 docs' vector object tutorial: nodes loaded into the container, nothing else logged
+    loaded = [("launch_ros.actions.load_composable_nodes", INFO,
+               "Loaded node '/vector_object_server' in container 'nav2_container'")]
+    answer = _task_only(tmp_path, loaded, "succeeded")
+    assert answer.causes == [NOMINAL] and "without any problem" in answer.text
+    failed = _task_only(tmp_path / "f", loaded, "failed")
+    assert not failed.enough_information and not stated_causes(failed.text)
+
+
+def test_a_stack_error_alone_without_any_goal_is_not_read_as_a_failed_goal(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#4660: an empty source frame during SLAM while the robot navigates normally
+    # (nav2_util robot_utils.cpp transformPoseInTargetFrame); no goal line, no /task_info
+    answer = _without_task(tmp_path, [("transformPoseInTargetFrame", ERROR, "Failed to transform from  to base_link")])
+    assert g.TRANSFORM not in answer.causes and g.TRANSFORM not in stated_causes(answer.text)
+
+
+def test_rpp_collision_check_says_the_logs_do_not_show_what_it_saw(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [("controller_server", WARN,
+                                      "RegulatedPurePursuitController detected collision ahead!")])
+    assert "My logs do not say what it saw there" in answer.text
+    assert stated_causes(answer.text) == {g.COLLISION_AHEAD}
+
+
+def test_a_process_that_died_during_the_goal_is_not_told_as_never_having_come_up(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], DIED)
+    assert answer.causes == [g.BRINGUP]
+    assert "because the process of controller_server died (exit code -4)" in answer.text
+    assert "never came up" not in answer.text
+
+
+# corpus nav2-1876's costmap line (costmap_2d_ros.cpp:281@humble: on_activate loops, logging it, until the transform
+# exists), then the lifecycle manager's "Managed nodes are active" (lifecycle_manager.cpp:288@humble).
+WAITED: list[Line] = [
+    ("global_costmap.global_costmap", INFO, "Timed out waiting for transform from base_link to map to become "
+     "available, tf error: Invalid frame ID \"map\" passed to canTransform argument target_frame - frame does not "
+     "exist")]
+ACTIVE: Line = ("lifecycle_manager_navigation", INFO, "Managed nodes are active")
+
+
+def test_a_transform_wait_that_bringup_got_past_is_not_the_cause(tmp_path: Path) -> None:
+    stuck = [("controller_server", ERROR, "Failed to make progress")]
+    answer = _explain(tmp_path, [*WAITED, ACTIVE], stuck)
+    assert answer.causes == [g.NO_PROGRESS] and g.TRANSFORM not in stated_causes(answer.text)
+    # without the bring-up finishing after it, the same wait is what held the navigation
+    answer = _explain(tmp_path / "b", [], [*WAITED, *stuck])
+    assert answer.causes == [g.TRANSFORM]
+
+
+def test_a_died_process_is_told_with_what_it_last_logged(tmp_path: Path) -> None:
+    # ros-navigation/docs.nav2.org's backtrace guide: the planner server's last line, then launch reports it dead
+    lines = [("planner_server", INFO, "Computing path to goal...."),
+             ("planner_server-13", ERROR, "process has died [pid 165734, exit code -11, cmd '/opt/overlay_ws/src/"
+              "navigation2/install/nav2_planner/lib/nav2_planner/planner_server --ros-args -r __node:=planner_server']."
+              )]
+    answer = _explain(tmp_path, [], lines)
+    assert answer.causes == [g.BRINGUP]
+    assert ("the process of planner_server died (exit code -11) right after it logged 'Computing path to goal....'; "
+            "nothing in my logs says why it died") in answer.text
+    assert _quoted(answer, "Computing path to goal")
+
+
+# nav2_collision_monitor/src/collision_monitor_node.cpp:619@jazzy (WARN, one message over three literals)
+INVALID_SOURCE: Line = ("collision_monitor", WARN, "Robot to stop due to invalid source. Either due to data not "
+                        "published yet, or to lack of new data received within the sensor timeout, or if impossible "
+                        "to transform data to base frame")
+
+
+def test_a_collision_monitor_stop_for_a_source_without_data_is_no_collision_ahead(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, [], [INVALID_SOURCE, ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.NO_PROGRESS]
+    assert "one of its sensor sources gave no valid data" in answer.text
+    assert stated_causes(answer.text) <= {g.NO_PROGRESS}
+    # a polygon stop (collision_monitor_node.cpp:464@humble) is one
+    answer = _explain(tmp_path / "b", [], [("collision_monitor", INFO, "Robot to stop due to PolygonStop polygon"),
+                                           ("controller_server", ERROR, "Failed to make progress")])
+    assert answer.causes == [g.COLLISION_AHEAD]
+
+
+# No goal line, no /task_info, no error: what a warning alone may claim.
+def test_a_background_warning_with_no_goal_is_quoted_not_read_as_a_cause(tmp_path: Path) -> None:
+    # dot-Ahope/jupiter_ws_ros2's guide (Humble): a global-costmap warning the guide calls harmless
+    # (obstacle_layer.cpp:637@humble)
+    origin = ("Sensor origin at (-0.03, 0.00) is out of map bounds (-0.03, -1.50) to (2.55, 3.13). The costmap cannot "
+              "raytrace for it.")
+    answer = _without_task(tmp_path, [("global_costmap.global_costmap", WARN, origin)])
+    assert answer.causes == [UNEXPLAINED] and not stated_causes(answer.text) - {UNEXPLAINED}
+    assert "the last warning my logs show came from global_costmap.global_costmap" in answer.text
+    assert "does not show whether" in answer.text
+
+
+def test_a_server_that_says_why_it_fails_decides_without_a_goal(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#3230 (corpus): the planner server's own words (navfn_planner.cpp:223@humble)
+    answer = _without_task(tmp_path, [("planner_server", WARN, "Cannot create a plan: the robot's start position is "
+                                       "off the global costmap. Planning will always fail, are you sure the robot has "
+                                       "been properly localized?")])
+    assert answer.causes == [g.OFF_COSTMAP]
+
+
+def test_a_transform_lookup_off_by_more_than_a_second_is_a_clock_fault(tmp_path: Path) -> None:
+    # create-robot (Foxy): tf2_echo on a real robot with use_sim_time set (sim time 0.2 s, data at wall time)
+    answer = _without_task(tmp_path, [("tf2_echo", INFO, "Waiting for transform map ->  base_footprint: Lookup would "
+                                       "require extrapolation into the past.  Requested time 0.200000 but the earliest "
+                                       "data is at time 1619986346.813953, when looking up transform from frame "
+                                       "[base_footprint] to frame [map]")])
+    assert answer.causes == [g.TRANSFORM]

@@ -42,6 +42,15 @@ DIED = "\n".join([
     'time:=False --params-file /tmp/launch_params_di0ju_uk -r /global_costmap/scan:=/scan -r /local_c'
     "ostmap/scan:=/scan -r /tf:=tf -r /tf_static:=tf_static -r cmd_vel:=cmd_vel_nav'].",
 ]) + "\n"
+# ROBOTIS-GIT/turtlebot3#945 (Humble): launch could not parse the params file it substitutes (a multi-line message).
+LAUNCH = "\n".join([
+    "[INFO] [launch]: Default logging verbosity is set to INFO",
+    "[ERROR] [launch]: Caught exception in launch (see debug for traceback): while parsing a block mapping",
+    '  in "/opt/ros/humble/share/turtlebot3_navigation2/param/waffle.yaml", line 2, column 3',
+    "expected <block end>, but found '<block mapping start>'",
+]) + "\n"
+# innate-inc/innate-os#518: a robot maker's note that shortens launch's fields ("[pid …, exit code …, cmd '…']").
+SHORT_DIED = "[controller_server-6] double free or corruption (!prev)\nprocess has died [exit code -6]\n"
 # The lifecycle manager's lines of a healthy start (nav2_lifecycle_manager/src/lifecycle_manager.cpp, INFO).
 HEALTHY = "\n".join([
     '[lifecycle_manager-10] [INFO] [1746882380.1] [lifecycle_manager_navigation]: Starting managed no'
@@ -93,3 +102,27 @@ def test_before_keeps_only_lines_up_to_that_time(tmp_path: Path) -> None:
 
 def test_a_healthy_bringup_has_no_finding(tmp_path: Path) -> None:
     assert bringup_findings(_logs(tmp_path, HEALTHY)) == []
+
+
+def test_an_exception_in_launch_itself_is_a_bringup_failure_with_its_error(tmp_path: Path) -> None:
+    [f] = bringup_findings(_logs(tmp_path, LAUNCH))
+    assert f.kind == "launch_failed" and f.node == ""
+    assert f.detail.startswith('while parsing a block mapping in "/opt/ros/humble/share/turtlebot3_navigation2/param/'
+                               'waffle.yaml", line 2, column 3')
+    assert f.describe().startswith("my launch stopped with an error before it had started my navigation nodes (")
+
+
+def test_a_died_process_with_shortened_fields_is_still_launchs_line(tmp_path: Path) -> None:
+    [f] = bringup_findings(_logs(tmp_path, SHORT_DIED))
+    assert (f.kind, f.detail) == ("process_died", "exit code -6")
+    assert f.entry is not None and f.entry.source.startswith("launch/launch/actions/execute_local.py:")
+
+
+def test_a_died_process_whose_console_prefix_was_lost_is_named_from_launchs_command(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#3508 (Humble): the console line begins with a stamp, so no process prefix is read;
+    # launch's own message still names the node in the command it ran (execute_local.py:573@humble)
+    died = ("1679533274.4250224 [ERROR] [bt_navigator-28]: process has died [pid 81493, exit code -8, cmd '/opt/ros/"
+            "humble/lib/nav2_bt_navigator/bt_navigator --ros-args --log-level info --ros-args -r __node:=bt_navigator "
+            "--params-file /tmp/tmp9whtodqw -r /tf:=tf -r /tf_static:=tf_static'].\n")
+    [f] = bringup_findings(_logs(tmp_path, died))
+    assert (f.kind, f.node, f.detail) == ("process_died", "bt_navigator", "exit code -8")

@@ -38,7 +38,21 @@ def test_every_layer_the_issue_names_was_mined() -> None:
     ("Message Filter dropping message: frame 'rplidar_link' at time 1725246931.465 for reason 'the timestamp on "
      "the message is earlier than all the data in the transform cache'", "symptom", "stack.transform_error", "tf"),
     ("RegulatedPurePursuitController detected collision ahead!", "cause", "stack.collision_ahead", "nav2"),
+    # ROBOTIS-GIT/turtlebot3#945: launch_service.py:345@humble builds the message in a variable, then logs it
+    ("Caught exception in launch (see debug for traceback): while parsing a block mapping\n  in \"/opt/ros/humble/"
+     "share/turtlebot3_navigation2/param/waffle.yaml\", line 2, column 3", "cause", "stack.bringup_failure",
+     "launch"),
+    # nav2_costmap_2d's inflation layer (ERROR): a parameter value it rejects is a configuration error
+    ("The configured inflation radius (0.050) is smaller than the computed inscribed radius (0.225) of your "
+     "footprint, it is highly recommended to set inflation radius to be at least as big as the inscribed radius to "
+     "avoid collisions", "cause", "stack.configuration_error", "nav2"),
     ("GridBased: failed to create plan, no valid path found.", "symptom", None, "nav2"),
+    # navfn_planner.cpp@humble: the GOAL off the costmap, not the robot's start
+    ("The goal sent to the planner is off the global costmap. Planning will always fail to this goal.", "cause",
+     "stack.goal_unreachable", "nav2"),
+    # amcl_node.cpp@humble: a parameter AMCL replaces by its default is no localisation fault
+    ("You've set max_particles to be negative, this isn't allowed so it will be set to default value 2000.",
+     "symptom", None, "nav2"),
     ("[follow_path] [ActionServer] Aborting handle.", "symptom", None, "nav2"),
     ("Failed to make progress", "symptom", None, "nav2"),
 ])
@@ -58,3 +72,24 @@ def test_a_line_no_source_prints_is_not_matched() -> None:
 def test_a_malformed_catalogue_is_a_clear_error(text: str) -> None:
     with pytest.raises(StackCatalogueError, match="malformed stack catalogue"):
         load(text)
+
+
+# TheWindISeek/tianracer_ros2_ws docs/NAV2_ERRORS_AND_SOLUTIONS.md pastes the inflation layer's ERROR cut after
+# "of your footprint" (the rest of the mined message is missing).
+CUT = "The configured inflation radius (0.050) is smaller than the computed inscribed radius (0.186) of your footprint"
+
+
+@pytest.mark.parametrize("tail", ["", "...", " …"])
+def test_a_message_pasted_cut_short_reads_as_its_entry(tail: str) -> None:
+    e = stack_catalogue().match(CUT + tail)
+    assert e is not None and e.cause == "stack.configuration_error"
+    assert e.text.startswith("The configured inflation radius (…) is smaller than the computed inscribed radius")
+
+
+@pytest.mark.parametrize("msg", [
+    "The configured inflation radius",  # too little of the message to say which
+    "The configured inflation radius (0.050) is smaller than my expectations for this robot",  # another sentence
+])
+def test_a_few_shared_words_are_no_cut_short_message(msg: str) -> None:
+    e = stack_catalogue().match(msg)
+    assert e is None or not e.text.startswith("The configured inflation radius")

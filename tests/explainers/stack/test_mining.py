@@ -60,6 +60,13 @@ def test_string_constants_a_log_call_prints_elsewhere() -> None:
     assert line == 2 and text.startswith("the timestamp on the message")
 
 
+def test_a_python_message_built_in_a_variable_keeps_its_fields_as_wildcards() -> None:
+    # launch/launch/launch_service.py:345@humble: the message is formatted into `msg`, then logged
+    src = "                    msg = 'Caught exception in launch (see debug for traceback): {}'.format(exc)\n"
+    [(line, text)] = list(literals(src, r"msg = '(Caught exception in launch[^']*)'"))
+    assert line == 1 and to_pattern(text) == r"Caught exception in launch \(see debug for traceback\):"
+
+
 def test_patterns_escape_regex_characters_and_keep_spaces() -> None:
     pattern = to_pattern("Sensor origin at (" + WILD + ") is out of map bounds [" + WILD + "]. ")
     assert pattern == r"Sensor origin at \(.*?\) is out of map bounds \[.*?\]\."
