@@ -33,6 +33,12 @@ def template(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list
                 "Look at the joint whose error exceeded its tolerance: a collision, a payload, controller gains, or "
                 "tolerances too tight for this robot.", seen)
     if cause == "control.configuration_error":
+        entry = d.decisive.entry if d.decisive is not None else None
+        if entry is not None and entry.cause == cause:
+            # the decisive line's own meaning (a driver's calibration, a controller's interfaces) says what was wrong
+            return (f"{head} a controller or its driver was set up wrongly: {entry.meaning}.",
+                    "Fix the set-up the quoted line names: the controller's joints and interfaces against the "
+                    "ros2_control tag of the URDF, or the driver's parameters.", seen)
         return (f"{head} the controller's joints or interfaces did not match my robot description or "
                 "its parameters.",
                 "Make the controller's joints and command/state interfaces match the ros2_control tag of the URDF.",
