@@ -225,7 +225,22 @@ def _nav2_own(line: LogLine) -> bool:
     return entry is not None and not entry.id.startswith("launch.")
 
 
-def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
+def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:
+    """A Nav2 task found from activity alone whose first bring-up finding is a lifecycle transition of a node with
+    no Nav2 role, in a recording where no line is Nav2's own: a driver's or another robot's lifecycle node."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack import bringup_findings
+
+    if logs is None or task.skills[0].params.get("derived_from") != "Nav2 log (no goal line)":
+        return False
+    findings = bringup_findings(logs)
+    if not findings or findings[0].kind != "lifecycle_transition" or not findings[0].node:
+        return False
+    node = findings[0].node.strip("/").rsplit("/", 1)[-1]
+    return nav2().role(node) is None and not any(_nav2_own(ln) for ln in logs)
+
+
+def merge_tasks(nav: list[Task], arm: list[Task], logs: list[LogLine] | None = None) -> list[Task]:
     """Nav2's and the arm's derived tasks in time order. Without a Nav2 task, the arm's are all there is. With
     one, only arm tasks of goal lines or statuses join it (activity is Nav2's to explain), and a Nav2 task
     found only from activity gives way to arm goals (its lines were probably no Nav2 goal at all)."""
@@ -236,6 +251,8 @@ def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
         return arm  # Nav2's "activity" was a line of the arm's catalogues (a controller that failed to activate)
     if not arm_goals and len(nav) == 1 and _arms_process(nav[0]):
         return arm  # the only failure was a process of the arm's packages (ros2_control_node, move_group) dying
+    if not arm_goals and len(nav) == 1 and _others_lifecycle(nav[0], logs):
+        return arm  # e.g. a drone's or a driver's lifecycle node that failed its transition: not navigation's
     if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]
