@@ -62,7 +62,7 @@ class ModuleCatalogue(Catalogue):
         if found is not None or "\n" not in msg:
             return found
         for part in msg.split("\n"):
-            if part.strip() and part.strip() != msg.strip():
+            if part.strip() and part.strip() != msg:
                 found = super().match(part.strip())
                 if found is not None:
                     return found
