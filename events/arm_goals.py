@@ -122,8 +122,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     active: list[tuple[LogLine, str]] = []
     for line in logs:
         for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
-            entry = cat.match(line.msg)
-            if entry is not None and entry.cause is not None:
+            if cat.cause_of(line.msg, cat.match(line.msg)) is not None:  # a catalogued text or one built in code
                 active.append((line, skill))
                 break
     if not active:

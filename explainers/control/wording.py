@@ -43,6 +43,13 @@ def template(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list
                 "its parameters.",
                 "Make the controller's joints and command/state interfaces match the ros2_control tag of the URDF.",
                 seen)
+    if cause == "bringup.configuration_error":
+        entry = d.decisive.entry if d.decisive is not None else None
+        what = entry.meaning if entry is not None and entry.cause == cause else (
+            "the robot description or the driver's parameters did not reach the node that needs them")
+        return (f"{head} a parameter never reached one of my nodes: {what}.",
+                "Pass the robot description and the parameters to that node (its launch file, topic names and "
+                "namespace).", seen)
     if cause == "control.nominal":
         return ("My controllers followed the joint trajectory without any problem.", None,
                 ["The controller logs show no error for this goal."])

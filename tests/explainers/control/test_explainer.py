@@ -134,3 +134,27 @@ def test_a_process_that_could_not_start_is_told_as_a_process_that_died(tmp_path:
                                          "error: /opt/ros/rolling/lib/libfoo.so: undefined symbol: _ZN3foo3barEv"),
         (0.1, "ros2_control_node-1", ERROR, _died(127))], skill="bring_up_controllers")
     assert found.causes == ["bringup.process_died"]
+
+
+def test_a_controller_manager_still_waiting_for_its_robot_description_is_a_parameter_that_never_arrived(
+        tmp_path: Path) -> None:
+    # controller_manager.cpp:769@jazzy (a wall timer, each second) and :1866@jazzy; the spawner's
+    # controller_manager_services.py:150@jazzy
+    found = _explain(tmp_path, [
+        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
+        (2, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
+        (3, "controller_manager", ERROR, "Resource Manager is not initialized yet! Please provide robot description "
+                                         "on 'robot_description' topic before trying to switch controllers."),
+        (12, "spawner_joint_state_broadcaster", WARN,
+         "Could not contact service /controller_manager/list_controllers")])
+    assert found.causes == ["bringup.configuration_error"]
+    assert "never reached one of my nodes" in found.text and "recording ends" not in found.text
+    assert any("Resource Manager is not initialized yet" in d for d in found.details)
+
+
+def test_the_waiting_line_alone_tells_which_parameter_never_arrived(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [
+        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
+        (11, "spawner_arm_controller", ERROR, "Could not contact service /controller_manager/list_controllers")])
+    assert found.causes == ["bringup.configuration_error"]
+    assert "robot description never reached the controller manager" in found.text
