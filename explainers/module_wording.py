@@ -34,5 +34,7 @@ class Wording:
             return f"{head} of a problem my logs name ({cause}).", None, seen
         clause, fix = self.clauses[cause]
         entry = d.decisive.entry if d.decisive is not None else None
-        meaning = entry.meaning if entry is not None and entry.cause == cause else self.meanings.get(cause, "")
-        return f"{head} {clause.format(meaning=meaning)}", fix, seen
+        own = entry.meaning if entry is not None and entry.cause == cause else ""
+        if own and "{meaning}" not in clause:
+            seen.append(f"That line means: {own}.")
+        return f"{head} {clause.format(meaning=own or self.meanings.get(cause, ''))}", fix, seen

@@ -158,3 +158,20 @@ def test_the_waiting_line_alone_tells_which_parameter_never_arrived(tmp_path: Pa
         (11, "spawner_arm_controller", ERROR, "Could not contact service /controller_manager/list_controllers")])
     assert found.causes == ["bringup.configuration_error"]
     assert "robot description never reached the controller manager" in found.text
+
+
+def test_a_controller_manager_without_a_clock_is_a_use_sim_time_set_up(tmp_path: Path) -> None:
+    # controller_manager.cpp:3402@master
+    found = _explain(tmp_path, [
+        (0, "controller_manager", ERROR, "No clock received, and time argument is zero. Check your controller_manager "
+                                         "node's clock configuration (use_sim_time parameter) and if a valid clock "
+                                         "source is available")])
+    assert found.causes == ["bringup.configuration_error"] and "use_sim_time" in found.text
+
+
+def test_a_ur_driver_that_cannot_reach_the_robot_says_why_in_its_details(tmp_path: Path) -> None:
+    # Universal_Robots_Client_Library src/rtde/rtde_client.cpp:910@master
+    found = _explain(tmp_path, [
+        (0, "UR_Client_Library:", ERROR, "Failed to initialize RTDE client after 5 attempts, unable to reconnect")])
+    assert found.causes == ["control.hardware_failure"]
+    assert any("RTDE interface" in d for d in found.details)
