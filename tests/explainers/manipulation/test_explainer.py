@@ -109,6 +109,9 @@ MOVEIT_LINES = [
     ("moveit_ros.trajectory_execution_manager", ERROR,
      "Unable to identify any set of controllers that can actuate the specified joints: [ joint_1 joint_2 ]",
      "manipulation.controllers_not_found", "found no controllers"),
+    # trajectory_execution_manager.cpp:1173@humble
+    ("moveit_ros.trajectory_execution_manager", ERROR, "Controller 'panda_arm_controller' is not known",
+     "manipulation.controllers_not_found", "found no controllers"),
     # move_group_capability.cpp:148@humble, move_group's result text as the goal ends
     ("moveit_move_group_default_capabilities.move_action_capability", INFO,
      "Solution found but the environment changed during execution and the path was aborted",
