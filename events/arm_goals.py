@@ -143,9 +143,21 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
     goal = _Goal(skill, active[0][0].t, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
+    if failed is None:
+        # a cause told at WARN (a controller manager still waiting for its robot description) and then a
+        # catalogued error that follows from it (a spawner that could not reach the controller manager)
+        failed = next((ln for ln in logs if ln.level >= ERROR and ln.t >= active[0][0].t and _symptom(ln)), None)
     if failed is not None:
-        goal.end, goal.state, goal.error = active[-1][0].t, "failed", failed.msg
+        goal.end, goal.state, goal.error = max(active[-1][0].t, failed.t), "failed", failed.msg
     return [goal]
+
+
+def _symptom(line: LogLine) -> bool:
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    entries = (cat.match(line.msg) for cat in (moveit(), control()))
+    return any(e is not None and e.kind in {"symptom", "failed"} for e in entries)
 
 
 def _goals(logs: list[LogLine], statuses: list[GoalStatus]) -> list[_Goal]:

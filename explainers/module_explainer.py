@@ -153,10 +153,12 @@ class ModuleExplainer:
             text, fix, details = self.words(cause, d, self._what(run))
             return Explanation(explainer=self.name, text=text, causes=[cause], fix=fix, details=details,
                                evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
-        cause = d.cause
-        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         decisive = d.decisive
         assert decisive is not None
+        if d.outcome == "unknown" and not decisive.strong:
+            return self._unsure(decisive, start)
+        cause = d.cause
+        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
         if d.end is not None and all(e.t != d.end.t for e in ev):
             ev.append(Evidence.of_log(cause, d.end))
@@ -170,6 +172,18 @@ class ModuleExplainer:
                     + text)
         return Explanation(explainer=self.name, text=text, causes=[cause], evidence=ev, fix=fix, details=details,
                            confidence=0.9 if decisive.strong else 0.6)
+
+    def _unsure(self, decisive: Reading, start: int) -> Explanation:
+        """No line ends the goal, and the only problem line is one many healthy robots print too (a weak cause):
+        quoted with its node and time, and neither a failure nor a cause is claimed."""
+        line = decisive.line
+        meaning = decisive.entry.meaning if decisive.entry is not None else ""
+        return Explanation(
+            explainer=self.name, causes=[], evidence=[Evidence.of_log("warning", line)], confidence=0.3,
+            text=f"The recording ends before {self.module_words} finished. On the way, "
+                 f"'{said(line).splitlines()[0][:200]}' at {at(line, start)}; healthy robots print it too, so my "
+                 f"logs do not show whether anything went wrong.",
+            details=[f"That line means: {meaning}."] if meaning else [])
 
     @staticmethod
     def _last_said(d: Diagnosis, start: int) -> str:

@@ -175,3 +175,13 @@ def test_a_ur_driver_that_cannot_reach_the_robot_says_why_in_its_details(tmp_pat
         (0, "UR_Client_Library:", ERROR, "Failed to initialize RTDE client after 5 attempts, unable to reconnect")])
     assert found.causes == ["control.hardware_failure"]
     assert any("RTDE interface" in d for d in found.details)
+
+
+def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_an_unfinished_run(
+        tmp_path: Path) -> None:
+    # no goal line, no error after it: whether anything failed is not in the recording
+    found = _explain(tmp_path, [
+        (0, "controller_manager", INFO, "Loading controller 'joint_state_broadcaster'"),
+        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization")])
+    assert found.causes == []
+    assert "do not show whether anything went wrong" in found.text and "controller_manager" in found.text
