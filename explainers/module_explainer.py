@@ -79,7 +79,12 @@ class ModuleExplainer:
         lines = view.logs()
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
+        from hexar.explainers.control.catalogue import description_arrived
+
+        # what lines mean beside the whole recording's (a controller manager that keeps waiting after its robot
+        # description arrived, maybe before this window)
+        readings = [r for r in read(lines, self.catalogues()) if not _other_module(r)]
+        readings = self.refine(description_arrived(readings, context.log.logs))
         run = focus(context, self.skills)
         d = diagnose(readings, run.state if run is not None else None)
         if d.outcome == "succeeded":

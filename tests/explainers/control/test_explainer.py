@@ -185,3 +185,20 @@ def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_a
         (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization")])
     assert found.causes == []
     assert "do not show whether anything went wrong" in found.text and "controller_manager" in found.text
+
+
+def test_waiting_after_the_description_arrived_is_not_a_description_that_never_arrived(tmp_path: Path) -> None:
+    # controller_manager.cpp:777/789@jazzy: the description came, the resource manager failed to start with it
+    lines = [
+        (0, "controller_manager", INFO, "Received robot description from topic."),
+        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
+        (2, "controller_manager", ERROR, "Resource Manager is not initialized yet! Please provide robot description "
+                                         "on 'robot_description' topic before trying to switch controllers."),
+        (11, "spawner_arm_controller", ERROR, "Could not contact service /controller_manager/list_controllers")]
+    found = _explain(tmp_path, lines)
+    assert found.causes == ["control.unexplained_failure"] and "do not show a cause I know" in found.text
+    # with the resource manager's own error among them, that error is the answer
+    error = (0.1, "controller_manager.resource_manager", ERROR,
+             "Caught exception of type : N9pluginlib20LibraryLoadExceptionE while loading hardware: According to the "
+             "loaded plugin descriptions the class fake/System does not exist.")
+    assert _explain(tmp_path / "b", [lines[0], error, *lines[1:]]).causes == ["control.hardware_failure"]
