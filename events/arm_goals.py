@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass
 
 from hexar.events import contract as c
-from hexar.events.records import ERROR, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.records import ERROR, WARN, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
 
 MOVE_ARM = "move_arm"
@@ -141,7 +141,11 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         last = max(ln.t for ln in logs)
         return [_Goal(BRING_UP, stack.line.t, "bring-up lines (no goal line)", last, "failed", stack.line.msg)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
-    goal = _Goal(skill, active[0][0].t, "log (no goal line)")
+    # the step began with the first warning or error of the arm's own software, so that a warning it logged
+    # before (a controller manager waiting for its robot description) is in the explained window
+    first = next((ln.t for ln in logs if ln.level >= WARN and ln.t <= active[0][0].t
+                  and any(cat.match(ln.msg) is not None for cat in (moveit(), control()))), active[0][0].t)
+    goal = _Goal(skill, first, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
     if failed is None:
         # a cause told at WARN (a controller manager still waiting for its robot description) and then a

@@ -54,6 +54,20 @@ class ModuleCatalogue(Catalogue):
         except (ExplainerError, KeyError, TypeError, AttributeError) as err:
             raise ModuleCatalogueError(f"malformed catalogue {name}: {err}") from err
 
+    @staticmethod
+    def _scan(text: str, entries: Iterable[Entry]) -> Entry | None:
+        """The first matching entry with a cause, else the first the curated rules classified (a symptom, a goal
+        line), else the first: "Waiting for data on 'robot_description' topic" is its own symptom, not the wider
+        "Waiting for …" that also matches it."""
+        kept: Entry | None = None
+        for entry in entries:
+            if entry.search(text):
+                if entry.cause is not None:
+                    return entry
+                if kept is None or (kept.kind == "other" and entry.kind != "other"):
+                    kept = entry
+        return kept
+
     def match(self, msg: str) -> Entry | None:
         """The message's entry; for a multi-line message that matches nothing whole, its first line that does (a
         console may print a logger's header and its message on separate lines, and launch prints each line of a

@@ -79,12 +79,7 @@ class ModuleExplainer:
         lines = view.logs()
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        from hexar.explainers.control.catalogue import description_arrived
-
-        # what lines mean beside the whole recording's (a controller manager that keeps waiting after its robot
-        # description arrived, maybe before this window)
-        readings = [r for r in read(lines, self.catalogues()) if not _other_module(r)]
-        readings = self.refine(description_arrived(readings, context.log.logs))
+        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         run = focus(context, self.skills)
         d = diagnose(readings, run.state if run is not None else None)
         if d.outcome == "succeeded":
@@ -143,6 +138,7 @@ class ModuleExplainer:
                 fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
                 else "Record /rosout at INFO level from move_group and the controller manager.",
                 details=[*(f"The last line about it was '{said(r.line)}'." for r in d.symptoms[:1]),
+                         *(f"That line means: {r.entry.meaning}." for r in d.symptoms[:1] if r.entry is not None),
                          f"The last line about it was '{said(d.end)}'." if d.end else
                          "No line of the catalogue names a cause."])
         if d.cause is None:

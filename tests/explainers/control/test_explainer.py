@@ -136,30 +136,6 @@ def test_a_process_that_could_not_start_is_told_as_a_process_that_died(tmp_path:
     assert found.causes == ["bringup.process_died"]
 
 
-def test_a_controller_manager_still_waiting_for_its_robot_description_is_a_parameter_that_never_arrived(
-        tmp_path: Path) -> None:
-    # controller_manager.cpp:769@jazzy (a wall timer, each second) and :1866@jazzy; the spawner's
-    # controller_manager_services.py:150@jazzy
-    found = _explain(tmp_path, [
-        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
-        (2, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
-        (3, "controller_manager", ERROR, "Resource Manager is not initialized yet! Please provide robot description "
-                                         "on 'robot_description' topic before trying to switch controllers."),
-        (12, "spawner_joint_state_broadcaster", WARN,
-         "Could not contact service /controller_manager/list_controllers")])
-    assert found.causes == ["bringup.configuration_error"]
-    assert "never reached one of my nodes" in found.text and "recording ends" not in found.text
-    assert any("Resource Manager is not initialized yet" in d for d in found.details)
-
-
-def test_the_waiting_line_alone_tells_which_parameter_never_arrived(tmp_path: Path) -> None:
-    found = _explain(tmp_path, [
-        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
-        (11, "spawner_arm_controller", ERROR, "Could not contact service /controller_manager/list_controllers")])
-    assert found.causes == ["bringup.configuration_error"]
-    assert "robot description never reached the controller manager" in found.text
-
-
 def test_a_controller_manager_without_a_clock_is_a_use_sim_time_set_up(tmp_path: Path) -> None:
     # controller_manager.cpp:3402@master
     found = _explain(tmp_path, [
@@ -177,28 +153,16 @@ def test_a_ur_driver_that_cannot_reach_the_robot_says_why_in_its_details(tmp_pat
     assert any("RTDE interface" in d for d in found.details)
 
 
-def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_an_unfinished_run(
-        tmp_path: Path) -> None:
-    # no goal line, no error after it: whether anything failed is not in the recording
+def test_a_controller_manager_still_waiting_for_its_robot_description_names_no_cause(tmp_path: Path) -> None:
+    # controller_manager.cpp:769@jazzy warns each second until its resource manager is initialised: no description
+    # arrived, or one arrived and its hardware failed to load (:789); the spawner's controller_manager_services.py
+    # :150@jazzy follows. Which of the two is not in these lines, so none is claimed.
     found = _explain(tmp_path, [
         (0, "controller_manager", INFO, "Loading controller 'joint_state_broadcaster'"),
-        (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization")])
-    assert found.causes == []
-    assert "do not show whether anything went wrong" in found.text and "controller_manager" in found.text
-
-
-def test_waiting_after_the_description_arrived_is_not_a_description_that_never_arrived(tmp_path: Path) -> None:
-    # controller_manager.cpp:777/789@jazzy: the description came, the resource manager failed to start with it
-    lines = [
-        (0, "controller_manager", INFO, "Received robot description from topic."),
         (1, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization"),
-        (2, "controller_manager", ERROR, "Resource Manager is not initialized yet! Please provide robot description "
-                                         "on 'robot_description' topic before trying to switch controllers."),
-        (11, "spawner_arm_controller", ERROR, "Could not contact service /controller_manager/list_controllers")]
-    found = _explain(tmp_path, lines)
+        (11, "spawner_joint_state_broadcaster", ERROR,
+         "Could not contact service /controller_manager/list_controllers")], skill="follow_joint_trajectory")
     assert found.causes == ["control.unexplained_failure"] and "do not show a cause I know" in found.text
-    # with the resource manager's own error among them, that error is the answer
-    error = (0.1, "controller_manager.resource_manager", ERROR,
-             "Caught exception of type : N9pluginlib20LibraryLoadExceptionE while loading hardware: According to the "
-             "loaded plugin descriptions the class fake/System does not exist.")
-    assert _explain(tmp_path / "b", [lines[0], error, *lines[1:]]).causes == ["control.hardware_failure"]
+    assert "never reached" not in found.text
+    assert any("no robot description arrived" in d and "failed to load" in d for d in found.details)
+

@@ -152,3 +152,14 @@ def test_move_groups_success_text_ends_the_goal_as_done(tmp_path: Path) -> None:
         (2, "moveit_move_group_default_capabilities.move_action_capability", INFO, "Solution was found and executed.")],
         question="How did it go?")
     assert task.outcome == "succeeded" and found.causes == ["manipulation.nominal"]
+
+
+def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_an_unfinished_run(
+        tmp_path: Path) -> None:
+    # planning_scene_monitor.cpp:1392@humble, a weak cause; no goal line and no error: no outcome to explain
+    task, found = _explain(tmp_path, [
+        (0, "moveit_ros.planning_scene_monitor.planning_scene_monitor", WARN,
+         "The complete state of the robot is not yet known.  Missing gripper_joint")], question="How did it go?")
+    assert task.outcome == "running" and found.causes == []
+    assert "do not show whether anything went wrong" in found.text and "planning_scene_monitor" in found.text
+
