@@ -78,8 +78,10 @@ def explained_live(run: Path, transport: str) -> dict[str, Any]:
     robot = make_replayer(other(transport), domain)
     try:
         with live_node(domain, transport=transport) as node:
-            replay_in_process(run, robot, rate=10.0, warmup_s=0.5)
-            answers = listener.wait_answers(1, "failure", timeout=8.0)
+            # the node reads six more status topics than a Nav2 robot's: a longer warm-up lets discovery match them
+            # all before the goal's first status (keep-last 1), so the node sees the goal active, then aborted
+            replay_in_process(run, robot, rate=4.0, warmup_s=2.0)
+            answers = listener.wait_answers(1, "failure", timeout=10.0)
             assert node.errors == 0
             return answers[0] if answers else {}
     finally:
