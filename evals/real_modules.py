@@ -31,6 +31,7 @@ from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS, HexarError
 from hexar.evals.real_nav2 import DISTROS, OUTCOMES, TaskMaker, parse_console, stamped, task_plan, write_excerpt
+from hexar.evals.real_nav2_suite import Grade, hexar_asker  # one grade, one asker; only the allowed causes differ
 
 SUITE = "real-modules"
 HELDOUT_SUITE = "real-modules-heldout"
@@ -139,14 +140,6 @@ def unsupported(excerpt: Excerpt, claims: Iterable[str]) -> list[str]:
     return sorted(out)
 
 
-@dataclass(frozen=True)
-class Grade:
-    named: bool
-    honest: bool
-    unsupported: tuple[str, ...]
-    verdict: str  # named | honest | wrong
-
-
 def grade(excerpt: Excerpt, claims: Iterable[str], text: str = "") -> Grade:
     claims = set(claims)
     bad = tuple(unsupported(excerpt, claims))
@@ -189,7 +182,8 @@ def evaluate(excerpts: Sequence[Excerpt], runs: Path, ask: Ask) -> list[Result]:
             r = ask(path, question)
             answer, error, causes = str(r.get("answer", "")), str(r.get("error", "")), tuple(r.get("causes", ()))
         except USER_ERRORS as err:  # e.g. no task to explain
-            answer, error, causes = "", f"{type(err).__name__}: {err}", ()
+            # the recording's temporary folder is no part of the result: name the excerpt instead
+            answer, error, causes = "", f"{type(err).__name__}: {err}".replace(str(path), ex.id), ()
         claims = tuple(sorted(read_claims(answer).affirmed))
         out.append(Result(ex.id, ex.module, ex.distro, ex.cause, ex.outcome, ex.logs_show_cause, task, question,
                           answer, error, causes, claims, grade(ex, claims, answer), grade(ex, causes)))
@@ -222,16 +216,6 @@ def build_report(results: Sequence[Result], backend: str, suite: str) -> dict[st
             "by_module": dict(sorted(summarise(results, key=lambda r: r.module).items())),
             "by_cause": dict(sorted(summarise(results, key=lambda r: r.cause).items())),
             "excerpts": [asdict(r) for r in results]}
-
-
-def hexar_asker(backend: Any) -> Ask:
-    from hexar.agent.context import RunSettings
-    from hexar.agent.session import Session
-
-    def ask(recording: Path, question: str) -> dict[str, Any]:
-        return Session(RunSettings(recording=recording, llm=backend.name), backend=backend).ask(question)
-
-    return ask
 
 
 def run_suite(backend: Any, suite: str = SUITE, runs: Path | None = None, ask: Ask | None = None,

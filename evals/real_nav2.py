@@ -40,6 +40,9 @@ _LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
 _STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
 _LOGGER = r"\[(?P<logger>[^\]\s]*)\]:\s?"
 LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
+# RCUTILS_CONSOLE_OUTPUT_FORMAT "[{severity} {time}] [{name}]: {message}": level and stamp in one bracket
+LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>\d+(?:\.\d+)?)\]\s*"
+                         rf"(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
 PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
 PROC_ONLY = re.compile(r"^\[(?P<proc>[\w./-]+-\d+)\](?P<rest>.*)$")
@@ -146,7 +149,7 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
             r.synthesised.discard("stamp")
         records.extend(inner)
         return
-    m = LEVELED.match(line)
+    m = LEVELED.match(line) or LEVEL_STAMP.match(line)
     if m:
         msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
         records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))

@@ -16,7 +16,7 @@ import re
 from dataclasses import dataclass
 
 from hexar.events import contract as c
-from hexar.events.records import ERROR, GoalStatus, LogLine, SkillStep, TaskUpdate
+from hexar.events.records import ERROR, WARN, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
 
 MOVE_ARM = "move_arm"
@@ -122,8 +122,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     active: list[tuple[LogLine, str]] = []
     for line in logs:
         for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
-            entry = cat.match(line.msg)
-            if entry is not None and entry.cause is not None:
+            if cat.cause_of(line.msg, cat.match(line.msg)) is not None:  # a catalogued text or one built in code
                 active.append((line, skill))
                 break
     if not active:
@@ -142,11 +141,27 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         last = max(ln.t for ln in logs)
         return [_Goal(BRING_UP, stack.line.t, "bring-up lines (no goal line)", last, "failed", stack.line.msg)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
-    goal = _Goal(skill, active[0][0].t, "log (no goal line)")
+    # the step began with the first warning or error of the arm's own software, so that a warning it logged
+    # before (a controller manager waiting for its robot description) is in the explained window
+    first = next((ln.t for ln in logs if ln.level >= WARN and ln.t <= active[0][0].t
+                  and any(cat.match(ln.msg) is not None for cat in (moveit(), control()))), active[0][0].t)
+    goal = _Goal(skill, first, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
+    if failed is None:
+        # a cause told at WARN (a controller manager still waiting for its robot description) and then a
+        # catalogued error that follows from it (a spawner that could not reach the controller manager)
+        failed = next((ln for ln in logs if ln.level >= ERROR and ln.t >= active[0][0].t and _symptom(ln)), None)
     if failed is not None:
-        goal.end, goal.state, goal.error = active[-1][0].t, "failed", failed.msg
+        goal.end, goal.state, goal.error = max(active[-1][0].t, failed.t), "failed", failed.msg
     return [goal]
+
+
+def _symptom(line: LogLine) -> bool:
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    entries = (cat.match(line.msg) for cat in (moveit(), control()))
+    return any(e is not None and e.kind in {"symptom", "failed"} for e in entries)
 
 
 def _goals(logs: list[LogLine], statuses: list[GoalStatus]) -> list[_Goal]:
@@ -225,7 +240,22 @@ def _nav2_own(line: LogLine) -> bool:
     return entry is not None and not entry.id.startswith("launch.")
 
 
-def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
+def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:
+    """A Nav2 task found from activity alone whose first bring-up finding is a lifecycle transition of a node with
+    no Nav2 role, in a recording where no line is Nav2's own: a driver's or another robot's lifecycle node."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack import bringup_findings
+
+    if logs is None or task.skills[0].params.get("derived_from") != "Nav2 log (no goal line)":
+        return False
+    findings = bringup_findings(logs)
+    if not findings or findings[0].kind != "lifecycle_transition" or not findings[0].node:
+        return False
+    node = findings[0].node.strip("/").rsplit("/", 1)[-1]
+    return nav2().role(node) is None and not any(_nav2_own(ln) for ln in logs)
+
+
+def merge_tasks(nav: list[Task], arm: list[Task], logs: list[LogLine] | None = None) -> list[Task]:
     """Nav2's and the arm's derived tasks in time order. Without a Nav2 task, the arm's are all there is. With
     one, only arm tasks of goal lines or statuses join it (activity is Nav2's to explain), and a Nav2 task
     found only from activity gives way to arm goals (its lines were probably no Nav2 goal at all)."""
@@ -236,6 +266,8 @@ def merge_tasks(nav: list[Task], arm: list[Task]) -> list[Task]:
         return arm  # Nav2's "activity" was a line of the arm's catalogues (a controller that failed to activate)
     if not arm_goals and len(nav) == 1 and _arms_process(nav[0]):
         return arm  # the only failure was a process of the arm's packages (ros2_control_node, move_group) dying
+    if not arm_goals and len(nav) == 1 and _others_lifecycle(nav[0], logs):
+        return arm  # e.g. a drone's or a driver's lifecycle node that failed its transition: not navigation's
     if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]

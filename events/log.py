@@ -93,7 +93,7 @@ class EventLog:
         from hexar.events.nav_goals import derive_tasks
 
         nav = derive_tasks(self.logs, [s for s in self.goal_statuses if s.topic == c.NAV_STATUS], self.goals)
-        return merge_tasks(nav, derive_arm_tasks(self.logs, self.goal_statuses))
+        return merge_tasks(nav, derive_arm_tasks(self.logs, self.goal_statuses), self.logs)
 
     def task(self, ref: str | None = None) -> Task:
         """A task by id, by its 1-based order, or by `first`/`latest`; default: the latest user task.

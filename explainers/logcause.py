@@ -26,6 +26,7 @@ from hexar.explainers.navigation.catalogue import Catalogue, Entry, clean
 
 Outcome = Literal["succeeded", "failed", "canceled", "unknown"]
 _CODE = re.compile(r"\b[A-Z][A-Z_]{5,}\b")
+GENERIC = frozenset({"manipulation.planning_failed"})
 
 
 class ModuleCatalogueError(ExplainerError):
@@ -53,13 +54,43 @@ class ModuleCatalogue(Catalogue):
         except (ExplainerError, KeyError, TypeError, AttributeError) as err:
             raise ModuleCatalogueError(f"malformed catalogue {name}: {err}") from err
 
+    @staticmethod
+    def _scan(text: str, entries: Iterable[Entry]) -> Entry | None:
+        """The first matching entry with a cause, else the first the curated rules classified (a symptom, a goal
+        line), else the first: "Waiting for data on 'robot_description' topic" is its own symptom, not the wider
+        "Waiting for …" that also matches it."""
+        kept: Entry | None = None
+        for entry in entries:
+            if entry.search(text):
+                if entry.cause is not None:
+                    return entry
+                if kept is None or (kept.kind == "other" and entry.kind != "other"):
+                    kept = entry
+        return kept
+
+    def match(self, msg: str) -> Entry | None:
+        """The message's entry; for a multi-line message that matches nothing whole, its first line that does (a
+        console may print a logger's header and its message on separate lines, and launch prints each line of a
+        message behind its own prefix)."""
+        found = super().match(msg)
+        if found is not None or "\n" not in msg:
+            return found
+        for part in msg.split("\n"):
+            if part.strip() and part.strip() != msg:
+                found = super().match(part.strip())
+                if found is not None:
+                    return found
+        return None
+
     def cause_of(self, msg: str, entry: Entry | None) -> str | None:
         """The cause a line states: a code-built text or an error-code name in it first, else its entry's."""
         text = clean(msg)
         for r in self.refinements:
             if r.contains in text:
                 return r.cause
-        if self.error_codes and (entry is None or entry.kind != "cause"):
+        # a code refines a line that names no cause of its own, or only the pipeline's generic failure ("Planner
+        # 'ompl' failed with error code NO_IK_SOLUTION" is an IK failure, not any planning failure)
+        if self.error_codes and (entry is None or entry.kind != "cause" or entry.cause in GENERIC):
             for code in _CODE.findall(text):
                 if code in self.error_codes:
                     return self.error_codes[code]

@@ -17,7 +17,7 @@ from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
-from hexar.explainers.stack_causes import stack_cause, stack_words
+from hexar.explainers.stack_causes import killed_by_signal, stack_cause, stack_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -91,6 +91,11 @@ class ModuleExplainer:
                     and d.unknown is not None and d.unknown.t < stack.line.t and d.unknown.level >= ERROR:
                 # a process that died after an error no catalogue explains: the death is that error's consequence
                 d.symptoms = [stack, *d.symptoms][:2]
+            elif stack is not None and stack.cause == "bringup.process_died" and d.decisive is None \
+                    and killed_by_signal(stack.line.msg):
+                # a crash (SIGSEGV, SIGABRT): what made the program crash is not in its death line, so the death
+                # is quoted as the first error, never told as the cause
+                d.unknown = stack.line
             elif stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
                 d.cause, d.decisive, d.support = stack.cause, stack, []
                 d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
@@ -125,14 +130,16 @@ class ModuleExplainer:
             ev += evidence_of(cause, d.symptoms)
             # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
             quoted = (f" The first error was '{said(first).splitlines()[0][:200]}' at {at(first, start)}."
-                      if first is not None else "")
+                      if first is not None else self._last_said(d, start))
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
                 text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
                      + quoted,
                 fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
                 else "Record /rosout at INFO level from move_group and the controller manager.",
-                details=[f"The last line about it was '{said(d.end)}'." if d.end else
+                details=[*(f"The last line about it was '{said(r.line)}'." for r in d.symptoms[:1]),
+                         *(f"That line means: {r.entry.meaning}." for r in d.symptoms[:1] if r.entry is not None),
+                         f"The last line about it was '{said(d.end)}'." if d.end else
                          "No line of the catalogue names a cause."])
         if d.cause is None:
             if d.outcome == "unknown" and not any(r.entry is not None for r in readings):
@@ -147,10 +154,12 @@ class ModuleExplainer:
             text, fix, details = self.words(cause, d, self._what(run))
             return Explanation(explainer=self.name, text=text, causes=[cause], fix=fix, details=details,
                                evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
-        cause = d.cause
-        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         decisive = d.decisive
         assert decisive is not None
+        if d.outcome == "unknown" and not decisive.strong:
+            return self._unsure(decisive, start)
+        cause = d.cause
+        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
         if d.end is not None and all(e.t != d.end.t for e in ev):
             ev.append(Evidence.of_log(cause, d.end))
@@ -164,6 +173,28 @@ class ModuleExplainer:
                     + text)
         return Explanation(explainer=self.name, text=text, causes=[cause], evidence=ev, fix=fix, details=details,
                            confidence=0.9 if decisive.strong else 0.6)
+
+    def _unsure(self, decisive: Reading, start: int) -> Explanation:
+        """No line ends the goal, and the only problem line is one many healthy robots print too (a weak cause):
+        quoted with its node and time, and neither a failure nor a cause is claimed."""
+        line = decisive.line
+        meaning = decisive.entry.meaning if decisive.entry is not None else ""
+        return Explanation(
+            explainer=self.name, causes=[], evidence=[Evidence.of_log("warning", line)], confidence=0.3,
+            text=f"The recording ends before {self.module_words} finished. On the way, "
+                 f"'{said(line).splitlines()[0][:200]}' at {at(line, start)}; healthy robots print it too, so my "
+                 f"logs do not show whether anything went wrong.",
+            details=[f"That line means: {meaning}."] if meaning else [])
+
+    @staticmethod
+    def _last_said(d: Diagnosis, start: int) -> str:
+        """Where the failure was told, when no error line says why: the node and the time of the last line about
+        it (its words stay in the details: they name the consequence, not the cause)."""
+        last = d.symptoms[0].line if d.symptoms else d.end
+        if last is None:
+            return ""
+        who = last.name or "a node"
+        return f" The failure was told by {who} at {at(last, start)}, and no line before it says why."
 
     def _what(self, run: SkillRun | None) -> str:
         if run is None:

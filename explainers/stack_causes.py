@@ -9,6 +9,7 @@ line of their own in the logs, so none is claimed from them.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 
 from hexar.events.records import LogLine
@@ -19,6 +20,15 @@ KIND_CAUSE = {"params_file": "bringup.configuration_error",
               "node_failed": "bringup.lifecycle_transition_failed"}
 PERMISSION = "system.device_permission"
 _DENIED = "Permission denied"  # strerror(EACCES)
+
+
+_EXIT = re.compile(r"exit code (-\d+)")  # launch's "process has died [pid N, exit code -11, ...]"
+
+
+def killed_by_signal(msg: str) -> bool:
+    """launch reports a process that a signal ended (a crash: SIGSEGV -11, SIGABRT -6) with a negative exit code."""
+    found = _EXIT.search(msg)
+    return found is not None and int(found[1]) < 0
 
 
 def stack_cause(lines: Sequence[LogLine]) -> Reading | None:

@@ -40,10 +40,10 @@ def _motion(topic: str, msg: Any, t: int) -> list[Record]:
     if topic == c.GOAL_POSE:
         return [GoalPose(_stamp(msg.header) or t, float(msg.pose.position.x), float(msg.pose.position.y),
                          str(msg.header.frame_id))]
-    if topic == c.NAV_STATUS:
+    if topic == c.NAV_STATUS or c.topic_key(topic) in c.ARM_STATUS_TOPICS:
         # the array is dated by its write time, like the reader dates it by the bag's receive time
         return [GoalStatus(t, bytes(bytearray(s.goal_info.goal_id.uuid)).hex(),
-                           stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec), int(s.status))
+                           stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec), int(s.status), topic)
                 for s in msg.status_list]
     return []
 

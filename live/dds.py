@@ -201,7 +201,7 @@ class DdsTransport:
     def _record(self, topic: str, sample: Any, t: int) -> None:
         """Into the rolling recording, on the robot's clock, as `ros2 bag record` on the robot stamps it."""
         if self.recorder is not None:
-            self.recorder.write(topic, c.TYPE_OF[topic], sample.serialize(), t)
+            self.recorder.write(topic, c.TYPE_OF[c.topic_key(topic)], sample.serialize(), t)
 
     def _report(self, line: str) -> None:
         self.errors += 1

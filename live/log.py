@@ -152,7 +152,7 @@ class LiveLog:
         elif isinstance(r, GoalPose):
             self._insert(self._goals, r, c.GOAL_POSE)
         elif isinstance(r, GoalStatus):
-            self._insert(self._goal_statuses, r, c.NAV_STATUS)
+            self._insert(self._goal_statuses, r, r.topic)
         else:
             self._insert(self._statuses.setdefault(r.topic, []), r, r.topic)
         if r.t > self.newest:

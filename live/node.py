@@ -188,14 +188,15 @@ class LiveNode:
                            text=INVALID_QUESTION if not record.valid else FAILURE_QUESTION))
 
     def _on_goal_status(self, status: GoalStatus) -> None:
-        """A robot without /task_info: its tasks are derived from Nav2 goals (events/nav_goals.py), and an aborted
-        NavigateToPose goal is its failure. The derived task is found when the job runs (`_derived_task`)."""
+        """A robot without /task_info: its tasks are derived from Nav2 goals (events/nav_goals.py) and the arm's
+        (events/arm_goals.py), and an aborted NavigateToPose, MoveGroup, ExecuteTrajectory or FollowJointTrajectory
+        goal is its failure. The derived task is found when the job runs (`_derived_task`)."""
         if status.status in GOAL_ACTIVE:
             if len(self._active_goals) > 10_000:
                 self._active_goals.clear()
             self._active_goals.add(status.goal_id)
             return
-        key = f"nav2:{status.goal_id}:aborted"
+        key = f"{status.topic}:{status.goal_id}:aborted"  # a Nav2 goal's or an arm goal's (events/arm_goals.py)
         if status.status != GOAL_ABORTED or key in self._explained or self.log.stats()["tasks"]:
             return
         if status.goal_id not in self._active_goals:

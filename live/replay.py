@@ -44,7 +44,7 @@ def bag_messages(path: Path, start_s: float = 0.0) -> tuple[Iterator[tuple[str, 
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
     # a Nav2 topic name that this robot uses for another type is skipped, as the reader skips it
     wanted = [conn for conn in reader.connections
-              if conn.topic in QOS_OF and conn.msgtype in c.ACCEPTED_TYPES.get(conn.topic, frozenset())]
+              if conn.topic in QOS_OF and conn.msgtype in c.ACCEPTED_TYPES.get(c.topic_key(conn.topic), frozenset())]
     skipped = sorted({conn.topic for conn in reader.connections} - {conn.topic for conn in wanted})
     begin = reader.start_time + int(start_s * 1e9)
 
@@ -132,7 +132,8 @@ class DdsReplayer:
         self.endpoint = DdsEndpoint(domain_id)
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
-        ros_type = c.TYPE_OF[topic]  # a ROS 1 log goes out as rcl_interfaces/Log, a TwistStamped as Twist
+        # a ROS 1 log goes out as rcl_interfaces/Log, a TwistStamped as Twist; a controller's status topic is FJT_STATUS
+        ros_type = c.TYPE_OF[c.topic_key(topic)]
         self.endpoint.writer(topic, ros_type, QOS_OF[topic]).write(msg, timestamp=t)
 
     def matched(self, topic: str) -> int:
@@ -148,7 +149,7 @@ class DdsReplayer:
     def prepare(self) -> None:
         """Create every writer up front, so readers have matched them before the first message."""
         for topic, qos in QOS_OF.items():
-            self.endpoint.writer(topic, c.TYPE_OF[topic], qos)
+            self.endpoint.writer(topic, c.TYPE_OF[c.topic_key(topic)], qos)
 
     def close(self, linger_s: float = 2.0) -> None:
         """Wait (at most `linger_s` in all) until matched reliable readers acknowledged what was written: a

@@ -231,7 +231,7 @@ class RclpyTransport:
     def _record(self, topic: str, msg: Any, t: int) -> None:
         """Into the rolling recording, on the robot's clock, as `ros2 bag record` on the robot stamps it."""
         if self.recorder is not None:
-            ros_type = c.TYPE_OF[topic]
+            ros_type = c.TYPE_OF[c.topic_key(topic)]
             self.recorder.write(topic, ros_type, bytes(self._humble.serialize_cdr(msg, ros_type)), t)
 
     def _report(self, line: str) -> None:
@@ -266,7 +266,8 @@ class RclpyReplayer:
 
     def prepare(self) -> None:
         for topic, qos in self._qos.items():
-            self._pubs[topic] = self.ros.node.create_publisher(_msg_class(c.TYPE_OF[topic]), topic, _profile(qos))
+            ros_type = c.TYPE_OF[c.topic_key(topic)]
+            self._pubs[topic] = self.ros.node.create_publisher(_msg_class(ros_type), topic, _profile(qos))
 
     def matched(self, topic: str) -> int:
         return int(self._pubs[topic].get_subscription_count())
@@ -279,7 +280,7 @@ class RclpyReplayer:
         self._pubs[CLOCK].publish(bytes(self._humble.serialize_cdr(msg, CLOCK_TYPE)))
 
     def write(self, topic: str, msgtype: str, msg: Any, t: int) -> None:
-        ros_type = c.TYPE_OF[topic]
+        ros_type = c.TYPE_OF[c.topic_key(topic)]
         if msgtype == c.TWIST_STAMPED_TYPE:
             msg = msg.twist  # the live topic carries Humble's Twist; the header's stamp is not sent
         elif msgtype == c.ROS1_LOG_TYPE:

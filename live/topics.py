@@ -8,8 +8,8 @@ depth 1) on TIAGo. Topics published with ROS' default profile (reliable, volatil
 reliable + volatile, which also matches a transient-local writer: /cmd_vel (Nav2's controller and velocity
 smoother), /odom, /goal_pose (RViz's Nav2 Goal tool). An action server's status topic is offered with
 `rcl_action_qos_profile_status_default` (keep-last 1, reliable, transient-local: ros2/rcl,
-rcl_action/include/rcl_action/default_qos.h), so /navigate_to_pose/_action/status is read transient-local and a
-late joiner still gets the status array of the goals the server tracks.
+rcl_action/include/rcl_action/default_qos.h), so /navigate_to_pose/_action/status (and the arm's action status
+topics) is read transient-local and a late joiner still gets the status array of the goals the server tracks.
 """
 
 from __future__ import annotations
@@ -45,6 +45,8 @@ def dds_name(topic: str) -> str:
     return "rt" + (topic if topic.startswith("/") else "/" + topic)
 
 
+ARM_CONTROLLERS = ("arm_controller", "joint_trajectory_controller", "scaled_joint_trajectory_controller",
+                   "panda_arm_controller")
 SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.ROSOUT, c.LOG_TYPE, TopicQos(durability="transient_local", depth=1000)),
     LiveTopic(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100)),
@@ -63,12 +65,22 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=100)),
     LiveTopic(c.GOAL_POSE, c.POSE_STAMPED_TYPE, TopicQos(depth=10)),
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
+    # The arm's actions (MoveIt's move_action and execute_trajectory, a joint trajectory controller's
+    # follow_joint_trajectory): their status topics, so a robot without /task_info gets arm tasks and an aborted
+    # arm goal is explained unasked. A controller's status topic carries its own name, and a DDS reader needs the
+    # exact one: ARM_CONTROLLERS names the usual ones (TIAGo's arm_controller, ros2_control's and the UR
+    # driver's joint trajectory controllers, MoveIt's tutorial Panda).
+    *(LiveTopic(topic, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10))
+      for topic in (c.MOVE_ACTION_STATUS, c.EXECUTE_TRAJECTORY_STATUS)),
+    *(LiveTopic(f"/{name}/follow_joint_trajectory/_action/status", c.GOAL_STATUS_TYPE,
+                TopicQos(durability="transient_local", depth=10)) for name in ARM_CONTROLLERS),
 )
+ARM_STATUS: frozenset[str] = frozenset(t.topic for t in SUBSCRIBED if c.topic_key(t.topic) in c.ARM_STATUS_TOPICS)
 
 # The order a transport reads its topics in: the evidence first, the triggers (a failing /task_info, an aborted
 # goal) last. A transport takes what arrived on each topic in turn, so a failure is seen only after the log
 # lines and skill events that arrived with it, and the explanation that it triggers already has them.
-TRIGGERS = frozenset({c.TASK_INFO, c.NAV_STATUS})
+TRIGGERS = frozenset({c.TASK_INFO, c.NAV_STATUS, *ARM_STATUS})
 READ_ORDER: tuple[LiveTopic, ...] = tuple(sorted(SUBSCRIBED, key=lambda t: t.topic in TRIGGERS))
 
 # What the node and the replayer offer. Answers are transient-local so a display that starts later still
@@ -87,4 +99,5 @@ PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.ODOM: TopicQos(depth=10),
     c.GOAL_POSE: TopicQos(depth=10),
     c.NAV_STATUS: TopicQos(durability="transient_local", depth=1),  # rcl_action_qos_profile_status_default
+    **{topic: TopicQos(durability="transient_local", depth=1) for topic in ARM_STATUS},
 }

@@ -7,11 +7,12 @@ ros-controls+ros2_controllers/repo). For every branch of `scripts/modules_mining
 sources for RCLCPP_/RCUTILS_ log macros (ERROR/WARN/FATAL, also _STREAM/_THROTTLE/_ONCE/_EXPRESSION, and INFO
 in the files named for goal and controller bookkeeping), `throw X("...")` texts, and the Python spawners'
 `logger.error/warn/info(...)`; each format string becomes a regex (printf conversions, streamed and `+`-joined
-expressions and f-string fields become `[\\s\\S]*?`), deduplicated across branches with `file:line@branch` for
-each. The curated rules of the config then give an entry its cause, its kind (cause | symptom | noise | goal
-bookkeeping) and its meaning; the rest stay in the catalogue as recognised lines with no cause, so an explainer
-can tell a known MoveIt line from an unknown one. Writes explainers/manipulation/moveit_catalogue.json and
-explainers/control/ros2_control_catalogue.json; `--check` fails when the written files differ.
+expressions and f-string fields become `[\\s\\S]*?`; in `return_files`, the literals a function returns for its
+caller to log), deduplicated across branches with `file:line@branch` for each. The curated rules of the config
+then give an entry its cause, its kind (cause | symptom | noise | goal bookkeeping) and its meaning; the rest
+stay in the catalogue as recognised lines with no cause, so an explainer can tell a known MoveIt line from an
+unknown one. Writes explainers/manipulation/moveit_catalogue.json and explainers/control/ros2_control_catalogue.json;
+`--check` fails when the written files differ.
 """
 
 from __future__ import annotations
@@ -32,7 +33,8 @@ ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "scripts" / "modules_mining.yaml"
 WILD = r"[\s\S]*?"
 LEVEL_NAMES = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50, "THROW": 40}
-CPP_MACRO = re.compile(r"\b(?:RCLCPP|RCUTILS_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
+# URCL_LOG_*: the UR client library's printf-style macros (no logger argument), printed by the UR driver
+CPP_MACRO = re.compile(r"\b(RCLCPP|RCUTILS_LOG|URCL_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
 CPP_THROW = re.compile(r"\bthrow\s+(?:[\w:]+)\s*[({]")
 PY_LOG = re.compile(r"\.(error|warn|warning|fatal|info)\(")
 PY_RAISE = re.compile(r"\braise\s+\w+\(")
@@ -159,14 +161,14 @@ def _cpp_pieces(expr: str, printf: bool) -> list[str | None]:
 
 def _cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
     for m in CPP_MACRO.finditer(text):
-        level, suffix = m[1], m[2]
+        level, suffix, first = m[2], m[3], 0 if m[1] == "URCL_LOG" else 1
         body = text[m.end():_close(text, m.end())]
         args = _split_args(body)
         line = text.count("\n", 0, m.start()) + 1
         if "STREAM" in suffix:
             pieces = _cpp_pieces(args[-1] if len(args) > 1 else body, printf=False)
         else:
-            fmt_at = next((k for k, a in enumerate(args) if k and _CPP_LIT.match(a.strip())), None)
+            fmt_at = next((k for k, a in enumerate(args) if k >= first and _CPP_LIT.match(a.strip())), None)
             if fmt_at is None:
                 continue
             fmt = args[fmt_at]
@@ -232,8 +234,12 @@ def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
                 parts.append(WILD)
                 shown.append("…")
             continue
-        parts.append(re.escape(p).replace("\\ ", " "))
-        shown.append(p)
+        run = "".join(shown).rsplit("…", 1)[-1]  # adjacent literals are one run of text
+        cut = _first_sentence(p, len(run))
+        parts.append(re.escape(cut).replace("\\ ", " "))
+        shown.append(cut)
+        if cut != p:
+            break
     open_start = bool(parts) and parts[0] == WILD
     open_end = bool(parts) and parts[-1] == WILD
     while parts and parts[0] == WILD:
@@ -242,23 +248,51 @@ def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
         parts.pop()
     if not parts:
         return "", "", open_end
+    if not open_end and parts[-1].endswith(("\\.", "!")) and len(parts[-1]) > 2:
+        # a message's closing full stop comes and goes between releases (ros2_control 0.1.0's "Loader for
+        # controller '…' not found" has none): a line is recognised with or without it
+        parts[-1] += "?"
     return ("" if open_start else START) + "".join(parts), "".join(shown).strip("…").strip(), open_end
+
+
+_SENTENCE_END = re.compile(r"[.!] (?=[A-Z])")
+
+
+def _first_sentence(piece: str, before: int) -> str:
+    """A long literal up to the end of its first sentence when that sentence alone is long (60 characters or
+    more): releases add, drop or reword the advice that follows (the UR driver's calibration error), and such a
+    sentence already tells the message apart."""
+    m = _SENTENCE_END.search(piece)
+    return piece[:m.start() + 1] if m is not None and before + m.start() >= 60 else piece
 
 
 def _longest_literal(pieces: list[str | None]) -> int:
     return max((len(p.strip()) for p in pieces if p), default=0)
 
 
+_RETURN_LIT = re.compile(r'\breturn\s+"((?:[^"\\\n]|\\.)*)"\s*;')
+
+
+def _returned(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    """The string literals a function returns for its caller to log ("%s"): move_group's getActionResultString
+    texts, logged at INFO as each goal ends."""
+    for m in _RETURN_LIT.finditer(text):
+        yield "INFO", text.count("\n", 0, m.start()) + 1, [_unescape(m[1])]
+
+
 def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     skip = re.compile(cfg["skip_paths"])
     info_files = re.compile(cfg.get("info_files", "^$"))
+    return_files = re.compile(cfg.get("return_files", "^$"))
     files = [f for f in git(repo, "ls-tree", "-r", "--name-only", branch).splitlines()
              if f.endswith((".cpp", ".hpp", ".h", ".py")) and not skip.search(f)]
     for f in files:
         text = git(repo, "show", f"{branch}:{f}")
         calls = _py_calls(text) if f.endswith(".py") else _cpp_calls(text)
+        if return_files.search(f):
+            calls = (*calls, *_returned(text))
         for level, line, pieces in calls:
-            if level in {"DEBUG"} or (level == "INFO" and not info_files.search(f)):
+            if level in {"DEBUG"} or (level == "INFO" and not info_files.search(f) and not return_files.search(f)):
                 continue
             if _longest_literal(pieces) < 6:
                 continue  # "%s" alone, or a stream of variables: nothing to recognise a line by

@@ -1,6 +1,7 @@
 """The ros2_control message catalogue (ros2_control_catalogue.json, mined by scripts/mine_modules.py from
-ros-controls/ros2_control and ros-controls/ros2_controllers): controller_manager, the spawners, hardware
-interfaces and the stock controllers, joint_trajectory_controller first."""
+ros-controls/ros2_control and ros-controls/ros2_controllers, and the drivers and simulators people run under it:
+the UR driver and its client library, gazebo_ros2_control, gz_ros2_control, Kinova's ros2_kortex, the KUKA LBR
+stack): controller_manager, the spawners, hardware interfaces and the stock controllers."""
 
 from __future__ import annotations
 
@@ -12,3 +13,4 @@ from hexar.explainers.logcause import ModuleCatalogue, load
 @cache
 def catalogue() -> ModuleCatalogue:
     return load("hexar.explainers.control", "ros2_control_catalogue.json")
+

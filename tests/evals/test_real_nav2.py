@@ -203,3 +203,15 @@ def test_half_the_excerpts_of_each_outcome_get_a_task() -> None:
     for outcome in ("failed", "succeeded", "slow"):
         tasks = [t for e, t in zip(corpus(), plan, strict=True) if e.outcome == outcome]
         assert tasks and sum(tasks) == (len(tasks) + 1) // 2
+
+
+def test_level_and_stamp_in_one_bracket_of_a_custom_console_format() -> None:
+    # RCUTILS_CONSOLE_OUTPUT_FORMAT="[{severity} {time}] [{name}]: {message} ({function_name}() at {file_name}:...)"
+    text = ("[ros2_control_node-1] [ERROR 1781509379.841754359] [tolerances]: State tolerances failed for joint 4: "
+            "(check_state_tolerance_per_joint() at tolerances.hpp:319)\n"
+            "[ros2_control_node-1] [WARN 1781509379.841879328] [joint_trajectory_controller]: Aborted due to state "
+            "tolerance violation (update() at scaled_joint_trajectory_controller.cpp:306)")
+    first, second = parse_console(text)
+    assert (first.level, first.name, first.stamp_ns) == (40, "tolerances", 1781509379841754359)
+    assert first.msg.startswith("State tolerances failed for joint 4:")
+    assert (second.level, second.name) == (30, "joint_trajectory_controller")

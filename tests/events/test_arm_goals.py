@@ -106,3 +106,28 @@ def test_a_nav2_process_dying_stays_navigations(tmp_path: Path) -> None:
           _died("/opt/ros/humble/lib/nav2_controller/controller_server"))
     tasks = read_recording(b.write(tmp_path / "run")).tasks
     assert [(t.skills[0].skill, t.skills[0].params["source"]) for t in tasks] == [("navigate_to_pose", "nav2")]
+
+
+def _lifecycle(b: BagBuilder, node: str) -> None:
+    # rcl_lifecycle.c, rclcpp_lifecycle and launch_ros/actions/lifecycle_node.py lines of an activate sent early
+    b.log(T0, "rcl_lifecycle", 30, "No transition matching 3 found for current state unconfigured")
+    b.log(T0 + sec_ns(0.01), node.strip("/").replace("/", "."), ERROR,
+          "Unable to start transition 3 from current state unconfigured: Transition is not registered., at "
+          "./src/rcl_lifecycle.c:355")
+    b.log(T0 + sec_ns(0.02), "launch_ros.actions.lifecycle_node", ERROR,
+          f"Failed to make transition 'TRANSITION_ACTIVATE' for LifecycleNode '{node}'")
+
+
+def test_a_drivers_lifecycle_node_that_failed_its_transition_is_a_bring_up_task_not_navigations(
+        tmp_path: Path) -> None:
+    b = BagBuilder()
+    _lifecycle(b, "/camera/camera_driver")
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
+
+
+def test_a_nav2_lifecycle_node_that_failed_its_transition_stays_navigations(tmp_path: Path) -> None:
+    b = BagBuilder()
+    _lifecycle(b, "/controller_server")
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [t.skills[0].params["source"] for t in tasks] == ["nav2"]

@@ -18,7 +18,7 @@ from hexar.events import contract as c
 from hexar.events.records import INFO
 from hexar.live.log import LiveLog
 from hexar.live.replay import replay as replay_in_process
-from hexar.live.topics import ANSWER, ANSWER_QOS, SUBSCRIBED
+from hexar.live.topics import ANSWER, ANSWER_QOS, ARM_STATUS, SUBSCRIBED
 from tests.live.dds_helpers import fresh_domain, make_replayer, make_transport
 from tests.live.test_nav2_topics import T0, TY, _odom, _pose, _status, _time, _twist
 
@@ -45,6 +45,8 @@ def every_type(out: Path) -> Path:
     b.raw(T0 + sec_ns(1.2), c.GOAL_POSE, c.POSE_STAMPED_TYPE, TY["geometry_msgs/msg/PoseStamped"](
         header=TY["std_msgs/msg/Header"](stamp=_time(T0 + sec_ns(1.2)), frame_id="map"), pose=_pose(1.0, 2.0)))
     b.raw(T0 + sec_ns(1.3), c.NAV_STATUS, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(1.3), 2))
+    for i, topic in enumerate(sorted(ARM_STATUS)):  # MoveIt's and the arm controllers' action status topics
+        b.raw(T0 + sec_ns(1.4 + i * 0.1), topic, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(1.4 + i * 0.1), 2))
     return b.write(out)
 
 

@@ -107,3 +107,32 @@ def test_the_committed_catalogues_cite_a_file_line_and_branch_for_every_message(
         assert doc["messages"]
         assert all(re.match(r"[\w/.+-]+:\d+@[\w.]+", m["source"]) for m in doc["messages"])
         assert all(re.compile(m["pattern"]) for m in doc["messages"])
+
+
+def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_path: Path) -> None:
+    repo = tmp_path / "me+drv" / "repo"
+    (repo / "src").mkdir(parents=True)
+    _git(repo, "init", "-q", "-b", "main")
+    _git(repo, "config", "user.email", "t@t")
+    _git(repo, "config", "user.name", "t")
+    (repo / "src" / "driver.cpp").write_text(
+        'void f() {\n  URCL_LOG_ERROR("Failed to connect to the RTDE server, retrying in %i seconds", t);\n'
+        '  RCLCPP_ERROR(l, "The calibration parameters of the connected robot don\'t match the ones from the given "\n'
+        '               "kinematics config file. Please be aware that this can lead to critical inaccuracies.");\n'
+        '  RCLCPP_ERROR(l, "Loader for controller \'%s\' not found.", n);\n}\n')
+    (repo / "src" / "result.cpp").write_text('std::string r() {\n  return "No motion plan found. No execution '
+                                             'attempted.";\n}\n')
+    _git(repo, "add", ".")
+    _git(repo, "commit", "-qm", "a")
+    mod = _module()
+    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
+        {"name": "drv", "mirror": "me+drv", "branches": ["main"], "skip_paths": "^$",
+         "return_files": r"result\.cpp"}]}}}
+    rows = {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
+    assert re.search(rows["Failed to connect to the RTDE server, retrying in … seconds"]["pattern"],
+                     "Failed to connect to the RTDE server, retrying in 10 seconds")
+    calibration = next(r for t, r in rows.items() if t.startswith("The calibration parameters"))
+    assert re.search(calibration["pattern"], "The calibration parameters of the connected robot don't match the ones "
+                                             "from the given kinematics config file.")
+    assert re.search(rows["Loader for controller '…' not found."]["pattern"], "Loader for controller 'cart' not found")
+    assert rows["No motion plan found. No execution attempted."]["level"] == "INFO"

@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import read_recording
 from hexar.events.records import ERROR, INFO, WARN
@@ -87,3 +89,77 @@ def test_a_goal_that_completed_is_nominal_despite_warnings(tmp_path: Path) -> No
         (4, MGI, INFO, "Plan and Execute request complete!")], "How did it go?")
     assert found.causes == ["manipulation.nominal"]
     assert "without any problem" in found.text
+
+
+# Real MoveIt 2 lines, each with its source (moveit/moveit2 file:line@branch), and the cause the answer names.
+MOVEIT_LINES = [
+    # model_based_planning_context.cpp:795@humble logs it at INFO, :779@main at ERROR
+    ("moveit.ompl_planning.model_based_planning_context", INFO, "Unable to solve the planning problem",
+     "manipulation.planning_failed", "motion planner found no solution"),
+    # planning_pipeline.cpp:325@main "Planner '%s' failed with error code %s": the code names the failure
+    ("moveit.ros.planning_pipeline", ERROR, "Planner 'ompl' failed with error code NO_IK_SOLUTION",
+     "manipulation.ik_failed", "inverse kinematics"),
+    # fix_start_state_collision.cpp:100@humble
+    ("moveit_ros.fix_start_state_collision", INFO, "Start state appears to be in collision with respect to group arm",
+     "manipulation.start_state_in_collision", "already in collision"),
+    # model_based_planning_context.cpp:990@humble
+    ("moveit.ompl_planning.model_based_planning_context", WARN, "Invalid goal state",
+     "manipulation.goal_state_invalid", "goal itself was invalid"),
+    # trajectory_execution_manager.cpp:1185@humble
+    ("moveit_ros.trajectory_execution_manager", ERROR,
+     "Unable to identify any set of controllers that can actuate the specified joints: [ joint_1 joint_2 ]",
+     "manipulation.controllers_not_found", "found no controllers"),
+    # trajectory_execution_manager.cpp:1173@humble
+    ("moveit_ros.trajectory_execution_manager", ERROR, "Controller 'panda_arm_controller' is not known",
+     "manipulation.controllers_not_found", "found no controllers"),
+    # move_group_capability.cpp:148@humble, move_group's result text as the goal ends
+    ("moveit_move_group_default_capabilities.move_action_capability", INFO,
+     "Solution found but the environment changed during execution and the path was aborted",
+     "manipulation.execution_failed", "executing the planned arm trajectory failed"),
+]
+
+
+@pytest.mark.parametrize(("logger", "level", "line", "cause", "words"), MOVEIT_LINES,
+                         ids=[c for _, _, _, c, _ in MOVEIT_LINES])
+def test_each_real_moveit_cause_line_names_its_cause(tmp_path: Path, logger: str, level: int, line: str,
+                                                     cause: str, words: str) -> None:
+    task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (0.5, logger, level, line),
+        (0.6, "moveit_move_group_default_capabilities.move_action_capability", INFO,
+         "No motion plan found. No execution attempted."),
+        *_aborted(1)])
+    assert task.outcome == "failed"
+    assert found.causes[0] == cause and words in found.text
+    assert found.evidence[0].item.endswith(line)
+
+
+def test_move_groups_result_text_alone_is_a_symptom_not_a_cause(tmp_path: Path) -> None:
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (0.6, "moveit_move_group_default_capabilities.move_action_capability", INFO,
+         "No motion plan found. No execution attempted."),
+        *_aborted(1)])
+    assert found.causes == ["manipulation.unexplained_failure"]
+    assert "do not show a cause I know" in found.text
+
+
+def test_move_groups_success_text_ends_the_goal_as_done(tmp_path: Path) -> None:
+    task, found = _explain(tmp_path, [
+        (0, "moveit_move_group_default_capabilities.move_action_capability", INFO,
+         "Combined planning and execution request received for MoveGroup action. Forwarding to planning and "
+         "execution pipeline."),
+        (2, "moveit_move_group_default_capabilities.move_action_capability", INFO, "Solution was found and executed.")],
+        question="How did it go?")
+    assert task.outcome == "succeeded" and found.causes == ["manipulation.nominal"]
+
+
+def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_an_unfinished_run(
+        tmp_path: Path) -> None:
+    # planning_scene_monitor.cpp:1392@humble, a weak cause; no goal line and no error: no outcome to explain
+    task, found = _explain(tmp_path, [
+        (0, "moveit_ros.planning_scene_monitor.planning_scene_monitor", WARN,
+         "The complete state of the robot is not yet known.  Missing gripper_joint")], question="How did it go?")
+    assert task.outcome == "running" and found.causes == []
+    assert "do not show whether anything went wrong" in found.text and "planning_scene_monitor" in found.text
+
