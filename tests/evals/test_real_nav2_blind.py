@@ -68,7 +68,8 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
 
 @pytest.mark.parametrize(("name", "suite"), [("real_nav2_blind_none_before.json", "real-nav2-blind"),
                                              ("real_nav2_blind_none.json", "real-nav2-blind"),
-                                             ("real_nav2_blind2_none_before.json", "real-nav2-blind2")])
+                                             ("real_nav2_blind2_none_before.json", "real-nav2-blind2"),
+                                             ("real_nav2_blind2_none.json", "real-nav2-blind2")])
 def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
     baseline = read_baseline(BASELINES / name, suite)
     assert set(baseline["excerpts"]) == {e.id for e in (blind() if suite == "real-nav2-blind" else blind2())}
