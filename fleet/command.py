@@ -6,12 +6,13 @@ Ctrl-C keeps what is done and a re-run skips it. The tables, report and figures 
 
 from __future__ import annotations
 
+import importlib.util
 import json
 import os
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
 from rich.console import Console
 from rich.markup import escape
@@ -34,11 +35,11 @@ class TriageOptions:
     progress: bool = True
 
 
-def load_results(out: Path) -> list[dict[str, Any]]:
-    """The finished recordings; a line cut short by a crash is dropped (its recording runs again)."""
+def load_results(out: Path) -> dict[str, dict[str, Any]]:
+    """The finished recordings by key; a line cut short by a crash is dropped (its recording runs again)."""
     path = out / RESULTS
     if not path.is_file():
-        return []
+        return {}
     done: dict[str, dict[str, Any]] = {}
     for line in path.read_text(encoding="utf-8").splitlines():
         try:
@@ -47,7 +48,7 @@ def load_results(out: Path) -> list[dict[str, Any]]:
             continue
         if isinstance(item, dict) and "key" in item:
             done[item["key"]] = item
-    return list(done.values())
+    return done
 
 
 def triage_command(opts: TriageOptions, console: Console) -> int:
@@ -65,8 +66,8 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
     if not parquet:
         console.print("[yellow]pyarrow is not installed: writing tasks.jsonl only, no tasks.parquet "
                       "(pip install 'hexar\\[fleet]')[/yellow]")
-    done = {item["key"] for item in load_results(opts.out)}
-    todo = [(path, rel) for path, rel in found if path not in done]
+    earlier = load_results(opts.out)
+    todo = [(path, rel) for path, rel in found if path not in earlier]
     where = (f"Ray ({opts.ray or 'a local instance'})" if opts.ray is not None
              else f"{workers} worker{'s' if workers > 1 else ''}")
     console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
@@ -77,12 +78,15 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             f.seek(-1, os.SEEK_END)
             if f.read(1) != b"\n":
                 f.write(b"\n")  # a crash cut the last line short: start a fresh one, or the next result is lost too
+    new: list[str] = []
     with results_file.open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
         job = bar.add_task("triage", total=len(todo))
 
-        def on_done(result: dict[str, Any]) -> None:
-            _append(sink, result)
-            bar.advance(job)
+        def on_done(lines: list[str]) -> None:
+            sink.write("".join(line + "\n" for line in lines))
+            sink.flush()
+            new.extend(lines)
+            bar.advance(job, len(lines))
             bar.refresh()
 
         try:
@@ -96,8 +100,9 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             interrupted = True
     from hexar.fleet.report import write_outputs
 
-    labels = dict(found)  # the report is about these inputs, whatever else --out holds
-    results = [relabel(r, labels[r["key"]]) for r in load_results(opts.out) if r["key"] in labels]
+    # What the results file now holds, without reading it again; in the inputs' order, whoever finished first.
+    finished = {**earlier, **{item["key"]: item for item in map(json.loads, new)}}
+    results = [relabel(finished[path], rel) for path, rel in found if path in finished]
     summary = write_outputs(results, opts.out, figures=opts.figures, parquet=parquet)
     bad = [r for r in results if r["error"]]
     console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "
@@ -127,12 +132,12 @@ def relabel(result: dict[str, Any], rel: str) -> dict[str, Any]:
 
 
 def parquet_available() -> bool:
-    """Parquet needs pyarrow (the `fleet` extra): asked before the work, so a plain install still gets its tables."""
+    """Parquet needs pyarrow (the `fleet` extra): asked before the work, so a plain install still gets its tables.
+    Found, not imported: the import is the report's, after the work (a missing one is then a one-line error)."""
     try:
-        import pyarrow  # noqa: F401
-    except ImportError:
+        return importlib.util.find_spec("pyarrow") is not None
+    except (ImportError, ValueError):  # a module entry set to None, or a broken package
         return False
-    return True
 
 
 # A Ray address as `--ray ADDRESS` gives it: the flag takes no value, so the address arrives among the inputs.
@@ -150,11 +155,6 @@ def ray_target(inputs: list[str], ray: bool, address: str | None) -> tuple[list[
     if address is None:
         return inputs, None
     return inputs, "" if address == "local" else address
-
-
-def _append(sink: TextIO, result: dict[str, Any]) -> None:
-    sink.write(json.dumps(result, ensure_ascii=False) + "\n")
-    sink.flush()
 
 
 def _progress(console: Console, enabled: bool) -> Progress:
