@@ -14,6 +14,7 @@ import contextlib
 import multiprocessing
 import os
 import signal
+import threading
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -53,8 +54,10 @@ class _Worker:
     out: int = 0  # chunks sent, not yet answered
 
 
-def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[list[str]], None]) -> None:
-    """Triage `todo`, passing each batch of finished results-file lines to `on_done` as it arrives."""
+def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[list[str]], None],
+              meanwhile: Callable[[], None] | None = None) -> None:
+    """Triage `todo`, passing each batch of finished results-file lines to `on_done` as it arrives. `meanwhile`
+    runs on a thread of this process once the workers are forked (a fork must not copy a thread's held lock)."""
     if workers == 1:
         for path, rel in todo:
             on_done([work(path, rel)])
@@ -64,6 +67,8 @@ def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[list
     left: deque[tuple[str, str]] = deque()  # handed back for a worker with scikit-learn
     warm()
     pool = _start(min(workers, len(queue)))
+    if meanwhile is not None:
+        threading.Thread(target=meanwhile, name="hexar-triage-meanwhile", daemon=True).start()
     try:
         _feed(pool, queue, left)
         while any(w.out for w in pool):
