@@ -11,6 +11,7 @@ import importlib.util
 import json
 import os
 import re
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -82,13 +83,17 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
     new: list[str] = []
     with results_file.open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
         job = bar.add_task("triage", total=len(todo))
+        drawn = [0.0]
 
         def on_done(lines: list[str]) -> None:
             sink.write("".join(line + "\n" for line in lines))
             sink.flush()
             new.extend(lines)
             bar.advance(job, len(lines))
-            bar.refresh()
+            # drawn at most ten times a second: a redraw costs about as much as a small recording's triage
+            if (now := time.monotonic()) - drawn[0] >= 0.1 or len(new) == len(todo):
+                drawn[0] = now
+                bar.refresh()
 
         try:
             if opts.ray is not None and todo:  # nothing left to do: no cluster to start or reach

@@ -74,16 +74,16 @@ def run_local(todo: list[tuple[str, str]], workers: int, on_done: Callable[[list
         while any(w.out for w in pool):
             for ready in wait([w.conn for w in pool if w.out]):
                 w = next(w for w in pool if w.conn is ready)
-                try:
-                    lines, back = w.conn.recv()
-                except EOFError as err:
-                    raise TriageError(f"a triage worker stopped (exit code {w.process.exitcode}); run the same "
-                                      "command again to finish the rest") from err
+                lines, back = w.conn.recv()
                 w.out -= 1
                 left.extend(back)
                 if lines:
                     on_done(lines)
                 _feed(pool, queue, left)
+    except (EOFError, OSError) as err:  # a worker's end of a pipe closed: it was killed, or crashed
+        codes = ", ".join(str(w.process.exitcode) for w in pool if w.process.exitcode is not None)
+        raise TriageError(f"a triage worker stopped (exit code {codes or 'unknown'}); run the same command "
+                          "again to finish the rest") from err
     finally:
         _stop(pool)
 
