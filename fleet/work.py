@@ -1,7 +1,7 @@
 """Fleet triage, one recording at a time: every task's outcome and, with no LLM, the explanation of what went wrong.
 
-This is the unit of work of `hexar triage`: the local process pool and Ray both call `work` and get plain rows
-(dicts of str/int/float/list) back, so results travel between processes without pickling events.
+This is the unit of work of `hexar triage`: the local pool calls `work_chunk` and Ray calls `work`; both get the
+results file's JSON lines back, so results travel between processes as text, without pickling events.
 """
 
 from __future__ import annotations
@@ -168,11 +168,3 @@ def warm() -> None:
     registry()
     shipped_model()
 
-
-def warm_scikit_learn() -> None:
-    """What a pizza explanation imports and fits (scikit-learn, LIME, the recipe tree): a second and more."""
-    import lime.lime_tabular  # noqa: F401
-
-    from hexar.explainers.pizza.recommender import default_recommender
-
-    default_recommender()
