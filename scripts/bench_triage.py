@@ -10,7 +10,8 @@
    runs another `hexar` (the code before a change, installed elsewhere) on the same recordings in the same run
    and prints the ratios. The read-only floor: reading every message of the same recordings from their storage.
    The runs are interleaved (floor, then every configuration and code, then again), and each figure is printed
-   with the machine's load average before and after it: on shared cores, compare figures taken at like loads.
+   with the machine's load average before and after it and the cores other processes kept busy meanwhile (from
+   /proc/stat, less this run's own CPU): on shared cores, compare figures taken while others used little.
 2. Scaling: the per-recording cost, in-process, of the same 40 recordings (a) as simulated, (b) with camera
    images on an unsubscribed topic, (c) with extra /rosout lines (a subscribed topic). The cost should follow the
    bytes of subscribed topics, not the camera data.
@@ -82,9 +83,22 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
+def _own_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
 def load_average() -> float:
     """The machine's 1-minute load average, printed beside every figure: the cores are shared."""
     return round(os.getloadavg()[0], 2)
+
+
+def busy_cpu_s() -> float:
+    """CPU-seconds the whole machine has been busy since boot (every process, not only ours), from /proc/stat."""
+    with open("/proc/stat") as f:
+        fields = [int(v) for v in f.readline().split()[1:9]]
+    user, nice, system, _idle, _iowait, irq, softirq, steal = fields
+    return (user + nice + system + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
 
 
 def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str, float]:
@@ -92,7 +106,7 @@ def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str
     (Ray's own daemons are not its children: a Ray run's CPU time counts the driver only)."""
     shutil.rmtree(out, ignore_errors=True)
     load = load_average()
-    cpu0, start = _children_cpu(), time.perf_counter()
+    cpu0, own0, busy0, start = _children_cpu(), _own_cpu(), busy_cpu_s(), time.perf_counter()
     proc = subprocess.Popen([hexar, "triage", str(fleet), "--out", str(out), "--no-figures", *extra],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     peak = 0.0
@@ -100,11 +114,13 @@ def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str
         peak = max(peak, tree_rss_mb(proc.pid))
         time.sleep(0.05)
     wall, cpu = time.perf_counter() - start, _children_cpu() - cpu0
+    # the load average lags, and counts this run too; this is what everything else took meanwhile
+    others = max(0.0, busy_cpu_s() - busy0 - cpu - (_own_cpu() - own0)) / wall
     if proc.returncode != 0:
         raise SystemExit(f"triage failed: {proc.stderr.read().decode() if proc.stderr else ''}")
     done = len((out / "results.jsonl").read_text().splitlines())
     return {"wall_s": wall, "recordings_per_s": done / wall, "per_cpu_s": done / cpu, "peak_rss_mb": peak,
-            "load_before": load, "load_after": load_average()}
+            "load_before": load, "load_after": load_average(), "other_cores": others}
 
 
 def read_floor(fleet: Path) -> float:
@@ -145,7 +161,8 @@ def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
                     sample = run_triage(hexar, fleet, base / "out", extra)
                     samples.setdefault(key, []).append(sample)
                     print(f"run {run + 1}: {key:30s} {sample['recordings_per_s']:7.1f} recordings/s "
-                          f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f})", flush=True)
+                          f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f}; other processes used "
+                          f"{sample['other_cores']:.2f} cores meanwhile)", flush=True)
     out: dict[str, dict[str, float]] = {}
     for key, rows in samples.items():
         out[key] = {k: round(statistics.median(s[k] for s in rows), 2) for k in rows[0]}
@@ -180,7 +197,8 @@ def summarise(result: dict[str, dict[str, float]], sizes: dict[str, int], baseli
               f"({one['per_cpu_s']:.1f} per CPU-second), 2 workers {two['recordings_per_s']:.1f}/s, 2 workers / 1 "
               f"{two['recordings_per_s'] / one['recordings_per_s']:.2f}; read-only floor "
               f"{floor['recordings_per_s']:.0f}/s; load average {one['load_before']:.2f} / {two['load_before']:.2f}"
-              f" / {floor['load_before']:.2f} before each")
+              f" / {floor['load_before']:.2f} before each; other processes used {one['other_cores']:.2f} / "
+              f"{two['other_cores']:.2f} cores during the 1- and 2-worker runs")
     return lines
 
 
