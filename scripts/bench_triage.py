@@ -17,6 +17,7 @@
    bytes of subscribed topics, not the camera data.
 
     .venv/bin/python scripts/bench_triage.py [--runs 3] [--dir DIR] [--skip-ray] [--baseline OLD/bin/hexar]
+        [--wait-quiet 0.2]
 """
 
 from __future__ import annotations
@@ -101,10 +102,22 @@ def busy_cpu_s() -> float:
     return (user + nice + system + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
 
 
-def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str, float]:
+def wait_quiet(cores: float | None, limit_s: float = 300) -> None:
+    """On a shared machine: wait (up to `limit_s`) until other processes keep fewer than `cores` cores busy over a
+    second, so that a 2-worker run finds two cores free."""
+    deadline = time.monotonic() + limit_s
+    while cores is not None and time.monotonic() < deadline:
+        busy0 = busy_cpu_s()
+        time.sleep(1.0)
+        if busy_cpu_s() - busy0 < cores:
+            return
+
+
+def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str], quiet: float | None = None) -> dict[str, float]:
     """One `hexar triage` in a fresh process. The CPU time covers the process and every worker it waited for
     (Ray's own daemons are not its children: a Ray run's CPU time counts the driver only)."""
     shutil.rmtree(out, ignore_errors=True)
+    wait_quiet(quiet)
     load = load_average()
     cpu0, own0, busy0, start = _children_cpu(), _own_cpu(), busy_cpu_s(), time.perf_counter()
     proc = subprocess.Popen([hexar, "triage", str(fleet), "--out", str(out), "--no-figures", *extra],
@@ -140,7 +153,7 @@ def uptime() -> str:
 
 
 def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
-               baseline: str | None) -> dict[str, dict[str, float]]:
+               baseline: str | None, quiet: float | None = None) -> dict[str, dict[str, float]]:
     configs = {"1 worker": ["--workers", "1"], "2 workers": ["--workers", "2"]}
     if ray:
         configs["Ray local, 2 CPUs"] = ["--ray", "local", "--workers", "2"]
@@ -150,6 +163,7 @@ def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
         print(f"run {run + 1}: {uptime()}", flush=True)
         # interleaved, so that a change of load on a shared machine hits every configuration and code alike
         for fleet_name, fleet in fleets.items():
+            wait_quiet(quiet)
             load = load_average()
             floor = {"recordings_per_s": read_floor(fleet), "load_before": load, "load_after": load_average()}
             samples.setdefault(f"{fleet_name}, read-only floor", []).append(floor)
@@ -158,7 +172,7 @@ def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
             for name, extra in configs.items():
                 for code, hexar in codes.items():
                     key = f"{fleet_name}, {name}, {code}"
-                    sample = run_triage(hexar, fleet, base / "out", extra)
+                    sample = run_triage(hexar, fleet, base / "out", extra, quiet)
                     samples.setdefault(key, []).append(sample)
                     print(f"run {run + 1}: {key:30s} {sample['recordings_per_s']:7.1f} recordings/s "
                           f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f}; other processes used "
@@ -282,6 +296,8 @@ def main() -> int:
     ap.add_argument("--skip-throughput", action="store_true")
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--baseline", default=None, help="another hexar executable to compare with, in the same run")
+    ap.add_argument("--wait-quiet", type=float, default=None, metavar="CORES",
+                    help="before each run, wait (up to 5 minutes) until other processes use fewer than CORES cores")
     args = ap.parse_args()
     base = args.dir or Path(tempfile.mkdtemp(prefix="hexar-triage-bench-"))
     t = time.perf_counter()
@@ -291,7 +307,7 @@ def main() -> int:
     fleets = {"60": fleet / "robot-00", str(N): fleet}  # robot-00 is `hexar simulate --seed 0`
     result: dict[str, object] = {"recordings": N, "cpus": os.cpu_count(), "runs": args.runs}
     if not args.skip_throughput:
-        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline)
+        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline, args.wait_quiet)
         result["throughput"] = tp
         result["summary"] = summarise(tp, {name: len(list(path.rglob("metadata.yaml")))
                                            for name, path in fleets.items()}, args.baseline is not None)
