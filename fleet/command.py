@@ -6,12 +6,15 @@ Ctrl-C keeps what is done and a re-run skips it. The tables, report and figures 
 
 from __future__ import annotations
 
+import contextlib
+import importlib.util
 import json
 import os
 import re
+import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, TextIO
+from typing import Any
 
 from rich.console import Console
 from rich.markup import escape
@@ -34,11 +37,11 @@ class TriageOptions:
     progress: bool = True
 
 
-def load_results(out: Path) -> list[dict[str, Any]]:
-    """The finished recordings; a line cut short by a crash is dropped (its recording runs again)."""
+def load_results(out: Path) -> dict[str, dict[str, Any]]:
+    """The finished recordings by key; a line cut short by a crash is dropped (its recording runs again)."""
     path = out / RESULTS
     if not path.is_file():
-        return []
+        return {}
     done: dict[str, dict[str, Any]] = {}
     for line in path.read_text(encoding="utf-8").splitlines():
         try:
@@ -47,7 +50,7 @@ def load_results(out: Path) -> list[dict[str, Any]]:
             continue
         if isinstance(item, dict) and "key" in item:
             done[item["key"]] = item
-    return list(done.values())
+    return done
 
 
 def triage_command(opts: TriageOptions, console: Console) -> int:
@@ -65,8 +68,8 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
     if not parquet:
         console.print("[yellow]pyarrow is not installed: writing tasks.jsonl only, no tasks.parquet "
                       "(pip install 'hexar\\[fleet]')[/yellow]")
-    done = {item["key"] for item in load_results(opts.out)}
-    todo = [(path, rel) for path, rel in found if path not in done]
+    earlier = load_results(opts.out)
+    todo = [(path, rel) for path, rel in found if path not in earlier]
     where = (f"Ray ({opts.ray or 'a local instance'})" if opts.ray is not None
              else f"{workers} worker{'s' if workers > 1 else ''}")
     console.print(f"{len(found)} recordings: {len(found) - len(todo)} done before, {len(todo)} to triage on {where}")
@@ -77,13 +80,20 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
             f.seek(-1, os.SEEK_END)
             if f.read(1) != b"\n":
                 f.write(b"\n")  # a crash cut the last line short: start a fresh one, or the next result is lost too
+    new: list[str] = []
     with results_file.open("a", encoding="utf-8") as sink, _progress(console, opts.progress) as bar:
         job = bar.add_task("triage", total=len(todo))
+        drawn = [0.0]
 
-        def on_done(result: dict[str, Any]) -> None:
-            _append(sink, result)
-            bar.advance(job)
-            bar.refresh()
+        def on_done(lines: list[str]) -> None:
+            sink.write("".join(line + "\n" for line in lines))
+            sink.flush()
+            new.extend(lines)
+            bar.advance(job, len(lines))
+            # drawn at most ten times a second: a redraw costs about as much as a small recording's triage
+            if (now := time.monotonic()) - drawn[0] >= 0.1 or len(new) == len(todo):
+                drawn[0] = now
+                bar.refresh()
 
         try:
             if opts.ray is not None and todo:  # nothing left to do: no cluster to start or reach
@@ -91,13 +101,14 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
 
                 run_ray(todo, opts.ray, opts.workers, on_done)
             else:
-                run_local(todo, workers, on_done)
+                run_local(todo, workers, on_done, meanwhile=_import_report)
         except KeyboardInterrupt:
             interrupted = True
     from hexar.fleet.report import write_outputs
 
-    labels = dict(found)  # the report is about these inputs, whatever else --out holds
-    results = [relabel(r, labels[r["key"]]) for r in load_results(opts.out) if r["key"] in labels]
+    # What the results file now holds, without reading it again; in the inputs' order, whoever finished first.
+    finished = {**earlier, **{item["key"]: item for item in map(json.loads, new)}}
+    results = [relabel(finished[path], rel) for path, rel in found if path in finished]
     summary = write_outputs(results, opts.out, figures=opts.figures, parquet=parquet)
     bad = [r for r in results if r["error"]]
     console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "
@@ -126,13 +137,19 @@ def relabel(result: dict[str, Any], rel: str) -> dict[str, Any]:
     return result
 
 
+def _import_report() -> None:
+    """The report's pandas and pyarrow (half a second), imported while the workers triage rather than after."""
+    with contextlib.suppress(ImportError):  # said in one line where the report needs it
+        import hexar.fleet.report  # noqa: F401
+
+
 def parquet_available() -> bool:
-    """Parquet needs pyarrow (the `fleet` extra): asked before the work, so a plain install still gets its tables."""
+    """Parquet needs pyarrow (the `fleet` extra): asked before the work, so a plain install still gets its tables.
+    Found, not imported: the import is the report's, after the work (a missing one is then a one-line error)."""
     try:
-        import pyarrow  # noqa: F401
-    except ImportError:
+        return importlib.util.find_spec("pyarrow") is not None
+    except (ImportError, ValueError):  # a module entry set to None, or a broken package
         return False
-    return True
 
 
 # A Ray address as `--ray ADDRESS` gives it: the flag takes no value, so the address arrives among the inputs.
@@ -150,11 +167,6 @@ def ray_target(inputs: list[str], ray: bool, address: str | None) -> tuple[list[
     if address is None:
         return inputs, None
     return inputs, "" if address == "local" else address
-
-
-def _append(sink: TextIO, result: dict[str, Any]) -> None:
-    sink.write(json.dumps(result, ensure_ascii=False) + "\n")
-    sink.flush()
 
 
 def _progress(console: Console, enabled: bool) -> Progress:

@@ -18,7 +18,7 @@ IN_FLIGHT_PER_CPU = 4  # submitted but unfinished tasks: bounded, so the driver'
 
 
 def run_ray(todo: list[tuple[str, str]], address: str, workers: int | None,
-            on_done: Callable[[dict[str, Any]], None]) -> None:
+            on_done: Callable[[list[str]], None]) -> None:
     try:
         import ray
     except ImportError as err:
@@ -34,7 +34,7 @@ def run_ray(todo: list[tuple[str, str]], address: str, workers: int | None,
         raise TriageError(f"cannot start or reach Ray at {address or 'a local instance'}: {err}") from err
 
     @ray.remote(num_cpus=1)
-    def triage_task(path: str, rel: str) -> dict[str, Any]:
+    def triage_task(path: str, rel: str) -> str:
         warm()
         return work(path, rel)
 
@@ -45,8 +45,7 @@ def run_ray(todo: list[tuple[str, str]], address: str, workers: int | None,
         pending = [triage_task.remote(path, rel) for path, rel in _take(queue, window)]
         while pending:
             finished, pending = ray.wait(pending, num_returns=1)
-            for ref in finished:
-                on_done(ray.get(ref))
+            on_done([ray.get(ref) for ref in finished])
             pending += [triage_task.remote(path, rel) for path, rel in _take(queue, len(finished))]
     except KeyboardInterrupt:
         for ref in pending:

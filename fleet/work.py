@@ -1,12 +1,14 @@
 """Fleet triage, one recording at a time: every task's outcome and, with no LLM, the explanation of what went wrong.
 
-This is the unit of work of `hexar triage`: the local process pool and Ray both call `work` and get plain rows
-(dicts of str/int/float/list) back, so results travel between processes without pickling events.
+This is the unit of work of `hexar triage`: the local pool calls `work_chunk` and Ray calls `work`; both get the
+results file's JSON lines back, so results travel between processes as text, without pickling events.
 """
 
 from __future__ import annotations
 
+import json
 import re
+import sys
 from datetime import UTC, datetime
 from functools import cache
 from pathlib import Path
@@ -15,12 +17,15 @@ from typing import Any
 from hexar.events import EventLog, EventsError, Task, read_recording
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ExplainerError
+from hexar.explainers.pizza.explainer import PizzaRecommenderExplainer
 from hexar.explainers.registry import Registry
 from hexar.fleet.inputs import robot_of
 
 QUESTION = "What happened?"
 # What an explainer reports when nothing went wrong: not worth a look in a fleet report.
 BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
+# Explainers whose answer needs scikit-learn and LIME (a second and more to import).
+NEEDS_SCIKIT_LEARN = frozenset({PizzaRecommenderExplainer.name})
 
 
 @cache
@@ -97,35 +102,69 @@ def task_row(log: EventLog, task: Task, rel: str, reg: Registry) -> dict[str, An
     }
 
 
-def triage_recording(path: Path, rel: str) -> dict[str, Any]:
-    """One recording's rows, or its one-line error; never raises for a bad recording."""
+def needs_scikit_learn(log: EventLog, reg: Registry) -> bool:
+    """Whether explaining this recording may call an explainer that imports scikit-learn and LIME (the pizza
+    recommender): a pool keeps that one-second import to one worker. Erring either way only moves work, never
+    changes a row: a worker that meets such an explainer anyway imports the libraries itself."""
+    for task in log.tasks:
+        if reg.failure_explainer(task) in NEEDS_SCIKIT_LEARN:
+            return True
+        if not task.is_recovery and any(NEEDS_SCIKIT_LEARN.intersection(reg.for_module(run.skill))
+                                         for run in task.skills):
+            return True
+    return False
+
+
+class _LeftForScikitLearn(Exception):
+    """A light worker's recording that needs scikit-learn: handed back, not triaged."""
+
+
+def triage_recording(path: Path, rel: str, light: bool = False) -> dict[str, Any]:
+    """One recording's rows, or its one-line error; never raises for a bad recording. `light`: raises
+    _LeftForScikitLearn instead when the recording needs scikit-learn and this process has not imported it."""
     try:
         log = read_recording(path)
         reg = registry()
+        if light and "sklearn" not in sys.modules and needs_scikit_learn(log, reg):
+            raise _LeftForScikitLearn(rel)
         # A recording without tasks is readable, just not explainable: it is counted, not listed as bad.
         return {"recording": rel, "rows": [task_row(log, task, rel, reg) for task in log.tasks], "error": "",
                 "recovered": [w for w in log.warnings if w.startswith("recovered:")]}
+    except _LeftForScikitLearn:
+        raise
     except (EventsError, ExplainerError) as err:
         return {"recording": rel, "rows": [], "error": str(err).splitlines()[0] if str(err) else type(err).__name__}
     except Exception as err:  # an explainer bug on odd data must not stop a fleet run: report it as that run's
         return {"recording": rel, "rows": [], "error": f"{type(err).__name__}: {err}".splitlines()[0]}
 
 
-def work(path: str, rel: str) -> dict[str, Any]:
-    """`triage_recording` keyed by the recording's resolved path, as the results file keeps it."""
-    result = triage_recording(Path(path), rel)
-    result["key"] = path
-    return result
+def work(path: str, rel: str) -> str:
+    """One line of the results file: `triage_recording` keyed by the recording's resolved path. Workers send this
+    text rather than the rows, so the parent writes it as it comes without encoding it again."""
+    lines, _ = work_chunk([(path, rel)], light=False)
+    return lines[0]
+
+
+def work_chunk(chunk: list[tuple[str, str]], light: bool) -> tuple[list[str], list[tuple[str, str]]]:
+    """A pool worker's unit: the lines of a few recordings, and those left for a worker with scikit-learn."""
+    lines: list[str] = []
+    left: list[tuple[str, str]] = []
+    for path, rel in chunk:
+        try:
+            result = triage_recording(Path(path), rel, light)
+        except _LeftForScikitLearn:
+            left.append((path, rel))
+            continue
+        result["key"] = path
+        lines.append(json.dumps(result, ensure_ascii=False))
+    return lines, left
 
 
 def warm() -> None:
-    """Load the explainers and their models before forking (the help-seeking causal model; the pizza tree, with
-    scikit-learn and LIME, a second and more to import): forked workers share them instead of each loading its own."""
-    import lime.lime_tabular  # noqa: F401 - what a pizza explanation imports
-
+    """Load what every recording needs before forking (the explainers, the help-seeking causal model), so that
+    forked workers share it instead of each building its own."""
     from hexar.explainers.ask_human.explainer import shipped_model
-    from hexar.explainers.pizza.recommender import default_recommender
 
     registry()
     shipped_model()
-    default_recommender()
+

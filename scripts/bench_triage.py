@@ -9,11 +9,15 @@
    per-recording throughput without the fixed start-up (interpreter, imports, report). `--baseline HEXAR`
    runs another `hexar` (the code before a change, installed elsewhere) on the same recordings in the same run
    and prints the ratios. The read-only floor: reading every message of the same recordings from their storage.
+   The runs are interleaved (floor, then every configuration and code, then again), and each figure is printed
+   with the machine's load average before and after it and the cores other processes kept busy meanwhile (from
+   /proc/stat, less this run's own CPU): on shared cores, compare figures taken while others used little.
 2. Scaling: the per-recording cost, in-process, of the same 40 recordings (a) as simulated, (b) with camera
    images on an unsubscribed topic, (c) with extra /rosout lines (a subscribed topic). The cost should follow the
    bytes of subscribed topics, not the camera data.
 
     .venv/bin/python scripts/bench_triage.py [--runs 3] [--dir DIR] [--skip-ray] [--baseline OLD/bin/hexar]
+        [--wait-quiet 0.2]
 """
 
 from __future__ import annotations
@@ -80,11 +84,42 @@ def _children_cpu() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str, float]:
+def _own_cpu() -> float:
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def load_average() -> float:
+    """The machine's 1-minute load average, printed beside every figure: the cores are shared."""
+    return round(os.getloadavg()[0], 2)
+
+
+def busy_cpu_s() -> float:
+    """CPU-seconds the whole machine has been busy since boot (every process, not only ours), from /proc/stat."""
+    with open("/proc/stat") as f:
+        fields = [int(v) for v in f.readline().split()[1:9]]
+    user, nice, system, _idle, _iowait, irq, softirq, steal = fields
+    return (user + nice + system + irq + softirq + steal) / os.sysconf("SC_CLK_TCK")
+
+
+def wait_quiet(cores: float | None, limit_s: float = 300) -> None:
+    """On a shared machine: wait (up to `limit_s`) until other processes keep fewer than `cores` cores busy over a
+    second, so that a 2-worker run finds two cores free."""
+    deadline = time.monotonic() + limit_s
+    while cores is not None and time.monotonic() < deadline:
+        busy0 = busy_cpu_s()
+        time.sleep(1.0)
+        if busy_cpu_s() - busy0 < cores:
+            return
+
+
+def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str], quiet: float | None = None) -> dict[str, float]:
     """One `hexar triage` in a fresh process. The CPU time covers the process and every worker it waited for
     (Ray's own daemons are not its children: a Ray run's CPU time counts the driver only)."""
     shutil.rmtree(out, ignore_errors=True)
-    cpu0, start = _children_cpu(), time.perf_counter()
+    wait_quiet(quiet)
+    load = load_average()
+    cpu0, own0, busy0, start = _children_cpu(), _own_cpu(), busy_cpu_s(), time.perf_counter()
     proc = subprocess.Popen([hexar, "triage", str(fleet), "--out", str(out), "--no-figures", *extra],
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     peak = 0.0
@@ -92,42 +127,60 @@ def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str]) -> dict[str
         peak = max(peak, tree_rss_mb(proc.pid))
         time.sleep(0.05)
     wall, cpu = time.perf_counter() - start, _children_cpu() - cpu0
+    # the load average lags, and counts this run too; this is what everything else took meanwhile
+    others = max(0.0, busy_cpu_s() - busy0 - cpu - (_own_cpu() - own0)) / wall
     if proc.returncode != 0:
         raise SystemExit(f"triage failed: {proc.stderr.read().decode() if proc.stderr else ''}")
     done = len((out / "results.jsonl").read_text().splitlines())
-    return {"wall_s": wall, "recordings_per_s": done / wall, "per_cpu_s": done / cpu, "peak_rss_mb": peak}
+    return {"wall_s": wall, "recordings_per_s": done / wall, "per_cpu_s": done / cpu, "peak_rss_mb": peak,
+            "load_before": load, "load_after": load_average(), "other_cores": others}
 
 
-def read_floor(fleet: Path, runs: int) -> float:
+def read_floor(fleet: Path) -> float:
     """Recordings/s of reading every message of every recording from its sqlite3 storage, nothing decoded."""
     files = sorted(fleet.rglob("*.db3"))
-    rates = []
-    for _ in range(runs):
-        start = time.perf_counter()
-        for file in files:
-            db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
-            for _row in db.execute("SELECT topic_id, timestamp, data FROM messages"):
-                pass
-            db.close()
-        rates.append(len(files) / (time.perf_counter() - start))
-    return round(statistics.median(rates), 1)
+    start = time.perf_counter()
+    for file in files:
+        db = sqlite3.connect(f"file:{file}?mode=ro", uri=True)
+        for _row in db.execute("SELECT topic_id, timestamp, data FROM messages"):
+            pass
+        db.close()
+    return len(files) / (time.perf_counter() - start)
+
+
+def uptime() -> str:
+    return subprocess.run(["uptime"], capture_output=True, text=True, check=False).stdout.strip()
 
 
 def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
-               baseline: str | None) -> dict[str, dict[str, float]]:
+               baseline: str | None, quiet: float | None = None) -> dict[str, dict[str, float]]:
     configs = {"1 worker": ["--workers", "1"], "2 workers": ["--workers", "2"]}
     if ray:
         configs["Ray local, 2 CPUs"] = ["--ray", "local", "--workers", "2"]
     codes = {"new": HEXAR, **({"old": baseline} if baseline else {})}
+    samples: dict[str, list[dict[str, float]]] = {}
+    for run in range(runs):
+        print(f"run {run + 1}: {uptime()}", flush=True)
+        # interleaved, so that a change of load on a shared machine hits every configuration and code alike
+        for fleet_name, fleet in fleets.items():
+            wait_quiet(quiet)
+            load = load_average()
+            floor = {"recordings_per_s": read_floor(fleet), "load_before": load, "load_after": load_average()}
+            samples.setdefault(f"{fleet_name}, read-only floor", []).append(floor)
+            print(f"run {run + 1}: {fleet_name + ', read-only floor':30s} {floor['recordings_per_s']:7.1f} "
+                  f"recordings/s (load {load:.2f} -> {floor['load_after']:.2f})", flush=True)
+            for name, extra in configs.items():
+                for code, hexar in codes.items():
+                    key = f"{fleet_name}, {name}, {code}"
+                    sample = run_triage(hexar, fleet, base / "out", extra, quiet)
+                    samples.setdefault(key, []).append(sample)
+                    print(f"run {run + 1}: {key:30s} {sample['recordings_per_s']:7.1f} recordings/s "
+                          f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f}; other processes used "
+                          f"{sample['other_cores']:.2f} cores meanwhile)", flush=True)
     out: dict[str, dict[str, float]] = {}
-    for fleet_name, fleet in fleets.items():
-        for name, extra in configs.items():
-            for code, hexar in codes.items():
-                # interleaved, so that a change of load on a shared machine hits both codes alike
-                samples = [run_triage(hexar, fleet, base / "out", extra) for _ in range(runs)]
-                key = f"{fleet_name}, {name}, {code}"
-                out[key] = {k: round(statistics.median(s[k] for s in samples), 2) for k in samples[0]}
-                print(f"{key:34s} {out[key]}", flush=True)
+    for key, rows in samples.items():
+        out[key] = {k: round(statistics.median(s[k] for s in rows), 2) for k in rows[0]}
+        print(f"median {key:30s} {out[key]}", flush=True)
     return out
 
 
@@ -151,6 +204,15 @@ def summarise(result: dict[str, dict[str, float]], sizes: dict[str, int], baseli
                 lines[f"new/old {key[:-5]}, CPU"] = round(row["per_cpu_s"] / old["per_cpu_s"], 2)
     for k, v in lines.items():
         print(f"{k:40s} {v}")
+    for fleet in sizes:
+        one, two = result[f"{fleet}, 1 worker, new"], result[f"{fleet}, 2 workers, new"]
+        floor = result[f"{fleet}, read-only floor"]
+        print(f"== {fleet} recordings, medians: 1 worker {one['recordings_per_s']:.1f} recordings/s "
+              f"({one['per_cpu_s']:.1f} per CPU-second), 2 workers {two['recordings_per_s']:.1f}/s, 2 workers / 1 "
+              f"{two['recordings_per_s'] / one['recordings_per_s']:.2f}; read-only floor "
+              f"{floor['recordings_per_s']:.0f}/s; load average {one['load_before']:.2f} / {two['load_before']:.2f}"
+              f" / {floor['load_before']:.2f} before each; other processes used {one['other_cores']:.2f} / "
+              f"{two['other_cores']:.2f} cores during the 1- and 2-worker runs")
     return lines
 
 
@@ -234,19 +296,18 @@ def main() -> int:
     ap.add_argument("--skip-throughput", action="store_true")
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--baseline", default=None, help="another hexar executable to compare with, in the same run")
+    ap.add_argument("--wait-quiet", type=float, default=None, metavar="CORES",
+                    help="before each run, wait (up to 5 minutes) until other processes use fewer than CORES cores")
     args = ap.parse_args()
     base = args.dir or Path(tempfile.mkdtemp(prefix="hexar-triage-bench-"))
     t = time.perf_counter()
     fleet = make_fleet(base)
     print(f"{N} recordings in {fleet} ({time.perf_counter() - t:.0f} s to simulate); {os.cpu_count()} CPUs; "
-          f"load average {os.getloadavg()[0]:.1f}", flush=True)
+          f"{uptime()}", flush=True)
     fleets = {"60": fleet / "robot-00", str(N): fleet}  # robot-00 is `hexar simulate --seed 0`
     result: dict[str, object] = {"recordings": N, "cpus": os.cpu_count(), "runs": args.runs}
-    floor = {name: read_floor(path, args.runs) for name, path in fleets.items()}
-    print(f"read-only floor, recordings/s: {floor}", flush=True)
-    result["read_floor"] = floor
     if not args.skip_throughput:
-        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline)
+        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline, args.wait_quiet)
         result["throughput"] = tp
         result["summary"] = summarise(tp, {name: len(list(path.rglob("metadata.yaml")))
                                            for name, path in fleets.items()}, args.baseline is not None)
@@ -257,6 +318,7 @@ def main() -> int:
         more = sc["more_rosout"]["subscribed_kb"] / sc["plain"]["subscribed_kb"]
         print(f"camera data x{sc['camera']['total_mb'] / sc['plain']['total_mb']:.0f} bytes -> time "
               f"x{ratio_camera:.2f}; subscribed /rosout x{more:.1f} bytes -> time x{ratio_logs:.2f}")
+    print(uptime())
     print(json.dumps(result))
     return 0
 
