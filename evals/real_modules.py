@@ -36,7 +36,9 @@ from hexar.evals.real_nav2_suite import Grade, hexar_asker  # one grade, one ask
 SUITE = "real-modules"
 HELDOUT_SUITE = "real-modules-heldout"
 HELDOUT2_SUITE = "real-modules-heldout2"  # collected in a later round, measured once before and once after tuning
-FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml"}
+HELDOUT3_SUITE = "real-modules-heldout3"  # the same, one round later
+FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
+         HELDOUT3_SUITE: "heldout3.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}

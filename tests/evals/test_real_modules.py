@@ -29,6 +29,9 @@ def test_the_held_out_sets_parse_and_share_no_excerpt_or_thread_with_the_corpus(
             seen[e.id] = suite
     urls = {suite: {e.url for e in excerpts} for suite, excerpts in by_suite.items()}
     assert not urls["real-modules-heldout2"] & (urls[SUITE] | urls["real-modules-heldout"])
+    assert len(by_suite["real-modules-heldout3"]) >= 16
+    earlier = urls[SUITE] | urls["real-modules-heldout"] | urls["real-modules-heldout2"]
+    assert not urls["real-modules-heldout3"] & earlier
 
 
 def test_an_excerpt_becomes_a_recording_with_or_without_a_task(tmp_path: Path) -> None:
