@@ -8,29 +8,42 @@ Two costs of rosbags' open dwarf reading a small recording's messages:
 - it reads metadata.yaml with ruamel's pure-Python parser. PyYAML's libyaml parser reads the same file about ten
   times faster; where libyaml is missing, or the file is anything but a plain uncompressed rosbag2 recording with
   the fields rosbags reads, rosbags opens it itself, so every error and its text stay rosbags'.
+- its sqlite3 and MCAP storages parse every topic's offered QoS profiles, stored as YAML text, with ruamel again,
+  on every open (a quarter of a small recording's reading). A fleet stores the same few texts in every recording,
+  so the storages here are rosbags' own code with that one helper answering each distinct text from the first
+  time rosbags parsed it: the same values, the same errors (a failed parse is not kept, so it fails again).
 """
 
 from __future__ import annotations
 
+import types
+from collections.abc import Callable, Mapping
 from contextlib import ExitStack, suppress
 from functools import lru_cache
 from pathlib import Path, PurePath
-from typing import Any
+from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, TypeVar, cast
 
 import yaml
 from rosbags.highlevel import AnyReader
 from rosbags.highlevel.anyreader import AnyReaderError
-from rosbags.interfaces import Connection, ConnectionExtRosbag2, MessageDefinition, MessageDefinitionFormat
+from rosbags.interfaces import Connection, ConnectionExtRosbag2, MessageDefinition, MessageDefinitionFormat, Qos
 from rosbags.rosbag2.metadata import ReaderMetadata, parse_qos
 from rosbags.rosbag2.reader import DirectoryReader
 from rosbags.rosbag2.reader import Reader as Reader2
+from rosbags.rosbag2.storage_mcap import McapReader, get_qos
+from rosbags.rosbag2.storage_sqlite3 import Sqlite3Reader
 from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
+
+if TYPE_CHECKING:
+    from rosbags.rosbag2.reader import ReaderProtocol
 
 # (message type, definition format, definition text, type hash) of a connection that stores its definition
 Definition = tuple[str, MessageDefinitionFormat, str, str]
 _IDL_SEPARATOR = "=" * 80 + "\n"
 SETS_KEPT = 32  # distinct definition sets whose typestores stay built: a few per robot software version
+QOS_KEPT = 256  # distinct offered-QoS texts kept parsed: a few per topic and robot software version
 
 
 LIBYAML = hasattr(yaml, "CSafeLoader")  # PyYAML built with libyaml, as its wheels are
@@ -38,14 +51,19 @@ _LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
 class Reader(AnyReader):
-    """AnyReader, opened the same way and raising the same errors, with its typestore from the shared cache."""
+    """AnyReader, opened the same way and raising the same errors, with its typestore from the shared cache and
+    its storages parsing each distinct QoS text once."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         for reader in self.readers:
-            if (isinstance(reader, Reader2) and type(reader.storage) is DirectoryReader and LIBYAML
-                    and isinstance(reader.storage.path, Path)):
-                reader.storage = Directory(reader.storage.path)
+            if not (isinstance(reader, Reader2) and isinstance(path := getattr(reader.storage, "path", None), Path)):
+                continue
+            storage = type(reader.storage)
+            if storage is DirectoryReader:
+                reader.storage = Directory(path)
+            elif storage in _FAST_STORAGE:
+                reader.storage = _FAST_STORAGE[storage](path)
 
     def _open(self) -> None:
         assert self.stack
@@ -94,11 +112,74 @@ def typestore_for(defs: tuple[Definition, ...], is2: bool, default: Typestore | 
     return store
 
 
+@lru_cache(maxsize=QOS_KEPT)
+def _qos_of_text(text: str) -> tuple[Qos, ...]:
+    return tuple(parse_qos(text))
+
+
+def qos_once(dcts: Any) -> list[Qos]:
+    """rosbags' parse_qos, parsing each distinct YAML text once per process (a fresh list each call, as rosbags
+    returns; Qos values are immutable)."""
+    return list(_qos_of_text(dcts)) if isinstance(dcts, str) else parse_qos(dcts)
+
+
+@lru_cache(maxsize=QOS_KEPT)
+def _mcap_qos_of(metadata: bytes) -> tuple[Qos, ...]:
+    return tuple(get_qos(metadata))
+
+
+def mcap_qos_once(metadata: bytes) -> list[Qos]:
+    """rosbags' get_qos of an MCAP channel's metadata record, parsed once per distinct record."""
+    return list(_mcap_qos_of(bytes(metadata)))
+
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+
+def _rebound(func: F, **names: Any) -> F:
+    """`func`'s own code, looking `names` up here instead of in its module (which stays as it is)."""
+    missing = set(names) - _names_used(func.__code__)
+    assert not missing, f"{func.__qualname__} no longer calls {missing}"  # rosbags changed: check the swap
+    fresh = types.FunctionType(func.__code__, {**func.__globals__, **names}, func.__name__, func.__defaults__,
+                               func.__closure__)
+    fresh.__kwdefaults__, fresh.__qualname__, fresh.__doc__ = func.__kwdefaults__, func.__qualname__, func.__doc__
+    return cast(F, fresh)
+
+
+def _names_used(code: types.CodeType) -> set[str]:
+    """The global names a function's code (comprehensions included) looks up."""
+    found = set(code.co_names)
+    for const in code.co_consts:
+        if isinstance(const, types.CodeType):
+            found |= _names_used(const)
+    return found
+
+
+class Sqlite3Storage(Sqlite3Reader):
+    """rosbags' sqlite3 storage, its topics' QoS texts parsed once per process."""
+
+    _open = _rebound(Sqlite3Reader._open, parse_qos=qos_once)
+
+
+class McapStorage(McapReader):
+    """rosbags' MCAP storage, its channels' QoS records parsed once per process."""
+
+    read_index = _rebound(McapReader.read_index, get_qos=mcap_qos_once)
+    meta_scan = _rebound(McapReader.meta_scan, get_qos=mcap_qos_once)
+
+
+_FAST_STORAGE: dict[type[Any], type[Any]] = {Sqlite3Reader: Sqlite3Storage, McapReader: McapStorage}
+
+
 class Directory(DirectoryReader):
-    """A rosbag2 folder whose metadata.yaml libyaml reads, when it is plain; else rosbags reads it itself."""
+    """A rosbag2 folder whose metadata.yaml libyaml reads, when it is plain (else rosbags reads it itself), and
+    whose storages parse each distinct QoS text once."""
+
+    STORAGE_PLUGINS: Mapping[str, type[ReaderProtocol]] = MappingProxyType(
+        {"mcap": McapStorage, "sqlite3": Sqlite3Storage})
 
     def open(self) -> None:
-        parsed = _plain_metadata(self.path / "metadata.yaml") if isinstance(self.path, Path) else None
+        parsed = _plain_metadata(self.path / "metadata.yaml") if LIBYAML and isinstance(self.path, Path) else None
         if parsed is None:
             super().open()
             return
