@@ -166,3 +166,62 @@ def test_a_controller_manager_still_waiting_for_its_robot_description_names_no_c
     assert "never reached" not in found.text
     assert any("no robot description arrived" in d and "failed to load" in d for d in found.details)
 
+
+
+def test_a_hardware_read_error_with_older_spacing_is_still_a_hardware_failure(tmp_path: Path) -> None:
+    # ros2_control PR 1645 (July 2024) printed "… resulted in an error : [ %s]"; controller_manager.cpp:3293@jazzy
+    # prints "… resulted in an error: [ %s]": the same words
+    found = _explain(tmp_path, [
+        (0, "test_controller_manager", INFO, "Loading controller 'test_controller'"),
+        (1.0, "test_controller_manager", ERROR, "Deactivating following hardware components as their read cycle "
+                                                "resulted in an error : [ TestActuatorHardware TestSystemHardware ]")])
+    assert found.causes == ["control.hardware_failure"]
+    assert "a hardware interface failed" in found.text
+
+
+def test_a_hardware_plugin_not_among_the_installed_descriptions_is_a_set_up_error(tmp_path: Path) -> None:
+    # hardware_interface's "Caught exception of type : … while loading hardware: …" around pluginlib's
+    # LibraryLoadException text (pluginlib class_loader_imp.hpp): the URDF names a class no package declares
+    found = _explain(tmp_path, [
+        (0, "controller_manager", ERROR,
+         "Caught exception of type : N9pluginlib20LibraryLoadExceptionE while loading hardware: According to the "
+         "loaded plugin descriptions the class  joint_state_topic_hardware_interface/JointStateTopicSystem\n"
+         " with base class type hardware_interface::SystemInterface does not exist. Declared types are  "
+         "mock_components/GenericSystem")])
+    assert found.causes == ["control.configuration_error"]
+    assert "not among the installed plugin descriptions" in found.text
+    assert "hardware interface failed" not in found.text
+
+
+def test_a_spawner_that_exited_with_an_error_is_a_symptom_not_a_process_that_died(tmp_path: Path) -> None:
+    # controller_manager/controller_manager/spawner.py:435@jazzy returns 1 when its controller fails: launch's death
+    # line of the spawner tells that failure, not a running process lost
+    found = _explain(tmp_path, [
+        (0, "spawner-4", ERROR, "process has died [pid 63239, exit code 1, cmd '/opt/ros/jazzy/lib/"
+                                "controller_manager/spawner joint_trajectory_controller --ros-args -r "
+                                "__node:=spawn_joint_trajectory_controller']."),
+        (0.1, "controller_manager", INFO, "Configuring controller: 'gripper_controller'")],
+        skill="bring_up_controllers")
+    assert "bringup.process_died" not in found.causes
+    assert found.causes == ["control.unexplained_failure"]
+    assert "processes died" not in found.text
+
+
+def test_a_hardware_transition_that_failed_without_a_reason_is_quoted_with_its_candidates(tmp_path: Path) -> None:
+    # hardware_interface/src/resource_manager.cpp:68@jazzy: logged whenever the component's transition fails, so
+    # a device out of reach and a set-up that does not fit the robot end alike
+    found = _explain(tmp_path, [
+        (0, "resource_manager", INFO, "Loading hardware 'iisy_hardware'"),
+        (0.1, "resource_manager", ERROR, "Failed to 'configure' hardware 'iisy_hardware'")])
+    assert found.causes == ["control.unexplained_failure"]
+    assert "Failed to 'configure' hardware 'iisy_hardware'" in found.text and "either" in found.text
+    assert "a hardware interface failed" not in found.text
+
+
+def test_an_earlier_reason_still_decides_before_a_failed_hardware_transition(tmp_path: Path) -> None:
+    # Universal_Robots_Client_Library producer.h:128@master, then resource_manager.cpp:68@jazzy
+    found = _explain(tmp_path, [
+        (0, "UR_Client_Library:", ERROR, "Failed to connect to robot. Please check if the robot is booted and "
+                                          "connected."),
+        (0.1, "resource_manager", ERROR, "Failed to 'configure' hardware 'ur'")])
+    assert found.causes == ["control.hardware_failure"]
