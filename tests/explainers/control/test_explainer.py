@@ -225,3 +225,17 @@ def test_an_earlier_reason_still_decides_before_a_failed_hardware_transition(tmp
                                           "connected."),
         (0.1, "resource_manager", ERROR, "Failed to 'configure' hardware 'ur'")])
     assert found.causes == ["control.hardware_failure"]
+
+
+def test_a_required_list_left_empty_is_a_parameter_that_never_reached_the_controller(tmp_path: Path) -> None:
+    # generate_parameter_library cpp_conversions.py:123@main wraps RSL's size_gt text; the joint trajectory
+    # controller's joints default to [] with size_gt<>: [0] (joint_trajectory_controller_parameters.yaml:2@master)
+    found = _explain(tmp_path, [
+        (0, "lbr.controller_manager", INFO, "Loading controller 'joint_trajectory_controller'"),
+        (0.01, "lbr.controller_manager", ERROR,
+         "Exception thrown during init stage with message: Invalid value set during initialization for parameter "
+         "'joints': Length of parameter 'joints' is '0' but must be greater than '0'"),
+        (0.02, "lbr.controller_manager", ERROR, "Could not initialize the controller named "
+                                                "'joint_trajectory_controller'")])
+    assert found.causes == ["bringup.configuration_error"]
+    assert "never reached" in found.text and "--param-file" in found.text

@@ -179,3 +179,13 @@ def test_ompls_invalid_start_state_is_the_start_state_not_a_planner_that_found_n
     assert found.causes == ["manipulation.start_state_in_collision"]
     assert "Skipping invalid start state" in found.evidence[0].item
     assert any("a collision, or a path constraint" in d for d in found.details)
+
+
+def test_task_constructors_start_state_in_collision_is_the_start_state(tmp_path: Path) -> None:
+    # moveit_task_constructor core/src/solvers/joint_interpolation.cpp:79@master: a failing stage's comment
+    _task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "test_execution-6", ERROR, "move (0/1): Start state is in collision!"),
+        *_aborted(2)])
+    assert found.causes == ["manipulation.start_state_in_collision"]
+    assert "already in collision" in found.text
