@@ -16,6 +16,7 @@ from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
+from hexar.explainers.navigation.catalogue import clean
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
 
@@ -136,7 +137,7 @@ class ModuleExplainer:
             ev = [Evidence.of_log(cause, first)] if first is not None else []
             ev += evidence_of(cause, d.symptoms)
             # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
-            quoted = (f" The first error was '{said(first).splitlines()[0][:200]}' at {at(first, start)}."
+            quoted = (f" The first error was {verbatim(first)} at {at(first, start)}."
                       if first is not None else self._last_said(d, start))
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
@@ -191,7 +192,7 @@ class ModuleExplainer:
         return Explanation(
             explainer=self.name, causes=[], evidence=[Evidence.of_log("warning", line)], confidence=0.3,
             text=f"The recording ends before {self.module_words} finished. On the way, "
-                 f"'{said(line).splitlines()[0][:200]}' at {at(line, start)}; healthy robots print it too, so my "
+                 f"{verbatim(line)} at {at(line, start)}; healthy robots print it too, so my "
                  f"logs do not show whether anything went wrong.",
             details=[f"That line means: {meaning}."] if meaning else [])
 
@@ -204,7 +205,7 @@ class ModuleExplainer:
         return Explanation(
             explainer=self.name, causes=[cause], evidence=[Evidence.of_log(cause, line)], confidence=0.4,
             text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know: "
-                 f"'{said(line).splitlines()[0][:200]}' at {at(line, start)} says only that a step failed. "
+                 f"{verbatim(line)} at {at(line, start)} says only that a step failed. "
                  f"{candidates}",
             fix="Read the lines of that component just before it, at DEBUG level if need be: they decide which.",
             details=[f"That line's source: {source}." if source else "No line before it says why."])
@@ -240,6 +241,13 @@ class ModuleExplainer:
         out.append("Log (oldest first):")
         out += [line.render() for line in lines[-MAX_FACT_LINES:]]
         return "\n".join(out)
+
+
+def verbatim(line: LogLine) -> str:
+    """A log line quoted in an answer's sentence: its first line, set in “…” behind its node, so that a reader (and
+    hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
+    line is no text-to-speech timeout)."""
+    return f"“[{line.name or 'unnamed node'}] {clean(line.msg).strip().splitlines()[0][:200]}”"
 
 
 def _upper(text: str) -> str:

@@ -65,7 +65,7 @@ def test_an_error_no_catalogue_knows_is_quoted_with_its_node_and_time_not_guesse
         (3.5, "my_gripper_driver", ERROR, "gripper fingers jammed at 12 mm"), *_aborted(4)])
     assert found.causes == ["manipulation.unexplained_failure"]
     assert "do not show a cause I know" in found.text
-    assert "'[my_gripper_driver] gripper fingers jammed at 12 mm' at 3.5 s" in found.text
+    assert "“[my_gripper_driver] gripper fingers jammed at 12 mm” at 3.5 s" in found.text
     assert found.confidence < 0.5
 
 
