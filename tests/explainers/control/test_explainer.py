@@ -34,7 +34,8 @@ def test_the_controller_managers_line_is_the_cause_and_the_spawners_its_symptom(
         (0.2, "spawner_joint_state_broadcaster", FATAL, "Failed loading controller joint_state_broadcaster")])
     assert found.causes == ["control.controller_load_failed"]
     assert found.evidence[0].item.startswith("[controller_manager] ERROR Loader for controller")
-    assert "could not load it" in found.text and "package.xml" in (found.fix or "")
+    assert "could not be loaded: the controller's plugin type is not installed" in found.text
+    assert "package.xml" in (found.fix or "")
 
 
 def test_switch_timeout_is_an_activation_failure(tmp_path: Path) -> None:
@@ -239,3 +240,14 @@ def test_a_required_list_left_empty_is_a_parameter_that_never_reached_the_contro
                                                 "'joint_trajectory_controller'")])
     assert found.causes == ["bringup.configuration_error"]
     assert "never reached" in found.text and "--param-file" in found.text
+
+
+def test_a_ros2_without_its_control_command_never_loaded_the_controller(tmp_path: Path) -> None:
+    # argparse's "invalid choice" from ros2cli: no installed package adds the 'control' command
+    # (ros2controlcli/setup.py:49@jazzy registers it), so `ros2 control load_controller` never ran
+    found = _explain(tmp_path, [
+        (0, "ros2", ERROR, "error: argument Call `ros2 <command> -h` for more detailed usage.: invalid choice: "
+                           "'control' (choose from 'action', 'bag', 'component', 'daemon', 'doctor', 'launch')")])
+    assert found.causes == ["control.controller_load_failed"]
+    assert "`ros2 control` command itself is not installed" in found.text
+    assert "type is not installed" not in found.text
