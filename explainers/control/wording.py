@@ -11,7 +11,7 @@ from hexar.explainers.module_wording import Worded, Wording
 CLAUSES = {
     # hexar/causes.yaml: controller_load_failed implies configuration_error, so the sentence says both
     "control.controller_load_failed": (
-        "a controller was set up wrongly, so it could not be loaded: {meaning}.",
+        "a controller was set up wrongly: it was not loaded, as {meaning}.",
         "Install the controller's package (add it to package.xml) and declare the controller with its 'type' under "
         "controller_manager in the controllers yaml."),
     "control.controller_activation_failed": (

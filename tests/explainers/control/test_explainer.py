@@ -34,7 +34,7 @@ def test_the_controller_managers_line_is_the_cause_and_the_spawners_its_symptom(
         (0.2, "spawner_joint_state_broadcaster", FATAL, "Failed loading controller joint_state_broadcaster")])
     assert found.causes == ["control.controller_load_failed"]
     assert found.evidence[0].item.startswith("[controller_manager] ERROR Loader for controller")
-    assert "could not be loaded: the controller's plugin type is not installed" in found.text
+    assert "it was not loaded, as the controller's plugin type is not installed" in found.text
     assert "package.xml" in (found.fix or "")
 
 
