@@ -25,6 +25,7 @@ from hexar.explainers.errors import ExplainerError
 from hexar.explainers.navigation.catalogue import Catalogue, Entry, clean
 
 Outcome = Literal["succeeded", "failed", "canceled", "unknown"]
+_SPACED = re.compile(r"[ \t]+([:;,])")
 _CODE = re.compile(r"\b[A-Z][A-Z_]{5,}\b")
 GENERIC = frozenset({"manipulation.planning_failed"})
 
@@ -38,6 +39,7 @@ class Refinement:
     contains: str
     cause: str
     source: str
+    meaning: str = ""
 
 
 class ModuleCatalogue(Catalogue):
@@ -49,7 +51,8 @@ class ModuleCatalogue(Catalogue):
             super().__init__(raw)
             self.name = name
             self.error_codes: dict[str, str] = {str(k): str(v) for k, v in (raw.get("error_codes") or {}).items()}
-            self.refinements = tuple(Refinement(str(r["contains"]), str(r["cause"]), str(r["source"]))
+            self.refinements = tuple(Refinement(str(r["contains"]), str(r["cause"]), str(r["source"]),
+                                                str(r.get("meaning") or ""))
                                      for r in raw.get("refinements") or [])
         except (ExplainerError, KeyError, TypeError, AttributeError) as err:
             raise ModuleCatalogueError(f"malformed catalogue {name}: {err}") from err
@@ -73,6 +76,10 @@ class ModuleCatalogue(Catalogue):
         console may print a logger's header and its message on separate lines, and launch prints each line of a
         message behind its own prefix)."""
         found = super().match(msg)
+        if found is None and _SPACED.search(msg):
+            # releases moved the spaces around a message's punctuation ("an error : [" in the July 2024 commit of
+            # ros2_control PR 1645, "an error: [" in controller_manager.cpp:3293@jazzy): the words decide
+            found = super().match(_SPACED.sub(r"\1", msg))
         if found is not None or "\n" not in msg:
             return found
         for part in msg.split("\n"):
@@ -82,12 +89,17 @@ class ModuleCatalogue(Catalogue):
                     return found
         return None
 
+    def refinement(self, msg: str) -> Refinement | None:
+        """The code-built text in the line, if any."""
+        text = clean(msg)
+        return next((r for r in self.refinements if r.contains in text), None)
+
     def cause_of(self, msg: str, entry: Entry | None) -> str | None:
         """The cause a line states: a code-built text or an error-code name in it first, else its entry's."""
         text = clean(msg)
-        for r in self.refinements:
-            if r.contains in text:
-                return r.cause
+        refined = self.refinement(msg)
+        if refined is not None:
+            return refined.cause
         # a code refines a line that names no cause of its own, or only the pipeline's generic failure ("Planner
         # 'ompl' failed with error code NO_IK_SOLUTION" is an IK failure, not any planning failure)
         if self.error_codes and (entry is None or entry.kind != "cause" or entry.cause in GENERIC):
@@ -116,6 +128,7 @@ class Reading:
     entry: Entry | None
     cause: str | None
     catalogue: str | None  # the catalogue that recognised it
+    note: str = ""  # what a code-built text in it means (a refinement's meaning)
 
     @property
     def kind(self) -> str:
@@ -136,7 +149,8 @@ def read(lines: Iterable[LogLine], catalogues: Sequence[ModuleCatalogue]) -> lis
             entry = cat.match(line.msg)
             cause = cat.cause_of(line.msg, entry)
             if entry is not None or cause is not None:
-                found = Reading(line, entry, cause, cat.name)
+                refined = cat.refinement(line.msg)
+                found = Reading(line, entry, cause, cat.name, refined.meaning if refined is not None else "")
                 if cause is not None:
                     break
         out.append(found or Reading(line, None, None, None))

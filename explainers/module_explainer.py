@@ -16,8 +16,9 @@ from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
+from hexar.explainers.navigation.catalogue import clean
 from hexar.explainers.phrasing import phrase
-from hexar.explainers.stack_causes import killed_by_signal, stack_cause, stack_words
+from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -51,6 +52,9 @@ class ModuleExplainer:
     skills: ClassVar[tuple[str, ...]]
     prefix: ClassVar[str]
     module_words: ClassVar[str]  # "my arm's motion", "my arm controllers"
+    # catalogue entries that only report that a step failed, not why, where the why is one of several causes:
+    # entry id -> the candidates, told beside the quoted line instead of one of them
+    ambiguous: ClassVar[dict[str, str]] = {}
 
     def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
         self.model = model
@@ -87,6 +91,10 @@ class ModuleExplainer:
             d = Diagnosis("succeeded", end=d.end)
         else:
             stack = stack_cause(lines)
+            if stack is not None and stack.cause == "bringup.process_died" and one_shot_failed(stack.line.msg):
+                # a spawner's exit tells that its controller failed: the controller manager's lines say why
+                d.symptoms = [stack, *d.symptoms][:2] if d.decisive is None else d.symptoms
+                stack = None
             if stack is not None and stack.cause == "bringup.process_died" and d.decisive is None \
                     and d.unknown is not None and d.unknown.t < stack.line.t and d.unknown.level >= ERROR:
                 # a process that died after an error no catalogue explains: the death is that error's consequence
@@ -129,7 +137,7 @@ class ModuleExplainer:
             ev = [Evidence.of_log(cause, first)] if first is not None else []
             ev += evidence_of(cause, d.symptoms)
             # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
-            quoted = (f" The first error was '{said(first).splitlines()[0][:200]}' at {at(first, start)}."
+            quoted = (f" The first error was {verbatim(first)} at {at(first, start)}."
                       if first is not None else self._last_said(d, start))
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
@@ -158,6 +166,8 @@ class ModuleExplainer:
         assert decisive is not None
         if d.outcome == "unknown" and not decisive.strong:
             return self._unsure(decisive, start)
+        if decisive.entry is not None and decisive.entry.id in self.ambiguous and decisive.note == "":
+            return self._candidates(decisive, self.ambiguous[decisive.entry.id], start, run)
         cause = d.cause
         text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
         ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
@@ -182,9 +192,23 @@ class ModuleExplainer:
         return Explanation(
             explainer=self.name, causes=[], evidence=[Evidence.of_log("warning", line)], confidence=0.3,
             text=f"The recording ends before {self.module_words} finished. On the way, "
-                 f"'{said(line).splitlines()[0][:200]}' at {at(line, start)}; healthy robots print it too, so my "
+                 f"{verbatim(line)} at {at(line, start)}; healthy robots print it too, so my "
                  f"logs do not show whether anything went wrong.",
             details=[f"That line means: {meaning}."] if meaning else [])
+
+    def _candidates(self, decisive: Reading, candidates: str, start: int, run: SkillRun | None) -> Explanation:
+        """The decisive line reports a failed step whose reason could be one of several causes: quoted with its
+        node and time and the candidates, none claimed."""
+        cause = f"{self.prefix}unexplained_failure"
+        line = decisive.line
+        source = decisive.entry.source.split(" (")[0] if decisive.entry is not None else ""
+        return Explanation(
+            explainer=self.name, causes=[cause], evidence=[Evidence.of_log(cause, line)], confidence=0.4,
+            text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know: "
+                 f"{verbatim(line)} at {at(line, start)} says only that a step failed. "
+                 f"{candidates}",
+            fix="Read the lines of that component just before it, at DEBUG level if need be: they decide which.",
+            details=[f"That line's source: {source}." if source else "No line before it says why."])
 
     @staticmethod
     def _last_said(d: Diagnosis, start: int) -> str:
@@ -217,6 +241,13 @@ class ModuleExplainer:
         out.append("Log (oldest first):")
         out += [line.render() for line in lines[-MAX_FACT_LINES:]]
         return "\n".join(out)
+
+
+def verbatim(line: LogLine) -> str:
+    """A log line quoted in an answer's sentence: its first line, set in “…” behind its node, so that a reader (and
+    hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
+    line is no text-to-speech timeout)."""
+    return f"“[{line.name or 'unnamed node'}] {clean(line.msg).strip().splitlines()[0][:200]}”"
 
 
 def _upper(text: str) -> str:

@@ -35,6 +35,8 @@ class Wording:
         clause, fix = self.clauses[cause]
         entry = d.decisive.entry if d.decisive is not None else None
         own = entry.meaning if entry is not None and entry.cause == cause else ""
+        if d.decisive is not None and d.decisive.note and d.decisive.cause == cause:
+            own = d.decisive.note  # a code-built text in the line says more than the line's mined entry
         if own and "{meaning}" not in clause:
             seen.append(f"That line means: {own}.")
         return f"{head} {clause.format(meaning=own or self.meanings.get(cause, ''))}", fix, seen

@@ -31,6 +31,17 @@ def killed_by_signal(msg: str) -> bool:
     return found is not None and int(found[1]) < 0
 
 
+_ONE_SHOT = re.compile(r"exit code [1-9]\d*, cmd '\S*(controller_manager/spawner|/unspawner) ")
+
+
+def one_shot_failed(msg: str) -> bool:
+    """launch's death line of a controller spawner that exited with an error: the spawner is a one-shot command that
+    returns 1 when its controller could not be loaded, configured or activated (ros2_control
+    controller_manager/controller_manager/spawner.py:435@jazzy and after), so its death is that failure's
+    symptom, never a process of the running robot that was lost."""
+    return _ONE_SHOT.search(msg) is not None
+
+
 def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     """The earliest bring-up or device-permission line, as a reading with its cause; None when there is none."""
     from hexar.explainers.stack import bringup_findings

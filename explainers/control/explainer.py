@@ -36,6 +36,15 @@ class ControlExplainer(ModuleExplainer):
         "controllers, joints, motors or hardware."
     )
 
+    # resource_manager.cpp:68@jazzy logs it whenever a hardware component's lifecycle transition does not reach its
+    # target state: on_configure/on_activate of the plugin decided, and a device out of reach and a set-up that
+    # does not fit the robot (its parameters, a real robot's driver started where mock hardware was meant) end alike
+    ambiguous: ClassVar[dict[str, str]] = {
+        "hardware_interface.failed_to_hardware": (
+            "It may be either: its device could not be reached, or its set-up does not fit this robot (its "
+            "parameters, or the driver of a real robot started without one where mock components were meant)."),
+    }
+
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]
 

@@ -11,8 +11,7 @@ from hexar.explainers.module_wording import Worded, Wording
 CLAUSES = {
     # hexar/causes.yaml: controller_load_failed implies configuration_error, so the sentence says both
     "control.controller_load_failed": (
-        "a controller was set up wrongly: my controller manager could not load it, as its type is not installed, "
-        "or was never defined in the controller manager's parameters.",
+        "a controller was set up wrongly: it was not loaded, as {meaning}.",
         "Install the controller's package (add it to package.xml) and declare the controller with its 'type' under "
         "controller_manager in the controllers yaml."),
     "control.controller_activation_failed": (
@@ -39,6 +38,8 @@ CLAUSES = {
         "namespace)."),
 }
 MEANINGS = {
+    "control.controller_load_failed": "its type is not installed, or was never defined in the controller manager's "
+                                      "parameters",
     "control.configuration_error": "its joints or interfaces did not match my robot description or its parameters",
     "bringup.configuration_error": "the robot description or the driver's parameters did not reach the node that "
                                    "needs them",

@@ -122,3 +122,13 @@ def test_quoting_failed_to_make_progress_claims_no_obstacle() -> None:
     # Nav2 also says it when cmd_vel never reaches the base or TF is stale: quoting it names no blocked path
     claims = read_claims("My controller said 'Failed to make progress' and made no progress for 10 s.").affirmed
     assert "navigation.blocked_path" not in claims and "navigation.no_progress" in claims
+
+
+def test_a_log_line_quoted_verbatim_claims_nothing() -> None:
+    # a real rplidar_ros SDK line (RESULT_OPERATION_TIMEOUT) quoted by the control explainer: the words "time out"
+    # are the driver's, not a text-to-speech timeout; the same words outside the quote stay a claim
+    quoted = ("Starting my drivers and controllers failed, but my control logs do not show a cause I know. The first "
+              "error was “[rplidar_composition] Error, operation time out. RESULT_OPERATION_TIMEOUT!” at 1.2 s.")
+    assert read_claims(quoted).affirmed == frozenset()
+    assert "tts.timeout" in read_claims("My sentence was cut off: my speech timed out.").affirmed
+    assert "tts.timeout" in read_claims("I said “hello” but my speech timed out.").affirmed

@@ -34,7 +34,8 @@ def test_the_controller_managers_line_is_the_cause_and_the_spawners_its_symptom(
         (0.2, "spawner_joint_state_broadcaster", FATAL, "Failed loading controller joint_state_broadcaster")])
     assert found.causes == ["control.controller_load_failed"]
     assert found.evidence[0].item.startswith("[controller_manager] ERROR Loader for controller")
-    assert "could not load it" in found.text and "package.xml" in (found.fix or "")
+    assert "it was not loaded, as the controller's plugin type is not installed" in found.text
+    assert "package.xml" in (found.fix or "")
 
 
 def test_switch_timeout_is_an_activation_failure(tmp_path: Path) -> None:
@@ -166,3 +167,87 @@ def test_a_controller_manager_still_waiting_for_its_robot_description_names_no_c
     assert "never reached" not in found.text
     assert any("no robot description arrived" in d and "failed to load" in d for d in found.details)
 
+
+
+def test_a_hardware_read_error_with_older_spacing_is_still_a_hardware_failure(tmp_path: Path) -> None:
+    # ros2_control PR 1645 (July 2024) printed "… resulted in an error : [ %s]"; controller_manager.cpp:3293@jazzy
+    # prints "… resulted in an error: [ %s]": the same words
+    found = _explain(tmp_path, [
+        (0, "test_controller_manager", INFO, "Loading controller 'test_controller'"),
+        (1.0, "test_controller_manager", ERROR, "Deactivating following hardware components as their read cycle "
+                                                "resulted in an error : [ TestActuatorHardware TestSystemHardware ]")])
+    assert found.causes == ["control.hardware_failure"]
+    assert "a hardware interface failed" in found.text
+
+
+def test_a_hardware_plugin_not_among_the_installed_descriptions_is_a_set_up_error(tmp_path: Path) -> None:
+    # hardware_interface's "Caught exception of type : … while loading hardware: …" around pluginlib's
+    # LibraryLoadException text (pluginlib class_loader_imp.hpp): the URDF names a class no package declares
+    found = _explain(tmp_path, [
+        (0, "controller_manager", ERROR,
+         "Caught exception of type : N9pluginlib20LibraryLoadExceptionE while loading hardware: According to the "
+         "loaded plugin descriptions the class  joint_state_topic_hardware_interface/JointStateTopicSystem\n"
+         " with base class type hardware_interface::SystemInterface does not exist. Declared types are  "
+         "mock_components/GenericSystem")])
+    assert found.causes == ["control.configuration_error"]
+    assert "not among the installed plugin descriptions" in found.text
+    assert "hardware interface failed" not in found.text
+
+
+def test_a_spawner_that_exited_with_an_error_is_a_symptom_not_a_process_that_died(tmp_path: Path) -> None:
+    # controller_manager/controller_manager/spawner.py:435@jazzy returns 1 when its controller fails: launch's death
+    # line of the spawner tells that failure, not a running process lost
+    found = _explain(tmp_path, [
+        (0, "spawner-4", ERROR, "process has died [pid 63239, exit code 1, cmd '/opt/ros/jazzy/lib/"
+                                "controller_manager/spawner joint_trajectory_controller --ros-args -r "
+                                "__node:=spawn_joint_trajectory_controller']."),
+        (0.1, "controller_manager", INFO, "Configuring controller: 'gripper_controller'")],
+        skill="bring_up_controllers")
+    assert "bringup.process_died" not in found.causes
+    assert found.causes == ["control.unexplained_failure"]
+    assert "processes died" not in found.text
+
+
+def test_a_hardware_transition_that_failed_without_a_reason_is_quoted_with_its_candidates(tmp_path: Path) -> None:
+    # hardware_interface/src/resource_manager.cpp:68@jazzy: logged whenever the component's transition fails, so
+    # a device out of reach and a set-up that does not fit the robot end alike
+    found = _explain(tmp_path, [
+        (0, "resource_manager", INFO, "Loading hardware 'iisy_hardware'"),
+        (0.1, "resource_manager", ERROR, "Failed to 'configure' hardware 'iisy_hardware'")])
+    assert found.causes == ["control.unexplained_failure"]
+    assert "Failed to 'configure' hardware 'iisy_hardware'" in found.text and "either" in found.text
+    assert "a hardware interface failed" not in found.text
+
+
+def test_an_earlier_reason_still_decides_before_a_failed_hardware_transition(tmp_path: Path) -> None:
+    # Universal_Robots_Client_Library producer.h:128@master, then resource_manager.cpp:68@jazzy
+    found = _explain(tmp_path, [
+        (0, "UR_Client_Library:", ERROR, "Failed to connect to robot. Please check if the robot is booted and "
+                                          "connected."),
+        (0.1, "resource_manager", ERROR, "Failed to 'configure' hardware 'ur'")])
+    assert found.causes == ["control.hardware_failure"]
+
+
+def test_a_required_list_left_empty_is_a_parameter_that_never_reached_the_controller(tmp_path: Path) -> None:
+    # generate_parameter_library cpp_conversions.py:123@main wraps RSL's size_gt text; the joint trajectory
+    # controller's joints default to [] with size_gt<>: [0] (joint_trajectory_controller_parameters.yaml:2@master)
+    found = _explain(tmp_path, [
+        (0, "lbr.controller_manager", INFO, "Loading controller 'joint_trajectory_controller'"),
+        (0.01, "lbr.controller_manager", ERROR,
+         "Exception thrown during init stage with message: Invalid value set during initialization for parameter "
+         "'joints': Length of parameter 'joints' is '0' but must be greater than '0'"),
+        (0.02, "lbr.controller_manager", ERROR, "Could not initialize the controller named "
+                                                "'joint_trajectory_controller'")])
+    assert found.causes == ["bringup.configuration_error"]
+    assert "never reached" in found.text and "--param-file" in found.text
+
+
+def test_a_ros2_without_its_control_command_never_loaded_the_controller(tmp_path: Path) -> None:
+    # argparse's "invalid choice" from ros2cli: no installed package adds the 'control' command
+    # (ros2controlcli/setup.py:49@jazzy registers it), so `ros2 control load_controller` never ran
+    found = _explain(tmp_path, [
+        (0, "ros2", ERROR, "error: argument Call `ros2 <command> -h` for more detailed usage.: invalid choice: "
+                           "'control' (choose from 'action', 'bag', 'component', 'daemon', 'doctor', 'launch')")])
+    assert found.causes == ["control.controller_load_failed"]
+    assert "`ros2 control` command itself is not installed" in found.text
+    assert "type is not installed" not in found.text

@@ -65,7 +65,7 @@ def test_an_error_no_catalogue_knows_is_quoted_with_its_node_and_time_not_guesse
         (3.5, "my_gripper_driver", ERROR, "gripper fingers jammed at 12 mm"), *_aborted(4)])
     assert found.causes == ["manipulation.unexplained_failure"]
     assert "do not show a cause I know" in found.text
-    assert "'[my_gripper_driver] gripper fingers jammed at 12 mm' at 3.5 s" in found.text
+    assert "“[my_gripper_driver] gripper fingers jammed at 12 mm” at 3.5 s" in found.text
     assert found.confidence < 0.5
 
 
@@ -163,3 +163,29 @@ def test_a_warning_healthy_robots_print_too_is_quoted_not_told_as_the_cause_of_a
     assert task.outcome == "running" and found.causes == []
     assert "do not show whether anything went wrong" in found.text and "planning_scene_monitor" in found.text
 
+
+
+def test_ompls_invalid_start_state_is_the_start_state_not_a_planner_that_found_nothing(tmp_path: Path) -> None:
+    # ompl/src/ompl/base/src/Planner.cpp:248@main: within bounds, but MoveIt's validity check rejected the start
+    ompl = "ompl"
+    _task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, ompl, WARN, "./src/ompl/base/src/Planner.cpp:248 - right_arm/right_arm: Skipping invalid start state "
+                        "(invalid state)"),
+        (1.01, ompl, ERROR, "./src/ompl/geometric/planners/rrt/src/RRTConnect.cpp:219 - right_arm/right_arm: Motion "
+                            "planning start tree could not be initialized!"),
+        (1.1, "moveit.ompl_planning.model_based_planning_context", INFO, "Unable to solve the planning problem"),
+        *_aborted(2)])
+    assert found.causes == ["manipulation.start_state_in_collision"]
+    assert "Skipping invalid start state" in found.evidence[0].item
+    assert any("a collision, or a path constraint" in d for d in found.details)
+
+
+def test_task_constructors_start_state_in_collision_is_the_start_state(tmp_path: Path) -> None:
+    # moveit_task_constructor core/src/solvers/joint_interpolation.cpp:79@master: a failing stage's comment
+    _task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "test_execution-6", ERROR, "move (0/1): Start state is in collision!"),
+        *_aborted(2)])
+    assert found.causes == ["manipulation.start_state_in_collision"]
+    assert "already in collision" in found.text
