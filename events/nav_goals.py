@@ -121,6 +121,16 @@ def _bringup_error(line: LogLine) -> bool:
     return entry is not None and entry.cause == "stack.bringup_failure"
 
 
+def _arms_logger(line: LogLine) -> bool:
+    """A line logged by a node the arm's catalogues name (controller_manager, resource_manager, move_group...):
+    generic texts of such a node (pluginlib's "... does not exist", "Failed to configure") match Nav2's catalogue
+    too, but no Nav2 node logged them."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    return bool(line.name) and any(cat.role(line.name) is not None for cat in (moveit(), control()))
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
@@ -133,6 +143,8 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     active: list[LogLine] = []
     failed: LogLine | None = None
     for line in logs:
+        if _arms_logger(line):
+            continue  # ros2_control's or MoveIt's own node: its line is the arm's to explain, not Nav2's activity
         entry = cat.match(line.msg)
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
         # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no

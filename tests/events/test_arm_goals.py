@@ -131,3 +131,26 @@ def test_a_nav2_lifecycle_node_that_failed_its_transition_stays_navigations(tmp_
     _lifecycle(b, "/controller_server")
     tasks = read_recording(b.write(tmp_path / "run")).tasks
     assert [t.skills[0].params["source"] for t in tasks] == ["nav2"]
+
+
+# pluginlib's class_loader_imp.hpp: "According to the loaded plugin descriptions the class %s with base class type %s
+# does not exist. Declared types are %s" — logged by whichever node loads the plugin.
+def _no_plugin(cls: str, base: str) -> str:
+    return (f"According to the loaded plugin descriptions the class {cls} with base class type {base} does not exist. "
+            "Declared types are  mock_components/GenericSystem")
+
+
+def test_a_hardware_plugin_the_controller_manager_cannot_load_is_never_a_navigation_task(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "resource_manager", INFO, "Loading hardware 'ethercat_arm'")
+    b.log(T0 + sec_ns(0.1), "resource_manager", ERROR,
+          _no_plugin("ethercat_driver/EthercatDriver", "hardware_interface::SystemInterface"))
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert all(t.skills[0].params["source"] != "nav2" for t in tasks)
+
+
+def test_the_same_pluginlib_line_from_a_nav2_node_stays_navigations(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "bt_navigator", ERROR, _no_plugin("nav2_custom/MyCondition", "BT::ConditionNode"))
+    tasks = read_recording(b.write(tmp_path / "run")).tasks
+    assert [t.skills[0].params["source"] for t in tasks] == ["nav2"]
