@@ -25,12 +25,19 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS, HexarError
-from hexar.evals.real_nav2 import DISTROS, OUTCOMES, TaskMaker, parse_console, stamped, task_plan, write_excerpt
+from hexar.evals.real_nav2 import (
+    DISTROS,
+    OUTCOMES,
+    TaskMaker,
+    parse_console,
+    parse_entries,
+    stamped,
+    task_plan,
+    write_excerpt,
+)
 from hexar.evals.real_nav2_suite import Grade, hexar_asker  # one grade, one asker; only the allowed causes differ
 
 SUITE = "real-modules"
@@ -82,17 +89,7 @@ def _excerpt(entry: Any, n: int) -> Excerpt:
 
 
 def parse_corpus(text: str) -> tuple[Excerpt, ...]:
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as err:
-        raise HexarError(f"the real-modules corpus is not valid YAML: {err}") from err
-    if not isinstance(data, list) or not data:
-        raise HexarError("the real-modules corpus must be a non-empty list of excerpts")
-    out = tuple(_excerpt(e, i) for i, e in enumerate(data))
-    ids = [e.id for e in out]
-    if dupes := sorted({i for i in ids if ids.count(i) > 1}):
-        raise HexarError(f"duplicate real-modules ids: {', '.join(dupes)}")
-    return out
+    return parse_entries(text, _excerpt, "real-modules corpus", "real-modules ids")
 
 
 @cache

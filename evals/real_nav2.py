@@ -20,7 +20,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
-from typing import Any
+from typing import Any, Protocol, TypeVar
 
 import yaml
 
@@ -253,18 +253,32 @@ NAV_CAUSES = frozenset({
 })
 
 
-def parse_corpus(text: str) -> tuple[Excerpt, ...]:
+class _HasId(Protocol):
+    @property
+    def id(self) -> str: ...
+
+
+E = TypeVar("E", bound=_HasId)
+
+
+def parse_entries(text: str, make: Callable[[Any, int], E], corpus: str, ids_of: str) -> tuple[E, ...]:
+    """A corpus file's excerpts, each made and checked by `make`; bad YAML, an empty file or a repeated id is one
+    HexarError naming the `corpus` ("the real-Nav2 corpus") or its ids ("corpus ids")."""
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as err:
-        raise HexarError(f"the real-Nav2 corpus is not valid YAML: {err}") from err
+        raise HexarError(f"the {corpus} is not valid YAML: {err}") from err
     if not isinstance(data, list) or not data:
-        raise HexarError("the real-Nav2 corpus must be a non-empty list of excerpts")
-    out = tuple(_excerpt(e, i, NAV_CAUSES) for i, e in enumerate(data))
+        raise HexarError(f"the {corpus} must be a non-empty list of excerpts")
+    out = tuple(make(e, i) for i, e in enumerate(data))
     ids = [e.id for e in out]
     if dupes := sorted({i for i in ids if ids.count(i) > 1}):
-        raise HexarError(f"duplicate corpus ids: {', '.join(dupes)}")
+        raise HexarError(f"duplicate {ids_of}: {', '.join(dupes)}")
     return out
+
+
+def parse_corpus(text: str) -> tuple[Excerpt, ...]:
+    return parse_entries(text, lambda e, i: _excerpt(e, i, NAV_CAUSES), "real-Nav2 corpus", "corpus ids")
 
 
 # The tuning corpus and the held-out set (threads the catalogue was never tuned on), both in the data package.
