@@ -66,9 +66,9 @@ def git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout
 
 
-def _close(text: str, start: int) -> int:
-    """Index of the bracket closing the one before `start`, skipping string and char literals."""
-    depth, i = 1, start
+def _walk(text: str, start: int = 0) -> Iterator[tuple[int, str, int]]:
+    """(index, character, bracket depth after it) from `start`, string and char literals skipped."""
+    depth, i = 0, start
     while i < len(text):
         ch = text[i]
         if ch in "\"'":
@@ -78,10 +78,13 @@ def _close(text: str, start: int) -> int:
             depth += 1
         elif ch in ")]}":
             depth -= 1
-            if depth == 0:
-                return i
+        yield i, ch, depth
         i += 1
-    return len(text)
+
+
+def _close(text: str, start: int) -> int:
+    """Index of the bracket closing the one before `start`, skipping string and char literals."""
+    return next((i for i, _, depth in _walk(text, start) if depth < 0), len(text))
 
 
 def _skip_literal(text: str, i: int) -> int:
@@ -113,20 +116,11 @@ def _unescape(body: str) -> str:
 
 
 def _split_args(text: str) -> list[str]:
-    args, depth, start, i = [], 0, 0, 0
-    while i < len(text):
-        ch = text[i]
-        if ch in "\"'":
-            i = _skip_literal(text, i)
-            continue
-        if ch in "([{":
-            depth += 1
-        elif ch in ")]}":
-            depth -= 1
-        elif ch == "," and depth == 0:
+    args, start = [], 0
+    for i, ch, depth in _walk(text):
+        if ch == "," and depth == 0:
             args.append(text[start:i])
             start = i + 1
-        i += 1
     args.append(text[start:])
     return args
 
