@@ -8,19 +8,15 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
-from rich.table import Table
 
 from hexar.errors import HexarError
 from hexar.evals.real_modules import FILES, run_suite
-
-
-def _pct(x: float | None) -> str:
-    return "–" if x is None else f"{100 * x:.1f} %"
+from hexar.evals.real_nav2_cli import pct, summary_table
 
 
 def _row(name: str, row: dict[str, Any]) -> str:
     g = row["text"]
-    return (f"| {name} | {row['n']} | {g['named']}/{row['n_shown']} ({_pct(g['named_rate'])}) | "
+    return (f"| {name} | {row['n']} | {g['named']}/{row['n_shown']} ({pct(g['named_rate'])}) | "
             f"{g['no_unsupported']}/{row['n']} | {g['honest']} | {g['wrong']} |")
 
 
@@ -44,16 +40,6 @@ def render(report: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def table(report: dict[str, Any]) -> Table:
-    t = Table("module", "excerpts", "cause named", "no unsupported cause", "honest not-enough", "wrong",
-              title=f"hexar eval --suite {report['suite']} ({report['backend']})")
-    for name, row in [*report["by_module"].items(), ("all", report["summary"])]:
-        g = row["text"]
-        t.add_row(name, str(row["n"]), f"{g['named']}/{row['n_shown']} ({_pct(g['named_rate'])})",
-                  f"{g['no_unsupported']}/{row['n']}", str(g["honest"]), str(g["wrong"]))
-    return t
-
-
 def real_modules_main(suite: str, out: Path, runs: Path | None, llm: str, console: Console,
                       others: dict[str, object]) -> int:
     """Checks the options that apply, runs the suite and writes its report under `out`."""
@@ -71,6 +57,6 @@ def real_modules_main(suite: str, out: Path, runs: Path | None, llm: str, consol
     out.mkdir(parents=True, exist_ok=True)
     (out / "report.json").write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     (out / "results.md").write_text(render(report), encoding="utf-8")
-    console.print(table(report))
+    console.print(summary_table(report, by="module"))
     console.print(f"report: {out / 'report.json'}, table: {out / 'results.md'}")
     return 0

@@ -33,14 +33,14 @@ class RealNav2Options:
     suite: str = SUITE
 
 
-def _pct(x: float | None) -> str:
+def pct(x: float | None) -> str:
     return "–" if x is None else f"{100 * x:.1f} %"
 
 
 def _row(name: str, row: dict[str, Any], kind: str = "text") -> str:
     g = row[kind]
-    return (f"| {name} | {row['n']} | {g['named']}/{row['n_shown']} ({_pct(g['named_rate'])}) | "
-            f"{g['no_unsupported']}/{row['n']} ({_pct(g['no_unsupported_rate'])}) | {g['honest']} | {g['wrong']} |")
+    return (f"| {name} | {row['n']} | {g['named']}/{row['n_shown']} ({pct(g['named_rate'])}) | "
+            f"{g['no_unsupported']}/{row['n']} ({pct(g['no_unsupported_rate'])}) | {g['honest']} | {g['wrong']} |")
 
 
 HEADER = ["| {0} | excerpts | cause named ↑ | no unsupported cause ↑ | honest not-enough | wrong ↓ |",
@@ -114,12 +114,13 @@ def compare(report: dict[str, Any], baseline: dict[str, Any], tolerance: float =
     return worse
 
 
-def summary_table(report: dict[str, Any]) -> Table:
-    t = Table("distro", "excerpts", "cause named", "no unsupported cause", "honest not-enough", "wrong",
+def summary_table(report: dict[str, Any], by: str = "distro") -> Table:
+    """The report's text grades per `by` (the real-Nav2 suites' distros, the real-modules suites' modules)."""
+    t = Table(by, "excerpts", "cause named", "no unsupported cause", "honest not-enough", "wrong",
               title=f"hexar eval --suite {report['suite']} ({report['backend']})")
-    for name, row in [*report["by_distro"].items(), ("all", report["summary"])]:
+    for name, row in [*report[f"by_{by}"].items(), ("all", report["summary"])]:
         g = row["text"]
-        t.add_row(name, str(row["n"]), f"{g['named']}/{row['n_shown']} ({_pct(g['named_rate'])})",
+        t.add_row(name, str(row["n"]), f"{g['named']}/{row['n_shown']} ({pct(g['named_rate'])})",
                   f"{g['no_unsupported']}/{row['n']}", str(g["honest"]), str(g["wrong"]))
     return t
 
