@@ -302,6 +302,8 @@ BLIND_FILE = "blind.yaml"
 # A second blind set, collected by another hand in the next round while the explainer was being tuned; measured
 # once before that round's changes and once after.
 BLIND2_FILE = "blind2.yaml"
+# A third, collected by another hand during round 5 and measured before that round's changes were merged and after.
+BLIND3_FILE = "blind3.yaml"
 
 
 @cache
@@ -324,6 +326,10 @@ def blind() -> tuple[Excerpt, ...]:
 
 def blind2() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND2_FILE)
+
+
+def blind3() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND3_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------
