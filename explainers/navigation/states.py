@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation.catalogue import Entry
+from hexar.explainers.navigation.catalogue import Entry, catalogue
 from hexar.explainers.navigation.diagnose import Tagged
 
 
@@ -99,7 +99,11 @@ def _beyond_any_map(msg: str) -> bool:
 
 
 def state_of(entry: Entry, msg: str) -> State | None:
-    """The state a catalogued line reports, or None when the line names a cause by itself."""
+    """The state a catalogued line reports, or None when the line names a cause by itself. A line read through the
+    mined stack catalogue (chain.stack_notes, id "stack:...") is looked up by its text in the Nav2 catalogue."""
+    if entry.id.startswith("stack:"):
+        own = catalogue().match(msg)
+        entry = own if own is not None else entry
     state = _IDS.get(entry.id)
     if state is GOAL and not any(w in msg for w in _OCCUPIED_WORDS):
         return None

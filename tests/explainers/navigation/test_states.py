@@ -48,14 +48,24 @@ PLAUSIBLE: Line = ("local_costmap.local_costmap", WARN, "Sensor origin at (0.07,
                    "0.50, 0.00) to (3.50, 3.50, 0.78). The costmap cannot raytrace for it.")
 
 
-@pytest.mark.parametrize("line", [START, LETHAL, OUT, PLAUSIBLE], ids=["start_occupied", "lethal_start",
-                                                                       "out_of_bounds", "sensor_origin"])
+# navfn_planner.cpp:153@main's text inside planner_server's failure (the format of opennav_coverage#64's paste)
+GOAL_LETHAL: Line = ("planner_server", WARN, 'GridBased plugin failed to plan from (0.00, -0.01) to (4.20, 1.50): '
+                     '"Goal Coordinates of(4.200000, 1.500000) was in lethal cost"')
+
+
+@pytest.mark.parametrize("line", [START, LETHAL, OUT, PLAUSIBLE, GOAL_LETHAL],
+                         ids=["start_occupied", "lethal_start", "out_of_bounds", "sensor_origin", "goal_lethal"])
 def test_a_reported_state_alone_names_what_was_reported_and_claims_no_cause(tmp_path: Path, line: Line) -> None:
     answer = _explain(tmp_path, [], [line])
     assert answer.causes == [UNEXPLAINED]
     assert stated_causes(answer.text) == set()
     assert "do not show why" in answer.text and "several things" in answer.text
     assert "What tells them apart" in (answer.fix or "")
+
+
+def test_a_goal_on_occupied_cells_alone_lists_a_stale_obstacle_among_its_candidates(tmp_path: Path) -> None:
+    text = _explain(tmp_path, [], [GOAL_LETHAL]).text
+    assert "cells under my goal as occupied" in text and "seen earlier" in text
 
 
 def test_an_occupied_start_alone_lists_the_planner_set_up_among_its_candidates(tmp_path: Path) -> None:
