@@ -45,6 +45,9 @@ class ControlExplainer(ModuleExplainer):
             "parameters, or the driver of a real robot started without one where mock components were meant)."),
     }
 
+    candidates: ClassVar[str] = ("It may be a controller's settings (its parameters, joints or interfaces), its "
+                                 "hardware interface's settings, or its device.")
+
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]
 
