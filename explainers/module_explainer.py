@@ -111,9 +111,11 @@ class ModuleExplainer:
                 d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
             # a driver's own error line whose why is a strerror text or a set-up wording: ranked with the rest
             before = d.end.t if d.end is not None else None
-            adopt(d, stated_cause([r.line for r in readings], self.prefix, before))
+            # launch's lines ("process started", which Nav2's catalogue knows too) carry a process's exception
+            own = [ln for ln in lines if not _nav2_logger(ln)]
+            adopt(d, stated_cause(own, self.prefix, before))
             if d.cause is None and d.unknown is None:
-                d.unknown = first_thrown([r.line for r in readings], before)
+                d.unknown = first_thrown(own, before)
         if d.cause is not None and not d.cause.startswith(self.prefix):
             asked = self._ask_owner(question, context, d)
             if asked is not None:
@@ -223,12 +225,13 @@ class ModuleExplainer:
 
     @staticmethod
     def _last_said(d: Diagnosis, start: int) -> str:
-        """Where the failure was told, when no error line says why: the last line about it, quoted as the log's
-        words with its node and time (it names the consequence, not the cause)."""
+        """Where the failure was told, when no error line says why: the node and the time of the last line about
+        it (its words stay in the details: they name the consequence, not the cause)."""
         last = d.symptoms[0].line if d.symptoms else d.end
         if last is None:
             return ""
-        return f" The failure was told by {verbatim(last)} at {at(last, start)}, and no line before it says why."
+        who = last.name or "a node"
+        return f" The failure was told by {who} at {at(last, start)}, and no line before it says why."
 
     def _what(self, run: SkillRun | None) -> str:
         if run is None:
@@ -273,3 +276,10 @@ def _other_module(r: Reading) -> bool:
 
     cat = nav2()
     return cat.role(r.line.name) is not None or cat.match(r.line.msg) is not None
+
+
+def _nav2_logger(line: LogLine) -> bool:
+    """A line of a Nav2 node (by its logger's role): navigation's, whatever its words."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    return nav2().role(line.name) is not None

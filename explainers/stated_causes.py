@@ -104,7 +104,15 @@ class Statement:
 
     def quote(self, start: int) -> str:
         """The line quoted as the log's words, “[node] …”, with its time."""
-        return f"“[{self.line.name or 'unnamed node'}] {self.part[:200]}” at {at(self.line, start)}"
+        return f"“[{self.line.name or 'unnamed node'}] {_short(self.part)}” at {at(self.line, start)}"
+
+
+def _short(text: str, limit: int = 200) -> str:
+    """At most `limit` characters, cut after a sentence where one ends in time (a driver's advice follows its why)."""
+    if len(text) <= limit:
+        return text
+    end = text.rfind(". ", 0, limit)
+    return text[:end + 1] if end > limit // 3 else text[:limit] + "…"
 
 
 def decisive_parts(line: LogLine, floor: int = ERROR) -> list[str]:
@@ -206,7 +214,8 @@ def first_thrown(lines: Sequence[LogLine], before: int | None = None) -> LogLine
 
 def adopt(d: Diagnosis, found: Statement | None) -> None:
     """Rank a stated cause with the diagnosis's evidence: it decides when it is the earliest decisive line (or the
-    only strong one); a text with only candidates is the first error to quote when nothing else explains."""
+    only strong one) and no catalogue gave the same line a cause of its own; a text with only candidates is the
+    first error to quote when nothing else explains."""
     if found is None:
         return
     if found.cause is None:
@@ -214,8 +223,8 @@ def adopt(d: Diagnosis, found: Statement | None) -> None:
             d.unknown, d.candidates = found.line, found.meaning
         return
     decisive = d.decisive
-    if decisive is not None and decisive.strong and decisive.line.t < found.line.t:
-        return
+    if decisive is not None and (decisive.line == found.line or (decisive.strong and decisive.line.t <= found.line.t)):
+        return  # a catalogue's own cause for this very line, or an earlier decisive line, says more
     prior = [decisive] if decisive is not None else []
     d.symptoms = [r for r in [*prior, *d.symptoms] if r.line.t >= found.line.t and r.line is not found.line][:2]
     d.cause, d.decisive, d.support = found.cause, found.reading(), []
