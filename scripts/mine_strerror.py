@@ -12,9 +12,11 @@ Why each errno maps where it does (the `stated` causes of explainers/stated_caus
 - EACCES: the operating system refused the driver its device or file: system.device_permission.
 - EADDRINUSE, EBUSY: another program already holds the port or the device (a second driver, a console, a modem
   manager): a set-up conflict, the controller's or its driver's set-up.
-- ECONNREFUSED, EHOSTUNREACH, ENETUNREACH, ETIMEDOUT, EHOSTDOWN, ENETDOWN, EIO: the driver could not talk to its
-  device (nothing listening at that address, no route, no answer, a read or write that failed): the hardware
-  interface failed to reach its device. Whether the network or the device is at fault the text does not say.
+- EIO: a read or write on the device failed: the hardware interface could not talk to its device.
+- ECONNREFUSED, EHOSTUNREACH, ENETUNREACH, ETIMEDOUT, EHOSTDOWN, ENETDOWN: the driver could not reach its device,
+  but whether the device is off (or not running its server), its address was configured wrongly, or a filter on
+  the way turned the connection away (a firewall REJECT answers "Connection refused", a DROP lets it time out) the
+  text does not say: no cause is claimed, the answer names the candidates.
 - ENOENT, ENODEV, ENXIO: the device or file is not there; whether it is unplugged or a wrong path was configured the
   text does not say, so no cause is claimed: the answer names both.
 - EPERM is left out on purpose: healthy robots print it (ros2_control_node's "Could not enable FIFO RT scheduling
@@ -52,19 +54,24 @@ TABLE: dict[str, tuple[str | None, str, str]] = {
     "EBUSY": (CONFLICT,
               "another program already holds its device (device or resource busy)",
               "Close the other program that holds the device (another driver, a serial console, a modem manager)."),
-    "ECONNREFUSED": (UNREACHED,
-                     "nothing was listening at the address and port it was given, so its device did not accept the "
-                     "connection",
-                     "Check that the device is on and runs the program the driver connects to, and its address and "
-                     "port in the driver's parameters."),
-    "EHOSTUNREACH": (UNREACHED, "there was no route to its device's address",
+    "ECONNREFUSED": (None,
+                     "nothing accepted the connection at the address and port it was given: the device is off or "
+                     "not running the program it connects to, the address or port is wrong, or something between "
+                     "us turns the connection away",
+                     "Check that the device is on and runs the program the driver connects to, its address and "
+                     "port in the driver's parameters, and what lies between (cables, switches, filters)."),
+    "EHOSTUNREACH": (None, "there was no route to its device's address: the device is off or unplugged, the "
+                           "address is wrong, or something between us stops the connection",
                      "Check the device's address, the cable and this computer's address on the device's subnet."),
-    "ENETUNREACH": (UNREACHED, "the device's network could not be reached from this computer",
+    "ENETUNREACH": (None, "the device's network could not be reached from this computer: this computer's network "
+                          "settings or the device's address",
                     "Check this computer's network settings and the device's address."),
-    "ETIMEDOUT": (UNREACHED, "its device stayed silent when it tried to connect",
+    "ETIMEDOUT": (None, "its device stayed silent when it tried to connect: the device is off, the address is "
+                        "wrong, or something between us drops the connection",
                   "Check that the device is on and reachable (ping its address) and its address in the parameters."),
-    "EHOSTDOWN": (UNREACHED, "its device's host was down", "Check that the device is powered and connected."),
-    "ENETDOWN": (UNREACHED, "this computer's network to the device was down",
+    "EHOSTDOWN": (None, "its device's host was down: off or unplugged, or its address is wrong",
+                  "Check that the device is powered and connected, and its address."),
+    "ENETDOWN": (None, "this computer's network interface to the device was down",
                  "Bring up the network interface the device is connected to."),
     "EIO": (UNREACHED, "reading from or writing to its device failed (an input/output error)",
             "Check the device's cable and power; unplug and reconnect it."),

@@ -183,3 +183,16 @@ def test_an_exception_that_ended_a_process_is_quoted_as_the_first_error(tmp_path
         assert "The first error was “[ros2_control_node-1] According to the loaded plugin descriptions" in found.text
     else:  # a catalogue that knows pluginlib's text names its cause
         assert found.causes and not found.causes[0].endswith("unexplained_failure")
+
+
+def test_a_realtime_priority_the_os_refused_is_not_the_failure(tmp_path: Path) -> None:
+    # kuka_drivers_core control_node.cpp:101-102@master: logged at ERROR on any machine without realtime rights,
+    # and the driver goes on; EPERM is left out of the mined table for this reason
+    found = _explain(tmp_path, [
+        (0, "controller_manager", ERROR, "setscheduler error"),
+        (0.01, "controller_manager", ERROR, "Operation not permitted"),
+        (0.02, "controller_manager", WARN, "You can use the driver but scheduler priority was not set"),
+        (0.5, "controller_manager", FATAL,
+         "System cannot communicate with servo motors. Error message: Permission denied")], fails_at=1)
+    assert found.causes == ["system.device_permission"]
+    assert "1.5 s" in found.text  # the servo line, not the scheduler's
