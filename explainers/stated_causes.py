@@ -137,8 +137,7 @@ def quoted_part(line: LogLine) -> str:
 
 
 def _param(m: re.Match[str]) -> str:
-    found = m.groupdict()
-    return str(found.get("quoted") or found.get("param") or "")
+    return next((str(v) for v in m.groupdict().values() if v), "")
 
 
 def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: str,
