@@ -1,6 +1,9 @@
 """The shared flow of the log-reading component explainers of the arm (manipulation: MoveIt 2; control:
 ros2_control): read the window's /rosout through the module's mined catalogue, decide by evidence
 (explainers/logcause.py), word the finding, and ask another explainer when the decisive line is its module's.
+A bring-up line (explainers/stack_causes.py) and a driver's error line that states its why in standard words (a
+strerror text, a version or parameter wording: explainers/stated_causes.py) are ranked with the catalogue's lines;
+with no cause, the answer quotes the first error with its node and time and names the candidates.
 
 What each subclass gives: its name, topics and description, its skills (the plan steps it explains), the
 catalogues to read with (its own first), its cause prefix, and `words(cause, ...)` -> (sentence, fix, details).

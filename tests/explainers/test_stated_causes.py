@@ -126,7 +126,7 @@ def test_a_robot_description_moveit_never_found_is_a_parameter_that_never_reache
                                    "robot_description via std_msgs::msg::String subscription within 10.000000 "
                                    "seconds.")], fails_at=1, explainer="manipulation", skill="move_arm")
     assert found.causes == ["bringup.configuration_error"]
-    assert "bringup.configuration_error" in _claims(found)
+    assert _claims(found) == {"bringup.configuration_error"}
 
 
 def test_no_such_file_names_candidates_and_claims_nothing(tmp_path: Path) -> None:
