@@ -175,6 +175,8 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     if p and (not rest.strip() or rest[1:2].isspace()):
         if records and rest.strip():  # launch prints each line of a multi-line message behind its prefix
             records[-1].msg += "\n" + rest.strip()
+        elif rest.strip():  # the excerpt begins inside such a message (an exception's what()): kept, not dropped
+            records.append(_record(None, None, None, rest.strip(), proc))
         return
     q = PLAIN_NAMED.match(rest.strip())
     if q:

@@ -169,6 +169,7 @@ class Diagnosis:
     symptoms: list[Reading] = field(default_factory=list)
     unknown: LogLine | None = None
     end: LogLine | None = None
+    candidates: str = ""  # what the unknown line's standard words leave open (explainers/stated_causes.py)
 
 
 GOAL_END = {"succeeded": "succeeded", "failed": "failed", "canceled": "canceled"}

@@ -1,6 +1,9 @@
 """The shared flow of the log-reading component explainers of the arm (manipulation: MoveIt 2; control:
 ros2_control): read the window's /rosout through the module's mined catalogue, decide by evidence
 (explainers/logcause.py), word the finding, and ask another explainer when the decisive line is its module's.
+A bring-up line (explainers/stack_causes.py) and a driver's error line that states its why in standard words (a
+strerror text, a version or parameter wording: explainers/stated_causes.py) are ranked with the catalogue's lines;
+with no cause, the answer quotes the first error with its node and time and names the candidates.
 
 What each subclass gives: its name, topics and description, its skills (the plan steps it explains), the
 catalogues to read with (its own first), its cause prefix, and `words(cause, ...)` -> (sentence, fix, details).
@@ -16,9 +19,9 @@ from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
-from hexar.explainers.navigation.catalogue import clean
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
+from hexar.explainers.stated_causes import adopt, first_thrown, quoted_part, stated_cause, stated_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -55,6 +58,8 @@ class ModuleExplainer:
     # catalogue entries that only report that a step failed, not why, where the why is one of several causes:
     # entry id -> the candidates, told beside the quoted line instead of one of them
     ambiguous: ClassVar[dict[str, str]] = {}
+    # the candidates told when no line says why (module words only: no cause pattern reads them as a claim)
+    candidates: ClassVar[str] = ""
 
     def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
         self.model = model
@@ -107,6 +112,13 @@ class ModuleExplainer:
             elif stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
                 d.cause, d.decisive, d.support = stack.cause, stack, []
                 d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
+            # a driver's own error line whose why is a strerror text or a set-up wording: ranked with the rest
+            before = d.end.t if d.end is not None else None
+            # launch's lines ("process started", which Nav2's catalogue knows too) carry a process's exception
+            own = [ln for ln in lines if not _nav2_logger(ln)]
+            adopt(d, stated_cause(own, self.prefix, before))
+            if d.cause is None and d.unknown is None:
+                d.unknown = first_thrown(own, before)
         if d.cause is not None and not d.cause.startswith(self.prefix):
             asked = self._ask_owner(question, context, d)
             if asked is not None:
@@ -139,10 +151,12 @@ class ModuleExplainer:
             # the error's first line: a console's continuation lines (a C++ what(), a traceback) follow from it
             quoted = (f" The first error was {verbatim(first)} at {at(first, start)}."
                       if first is not None else self._last_said(d, start))
+            # what is left open, in words no cause pattern reads as a claim: the line's own, else the module's
+            maybe = f" Its words say that {d.candidates}." if d.candidates else f" {self.candidates}"
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
                 text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
-                     + quoted,
+                     + quoted + maybe,
                 fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
                 else "Record /rosout at INFO level from move_group and the controller manager.",
                 details=[*(f"The last line about it was '{said(r.line)}'." for r in d.symptoms[:1]),
@@ -169,7 +183,9 @@ class ModuleExplainer:
         if decisive.entry is not None and decisive.entry.id in self.ambiguous and decisive.note == "":
             return self._candidates(decisive, self.ambiguous[decisive.entry.id], start, run)
         cause = d.cause
-        text, fix, details = stack_words(cause, d, self._what(run)) or self.words(cause, d, self._what(run))
+        what = self._what(run)
+        text, fix, details = (stated_words(d, what, self.prefix, start) or stack_words(cause, d, what)
+                              or self.words(cause, d, what))
         ev = [Evidence.of_log(cause, decisive.line), *evidence_of(cause, d.support), *evidence_of(cause, d.symptoms)]
         if d.end is not None and all(e.t != d.end.t for e in ev):
             ev.append(Evidence.of_log(cause, d.end))
@@ -247,7 +263,7 @@ def verbatim(line: LogLine) -> str:
     """A log line quoted in an answer's sentence: its first line, set in “…” behind its node, so that a reader (and
     hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
     line is no text-to-speech timeout)."""
-    return f"“[{line.name or 'unnamed node'}] {clean(line.msg).strip().splitlines()[0][:200]}”"
+    return f"“[{line.name or 'unnamed node'}] {quoted_part(line)[:200]}”"
 
 
 def _upper(text: str) -> str:
@@ -263,3 +279,10 @@ def _other_module(r: Reading) -> bool:
 
     cat = nav2()
     return cat.role(r.line.name) is not None or cat.match(r.line.msg) is not None
+
+
+def _nav2_logger(line: LogLine) -> bool:
+    """A line of a Nav2 node (by its logger's role): navigation's, whatever its words."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    return nav2().role(line.name) is not None

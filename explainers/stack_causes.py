@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from hexar.events.records import LogLine
+from hexar.events.records import WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error",
@@ -51,7 +51,8 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     if findings:
         f = findings[0]
         found.append(Reading(f.line, None, KIND_CAUSE.get(f.kind, "bringup.configuration_error"), "stack"))
-    denied = next((ln for ln in lines if _DENIED in ln.msg and "/dev/" in ln.msg), None)
+    # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
+    denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
         found.append(Reading(denied, None, PERMISSION, "system"))
     return min(found, key=lambda r: r.line.t) if found else None

@@ -4,9 +4,10 @@ stock controllers (joint_trajectory_controller first), read from /rosout through
 Causes, by the earliest decisive line (explainers/logcause.py; the spawner's "Failed loading controller" or
 "Failed to activate controller" is a symptom of the controller manager's line before it): controller_load_failed,
 controller_activation_failed, hardware_failure, tolerance_violated, configuration_error, nominal, and
-unexplained_failure (the first error no catalogue explains, quoted with its node and time). A bring-up or device
-line before them is cited first. MoveIt's lines in the window (the control explainer asked by manipulation) are
-read too, so that its symptoms are recognised as such.
+unexplained_failure (the first error no catalogue explains, quoted with its node and time, and the
+candidates). A bring-up or device line before them is cited first, and so is a driver's line whose strerror text
+or set-up words state the why (explainers/stated_causes.py). MoveIt's lines in the window (the control explainer
+asked by manipulation) are read too, so that its symptoms are recognised as such.
 """
 
 from __future__ import annotations
@@ -44,6 +45,9 @@ class ControlExplainer(ModuleExplainer):
             "It may be either: its device could not be reached, or its set-up does not fit this robot (its "
             "parameters, or the driver of a real robot started without one where mock components were meant)."),
     }
+
+    candidates: ClassVar[str] = ("It may be a controller's settings (its parameters, joints or interfaces), its "
+                                 "hardware interface's settings, or its device.")
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]

@@ -63,6 +63,9 @@ class ManipulationExplainer(ModuleExplainer):
         "picking, placing, reaching or moving the arm."
     )
 
+    candidates: ClassVar[str] = ("It may be MoveIt's settings (its parameters, plugins or robot description), the "
+                                 "request itself, or the controllers that run my arm.")
+
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), control_catalogue()]
 

@@ -93,6 +93,16 @@ def test_wrapped_message_and_launch_continuation_lines_join_the_message_before()
     assert [r.name for r in parse_console(multi)] == ["transformPoseInTargetFrame", "planner_server"]
 
 
+def test_an_excerpt_that_begins_inside_a_message_keeps_that_line() -> None:
+    # the exception ros2_control_node died of, pasted without the line it continued (UR client library
+    # src/comm/tcp_server.cpp:168): still a line of the recording, not dropped for want of a message before it
+    text = ("[ros2_control_node-1]   what():  Failed to bind socket for port 50003 to address. Reason: Address "
+            "already in use: Address already in use\n[ERROR] [ros2_control_node-1]: process has died ")
+    first, died = parse_console(text)
+    assert first.msg.startswith("what():  Failed to bind socket") and first.process == "ros2_control_node-1"
+    assert died.msg == "process has died"
+
+
 def test_ctest_and_compose_prefixes_are_removed() -> None:
     text = ('23: [planner_server-7] [WARN] [1727973994.446805085] [planner_server]: GridBased plugin failed to plan '
             'from (-3.77, -4.74) to (94.04, -1674.69): "Goal Coordinates of(94.042922, -1674.689924) was outside '
