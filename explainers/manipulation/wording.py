@@ -18,9 +18,10 @@ CLAUSES = {
         "Check that the pose is within the arm's reach (and that my base stopped where it should), and the IK "
         "solver's timeout and tip frame."),
     "manipulation.start_state_in_collision": (
-        "my arm's start state was already in collision in my planning scene, so planning could not begin.",
-        "Look at the contacts MoveIt reports (an object attached or added where the arm is, or the self-collision "
-        "matrix of the SRDF) and move the arm clear."),
+        "my arm's start state was {meaning}, so planning could not begin.",
+        "Look at what the quoted line names: the contacts MoveIt reports (an object attached or added where the arm "
+        "is, or the self-collision matrix of the SRDF), or a joint outside its limits (where the robot was spawned "
+        "or calibrated, or the limits in its description), and start from a valid state."),
     "manipulation.goal_state_invalid": (
         "the arm goal itself was invalid: in collision or against its constraints.",
         "Choose a goal pose clear of obstacles and within the joint limits and constraints."),
@@ -58,4 +59,7 @@ def _nominal(what: str) -> Worded:
             ["My MoveIt logs show the goal accepted and completed, with no error."])
 
 
-template = Wording("I couldn't finish {what} because", "MoveIt", CLAUSES, nominal=_nominal)
+# a start state is told in the words of the line that showed it (in collision, or a joint outside its limits)
+MEANINGS = {"manipulation.start_state_in_collision": "already in collision in my planning scene"}
+
+template = Wording("I couldn't finish {what} because", "MoveIt", CLAUSES, meanings=MEANINGS, nominal=_nominal)

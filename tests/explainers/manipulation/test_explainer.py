@@ -178,7 +178,7 @@ def test_ompls_invalid_start_state_is_the_start_state_not_a_planner_that_found_n
         *_aborted(2)])
     assert found.causes == ["manipulation.start_state_in_collision"]
     assert "Skipping invalid start state" in found.evidence[0].item
-    assert any("a collision, or a path constraint" in d for d in found.details)
+    assert "start state was rejected by OMPL" in found.text and "a collision, or a path constraint" in found.text
 
 
 def test_task_constructors_start_state_in_collision_is_the_start_state(tmp_path: Path) -> None:
@@ -188,4 +188,28 @@ def test_task_constructors_start_state_in_collision_is_the_start_state(tmp_path:
         (1, "test_execution-6", ERROR, "move (0/1): Start state is in collision!"),
         *_aborted(2)])
     assert found.causes == ["manipulation.start_state_in_collision"]
-    assert "already in collision" in found.text
+    assert "start state was in collision" in found.text
+
+
+@pytest.mark.parametrize("lines", [
+    # tiago_harmonic#14 (jazzy): check_start_state_bounds.cpp:174,189@main, an ERROR and the adapter's abort
+    [("move_group.moveit.moveit.ros.check_start_state_bounds", ERROR,
+      "Joint 'gripper_left_finger_joint' from the starting state is outside bounds by: [-1.09872e-14 ] should be in "
+      "the range [0.001 ], [0.044 ]."),
+     ("move_group", ERROR, "PlanningRequestAdapter 'CheckStartStateBounds' failed, because 'Start state out of "
+                           "bounds.'. Aborting planning pipeline.")],
+    # ARIAC#314 (humble): fix_start_state_bounds.cpp:160@humble, then OMPL's Planner.cpp:248 '(invalid bounds)'
+    [("moveit_ros.fix_start_state_bounds", WARN,
+      "Joint 'floor_gripper_joint' from the starting state is outside bounds by a significant margin: [-0.246719 ] "
+      "should be in the range [-0.001 ], [0.001 ] but the error above the 'start_state_max_bounds_error' parameter "
+      "(currently set to 0.050000)"),
+     ("ompl", WARN, "./src/ompl/base/src/Planner.cpp:257 - floor_robot/floor_robot: Skipping invalid start state "
+                    "(invalid bounds)")],
+], ids=["check-bounds-jazzy", "fix-bounds-humble"])
+def test_a_start_state_outside_the_joint_limits_is_told_as_that_not_as_a_planner_that_found_nothing(
+        tmp_path: Path, lines: list[tuple[str, int, str]]) -> None:
+    _task, found = _explain(tmp_path, [(0, MGI, INFO, "Plan and Execute request accepted"),
+                                       *[(1 + i / 100, *line) for i, line in enumerate(lines)], *_aborted(2)])
+    assert found.causes == ["manipulation.start_state_in_collision"]
+    assert "start state was outside its joint limits" in found.text
+    assert "in collision" not in found.text and "found no solution" not in found.text
