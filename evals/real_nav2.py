@@ -51,6 +51,8 @@ PROC_ONLY = re.compile(r"^\[(?P<proc>[\w./-]+-\d+)\](?P<rest>.*)$")
 _CLOCK = r"(?P<clock>\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)(?:\s*(?P<ampm>AM|PM))?(?:\s*[+-]\d{2}(?::?\d{2})?)?"
 CLOCK_LEVELED = re.compile(rf"^{_PROC}{_LEVEL}\[{_CLOCK}\]\s*(?:{_LOGGER})?(?P<msg>.*)$")
 CLOCK_PREFIX = re.compile(rf"^{_CLOCK}\s+(?P<rest>\S.*)$")
+# launch's screen format with timestamps ("{created:.7f} {line}"): the wall time it printed the line, in epoch seconds
+EPOCH_PREFIX = re.compile(r"^(?P<epoch>\d{9,10}\.\d+)\s+(?P<rest>\[.*)$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
 ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
                          r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
@@ -147,6 +149,16 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         for r in inner:
             r.stamp_ns = _clock_ns(t["clock"], t["ampm"])
             r.synthesised.discard("stamp")
+        records.extend(inner)
+        return
+    e = EPOCH_PREFIX.match(line)
+    if e:
+        inner = []
+        _parse_line(e["rest"], "", inner)
+        for r in inner:
+            if r.stamp_ns is None:  # the node's own stamp, where printed, is the record's
+                r.stamp_ns = _stamp_ns(e["epoch"])
+                r.synthesised.discard("stamp")
         records.extend(inner)
         return
     m = LEVELED.match(line) or LEVEL_STAMP.match(line)
@@ -290,6 +302,8 @@ BLIND_FILE = "blind.yaml"
 # A second blind set, collected by another hand in the next round while the explainer was being tuned; measured
 # once before that round's changes and once after.
 BLIND2_FILE = "blind2.yaml"
+# A third, collected by another hand during round 5 and measured before that round's changes were merged and after.
+BLIND3_FILE = "blind3.yaml"
 
 
 @cache
@@ -312,6 +326,10 @@ def blind() -> tuple[Excerpt, ...]:
 
 def blind2() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND2_FILE)
+
+
+def blind3() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND3_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -25,7 +25,17 @@ from hexar.agent.backends import Backend
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
-from hexar.evals.real_nav2 import DISTROS, Excerpt, blind, blind2, corpus, heldout, task_plan, write_recording
+from hexar.evals.real_nav2 import (
+    DISTROS,
+    Excerpt,
+    blind,
+    blind2,
+    blind3,
+    corpus,
+    heldout,
+    task_plan,
+    write_recording,
+)
 
 SUITE = "real-nav2"
 # The same suite on threads the catalogue was never tuned on (evals/data/real_nav2/heldout.yaml).
@@ -34,8 +44,9 @@ HELDOUT_SUITE = "real-nav2-heldout"
 BLIND_SUITE = "real-nav2-blind"
 # The second blind set (blind2.yaml), collected while the next round tuned the explainer.
 BLIND2_SUITE = "real-nav2-blind2"
+BLIND3_SUITE = "real-nav2-blind3"  # the third, collected in round 5
 SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
-          BLIND2_SUITE: ("blind2.yaml", blind2)}
+          BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})

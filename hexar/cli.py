@@ -366,9 +366,9 @@ def eval_(
     resimulate: Annotated[bool, typer.Option(help="simulate the recordings again even if present")] = False,
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
-                                       "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind "
-                                       "and real-nav2-blind2 (blind sets), real-modules, real-modules-heldout, "
-                                       "real-modules-heldout2 or real-modules-heldout3 (MoveIt 2, "
+                                       "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind, "
+                                       "real-nav2-blind2 and real-nav2-blind3 (blind sets), real-modules, "
+                                       "real-modules-heldout, -heldout2, -heldout3 or -heldout4 (MoveIt 2, "
                                        "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",

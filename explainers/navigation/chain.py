@@ -24,6 +24,7 @@ from dataclasses import replace
 
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.base import Evidence
+from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import Entry, catalogue
 from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS
@@ -183,8 +184,8 @@ def decisive_errors(logs: Iterable[LogLine], until: int | None) -> list[LogLine]
         if line.level < ERROR or (until is not None and line.t > until) or any(k in line.msg for k in _END):
             continue
         nav = cat.match(line.msg)
-        if nav is not None and nav.kind not in ("cause", "info"):
-            continue  # a goal's begin/end, a recovery, a planner that found no path: symptoms
+        if nav is not None and (nav.kind not in ("cause", "info") or states.state_of(nav, line.msg) is not None):
+            continue  # a goal's begin/end, a recovery, a planner that found no path, a reported state: symptoms
         mined = stack_entry(line)
         if mined is not None and mined.role != "cause":
             continue
@@ -211,7 +212,8 @@ def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
 def only_warned(found: Finding, run: Run) -> Finding | None:
     """For a recording with no goal and no end: an honest finding quoting the last warning, when the finding's cause
     rests on warnings only (None when an ERROR/FATAL line supports it, or it is already an honest one)."""
-    if found.cause in (UNEXPLAINED, NO_PROGRESS) or found.facts.get(NEVER_CAME_UP):
+    if (found.cause in (UNEXPLAINED, NO_PROGRESS) and states.of_finding(found.facts) is None) \
+            or found.facts.get(NEVER_CAME_UP):
         return None
     times = {e.t for e in found.evidence}
     notes = {id(n.line): n.entry for n in run.notes}
@@ -261,16 +263,32 @@ def _stuck_activation(line: LogLine, lines: list[LogLine]) -> bool:
 
 
 def slow_retries(run: Run) -> Finding | None:
-    """A goal reached after the planner failed and recoveries ran, with nothing that shows what was in the way."""
+    """A goal reached after the controller stopped making progress or the planner failed, and recoveries ran,
+    with nothing that shows what was in the way: said as a goal reached late after getting stuck, never as a
+    trip where nothing went wrong."""
     plans = plan_failures(run)
-    recoveries = run.matching(("Running ", "Received request to clear entirely"))
-    if not plans and len(recoveries) < 2:
+    stuck = run.matching(("Failed to make progress",))
+    cat = catalogue()
+    behaviours = [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "recovery"]
+    clears = [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "clear"]
+    if not plans and not stuck and len(behaviours) + len(clears) < 2:
         return None
-    found = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in (plans[:2] + recoveries[:2])])
+    picks = stuck[:1] + plans[:2] + behaviours[:2] + clears[:1]
+    found = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(picks, key=lambda x: x.t)])
     if run.end is not None:
         found.evidence.append(Evidence.of_log(UNEXPLAINED, run.end))
-    found.facts = {"plan_failures": float(len(plans)), "recoveries": float(len(recoveries)), "reached": 1.0}
+    found.facts = {"plan_failures": float(len(plans)), "progress_failures": float(len(stuck)),
+                   "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0}
+    found.notes.append(_recovered(behaviours, bool(clears)))
     return found
+
+
+def _recovered(behaviours: list[LogLine], cleared: bool) -> str:
+    """'I cleared my costmaps and ran my spin and wait recoveries' (the behaviours by the names Nav2 logged)."""
+    names = list(dict.fromkeys(ln.msg.split()[-1].lower() for ln in behaviours))
+    ran = f"ran my {' and '.join(names)} recover{'ies' if len(names) > 1 else 'y'}" if names else ""
+    done = " and ".join(p for p in ("cleared my costmaps" if cleared else "", ran) if p)
+    return f"I {done}" if done else "I retried"
 
 
 def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:

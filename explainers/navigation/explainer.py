@@ -48,7 +48,7 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain
+from hexar.explainers.navigation import chain, states
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -241,6 +241,7 @@ class NavigationExplainer:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
                         lines = chain.unresolved(lines, before)
+                    lines = states.claimable(run.notes, cause, lines)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
                 if found is not None:
@@ -251,6 +252,14 @@ class NavigationExplainer:
                         if line is not None and all(e.t != line.t for e in found.evidence):
                             found.evidence.append(Evidence.of_log(cause, line))
                     return found
+        said = states.reported(run.notes)
+        if said:
+            # a state of the costmap or planner with no line that supports one of its causes: told as what it is
+            found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln, _ in said[:2]])
+            found.facts = {states.FACT + said[0][1].key: float(len(said))}
+            if run.end is not None and run.outcome == "failed":
+                found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
+            return found
         plans = d.plan_failures(run)
         if plans:
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln in plans[:2]])

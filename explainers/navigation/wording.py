@@ -13,6 +13,7 @@ from collections.abc import Iterable
 from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation import states
 from hexar.explainers.navigation.detectors import Finding, Run
 
 
@@ -93,6 +94,23 @@ PLAN_CHECKS = ("What tells them apart: a planner line naming the start or the go
                "start and the goal.")
 
 
+def _slow(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
+    """A goal reached late after failures and recoveries: what went wrong on the way, and that the logs do not say
+    what held the robot up (chain.slow_retries)."""
+    stuck, plans = int(f.facts.get("progress_failures", 0)), int(f.facts.get("plan_failures", 0))
+    what = []
+    if stuck:
+        what.append("my controller made no progress for a while ('Failed to make progress')"
+                    + (f" {stuck} times" if stuck > 1 else ""))
+    if plans:
+        what.append(f"my planner could not compute a route {plans} time{'s' if plans > 1 else ''}")
+    done = f.notes[0] if f.notes else "I retried"  # chain.slow_retries: "I cleared my costmaps and ran my ..."
+    head = (f"I reached {place}, but it took longer because I got stuck on the way: {' and '.join(what)}"
+            if what else f"I reached {place}, but it took longer")
+    return (f"{head}; {done} before it worked. I can't tell what was in the way from my logs alone.",
+            None, ["Failures and recoveries alone do not show what held me up."])
+
+
 def _honest(f: Finding) -> str:
     """The decisive error quoted (chain.quote_last_error), as the end of a sentence."""
     return next((n for n in f.notes if n.startswith("the last error")), "")
@@ -129,10 +147,12 @@ def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     if f.cause != "navigation.unexplained_failure":
         return None
     if "reached" in f.facts:
-        return (f"I reached {place}, but it took longer: my planner could not compute a route "
-                f"{int(f.facts['plan_failures'])} times and I ran {int(f.facts['recoveries'])} recovery steps "
-                "before it worked. I can't tell what was in the way from my logs alone.",
-                None, ["Retries and recoveries alone do not show what held me up."])
+        return _slow(f, place)
+    state = states.of_finding(f.facts)
+    if state is not None:
+        verb = "failed" if run.outcome == "failed" else "did not finish"
+        tail = f" {last[0].upper()}{last[1:]}." if last else ""
+        return states.sentence(state, place, verb) + tail, state.checks, [f"Nav2 said: {_said(f)}"]
     if "plan_failures" in f.facts:
         tail = f" {last[0].upper()}{last[1:]}." if last else ""
         return (f"I couldn't reach {place}: my planner could not compute a route to it "

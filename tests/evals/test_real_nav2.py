@@ -127,6 +127,21 @@ def test_wall_clock_summary_lines_keep_their_times_as_stamps() -> None:
     assert all("stamp" not in r.synthesised and "level" in r.synthesised for r in records)
 
 
+def test_launch_timestamped_screen_lines_are_read_as_the_records_behind_the_print_time() -> None:
+    # launch's screen format with timestamps prints "{created:.7f} {line}" before each process line
+    text = ("1590973658.7966743 [bt_navigator-73] [INFO] [bt_navigator]: Begin navigating from current location to "
+            "(0.80, -1.30)\n"
+            "1678376108.7435489 [robot_manager_node-2] [ERROR] [1678376108.741479164] [robot_manager]: Could not "
+            "configure hardware interface\n"
+            "1679533274.4250224 [ERROR] [bt_navigator-28]: process has died [pid 81493, exit code -8, cmd 'x']")
+    begin, failed, died = parse_console(text)
+    assert (begin.name, begin.level, begin.process) == ("bt_navigator", 20, "bt_navigator-73")
+    assert begin.msg.startswith("Begin navigating") and begin.stamp_ns == 1590973658796674300
+    assert failed.stamp_ns == 1678376108741479164  # the node's own stamp wins over the print time
+    assert (failed.name, failed.level, died.name, died.level) == ("robot_manager", 40, "bt_navigator-28", 40)
+    assert not begin.synthesised and not died.synthesised
+
+
 def test_custom_console_format_with_a_clock_time_and_zone() -> None:
     text = ("[ WARN][6:31:18.730 PM -03][controller_server]: RegulatedPurePursuitController detected collision ahead!\n"
             "[ERROR][6:31:18.730 PM -03][controller_server]: Controller patience exceeded\n"

@@ -150,15 +150,6 @@ def test_tf_help_transform_too_old_is_a_transform_error(tmp_path: Path) -> None:
     assert answer.causes == [g.TRANSFORM] and _quoted(answer, "Transform data too old")
 
 
-def test_start_on_occupied_cells(tmp_path: Path) -> None:
-    # planner_server.cpp:511@humble's format around smac a_star.cpp:219@humble's exception text
-    line = ('GridBased plugin failed to plan calculation to (1.00, 2.00): "Starting point in lethal space! Cannot '
-            'create feasible plan."')
-    answer = _explain(tmp_path, [], [("planner_server", WARN, line)])
-    assert answer.causes == [g.START_IN_OBSTACLE]
-    assert stated_causes(answer.text) == {g.START_IN_OBSTACLE}
-
-
 def test_rpp_collision_ahead_is_a_collision_check_not_a_controller_failure(tmp_path: Path) -> None:
     # heldout nav2-3115-humble-rpp-false-collision's line
     answer = _explain(tmp_path, [], [("controller_server", WARN,
@@ -434,11 +425,20 @@ def test_a_background_warning_with_no_goal_is_quoted_not_read_as_a_cause(tmp_pat
 
 
 def test_a_server_that_says_why_it_fails_decides_without_a_goal(tmp_path: Path) -> None:
-    # ros-navigation/navigation2#3230 (corpus): the planner server's own words (navfn_planner.cpp:223@humble)
+    # the planner server's own words (navfn_planner.cpp:253@humble, reference/nav2_log_messages.md)
+    answer = _without_task(tmp_path, [("planner_server", WARN, "The goal sent to the planner is off the global "
+                                       "costmap. Planning will always fail to this goal.")])
+    assert answer.causes == [g.GOAL_UNREACHABLE]
+
+
+def test_a_server_that_reports_a_state_without_a_goal_is_hedged_not_a_mere_warning(tmp_path: Path) -> None:
+    # ros-navigation/navigation2#3230 (corpus): the planner server's own words (navfn_planner.cpp:223@humble) say
+    # the start was off the costmap, not why (states.py): the state with its candidates, not the last warning
     answer = _without_task(tmp_path, [("planner_server", WARN, "Cannot create a plan: the robot's start position is "
                                        "off the global costmap. Planning will always fail, are you sure the robot has "
                                        "been properly localized?")])
-    assert answer.causes == [g.OFF_COSTMAP]
+    assert answer.causes == [UNEXPLAINED] and "outside its bounds" in answer.text
+    assert stated_causes(answer.text) == set() and "last warning" not in answer.text
 
 
 def test_a_transform_lookup_off_by_more_than_a_second_is_a_clock_fault(tmp_path: Path) -> None:
