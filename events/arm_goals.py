@@ -114,8 +114,9 @@ def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> li
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """No goal line: catalogued cause lines make one goal (MoveIt's a move_arm, ros2_control's a
     follow_joint_trajectory), failed at the first error; without them, the robot's own errors (a bring-up
-    failure, a driver that cannot open its device: explainers/stack_causes.py) make one `bring_up_controllers` goal
-    failed at the first, unless the recording is a Nav2 robot's (navigation explains those)."""
+    failure, a driver that cannot open its device: explainers/stack_causes.py) and the start of its software make
+    one `bring_up_controllers` goal (events/bringup.py), unless the recording is a Nav2 robot's (navigation explains
+    those)."""
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -131,15 +132,14 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         active = [(line, skill) for line in logs if line.level >= ERROR
                   for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())) if cat.match(line.msg) is not None][:1]
     if not active:
-        from hexar.explainers.stack_causes import stack_cause
+        from hexar.events.bringup import bring_up
 
         if any(_nav2_own(ln) for ln in logs):
             return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
-        stack = stack_cause(logs)
-        if stack is None:
-            return []  # any other error may be anybody's: no task is claimed from it
-        last = max(ln.t for ln in logs)
-        return [_Goal(BRING_UP, stack.line.t, "bring-up lines (no goal line)", last, "failed", stack.line.msg)]
+        start = bring_up(logs)
+        if start is None:
+            return []  # no start shown: a lone error may be anybody's, and no task is claimed from it
+        return [_Goal(BRING_UP, start.start, "bring-up lines (no goal line)", start.end, start.state, start.error)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
     # the step began with the first warning or error of the arm's own software, so that a warning it logged
     # before (a controller manager waiting for its robot description) is in the explained window
@@ -183,7 +183,7 @@ def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Ta
         params: dict[str, object] = {"source": source, "derived_from": goal.via}
         instruction = {MOVE_ARM: "Move the arm (derived from MoveIt)",
                        FOLLOW: "Follow a joint trajectory (derived from ros2_control)",
-                       BRING_UP: "Start the robot (derived from its error lines)"}[goal.skill]
+                       BRING_UP: "Start the robot (derived from its start lines)"}[goal.skill]
         history = [StatusChange(goal.start, "running", "")]
         if goal.end is not None:
             history.append(StatusChange(goal.end, goal.state, goal.error))
@@ -230,14 +230,24 @@ def _arms_process(task: Task) -> bool:
 
 def _nav2_own(line: LogLine) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
-    (launch's generic "process has died" is anybody's)."""
+    logged by no logger of the arm's software (launch's generic "process has died" is anybody's)."""
     from hexar.explainers.navigation.catalogue import catalogue as nav2
 
     cat = nav2()
     if cat.role(line.name) is not None or cat.role(re.sub(r"-\d+$", "", line.name)) is not None:
         return True
+    if _arms_logger(line.name):
+        return False  # e.g. the resource manager's pluginlib error: a text Nav2 shares, logged by ros2_control
     entry = cat.match(line.msg)
     return entry is not None and not entry.id.startswith("launch.")
+
+
+def _arms_logger(name: str) -> bool:
+    """A logger with a role in the arm's catalogues (controller_manager, resource_manager, spawner, move_group)."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    return bool(name) and any(cat.role(name) is not None for cat in (moveit(), control()))
 
 
 def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:

@@ -18,6 +18,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
+from hexar.explainers.bringup_answer import derived_start, start_answer
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
@@ -88,8 +89,13 @@ class ModuleExplainer:
         lines = view.logs()
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         run = focus(context, self.skills)
+        step = context.task.skills[0] if len(context.task.skills) == 1 else None
+        if derived_start(step) and step is not None:
+            # no task, no goal: the robot's start, which completed or is still under way (a failed one is below)
+            told = start_answer(self.name, self.prefix, step, lines, context.task.created)
+            return phrase(self.model, self.name, question, self._facts(lines, told), told)
+        readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         d = diagnose(readings, run.state if run is not None else None)
         if d.outcome == "succeeded":
             # a goal that completed: warnings and errors on the way did not stop it (many healthy arms print some)
