@@ -146,3 +146,67 @@ def decode_odom(raw: bytes) -> tuple[int, float, float, float, float] | None:
         return sec * 1_000_000_000 + nanosec, x, y, vx, wz
     except (IndexError, StructError):
         return None
+
+
+_LEVEL = Struct("<b")  # DiagnosticStatus.level: a byte, no alignment, signed as rosbags reads it
+
+
+def _string(raw: bytes, pos: int) -> tuple[str, int]:
+    """A CDR string at payload offset `pos` (aligned here to 4), decoded strictly as rosbags decodes it (a text
+    that is not UTF-8 raises, and the caller leaves it to rosbags); and the payload offset after it."""
+    pos = (pos + 3) & ~3
+    (size,) = _U32.unpack_from(raw, 4 + pos)
+    end = pos + 4 + size
+    if size == 0 or 4 + end > len(raw):
+        raise IndexError(pos)
+    return raw[4 + pos + 4 : 4 + end - 1].decode("utf-8"), end
+
+
+def _count(raw: bytes, pos: int) -> tuple[int, int]:
+    """A sequence length at payload offset `pos`, and the payload offset after it."""
+    pos = (pos + 3) & ~3
+    (n,) = _U32.unpack_from(raw, 4 + pos)
+    if n > len(raw):  # each element takes at least a byte: a count this large is not this layout
+        raise IndexError(pos)
+    return n, pos + 4
+
+
+Status = tuple[int, str, str, str, tuple[tuple[str, str], ...]]  # level, name, message, hardware_id, values
+
+
+def decode_diagnostics(raw: bytes) -> tuple[int, int, list[Status]] | None:
+    """(header stamp sec, nanosec, statuses) of a diagnostic_msgs/msg/DiagnosticArray, or None (then rosbags
+    decodes it). /diagnostics and HEXAR's status topics are the most frequent messages after /rosout."""
+    try:
+        if raw[1] != 1:
+            return None
+        sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+        _, pos = _string(raw, 8)  # frame_id
+        n, pos = _count(raw, pos)
+        statuses: list[Status] = []
+        for _ in range(n):
+            (level,) = _LEVEL.unpack_from(raw, 4 + pos)
+            name, pos = _string(raw, pos + 1)
+            message, pos = _string(raw, pos)
+            hardware_id, pos = _string(raw, pos)
+            m, pos = _count(raw, pos)
+            values = []
+            for _ in range(m):
+                key, pos = _string(raw, pos)
+                value, pos = _string(raw, pos)
+                values.append((key, value))
+            statuses.append((level, name, message, hardware_id, tuple(values)))
+    except (IndexError, StructError, UnicodeDecodeError):
+        return None
+    if not 0 <= len(raw) - (4 + pos) <= _MAX_PAD:
+        raise LayoutError(f"DiagnosticArray of {len(raw)} bytes where the standard layout ends at {4 + pos}")
+    return sec, nanosec, statuses
+
+
+def decode_bool(raw: bytes) -> bool | None:
+    """The data of a std_msgs/msg/Bool in CDR (any non-zero byte is true, as rosbags reads it), or None."""
+    if len(raw) < 5 or raw[1] != 1:
+        return None
+    if len(raw) - 5 > _MAX_PAD:
+        raise LayoutError(f"std_msgs/msg/Bool of {len(raw)} bytes where the standard layout ends at 5")
+    return raw[4] != 0

@@ -17,7 +17,17 @@ from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
 from hexar.events.bag import Reader
-from hexar.events.cdr import LayoutError, decode_log, decode_odom, decode_pose_cov, decode_string, decode_twist
+from hexar.events.cdr import (
+    LayoutError,
+    Status,
+    decode_bool,
+    decode_diagnostics,
+    decode_log,
+    decode_odom,
+    decode_pose_cov,
+    decode_string,
+    decode_twist,
+)
 from hexar.events.errors import (
     CorruptRecordingError,
     EmptyRecordingError,
@@ -144,20 +154,24 @@ def parse_task_info(t: int, data: str) -> TaskUpdate | None:
     )
 
 
+def _diag_fields(msg: Any) -> tuple[int, int, list[Status]]:
+    """What `decode_diagnostics` reads, from rosbags' message object."""
+    return (msg.header.stamp.sec, msg.header.stamp.nanosec,
+            [(int(s.level), str(s.name), str(s.message), str(s.hardware_id),
+              tuple((str(kv.key), str(kv.value)) for kv in s.values)) for s in msg.status])
+
+
 def _statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
-    stamp = stamp_ns(msg.header.stamp.sec, msg.header.stamp.nanosec) or t
-    return [
-        StatusRecord(
-            t=stamp,
-            topic=topic,
-            level=int(s.level),
-            name=str(s.name),
-            message=str(s.message),
-            hardware_id=str(s.hardware_id),
-            values=tuple((str(kv.key), str(kv.value)) for kv in s.values),
-        )
-        for s in msg.status
-    ]
+    """The records of a DiagnosticArray message object (rosbags' or a live one)."""
+    return _status_records(t, topic, _diag_fields(msg))
+
+
+def _status_records(t: int, topic: str, diag: tuple[int, int, list[Status]]) -> list[StatusRecord]:
+    sec, nanosec, statuses = diag
+    stamp = stamp_ns(sec, nanosec) or t
+    return [StatusRecord(t=stamp, topic=topic, level=level, name=name, message=message, hardware_id=hardware_id,
+                         values=values)
+            for level, name, message, hardware_id, values in statuses]
 
 
 def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> EventLog:
@@ -357,8 +371,10 @@ def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, 
             else:
                 log.task_updates.append(update)
     elif msgtype == c.BOOL_TYPE:
-        m = _deser(ts, raw, msgtype, ros2)
-        log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, bool(m.data)))
+        flag = decode_bool(raw) if standard else None
+        if flag is None:
+            flag = bool(_deser(ts, raw, msgtype, ros2).data)
+        log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, flag))
     elif msgtype == c.POSE_COV_TYPE:
         fast_pose = decode_pose_cov(raw) if standard else None
         if fast_pose is not None:
@@ -376,8 +392,10 @@ def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, 
                 )
             )
     elif msgtype == c.DIAG_TYPE:
-        m = _deser(ts, raw, msgtype, ros2)
-        log.statuses.setdefault(conn.topic, []).extend(_statuses(t, conn.topic, m))
+        diag = decode_diagnostics(raw) if standard else None
+        if diag is None:
+            diag = _diag_fields(_deser(ts, raw, msgtype, ros2))
+        log.statuses.setdefault(conn.topic, []).extend(_status_records(t, conn.topic, diag))
     else:
         _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
 

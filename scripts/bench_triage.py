@@ -12,12 +12,16 @@
    The runs are interleaved (floor, then every configuration and code, then again), and each figure is printed
    with the machine's load average before and after it and the cores other processes kept busy meanwhile (from
    /proc/stat, less this run's own CPU): on shared cores, compare figures taken while others used little.
+   Every run must write the same tasks table and report per fleet: the first run's, or --expect DIR's (the code
+   before a change); --baseline's runs are checked the same way. `--no-pizza` adds the 60 less the 3 recordings
+   whose findings are LIME's answers, to show the fixed cost of importing scikit-learn and LIME. The medians are
+   printed against the targets of issue 25 (55 recordings/s with one worker, 2 workers 1.7x one).
 2. Scaling: the per-recording cost, in-process, of the same 40 recordings (a) as simulated, (b) with camera
    images on an unsubscribed topic, (c) with extra /rosout lines (a subscribed topic). The cost should follow the
    bytes of subscribed topics, not the camera data.
 
     .venv/bin/python scripts/bench_triage.py [--runs 3] [--dir DIR] [--skip-ray] [--baseline OLD/bin/hexar]
-        [--wait-quiet 0.2]
+        [--wait-quiet 0.2] [--no-pizza] [--expect DIR]
 """
 
 from __future__ import annotations
@@ -46,6 +50,9 @@ N = 1000
 IMAGE_BYTES = 640 * 480 * 3
 IMAGES = 40  # 37 MB of camera per recording
 EXTRA_LOGS = 20_000  # about 2 MB of /rosout per recording
+TARGET_PER_CORE = 55  # recordings/s with one worker (issue 25)
+TARGET_SCALING = 1.7  # 2 workers over 1
+PIZZA = "bagfile_20_"  # the 3 of the 60 whose findings are LIME's answers: the scikit-learn/LIME import
 T = TYPESTORE.types
 
 
@@ -62,6 +69,14 @@ def make_fleet(base: Path) -> Path:
     for rec in extra:
         shutil.rmtree(rec)
     return fleet
+
+
+def without_pizza(fleet: Path, out: Path) -> Path:
+    """The 60 less the 3 pizza recommendations: what the same fleet costs without importing scikit-learn and LIME."""
+    for rec in sorted(fleet.iterdir()):
+        if not rec.name.startswith(PIZZA) and not (out / rec.name).is_dir():
+            shutil.copytree(rec, out / rec.name)
+    return out
 
 
 def tree_rss_mb(pid: int) -> float:
@@ -136,6 +151,18 @@ def run_triage(hexar: str, fleet: Path, out: Path, extra: list[str], quiet: floa
             "load_before": load, "load_after": load_average(), "other_cores": others}
 
 
+def same_results(out: Path, fleet_name: str, key: str, expected: dict[str, str]) -> None:
+    """Every configuration, and the code before a change, writes the same tasks table (and report) as the first
+    run of this fleet, or as `--expect DIR/<fleet>/` when given: a faster triage that answers otherwise is no
+    faster triage. A difference ends the benchmark."""
+    for name in ("tasks.jsonl", "report.md"):
+        got = (out / name).read_text(encoding="utf-8")
+        want = expected.setdefault(f"{fleet_name}/{name}", got)
+        if got != want:
+            raise SystemExit(f"{key}: {name} differs from the expected one ({len(got.splitlines())} lines, "
+                             f"{len(want.splitlines())} expected)")
+
+
 def read_floor(fleet: Path) -> float:
     """Recordings/s of reading every message of every recording from its sqlite3 storage, nothing decoded."""
     files = sorted(fleet.rglob("*.db3"))
@@ -152,13 +179,14 @@ def uptime() -> str:
     return subprocess.run(["uptime"], capture_output=True, text=True, check=False).stdout.strip()
 
 
-def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
-               baseline: str | None, quiet: float | None = None) -> dict[str, dict[str, float]]:
+def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool, baseline: str | None,
+               quiet: float | None = None, expected: dict[str, str] | None = None) -> dict[str, dict[str, float]]:
     configs = {"1 worker": ["--workers", "1"], "2 workers": ["--workers", "2"]}
     if ray:
         configs["Ray local, 2 CPUs"] = ["--ray", "local", "--workers", "2"]
     codes = {"new": HEXAR, **({"old": baseline} if baseline else {})}
     samples: dict[str, list[dict[str, float]]] = {}
+    expected = {} if expected is None else expected
     for run in range(runs):
         print(f"run {run + 1}: {uptime()}", flush=True)
         # interleaved, so that a change of load on a shared machine hits every configuration and code alike
@@ -173,10 +201,14 @@ def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
                 for code, hexar in codes.items():
                     key = f"{fleet_name}, {name}, {code}"
                     sample = run_triage(hexar, fleet, base / "out", extra, quiet)
+                    same_results(base / "out", fleet_name, key, expected)
                     samples.setdefault(key, []).append(sample)
                     print(f"run {run + 1}: {key:30s} {sample['recordings_per_s']:7.1f} recordings/s "
-                          f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f}; other processes used "
-                          f"{sample['other_cores']:.2f} cores meanwhile)", flush=True)
+                          f"(load {sample['load_before']:.2f} -> {sample['load_after']:.2f}, getloadavg "
+                          f"{os.getloadavg()}; other processes used {sample['other_cores']:.2f} cores meanwhile)",
+                          flush=True)
+    print(f"results: every run of every configuration{' and code' if baseline else ''} wrote the same tasks "
+          f"table and report per fleet ({len(expected) // 2} fleets checked)", flush=True)
     out: dict[str, dict[str, float]] = {}
     for key, rows in samples.items():
         out[key] = {k: round(statistics.median(s[k] for s in rows), 2) for k in rows[0]}
@@ -186,7 +218,7 @@ def throughput(fleets: dict[str, Path], base: Path, runs: int, ray: bool,
 
 def summarise(result: dict[str, dict[str, float]], sizes: dict[str, int], baseline: bool) -> dict[str, float]:
     """Scaling with workers, the marginal rate without start-up, and the ratios to the baseline."""
-    small, large = sizes
+    small, large = list(sizes)[:2]
     codes = ["new", "old"] if baseline else ["new"]
     lines: dict[str, float] = {}
     for code in codes:
@@ -213,6 +245,10 @@ def summarise(result: dict[str, dict[str, float]], sizes: dict[str, int], baseli
               f"{floor['recordings_per_s']:.0f}/s; load average {one['load_before']:.2f} / {two['load_before']:.2f}"
               f" / {floor['load_before']:.2f} before each; other processes used {one['other_cores']:.2f} / "
               f"{two['other_cores']:.2f} cores during the 1- and 2-worker runs")
+        ratio = two["recordings_per_s"] / one["recordings_per_s"]
+        print(f"   target (issue 25) {fleet}: 1 worker >= {TARGET_PER_CORE}/s: "
+              f"{'PASS' if one['recordings_per_s'] >= TARGET_PER_CORE else 'FAIL'} ({one['recordings_per_s']:.1f}); "
+              f"2 workers / 1 >= {TARGET_SCALING}: {'PASS' if ratio >= TARGET_SCALING else 'FAIL'} ({ratio:.2f})")
     return lines
 
 
@@ -296,6 +332,11 @@ def main() -> int:
     ap.add_argument("--skip-throughput", action="store_true")
     ap.add_argument("--skip-scaling", action="store_true")
     ap.add_argument("--baseline", default=None, help="another hexar executable to compare with, in the same run")
+    ap.add_argument("--no-pizza", action="store_true",
+                    help="also the 60 less the 3 recordings whose findings need LIME (the fixed cost of its import)")
+    ap.add_argument("--expect", type=Path, default=None, metavar="DIR",
+                    help="DIR/<fleet>/tasks.jsonl and report.md that every run must write (e.g. from the code "
+                         "before a change); default: the first run's")
     ap.add_argument("--wait-quiet", type=float, default=None, metavar="CORES",
                     help="before each run, wait (up to 5 minutes) until other processes use fewer than CORES cores")
     args = ap.parse_args()
@@ -305,9 +346,16 @@ def main() -> int:
     print(f"{N} recordings in {fleet} ({time.perf_counter() - t:.0f} s to simulate); {os.cpu_count()} CPUs; "
           f"{uptime()}", flush=True)
     fleets = {"60": fleet / "robot-00", str(N): fleet}  # robot-00 is `hexar simulate --seed 0`
+    if args.no_pizza:
+        fleets["57, no pizza"] = without_pizza(fleet / "robot-00", base / "no-pizza")
     result: dict[str, object] = {"recordings": N, "cpus": os.cpu_count(), "runs": args.runs}
     if not args.skip_throughput:
-        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline, args.wait_quiet)
+        expected = {f"{name}/{f}": (args.expect / name / f).read_text(encoding="utf-8")
+                    for name in fleets for f in ("tasks.jsonl", "report.md")
+                    if args.expect and (args.expect / name / f).is_file()}
+        if args.expect:
+            print(f"expected results: {len(expected)} files from {args.expect}", flush=True)
+        tp = throughput(fleets, base, args.runs, not args.skip_ray, args.baseline, args.wait_quiet, expected)
         result["throughput"] = tp
         result["summary"] = summarise(tp, {name: len(list(path.rglob("metadata.yaml")))
                                            for name, path in fleets.items()}, args.baseline is not None)
