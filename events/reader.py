@@ -44,14 +44,13 @@ from hexar.events.records import (
     LogLine,
     OdomSample,
     PoseSample,
-    SkillStep,
     StatusRecord,
-    TaskUpdate,
     TwistSample,
     stamp_ns,
 )
 from hexar.events.recover import holds_storage, is_cut_short, read_recovered, storage_files
 from hexar.events.storage_rows import mcap_rows, sqlite_messages
+from hexar.events.task_info import parse_task_info
 
 _HUMBLE: Typestore | None = None
 
@@ -117,41 +116,6 @@ def resolve_path(path: Path) -> Path:
 
 def _yaw(qz: float, qw: float) -> float:
     return 2.0 * math.atan2(qz, qw)
-
-
-def parse_task_info(t: int, data: str) -> TaskUpdate | None:
-    """A `/task_info` JSON update, or None when the text is no task update (or too large or too deep to read)."""
-    from hexar.bounded_json import loads
-    from hexar.errors import BadJsonError
-
-    try:
-        obj = loads(data)
-    except BadJsonError:
-        return None
-    if not isinstance(obj, dict) or "task_id" not in obj:
-        return None
-    skills = []
-    for step in obj.get("skill_sequence") or []:
-        if not isinstance(step, dict):
-            continue
-        params = step.get("params") or {}
-        skills.append(
-            SkillStep(
-                skill=str(step.get("skill", "")),
-                params=dict(params) if isinstance(params, dict) else {"value": params},
-                status=str(step.get("status", "")),
-                error_msg=str(step.get("error_msg") or ""),
-            )
-        )
-    return TaskUpdate(
-        t=t,
-        task_id=str(obj["task_id"]),
-        instruction=str(obj.get("instruction") or ""),
-        task_status=str(obj.get("task_status") or "valid"),
-        task_error_msg=str(obj.get("task_error_msg") or ""),
-        skills=tuple(skills),
-        raw=data,
-    )
 
 
 def _diag_fields(msg: Any) -> tuple[int, int, list[Status]]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.reader import _statuses, _yaw, parse_task_info
+from hexar.events.reader import _statuses, _yaw
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -18,6 +18,7 @@ from hexar.events.records import (
     TwistSample,
     stamp_ns,
 )
+from hexar.events.task_info import parse_task_info
 
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
           | GoalStatus)

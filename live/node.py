@@ -19,8 +19,8 @@ from typing import Any, Literal, Protocol
 
 from hexar.events import contract as c
 from hexar.events.errors import EventsError
-from hexar.events.reader import parse_task_info
 from hexar.events.records import GoalStatus, StatusRecord, TaskUpdate
+from hexar.events.task_info import parse_task_info
 from hexar.live.jobs import MAX_FAILURES, MAX_QUESTIONS, JobQueue, RateLimit
 from hexar.live.log import NS, LiveLog
 from hexar.live.topics import ANSWER

@@ -6,7 +6,7 @@ import pytest
 
 from hexar.bounded_json import MAX_DEPTH, loads
 from hexar.errors import BadJsonError
-from hexar.events.reader import parse_task_info
+from hexar.events.task_info import parse_task_info
 
 
 @pytest.mark.parametrize("text", ["[" * 2000 + "]" * 2000, '{"a":' * 5000 + "1" + "}" * 5000,

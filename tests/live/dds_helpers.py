@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.reader import parse_task_info
+from hexar.events.task_info import parse_task_info
 from hexar.live import msgs
 from hexar.live.dds import DdsEndpoint, DdsTransport
 from hexar.live.log import Limits, LiveLog
