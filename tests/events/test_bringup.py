@@ -5,11 +5,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-from hexar.events import read_recording
 from hexar.events.records import ERROR, INFO, WARN
+from tests.explainers.helpers import T0, write_lines
 
-T0 = 1_700_000_000_000_000_000
 # ros2_control's own lines (hardware_interface/src/resource_manager.cpp:88,111,120@humble;
 # controller_manager/controller_manager/spawner.py:273@humble, which appends the controller's name)
 START = [(0.0, "resource_manager", INFO, "Loading hardware 'RRBot'"),
@@ -22,10 +20,7 @@ NO_CLOCK = ("No clock received, using time argument instead! Check your node's c
 
 
 def _tasks(tmp_path: Path, lines: list[tuple[float, str, int, str]]):  # type: ignore[no-untyped-def]
-    b = BagBuilder()
-    for s, name, level, msg in lines:
-        b.log(T0 + sec_ns(s), name, level, msg)
-    return read_recording(b.write(tmp_path / "run")).tasks
+    return write_lines(tmp_path, lines).tasks
 
 
 def _steps(tasks) -> list[tuple[str, str, str]]:  # type: ignore[no-untyped-def]

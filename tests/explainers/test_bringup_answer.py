@@ -7,13 +7,10 @@ from __future__ import annotations
 from pathlib import Path
 
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
-from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-from hexar.events import read_recording
 from hexar.events.records import ERROR, INFO, WARN
-from hexar.explainers.base import Context, Explanation
-from hexar.explainers.registry import Registry
+from hexar.explainers.base import Explanation
+from tests.explainers.helpers import explain, write_lines
 
-T0 = 1_700_000_000_000_000_000
 # ros2_control's own lines: hardware_interface/src/resource_manager.cpp:88,120@humble,
 # controller_manager/controller_manager/spawner.py:273@humble, controller_manager/src/controller_manager.cpp:3401@jazzy
 LOADING = (0.0, "resource_manager", INFO, "Loading hardware 'RRBot'")
@@ -24,14 +21,9 @@ NO_CLOCK = (0.1, "controller_manager", WARN, "No clock received, using time argu
 
 
 def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str) -> Explanation:
-    b = BagBuilder()
-    for s, name, level, msg in lines:
-        b.log(T0 + sec_ns(s), name, level, msg)
-    log = read_recording(b.write(tmp_path / "run"))
-    registry = Registry.load()
-    task = log.task()
+    task, found = explain(write_lines(tmp_path, lines), "control", question)
     assert task.derived and task.skills[0].skill == "bring_up_controllers"
-    return registry.get("control").explain(question, Context.for_task(log, task, registry))
+    return found
 
 
 def test_a_completed_start_says_nothing_failed_and_names_its_warning_as_only_looking_like_one(tmp_path: Path) -> None:

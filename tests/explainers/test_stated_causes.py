@@ -13,13 +13,11 @@ from typing import Any
 from hexar.causes import vocabulary
 from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-from hexar.events import read_recording
 from hexar.events.records import ERROR, FATAL, INFO, WARN
-from hexar.explainers.base import Context, Explanation
-from hexar.explainers.registry import Registry
+from hexar.explainers.base import Explanation
 from hexar.explainers.stated_causes import phrases
+from tests.explainers.helpers import T0, explain, write_lines
 
-T0 = 1_700_000_000_000_000_000
 SOURCE = re.compile(r"\S+:\d+@[0-9a-f]{12}")
 
 
@@ -37,11 +35,7 @@ def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], fails_at:
     b.task_info(T0 - sec_ns(1), _task("waiting", skill))
     b.task_info(T0 - sec_ns(0.5), _task("Running", skill))
     b.task_info(T0 + sec_ns(fails_at), _task("failed", skill))
-    for s, name, level, msg in lines:
-        b.log(T0 + sec_ns(s), name, level, msg)
-    log = read_recording(b.write(tmp_path / "run"))
-    registry = Registry.load()
-    return registry.get(explainer).explain("Why didn't that work?", Context.for_task(log, log.task(), registry))
+    return explain(write_lines(tmp_path, lines, b), explainer, "Why didn't that work?")[1]
 
 
 def _claims(found: Explanation) -> set[str]:

@@ -5,25 +5,16 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-from hexar.events import read_recording
 from hexar.events.records import ERROR, FATAL, INFO, WARN
-from hexar.explainers.base import Context, Explanation
-from hexar.explainers.registry import Registry
-
-T0 = 1_700_000_000_000_000_000
+from hexar.explainers.base import Explanation
+from tests.explainers.helpers import explain, write_lines
 
 
 def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], skill: str = "follow_joint_trajectory"
              ) -> Explanation:
-    b = BagBuilder()
-    for s, name, level, msg in lines:
-        b.log(T0 + sec_ns(s), name, level, msg)
-    log = read_recording(b.write(tmp_path / "run"))
-    registry = Registry.load()
-    task = log.task()
+    task, found = explain(write_lines(tmp_path, lines), "control", "Why didn't the arm move?")
     assert task.derived and task.skills[0].skill == skill
-    return registry.get("control").explain("Why didn't the arm move?", Context.for_task(log, task, registry))
+    return found
 
 
 def test_the_controller_managers_line_is_the_cause_and_the_spawners_its_symptom(tmp_path: Path) -> None:

@@ -8,25 +8,15 @@ from pathlib import Path
 
 import pytest
 
-from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-from hexar.events import read_recording
 from hexar.events.records import ERROR, INFO, WARN
-from hexar.explainers.base import Context
 from hexar.explainers.manipulation.explainer import state_monitor_cause
-from hexar.explainers.registry import Registry
+from tests.explainers.helpers import explain, write_lines
 
-T0 = 1_700_000_000_000_000_000
 MGI = "move_group_interface"
 
 
 def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str = "Why did it fail?"):  # type: ignore[no-untyped-def]
-    b = BagBuilder()
-    for s, name, level, msg in lines:
-        b.log(T0 + sec_ns(s), name, level, msg)
-    log = read_recording(b.write(tmp_path / "run"))
-    registry = Registry.load()
-    task = log.task()
-    return task, registry.get("manipulation").explain(question, Context.for_task(log, task, registry))
+    return explain(write_lines(tmp_path, lines), "manipulation", question)
 
 
 def _aborted(at: float) -> list[tuple[float, str, int, str]]:

@@ -1,0 +1,31 @@
+"""Recordings of real log lines for the log explainers' tests: (seconds, logger, level, text) rows on /rosout,
+written with rosbags, then one explainer asked about the recording's task."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events import read_recording
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.registry import Registry
+
+T0 = 1_700_000_000_000_000_000
+Line = tuple[float, str, int, str]
+
+
+def write_lines(tmp_path: Path, lines: list[Line], b: BagBuilder | None = None) -> EventLog:
+    """The lines, `s` seconds after T0 each, added to `b` (a new recording without one) and read back."""
+    b = b or BagBuilder()
+    for s, name, level, msg in lines:
+        b.log(T0 + sec_ns(s), name, level, msg)
+    return read_recording(b.write(tmp_path / "run"))
+
+
+def explain(log: EventLog, explainer: str, question: str) -> tuple[Task, Explanation]:
+    """The recording's task and what `explainer` answers about it."""
+    registry = Registry.load()
+    task = log.task()
+    return task, registry.get(explainer).explain(question, Context.for_task(log, task, registry))
