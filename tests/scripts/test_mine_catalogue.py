@@ -3,16 +3,13 @@ giving roles, tests skipped, and bad input a one-line ERROR."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import subprocess
-import sys
 from pathlib import Path
-from types import ModuleType
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_catalogue.py"
+from tests.scripts.helpers import git, load_script
+
 CONFIG = """
 min_literal: 10
 repos:
@@ -26,40 +23,28 @@ rules:
 """
 
 
-def _script() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("mine_catalogue", SCRIPT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["mine_catalogue"] = module
-    spec.loader.exec_module(module)
-    return module
-
-
-def _git(repo: Path, *args: str) -> None:
-    subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True)
-
-
 def _repo(root: Path) -> None:
     repo = root / "someone+robot_nav" / "repo"
     (repo / "pkg" / "src").mkdir(parents=True)
     (repo / "pkg" / "test").mkdir()
-    _git(repo, "init", "-q", "-b", "humble")
-    _git(repo, "config", "user.email", "t@example.com")
-    _git(repo, "config", "user.name", "t")
+    git(repo, "init", "-q", "-b", "humble")
+    git(repo, "config", "user.email", "t@example.com")
+    git(repo, "config", "user.name", "t")
     (repo / "pkg" / "src" / "a.cpp").write_text(
         'RCLCPP_ERROR(logger_, "Transform data too old when converting from %s to %s", a, b);\n'
         'RCLCPP_WARN(logger_, "Failed to make progress");\nRCLCPP_ERROR(logger_, "short");\n')
     (repo / "pkg" / "test" / "t.cpp").write_text('RCLCPP_ERROR(logger_, "a test-only message here");\n')
-    _git(repo, "add", ".")
-    _git(repo, "commit", "-q", "-m", "humble")
-    _git(repo, "branch", "jazzy")
+    git(repo, "add", ".")
+    git(repo, "commit", "-q", "-m", "humble")
+    git(repo, "branch", "jazzy")
 
 
 def test_mines_branches_into_entries_with_roles(tmp_path: Path) -> None:
     _repo(tmp_path)
     (tmp_path / "sources.yaml").write_text(CONFIG)
     out = tmp_path / "out.json"
-    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"), "--out", str(out)])
+    rc = load_script("mine_catalogue").main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"),
+                                             "--out", str(out)])
     assert rc == 0
     data = json.loads(out.read_text())
     assert data["mined"] == ["someone/robot_nav"]
@@ -74,13 +59,13 @@ def test_mines_branches_into_entries_with_roles(tmp_path: Path) -> None:
 
 def test_no_mirror_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     (tmp_path / "sources.yaml").write_text(CONFIG)
-    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"),
-                         "--out", str(tmp_path / "o.json")])
+    rc = load_script("mine_catalogue").main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"),
+                                             "--out", str(tmp_path / "o.json")])
     err = capsys.readouterr().err.strip().splitlines()
     assert rc == 1 and err[-1].startswith("ERROR: no repository") and not (tmp_path / "o.json").exists()
 
 
 def test_a_config_without_repos_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     (tmp_path / "sources.yaml").write_text("rules: []\n")
-    rc = _script().main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml")])
+    rc = load_script("mine_catalogue").main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml")])
     assert rc == 1 and capsys.readouterr().err.startswith("ERROR: sources.yaml: a mapping with a `repos` list")

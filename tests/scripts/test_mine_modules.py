@@ -4,16 +4,14 @@ give causes, and a rule that matches nothing stops the miner."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import re
-import subprocess
-import sys
 from pathlib import Path
-from types import ModuleType
 from typing import Any
 
 import pytest
+
+from tests.scripts.helpers import git, load_script
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_modules.py"
 CPP_A = """
@@ -33,35 +31,22 @@ void f() {
 PY = 'def main():\n    logger.error(bcolors.FAIL + f"Failed loading controller {name}" + bcolors.ENDC)\n'
 
 
-def _module() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("mine_modules", SCRIPT)
-    assert spec is not None and spec.loader is not None
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules["mine_modules"] = mod
-    spec.loader.exec_module(mod)
-    return mod
-
-
-def _git(repo: Path, *args: str) -> None:
-    subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True)
-
-
 @pytest.fixture
 def mirror(tmp_path: Path) -> Path:
     repo = tmp_path / "me+ctl" / "repo"
     (repo / "cm" / "src").mkdir(parents=True)
-    _git(repo, "init", "-q", "-b", "humble")
-    _git(repo, "config", "user.email", "t@t")
-    _git(repo, "config", "user.name", "t")
+    git(repo, "init", "-q", "-b", "humble")
+    git(repo, "config", "user.email", "t@t")
+    git(repo, "config", "user.name", "t")
     (repo / "cm" / "src" / "cm.cpp").write_text(CPP_A)
     (repo / "cm" / "spawner.py").write_text(PY)
     (repo / "cm" / "test").mkdir()
     (repo / "cm" / "test" / "test_cm.cpp").write_text('RCLCPP_ERROR(l, "only in a test %d", 1);')
-    _git(repo, "add", ".")
-    _git(repo, "commit", "-qm", "a")
-    _git(repo, "checkout", "-qb", "jazzy")
+    git(repo, "add", ".")
+    git(repo, "commit", "-qm", "a")
+    git(repo, "checkout", "-qb", "jazzy")
     (repo / "cm" / "src" / "cm.cpp").write_text("\n" + CPP_B)
-    _git(repo, "commit", "-qam", "b")
+    git(repo, "commit", "-qam", "b")
     return tmp_path
 
 
@@ -73,7 +58,7 @@ def _config(rules: list[dict[str, Any]]) -> dict[str, Any]:
 
 
 def test_messages_become_anchored_patterns_with_their_sources(mirror: Path) -> None:
-    mod = _module()
+    mod = load_script("mine_modules")
     rules = [{"match": "^Loader for controller", "kind": "cause", "cause": "control.controller_load_failed",
               "meaning": "m"}]
     rows = {r["text"]: r for r in mod.classify(mod.collect(_config(rules), mirror, "control"), _config(rules),
@@ -94,7 +79,7 @@ def test_messages_become_anchored_patterns_with_their_sources(mirror: Path) -> N
 
 
 def test_a_rule_that_matches_nothing_stops_the_miner(mirror: Path) -> None:
-    mod = _module()
+    mod = load_script("mine_modules")
     cfg = _config([{"match": "^No such line$", "kind": "cause", "cause": "control.nominal", "meaning": "m"}])
     with pytest.raises(SystemExit, match="rules that match no mined line"):
         mod.classify(mod.collect(cfg, mirror, "control"), cfg, "control")
@@ -112,9 +97,9 @@ def test_the_committed_catalogues_cite_a_file_line_and_branch_for_every_message(
 def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_path: Path) -> None:
     repo = tmp_path / "me+drv" / "repo"
     (repo / "src").mkdir(parents=True)
-    _git(repo, "init", "-q", "-b", "main")
-    _git(repo, "config", "user.email", "t@t")
-    _git(repo, "config", "user.name", "t")
+    git(repo, "init", "-q", "-b", "main")
+    git(repo, "config", "user.email", "t@t")
+    git(repo, "config", "user.name", "t")
     (repo / "src" / "driver.cpp").write_text(
         'void f() {\n  URCL_LOG_ERROR("Failed to connect to the RTDE server, retrying in %i seconds", t);\n'
         '  RCLCPP_ERROR(l, "The calibration parameters of the connected robot don\'t match the ones from the given "\n'
@@ -122,9 +107,9 @@ def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_pa
         '  RCLCPP_ERROR(l, "Loader for controller \'%s\' not found.", n);\n}\n')
     (repo / "src" / "result.cpp").write_text('std::string r() {\n  return "No motion plan found. No execution '
                                              'attempted.";\n}\n')
-    _git(repo, "add", ".")
-    _git(repo, "commit", "-qm", "a")
-    mod = _module()
+    git(repo, "add", ".")
+    git(repo, "commit", "-qm", "a")
+    mod = load_script("mine_modules")
     cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
         {"name": "drv", "mirror": "me+drv", "branches": ["main"], "skip_paths": "^$",
          "return_files": r"result\.cpp"}]}}}

@@ -4,26 +4,14 @@ miner with a one-line error."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
-import subprocess
-import sys
 from pathlib import Path
-from types import ModuleType
 
 import pytest
 
-SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_strerror.py"
+from tests.scripts.helpers import git, load_script
+
 COMMITTED = Path(__file__).resolve().parents[2] / "explainers" / "stack" / "strerror.json"
-
-
-def _script() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("mine_strerror", SCRIPT)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["mine_strerror"] = module
-    spec.loader.exec_module(module)
-    return module
 
 
 def _glibc(tmp_path: Path, errnos: list[dict[str, str]]) -> Path:
@@ -35,13 +23,13 @@ def _glibc(tmp_path: Path, errnos: list[dict[str, str]]) -> Path:
         body += [f"#ifdef {e['errno']}", f"_S({e['errno']}, N_(\"{e['text']}\"))", "#endif"]
     (repo / "sysdeps" / "gnu" / "errlist.h").write_text("\n".join(body) + "\n", encoding="utf-8")
     for args in (["init", "-q"], ["add", "."], ["-c", "user.email=t@t", "-c", "user.name=t", "commit", "-qm", "x"]):
-        subprocess.run(["git", "-C", str(repo), *args], check=True)
+        git(repo, *args)
     return repo
 
 
 def test_the_mined_texts_and_lines_come_from_errlist(tmp_path: Path) -> None:
     committed = json.loads(COMMITTED.read_text(encoding="utf-8"))["errnos"]
-    mined = _script().mine(_glibc(tmp_path, committed))
+    mined = load_script("mine_strerror").mine(_glibc(tmp_path, committed))
     assert [(e["errno"], e["text"], e["cause"]) for e in mined["errnos"]] == \
            [(e["errno"], e["text"], e["cause"]) for e in committed]
     first = mined["errnos"][0]
@@ -52,4 +40,4 @@ def test_an_errno_missing_from_errlist_stops_the_miner(tmp_path: Path) -> None:
     committed = json.loads(COMMITTED.read_text(encoding="utf-8"))["errnos"]
     repo = _glibc(tmp_path, [e for e in committed if e["errno"] != "EACCES"])
     with pytest.raises(SystemExit, match=r"ERROR: .* has no text for EACCES"):
-        _script().mine(repo)
+        load_script("mine_strerror").mine(repo)
