@@ -136,6 +136,18 @@ def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]
     return previous_raw[-1:].isspace()
 
 
+def _behind_prefix(rest: str, stamp_ns: int, records: list[ConsoleLine], keep_own: bool) -> None:
+    """The records of a line printed behind a time prefix, stamped with that time (unless `keep_own` and the line
+    prints its own stamp)."""
+    inner: list[ConsoleLine] = []
+    _parse_line(rest, "", inner)
+    for r in inner:
+        if not (keep_own and r.stamp_ns is not None):
+            r.stamp_ns = stamp_ns
+            r.synthesised.discard("stamp")
+    records.extend(inner)
+
+
 def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     c = CLOCK_LEVELED.match(line)
     if c:
@@ -144,22 +156,11 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         return
     t = CLOCK_PREFIX.match(line)
     if t:
-        inner: list[ConsoleLine] = []
-        _parse_line(t["rest"], "", inner)
-        for r in inner:
-            r.stamp_ns = _clock_ns(t["clock"], t["ampm"])
-            r.synthesised.discard("stamp")
-        records.extend(inner)
+        _behind_prefix(t["rest"], _clock_ns(t["clock"], t["ampm"]), records, keep_own=False)
         return
     e = EPOCH_PREFIX.match(line)
-    if e:
-        inner = []
-        _parse_line(e["rest"], "", inner)
-        for r in inner:
-            if r.stamp_ns is None:  # the node's own stamp, where printed, is the record's
-                r.stamp_ns = _stamp_ns(e["epoch"])
-                r.synthesised.discard("stamp")
-        records.extend(inner)
+    if e:  # the node's own stamp, where printed, is the record's
+        _behind_prefix(e["rest"], _stamp_ns(e["epoch"]), records, keep_own=True)
         return
     m = LEVELED.match(line) or LEVEL_STAMP.match(line)
     if m:
