@@ -307,6 +307,8 @@ BLIND_FILE = "blind.yaml"
 BLIND2_FILE = "blind2.yaml"
 # A third, collected by another hand during round 5 and measured before that round's changes were merged and after.
 BLIND3_FILE = "blind3.yaml"
+# A fourth, collected by another hand during round 6 and measured the same way.
+BLIND4_FILE = "blind4.yaml"
 
 
 @cache
@@ -333,6 +335,10 @@ def blind2() -> tuple[Excerpt, ...]:
 
 def blind3() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND3_FILE)
+
+
+def blind4() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND4_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -31,6 +31,7 @@ from hexar.evals.real_nav2 import (
     blind,
     blind2,
     blind3,
+    blind4,
     corpus,
     heldout,
     task_plan,
@@ -45,8 +46,10 @@ BLIND_SUITE = "real-nav2-blind"
 # The second blind set (blind2.yaml), collected while the next round tuned the explainer.
 BLIND2_SUITE = "real-nav2-blind2"
 BLIND3_SUITE = "real-nav2-blind3"  # the third, collected in round 5
+BLIND4_SUITE = "real-nav2-blind4"  # the fourth, collected in round 6
 SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
-          BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3)}
+          BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3),
+          BLIND4_SUITE: ("blind4.yaml", blind4)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})

@@ -17,6 +17,7 @@ from hexar.evals.real_nav2 import (
     blind,
     blind2,
     blind3,
+    blind4,
     corpus,
     heldout,
     parse_console,
@@ -56,7 +57,16 @@ def test_the_third_blind_set_shares_no_excerpt_or_thread_with_the_other_four() -
     assert not {e.url for e in excerpts} & {e.url for e in others}
 
 
-@pytest.mark.parametrize("excerpt", blind() + blind2() + blind3(), ids=lambda e: e.id)
+def test_the_fourth_blind_set_shares_no_excerpt_or_thread_with_the_other_five() -> None:
+    excerpts = blind4()
+    assert len(excerpts) >= 12 and {e.cause for e in excerpts} <= NAV_CAUSES
+    assert sum(e.outcome != "failed" for e in excerpts) * 5 >= len(excerpts)
+    others = corpus() + heldout() + blind() + blind2() + blind3()
+    assert not {e.id for e in excerpts} & {e.id for e in others}
+    assert not {e.url for e in excerpts} & {e.url for e in others}
+
+
+@pytest.mark.parametrize("excerpt", blind() + blind2() + blind3() + blind4(), ids=lambda e: e.id)
 def test_every_blind_excerpt_becomes_a_readable_recording(excerpt: Excerpt, tmp_path: Path) -> None:
     # a paste from several terminals is not in time order; the recording is, as a robot's /rosout would be
     expected = sorted(stamped(parse_console(excerpt.lines)), key=lambda r: r.stamp_ns or 0)
@@ -80,8 +90,10 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
                                              ("real_nav2_blind2_none_before.json", "real-nav2-blind2"),
                                              ("real_nav2_blind2_none.json", "real-nav2-blind2"),
                                              ("real_nav2_blind3_none_before.json", "real-nav2-blind3"),
-                                             ("real_nav2_blind3_none.json", "real-nav2-blind3")])
+                                             ("real_nav2_blind3_none.json", "real-nav2-blind3"),
+                                             ("real_nav2_blind4_none_before.json", "real-nav2-blind4")])
 def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
     baseline = read_baseline(BASELINES / name, suite)
-    sets = {"real-nav2-blind": blind, "real-nav2-blind2": blind2, "real-nav2-blind3": blind3}
+    sets = {"real-nav2-blind": blind, "real-nav2-blind2": blind2, "real-nav2-blind3": blind3,
+            "real-nav2-blind4": blind4}
     assert set(baseline["excerpts"]) == {e.id for e in sets[suite]()}
