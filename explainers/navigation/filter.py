@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 from hexar.events.records import WARN, LogLine
 from hexar.explainers.navigation.catalogue import Entry, catalogue
+from hexar.explainers.stack.bringup import client_gave_up
 
 if TYPE_CHECKING:
     from hexar.explainers.navigation.detectors import Run
@@ -71,8 +72,12 @@ def tag_logs(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry | None]]:
     """The lines worth reading, with what the catalogue says of each."""
     out: list[tuple[LogLine, Entry | None]] = []
     previous: dict[str, str] = {}
+    seen: list[LogLine] = []
     for line in lines:
         keep, entry = kept(line)
+        seen.append(line)
+        if entry is not None and entry.id == "launch.process_died" and client_gave_up(line, seen):
+            entry = None  # a spawner that found no controller manager: read, never a node that failed to come up
         if not keep or previous.get(line.name) == line.msg:
             continue
         previous[line.name] = line.msg

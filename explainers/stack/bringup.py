@@ -1,6 +1,7 @@
 """Bring-up problems any explainer can cite: a node of the stack that never came up (stable API).
 
     bringup_findings(lines, before=None) -> list[BringupFinding]
+    client_gave_up(died, before) -> bool
 
 A node that never came up explains every later failure that depends on it (a controller server whose params file
 did not parse cannot follow a path; a move group whose configure callback threw cannot plan), so an explainer asks
@@ -48,6 +49,13 @@ _CMD_NODE = re.compile(r"cmd '[^']*?__node:=(?P<node>[A-Za-z_]\w*)")
 _CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
+# ros2_control's spawners are clients: they wait for the controller manager's services and, when none answers, say
+# so and return 1 (controller_manager/spawner.py@humble: "Controller manager not available" then `return 1`,
+# :225-226 before #1680 (8779757f7); since then ServiceNotFoundError's "Could not contact service …" logged FATAL,
+# then `return 1`, :368-370@0941f73c3). Their process's death is then the controller manager's absence told by a
+# client, not a node of the stack that failed to come up.
+_SPAWNERS = ("spawner", "hardware_spawner")
+_NO_MANAGER = ("Controller manager not available", "Could not contact service")
 # lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
 TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: "shutdown", 10: "configure",
                11: "cleanup", 12: "activate", 13: "deactivate", 14: "unconfigured_shutdown",
@@ -145,6 +153,15 @@ def _process_died(cat: StackCatalogue) -> StackEntry | None:
     return next((e for e in cat.entries if e.layer == "launch" and e.text.startswith(DIED)), None)
 
 
+def client_gave_up(died: LogLine, before: list[LogLine]) -> bool:
+    """A spawner's process that ended after its own line said no controller manager answered (see _SPAWNERS)."""
+    exe = _CMD_EXE.search(died.msg)
+    if exe is None or exe["node"] not in _SPAWNERS:
+        return False
+    return any(ln.name.strip("/").split("/")[-1].startswith("spawner") and ln.msg.startswith(_NO_MANAGER)
+               for ln in before)
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
@@ -158,6 +175,8 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         if entry.text.startswith("Original error"):
             continue  # the second half of "Caught exception in callback ...": read as that line's detail
         kind = _kind(line, entry)
+        if kind == "process_died" and client_gave_up(line, ordered[:i]):
+            continue
         if kind == "params_file" and "Couldn't parse" not in line.msg:
             # rcl's "Failed to parse global arguments" comes first; the line naming the file and its error follows
             line = next((f for f in ordered[i:i + 5] if "Couldn't parse" in f.msg), line)

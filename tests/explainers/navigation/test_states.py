@@ -12,7 +12,7 @@ import pytest
 
 from hexar.causes import stated_causes
 from hexar.claims import ALL_FINE, read_claims
-from hexar.evals.real_nav2 import Excerpt, blind, blind2, write_recording
+from hexar.evals.real_nav2 import Excerpt, blind, blind2, blind4, write_recording
 from hexar.evals.real_nav2_suite import grade
 from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, INFO, WARN
@@ -114,6 +114,17 @@ def test_the_spent_blind_symptom_alone_cases_are_graded_honest(tmp_path: Path, e
     answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
     verdict = grade(excerpt, read_claims(answer.text).affirmed, answer.text)
     assert verdict.verdict == "honest" and not verdict.unsupported
+
+
+def test_a_broken_tf_tree_is_told_not_the_spawner_that_gave_up_on_a_crashed_simulator(tmp_path: Path) -> None:
+    # turtlebot/turtlebot4_simulator#72 (blind4, spent): Gazebo segfaulted; the costmap waited for odom -> base_link
+    # and the spawner died for want of a controller manager: the TF fault is told, the spawner's death is not
+    excerpt = next(e for e in blind4() if e.id == "tb4-sim-72-gazebo-segfault-odom-tree-broken")
+    log = read_recording(write_recording(excerpt, tmp_path / "bag", task=True))
+    answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
+    verdict = grade(excerpt, read_claims(answer.text).affirmed, answer.text)
+    assert answer.causes == [g.TRANSFORM] and "spawner" not in answer.text
+    assert verdict.verdict == "named" and not verdict.unsupported
 
 
 # Enri2077/localization_performance_modelling crash_notes.md (blind2): eloquent's recoveries_server lines

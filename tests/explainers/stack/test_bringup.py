@@ -126,3 +126,21 @@ def test_a_died_process_whose_console_prefix_was_lost_is_named_from_launchs_comm
             "--params-file /tmp/tmp9whtodqw -r /tf:=tf -r /tf_static:=tf_static'].\n")
     [f] = bringup_findings(_logs(tmp_path, died))
     assert (f.kind, f.node, f.detail) == ("process_died", "bt_navigator", "exit code -8")
+
+
+# turtlebot/turtlebot4_simulator#72 (Humble, blind4, spent): Gazebo crashed, so the controller manager its plugin
+# runs never answered; the spawner said so and returned 1 (controller_manager/spawner.py:225-226@8779757f7)
+GAVE_UP = "\n".join([
+    "[spawner-32] [ERROR] [1712571258.649015310] [spawner_joint_state_broadcaster]: Controller manager not available",
+    "[ERROR] [spawner-32]: process has died [pid 3793254, exit code 1, cmd '/opt/ros/humble/lib/controller_manager/"
+    "spawner joint_state_broadcaster -c controller_manager --ros-args -r __ns:=/'].",
+]) + "\n"
+
+
+def test_a_spawner_that_found_no_controller_manager_is_no_node_that_failed_to_come_up(tmp_path: Path) -> None:
+    assert bringup_findings(_logs(tmp_path, GAVE_UP)) == []
+
+
+def test_a_spawner_that_died_without_saying_why_is_still_a_death(tmp_path: Path) -> None:
+    [f] = bringup_findings(_logs(tmp_path, GAVE_UP.split("\n", 1)[1]))
+    assert (f.kind, f.node, f.detail) == ("process_died", "spawner", "exit code 1")
