@@ -29,6 +29,9 @@ from typing import Any
 
 import yaml
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from driver_functions import CALLBACKS, callbacks_at, callbacks_of, hardware_classes, role_of
+
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "scripts" / "modules_mining.yaml"
 WILD = r"[\s\S]*?"
@@ -49,6 +52,7 @@ class Found:
     line: int
     branch: str
     pieces: list[str | None]  # literal text, or None for an expression the format does not fix
+    callbacks: tuple[str, ...] = ()  # the hardware_interface callbacks it is logged in (driver_functions.py)
 
 
 @dataclass
@@ -60,6 +64,7 @@ class Entry:
     open_end: bool = False
     sources: list[str] = field(default_factory=list)
     branches: list[str] = field(default_factory=list)
+    callbacks: set[str] = field(default_factory=set)
 
 
 def git(repo: Path, *args: str) -> str:
@@ -280,9 +285,12 @@ def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     return_files = re.compile(cfg.get("return_files", "^$"))
     files = [f for f in git(repo, "ls-tree", "-r", "--name-only", branch).splitlines()
              if f.endswith((".cpp", ".hpp", ".h", ".py")) and not skip.search(f)]
-    for f in files:
-        text = git(repo, "show", f"{branch}:{f}")
+    texts = {f: git(repo, "show", f"{branch}:{f}") for f in files}
+    hw = hardware_classes(t for f, t in texts.items() if not f.endswith(".py"))
+    for f, text in texts.items():
         calls = _py_calls(text) if f.endswith(".py") else _cpp_calls(text)
+        table = callbacks_of(text, hw) if hw and not f.endswith(".py") else {}
+        starts = [0, *(m.end() for m in re.finditer("\n", text))]
         if return_files.search(f):
             calls = (*calls, *_returned(text))
         for level, line, pieces in calls:
@@ -290,7 +298,8 @@ def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
                 continue
             if _longest_literal(pieces) < 6:
                 continue  # "%s" alone, or a stream of variables: nothing to recognise a line by
-            yield Found(level, f, line, branch, pieces)
+            at = starts[line - 1] + len(text[starts[line - 1]:].split("\n", 1)[0]) // 2 if table else 0
+            yield Found(level, f, line, branch, pieces, callbacks_at(table, at) if table else ())
 
 
 def package_of(path: str) -> str:
@@ -312,9 +321,12 @@ def collect(cfg: dict[str, Any], mirror: Path, module: str) -> list[Entry]:
                     continue
                 e = entries.get(pattern)
                 if e is None:
-                    e = entries[pattern] = Entry(pattern, text, found.level, package_of(found.file), open_end)
+                    package = package_of(found.file)  # a library's top src/ or include/ folder: the repository's
+                    package = repo_cfg["name"] if package in {"src", "include"} else package
+                    e = entries[pattern] = Entry(pattern, text, found.level, package, open_end)
                 elif LEVEL_NAMES[found.level] > LEVEL_NAMES[e.level] and found.level != "THROW":
                     e.level = found.level
+                e.callbacks.update(found.callbacks)
                 if branch not in e.branches:
                     e.branches.append(branch)
                     e.sources.append(f"{repo_cfg['name']}/{found.file}:{found.line}@{branch}")
@@ -359,6 +371,9 @@ def classify(entries: list[Entry], cfg: dict[str, Any], module: str) -> list[dic
             "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""),
             "text": e.text, "source": _sources(e.sources),
         }
+        if e.callbacks:  # a driver's line: the callbacks it is logged in, and what that makes of an error there
+            row["functions"] = [c for c in CALLBACKS if c in e.callbacks]
+            row["hw_role"] = role_of(e.callbacks, e.text, cfg["modules"][module].get("hardware_roles"))
         out.append(row)
     unused = [m for m in (r["match"] for r in cfg["modules"][module]["rules"]) if m not in used]
     if unused:
@@ -384,7 +399,9 @@ def main(argv: list[str] | None = None) -> int:
         rows = classify(collect(cfg, args.mirror, module), cfg, module)
         doc = {"about": mcfg["about"], "distros": list(dict.fromkeys(cfg["distro_of_branch"].values())),
                "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}),
-               "refinements": mcfg.get("refinements", []), "messages": rows}
+               "refinements": mcfg.get("refinements", []),
+               **({"hardware_roles": mcfg["hardware_roles"]["roles"]} if "hardware_roles" in mcfg else {}),
+               "messages": rows}
         target = ROOT / mcfg["out"]
         text = dump(doc)
         if args.check:
