@@ -154,6 +154,20 @@ def callbacks_at(table: dict[Function, tuple[str, ...]], offset: int) -> tuple[s
     return next((names for f, names in table.items() if f.start <= offset <= f.end), ())
 
 
+def callbacks_by_line(texts: dict[str, str]) -> dict[str, dict[int, tuple[str, ...]]]:
+    """For each C++ file of a repository's branch (path -> text), the callbacks each line of a hardware method runs
+    in (1-based line numbers; lines outside such methods are absent)."""
+    classes = hardware_classes(texts.values())
+    out: dict[str, dict[int, tuple[str, ...]]] = {}
+    for path, text in texts.items():
+        table = callbacks_of(text, classes) if classes else {}
+        for f, names in table.items():
+            if names:
+                first, last = text.count("\n", 0, f.start) + 1, text.count("\n", 0, f.end) + 1
+                out.setdefault(path, {}).update({n: names for n in range(first, last + 1)})
+    return out
+
+
 def role_of(callbacks: Iterable[str], text: str, cfg: dict[str, Any] | None) -> str | None:
     """The first role of `cfg` (modules_mining.yaml's `hardware_roles`) whose callbacks hold all of the line's and
     whose `words` the line holds (`none`: none of them)."""

@@ -11,8 +11,10 @@ expressions and f-string fields become `[\\s\\S]*?`; in `return_files`, the lite
 caller to log), deduplicated across branches with `file:line@branch` for each. The curated rules of the config
 then give an entry its cause, its kind (cause | symptom | noise | goal bookkeeping) and its meaning; the rest
 stay in the catalogue as recognised lines with no cause, so an explainer can tell a known MoveIt line from an
-unknown one. Writes explainers/manipulation/moveit_catalogue.json and explainers/control/ros2_control_catalogue.json;
-`--check` fails when the written files differ.
+unknown one. A line of a hardware interface also carries the hardware_interface callbacks that log it and the role
+`hardware_roles` gives them (scripts/driver_functions.py); the log calls are read by scripts/log_calls.py.
+Writes explainers/manipulation/moveit_catalogue.json and explainers/control/ros2_control_catalogue.json; `--check`
+fails when the written files differ.
 """
 
 from __future__ import annotations
@@ -30,19 +32,15 @@ from typing import Any
 import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from driver_functions import CALLBACKS, callbacks_at, callbacks_of, hardware_classes, role_of
+from driver_functions import CALLBACKS, callbacks_by_line, role_of
+from log_calls import cpp_calls, py_calls, returned
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "scripts" / "modules_mining.yaml"
 WILD = r"[\s\S]*?"
 LEVEL_NAMES = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50, "THROW": 40}
-# URCL_LOG_*: the UR client library's printf-style macros (no logger argument), printed by the UR driver
-CPP_MACRO = re.compile(r"\b(RCLCPP|RCUTILS_LOG|URCL_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
-CPP_THROW = re.compile(r"\bthrow\s+(?:[\w:]+)\s*[({]")
-PY_LOG = re.compile(r"\.(error|warn|warning|fatal|info)\(")
-PY_RAISE = re.compile(r"\braise\s+\w+\(")
-PRINTF = re.compile(r"%[-+ #0]*(?:\d+|\*)?(?:\.(?:\d+|\*))?(?:hh|h|ll|l|z|j|t|L|PRI\w+)?[diouxXeEfFgGcsp]")
-ESCAPES = {"n": "\n", "t": "\t", '"': '"', "'": "'", "\\": "\\", "r": "", "0": ""}
+START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
+GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
 
 
 @dataclass
@@ -69,147 +67,6 @@ class Entry:
 
 def git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout
-
-
-def _walk(text: str, start: int = 0) -> Iterator[tuple[int, str, int]]:
-    """(index, character, bracket depth after it) from `start`, string and char literals skipped."""
-    depth, i = 0, start
-    while i < len(text):
-        ch = text[i]
-        if ch in "\"'":
-            i = _skip_literal(text, i)
-            continue
-        if ch in "([{":
-            depth += 1
-        elif ch in ")]}":
-            depth -= 1
-        yield i, ch, depth
-        i += 1
-
-
-def _close(text: str, start: int) -> int:
-    """Index of the bracket closing the one before `start`, skipping string and char literals."""
-    return next((i for i, _, depth in _walk(text, start) if depth < 0), len(text))
-
-
-def _skip_literal(text: str, i: int) -> int:
-    quote = text[i]
-    i += 1
-    while i < len(text) and text[i] != quote:
-        i += 2 if text[i] == "\\" else 1
-    return i + 1
-
-
-ANSI = re.compile(r"\x1b\[[0-9;]*m")
-
-
-def _unescape(body: str) -> str:
-    """A literal's text, without the ANSI colours some spawners wrap it in (the explainers match lines with their
-    colour codes removed)."""
-    out, i = [], 0
-    while i < len(body):
-        if body[i:i + 2] == "\\x" and re.match(r"[0-9a-fA-F]{2}", body[i + 2:i + 4]):
-            out.append(chr(int(body[i + 2:i + 4], 16)))
-            i += 4
-        elif body[i] == "\\" and i + 1 < len(body):
-            out.append(ESCAPES.get(body[i + 1], body[i + 1]))
-            i += 2
-        else:
-            out.append(body[i])
-            i += 1
-    return ANSI.sub("", "".join(out))
-
-
-def _split_args(text: str) -> list[str]:
-    args, start = [], 0
-    for i, ch, depth in _walk(text):
-        if ch == "," and depth == 0:
-            args.append(text[start:i])
-            start = i + 1
-    args.append(text[start:])
-    return args
-
-
-_CPP_LIT = re.compile(r'(?:u8|u|U|L)?"((?:[^"\\\n]|\\.)*)"')
-
-
-def _cpp_pieces(expr: str, printf: bool) -> list[str | None]:
-    """Literal runs of a C++ expression (adjacent literals join), None for whatever lies between them."""
-    pieces: list[str | None] = []
-    pos = 0
-    for m in _CPP_LIT.finditer(expr):
-        between = expr[pos:m.start()]
-        if re.sub(r"[\s<+]", "", between) or (pieces and "<<" in between and re.search(r"\w", between)):
-            pieces.append(None)
-        elif pieces and pieces[-1] is None and not between.strip():
-            pass
-        text = _unescape(m[1])
-        if printf:
-            parts = PRINTF.split(text.replace("%%", "\x00"))
-            for k, part in enumerate(parts):
-                if k:
-                    pieces.append(None)
-                pieces.append(part.replace("\x00", "%"))
-        else:
-            pieces.append(text)
-        pos = m.end()
-    if re.sub(r"[\s<+;)]", "", expr[pos:]):
-        pieces.append(None)
-    return pieces
-
-
-def _cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    for m in CPP_MACRO.finditer(text):
-        level, suffix, first = m[2], m[3], 0 if m[1] == "URCL_LOG" else 1
-        body = text[m.end():_close(text, m.end())]
-        args = _split_args(body)
-        line = text.count("\n", 0, m.start()) + 1
-        if "STREAM" in suffix:
-            pieces = _cpp_pieces(args[-1] if len(args) > 1 else body, printf=False)
-        else:
-            fmt_at = next((k for k, a in enumerate(args) if k >= first and _CPP_LIT.match(a.strip())), None)
-            if fmt_at is None:
-                continue
-            fmt = args[fmt_at]
-            pieces = _cpp_pieces(fmt, printf=True)
-        yield level, line, pieces
-    for m in CPP_THROW.finditer(text):
-        body = text[m.end():_close(text, m.end())]
-        if '"' not in body:
-            continue
-        line = text.count("\n", 0, m.start()) + 1
-        yield "THROW", line, _cpp_pieces(body, printf="%" in body and "format" in body)
-
-
-_PY_LIT = re.compile(r'(f?)("""|"|\')((?:(?!\2)[^\\]|\\.)*)\2', re.S)
-
-
-def _py_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    for regex, fixed in ((PY_LOG, None), (PY_RAISE, "THROW")):
-        for m in regex.finditer(text):
-            body = text[m.end():_close(text, m.end())]
-            level = fixed or m[1].upper()
-            pieces: list[str | None] = []
-            pos = 0
-            for lit in _PY_LIT.finditer(body):
-                if re.sub(r"[\s+()]", "", body[pos:lit.start()]):
-                    pieces.append(None)
-                value = _unescape(lit[3])
-                # f-string fields, str.format's {} and %-conversions are all values the format does not fix
-                fields = r"\{[^{}]*\}" if lit[1] else r"\{\}|" + PRINTF.pattern
-                for k, part in enumerate(re.split(fields, value)):
-                    if k:
-                        pieces.append(None)
-                    pieces.append(part)
-                pos = lit.end()
-            if re.sub(r"[\s+()]", "", body[pos:]):
-                pieces.append(None)
-            if pieces:
-                yield level, text.count("\n", 0, m.start()) + 1, pieces
-
-
-START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
-GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
 
 
 def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
@@ -269,16 +126,6 @@ def _longest_literal(pieces: list[str | None]) -> int:
     return max((len(p.strip()) for p in pieces if p), default=0)
 
 
-_RETURN_LIT = re.compile(r'\breturn\s+"((?:[^"\\\n]|\\.)*)"\s*;')
-
-
-def _returned(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    """The string literals a function returns for its caller to log ("%s"): move_group's getActionResultString
-    texts, logged at INFO as each goal ends."""
-    for m in _RETURN_LIT.finditer(text):
-        yield "INFO", text.count("\n", 0, m.start()) + 1, [_unescape(m[1])]
-
-
 def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     skip = re.compile(cfg["skip_paths"])
     info_files = re.compile(cfg.get("info_files", "^$"))
@@ -286,20 +133,17 @@ def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     files = [f for f in git(repo, "ls-tree", "-r", "--name-only", branch).splitlines()
              if f.endswith((".cpp", ".hpp", ".h", ".py")) and not skip.search(f)]
     texts = {f: git(repo, "show", f"{branch}:{f}") for f in files}
-    hw = hardware_classes(t for f, t in texts.items() if not f.endswith(".py"))
+    placed = callbacks_by_line({f: t for f, t in texts.items() if not f.endswith(".py")})
     for f, text in texts.items():
-        calls = _py_calls(text) if f.endswith(".py") else _cpp_calls(text)
-        table = callbacks_of(text, hw) if hw and not f.endswith(".py") else {}
-        starts = [0, *(m.end() for m in re.finditer("\n", text))]
+        calls = py_calls(text) if f.endswith(".py") else cpp_calls(text)
         if return_files.search(f):
-            calls = (*calls, *_returned(text))
+            calls = (*calls, *returned(text))
         for level, line, pieces in calls:
             if level in {"DEBUG"} or (level == "INFO" and not info_files.search(f) and not return_files.search(f)):
                 continue
             if _longest_literal(pieces) < 6:
                 continue  # "%s" alone, or a stream of variables: nothing to recognise a line by
-            at = starts[line - 1] + len(text[starts[line - 1]:].split("\n", 1)[0]) // 2 if table else 0
-            yield Found(level, f, line, branch, pieces, callbacks_at(table, at) if table else ())
+            yield Found(level, f, line, branch, pieces, placed.get(f, {}).get(line, ()))
 
 
 def package_of(path: str) -> str:
