@@ -14,11 +14,13 @@ from dataclasses import dataclass
 from typing import Any
 
 HW_BASES = frozenset({"SystemInterface", "ActuatorInterface", "SensorInterface"})
-# the callbacks hardware_interface calls (lifecycle transitions, the control loop, controller switches)
-CALLBACKS = ("on_init", "on_configure", "on_cleanup", "on_shutdown", "on_activate", "on_deactivate", "on_error",
-             "read", "write", "prepare_command_mode_switch", "perform_command_mode_switch",
-             "export_state_interfaces", "export_command_interfaces", "on_export_state_interfaces",
-             "on_export_command_interfaces")
+# the callbacks hardware_interface calls (lifecycle transitions, the control loop, controller switches); foxy's
+# interface (ros2_control 0.x, still xArm's) had configure(info), start() and stop() where later ones have on_init,
+# on_activate and on_deactivate
+CALLBACKS = ("on_init", "configure", "on_configure", "on_cleanup", "on_shutdown", "on_activate", "start",
+             "on_deactivate", "stop", "on_error", "read", "write", "prepare_command_mode_switch",
+             "perform_command_mode_switch", "export_state_interfaces", "export_command_interfaces",
+             "on_export_state_interfaces", "on_export_command_interfaces")
 _CLASS = re.compile(r"\b(?:class|struct)\s+(?:[A-Z_][A-Z0-9_]*\s+)*([A-Za-z_]\w*)\s*(?:final\s*)?:([^{;]*)\{")
 _CLASS_HEAD = re.compile(r"\b(?:class|struct|union)\s+(?:[A-Z_][A-Z0-9_]*\s+)*([A-Za-z_]\w*)[^()]*$")
 _FUNC_NAME = re.compile(r"(~?[A-Za-z_][\w:]*)\s*\(")

@@ -22,7 +22,7 @@ from hexar.events.records import ERROR
 from hexar.explainers.logcause import ModuleCatalogueError, Reading
 
 CATALOGUE = "ros2_control_catalogue.json"
-START = frozenset({"on_init", "on_configure", "on_activate"})
+START = frozenset({"on_init", "configure", "on_configure", "on_activate", "start"})
 EXCHANGE = frozenset({"read", "write", "perform_command_mode_switch"})
 # lines that show the control loop running (a goal of a controller, a controller up): a driver's error after one is
 # not from its start
