@@ -130,3 +130,31 @@ def test_roles_follow_the_callbacks_and_the_lines_words() -> None:
     assert df.role_of(["prepare_command_mode_switch"], "Starting … together with … is not allowed.", cfg) == "switch"
     assert df.role_of(["on_deactivate"], "Could not end FRI", cfg) is None
     assert df.role_of([], "Could not end FRI", cfg) is None
+
+
+def test_foxys_configure_start_and_stop_are_callbacks_too() -> None:
+    # shaped as xArm's xarm_controller/src/hardware/uf_robot_system_hardware.cpp@master (ros2_control 0.x's
+    # interface): configure(info) calls the helper that reads robot_ip, read() logs a disconnected robot
+    header = "class UFRobotSystemHardware : public hardware_interface::SystemInterface {};"
+    text = """
+namespace uf_robot_hardware
+{
+    void UFRobotSystemHardware::_init_ufactory_driver(void)
+    {
+        RCLCPP_ERROR(LOGGER, "[%s] No param named 'robot_ip'", robot_ip_.c_str());
+    }
+    hardware_interface::return_type UFRobotSystemHardware::configure(const hardware_interface::HardwareInfo & info)
+    {
+        _init_ufactory_driver();
+    }
+    hardware_interface::return_type UFRobotSystemHardware::read()
+    {
+        RCLCPP_ERROR(LOGGER, "[%s] Robot is disconnected, ros shutdown", robot_ip_.c_str());
+    }
+}
+"""
+    table = df.callbacks_of(text, df.hardware_classes([header, text]))
+    assert df.callbacks_at(table, text.index("No param named")) == ("configure",)
+    assert df.callbacks_at(table, text.index("Robot is disconnected")) == ("read",)
+    lines = df.callbacks_by_line({"hw.cpp": text})["hw.cpp"]
+    assert lines[text[:text.index("No param named")].count("\n") + 1] == ("configure",)
