@@ -156,5 +156,5 @@ namespace uf_robot_hardware
     table = df.callbacks_of(text, df.hardware_classes([header, text]))
     assert df.callbacks_at(table, text.index("No param named")) == ("configure",)
     assert df.callbacks_at(table, text.index("Robot is disconnected")) == ("read",)
-    lines = df.callbacks_by_line({"hw.cpp": text})["hw.cpp"]
+    lines = df.callbacks_by_line({"hw.hpp": header, "hw.cpp": text})["hw.cpp"]
     assert lines[text[:text.index("No param named")].count("\n") + 1] == ("configure",)
