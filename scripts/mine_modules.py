@@ -11,8 +11,10 @@ expressions and f-string fields become `[\\s\\S]*?`; in `return_files`, the lite
 caller to log), deduplicated across branches with `file:line@branch` for each. The curated rules of the config
 then give an entry its cause, its kind (cause | symptom | noise | goal bookkeeping) and its meaning; the rest
 stay in the catalogue as recognised lines with no cause, so an explainer can tell a known MoveIt line from an
-unknown one. Writes explainers/manipulation/moveit_catalogue.json and explainers/control/ros2_control_catalogue.json;
-`--check` fails when the written files differ.
+unknown one. A line of a hardware interface also carries the hardware_interface callbacks that log it and the role
+`hardware_roles` gives them (scripts/driver_functions.py); the log calls are read by scripts/log_calls.py.
+Writes explainers/manipulation/moveit_catalogue.json and explainers/control/ros2_control_catalogue.json; `--check`
+fails when the written files differ.
 """
 
 from __future__ import annotations
@@ -29,17 +31,16 @@ from typing import Any
 
 import yaml
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from driver_functions import CALLBACKS, callbacks_by_line, role_of
+from log_calls import cpp_calls, py_calls, returned
+
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "scripts" / "modules_mining.yaml"
 WILD = r"[\s\S]*?"
 LEVEL_NAMES = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50, "THROW": 40}
-# URCL_LOG_*: the UR client library's printf-style macros (no logger argument), printed by the UR driver
-CPP_MACRO = re.compile(r"\b(RCLCPP|RCUTILS_LOG|URCL_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
-CPP_THROW = re.compile(r"\bthrow\s+(?:[\w:]+)\s*[({]")
-PY_LOG = re.compile(r"\.(error|warn|warning|fatal|info)\(")
-PY_RAISE = re.compile(r"\braise\s+\w+\(")
-PRINTF = re.compile(r"%[-+ #0]*(?:\d+|\*)?(?:\.(?:\d+|\*))?(?:hh|h|ll|l|z|j|t|L|PRI\w+)?[diouxXeEfFgGcsp]")
-ESCAPES = {"n": "\n", "t": "\t", '"': '"', "'": "'", "\\": "\\", "r": "", "0": ""}
+START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
+GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
 
 
 @dataclass
@@ -49,6 +50,7 @@ class Found:
     line: int
     branch: str
     pieces: list[str | None]  # literal text, or None for an expression the format does not fix
+    callbacks: tuple[str, ...] = ()  # the hardware_interface callbacks it is logged in (driver_functions.py)
 
 
 @dataclass
@@ -60,151 +62,11 @@ class Entry:
     open_end: bool = False
     sources: list[str] = field(default_factory=list)
     branches: list[str] = field(default_factory=list)
+    callbacks: set[str] = field(default_factory=set)
 
 
 def git(repo: Path, *args: str) -> str:
     return subprocess.run(["git", "-C", str(repo), *args], capture_output=True, text=True, check=True).stdout
-
-
-def _walk(text: str, start: int = 0) -> Iterator[tuple[int, str, int]]:
-    """(index, character, bracket depth after it) from `start`, string and char literals skipped."""
-    depth, i = 0, start
-    while i < len(text):
-        ch = text[i]
-        if ch in "\"'":
-            i = _skip_literal(text, i)
-            continue
-        if ch in "([{":
-            depth += 1
-        elif ch in ")]}":
-            depth -= 1
-        yield i, ch, depth
-        i += 1
-
-
-def _close(text: str, start: int) -> int:
-    """Index of the bracket closing the one before `start`, skipping string and char literals."""
-    return next((i for i, _, depth in _walk(text, start) if depth < 0), len(text))
-
-
-def _skip_literal(text: str, i: int) -> int:
-    quote = text[i]
-    i += 1
-    while i < len(text) and text[i] != quote:
-        i += 2 if text[i] == "\\" else 1
-    return i + 1
-
-
-ANSI = re.compile(r"\x1b\[[0-9;]*m")
-
-
-def _unescape(body: str) -> str:
-    """A literal's text, without the ANSI colours some spawners wrap it in (the explainers match lines with their
-    colour codes removed)."""
-    out, i = [], 0
-    while i < len(body):
-        if body[i:i + 2] == "\\x" and re.match(r"[0-9a-fA-F]{2}", body[i + 2:i + 4]):
-            out.append(chr(int(body[i + 2:i + 4], 16)))
-            i += 4
-        elif body[i] == "\\" and i + 1 < len(body):
-            out.append(ESCAPES.get(body[i + 1], body[i + 1]))
-            i += 2
-        else:
-            out.append(body[i])
-            i += 1
-    return ANSI.sub("", "".join(out))
-
-
-def _split_args(text: str) -> list[str]:
-    args, start = [], 0
-    for i, ch, depth in _walk(text):
-        if ch == "," and depth == 0:
-            args.append(text[start:i])
-            start = i + 1
-    args.append(text[start:])
-    return args
-
-
-_CPP_LIT = re.compile(r'(?:u8|u|U|L)?"((?:[^"\\\n]|\\.)*)"')
-
-
-def _cpp_pieces(expr: str, printf: bool) -> list[str | None]:
-    """Literal runs of a C++ expression (adjacent literals join), None for whatever lies between them."""
-    pieces: list[str | None] = []
-    pos = 0
-    for m in _CPP_LIT.finditer(expr):
-        between = expr[pos:m.start()]
-        if re.sub(r"[\s<+]", "", between) or (pieces and "<<" in between and re.search(r"\w", between)):
-            pieces.append(None)
-        elif pieces and pieces[-1] is None and not between.strip():
-            pass
-        text = _unescape(m[1])
-        if printf:
-            parts = PRINTF.split(text.replace("%%", "\x00"))
-            for k, part in enumerate(parts):
-                if k:
-                    pieces.append(None)
-                pieces.append(part.replace("\x00", "%"))
-        else:
-            pieces.append(text)
-        pos = m.end()
-    if re.sub(r"[\s<+;)]", "", expr[pos:]):
-        pieces.append(None)
-    return pieces
-
-
-def _cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    for m in CPP_MACRO.finditer(text):
-        level, suffix, first = m[2], m[3], 0 if m[1] == "URCL_LOG" else 1
-        body = text[m.end():_close(text, m.end())]
-        args = _split_args(body)
-        line = text.count("\n", 0, m.start()) + 1
-        if "STREAM" in suffix:
-            pieces = _cpp_pieces(args[-1] if len(args) > 1 else body, printf=False)
-        else:
-            fmt_at = next((k for k, a in enumerate(args) if k >= first and _CPP_LIT.match(a.strip())), None)
-            if fmt_at is None:
-                continue
-            fmt = args[fmt_at]
-            pieces = _cpp_pieces(fmt, printf=True)
-        yield level, line, pieces
-    for m in CPP_THROW.finditer(text):
-        body = text[m.end():_close(text, m.end())]
-        if '"' not in body:
-            continue
-        line = text.count("\n", 0, m.start()) + 1
-        yield "THROW", line, _cpp_pieces(body, printf="%" in body and "format" in body)
-
-
-_PY_LIT = re.compile(r'(f?)("""|"|\')((?:(?!\2)[^\\]|\\.)*)\2', re.S)
-
-
-def _py_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    for regex, fixed in ((PY_LOG, None), (PY_RAISE, "THROW")):
-        for m in regex.finditer(text):
-            body = text[m.end():_close(text, m.end())]
-            level = fixed or m[1].upper()
-            pieces: list[str | None] = []
-            pos = 0
-            for lit in _PY_LIT.finditer(body):
-                if re.sub(r"[\s+()]", "", body[pos:lit.start()]):
-                    pieces.append(None)
-                value = _unescape(lit[3])
-                # f-string fields, str.format's {} and %-conversions are all values the format does not fix
-                fields = r"\{[^{}]*\}" if lit[1] else r"\{\}|" + PRINTF.pattern
-                for k, part in enumerate(re.split(fields, value)):
-                    if k:
-                        pieces.append(None)
-                    pieces.append(part)
-                pos = lit.end()
-            if re.sub(r"[\s+()]", "", body[pos:]):
-                pieces.append(None)
-            if pieces:
-                yield level, text.count("\n", 0, m.start()) + 1, pieces
-
-
-START = r"(?:^|\]:? )"  # the message's start, or where a console format's last bracket ends
-GOAL_KINDS = frozenset({"begin", "begin_server", "succeeded", "failed", "canceled", "end_server", "nominal"})
 
 
 def to_regex(pieces: list[str | None]) -> tuple[str, str, bool]:
@@ -264,33 +126,24 @@ def _longest_literal(pieces: list[str | None]) -> int:
     return max((len(p.strip()) for p in pieces if p), default=0)
 
 
-_RETURN_LIT = re.compile(r'\breturn\s+"((?:[^"\\\n]|\\.)*)"\s*;')
-
-
-def _returned(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
-    """The string literals a function returns for its caller to log ("%s"): move_group's getActionResultString
-    texts, logged at INFO as each goal ends."""
-    for m in _RETURN_LIT.finditer(text):
-        yield "INFO", text.count("\n", 0, m.start()) + 1, [_unescape(m[1])]
-
-
 def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     skip = re.compile(cfg["skip_paths"])
     info_files = re.compile(cfg.get("info_files", "^$"))
     return_files = re.compile(cfg.get("return_files", "^$"))
     files = [f for f in git(repo, "ls-tree", "-r", "--name-only", branch).splitlines()
              if f.endswith((".cpp", ".hpp", ".h", ".py")) and not skip.search(f)]
-    for f in files:
-        text = git(repo, "show", f"{branch}:{f}")
-        calls = _py_calls(text) if f.endswith(".py") else _cpp_calls(text)
+    texts = {f: git(repo, "show", f"{branch}:{f}") for f in files}
+    placed = callbacks_by_line({f: t for f, t in texts.items() if not f.endswith(".py")})
+    for f, text in texts.items():
+        calls = py_calls(text) if f.endswith(".py") else cpp_calls(text)
         if return_files.search(f):
-            calls = (*calls, *_returned(text))
+            calls = (*calls, *returned(text))
         for level, line, pieces in calls:
             if level in {"DEBUG"} or (level == "INFO" and not info_files.search(f) and not return_files.search(f)):
                 continue
             if _longest_literal(pieces) < 6:
                 continue  # "%s" alone, or a stream of variables: nothing to recognise a line by
-            yield Found(level, f, line, branch, pieces)
+            yield Found(level, f, line, branch, pieces, placed.get(f, {}).get(line, ()))
 
 
 def package_of(path: str) -> str:
@@ -312,9 +165,12 @@ def collect(cfg: dict[str, Any], mirror: Path, module: str) -> list[Entry]:
                     continue
                 e = entries.get(pattern)
                 if e is None:
-                    e = entries[pattern] = Entry(pattern, text, found.level, package_of(found.file), open_end)
+                    package = package_of(found.file)  # a library's top src/ or include/ folder: the repository's
+                    package = repo_cfg["name"] if package in {"src", "include"} else package
+                    e = entries[pattern] = Entry(pattern, text, found.level, package, open_end)
                 elif LEVEL_NAMES[found.level] > LEVEL_NAMES[e.level] and found.level != "THROW":
                     e.level = found.level
+                e.callbacks.update(found.callbacks)
                 if branch not in e.branches:
                     e.branches.append(branch)
                     e.sources.append(f"{repo_cfg['name']}/{found.file}:{found.line}@{branch}")
@@ -359,6 +215,9 @@ def classify(entries: list[Entry], cfg: dict[str, Any], module: str) -> list[dic
             "pattern": e.pattern + (r"\s*$" if rule and rule["kind"] in GOAL_KINDS and not e.open_end else ""),
             "text": e.text, "source": _sources(e.sources),
         }
+        if e.callbacks:  # a driver's line: the callbacks it is logged in, and what that makes of an error there
+            row["functions"] = [c for c in CALLBACKS if c in e.callbacks]
+            row["hw_role"] = role_of(e.callbacks, e.text, cfg["modules"][module].get("hardware_roles"))
         out.append(row)
     unused = [m for m in (r["match"] for r in cfg["modules"][module]["rules"]) if m not in used]
     if unused:
@@ -384,7 +243,9 @@ def main(argv: list[str] | None = None) -> int:
         rows = classify(collect(cfg, args.mirror, module), cfg, module)
         doc = {"about": mcfg["about"], "distros": list(dict.fromkeys(cfg["distro_of_branch"].values())),
                "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}),
-               "refinements": mcfg.get("refinements", []), "messages": rows}
+               "refinements": mcfg.get("refinements", []),
+               **({"hardware_roles": mcfg["hardware_roles"]["roles"]} if "hardware_roles" in mcfg else {}),
+               "messages": rows}
         target = ROOT / mcfg["out"]
         text = dump(doc)
         if args.check:

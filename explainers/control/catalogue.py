@@ -1,7 +1,9 @@
 """The ros2_control message catalogue (ros2_control_catalogue.json, mined by scripts/mine_modules.py from
 ros-controls/ros2_control and ros-controls/ros2_controllers, and the drivers and simulators people run under it:
 the UR driver and its client library, gazebo_ros2_control, gz_ros2_control, Kinova's ros2_kortex, the KUKA LBR
-stack): controller_manager, the spawners, hardware interfaces and the stock controllers."""
+stack, KUKA's drivers, Franka's (and libfranka's texts), Dynamixel, Robotiq, MuJoCo, xArm and
+topic_based_ros2_control): controller_manager, the spawners, hardware interfaces and the stock controllers. A
+driver's line also names the hardware_interface callbacks that log it (explainers/control/driver_roles.py)."""
 
 from __future__ import annotations
 

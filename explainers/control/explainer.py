@@ -8,17 +8,27 @@ unexplained_failure (the first error no catalogue explains, quoted with its node
 candidates). A bring-up or device line before them is cited first, and so is a driver's line whose strerror text
 or set-up words state the why (explainers/stated_causes.py). MoveIt's lines in the window (the control explainer
 asked by manipulation) are read too, so that its symptoms are recognised as such.
+
+A driver's ERROR that no rule gives a cause, the window's first unexplained error, is read by where the driver
+logs it (explainers/control/driver_roles.py) once nothing else decided (no rule, bring-up line or stated cause): its
+read()/write() could not exchange with the device, its on_init found its set-up did not fit, its switch callback
+would not take the controllers' interfaces. One logged where a driver reads its set-up and starts (on_init alone,
+or a line it also logs in write() before anything shows the controllers running) is quoted with that place, and no
+cause.
 """
 
 from __future__ import annotations
 
 from typing import ClassVar
 
+from hexar.events.tasks import SkillRun
+from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue
-from hexar.explainers.control.wording import template
-from hexar.explainers.logcause import Diagnosis, ModuleCatalogue
+from hexar.explainers.control.driver_roles import RoleReading, by_role
+from hexar.explainers.control.wording import role_template, template
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
-from hexar.explainers.module_explainer import ModuleExplainer
+from hexar.explainers.module_explainer import ModuleExplainer, verbatim
 
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
 
@@ -53,4 +63,42 @@ class ControlExplainer(ModuleExplainer):
         return [catalogue(), moveit_catalogue()]
 
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
+        if isinstance(d.decisive, RoleReading) and d.decisive.cause == cause:
+            worded = role_template(cause, d, what, d.decisive.note)
+            if worded is not None:
+                return worded
         return template(cause, d, what)
+
+    def _compose(self, context: Context, d: Diagnosis, readings: list[Reading], run: SkillRun | None
+                 ) -> Explanation:
+        placed = _placed(d, readings)
+        if placed is None:
+            return super()._compose(context, d, readings, run)
+        if placed.role is not None and placed.role.cause is not None:
+            # the first unexplained error is a driver's, and where it is logged tells what failed
+            d.cause, d.decisive, d.unknown, d.support = placed.role.cause, placed, None, []
+            d.symptoms = [r for r in d.symptoms if r.line.t >= placed.line.t][:2]
+            return super()._compose(context, d, readings, run)
+        # a driver's error whose place tells no cause (set-up or device): quoted with its place, none claimed
+        line, meaning = placed.line, placed.note
+        cause = f"{self.prefix}unexplained_failure"
+        what = self._what(run)
+        head = (f"{what[:1].upper()}{what[1:]} failed" if d.outcome == "failed"
+                else f"The recording ends before {self.module_words} finished; on the way a driver reported an error")
+        return Explanation(
+            explainer=self.name, causes=[cause], evidence=[Evidence.of_log(cause, line)], confidence=0.4,
+            text=f"{head}, but my control logs do not show a cause I know: {verbatim(line)} at "
+                 f"{at(line, context.task.created)}; {meaning}. It may be that set-up (the ros2_control tag of my "
+                 f"robot description, or a file the line names) or the device it starts.",
+            fix="Check what the quoted line names against the driver's documentation; the driver's lines before it "
+                "and its device's own status tell which.",
+            details=["The line's place in the driver's source tells where it failed, not why."])
+
+
+def _placed(d: Diagnosis, readings: list[Reading]) -> RoleReading | None:
+    """The first unexplained error read by its role, when it is a driver's line the catalogue places and nothing
+    decided before (no rule, no bring-up line, no stated cause, no words of its own that leave candidates open)."""
+    if d.cause is not None or d.unknown is None or d.outcome == "succeeded" or d.candidates:
+        return None
+    at = next((i for i, r in enumerate(readings) if r.line is d.unknown), None)
+    return by_role(readings[at], readings[:at]) if at is not None else None

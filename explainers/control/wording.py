@@ -6,6 +6,7 @@ Nav2's configuration error, "timed out" is text to speech's), so the graders rea
 
 from __future__ import annotations
 
+from hexar.explainers.logcause import Diagnosis, said
 from hexar.explainers.module_wording import Worded, Wording
 
 CLAUSES = {
@@ -52,3 +53,35 @@ def _nominal(what: str) -> Worded:
 
 
 template = Wording("{what} could not run because", "ros2_control", CLAUSES, MEANINGS, _nominal)
+
+
+# A driver's error read by the callback it is logged in (explainers/control/driver_roles.py): the clause says what
+# the role supports and no more; a device error's line names the device, not what made it fail.
+ROLE_CLAUSES = {
+    "control.hardware_failure": (
+        "a hardware interface failed: {meaning}. Its line tells that the device failed, not why.",
+        "The device's own error report tells more (its controller's fault log or error codes, its status lights), "
+        "and so do its connection, power and state at that time."),
+    "control.configuration_error": (
+        "a controller or its driver was set up wrongly: {meaning}.",
+        "Fix the ros2_control tag of the robot description (the hardware parameters, joints and interfaces the "
+        "quoted line names) to what this driver expects."),
+    "bringup.configuration_error": (
+        "a parameter never reached my driver: {meaning}.",
+        "Set the parameter the quoted line names in the ros2_control tag of the robot description (or in the "
+        "launch arguments that fill it in)."),
+    "control.controller_activation_failed": (
+        "a controller could not be activated: {meaning}.",
+        "Activate only controllers whose command interfaces this driver accepts together (the quoted line names "
+        "the combination it would not take)."),
+}
+
+
+def role_template(cause: str, d: Diagnosis, what: str, meaning: str) -> Worded | None:
+    """(sentence, fix, details) of a cause found by a driver line's role; None for a cause without such words."""
+    if cause not in ROLE_CLAUSES or d.decisive is None:
+        return None
+    clause, fix = ROLE_CLAUSES[cause]
+    head = f"{what} could not run because"
+    return (f"{head[:1].upper()}{head[1:]} {clause.format(meaning=meaning)}", fix,
+            [f"My driver said: '{said(d.decisive.line)}'"])

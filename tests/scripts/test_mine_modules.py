@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+import yaml
 
 from tests.scripts.helpers import git, load_script
 
@@ -121,3 +122,34 @@ def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_pa
                                              "from the given kinematics config file.")
     assert re.search(rows["Loader for controller '…' not found."]["pattern"], "Loader for controller 'cart' not found")
     assert rows["No motion plan found. No execution attempted."]["level"] == "INFO"
+
+
+def test_a_drivers_lines_carry_the_callbacks_that_log_them_and_their_role(tmp_path: Path) -> None:
+    # shaped as ros2_robotiq_gripper's robotiq_driver/src/hardware_interface.cpp@main (on_init checks the joint's
+    # interfaces, on_configure opens the serial port) and a plain node of the same repository
+    repo = tmp_path / "me+grip" / "repo"
+    (repo / "src").mkdir(parents=True)
+    git(repo, "init", "-q", "-b", "main")
+    git(repo, "config", "user.email", "t@t")
+    git(repo, "config", "user.name", "t")
+    (repo / "src" / "hw.hpp").write_text("class RobotiqGripperHardwareInterface : public "
+                                         "hardware_interface::SystemInterface {};\n")
+    (repo / "src" / "hw.cpp").write_text(
+        "CallbackReturn RobotiqGripperHardwareInterface::on_init(const HardwareInfo& info) {\n"
+        '  RCLCPP_FATAL(kLogger, "Joint \'%s\' has %zu command interfaces found. 1 expected.", n, s);\n}\n'
+        "CallbackReturn RobotiqGripperHardwareInterface::on_configure(const State& s) {\n"
+        '  RCLCPP_ERROR(kLogger, "Cannot connect to the Robotiq gripper");\n}\n'
+        'void Node::spin() {\n  RCLCPP_ERROR(l, "Cannot spin the gripper node");\n}\n')
+    git(repo, "add", ".")
+    git(repo, "commit", "-qm", "a")
+    mod = load_script("mine_modules")
+    roles = yaml.safe_load((SCRIPT.parent / "modules_mining.yaml").read_text(encoding="utf-8"))
+    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {
+        "rules": [], "hardware_roles": roles["modules"]["control"]["hardware_roles"], "repos": [
+            {"name": "grip", "mirror": "me+grip", "branches": ["main"], "skip_paths": "^$"}]}}}
+    rows = {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
+    joint = rows["Joint '…' has … command interfaces found. 1 expected."]
+    assert joint["functions"] == ["on_init"] and joint["hw_role"] == "configuration"
+    connect = rows["Cannot connect to the Robotiq gripper"]
+    assert connect["functions"] == ["on_configure"] and connect["hw_role"] == "setup"
+    assert "functions" not in rows["Cannot spin the gripper node"]

@@ -1,0 +1,165 @@
+"""The log calls of a C++ or Python source, as (level, line, pieces) for scripts/mine_modules.py: RCLCPP_/RCUTILS_
+log macros (also _STREAM/_THROTTLE/_ONCE/_EXPRESSION) and the UR client library's URCL_LOG_*, `throw X("...")`
+texts, Python `logger.error/warn/info(...)` and `raise X(...)`, and the literals a function returns for its caller
+to log. A piece is a literal run of text, or None for an expression the format does not fix (printf conversions,
+streamed and `+`-joined expressions, f-string and str.format fields)."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Iterator
+
+# URCL_LOG_*: the UR client library's printf-style macros (no logger argument), printed by the UR driver
+CPP_MACRO = re.compile(r"\b(RCLCPP|RCUTILS_LOG|URCL_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)(\w*)\s*\(")
+CPP_THROW = re.compile(r"\bthrow\s+(?:[\w:]+)\s*[({]")
+PY_LOG = re.compile(r"\.(error|warn|warning|fatal|info)\(")
+PY_RAISE = re.compile(r"\braise\s+\w+\(")
+PRINTF = re.compile(r"%[-+ #0]*(?:\d+|\*)?(?:\.(?:\d+|\*))?(?:hh|h|ll|l|z|j|t|L|PRI\w+)?[diouxXeEfFgGcsp]")
+ESCAPES = {"n": "\n", "t": "\t", '"': '"', "'": "'", "\\": "\\", "r": "", "0": ""}
+
+
+def _walk(text: str, start: int = 0) -> Iterator[tuple[int, str, int]]:
+    """(index, character, bracket depth after it) from `start`, string and char literals skipped."""
+    depth, i = 0, start
+    while i < len(text):
+        ch = text[i]
+        if ch in "\"'":
+            i = _skip_literal(text, i)
+            continue
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        yield i, ch, depth
+        i += 1
+
+
+def _close(text: str, start: int) -> int:
+    """Index of the bracket closing the one before `start`, skipping string and char literals."""
+    return next((i for i, _, depth in _walk(text, start) if depth < 0), len(text))
+
+
+def _skip_literal(text: str, i: int) -> int:
+    quote = text[i]
+    i += 1
+    while i < len(text) and text[i] != quote:
+        i += 2 if text[i] == "\\" else 1
+    return i + 1
+
+
+ANSI = re.compile(r"\x1b\[[0-9;]*m")
+
+
+def _unescape(body: str) -> str:
+    """A literal's text, without the ANSI colours some spawners wrap it in (the explainers match lines with their
+    colour codes removed)."""
+    out, i = [], 0
+    while i < len(body):
+        if body[i:i + 2] == "\\x" and re.match(r"[0-9a-fA-F]{2}", body[i + 2:i + 4]):
+            out.append(chr(int(body[i + 2:i + 4], 16)))
+            i += 4
+        elif body[i] == "\\" and i + 1 < len(body):
+            out.append(ESCAPES.get(body[i + 1], body[i + 1]))
+            i += 2
+        else:
+            out.append(body[i])
+            i += 1
+    return ANSI.sub("", "".join(out))
+
+
+def _split_args(text: str) -> list[str]:
+    args, start = [], 0
+    for i, ch, depth in _walk(text):
+        if ch == "," and depth == 0:
+            args.append(text[start:i])
+            start = i + 1
+    args.append(text[start:])
+    return args
+
+
+_CPP_LIT = re.compile(r'(?:u8|u|U|L)?"((?:[^"\\\n]|\\.)*)"')
+
+
+def _cpp_pieces(expr: str, printf: bool) -> list[str | None]:
+    """Literal runs of a C++ expression (adjacent literals join), None for whatever lies between them."""
+    pieces: list[str | None] = []
+    pos = 0
+    for m in _CPP_LIT.finditer(expr):
+        between = expr[pos:m.start()]
+        if re.sub(r"[\s<+]", "", between) or (pieces and "<<" in between and re.search(r"\w", between)):
+            pieces.append(None)
+        elif pieces and pieces[-1] is None and not between.strip():
+            pass
+        text = _unescape(m[1])
+        if printf:
+            parts = PRINTF.split(text.replace("%%", "\x00"))
+            for k, part in enumerate(parts):
+                if k:
+                    pieces.append(None)
+                pieces.append(part.replace("\x00", "%"))
+        else:
+            pieces.append(text)
+        pos = m.end()
+    if re.sub(r"[\s<+;)]", "", expr[pos:]):
+        pieces.append(None)
+    return pieces
+
+
+def cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    for m in CPP_MACRO.finditer(text):
+        level, suffix, first = m[2], m[3], 0 if m[1] == "URCL_LOG" else 1
+        body = text[m.end():_close(text, m.end())]
+        args = _split_args(body)
+        line = text.count("\n", 0, m.start()) + 1
+        if "STREAM" in suffix:
+            pieces = _cpp_pieces(args[-1] if len(args) > 1 else body, printf=False)
+        else:
+            fmt_at = next((k for k, a in enumerate(args) if k >= first and _CPP_LIT.match(a.strip())), None)
+            if fmt_at is None:
+                continue
+            fmt = args[fmt_at]
+            pieces = _cpp_pieces(fmt, printf=True)
+        yield level, line, pieces
+    for m in CPP_THROW.finditer(text):
+        body = text[m.end():_close(text, m.end())]
+        if '"' not in body:
+            continue
+        line = text.count("\n", 0, m.start()) + 1
+        yield "THROW", line, _cpp_pieces(body, printf="%" in body and "format" in body)
+
+
+_PY_LIT = re.compile(r'(f?)("""|"|\')((?:(?!\2)[^\\]|\\.)*)\2', re.S)
+
+
+def py_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    for regex, fixed in ((PY_LOG, None), (PY_RAISE, "THROW")):
+        for m in regex.finditer(text):
+            body = text[m.end():_close(text, m.end())]
+            level = fixed or m[1].upper()
+            pieces: list[str | None] = []
+            pos = 0
+            for lit in _PY_LIT.finditer(body):
+                if re.sub(r"[\s+()]", "", body[pos:lit.start()]):
+                    pieces.append(None)
+                value = _unescape(lit[3])
+                # f-string fields, str.format's {} and %-conversions are all values the format does not fix
+                fields = r"\{[^{}]*\}" if lit[1] else r"\{\}|" + PRINTF.pattern
+                for k, part in enumerate(re.split(fields, value)):
+                    if k:
+                        pieces.append(None)
+                    pieces.append(part)
+                pos = lit.end()
+            if re.sub(r"[\s+()]", "", body[pos:]):
+                pieces.append(None)
+            if pieces:
+                yield level, text.count("\n", 0, m.start()) + 1, pieces
+
+
+_RETURN_LIT = re.compile(r'\breturn\s+"((?:[^"\\\n]|\\.)*)"\s*;')
+
+
+def returned(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    """The string literals a function returns for its caller to log ("%s"): move_group's getActionResultString
+    texts, logged at INFO as each goal ends."""
+    for m in _RETURN_LIT.finditer(text):
+        yield "INFO", text.count("\n", 0, m.start()) + 1, [_unescape(m[1])]
