@@ -44,6 +44,10 @@ _HARDWARE_LOGGER = re.compile(r"(Hardware(Interface(Base)?)?|SystemInterface)$|(
 # MoveIt's own loggers: move_group and its capabilities, and moveit2's "moveit.<package>.<part>" child loggers
 _MOVEIT_LOGGER = re.compile(r"move_group\b|moveit[._]")
 # ros2_control's lines that tell a part of the start completed; read from the mined catalogue's texts below
+# a device driver's own logger: ROS packages name device drivers `*_driver` (ur_robot_driver, ydlidar_ros2_driver),
+# and the UR driver hands its client library's log to "UR_Client_Library:<tf_prefix>" (ur_robot_driver/src/
+# urcl_log_handler.cpp:59@humble)
+_DRIVER_LOGGER = re.compile(r"driver|^UR_Client_Library:", re.I)
 # a line that names what a driver was set up with: a device (its file, serial port or baud rate) or a parameter
 _DEVICE = re.compile(r"/dev/\w|\bserial[ _]?port\b|\bbaud[ _]?rate\b", re.I)
 _PARAMETER = re.compile(r"\bparam(eter)?s?\b", re.I)
@@ -82,16 +86,16 @@ def _done_ids() -> frozenset[str]:
 def starting(line: LogLine) -> bool:
     """A line of the robot's starting software, by its logger: ros2_control's (a logger with a role in its catalogue:
     controller manager, resource manager, spawners; a hardware interface's own; gazebo's or gz's ros2_control
-    plugin), MoveIt's own (move_group, moveit.*), or a line ros2_control's catalogue says completes a start; or a
-    controller's refusal of commands (it was configured, so the start got that far). A generic text ("Waiting for
-    …") of another node is no start: a client sending trajectories is not starting."""
+    plugin), MoveIt's own (move_group, moveit.*), a device driver's own, or a line ros2_control's catalogue says
+    completes a start; or a controller's refusal of commands (it was configured, so the start got that far). A
+    generic text ("Waiting for …") of another node is no start: a client sending trajectories is not starting."""
     name = line.name
-    if _control_logger(name) or _MOVEIT_LOGGER.match(name) or refused(line):
+    if control_logger(name) or _MOVEIT_LOGGER.match(name) or _DRIVER_LOGGER.search(name) or refused(line):
         return True
     return completed(line)
 
 
-def _control_logger(name: str) -> bool:
+def control_logger(name: str) -> bool:
     """ros2_control's own loggers and its hardware interfaces' (not MoveIt's)."""
     return bool(_HARDWARE_LOGGER.search(name)) or "ros2_control" in name or _catalogues()[0].role(name) is not None
 
@@ -115,7 +119,7 @@ def _driver(name: str, logs: list[LogLine]) -> bool:
     """A node that drives a device: its name says so (ROS packages name device drivers `*_driver`: ur_robot_driver,
     ydlidar_ros2_driver), or one of its lines names a device file. A node that only runs the robot's behaviour
     (a turtlebot4_node undocking, then missing a camera service) is no start of the robot."""
-    return "driver" in name.lower() or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
+    return _DRIVER_LOGGER.search(name) is not None or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
 
 
 def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
@@ -139,7 +143,7 @@ def _alone(line: LogLine, logs: list[LogLine]) -> bool:
     print such lines too."""
     if line.level < ERROR:
         return False
-    return _control_logger(line.name) or _driver(line.name, logs) or names_device(line) or names_parameter(line)
+    return control_logger(line.name) or _driver(line.name, logs) or names_device(line) or names_parameter(line)
 
 
 def names_device(line: LogLine) -> bool:

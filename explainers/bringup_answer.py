@@ -12,7 +12,7 @@ driver's, its candidates are the driver's (`driver_candidates`), not a controlle
 
 from __future__ import annotations
 
-from hexar.events.bringup import completed, names_device, names_parameter, refused, starting
+from hexar.events.bringup import completed, control_logger, names_device, names_parameter, refused, starting
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
@@ -52,7 +52,7 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
                            details=[f"{len(came)} line(s) say a part of my start completed, and no error followed."])
     refusal = next((ln for ln in lines if refused(ln)), None)
     if refusal is not None:
-        return _refusal_answer(explainer, refusal, t0)
+        return _refusal_answer(explainer, prefix, refusal, t0)
     began = next((ln for ln in lines if starting(ln)), lines[0])
     text = (f"The recording shows me starting my drivers and controllers ({verbatim(began)} at {at(began, t0)}), "
             "but it ends before any line says the start completed. It shows no error, so my logs do not show what "
@@ -65,7 +65,7 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
                        fix="Record the whole start (from launch on) to see whether it completed.")
 
 
-def _refusal_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
+def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Explanation:
     """diff_drive_controller's refusal: it makes its command subscription when configured and accepts commands only
     once activated (diff_drive_controller.cpp:466@jazzy), so it was configured but not active when they came."""
     from hexar.explainers.module_explainer import verbatim
@@ -77,8 +77,11 @@ def _refusal_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
             "nothing activated it (a spawner that left it inactive or did not run), its activation did not go "
             "through, or it had been deactivated before (a robot shutting down prints the same line); my logs do "
             "not show why it was not active.")
-    return Explanation(explainer=explainer, text=text, causes=[], confidence=0.3,
-                       evidence=[Evidence.of_log("warning", line)],
+    # the commands did fail, for a reason no line gives: the honest partial cause, so that "why didn't that work?"
+    # is answered by this finding rather than by a plan that looks right
+    cause = f"{prefix}unexplained_failure"
+    return Explanation(explainer=explainer, text=text, causes=[cause], confidence=0.4,
+                       evidence=[Evidence.of_log(cause, line)],
                        details=["That line's source: ros2_controllers diff_drive_controller.cpp:466@jazzy "
                                 "(its command callback while subscriber_is_active_ is false)."],
                        fix=f"See whether {who} is active (`ros2 control list_controllers`), activate it (its spawner "
@@ -90,6 +93,6 @@ def driver_candidates(run: SkillRun | None, first: LogLine | None) -> str:
     "" otherwise (the module's own candidates fit)."""
     if run is None or run.skill != BRING_UP or run.params.get("source") != "bringup" or first is None:
         return ""
-    if starting(first):
-        return ""
+    if control_logger(first.name) or completed(first):
+        return ""  # ros2_control's own line: the module's candidates (a controller's or hardware's settings) fit
     return PARAMETER_CANDIDATES if names_parameter(first) and not names_device(first) else DRIVER_CANDIDATES

@@ -162,3 +162,11 @@ def test_a_recording_with_nothing_started_says_what_it_looked_for(tmp_path: Path
         for looked_for in ("/task_info", "Nav2 navigation goal", "MoveIt or arm controller goal",
                            "start of the robot's drivers or controllers"):
             assert looked_for in str(err.value)
+
+
+def test_a_drivers_own_lines_without_an_error_are_a_start_still_under_way(tmp_path: Path) -> None:
+    # the UR driver's client library, logged under "UR_Client_Library:" (ur_robot_driver/src/urcl_log_handler.cpp:59
+    # @humble), as pasted in Universal_Robots_ROS2_Driver#1308: the robot asked for its program, nothing said more
+    lines = [(0.0, "UR_Client_Library:", INFO, "Robot requested program"),
+             (0.1, "UR_Client_Library:", INFO, "Sent program to robot")]
+    assert _steps(_tasks(tmp_path, lines)) == [("bring_up_controllers", "running", "")]

@@ -101,8 +101,27 @@ def test_a_controller_dropping_commands_is_told_as_not_active_claiming_no_cause_
     line = (0.0, "diff_drive_controller", WARN, "Can't accept new commands. subscriber is inactive")
     for question in ("Why didn't that work?", "How did it go?"):
         found, claims = _lone(tmp_path / question[:3], [line], question)
-        assert found.causes == [] and claims == set()
+        assert found.causes == ["control.unexplained_failure"] and claims == set()
         assert "“[diff_drive_controller] Can't accept new commands. subscriber is inactive” at 0.0 s" in found.text
         assert "it was not active when they came" in found.text
         assert "my logs do not show why it was not active" in found.text
         assert "list_controllers" in (found.fix or "")
+
+
+def test_a_drivers_error_after_its_own_start_names_the_drivers_candidates_not_a_controllers(tmp_path: Path) -> None:
+    driver = "ydlidar_ros2_driver_node"  # ydlidar_ros2_driver's own lines (a console of ydlidar_ros2#4)
+    found, _ = _lone(tmp_path, [(0.0, driver, INFO, "[YDLIDAR INFO] Current ROS Driver Version: 1.0.1"),
+                                (2.6, driver, ERROR, "Unknown error")])
+    assert "the port, address or baud rate it was given" in found.text and "a controller's settings" not in found.text
+
+
+def test_asked_why_it_did_not_work_the_agent_tells_the_dropped_commands_not_the_plan(tmp_path: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+
+    # diff_drive_controller/src/diff_drive_controller.cpp:466@jazzy, the recording's only line
+    log = write_lines(tmp_path, [(0.0, "diff_drive_controller", WARN,
+                                  "Can't accept new commands. subscriber is inactive")])
+    result = Session(RunSettings(recording=log.path, llm="none", phrase=False)).ask("Why didn't that work?")
+    assert result["explainers"][:1] == ["control"] and "planner.plan_ok" not in result["causes"]
+    assert "it was not active when they came" in result["answer"]
