@@ -12,8 +12,8 @@ start is one `bring_up_controllers` step:
   "Successful initialization of hardware", the resource manager "successfully initialized") and no error followed;
 - running when the software started and neither happened (the recording ends before a line says how it went), and
   when a controller refused commands because it was not active (diff_drive_controller's "Can't accept new commands.
-  subscriber is inactive"): it had been configured, but whether it was never activated or was deactivated later (a
-  robot shutting down prints the same line) no line tells.
+  subscriber is inactive"): it had been configured, but whether it was never activated or was deactivated later
+  (on_deactivate makes it drop commands the same way) no line tells.
 A lone error of another node (a robot's behaviour node, MoveIt's own: healthy arms print some), or lines of nodes
 that start nothing, make no task: such an error may be anybody's, and a start it followed is not told as a success.
 """
@@ -43,7 +43,6 @@ _ABORT = "terminate called after throwing an instance of"
 _HARDWARE_LOGGER = re.compile(r"(Hardware(Interface(Base)?)?|SystemInterface)$|(^|\.)hardware_component\.|ROS2Control")
 # MoveIt's own loggers: move_group and its capabilities, and moveit2's "moveit.<package>.<part>" child loggers
 _MOVEIT_LOGGER = re.compile(r"move_group\b|moveit[._]")
-# ros2_control's lines that tell a part of the start completed; read from the mined catalogue's texts below
 # a device driver's own logger: ROS packages name device drivers `*_driver` (ur_robot_driver, ydlidar_ros2_driver),
 # and the UR driver hands its client library's log to "UR_Client_Library:<tf_prefix>" (ur_robot_driver/src/
 # urcl_log_handler.cpp:59@humble)
@@ -54,6 +53,7 @@ _PARAMETER = re.compile(r"\bparam(eter)?s?\b", re.I)
 # diff_drive_controller.cpp:466@jazzy (354@humble, 420@foxy): a velocity command came while the controller was
 # configured (on_configure makes its subscription) but not active (only on_activate sets subscriber_is_active_)
 _REFUSED = re.compile(r"Can't accept new commands\. subscriber is inactive")
+# ros2_control's lines that tell a part of the start completed; read from the mined catalogue's texts below
 _DONE_TEXT = re.compile(r"^(Successful(ly)? (initialization|'…' of hardware|switched)|Configured and activated|"
                         r"Resource Manager has been successfully initialized)")
 
@@ -147,10 +147,12 @@ def _alone(line: LogLine, logs: list[LogLine]) -> bool:
 
 
 def names_device(line: LogLine) -> bool:
+    """The line names a device: its file, a serial port, a baud rate."""
     return _DEVICE.search(line.msg) is not None
 
 
 def names_parameter(line: LogLine) -> bool:
+    """The line names a parameter (its own word for it: parameter, param, params)."""
     return _PARAMETER.search(line.msg) is not None
 
 

@@ -75,8 +75,8 @@ def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Expl
     text = (f"My controller {who} dropped the commands it was sent: {verbatim(line)} at {at(line, t0)}. It had been "
             "configured (it only listens for commands after that) but it was not active when they came. Either "
             "nothing activated it (a spawner that left it inactive or did not run), its activation did not go "
-            "through, or it had been deactivated before (a robot shutting down prints the same line); my logs do "
-            "not show why it was not active.")
+            "through, or it had been deactivated before (a deactivated controller drops commands the same way); my "
+            "logs do not show why it was not active.")
     # the commands did fail, for a reason no line gives: the honest partial cause, so that "why didn't that work?"
     # is answered by this finding rather than by a plan that looks right
     cause = f"{prefix}unexplained_failure"
