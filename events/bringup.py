@@ -86,11 +86,13 @@ def _done_ids() -> frozenset[str]:
 def starting(line: LogLine) -> bool:
     """A line of the robot's starting software, by its logger: ros2_control's (a logger with a role in its catalogue:
     controller manager, resource manager, spawners; a hardware interface's own; gazebo's or gz's ros2_control
-    plugin), MoveIt's own (move_group, moveit.*), a device driver's own, or a line ros2_control's catalogue says
-    completes a start; or a controller's refusal of commands (it was configured, so the start got that far). A
-    generic text ("Waiting for …") of another node is no start: a client sending trajectories is not starting."""
+    plugin), MoveIt's own (move_group, moveit.*), or a line ros2_control's catalogue says completes a start; or a
+    controller's refusal of commands (it was configured, so the start got that far). A generic text ("Waiting for
+    …") of another node is no start: a client sending trajectories is not starting. Nor is a driver's own line
+    without an error: a GPS driver saying "NEO6M Driver Started" on a vehicle that then drives its route for
+    minutes (a real recording) started fine, and its run is not a start still under way."""
     name = line.name
-    if control_logger(name) or _MOVEIT_LOGGER.match(name) or _DRIVER_LOGGER.search(name) or refused(line):
+    if control_logger(name) or _MOVEIT_LOGGER.match(name) or refused(line):
         return True
     return completed(line)
 

@@ -164,9 +164,14 @@ def test_a_recording_with_nothing_started_says_what_it_looked_for(tmp_path: Path
             assert looked_for in str(err.value)
 
 
-def test_a_drivers_own_lines_without_an_error_are_a_start_still_under_way(tmp_path: Path) -> None:
+
+def test_a_drivers_own_lines_without_an_error_are_no_task_its_error_after_them_is(tmp_path: Path) -> None:
     # the UR driver's client library, logged under "UR_Client_Library:" (ur_robot_driver/src/urcl_log_handler.cpp:59
     # @humble), as pasted in Universal_Robots_ROS2_Driver#1308: the robot asked for its program, nothing said more
     lines = [(0.0, "UR_Client_Library:", INFO, "Robot requested program"),
              (0.1, "UR_Client_Library:", INFO, "Sent program to robot")]
-    assert _steps(_tasks(tmp_path, lines)) == [("bring_up_controllers", "running", "")]
+    assert _tasks(tmp_path / "a", lines) == []
+    # Universal_Robots_Client_Library src/rtde/rtde_client.cpp:702: strerror(ENOENT) behind the recipe's path
+    msg = "Opening file '/opt/ur/resources/rtde_output_recipe.txt' failed with error: No such file or directory"
+    assert _steps(_tasks(tmp_path / "b", [*lines, (1.0, "UR_Client_Library:", ERROR, msg)])) == [
+        ("bring_up_controllers", "failed", msg)]
