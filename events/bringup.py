@@ -5,12 +5,17 @@ resource manager, hardware components and spawners, MoveIt's move_group, and dri
 start is one `bring_up_controllers` step:
 - failed at its first decisive error: a bring-up or device line (explainers/stack_causes.py), else the first ERROR or
   FATAL line (or a C++ abort: libstdc++'s "terminate called after throwing an instance of") of a start the recording
-  shows, i.e. of the starting software or of a device driver, after an earlier, lesser line of that start;
+  shows, i.e. of the starting software or of a device driver after an earlier, lesser line of that start, or a lone
+  error that is the robot's start by itself: one of a hardware interface's or ros2_control's own loggers, of a device
+  driver (`*_driver`, or a node whose lines name a device file), or a line that names a device or a parameter;
 - succeeded when a line says the start completed (ros2_control's own words: the spawner's "Configured and activated",
   "Successful initialization of hardware", the resource manager "successfully initialized") and no error followed;
-- running when the software started and neither happened (the recording ends before a line says how it went).
-A lone error, an error of a node that is neither (a robot's behaviour node), or lines of nodes that start nothing,
-make no task: such an error may be anybody's, and a start it followed is not told as a success either.
+- running when the software started and neither happened (the recording ends before a line says how it went), and
+  when a controller refused commands because it was not active (diff_drive_controller's "Can't accept new commands.
+  subscriber is inactive"): it had been configured, but whether it was never activated or was deactivated later
+  (on_deactivate makes it drop commands the same way) no line tells.
+A lone error of another node (a robot's behaviour node, MoveIt's own: healthy arms print some), or lines of nodes
+that start nothing, make no task: such an error may be anybody's, and a start it followed is not told as a success.
 """
 
 from __future__ import annotations
@@ -31,11 +36,23 @@ if TYPE_CHECKING:
 _ABORT = "terminate called after throwing an instance of"
 # ros2_control drivers name their logger after the class that implements hardware_interface's SystemInterface
 # (Universal_Robots_ROS2_Driver: rclcpp::get_logger("URPositionHardwareInterface"); kuka_drivers: their
-# KukaEkiRsiHardwareInterface); the resource manager names each component's logger
+# KukaEkiRsiHardwareInterface and KukaRSIHardwareInterfaceBase; dynamixel_hardware.cpp:29: "DynamixelHardware";
+# ros2_kortex: "KortexMultiInterfaceHardware"; mujoco_ros2_control: "MujocoSystemInterface"; gz_ros2_control:
+# "GazeboSimROS2ControlPlugin"); the resource manager names each component's logger
 # "<controller manager>.resource_manager.hardware_component.<type>.<name>" (ros2_control jazzy and after)
-_HARDWARE_LOGGER = re.compile(r"HardwareInterface$|(^|\.)hardware_component\.")
+_HARDWARE_LOGGER = re.compile(r"(Hardware(Interface(Base)?)?|SystemInterface)$|(^|\.)hardware_component\.|ROS2Control")
 # MoveIt's own loggers: move_group and its capabilities, and moveit2's "moveit.<package>.<part>" child loggers
 _MOVEIT_LOGGER = re.compile(r"move_group\b|moveit[._]")
+# a device driver's own logger: ROS packages name device drivers `*_driver` (ur_robot_driver, ydlidar_ros2_driver),
+# and the UR driver hands its client library's log to "UR_Client_Library:<tf_prefix>" (ur_robot_driver/src/
+# urcl_log_handler.cpp:59@humble)
+_DRIVER_LOGGER = re.compile(r"driver|^UR_Client_Library:", re.I)
+# a line that names what a driver was set up with: a device (its file, serial port or baud rate) or a parameter
+_DEVICE = re.compile(r"/dev/\w|\bserial[ _]?port\b|\bbaud[ _]?rate\b", re.I)
+_PARAMETER = re.compile(r"\bparam(eter)?s?\b", re.I)
+# diff_drive_controller.cpp:466@jazzy (354@humble, 420@foxy): a velocity command came while the controller was
+# configured (on_configure makes its subscription) but not active (only on_activate sets subscriber_is_active_)
+_REFUSED = re.compile(r"Can't accept new commands\. subscriber is inactive")
 # ros2_control's lines that tell a part of the start completed; read from the mined catalogue's texts below
 _DONE_TEXT = re.compile(r"^(Successful(ly)? (initialization|'…' of hardware|switched)|Configured and activated|"
                         r"Resource Manager has been successfully initialized)")
@@ -69,12 +86,25 @@ def _done_ids() -> frozenset[str]:
 def starting(line: LogLine) -> bool:
     """A line of the robot's starting software, by its logger: ros2_control's (a logger with a role in its catalogue:
     controller manager, resource manager, spawners; a hardware interface's own; gazebo's or gz's ros2_control
-    plugin), MoveIt's own (move_group, moveit.*), or a line ros2_control's catalogue says completes a start. A
-    generic text ("Waiting for …") of another node is no start: a client sending trajectories is not starting."""
+    plugin), MoveIt's own (move_group, moveit.*), or a line ros2_control's catalogue says completes a start; or a
+    controller's refusal of commands (it was configured, so the start got that far). A generic text ("Waiting for
+    …") of another node is no start: a client sending trajectories is not starting. Nor is a driver's own line
+    without an error: a GPS driver saying "NEO6M Driver Started" on a vehicle that then drives its route for
+    minutes (a real recording) started fine, and its run is not a start still under way."""
     name = line.name
-    if _HARDWARE_LOGGER.search(name) or _MOVEIT_LOGGER.match(name) or "ros2_control" in name:
+    if control_logger(name) or _MOVEIT_LOGGER.match(name) or refused(line):
         return True
-    return _catalogues()[0].role(name) is not None or completed(line)
+    return completed(line)
+
+
+def control_logger(name: str) -> bool:
+    """ros2_control's own loggers and its hardware interfaces' (not MoveIt's)."""
+    return bool(_HARDWARE_LOGGER.search(name)) or "ros2_control" in name or _catalogues()[0].role(name) is not None
+
+
+def refused(line: LogLine) -> bool:
+    """A controller that refused commands because it was not active (below ERROR: the robot goes on without it)."""
+    return line.level < ERROR and _REFUSED.search(line.msg) is not None
 
 
 def completed(line: LogLine) -> bool:
@@ -91,7 +121,7 @@ def _driver(name: str, logs: list[LogLine]) -> bool:
     """A node that drives a device: its name says so (ROS packages name device drivers `*_driver`: ur_robot_driver,
     ydlidar_ros2_driver), or one of its lines names a device file. A node that only runs the robot's behaviour
     (a turtlebot4_node undocking, then missing a camera service) is no start of the robot."""
-    return "driver" in name.lower() or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
+    return _DRIVER_LOGGER.search(name) is not None or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
 
 
 def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
@@ -107,6 +137,27 @@ def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
                for ln in before)
 
 
+def _alone(line: LogLine, logs: list[LogLine]) -> bool:
+    """An error with no earlier line of its start that is still the robot's start: one of ros2_control's own or a
+    hardware interface's loggers (URPositionHardwareInterface failing to read from the robot), of a device driver, or
+    a line that names a device or a parameter to check (a lidar driver's own words for its port). MoveIt's lone
+    error, or a behaviour node's ("Service … unavailable" after the robot undocked), is no start: healthy robots
+    print such lines too."""
+    if line.level < ERROR:
+        return False
+    return control_logger(line.name) or _driver(line.name, logs) or names_device(line) or names_parameter(line)
+
+
+def names_device(line: LogLine) -> bool:
+    """The line names a device: its file, a serial port, a baud rate."""
+    return _DEVICE.search(line.msg) is not None
+
+
+def names_parameter(line: LogLine) -> bool:
+    """The line names a parameter (its own word for it: parameter, param, params)."""
+    return _PARAMETER.search(line.msg) is not None
+
+
 def bring_up(logs: list[LogLine]) -> BringUp | None:
     """The start of the robot in `logs` (time-ordered), or None when they show no start at all."""
     from hexar.explainers.stack_causes import stack_cause
@@ -118,7 +169,8 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
     if stack is not None:
         return BringUp(stack.line.t, "failed", last, stack.line.msg)
     first = next((ln for ln in logs if starting(ln)), None)
-    failed = next((ln for i, ln in enumerate(logs) if _error(ln) and _shown(ln, logs[:i], logs)), None)
+    failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),
+                  None)
     if failed is not None:
         # the step began with the start the error belongs to: its node's first line, or the software's
         began = [failed.t, *(ln.t for ln in logs if ln.name == failed.name), *([first.t] if first else [])]
@@ -126,6 +178,6 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
     if first is None or any(_error(ln) for ln in logs):
         return None  # an error the recording does not show a start of (one line of MoveIt's): not told either way
     done = [ln for ln in logs if completed(ln)]
-    if done:
+    if done and not any(refused(ln) for ln in logs):  # a controller that refused commands did not come up as asked
         return BringUp(first.t, "succeeded", done[-1].t)
     return BringUp(first.t, "running")

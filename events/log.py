@@ -103,8 +103,9 @@ class EventLog:
         """
         tasks = self.tasks
         if not tasks:
-            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages and no Nav2 "
-                              "navigation goal")
+            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages, no Nav2 navigation "
+                              "goal, no MoveIt or arm controller goal, and no start of the robot's drivers or "
+                              "controllers in its logs")
         if ref is None or ref in {"latest", "last"}:
             user = [t for t in tasks if not t.is_recovery]
             return max(user or tasks, key=lambda t: t.last_update)

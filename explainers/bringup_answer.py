@@ -3,13 +3,16 @@
 A start that completed is told plainly as such: what came up (ros2_control's own "Configured and activated",
 "Successful initialization of hardware" lines), and each warning on the way named as one that only looks like a
 failure. A start the recording does not see complete is told as that: what began, that no error followed, and that
-the logs do not show what came of it; a warning on the way is quoted, never claimed as the cause. A failed start is
-the module explainer's ordinary failure answer (the earliest decisive line), so it is not here.
+the logs do not show what came of it; a warning on the way is quoted, never claimed as the cause. A controller that
+dropped commands because it was not active is told as that, with what can leave a controller inactive (never
+activated, its activation not gone through, deactivated later), none of them claimed. A failed start is the module
+explainer's ordinary failure answer (the earliest decisive line); when no line says why and the error is a device
+driver's, its candidates are the driver's (`driver_candidates`), not a controller's.
 """
 
 from __future__ import annotations
 
-from hexar.events.bringup import completed, starting
+from hexar.events.bringup import completed, control_logger, names_device, names_parameter, refused, starting
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
@@ -17,6 +20,12 @@ from hexar.explainers.logcause import at
 
 BRING_UP = "bring_up_controllers"
 MAX_QUOTED = 3
+# what leaves a driver's start failed when its error names no cause: in words no cause pattern reads as a claim
+DRIVER_CANDIDATES = ("It may be the driver's settings (the port, address or baud rate it was given), the device itself "
+                     "(its cable, its power, or another device on that port), or the access rights to its device "
+                     "file.")
+PARAMETER_CANDIDATES = ("It may be the value of the parameter it names, or how that value is given to the node (its "
+                        "launch or parameter file, the node's name or namespace there).")
 
 
 def derived_start(run: SkillRun | None) -> bool:
@@ -41,6 +50,9 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
         return Explanation(explainer=explainer, text=text, causes=[cause],
                            evidence=[Evidence.of_log(cause, ln) for ln in came[:MAX_QUOTED]],
                            details=[f"{len(came)} line(s) say a part of my start completed, and no error followed."])
+    refusal = next((ln for ln in lines if refused(ln)), None)
+    if refusal is not None:
+        return _refusal_answer(explainer, prefix, refusal, t0)
     began = next((ln for ln in lines if starting(ln)), lines[0])
     text = (f"The recording shows me starting my drivers and controllers ({verbatim(began)} at {at(began, t0)}), "
             "but it ends before any line says the start completed. It shows no error, so my logs do not show what "
@@ -51,3 +63,36 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     return Explanation(explainer=explainer, text=text, causes=[], confidence=0.3,
                        evidence=[Evidence.of_log("warning", w) for w in warned],
                        fix="Record the whole start (from launch on) to see whether it completed.")
+
+
+def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Explanation:
+    """diff_drive_controller's refusal: it makes its command subscription when configured and accepts commands only
+    once activated (diff_drive_controller.cpp:466@jazzy), so it was configured but not active when they came."""
+    from hexar.explainers.module_explainer import verbatim
+
+    who = line.name or "a controller"
+    # no "refused": that word is a person's refusal in hexar/causes.yaml
+    text = (f"My controller {who} dropped the commands it was sent: {verbatim(line)} at {at(line, t0)}. It had been "
+            "configured (it only listens for commands after that) but it was not active when they came. Either "
+            "nothing activated it (a spawner that left it inactive or did not run), its activation did not go "
+            "through, or it had been deactivated before (a deactivated controller drops commands the same way); my "
+            "logs do not show why it was not active.")
+    # the commands did fail, for a reason no line gives: the honest partial cause, so that "why didn't that work?"
+    # is answered by this finding rather than by a plan that looks right
+    cause = f"{prefix}unexplained_failure"
+    return Explanation(explainer=explainer, text=text, causes=[cause], confidence=0.4,
+                       evidence=[Evidence.of_log(cause, line)],
+                       details=["That line's source: ros2_controllers diff_drive_controller.cpp:466@jazzy "
+                                "(its command callback while subscriber_is_active_ is false)."],
+                       fix=f"See whether {who} is active (`ros2 control list_controllers`), activate it (its spawner "
+                           "without --inactive), and read the controller manager's lines of its activation.")
+
+
+def driver_candidates(run: SkillRun | None, first: LogLine | None) -> str:
+    """The candidates of a derived start that failed at a device driver's error (not one of ros2_control's lines);
+    "" otherwise (the module's own candidates fit)."""
+    if run is None or run.skill != BRING_UP or run.params.get("source") != "bringup" or first is None:
+        return ""
+    if control_logger(first.name) or completed(first):
+        return ""  # ros2_control's own line: the module's candidates (a controller's or hardware's settings) fit
+    return PARAMETER_CANDIDATES if names_parameter(first) and not names_device(first) else DRIVER_CANDIDATES

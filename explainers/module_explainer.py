@@ -18,7 +18,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import ERROR, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.bringup_answer import derived_start, start_answer
+from hexar.explainers.bringup_answer import derived_start, driver_candidates, start_answer
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
@@ -158,7 +158,8 @@ class ModuleExplainer:
             quoted = (f" The first error was {verbatim(first)} at {at(first, start)}."
                       if first is not None else self._last_said(d, start))
             # what is left open, in words no cause pattern reads as a claim: the line's own, else the module's
-            maybe = f" Its words say that {d.candidates}." if d.candidates else f" {self.candidates}"
+            maybe = (f" Its words say that {d.candidates}." if d.candidates
+                     else f" {driver_candidates(run, first) or self.candidates}")
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
                 text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."

@@ -85,9 +85,11 @@ def print_inspection(console: Console, log: EventLog) -> None:
     console.print(topics)
     for task in log.tasks:
         label = "recovery task" if task.is_recovery else f"\"{safe(clip(task.instruction))}\""
-        if task.derived:
+        if task.derived and task.instruction.endswith(" (derived from Nav2)"):
             goal = safe(clip(task.instruction.removesuffix(" (derived from Nav2)")))
             label = f"Nav2 goal: {goal} [dim](derived from Nav2: no /task_info)[/dim]"
+        elif task.derived:  # an arm goal or the robot's start (events/arm_goals.py): its instruction says from what
+            label = f"{safe(clip(task.instruction))} [dim](no /task_info)[/dim]"
         colour = {"succeeded": "green", "failed": "red", "invalid": "red"}.get(task.outcome, "yellow")
         console.print(f"\n[bold]Task {task.order}[/bold] {safe(task.task_id)}: {label}  "
                       f"[{colour}]{safe(task.outcome)}[/{colour}]")
@@ -97,8 +99,9 @@ def print_inspection(console: Console, log: EventLog) -> None:
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
-        console.print("[yellow]No task to explain: this recording has no /task_info and no Nav2 navigation goal."
-                      "[/yellow]")
+        console.print("[yellow]No task to explain: this recording has no /task_info, no Nav2 navigation goal, no "
+                      "MoveIt or arm controller goal, and no start of the robot's drivers or controllers in its "
+                      "logs.[/yellow]")
     for warning in log.warnings:
         console.print(f"[yellow]warning:[/yellow] {safe(warning)}")
 

@@ -136,3 +136,22 @@ def test_ask_questions_file_echoes_each_question(suite: Path, tmp_path: Path,
     first, second = out.split("Q: ")[1:]
     assert first.startswith("What happened?\n") and "charger" in first
     assert second.startswith("Why didn't you move?\n") and "charger" in second
+
+
+def test_inspect_labels_a_derived_start_as_such_and_a_quiet_recording_says_what_it_looked_for(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.events.records import ERROR, INFO
+    from tests.explainers.helpers import write_lines
+
+    # sllidar_ros2 src/sllidar_node.cpp:287@main: a lidar driver's error, the robot's start that failed
+    started = write_lines(tmp_path / "lidar", [(0.0, "sllidar_node", ERROR,
+                                                "Error, cannot bind to the specified serial port /dev/ttyUSB0.")])
+    assert main(["inspect", str(started.path)]) == 0
+    out = capsys.readouterr().out
+    assert "Start the robot (derived from its start lines)" in out and "Nav2 goal" not in out
+    # demo_nodes_cpp's talker (talker.cpp: "Publishing: '%s'"): nothing started, nothing asked
+    quiet = write_lines(tmp_path / "talker", [(0.0, "talker", INFO, "Publishing: 'Hello World: 1'")])
+    assert main(["inspect", str(quiet.path)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "No task to explain" in out and "no MoveIt or arm controller goal" in out
+    assert "no start of the robot's drivers or controllers" in out

@@ -64,14 +64,15 @@ def test_nav2_goals_stay_nav2_tasks_when_no_arm_goal_is_recorded(tmp_path: Path)
     assert [t.skills[0].skill for t in tasks] == ["navigate_to_pose"]
 
 
-def test_a_device_the_os_would_not_open_gives_a_bring_up_task_an_unknown_error_none(tmp_path: Path) -> None:
+def test_a_device_the_os_would_not_open_or_a_drivers_lone_error_gives_a_bring_up_task(tmp_path: Path) -> None:
     b = BagBuilder()
     b.log(T0, "v4l2_camera", ERROR, "Cannot open '/dev/video0': 13, Permission denied")
     tasks = read_recording(b.write(tmp_path / "a")).tasks
     assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
     b = BagBuilder()
-    b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")  # anybody's: no task is claimed from it
-    assert read_recording(b.write(tmp_path / "b")).tasks == []
+    b.log(T0, "ydlidar_ros2_driver_node", ERROR, "Unknown error")  # a device driver's: the robot's start failed
+    tasks = read_recording(b.write(tmp_path / "b")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
 
 
 def test_a_catalogued_controller_manager_error_without_a_cause_still_gives_a_failed_arm_task(tmp_path: Path) -> None:

@@ -5,7 +5,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hexar.events.records import ERROR, INFO, WARN
+import pytest
+
+from hexar.evals.scenarios.bag import BagBuilder
+from hexar.events.errors import NoTaskError
+from hexar.events.records import ERROR, FATAL, INFO, WARN
 from tests.explainers.helpers import T0, write_lines
 
 # ros2_control's own lines (hardware_interface/src/resource_manager.cpp:88,111,120@humble;
@@ -100,3 +104,74 @@ def test_a_behaviour_nodes_error_after_its_own_work_is_no_failed_start(tmp_path:
              (31.2, node, ERROR, "Service oakd/start_camera unavailable."),
              (31.3, node, ERROR, "Service start_motor unavailable.")]
     assert _tasks(tmp_path, lines) == []
+
+
+# ros2_control_demos ros2_control_demo_hardware/src/rrbot_system_position_only.cpp:56-59@foxy: the demo's hardware
+# interface, logging under its class name, refuses a joint whose command interface is not a position one
+WRONG_INTERFACE = "Joint 'joint1' have velocity command interfaces found. 'position' expected."
+# sllidar_ros2 src/sllidar_node.cpp:287@main (node "sllidar_node", :59): the lidar's serial port could not be opened
+NO_PORT = "Error, cannot bind to the specified serial port /dev/ttyUSB0."
+# sllidar_node.cpp:180@main, "Failed to start motor: %08x" with SL_RESULT_OPERATION_TIMEOUT (0x80008000)
+MOTOR = "Failed to start motor: 80008000"
+# diff_drive_controller/src/diff_drive_controller.cpp:466@jazzy: a velocity command came while it was not active
+INACTIVE = "Can't accept new commands. subscriber is inactive"
+
+
+def test_a_hardware_interfaces_lone_error_fails_the_start_at_that_error(tmp_path: Path) -> None:
+    lines = [(0.0, "RRBotSystemPositionOnlyHardware", FATAL, WRONG_INTERFACE)]
+    tasks = _tasks(tmp_path, lines)
+    assert _steps(tasks) == [("bring_up_controllers", "failed", WRONG_INTERFACE)]
+    assert tasks[0].created == T0
+
+
+def test_a_drivers_identical_lone_errors_fail_the_start_at_the_first(tmp_path: Path) -> None:
+    # no line of the driver before its error, and a node name that does not say "driver": the serial port it names
+    # tells that it drives a device
+    lines = [(s, "sllidar_node", ERROR, NO_PORT) for s in (1.0, 2.0, 3.0)]
+    tasks = _tasks(tmp_path, lines)
+    assert _steps(tasks) == [("bring_up_controllers", "failed", NO_PORT)]
+    assert tasks[0].created == T0 + 1_000_000_000
+
+
+def test_a_lone_error_naming_a_parameter_fails_that_nodes_start(tmp_path: Path) -> None:
+    # robot_localization src/ros_robot_localization_listener.cpp:90-92@ros2, in its listener node
+    # (robot_localization_listener_node.cpp:48)
+    msg = "RosRobotLocalizationListener: Parameter filter_type invalid"
+    lines = [(0.0, "robot_localization_listener_node", ERROR, msg)]
+    assert _steps(_tasks(tmp_path, lines)) == [("bring_up_controllers", "failed", msg)]
+
+
+def test_a_controller_dropping_commands_because_it_is_inactive_is_a_start_not_seen_complete(tmp_path: Path) -> None:
+    lines = [(0.0, "diff_drive_controller", WARN, INACTIVE)]
+    assert _steps(_tasks(tmp_path / "a", lines)) == [("bring_up_controllers", "running", "")]
+    # after a start that completed, the same line (a controller deactivated since, or never activated) is no success
+    lines = [*START, (5.0, "diff_drive_controller", WARN, INACTIVE)]
+    assert _steps(_tasks(tmp_path / "b", lines)) == [("bring_up_controllers", "running", "")]
+
+
+def test_a_recording_with_nothing_started_says_what_it_looked_for(tmp_path: Path) -> None:
+    # no /rosout line (the robot's pose only), and a lone warning of a driver (no error, no refusal): no start to tell
+    b = BagBuilder()
+    b.pose(T0, 1.0, 2.0, 0.0, 0.01, 0.01, 0.01)
+    for name, lines, builder in (("quiet", [], b), ("warning", [(0.0, "sllidar_node", WARN, MOTOR)], None)):
+        log = write_lines(tmp_path / name, lines, builder)
+        assert log.tasks == []
+        with pytest.raises(NoTaskError) as err:
+            log.task()
+        assert str(err.value).startswith("no task to explain:")
+        for looked_for in ("/task_info", "Nav2 navigation goal", "MoveIt or arm controller goal",
+                           "start of the robot's drivers or controllers"):
+            assert looked_for in str(err.value)
+
+
+
+def test_a_drivers_own_lines_without_an_error_are_no_task_its_error_after_them_is(tmp_path: Path) -> None:
+    # the UR driver's client library, logged under "UR_Client_Library:" (ur_robot_driver/src/urcl_log_handler.cpp:59
+    # @humble), as pasted in Universal_Robots_ROS2_Driver#1308: the robot asked for its program, nothing said more
+    lines = [(0.0, "UR_Client_Library:", INFO, "Robot requested program"),
+             (0.1, "UR_Client_Library:", INFO, "Sent program to robot")]
+    assert _tasks(tmp_path / "a", lines) == []
+    # Universal_Robots_Client_Library src/rtde/rtde_client.cpp:702: strerror(ENOENT) behind the recipe's path
+    msg = "Opening file '/opt/ur/resources/rtde_output_recipe.txt' failed with error: No such file or directory"
+    assert _steps(_tasks(tmp_path / "b", [*lines, (1.0, "UR_Client_Library:", ERROR, msg)])) == [
+        ("bring_up_controllers", "failed", msg)]

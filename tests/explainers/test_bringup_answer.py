@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
-from hexar.events.records import ERROR, INFO, WARN
+from hexar.events.records import ERROR, FATAL, INFO, WARN
 from hexar.explainers.base import Explanation
 from tests.explainers.helpers import explain, write_lines
 
@@ -48,3 +48,80 @@ def test_a_failed_start_quotes_its_first_error_and_never_says_it_went_fine(tmp_p
                                 (2.6, driver, ERROR, "Unknown error")], "Why didn't that work?")
     assert found.text.startswith("Starting my drivers and controllers failed")
     assert "Unknown error" in found.text and ALL_FINE not in read_claims(found.text).affirmed
+
+
+def _lone(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str = "Why didn't that work?"
+          ) -> tuple[Explanation, set[str]]:
+    """A recording of only these lines (no task, no goal), answered by control; its affirmed causes."""
+    task, found = explain(write_lines(tmp_path, lines), "control", question)
+    assert task.derived
+    return found, set(read_claims(found.text).affirmed)
+
+
+def test_a_drivers_lone_error_is_quoted_with_node_and_time_and_the_drivers_candidates(tmp_path: Path) -> None:
+    # sllidar_ros2 src/sllidar_node.cpp:287@main: no line before it, no cause in its words
+    found, claims = _lone(tmp_path, [(2.0, "sllidar_node", ERROR,
+                                      "Error, cannot bind to the specified serial port /dev/ttyUSB0.")])
+    assert found.text.startswith("Starting my drivers and controllers failed")
+    assert ("“[sllidar_node] Error, cannot bind to the specified serial port /dev/ttyUSB0.” at 0.0 s"
+            in found.text)
+    assert "the port, address or baud rate it was given" in found.text and "a controller's settings" not in found.text
+    assert found.causes == ["control.unexplained_failure"] and not {c for c in claims if not c.startswith("claim.")}
+    assert ALL_FINE not in claims
+
+
+def test_a_hardware_interfaces_lone_error_that_states_its_cause_names_it(tmp_path: Path) -> None:
+    # libfranka src/exception.cpp:21 (IncompatibleVersionException), logged by franka_hardware under
+    # "FrankaHardwareInterface" (franka_hardware_interface.cpp:405@humble)
+    found, claims = _explain_lone_franka(tmp_path)
+    assert found.causes == ["control.hardware_failure"] and "control.hardware_failure" in claims
+    assert "“[FrankaHardwareInterface] libfranka: Incompatible library version" in found.text
+
+
+def _explain_lone_franka(tmp_path: Path) -> tuple[Explanation, set[str]]:
+    return _lone(tmp_path, [(0.0, "FrankaHardwareInterface", FATAL,
+                             "libfranka: Incompatible library version (server version: 10, library version: 9). "
+                             "Please check https://frankaemika.github.io for system updates or choose a libfranka "
+                             "version that uses the server version 10 from the table at "
+                             "https://frankaemika.github.io/docs/compatibility.html .")])
+
+
+def test_a_lone_error_naming_a_parameter_names_that_parameters_candidates(tmp_path: Path) -> None:
+    # robot_localization src/ros_robot_localization_listener.cpp:90-92@ros2
+    found, claims = _lone(tmp_path, [(0.0, "robot_localization_listener_node", ERROR,
+                                      "RosRobotLocalizationListener: Parameter filter_type invalid")])
+    assert "“[robot_localization_listener_node] RosRobotLocalizationListener: Parameter filter_type invalid”" \
+        in found.text
+    assert "the value of the parameter it names" in found.text
+    assert not {c for c in claims if not c.startswith("claim.")}
+
+
+def test_a_controller_dropping_commands_is_told_as_not_active_claiming_no_cause_nor_outcome(tmp_path: Path) -> None:
+    # diff_drive_controller/src/diff_drive_controller.cpp:466@jazzy
+    line = (0.0, "diff_drive_controller", WARN, "Can't accept new commands. subscriber is inactive")
+    for question in ("Why didn't that work?", "How did it go?"):
+        found, claims = _lone(tmp_path / question[:3], [line], question)
+        assert found.causes == ["control.unexplained_failure"] and claims == set()
+        assert "“[diff_drive_controller] Can't accept new commands. subscriber is inactive” at 0.0 s" in found.text
+        assert "it was not active when they came" in found.text
+        assert "my logs do not show why it was not active" in found.text
+        assert "list_controllers" in (found.fix or "")
+
+
+def test_a_drivers_error_after_its_own_start_names_the_drivers_candidates_not_a_controllers(tmp_path: Path) -> None:
+    driver = "ydlidar_ros2_driver_node"  # ydlidar_ros2_driver's own lines (a console of ydlidar_ros2#4)
+    found, _ = _lone(tmp_path, [(0.0, driver, INFO, "[YDLIDAR INFO] Current ROS Driver Version: 1.0.1"),
+                                (2.6, driver, ERROR, "Unknown error")])
+    assert "the port, address or baud rate it was given" in found.text and "a controller's settings" not in found.text
+
+
+def test_asked_why_it_did_not_work_the_agent_tells_the_dropped_commands_not_the_plan(tmp_path: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+
+    # diff_drive_controller/src/diff_drive_controller.cpp:466@jazzy, the recording's only line
+    log = write_lines(tmp_path, [(0.0, "diff_drive_controller", WARN,
+                                  "Can't accept new commands. subscriber is inactive")])
+    result = Session(RunSettings(recording=log.path, llm="none", phrase=False)).ask("Why didn't that work?")
+    assert result["explainers"][:1] == ["control"] and "planner.plan_ok" not in result["causes"]
+    assert "it was not active when they came" in result["answer"]
