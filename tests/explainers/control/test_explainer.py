@@ -242,3 +242,12 @@ def test_a_ros2_without_its_control_command_never_loaded_the_controller(tmp_path
     assert found.causes == ["control.controller_load_failed"]
     assert "`ros2 control` command itself is not installed" in found.text
     assert "type is not installed" not in found.text
+
+
+def test_ros2_control_4_16s_hardware_exception_wording_is_a_hardware_failure(tmp_path: Path) -> None:
+    # ros-controls/ros2_control#1719 (heldout5, spent): resource_manager.cpp:206@ce58faea3 (4.16.1), before #1749
+    # put the exception's type into the line
+    found = _explain(tmp_path, [
+        (0, "controller_manager.resource_manager", ERROR,
+         "Exception occurred while initializing hardware 'ros2_control_tiago_system': std::bad_alloc")])
+    assert found.causes == ["control.hardware_failure"]

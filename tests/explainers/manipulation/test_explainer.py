@@ -203,3 +203,14 @@ def test_a_start_state_outside_the_joint_limits_is_told_as_that_not_as_a_planner
     assert found.causes == ["manipulation.start_state_in_collision"]
     assert "start state was outside its joint limits" in found.text
     assert "in collision" not in found.text and "found no solution" not in found.text
+
+
+def test_a_group_the_robot_model_lacks_is_a_configuration_error(tmp_path: Path) -> None:
+    # catmulti7/dual_ur_ros_2#5 (heldout5, spent): MoveIt Servo named a planning group the SRDF does not define
+    # (robot_model.cpp:517@main)
+    _task, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "moveit_robot_model.robot_model", ERROR, "Group 'ur_manipulator' not found in model 'ur'"),
+        *_aborted(2)])
+    assert found.causes == ["manipulation.configuration_error"]
+    assert "logs do not show" not in found.text
