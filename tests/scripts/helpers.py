@@ -23,3 +23,21 @@ def load_script(name: str) -> ModuleType:
 
 def git(repo: Path, *args: str) -> None:
     subprocess.run(["git", "-C", str(repo), *args], check=True, capture_output=True)
+
+
+def new_repo(repo: Path, branch: str) -> Path:
+    """An empty git repository at `repo` (folders made), on `branch`, with a committer set."""
+    repo.mkdir(parents=True, exist_ok=True)
+    git(repo, "init", "-q", "-b", branch)
+    git(repo, "config", "user.email", "t@example.com")
+    git(repo, "config", "user.name", "t")
+    return repo
+
+
+def commit_files(repo: Path, files: dict[str, str], message: str = "a") -> None:
+    """Write `files` (path in the repository -> text) and commit them."""
+    for rel, text in files.items():
+        (repo / rel).parent.mkdir(parents=True, exist_ok=True)
+        (repo / rel).write_text(text)
+    git(repo, "add", ".")
+    git(repo, "commit", "-qm", message)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.scripts.helpers import git, load_script
+from tests.scripts.helpers import git, load_script, new_repo
 
 CONFIG = """
 min_literal: 10
@@ -24,12 +24,9 @@ rules:
 
 
 def _repo(root: Path) -> None:
-    repo = root / "someone+robot_nav" / "repo"
+    repo = new_repo(root / "someone+robot_nav" / "repo", "humble")
     (repo / "pkg" / "src").mkdir(parents=True)
     (repo / "pkg" / "test").mkdir()
-    git(repo, "init", "-q", "-b", "humble")
-    git(repo, "config", "user.email", "t@example.com")
-    git(repo, "config", "user.name", "t")
     (repo / "pkg" / "src" / "a.cpp").write_text(
         'RCLCPP_ERROR(logger_, "Transform data too old when converting from %s to %s", a, b);\n'
         'RCLCPP_WARN(logger_, "Failed to make progress");\nRCLCPP_ERROR(logger_, "short");\n')

@@ -12,7 +12,7 @@ from typing import Any
 import pytest
 import yaml
 
-from tests.scripts.helpers import git, load_script
+from tests.scripts.helpers import commit_files, git, load_script, new_repo
 
 SCRIPT = Path(__file__).resolve().parents[2] / "scripts" / "mine_modules.py"
 CPP_A = """
@@ -34,11 +34,8 @@ PY = 'def main():\n    logger.error(bcolors.FAIL + f"Failed loading controller {
 
 @pytest.fixture
 def mirror(tmp_path: Path) -> Path:
-    repo = tmp_path / "me+ctl" / "repo"
+    repo = new_repo(tmp_path / "me+ctl" / "repo", "humble")
     (repo / "cm" / "src").mkdir(parents=True)
-    git(repo, "init", "-q", "-b", "humble")
-    git(repo, "config", "user.email", "t@t")
-    git(repo, "config", "user.name", "t")
     (repo / "cm" / "src" / "cm.cpp").write_text(CPP_A)
     (repo / "cm" / "spawner.py").write_text(PY)
     (repo / "cm" / "test").mkdir()
@@ -96,20 +93,13 @@ def test_the_committed_catalogues_cite_a_file_line_and_branch_for_every_message(
 
 
 def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_path: Path) -> None:
-    repo = tmp_path / "me+drv" / "repo"
-    (repo / "src").mkdir(parents=True)
-    git(repo, "init", "-q", "-b", "main")
-    git(repo, "config", "user.email", "t@t")
-    git(repo, "config", "user.name", "t")
-    (repo / "src" / "driver.cpp").write_text(
+    commit_files(new_repo(tmp_path / "me+drv" / "repo", "main"), {
+        "src/driver.cpp":
         'void f() {\n  URCL_LOG_ERROR("Failed to connect to the RTDE server, retrying in %i seconds", t);\n'
         '  RCLCPP_ERROR(l, "The calibration parameters of the connected robot don\'t match the ones from the given "\n'
         '               "kinematics config file. Please be aware that this can lead to critical inaccuracies.");\n'
-        '  RCLCPP_ERROR(l, "Loader for controller \'%s\' not found.", n);\n}\n')
-    (repo / "src" / "result.cpp").write_text('std::string r() {\n  return "No motion plan found. No execution '
-                                             'attempted.";\n}\n')
-    git(repo, "add", ".")
-    git(repo, "commit", "-qm", "a")
+        '  RCLCPP_ERROR(l, "Loader for controller \'%s\' not found.", n);\n}\n',
+        "src/result.cpp": 'std::string r() {\n  return "No motion plan found. No execution attempted.";\n}\n'})
     mod = load_script("mine_modules")
     cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
         {"name": "drv", "mirror": "me+drv", "branches": ["main"], "skip_paths": "^$",
@@ -127,21 +117,14 @@ def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_pa
 def test_a_drivers_lines_carry_the_callbacks_that_log_them_and_their_role(tmp_path: Path) -> None:
     # shaped as ros2_robotiq_gripper's robotiq_driver/src/hardware_interface.cpp@main (on_init checks the joint's
     # interfaces, on_configure opens the serial port) and a plain node of the same repository
-    repo = tmp_path / "me+grip" / "repo"
-    (repo / "src").mkdir(parents=True)
-    git(repo, "init", "-q", "-b", "main")
-    git(repo, "config", "user.email", "t@t")
-    git(repo, "config", "user.name", "t")
-    (repo / "src" / "hw.hpp").write_text("class RobotiqGripperHardwareInterface : public "
-                                         "hardware_interface::SystemInterface {};\n")
-    (repo / "src" / "hw.cpp").write_text(
+    commit_files(new_repo(tmp_path / "me+grip" / "repo", "main"), {
+        "src/hw.hpp": "class RobotiqGripperHardwareInterface : public hardware_interface::SystemInterface {};\n",
+        "src/hw.cpp":
         "CallbackReturn RobotiqGripperHardwareInterface::on_init(const HardwareInfo& info) {\n"
         '  RCLCPP_FATAL(kLogger, "Joint \'%s\' has %zu command interfaces found. 1 expected.", n, s);\n}\n'
         "CallbackReturn RobotiqGripperHardwareInterface::on_configure(const State& s) {\n"
         '  RCLCPP_ERROR(kLogger, "Cannot connect to the Robotiq gripper");\n}\n'
-        'void Node::spin() {\n  RCLCPP_ERROR(l, "Cannot spin the gripper node");\n}\n')
-    git(repo, "add", ".")
-    git(repo, "commit", "-qm", "a")
+        'void Node::spin() {\n  RCLCPP_ERROR(l, "Cannot spin the gripper node");\n}\n'})
     mod = load_script("mine_modules")
     roles = yaml.safe_load((SCRIPT.parent / "modules_mining.yaml").read_text(encoding="utf-8"))
     cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {
