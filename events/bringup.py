@@ -20,11 +20,9 @@ that start nothing, make no task: such an error may be anybody's, and a start it
 
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 from typing import TYPE_CHECKING
 
 from hexar.events.records import ERROR, LogLine
@@ -77,10 +75,9 @@ def _catalogues() -> tuple[ModuleCatalogue, ModuleCatalogue]:
 def _done_ids() -> frozenset[str]:
     """The control catalogue's entries that tell the start (or a part of it) completed: the spawner's nominal kind,
     and ros2_control's "Successful …"/"successfully initialized" texts (never a deactivation or an unload)."""
-    raw = json.loads(resources.files("hexar.explainers.control").joinpath("ros2_control_catalogue.json")
-                     .read_text(encoding="utf-8"))
-    return frozenset(str(m["id"]) for m in raw["messages"]
-                     if m.get("level") == "INFO" and (m.get("kind") == "nominal" or _DONE_TEXT.search(str(m["text"]))))
+    control = _catalogues()[0]
+    return frozenset(e.id for e in control.entries if control.mined[e.id].level == "INFO"
+                     and (e.kind == "nominal" or _DONE_TEXT.search(control.mined[e.id].text)))
 
 
 def starting(line: LogLine) -> bool:

@@ -42,9 +42,20 @@ class Refinement:
     meaning: str = ""
 
 
+@dataclass(frozen=True)
+class Mined:
+    """What the miner recorded of an entry beyond what matching needs: its level and text, and for a line of a
+    hardware class the callbacks that log it and the role they give it (explainers/control/driver_roles.py)."""
+
+    level: str
+    text: str
+    hw_role: str | None = None
+    functions: tuple[str, ...] = ()
+
+
 class ModuleCatalogue(Catalogue):
     """A mined catalogue: messages (pattern, level, package, file:line@branch, kind, cause) plus the error-code
-    names and code-built texts that name a cause."""
+    names and code-built texts that name a cause, and the hardware roles of its drivers' callbacks."""
 
     def __init__(self, raw: dict[str, Any], name: str) -> None:
         try:
@@ -54,7 +65,14 @@ class ModuleCatalogue(Catalogue):
             self.refinements = tuple(Refinement(str(r["contains"]), str(r["cause"]), str(r["source"]),
                                                 str(r.get("meaning") or ""))
                                      for r in raw.get("refinements") or [])
-        except (ExplainerError, KeyError, TypeError, AttributeError) as err:
+            # kept from this one parse, so that no reader parses the file again for them
+            self.mined: dict[str, Mined] = {
+                str(m["id"]): Mined(str(m.get("level") or ""), str(m.get("text") or ""),
+                                    None if m.get("hw_role") is None else str(m["hw_role"]),
+                                    tuple(str(f) for f in m.get("functions") or ()))
+                for m in raw["messages"]}
+            self.hardware_roles: dict[str, Any] = dict(raw.get("hardware_roles") or {})
+        except (ExplainerError, KeyError, TypeError, AttributeError, ValueError) as err:
             raise ModuleCatalogueError(f"malformed catalogue {name}: {err}") from err
 
     @staticmethod

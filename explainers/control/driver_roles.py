@@ -13,12 +13,11 @@ logged, and no cause.
 
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass
 from functools import cache
-from importlib import resources
 
 from hexar.events.records import ERROR
+from hexar.explainers.control.catalogue import catalogue
 from hexar.explainers.logcause import ModuleCatalogueError, Reading
 
 CATALOGUE = "ros2_control_catalogue.json"
@@ -67,14 +66,14 @@ class _Mined:
 @cache
 def _mined() -> _Mined:
     """The catalogue's roles and, for each entry the miner found in a hardware interface's callbacks, its role."""
+    control = catalogue()
     try:
-        raw = json.loads(resources.files("hexar.explainers.control").joinpath(CATALOGUE).read_text("utf-8"))
         roles = {str(k): (None if v.get("cause") is None else str(v["cause"]), str(v["meaning"]))
-                 for k, v in (raw.get("hardware_roles") or {}).items()}
-        placed = {str(m["id"]): (str(m["hw_role"]), tuple(str(f) for f in m.get("functions") or ()))
-                  for m in raw["messages"] if m.get("hw_role") in roles}
-    except (OSError, ValueError, KeyError, TypeError, AttributeError) as err:
+                 for k, v in control.hardware_roles.items()}
+    except (KeyError, TypeError, AttributeError) as err:
         raise ModuleCatalogueError(f"malformed catalogue {CATALOGUE}: {err}") from err
+    placed = {i: (m.hw_role, m.functions) for i, m in control.mined.items()
+              if m.hw_role is not None and m.hw_role in roles}
     if "start" not in roles:
         raise ModuleCatalogueError(f"malformed catalogue {CATALOGUE}: no 'start' hardware role")
     return _Mined(roles, placed)
