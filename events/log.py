@@ -24,6 +24,10 @@ from hexar.events.records import (
 )
 from hexar.events.tasks import Task, build_tasks
 
+# where tasks come from besides /task_info (`EventLog.tasks`), as the no-task error and `hexar inspect` say it
+NO_TASK_SOURCES = ("no Nav2 navigation goal, no MoveIt or arm controller goal, and no start of the robot's drivers "
+                   "or controllers in its logs")
+
 
 @dataclass(frozen=True, slots=True)
 class TopicInfo:
@@ -103,9 +107,7 @@ class EventLog:
         """
         tasks = self.tasks
         if not tasks:
-            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages, no Nav2 navigation "
-                              "goal, no MoveIt or arm controller goal, and no start of the robot's drivers or "
-                              "controllers in its logs")
+            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages, {NO_TASK_SOURCES}")
         if ref is None or ref in {"latest", "last"}:
             user = [t for t in tasks if not t.is_recovery]
             return max(user or tasks, key=lambda t: t.last_update)

@@ -100,5 +100,5 @@ def _placed(d: Diagnosis, readings: list[Reading]) -> RoleReading | None:
     decided before (no rule, no bring-up line, no stated cause, no words of its own that leave candidates open)."""
     if d.cause is not None or d.unknown is None or d.outcome == "succeeded" or d.candidates:
         return None
-    at = next((i for i, r in enumerate(readings) if r.line is d.unknown), None)
-    return by_role(readings[at], readings[:at]) if at is not None else None
+    index = next((i for i, r in enumerate(readings) if r.line is d.unknown), None)
+    return by_role(readings[index], readings[:index]) if index is not None else None
