@@ -165,18 +165,18 @@ def test_a_failure_no_line_explains_names_its_node_time_and_candidates(tmp_path:
     assert "It may be a controller's settings" in found.text and _claims(found) == set()
 
 
-def test_an_exception_that_ended_a_process_is_quoted_as_the_first_error(tmp_path: Path) -> None:
-    # pluginlib's LibraryLoadException, printed by terminate behind the process's name under an INFO line
+def test_an_exception_that_ended_a_process_is_read_for_its_cause(tmp_path: Path) -> None:
+    # pluginlib's LibraryLoadException (class_loader_imp.hpp:541@rolling), printed by terminate behind the process's
+    # name under an INFO line: its base class says whose plugin is not installed
     found = _explain(tmp_path, [
         (0, "ros2_control_node-1", INFO, "process started with pid [861]\nterminate called after throwing an "
                                          "instance of 'pluginlib::LibraryLoadException'\nwhat():  According to the "
                                          "loaded plugin descriptions the class ros2_control_demo_hardware/"
                                          "RRBotSystemPositionOnlyHardware with base class type "
                                          "hardware_interface::SystemInterface does not exist.")], fails_at=1)
-    if found.causes == ["control.unexplained_failure"]:
-        assert "The first error was “[ros2_control_node-1] According to the loaded plugin descriptions" in found.text
-    else:  # a catalogue that knows pluginlib's text names its cause
-        assert found.causes and not found.causes[0].endswith("unexplained_failure")
+    assert found.causes == ["control.configuration_error"]
+    assert "not among the installed plugin descriptions" in found.text
+    assert "hardware interface failed" not in found.text
 
 
 def test_a_realtime_priority_the_os_refused_is_not_the_failure(tmp_path: Path) -> None:

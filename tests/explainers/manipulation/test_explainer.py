@@ -214,3 +214,17 @@ def test_a_group_the_robot_model_lacks_is_a_configuration_error(tmp_path: Path) 
         *_aborted(2)])
     assert found.causes == ["manipulation.configuration_error"]
     assert "logs do not show" not in found.text
+
+
+def test_a_solver_plugin_not_among_the_installed_descriptions_is_a_set_up_error(tmp_path: Path) -> None:
+    # pluginlib's LibraryLoadException text (class_loader_imp.hpp:541@rolling) as terminate prints it when a
+    # program loading a kinematics solver does not catch it: the base class says MoveIt's plugin is missing
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (0.5, "mtc_node-1", INFO, "terminate called after throwing an instance of 'pluginlib::LibraryLoadException'"
+                                  "\n  what():  According to the loaded plugin descriptions the class "
+                                  "kdl_kinematics_plugin/KDLKinematicsPlugin with base class type "
+                                  "kinematics::KinematicsBase does not exist. Declared types are "),
+        *_aborted(1)])
+    assert found.causes == ["manipulation.configuration_error"]
+    assert "kdl_kinematics_plugin/KDLKinematicsPlugin" in " ".join(e.item for e in found.evidence)
