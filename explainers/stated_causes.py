@@ -36,6 +36,8 @@ BRINGUP = "bringup.configuration_error"
 CONTROL_SETUP = "control.configuration_error"
 HARDWARE = "control.hardware_failure"
 _THROWN = re.compile(r"^what\(\):\s*(?P<text>.+)$")
+# an errno printed as its number alone ("open device error | device: /dev/ttyACM0, errno: 13"; "error number <13>")
+_ERRNO_NUMBER = re.compile(r"\berrno\b\s*[:=]?\s*<?(?P<n>\d{1,3})\b|\berror number\s*<(?P<m>\d{1,3})>", re.I)
 _PATH = re.compile(r"(?<![\w.:/])(/[\w.+-]+){2,}")
 # the parameters a launch file hands a node (the robot description and its kinematics), never the node's own
 _DESCRIPTION = re.compile(r"robot_description|kinematics|urdf|srdf", re.I)
@@ -63,6 +65,14 @@ class Phrase:
     meaning: str = ""
     fix: str = ""
     source: str = ""
+    number: int | None = None  # an errno's Linux number
+
+    def search(self, part: str) -> re.Match[str] | None:
+        """Its words in the part, or (an errno) its number printed alone."""
+        found = self.pattern.search(part)
+        if found is not None or self.number is None:
+            return found
+        return next((m for m in _ERRNO_NUMBER.finditer(part) if int(m["n"] or m["m"]) == self.number), None)
 
 
 def _read(name: str) -> dict[str, Any]:
@@ -80,7 +90,9 @@ def phrases() -> tuple[Phrase, ...]:
     """The strerror texts first (the most specific why), then the set-up wordings."""
     try:
         errnos = [Phrase(str(e["errno"]), "errno", re.compile(str(e["pattern"]), re.I), e.get("cause"),
-                         str(e["meaning"]), str(e["fix"]), str(e["source"])) for e in _read("strerror.json")["errnos"]]
+                         str(e["meaning"]), str(e["fix"]), str(e["source"]),
+                         None if e.get("number") is None else int(e["number"]))
+                  for e in _read("strerror.json")["errnos"]]
         setup = [Phrase(str(p["id"]), str(p["kind"]), re.compile(str(p["pattern"]), re.I),
                         source="; ".join(p["sources"])) for p in _read("setup_phrases.json")["phrases"]]
     except (KeyError, TypeError, re.error) as err:
@@ -172,7 +184,7 @@ def _statement(line: LogLine, prefix: str, controllers: frozenset[str], floor: i
         for phrase in phrases():
             if floor < ERROR and phrase.kind != "errno":
                 continue
-            m = phrase.pattern.search(part)
+            m = phrase.search(part)
             if m is None:
                 continue
             if phrase.kind != "errno":

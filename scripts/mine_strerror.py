@@ -19,6 +19,9 @@ Why each errno maps where it does (the `stated` causes of explainers/stated_caus
   text does not say: no cause is claimed, the answer names the candidates.
 - ENOENT, ENODEV, ENXIO: the device or file is not there; whether it is unplugged or a wrong path was configured the
   text does not say, so no cause is claimed: the answer names both.
+- Each errno also carries its number, for drivers that print the number alone ("open device error | device:
+  /dev/ttyACM0, errno: 13"): the Linux numbers of x86_64 and arm64 (include/uapi/asm-generic/errno-base.h and
+  errno.h), as this Linux machine's C library reports them through Python's errno module.
 - EPERM is left out on purpose: healthy robots print it (ros2_control_node's "Could not enable FIFO RT scheduling
   policy: with error number <1>(Operation not permitted)", controller_manager/src/ros2_control_node.cpp:127@master).
 """
@@ -26,6 +29,7 @@ Why each errno maps where it does (the `stated` causes of explainers/stated_caus
 from __future__ import annotations
 
 import argparse
+import errno
 import json
 import re
 import subprocess
@@ -104,9 +108,11 @@ def mine(mirror: Path) -> dict[str, Any]:
     for name, (cause, meaning, fix) in TABLE.items():
         words, line_no = found[name]
         errnos.append({"errno": name, "text": words, "pattern": rf"\b{re.escape(words)}\b", "cause": cause,
-                       "meaning": meaning, "fix": fix, "source": f"glibc/{ERRLIST}:{line_no}@{commit[:12]}"})
+                       "meaning": meaning, "fix": fix, "source": f"glibc/{ERRLIST}:{line_no}@{commit[:12]}",
+                       "number": getattr(errno, name)})
     return {"about": "strerror texts of the GNU C library (github:bminor/glibc) a driver's error line can carry, "
-                     "mined by scripts/mine_strerror.py; cause null: the text alone names no single cause",
+                     "mined by scripts/mine_strerror.py; cause null: the text alone names no single cause; number: its "
+                     "Linux errno (x86_64, arm64)",
             "commit": commit, "errnos": errnos}
 
 

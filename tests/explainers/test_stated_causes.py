@@ -75,6 +75,26 @@ def test_permission_denied_on_a_drivers_fatal_line_is_the_devices_permission(tmp
     assert "udev" in (found.fix or "")
 
 
+def test_an_errno_printed_as_its_number_alone_states_its_cause(tmp_path: Path) -> None:
+    # the micro-ROS agent's serial transport (TermiosAgentLinux.cpp) prints errno as a number: 13 is EACCES
+    found = _explain(tmp_path, [
+        (0, "micro_ros_agent", ERROR, "[1646397373.328044] error    | TermiosAgentLinux.cpp | init"
+                                      "                     | open device error      | device: /dev/ttyACM0, "
+                                      "errno: 13")], fails_at=1)
+    assert found.causes == ["system.device_permission"]
+    assert "udev" in (found.fix or "")
+
+
+def test_an_errno_number_healthy_robots_print_or_of_no_known_errno_states_nothing(tmp_path: Path) -> None:
+    # ros2_control_node.cpp:127@master on any machine without realtime rights: EPERM (1) is left out on purpose;
+    # and 130 (ECANCELED here) is no errno of the mined table
+    for msg in ("Could not enable FIFO RT scheduling policy: with error number <1>(Operation not permitted)",
+                "open device error      | device: /dev/ttyACM0, errno: 130"):
+        found = _explain(tmp_path / str(len(msg)), [(0, "controller_manager", ERROR, msg)], fails_at=1)
+        assert "system.device_permission" not in found.causes
+        assert found.causes == ["control.unexplained_failure"]
+
+
 def test_address_in_use_in_an_exception_is_a_set_up_conflict_not_a_dead_process(tmp_path: Path) -> None:
     # Universal_Robots_Client_Library src/comm/tcp_server.cpp:168: the exception ros2_control_node dies of
     found = _explain(tmp_path, [

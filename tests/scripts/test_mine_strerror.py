@@ -34,6 +34,9 @@ def test_the_mined_texts_and_lines_come_from_errlist(tmp_path: Path) -> None:
            [(e["errno"], e["text"], e["cause"]) for e in committed]
     first = mined["errnos"][0]
     assert first["source"] == f"glibc/sysdeps/gnu/errlist.h:3@{mined['commit'][:12]}"  # line 3 of the file above
+    # the number a driver may print alone: Linux's (asm-generic errno-base.h), EACCES first
+    assert (first["errno"], first["number"]) == ("EACCES", 13)
+    assert [e["number"] for e in mined["errnos"]] == [e["number"] for e in committed]
 
 
 def test_an_errno_missing_from_errlist_stops_the_miner(tmp_path: Path) -> None:
