@@ -5,7 +5,8 @@ A start that completed is told plainly as such: what came up (ros2_control's own
 failure. A start the recording does not see complete is told as that: what began, that no error followed, and that
 the logs do not show what came of it; a warning on the way is quoted, never claimed as the cause. A controller that
 dropped commands because it was not active is told as that, with what can leave a controller inactive (never
-activated, its activation not gone through, deactivated later), none of them claimed. A failed start is the module
+activated, its activation not gone through, deactivated later), none of them claimed; a controller manager still
+waiting for its robot description, as explainers/control/description.py reads it. A failed start is the module
 explainer's ordinary failure answer (the earliest decisive line); when no line says why and the error is a device
 driver's, its candidates are the driver's (`driver_candidates`), not a controller's.
 """
@@ -16,6 +17,7 @@ from hexar.events.bringup import completed, control_logger, names_device, names_
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waited, waiting_words
 from hexar.explainers.logcause import at
 
 BRING_UP = "bring_up_controllers"
@@ -53,6 +55,9 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     refusal = next((ln for ln in lines if refused(ln)), None)
     if refusal is not None:
         return _refusal_answer(explainer, prefix, refusal, t0)
+    waiting = waited(lines)
+    if waiting is not None:
+        return _waiting_answer(explainer, prefix, lines, waiting, t0)
     began = next((ln for ln in lines if starting(ln)), lines[0])
     text = (f"The recording shows me starting my drivers and controllers ({verbatim(began)} at {at(began, t0)}), "
             "but it ends before any line says the start completed. It shows no error, so my logs do not show what "
@@ -63,6 +68,30 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     return Explanation(explainer=explainer, text=text, causes=[], confidence=0.3,
                        evidence=[Evidence.of_log("warning", w) for w in warned],
                        fix="Record the whole start (from launch on) to see whether it completed.")
+
+
+def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: LogLine, t0: int) -> Explanation:
+    """A start held up by a controller manager still waiting for its robot description (explainers/control/
+    description.py): the description that never arrived when the recording shows the manager subscribe first, else
+    both readings and no cause. Either way the start could not complete, so "why didn't that work?" is answered by
+    this finding rather than by a plan that looks right."""
+    from hexar.explainers.module_explainer import verbatim
+
+    if never_arrived(lines):
+        return Explanation(
+            explainer=explainer, causes=[BRINGUP], confidence=0.7, evidence=[Evidence.of_log(BRINGUP, waiting)],
+            text=f"Starting my drivers and controllers could not complete because a parameter never reached one of "
+                 f"my nodes: {MEANING}. The line that says so: {verbatim(waiting)} at {at(waiting, t0)}.",
+            fix="Start robot_state_publisher with the robot description, in the controller manager's namespace.",
+            details=["controller_manager.cpp:759-777@jazzy: it subscribed, then warned once a second, and no "
+                     "'Received robot description from topic.' followed."])
+    cause = f"{prefix}unexplained_failure"
+    return Explanation(
+        explainer=explainer, causes=[cause], confidence=0.4, evidence=[Evidence.of_log(cause, waiting)],
+        text="Starting my drivers and controllers had not completed, and my control logs do not show a cause I "
+             "know. " + waiting_words(waiting, t0),
+        fix="Check that robot_state_publisher runs with the description in the controller manager's namespace, "
+            "and record the controller manager's lines from its start.")
 
 
 def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Explanation:

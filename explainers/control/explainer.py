@@ -9,6 +9,9 @@ candidates). A bring-up or device line before them is cited first, and so is a d
 or set-up words state the why (explainers/stated_causes.py). MoveIt's lines in the window (the control explainer
 asked by manipulation) are read too, so that its symptoms are recognised as such.
 
+A controller manager that only waited for its robot description (explainers/control/description.py) is read as
+the description that never reached it when the recording shows it subscribe first, else told with both readings.
+
 A driver's ERROR that no rule gives a cause, the window's first unexplained error, is read by where the driver
 logs it (explainers/control/driver_roles.py) once nothing else decided (no rule, bring-up line or stated cause): its
 read()/write() could not exchange with the device, its on_init found its set-up did not fit, its switch callback
@@ -24,6 +27,7 @@ from typing import ClassVar
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue
+from hexar.explainers.control.description import description_reading, waited, waiting_words
 from hexar.explainers.control.driver_roles import RoleReading, by_role
 from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
@@ -62,6 +66,9 @@ class ControlExplainer(ModuleExplainer):
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]
 
+    def refine(self, readings: list[Reading]) -> list[Reading]:
+        return description_reading(readings)
+
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         if isinstance(d.decisive, RoleReading) and d.decisive.cause == cause:
             worded = role_template(cause, d, what, d.decisive.note)
@@ -71,6 +78,19 @@ class ControlExplainer(ModuleExplainer):
 
     def _compose(self, context: Context, d: Diagnosis, readings: list[Reading], run: SkillRun | None
                  ) -> Explanation:
+        waiting = waited([r.line for r in readings]) if d.cause is None and d.unknown is None else None
+        if waiting is not None and d.outcome == "failed":
+            cause = f"{self.prefix}unexplained_failure"
+            what = self._what(run)
+            return Explanation(
+                explainer=self.name, causes=[cause], evidence=[Evidence.of_log(cause, waiting)], confidence=0.4,
+                text=f"{what[:1].upper()}{what[1:]} failed, but my control logs do not show a cause I know. "
+                     + waiting_words(waiting, context.task.created),
+                fix="Check that robot_state_publisher runs with the description in the controller manager's "
+                    "namespace, and read the controller manager's lines from its start (a hardware error after "
+                    "'Received robot description from topic.').",
+                details=["controller_manager.cpp:763-770@jazzy warns once a second until a description arrives "
+                         "and its hardware loads."])
         placed = _placed(d, readings)
         if placed is None:
             return super()._compose(context, d, readings, run)

@@ -125,3 +125,26 @@ def test_asked_why_it_did_not_work_the_agent_tells_the_dropped_commands_not_the_
     result = Session(RunSettings(recording=log.path, llm="none", phrase=False)).ask("Why didn't that work?")
     assert result["explainers"][:1] == ["control"] and "planner.plan_ok" not in result["causes"]
     assert "it was not active when they came" in result["answer"]
+
+
+# controller_manager.cpp@jazzy: :759 as it starts, :770 once a second until a description arrives and loads
+SUBSCRIBED = (0.0, "controller_manager", INFO, "Subscribing to '/robot_description' topic for robot description.")
+WAITING = [(s, "controller_manager", WARN, "Waiting for data on 'robot_description' topic to finish initialization")
+           for s in (1.0, 2.0)]
+
+
+def test_a_start_whose_manager_subscribed_and_only_waited_never_got_its_description(tmp_path: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+
+    log = write_lines(tmp_path, [SUBSCRIBED, *WAITING])
+    result = Session(RunSettings(recording=log.path, llm="none", phrase=False)).ask("Why didn't that work?")
+    assert result["explainers"][:1] == ["control"] and result["causes"] == ["bringup.configuration_error"]
+    assert "my robot description never reached my controller manager" in result["answer"]
+    assert not {ALL_FINE, TASK_FAILED} & read_claims(result["answer"]).affirmed
+
+
+def test_a_start_with_the_waiting_warning_alone_tells_both_readings_and_claims_no_cause(tmp_path: Path) -> None:
+    found, claims = _lone(tmp_path, WAITING)
+    assert found.causes == ["control.unexplained_failure"] and claims == set()
+    assert "Either no description arrived" in found.text and "hardware that did not load" in found.text
