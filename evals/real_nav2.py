@@ -34,7 +34,9 @@ NS = 1_000_000_000
 BASE_NS = 1_700_000_000 * NS
 STEP_NS = NS // 10
 
-_OUTER = re.compile(r"^(?:\d+: |[\w.-]+\s+\| |> )")
+# a line's outer prefix: a numbered paste ("12: "), `grep -n` output ("115:[controller_server-2] …"), docker
+# compose's "service | ", a quote
+_OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|[\w.-]+\s+\| |> )")
 _PROC = r"(?:\[(?P<proc>[\w./-]+-\d+)\]\s*)?"
 _LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
 _STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
@@ -309,6 +311,8 @@ BLIND2_FILE = "blind2.yaml"
 BLIND3_FILE = "blind3.yaml"
 # A fourth, collected by another hand during round 6 and measured the same way.
 BLIND4_FILE = "blind4.yaml"
+# A fifth, collected by another hand during round 7 and measured the same way.
+BLIND5_FILE = "blind5.yaml"
 
 
 @cache
@@ -339,6 +343,10 @@ def blind3() -> tuple[Excerpt, ...]:
 
 def blind4() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND4_FILE)
+
+
+def blind5() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND5_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -32,6 +32,7 @@ from hexar.evals.real_nav2 import (
     blind2,
     blind3,
     blind4,
+    blind5,
     corpus,
     heldout,
     task_plan,
@@ -47,9 +48,10 @@ BLIND_SUITE = "real-nav2-blind"
 BLIND2_SUITE = "real-nav2-blind2"
 BLIND3_SUITE = "real-nav2-blind3"  # the third, collected in round 5
 BLIND4_SUITE = "real-nav2-blind4"  # the fourth, collected in round 6
+BLIND5_SUITE = "real-nav2-blind5"  # the fifth, collected in round 7
 SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
           BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3),
-          BLIND4_SUITE: ("blind4.yaml", blind4)}
+          BLIND4_SUITE: ("blind4.yaml", blind4), BLIND5_SUITE: ("blind5.yaml", blind5)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})
