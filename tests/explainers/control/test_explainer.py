@@ -251,3 +251,18 @@ def test_ros2_control_4_16s_hardware_exception_wording_is_a_hardware_failure(tmp
         (0, "controller_manager.resource_manager", ERROR,
          "Exception occurred while initializing hardware 'ros2_control_tiago_system': std::bad_alloc")])
     assert found.causes == ["control.hardware_failure"]
+
+
+def test_a_second_load_is_no_load_failure_and_activating_an_unconfigured_controller_fails(tmp_path: Path) -> None:
+    # controller_manager.cpp@humble: :1420 a second load of a name it holds (the first stays loaded); :1080 a
+    # controller asked to activate while not inactive (loaded, never configured) cannot be
+    found = _explain(tmp_path, [
+        (0, "controller_manager", INFO, "Loading controller 'joint_trajectory_controller'"),
+        (0.1, "controller_manager", ERROR, "A controller named 'joint_trajectory_controller' was already loaded "
+                                           "inside the controller manager"),
+        (0.2, "controller_manager", INFO, "Activating controllers: [ joint_trajectory_controller ]"),
+        (0.3, "controller_manager", WARN, "Controller with name 'joint_trajectory_controller' is not inactive so its "
+                                          "following controllers do not have to be checked, because it cannot be "
+                                          "activated.")])
+    assert found.causes == ["control.controller_activation_failed"]
+    assert "could not be activated" in found.text and "not loaded" not in found.text
