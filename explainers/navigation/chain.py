@@ -126,6 +126,35 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     return finding
 
 
+_FRAMES = re.compile(r"transform from (?P<a>\S+) to (?P<b>\S+?)[ .,]")
+
+
+def transform_first(found: Finding, logs: Iterable[LogLine]) -> Finding:
+    """A node that could not become active because a transform never became available: the transform is the first
+    link of the chain. A costmap waits for its robot-to-global transform in on_activate, logging "Timed out waiting
+    for transform from … to … to become available" every half second, and past its initial_transform_timeout logs
+    "Failed to activate … because transform from … to … did not become available before timeout" and fails the
+    transition (nav2_costmap_2d/src/costmap_2d_ros.cpp:285-306@jazzy); the lifecycle manager then aborts the
+    bring-up. So a strong transform line of the catalogue that the bring-up never got past (`unresolved`) at or
+    before the first node that failed a transition is told as the cause, the aborted start as what it led to."""
+    logs = list(logs)
+    first = next(iter(bringup_findings(logs)), None)
+    if first is None or first.kind not in ("lifecycle_transition", "node_failed"):
+        return found
+    cat = catalogue()
+    waited = unresolved([ln for ln in logs if ln.t <= first.t and (e := cat.match(ln.msg)) is not None
+                         and e.cause == "navigation.transform_error" and e.strength == "strong"], logs)
+    if not waited:
+        return found
+    cause = "navigation.transform_error"
+    frames = _FRAMES.search(first.line.msg) or _FRAMES.search(waited[0].msg)
+    what = f"the transform from {frames['a']} to {frames['b']}" if frames else "a transform"
+    out = Finding(cause, [Evidence.of_log(cause, ln) for ln in (waited[0], first.line)])
+    # in words that claim no second cause: the aborted start is the transform's consequence
+    out.notes = [f"my navigation waited for {what} until its time ran out, so my navigation's start was aborted"]
+    return out
+
+
 def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
     """The node's own last line before launch reported its process dead (what it was doing when it died), unless
     it is a line a catalogue reads (a symptom or a cause, told on its own) or one that reads as another cause."""

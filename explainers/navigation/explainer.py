@@ -227,9 +227,13 @@ class NavigationExplainer:
                 if cause == g.BRINGUP:
                     specific = chain.config_specific((n.line, n.entry) for n in run.notes)
                     found = chain.bringup(before, None) if strength == "strong" and not specific else None
+                    if found is not None:
+                        found = chain.transform_first(found, before)
                 elif cause == g.COLLISION_AHEAD:
-                    lines = [ln for ln in g.supporting(run.notes, cause, strength) if progress is None
-                             or ln.t <= progress.t or not ln.msg.startswith("Collision Ahead - Exiting")]
+                    planned = next(iter(d.plan_failures(run)), None)
+                    lines = [ln for ln in g.supporting(run.notes, cause, strength) if (progress is None
+                             or ln.t <= progress.t or not ln.msg.startswith("Collision Ahead - Exiting"))
+                             and not (planned is not None and ln.t > planned.t and _SLOWED.match(ln.msg))]
                     found = d.Finding(cause, g.evidence(cause, lines)) if lines else None
                 elif cause == g.POOR_LOCALISATION:
                     found = d.poor_localisation(run) if strength == "strong" else None
@@ -323,11 +327,18 @@ def _unfinished(text: str, place: str) -> str:
             f"there; on the way my logs show a problem: {what}")
 
 
+# nav2_collision_monitor/src/collision_monitor_node.cpp:628-642@jazzy: the actions that slow the robot rather than
+# stop it ("Robot to slowdown for … percents due to … polygon", "Robot to limit speed due to …", "Robot to approach
+# for … seconds away from collision": its speed scaled to stay that long from a collision)
+_SLOWED = re.compile(r"^Robot to (slowdown|limit speed|approach)\b")
+
 def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
     """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
-    held the robot (until it let it continue)."""
+    held the robot (until it let it continue). Slowing down (an approach, slowdown or limit polygon) that the
+    monitor then released is no stop: the robot kept moving and got there."""
     stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
-    if not stops:
+    released = any("Robot to continue normal operation" in ln.msg for ln in run.lines)
+    if not stops or (released and all(_SLOWED.match(ln.msg) for ln in stops)):
         return None
     found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
     resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),

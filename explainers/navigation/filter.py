@@ -11,6 +11,7 @@ one copy says as much as twenty).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
@@ -48,6 +49,10 @@ NOISE: tuple[str, ...] = (
 def is_noise(msg: str) -> bool:
     return any(pattern in msg for pattern in NOISE)
 
+# nav2_behavior_tree/plugins/condition/is_goal_nearby_condition.cpp:46@main: the behaviour tree's condition warns
+# "Path is empty" under bt_navigator's logger when the planner gave it no path; the controller's own "Path is
+# empty." (nav2_controller/src/controller_server.cpp:631@jazzy) is thrown by the controller server
+_TREE_NO_PATH = re.compile(r"^Path is empty$")
 
 def kept(line: LogLine) -> tuple[bool, Entry | None]:
     """Whether the line is worth reading, and its catalogue entry."""
@@ -78,6 +83,9 @@ def tag_logs(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry | None]]:
         seen.append(line)
         if entry is not None and entry.id == "launch.process_died" and client_gave_up(line, seen):
             entry = None  # a spawner that found no controller manager: read, never a node that failed to come up
+        if entry is not None and entry.id == "ctrl.carrot" and _TREE_NO_PATH.match(line.msg) \
+                and catalogue().role(line.name) == "bt_navigator":
+            entry = None  # the tree's IsGoalNearby found no path (no plan was made), not a controller that failed
         if not keep or previous.get(line.name) == line.msg:
             continue
         previous[line.name] = line.msg

@@ -196,6 +196,12 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Set the initial pose (e.g. '2D Pose Estimate' in RViz) so that the robot is on the map, and "
                 "check the map -> odom transform.",
                 [*seen, "Nav2 plans from the robot's position; a start outside the map makes every plan fail."])
+    if f.cause == g.TRANSFORM and f.notes:
+        return (f"I couldn't reach {place} because of a transform (TF) error: {f.notes[0]}.",
+                "Check that whatever publishes that transform runs (for map -> odom: localisation, which waits for "
+                "an initial pose) before the navigation starts, or give the costmap a longer "
+                "initial_transform_timeout.",
+                seen)
     if f.cause == g.TRANSFORM:
         return (f"I couldn't reach {place} because of a transform (TF) or clock error: the transforms my "
                 "navigation needs were missing, stale or stamped at the wrong time.",

@@ -448,3 +448,54 @@ def test_a_transform_lookup_off_by_more_than_a_second_is_a_clock_fault(tmp_path:
                                        "data is at time 1619986346.813953, when looking up transform from frame "
                                        "[base_footprint] to frame [map]")])
     assert answer.causes == [g.TRANSFORM]
+
+
+# nav2_costmap_2d/src/costmap_2d_ros.cpp:285-306@jazzy: the costmap waits for its transform in on_activate, then fails
+# the transition; nav2_lifecycle_manager then aborts the bring-up (lines of a Jazzy run whose initial pose came late)
+TF_WAIT = ("global_costmap.global_costmap", INFO, "Timed out waiting for transform from base_link to map to become "
+           "available, tf error: Invalid frame ID \"map\" passed to canTransform argument target_frame - frame does "
+           "not exist")
+TF_ABORT: list[Line] = [
+    TF_WAIT, TF_WAIT,
+    ("global_costmap.global_costmap", ERROR, "Failed to activate global_costmap because transform from base_link to "
+     "map did not become available before timeout"),
+    ("lifecycle_manager_navigation", ERROR, "Failed to change state for node: planner_server"),
+    ("lifecycle_manager_navigation", ERROR, "Failed to bring up all requested nodes. Aborting bringup.")]
+
+
+def test_a_costmap_that_could_not_activate_for_want_of_a_transform_is_a_transform_error(tmp_path: Path) -> None:
+    found = _explain(tmp_path, TF_ABORT, [])
+    assert found.causes == [g.TRANSFORM]
+    assert stated_causes(found.text) == {g.TRANSFORM}  # the aborted start is its consequence, no second cause
+    assert "the transform from base_link to map" in found.text and "start was aborted" in found.text
+    assert _quoted(found, "Timed out waiting for transform") and _quoted(found, "Failed to activate global_costmap")
+
+
+def test_a_node_that_failed_its_transition_with_no_transform_wait_stays_a_bring_up_failure(tmp_path: Path) -> None:
+    found = _explain(tmp_path, TF_ABORT[3:], [])
+    assert g.TRANSFORM not in found.causes and found.causes
+
+
+# nav2_collision_monitor/src/collision_monitor_node.cpp:642,647@jazzy: approach (a slow-down), then release
+APPROACH: Line = ("collision_monitor", INFO, "Robot to approach for 1.200000 seconds away from collision")
+RELEASE: Line = ("collision_monitor", INFO, "Robot to continue normal operation")
+
+
+def test_a_collision_monitor_that_slowed_the_robot_and_let_it_go_leaves_a_reached_goal_normal(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [], [APPROACH, RELEASE], end=SUCCEEDED, question="How did it go?")
+    assert found.causes == [NOMINAL]
+    assert "stopped me" not in found.text
+
+
+def test_a_slow_down_during_recoveries_after_a_failed_plan_is_not_why_the_goal_failed(tmp_path: Path) -> None:
+    # nav2_navfn_planner (jazzy) fails from an occupied start; the tree's IsGoalNearby warns "Path is empty"
+    # (is_goal_nearby_condition.cpp:46@main) under bt_navigator's logger; recoveries run with the monitor slowing them
+    found = _explain(tmp_path, [], [
+        ("planner_server", WARN, "GridBased plugin failed to plan from (1.00, 1.00) to (-1.50, 1.50): \"Failed to "
+                                 "create plan with tolerance of: 0.500000\""),
+        ("bt_navigator_navigate_to_pose_rclcpp_node", WARN, "Path is empty"),
+        ("behavior_server", INFO, "Running backup"), APPROACH,
+        ("behavior_server", WARN, "backup failed:Exceeded time allowance before reaching the DriveOnHeading goal - "
+                                  "Exiting DriveOnHeading")])
+    assert "navigation.collision_ahead" not in found.causes
+    assert "navigation.controller_failure" not in found.causes
