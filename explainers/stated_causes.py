@@ -234,12 +234,20 @@ def adopt(d: Diagnosis, found: Statement | None) -> None:
             d.unknown, d.candidates = found.line, found.meaning
         return
     decisive = d.decisive
-    if decisive is not None and (decisive.line == found.line or (decisive.strong and decisive.line.t <= found.line.t)):
+    if decisive is not None and (decisive.line == found.line or (decisive.strong and decisive.line.t <= found.line.t)) \
+            and not _why_of_transition(decisive, found):
         return  # a catalogue's own cause for this very line, or an earlier decisive line, says more
     prior = [decisive] if decisive is not None else []
     d.symptoms = [r for r in [*prior, *d.symptoms] if r.line.t >= found.line.t and r.line is not found.line][:2]
     d.cause, d.decisive, d.support = found.cause, found.reading(), []
 
+
+def _why_of_transition(decisive: Reading, found: Statement) -> bool:
+    """The stated cause is the "Original error: …" that rclcpp_lifecycle logs right after "Caught exception in
+    callback for transition …" of the same node (lifecycle_node_interface_impl.cpp): the why of that failed
+    transition, so it is the deeper link of the chain."""
+    return (decisive.cause == "bringup.lifecycle_transition_failed" and found.line.name == decisive.line.name
+            and found.part.startswith("Original error:") and 0 <= found.line.t - decisive.line.t <= 1_000_000_000)
 
 CLAUSES = {
     PERMISSION: "the operating system denied my driver access to its device",

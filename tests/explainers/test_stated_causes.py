@@ -210,3 +210,15 @@ def test_a_realtime_priority_the_os_refused_is_not_the_failure(tmp_path: Path) -
          "System cannot communicate with servo motors. Error message: Permission denied")], fails_at=1)
     assert found.causes == ["system.device_permission"]
     assert "1.5 s" in found.text  # the servo line, not the scheduler's
+
+
+def test_the_original_error_of_a_failed_transition_is_its_why(tmp_path: Path) -> None:
+    # rclcpp_lifecycle lifecycle_node_interface_impl.cpp: "Caught exception in callback for transition %d" then
+    # "Original error: %s"; rclcpp's text for a statically typed parameter given no value
+    found = _explain(tmp_path, [
+        (0.0, "move_1", ERROR, "Caught exception in callback for transition 13"),
+        (0.01, "move_1", ERROR, "Original error: Statically typed parameter 'waypoints' must be initialized."),
+        (0.02, "move_1", WARN, "Error occurred while doing error handling.")], fails_at=1)
+    assert found.causes == ["bringup.configuration_error"]
+    assert "'waypoints' was empty or missing when move_1 needed it" in found.text
+    assert "bringup.lifecycle_transition_failed" not in _claims(found)
