@@ -18,6 +18,7 @@ from hexar.evals.real_nav2 import (
     blind2,
     blind3,
     blind4,
+    blind5,
     corpus,
     heldout,
     parse_console,
@@ -66,7 +67,23 @@ def test_the_fourth_blind_set_shares_no_excerpt_or_thread_with_the_other_five() 
     assert not {e.url for e in excerpts} & {e.url for e in others}
 
 
-@pytest.mark.parametrize("excerpt", blind() + blind2() + blind3() + blind4(), ids=lambda e: e.id)
+def test_the_fifth_blind_set_shares_no_excerpt_or_thread_with_the_other_six() -> None:
+    excerpts = blind5()
+    assert len(excerpts) >= 25 and {e.cause for e in excerpts} <= NAV_CAUSES
+    assert sum(e.outcome != "failed" for e in excerpts) * 5 >= len(excerpts)
+    others = corpus() + heldout() + blind() + blind2() + blind3() + blind4()
+    assert not {e.id for e in excerpts} & {e.id for e in others}
+    assert not {e.url for e in excerpts} & {e.url for e in others}
+
+
+def test_a_grep_line_number_before_a_launch_prefix_is_not_part_of_the_message() -> None:
+    # a log file pasted as `grep -n` prints it (blind5's forklift excerpts)
+    [line] = parse_console("115:[controller_server-2] [INFO] [1785836573.244524676] [local_costmap.local_costmap]: "
+                           "Received request to clear entirely the local_costmap")
+    assert line.name == "local_costmap.local_costmap" and line.msg.startswith("Received request")
+
+
+@pytest.mark.parametrize("excerpt", blind() + blind2() + blind3() + blind4() + blind5(), ids=lambda e: e.id)
 def test_every_blind_excerpt_becomes_a_readable_recording(excerpt: Excerpt, tmp_path: Path) -> None:
     # a paste from several terminals is not in time order; the recording is, as a robot's /rosout would be
     expected = sorted(stamped(parse_console(excerpt.lines)), key=lambda r: r.stamp_ns or 0)
@@ -92,9 +109,11 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
                                              ("real_nav2_blind3_none_before.json", "real-nav2-blind3"),
                                              ("real_nav2_blind3_none.json", "real-nav2-blind3"),
                                              ("real_nav2_blind4_none_before.json", "real-nav2-blind4"),
-                                             ("real_nav2_blind4_none.json", "real-nav2-blind4")])
+                                             ("real_nav2_blind4_none.json", "real-nav2-blind4"),
+                                             ("real_nav2_blind5_none_before.json", "real-nav2-blind5"),
+                                             ("real_nav2_blind5_none.json", "real-nav2-blind5")])
 def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
     baseline = read_baseline(BASELINES / name, suite)
     sets = {"real-nav2-blind": blind, "real-nav2-blind2": blind2, "real-nav2-blind3": blind3,
-            "real-nav2-blind4": blind4}
+            "real-nav2-blind4": blind4, "real-nav2-blind5": blind5}
     assert set(baseline["excerpts"]) == {e.id for e in sets[suite]()}
