@@ -28,6 +28,8 @@ _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "e
 # ExecutionStatus::asString: SUCCEEDED, PREEMPTED, TIMED_OUT, ABORTED, FAILED, UNKNOWN, RUNNING)
 _EXECUTION_END = {"SUCCEEDED": "succeeded", "PREEMPTED": "canceled"}
 _SAME_END_NS = 1_000_000_000
+# libstdc++-v3/libsupc++/vterminate.cc (__gnu_cxx::__verbose_terminate_handler): a C++ exception nobody caught
+_ABORT = "terminate called after throwing an instance of"
 
 
 @dataclass
@@ -126,6 +128,14 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
             if cat.cause_of(line.msg, cat.match(line.msg)) is not None:  # a catalogued text or one built in code
                 active.append((line, skill))
                 break
+    if active and _ABORT in active[0][0].msg:
+        from hexar.events.bringup import bring_up
+
+        # a C++ exception nobody caught ended the process while it was starting (a hardware plugin that could not
+        # load): the robot's start failed there, whatever the catalogues say of the exception's text
+        start = bring_up(logs)
+        if start is not None and start.state == "failed":
+            return [_Goal(BRING_UP, start.start, "bring-up lines (no goal line)", start.end, start.state, start.error)]
     if not active:
         # an error the arm's own software logs in its own words (a catalogued text with no cause of its own, e.g.
         # a controller left unconfigured) still shows that the arm had something to do: the explainer then quotes it
