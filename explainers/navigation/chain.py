@@ -27,7 +27,7 @@ from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import Entry, catalogue
 from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
-from hexar.explainers.navigation.diagnose import NO_PROGRESS
+from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import BringupFinding
@@ -101,7 +101,8 @@ def config_specific(notes: Iterable[tuple[LogLine, Entry]]) -> list[LogLine]:
 
 def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     """The first node that never came up (before `until`, the goal's end), with its decisive line: a bring-up
-    failure, or a configuration error when it is a lifecycle transition that failed (notes: what failed)."""
+    failure, or a configuration error when it is a lifecycle transition that failed (notes: what failed), or the
+    transform it waited for in vain when that made the transition fail (`_transform_waits`)."""
     logs_list = [ln for ln in logs if until is None or ln.t <= until]
     found = bringup_findings(logs_list)
     if not found:
@@ -109,6 +110,9 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     first = found[0]
     if any("Managed nodes are active" in ln.msg and ln.t > first.t for ln in logs_list):
         return None  # the stack was brought up again after the failure: the node did come up
+    waited = _transform_waits(logs_list, first)
+    if waited:
+        return _transform_first(first, waited)
     # A lifecycle transition that failed is what the configuration_error words ("not brought up", "lifecycle
     # nodes not active") were made for; a params file rcl could not parse and a process that died are not.
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
@@ -129,27 +133,25 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
 _FRAMES = re.compile(r"transform from (?P<a>\S+) to (?P<b>\S+?)[ .,]")
 
 
-def transform_first(found: Finding, logs: Iterable[LogLine]) -> Finding:
-    """A node that could not become active because a transform never became available: the transform is the first
-    link of the chain. A costmap waits for its robot-to-global transform in on_activate, logging "Timed out waiting
-    for transform from … to … to become available" every half second, and past its initial_transform_timeout logs
-    "Failed to activate … because transform from … to … did not become available before timeout" and fails the
-    transition (nav2_costmap_2d/src/costmap_2d_ros.cpp:285-306@jazzy); the lifecycle manager then aborts the
-    bring-up. So a strong transform line of the catalogue that the bring-up never got past (`unresolved`) at or
-    before the first node that failed a transition is told as the cause, the aborted start as what it led to."""
-    logs = list(logs)
-    first = next(iter(bringup_findings(logs)), None)
-    if first is None or first.kind not in ("lifecycle_transition", "node_failed"):
-        return found
+def _transform_waits(logs: list[LogLine], first: BringupFinding) -> list[LogLine]:
+    """The strong transform lines the bring-up never got past (`unresolved`), at or before `first`, when `first` is
+    a node that failed a transition: a costmap waits for its robot-to-global transform in on_activate, logging "Timed
+    out waiting for transform from … to … to become available" every half second, and past its
+    initial_transform_timeout logs "Failed to activate … because transform from … to … did not become available
+    before timeout" and fails the transition (nav2_costmap_2d/src/costmap_2d_ros.cpp:285-306@jazzy); the lifecycle
+    manager then aborts the bring-up. The transform is then the first link of the chain."""
+    if first.kind not in ("lifecycle_transition", "node_failed"):
+        return []
     cat = catalogue()
-    waited = unresolved([ln for ln in logs if ln.t <= first.t and (e := cat.match(ln.msg)) is not None
-                         and e.cause == "navigation.transform_error" and e.strength == "strong"], logs)
-    if not waited:
-        return found
-    cause = "navigation.transform_error"
+    return unresolved([ln for ln in logs if ln.t <= first.t and (e := cat.match(ln.msg)) is not None
+                       and e.cause == TRANSFORM and e.strength == "strong"], logs)
+
+
+def _transform_first(first: BringupFinding, waited: list[LogLine]) -> Finding:
+    """The transform told as the cause, the aborted start as what it led to."""
     frames = _FRAMES.search(first.line.msg) or _FRAMES.search(waited[0].msg)
     what = f"the transform from {frames['a']} to {frames['b']}" if frames else "a transform"
-    out = Finding(cause, [Evidence.of_log(cause, ln) for ln in (waited[0], first.line)])
+    out = Finding(TRANSFORM, [Evidence.of_log(TRANSFORM, ln) for ln in (waited[0], first.line)])
     # in words that claim no second cause: the aborted start is the transform's consequence
     out.notes = [f"my navigation waited for {what} until its time ran out, so my navigation's start was aborted"]
     return out

@@ -227,8 +227,6 @@ class NavigationExplainer:
                 if cause == g.BRINGUP:
                     specific = chain.config_specific((n.line, n.entry) for n in run.notes)
                     found = chain.bringup(before, None) if strength == "strong" and not specific else None
-                    if found is not None:
-                        found = chain.transform_first(found, before)
                 elif cause == g.COLLISION_AHEAD:
                     planned = next(iter(d.plan_failures(run)), None)
                     lines = [ln for ln in g.supporting(run.notes, cause, strength) if (progress is None
@@ -337,12 +335,13 @@ def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
     held the robot (until it let it continue). Slowing down (an approach, slowdown or limit polygon) that the
     monitor then released is no stop: the robot kept moving and got there."""
     stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
-    released = any("Robot to continue normal operation" in ln.msg for ln in run.lines)
-    if not stops or (released and all(_SLOWED.match(ln.msg) for ln in stops)):
+    if not stops:
         return None
-    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
     resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),
                    None)
+    if resumed is not None and all(_SLOWED.match(ln.msg) for ln in stops):
+        return None
+    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
     if resumed is not None:
         found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, resumed))
         found.facts["held_s"] = (resumed.t - stops[0].t) / 1e9
