@@ -14,10 +14,14 @@ from __future__ import annotations
 import dataclasses
 import re
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from hexar.events import contract as c
 from hexar.events.records import ERROR, WARN, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
+
+if TYPE_CHECKING:
+    from hexar.events.bringup import BringUp
 
 MOVE_ARM = "move_arm"
 FOLLOW = "follow_joint_trajectory"
@@ -28,8 +32,6 @@ _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "e
 # ExecutionStatus::asString: SUCCEEDED, PREEMPTED, TIMED_OUT, ABORTED, FAILED, UNKNOWN, RUNNING)
 _EXECUTION_END = {"SUCCEEDED": "succeeded", "PREEMPTED": "canceled"}
 _SAME_END_NS = 1_000_000_000
-# libstdc++-v3/libsupc++/vterminate.cc (__gnu_cxx::__verbose_terminate_handler): a C++ exception nobody caught
-_ABORT = "terminate called after throwing an instance of"
 
 
 @dataclass
@@ -119,6 +121,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     failure, a driver that cannot open its device: explainers/stack_causes.py) and the start of its software make
     one `bring_up_controllers` goal (events/bringup.py), unless the recording is a Nav2 robot's (navigation explains
     those)."""
+    from hexar.events.bringup import ABORT, bring_up
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -128,28 +131,24 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
             if cat.cause_of(line.msg, cat.match(line.msg)) is not None:  # a catalogued text or one built in code
                 active.append((line, skill))
                 break
-    if active and _ABORT in active[0][0].msg:
-        from hexar.events.bringup import bring_up
-
+    if active and ABORT in active[0][0].msg:
         # a C++ exception nobody caught ended the process while it was starting (a hardware plugin that could not
         # load): the robot's start failed there, whatever the catalogues say of the exception's text
         start = bring_up(logs)
         if start is not None and start.state == "failed":
-            return [_Goal(BRING_UP, start.start, "bring-up lines (no goal line)", start.end, start.state, start.error)]
+            return [_start_goal(start)]
     if not active:
         # an error the arm's own software logs in its own words (a catalogued text with no cause of its own, e.g.
         # a controller left unconfigured) still shows that the arm had something to do: the explainer then quotes it
         active = [(line, skill) for line in logs if line.level >= ERROR
                   for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())) if cat.match(line.msg) is not None][:1]
     if not active:
-        from hexar.events.bringup import bring_up
-
         if any(_nav2_own(ln) for ln in logs):
             return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
         start = bring_up(logs)
         if start is None:
             return []  # no start shown: a lone error may be anybody's, and no task is claimed from it
-        return [_Goal(BRING_UP, start.start, "bring-up lines (no goal line)", start.end, start.state, start.error)]
+        return [_start_goal(start)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
     # the step began with the first warning or error of the arm's own software, so that a warning it logged
     # before (a controller manager waiting for its robot description) is in the explained window
@@ -164,6 +163,11 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     if failed is not None:
         goal.end, goal.state, goal.error = max(active[-1][0].t, failed.t), "failed", failed.msg
     return [goal]
+
+
+def _start_goal(start: BringUp) -> _Goal:
+    """The robot's start as a `bring_up_controllers` goal (events/bringup.py)."""
+    return _Goal(BRING_UP, start.start, "bring-up lines (no goal line)", start.end, start.state, start.error)
 
 
 def _symptom(line: LogLine) -> bool:

@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from hexar.explainers.logcause import ModuleCatalogue
 
 # libstdc++-v3/libsupc++/vterminate.cc (__gnu_cxx::__verbose_terminate_handler): a C++ exception nobody caught
-_ABORT = "terminate called after throwing an instance of"
+ABORT = "terminate called after throwing an instance of"
 # ros2_control drivers name their logger after the class that implements hardware_interface's SystemInterface
 # (Universal_Robots_ROS2_Driver: rclcpp::get_logger("URPositionHardwareInterface"); kuka_drivers: their
 # KukaEkiRsiHardwareInterface and KukaRSIHardwareInterfaceBase; dynamixel_hardware.cpp:29: "DynamixelHardware";
@@ -111,7 +111,7 @@ def completed(line: LogLine) -> bool:
 
 
 def _error(line: LogLine) -> bool:
-    return line.level >= ERROR or _ABORT in line.msg
+    return line.level >= ERROR or ABORT in line.msg
 
 
 def _driver(name: str, logs: list[LogLine]) -> bool:
@@ -129,7 +129,7 @@ def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
     if not own and not _driver(line.name, logs):
         return False
     if line.level < ERROR:
-        return bool(line.msg.split(_ABORT, 1)[0].strip())
+        return bool(line.msg.split(ABORT, 1)[0].strip())
     return any(ln.level < ERROR and not _error(ln) and (ln.name == line.name or (own and starting(ln)))
                for ln in before)
 
