@@ -17,7 +17,7 @@ from hexar.events.bringup import completed, control_logger, names_device, names_
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waited, waiting_words
+from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waited, waiting_answer
 from hexar.explainers.logcause import at
 
 BRING_UP = "bring_up_controllers"
@@ -77,7 +77,7 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
     this finding rather than by a plan that looks right."""
     from hexar.explainers.module_explainer import verbatim
 
-    if never_arrived(lines):
+    if never_arrived(lines, waiting):
         return Explanation(
             explainer=explainer, causes=[BRINGUP], confidence=0.7, evidence=[Evidence.of_log(BRINGUP, waiting)],
             text=f"Starting my drivers and controllers could not complete because a parameter never reached one of "
@@ -85,13 +85,8 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
             fix="Start robot_state_publisher with the robot description, in the controller manager's namespace.",
             details=["controller_manager.cpp:759-777@jazzy: it subscribed, then warned once a second, and no "
                      "'Received robot description from topic.' followed."])
-    cause = f"{prefix}unexplained_failure"
-    return Explanation(
-        explainer=explainer, causes=[cause], confidence=0.4, evidence=[Evidence.of_log(cause, waiting)],
-        text="Starting my drivers and controllers had not completed, and my control logs do not show a cause I "
-             "know. " + waiting_words(waiting, t0),
-        fix="Check that robot_state_publisher runs with the description in the controller manager's namespace, "
-            "and record the controller manager's lines from its start.")
+    return waiting_answer(explainer, f"{prefix}unexplained_failure", "Starting my drivers and controllers had not "
+                          "completed, and my control logs do not show a cause I know.", waiting, t0)
 
 
 def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Explanation:

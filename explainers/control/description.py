@@ -22,6 +22,7 @@ import re
 from collections.abc import Sequence
 
 from hexar.events.records import ERROR, LogLine
+from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.logcause import Reading, at
 
 _WAITING = re.compile(r"Waiting for data on 'robot_description' topic to finish initialization")
@@ -45,25 +46,32 @@ def waited(lines: Sequence[LogLine]) -> LogLine | None:
     return first
 
 
-def never_arrived(lines: Sequence[LogLine]) -> bool:
-    """The controller manager subscribed, then waited, and nothing arrived (module docstring)."""
-    first = waited(lines)
-    return first is not None and any(_SUBSCRIBED.search(ln.msg.strip()) and ln.t <= first.t for ln in lines)
+def never_arrived(lines: Sequence[LogLine], first: LogLine) -> bool:
+    """The controller manager subscribed before `first`, the waiting line `waited` found (module docstring)."""
+    return any(_SUBSCRIBED.search(ln.msg.strip()) and ln.t <= first.t for ln in lines)
 
 
 def description_reading(readings: list[Reading]) -> list[Reading]:
     """The readings with the first waiting line read as the description that never arrived, when it did not."""
     lines = [r.line for r in readings]
-    if not never_arrived(lines):
-        return readings
     first = waited(lines)
+    if first is None or not never_arrived(lines, first):
+        return readings
     # the entry stays a symptom: it decides only when no line with a cause of its own does (explainers/logcause.py)
     return [Reading(r.line, r.entry, BRINGUP, r.catalogue, MEANING) if r.line is first else r for r in readings]
 
 
-def waiting_words(line: LogLine, t0: int) -> str:
-    """What the warning alone tells: the controller manager was still waiting, and the two readings of that."""
+def waiting_answer(explainer: str, cause: str, head: str, line: LogLine, t0: int) -> Explanation:
+    """The warning alone: `head` (what failed or did not complete), the controller manager still waiting, and the
+    two readings of that, neither claimed (`cause` is the explainer's unexplained failure)."""
     from hexar.explainers.module_explainer import verbatim  # the module explainer imports the control explainer
 
-    return (f"My controller manager was still waiting for my robot description: {verbatim(line)} at {at(line, t0)}, "
-            f"and no line says that a description arrived. {CANDIDATES}")
+    return Explanation(
+        explainer=explainer, causes=[cause], evidence=[Evidence.of_log(cause, line)], confidence=0.4,
+        text=f"{head} My controller manager was still waiting for my robot description: {verbatim(line)} at "
+             f"{at(line, t0)}, and no line says that a description arrived. {CANDIDATES}",
+        fix="Check that robot_state_publisher runs with the description in the controller manager's namespace, and "
+            "read the controller manager's lines from its start (a hardware error after 'Received robot "
+            "description from topic.').",
+        details=["controller_manager.cpp:763-770@jazzy warns once a second until a description arrives and its "
+                 "hardware loads."])

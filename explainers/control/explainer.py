@@ -27,7 +27,7 @@ from typing import ClassVar
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue
-from hexar.explainers.control.description import description_reading, waited, waiting_words
+from hexar.explainers.control.description import description_reading, waited, waiting_answer
 from hexar.explainers.control.driver_roles import RoleReading, by_role
 from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
@@ -80,17 +80,10 @@ class ControlExplainer(ModuleExplainer):
                  ) -> Explanation:
         waiting = waited([r.line for r in readings]) if d.cause is None and d.unknown is None else None
         if waiting is not None and d.outcome == "failed":
-            cause = f"{self.prefix}unexplained_failure"
             what = self._what(run)
-            return Explanation(
-                explainer=self.name, causes=[cause], evidence=[Evidence.of_log(cause, waiting)], confidence=0.4,
-                text=f"{what[:1].upper()}{what[1:]} failed, but my control logs do not show a cause I know. "
-                     + waiting_words(waiting, context.task.created),
-                fix="Check that robot_state_publisher runs with the description in the controller manager's "
-                    "namespace, and read the controller manager's lines from its start (a hardware error after "
-                    "'Received robot description from topic.').",
-                details=["controller_manager.cpp:763-770@jazzy warns once a second until a description arrives "
-                         "and its hardware loads."])
+            return waiting_answer(self.name, f"{self.prefix}unexplained_failure", f"{what[:1].upper()}{what[1:]} "
+                                  "failed, but my control logs do not show a cause I know.", waiting,
+                                  context.task.created)
         placed = _placed(d, readings)
         if placed is None:
             return super()._compose(context, d, readings, run)
