@@ -140,7 +140,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     if not active:
         # an error the arm's own software logs in its own words (a catalogued text with no cause of its own, e.g.
         # a controller left unconfigured) still shows that the arm had something to do: the explainer then quotes it
-        active = [(line, skill) for line in logs if line.level >= ERROR
+        # launch's and rcl's own bring-up lines are not the arm's words, whatever short text of MoveIt they contain
+        # (conversions.cpp's "Caught %s" matches launch's "Caught exception in launch")
+        active = [(line, skill) for line in logs if line.level >= ERROR and not _stack_bringup(line)
                   for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())) if cat.match(line.msg) is not None][:1]
     if not active:
         if any(_nav2_own(ln) for ln in logs):
@@ -240,6 +242,14 @@ def _arms_process(task: Task) -> bool:
     if run.params.get("derived_from") != "Nav2 log (no goal line)" or found is None:
         return False
     return any(cat.role(name) is not None for cat in (moveit(), control()) for name in found.groups())
+
+
+def _stack_bringup(line: LogLine) -> bool:
+    """A bring-up line of the stack's own layers (launch, rcl, rclcpp_lifecycle): the stack catalogue's."""
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    entry = stack_catalogue().match(line.msg)
+    return entry is not None and entry.layer in {"launch", "rcl"}
 
 
 def _nav2_own(line: LogLine) -> bool:

@@ -112,13 +112,21 @@ def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose
 
 def _bringup_error(line: LogLine) -> bool:
     """An error of a node of the stack that never came up (a params file rcl could not parse, a lifecycle
-    transition that threw, a process that died: the mined stack catalogue), which the navigation explains too."""
+    transition that threw, a process that died: the mined stack catalogue), which the navigation explains too,
+    unless the line is about a node that is not Nav2's (a driver whose configure launch_ros saw fail): a line that
+    names no node (launch's own exception, rcl's params file) may still be Nav2's."""
     if line.level < ERROR:
         return False
+    from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.stack import bringup_findings
     from hexar.explainers.stack.catalogue import stack_catalogue
 
     entry = stack_catalogue().match(line.msg)
-    return entry is not None and entry.cause == "stack.bringup_failure"
+    if entry is None or entry.cause != "stack.bringup_failure":
+        return False
+    found = bringup_findings([line])
+    node = found[0].node.strip("/").split("/")[-1] if found else ""
+    return not node or catalogue().role(node) is not None
 
 
 def _arms_logger(line: LogLine) -> bool:

@@ -15,13 +15,16 @@ from collections.abc import Sequence
 from hexar.events.records import WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 
-KIND_CAUSE = {"params_file": "bringup.configuration_error",
+KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
               "node_failed": "bringup.lifecycle_transition_failed"}
 PERMISSION = "system.device_permission"
 _DENIED = "Permission denied"  # strerror(EACCES)
 
 
+# launch_ros/actions/lifecycle_node.py:123@rolling: "Failed to make transition '{}' for LifecycleNode '{}'"
+_LAUNCH_TRANSITION = re.compile(r"Failed to make transition 'TRANSITION_(?P<transition>[A-Z_]+)' for LifecycleNode "
+                                r"'(?P<node>[^']+)'")
 _EXIT = re.compile(r"exit code (-\d+)")  # launch's "process has died [pid N, exit code -11, ...]"
 
 
@@ -47,15 +50,53 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     from hexar.explainers.stack import bringup_findings
 
     found: list[Reading] = []
-    findings = bringup_findings(lines)
+    findings = [f for f in bringup_findings(lines) if not _unexplained_request(f.line, lines)]
     if findings:
         f = findings[0]
         found.append(Reading(f.line, None, KIND_CAUSE.get(f.kind, "bringup.configuration_error"), "stack"))
+    missing = next((ln for ln in lines if ln.level >= WARN and _params_missing(ln)), None)
+    if missing is not None:
+        found.append(Reading(missing, None, "bringup.configuration_error", "stack"))
     # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
         found.append(Reading(denied, None, PERMISSION, "system"))
     return min(found, key=lambda r: r.line.t) if found else None
+
+
+def _unexplained_request(line: LogLine, lines: Sequence[LogLine]) -> bool:
+    """launch_ros' "Failed to make transition" with no reason before it: the transition failed, but the lines do not
+    show its cause."""
+    return _LAUNCH_TRANSITION.search(line.msg) is not None and transition_reason(line, lines) is None
+
+
+def transition_reason(line: LogLine, lines: Sequence[LogLine]) -> LogLine | None:
+    """For launch_ros' "Failed to make transition", the first earlier line of the lifecycle layer at WARN or above
+    that says why (rcl_lifecycle's "No transition matching … for current state …"); None for any other line."""
+    if _LAUNCH_TRANSITION.search(line.msg) is None:
+        return None
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    catalogue = stack_catalogue()
+    return next((ln for ln in lines if ln.t <= line.t and ln.level >= WARN and ln is not line
+                 and (e := catalogue.match(ln.msg)) is not None and e.layer == "lifecycle"), None)
+
+
+def _params_missing(line: LogLine) -> bool:
+    """launch_ros' warning that a node's parameter file does not exist (the node starts on its defaults)."""
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    entry = stack_catalogue().match(line.msg)
+    return entry is not None and entry.layer == "launch" and entry.cause == "stack.configuration_error"
+
+
+def _launch_failed(line: LogLine) -> str | None:
+    """The exception's text when `line` is launch's own "Caught exception in launch" (launch read its description and
+    shut down before starting the nodes it had not started yet), else None."""
+    from hexar.explainers.stack import bringup_findings
+
+    found = bringup_findings([line])
+    return found[0].detail if found and found[0].kind == "launch_failed" else None
 
 
 def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
@@ -65,11 +106,32 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
     if cause == "bringup.process_died":
         return (f"{head} one of my processes died during bring-up or the run, so the software it runs was gone.",
                 "Read that process's last lines before it died (a crash, an exception, a missing library).", line)
+    if cause == "bringup.lifecycle_transition_failed" and d.decisive is not None:
+        asked = _LAUNCH_TRANSITION.search(d.decisive.line.msg)
+        if asked is not None:
+            # launch_ros tells that the node refused a transition it asked for, never why: that is the node's
+            transition, node = asked["transition"].lower(), asked["node"]
+            return (f"{head} a node's lifecycle transition failed: launch asked {node} to {transition}, and that "
+                    "transition failed, so the node never became active.",
+                    f"Read {node}'s own lines just before: why its {transition} failed (a device it could not open, "
+                    "a parameter it rejected), or a transition asked in the wrong state.", line)
     if cause == "bringup.lifecycle_transition_failed":
         return (f"{head} a node's lifecycle transition (configure or activate) failed, so it never became active.",
                 "Read the node's error around the transition and bring it up in order (configure, then activate).",
                 line)
     if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.catalogue == "stack":
+        if _params_missing(d.decisive.line):
+            path = d.decisive.line.msg.split(": ", 1)[-1].strip()
+            return (f"{head} my launch was given a parameter file that does not exist ({path}), so it started the "
+                    "node without it and the parameters in it never reached the node.",
+                    "Point the launch file at the parameter file the package installs (check its name and the "
+                    "package's install rules), or install the file under that name.", line)
+        launch = _launch_failed(d.decisive.line)
+        if launch is not None:
+            why = f": {launch}" if launch else ""
+            return (f"{head} my launch stopped with an error before it had started my nodes, so none of them ran{why}.",
+                    "Fix the launch file or argument the quoted exception names (run the launch with --debug for the "
+                    "traceback).", line)
         return (f"{head} a parameter never reached one of my nodes: its parameter file could not be parsed.",
                 "Fix the parameter file's YAML (the quoted error names the line) and the node's namespace in it.",
                 line)

@@ -95,6 +95,8 @@ def _kind(line: LogLine, entry: StackEntry) -> str:
     if entry.layer == "rcl" and ("params file" in entry.text or "parse" in entry.text):
         return "params_file"
     if entry.layer == "launch":
+        if entry.text.startswith("Failed to make transition"):
+            return "lifecycle_transition"  # launch_ros' LifecycleNode action: the node refused the transition
         return "launch_failed" if entry.text.startswith("Caught exception in launch") else "process_died"
     if entry.layer == "lifecycle" or "lifecycle" in entry.package or "bring up" in entry.text \
             or "Aborting bringup" in entry.text or "change state" in entry.text:

@@ -1,0 +1,100 @@
+"""Bring-up causes told by launch itself (explainers/stack_causes.py): a launch that stopped before starting any node,
+a parameter file launch_ros could not find, and a lifecycle transition launch_ros asked for that failed. The lines
+are real consoles' (cited per case)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from hexar.claims import read_claims
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events.records import ERROR, INFO, WARN
+from hexar.explainers.base import Explanation
+from tests.explainers.helpers import T0, explain, write_lines
+
+Line = tuple[float, str, int, str]
+HEAD = [(0.0, "launch", INFO, "All log files can be found below /home/user/.ros/log/2026-05-19-17-59-57-715685"),
+        (0.01, "launch", INFO, "Default logging verbosity is set to INFO")]
+
+
+def _task(status: str) -> dict[str, Any]:
+    return {"instruction": "start the robot's drivers", "task_id": "0000000000000042", "task_status": "valid",
+            "task_error_msg": "", "skill_sequence": [{"skill": "bring_up_controllers", "params": {}, "status": status,
+                                                      "error_msg": "The skill has been aborted" if status == "failed"
+                                                      else ""}]}
+
+
+def _on_task(tmp_path: Path, lines: list[Line]) -> Explanation:
+    """The lines, and a start of the robot's drivers on /task_info that failed after them."""
+    b = BagBuilder()
+    b.task_info(T0 - sec_ns(0.5), _task("Running"))
+    b.task_info(T0 + sec_ns(2), _task("failed"))
+    return explain(write_lines(tmp_path, [*HEAD, *lines], b), "control", "Why didn't that work?")[1]
+
+
+def _derived(tmp_path: Path, lines: list[Line]) -> Explanation:
+    """The lines alone: the robot's start is derived from them (no /task_info, no goal)."""
+    log = write_lines(tmp_path, [*HEAD, *lines])
+    assert [t.skills[0].skill for t in log.tasks] == ["bring_up_controllers"]
+    task, found = explain(log, "control", "Why didn't that work?")
+    assert task.outcome == "failed"
+    return found
+
+
+def _claims(found: Explanation) -> set[str]:
+    return {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")}
+
+
+# ldrobot-lidar-ros2 #5 (Humble): launch could not load the launch file, so it started no node
+LAUNCH = ("Caught exception in launch (see debug for traceback): Caught exception when trying to load file of format "
+          "[py]: LifecycleNode.__init__() missing 1 required keyword-only argument: 'namespace'")
+
+
+def test_a_launch_that_stopped_before_any_node_is_told_as_launch_not_as_a_parameter_file(tmp_path: Path) -> None:
+    found = _on_task(tmp_path, [(0.5, "launch", ERROR, LAUNCH)])
+    assert found.causes == ["bringup.configuration_error"]
+    assert "my launch stopped with an error before it had started my nodes" in found.text
+    assert "missing 1 required keyword-only argument: 'namespace'" in found.text
+    assert "parameter file" not in found.text and _claims(found) == {"bringup.configuration_error"}
+
+
+# MOCAP4ROS2-Project/mocap4ros2_vicon#16: the launch file named a parameter file the package did not install
+# (launch_ros/actions/node.py:461@humble warns and starts the node without it)
+MISSING = ("/home/mocap_ws/install/mocap_vicon_driver/share/mocap_vicon_driver/config/"
+           "mocap_vicon_driver_params.yaml")
+STARTED = (0.6, "mocap_vicon_driver_main-1", INFO, "process started with pid [33196]")
+
+
+def test_a_parameter_file_launch_could_not_find_is_a_configuration_error_naming_it(tmp_path: Path) -> None:
+    found = _derived(tmp_path, [(0.5, "launch_ros.actions.node", WARN, f"Parameter file path is not a file: {MISSING}"),
+                                STARTED])
+    assert found.causes == ["bringup.configuration_error"]
+    assert MISSING in found.text and "never reached the node" in found.text
+    assert _claims(found) == {"bringup.configuration_error"}
+
+
+def test_a_start_without_that_warning_is_not_told_as_failed(tmp_path: Path) -> None:
+    log = write_lines(tmp_path, [*HEAD, STARTED])
+    assert all(t.outcome != "failed" for t in log.tasks)
+
+
+# launch_ros/actions/lifecycle_node.py:123@rolling, as two real consoles print it: with the node's own reason before it
+# (ros-industrial socketcan #6: activate asked while unconfigured, rcl_lifecycle's WARN), and without (tof-imager #3)
+def _refused(transition: str, node: str) -> Line:
+    return (1.4, "launch_ros.actions.lifecycle_node", ERROR,
+            f"Failed to make transition 'TRANSITION_{transition}' for LifecycleNode '{node}'")
+
+
+def test_a_transition_launch_asked_for_names_node_and_transition_when_the_lifecycle_says_why(tmp_path: Path) -> None:
+    found = _derived(tmp_path, [(1.3, "rcl_lifecycle", WARN, "No transition matching 3 found for current state "
+                                 "unconfigured"), _refused("ACTIVATE", "/socket_can_sender")])
+    assert found.causes == ["bringup.lifecycle_transition_failed"]
+    assert "launch asked /socket_can_sender to activate" in found.text
+    assert _claims(found) == {"bringup.lifecycle_transition_failed"}
+
+
+def test_a_transition_launch_saw_fail_with_no_reason_claims_no_cause_and_quotes_it(tmp_path: Path) -> None:
+    found = _on_task(tmp_path, [(0.5, "tof_imager", INFO, "Initialized"), _refused("CONFIGURE", "/tof_imager")])
+    assert _claims(found) <= {"control.unexplained_failure"}
+    assert "Failed to make transition 'TRANSITION_CONFIGURE' for LifecycleNode '/tof_imager'" in found.text
