@@ -313,6 +313,8 @@ BLIND3_FILE = "blind3.yaml"
 BLIND4_FILE = "blind4.yaml"
 # A fifth, collected by another hand during round 7 and measured the same way.
 BLIND5_FILE = "blind5.yaml"
+# A sixth, collected by two other hands during round 8 and measured the same way.
+BLIND6_FILE = "blind6.yaml"
 
 
 @cache
@@ -347,6 +349,10 @@ def blind4() -> tuple[Excerpt, ...]:
 
 def blind5() -> tuple[Excerpt, ...]:
     return load_excerpts(BLIND5_FILE)
+
+
+def blind6() -> tuple[Excerpt, ...]:
+    return load_excerpts(BLIND6_FILE)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -33,6 +33,7 @@ from hexar.evals.real_nav2 import (
     blind3,
     blind4,
     blind5,
+    blind6,
     corpus,
     heldout,
     task_plan,
@@ -49,9 +50,11 @@ BLIND2_SUITE = "real-nav2-blind2"
 BLIND3_SUITE = "real-nav2-blind3"  # the third, collected in round 5
 BLIND4_SUITE = "real-nav2-blind4"  # the fourth, collected in round 6
 BLIND5_SUITE = "real-nav2-blind5"  # the fifth, collected in round 7
+BLIND6_SUITE = "real-nav2-blind6"  # the sixth, collected in round 8
 SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
           BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3),
-          BLIND4_SUITE: ("blind4.yaml", blind4), BLIND5_SUITE: ("blind5.yaml", blind5)}
+          BLIND4_SUITE: ("blind4.yaml", blind4), BLIND5_SUITE: ("blind5.yaml", blind5),
+          BLIND6_SUITE: ("blind6.yaml", blind6)}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})
