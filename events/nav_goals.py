@@ -115,15 +115,17 @@ def _bringup_error(line: LogLine) -> bool:
     transition that threw, a process that died: the mined stack catalogue), which the navigation explains too,
     unless the line is about a node that is not Nav2's (a driver whose configure launch_ros saw fail): a line that
     names no node (launch's own exception, rcl's params file) may still be Nav2's."""
-    if line.level < ERROR:
-        return False
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.stack import bringup_findings
+    from hexar.explainers.stack.bringup import loader_failure
     from hexar.explainers.stack.catalogue import stack_catalogue
 
-    entry = stack_catalogue().match(line.msg)
-    if entry is None or entry.cause != "stack.bringup_failure":
-        return False
+    if not loader_failure(line):  # the loader's words come at no level (stderr)
+        if line.level < ERROR:
+            return False
+        entry = stack_catalogue().match(line.msg)
+        if entry is None or entry.cause != "stack.bringup_failure":
+            return False
     found = bringup_findings([line])
     node = found[0].node.strip("/").split("/")[-1] if found else ""
     return not node or catalogue().role(node) is not None
@@ -146,6 +148,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
     an abort, else still running as far as the recording shows."""
     from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.stack.bringup import loader_failure
 
     cat = catalogue()
     active: list[LogLine] = []
@@ -161,7 +164,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         if not nav2 and "[ActionServer] Aborting handle" not in line.msg and not _bringup_error(line):
             continue
         active.append(line)
-        if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg):
+        if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg or loader_failure(line)):
             failed = line
     if not active:
         return []

@@ -12,13 +12,18 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from hexar.events.records import WARN, LogLine
+from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
               "node_failed": "bringup.lifecycle_transition_failed"}
 PERMISSION = "system.device_permission"
+NETWORK = "system.network"
+# rmw_cyclonedds_cpp/src/rmw_node.cpp:1080@humble (1244@jazzy, 1241@rolling): Cyclone DDS could not create the
+# domain a node joins, so no node of that process exists (its configuration, CYCLONEDDS_URI, names network
+# interfaces it cannot use)
+_NO_DOMAIN = "rmw_create_node: failed to create domain"
 _DENIED = "Permission denied"  # strerror(EACCES)
 
 
@@ -57,6 +62,9 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     missing = next((ln for ln in lines if ln.level >= WARN and _params_missing(ln)), None)
     if missing is not None:
         found.append(Reading(missing, None, "bringup.configuration_error", "stack"))
+    domain = next((ln for ln in lines if ln.level >= ERROR and _NO_DOMAIN in ln.msg), None)
+    if domain is not None:
+        found.append(Reading(domain, None, NETWORK, "system"))
     # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
@@ -135,6 +143,11 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
         return (f"{head} a parameter never reached one of my nodes: its parameter file could not be parsed.",
                 "Fix the parameter file's YAML (the quoted error names the line) and the node's namespace in it.",
                 line)
+    if cause == NETWORK and d.decisive is not None and _NO_DOMAIN in d.decisive.line.msg:
+        return (f"{head} my DDS middleware could not start: Cyclone DDS failed to create its domain, so my node "
+                "could not be created.",
+                "Check the Cyclone DDS configuration (CYCLONEDDS_URI): the network interfaces it selects must exist "
+                "on this machine, each named once; unset it to try the defaults.", line)
     if cause == PERMISSION:
         return (f"{head} the operating system denied access to a device: permission denied on its device file.",
                 "Give the user (or the container) access to the device: its group (dialout, video) or a udev rule.",

@@ -30,7 +30,7 @@ from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, pla
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
-from hexar.explainers.stack.bringup import BringupFinding
+from hexar.explainers.stack.bringup import BringupFinding, loader_failure
 from hexar.explainers.stack.catalogue import StackEntry
 
 BRINGUP = "navigation.bringup_failure"
@@ -122,8 +122,8 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     if last is not None:
         finding.notes[0] += f" right after it logged '{last.msg.strip().splitlines()[0]}'"
         finding.evidence.insert(0, Evidence.of_log(cause, last))
-    if first.kind == "process_died" and not [ln for ln in decisive_errors(logs_list, first.line.t)
-                                             if ln.t < first.line.t]:
+    if first.kind == "process_died" and not loader_failure(first.line) and not [
+            ln for ln in decisive_errors(logs_list, first.line.t) if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
         finding.notes[0] += "; nothing in my logs says why it died"
     finding.facts[NEVER_CAME_UP] = 1.0

@@ -47,6 +47,11 @@ _NAMED_NODE = re.compile(r"(?:for node|node)[: ]+'?(?P<node>[/\w]+)'?")
 _PROCESS_IN_MSG = re.compile(r"process\[(?P<node>[\w./-]+?)(?:-\d+)?\]")
 _CMD_NODE = re.compile(r"cmd '[^']*?__node:=(?P<node>[A-Za-z_]\w*)")
 _CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
+# the dynamic loader's own words, written to the process's stderr as it gives up (glibc elf/dl-lookup.c:808@master
+# "symbol lookup error" with "undefined symbol: %s%s%s", elf/dl-catch.c:85@master "error while loading shared
+# libraries"): the program exits before its node exists, at no log level
+_LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
+                     re.S)
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
 # ros2_control's spawners are clients: they wait for the controller manager's services and, when none answers, say
@@ -164,6 +169,22 @@ def client_gave_up(died: LogLine, before: list[LogLine]) -> bool:
                for ln in before)
 
 
+def loader_failure(line: LogLine) -> bool:
+    """The dynamic loader could not start the program of `line` (a library missing or built against another)."""
+    return _LOADER.search(line.msg) is not None
+
+
+def _loader_finding(line: LogLine) -> BringupFinding | None:
+    found = _LOADER.search(line.msg)
+    if found is None:
+        return None
+    node = _node(line, "process_died")
+    if not node or node == line.name:
+        node = found["exe"].rsplit("/", 1)[-1]
+    why = " ".join(found["why"].split())[:200]
+    return BringupFinding("process_died", node, line.t, line, None, f"{found['what']}: {why}")
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
@@ -171,6 +192,12 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
     out: list[BringupFinding] = []
     seen: set[tuple[str, str]] = set()
     for i, line in enumerate(ordered):
+        loader = _loader_finding(line)
+        if loader is not None:
+            if ("process_died", loader.node) not in seen:
+                seen.add(("process_died", loader.node))
+                out.append(loader)
+            continue
         entry = cat.match(line.msg) or (_process_died(cat) if DIED in line.msg else None)
         if entry is None or entry.cause != BRINGUP or (line.level < ERROR and entry.level == "WARN"):
             continue

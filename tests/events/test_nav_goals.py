@@ -98,3 +98,25 @@ def test_no_nav2_activity_still_no_task(tmp_path: Path) -> None:
     log = read_recording(b.write(tmp_path / "bag"))
     with pytest.raises(NoTaskError, match="no task to explain"):
         log.task()
+
+
+# turtlebot/turtlebot4_simulator#14 (Galactic): amcl's program could not start, the dynamic loader said why on its
+# stderr (glibc elf/dl-lookup.c:808 "symbol lookup error"), pasted with launch's process prefix and no level
+AMCL_LOADER = ("/opt/ros/galactic/lib/nav2_amcl/amcl: symbol lookup error: /opt/ros/galactic/lib/libamcl_core.so: "
+               "undefined symbol: _ZN9nav2_amcl20LikelihoodFieldModelC1EddddmP5map_t")
+
+
+def test_a_nav2_program_the_loader_could_not_start_is_a_failed_navigation(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "amcl-37", INFO, AMCL_LOADER)
+    task = read_recording(b.write(tmp_path / "bag")).task()
+    assert task.derived and task.skills[0].skill != "bring_up_controllers" and task.outcome == "failed"
+
+
+def test_a_bring_up_error_about_a_node_that_is_not_nav2s_makes_no_navigation_goal(tmp_path: Path) -> None:
+    # launch_ros/actions/lifecycle_node.py:123@rolling about a lidar driver (tof-imager-ros #3)
+    b = BagBuilder()
+    b.log(T0, "launch_ros.actions.lifecycle_node", ERROR,
+          "Failed to make transition 'TRANSITION_CONFIGURE' for LifecycleNode '/tof_imager'")
+    tasks = read_recording(b.write(tmp_path / "bag")).tasks
+    assert all(t.skills[0].skill == "bring_up_controllers" for t in tasks)

@@ -98,3 +98,14 @@ def test_a_transition_launch_saw_fail_with_no_reason_claims_no_cause_and_quotes_
     found = _on_task(tmp_path, [(0.5, "tof_imager", INFO, "Initialized"), _refused("CONFIGURE", "/tof_imager")])
     assert _claims(found) <= {"control.unexplained_failure"}
     assert "Failed to make transition 'TRANSITION_CONFIGURE' for LifecycleNode '/tof_imager'" in found.text
+
+
+# AgibotTech/genie_sim#178: Cyclone DDS was configured to select the loopback interface twice, so no domain
+# (rmw_cyclonedds_cpp/src/rmw_node.cpp:1080@humble) and no node could be created
+def test_a_dds_domain_cyclone_could_not_create_is_a_network_cause_with_its_fix(tmp_path: Path) -> None:
+    found = _on_task(tmp_path, [(0.9, "robot_state_publisher", INFO, "lo: the same interface may not be selected "
+                                 "twice"),
+                                (1.0, "rmw_cyclonedds_cpp", ERROR, "rmw_create_node: failed to create domain, error "
+                                 "Error")])
+    assert found.causes == ["system.network"] and _claims(found) == {"system.network"}
+    assert "Cyclone DDS failed to create its domain" in found.text and found.fix and "CYCLONEDDS_URI" in found.fix

@@ -127,6 +127,16 @@ def test_a_process_that_died_with_no_error_before_says_the_logs_do_not_show_why(
     assert "nothing in my logs says why it died" not in answer.text
 
 
+def test_a_program_the_loader_could_not_start_is_a_process_that_died_with_the_loaders_reason(tmp_path: Path) -> None:
+    # turtlebot/turtlebot4_simulator#14: glibc's "symbol lookup error" (elf/dl-lookup.c:808) on amcl's stderr
+    lost = ("/opt/ros/galactic/lib/nav2_amcl/amcl: symbol lookup error: /opt/ros/galactic/lib/libamcl_core.so: "
+            "undefined symbol: _ZN9nav2_amcl20LikelihoodFieldModelC1EddddmP5map_t")
+    answer = _explain(tmp_path, [("amcl-37", INFO, lost)], UNAVAILABLE)
+    assert answer.causes[0] == g.BRINGUP and g.BRINGUP in stated_causes(answer.text)
+    assert "the process of amcl died (symbol lookup error: " in answer.text
+    assert "nothing in my logs says why it died" not in answer.text
+
+
 def test_tf_help_dropped_by_the_filter_is_still_read(tmp_path: Path) -> None:
     # pf-robotics/kachaka-api#106's shape: nav_2d_utils' tf_help logs under its own logger (role tf), which the
     # log filter does not keep; its "Transform data too old" (tf_help.cpp:70@humble) still decides
