@@ -87,7 +87,8 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
                                              ("real_nav2_blind4_none.json", "real-nav2-blind4"),
                                              ("real_nav2_blind5_none_before.json", "real-nav2-blind5"),
                                              ("real_nav2_blind5_none.json", "real-nav2-blind5"),
-                                             ("real_nav2_blind6_none_before.json", "real-nav2-blind6")])
+                                             ("real_nav2_blind6_none_before.json", "real-nav2-blind6"),
+                                             ("real_nav2_blind6_none.json", "real-nav2-blind6")])
 def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
     baseline = read_baseline(BASELINES / name, suite)
     sets = {"real-nav2-blind": blind, "real-nav2-blind2": blind2, "real-nav2-blind3": blind3,
