@@ -245,7 +245,7 @@ def _arms_process(task: Task) -> bool:
 
 
 def _stack_bringup(line: LogLine) -> bool:
-    """A bring-up line of the stack's own layers (launch, rcl, rclcpp_lifecycle): the stack catalogue's."""
+    """A line the stack catalogue reads as launch's (launch, launch_ros) or rcl's own."""
     from hexar.explainers.stack.catalogue import stack_catalogue
 
     entry = stack_catalogue().match(line.msg)
