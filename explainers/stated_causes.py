@@ -46,6 +46,8 @@ _HARDWARE_SIDE = re.compile(r"hardware|_hw$|driver", re.I)
 _REMOTE = re.compile(r"\b(server|robot|firmware|controller box)\b", re.I)
 _CONTROLLER_NAMED = re.compile(r"(?:Loading|Configuring|Activating) controller:? '(?P<name>[^']+)'")
 _DEFAULT = re.compile(r"\bdefault\b", re.I)
+_TYPE_HINT = {"array": " (a list in square brackets, not one value)", "double": " (a double written as 1.0, not 1)"}
+_NAME_GROUPS = ("quoted", "named", "param", "description")
 _MISSING_KINDS = ("parameter.empty", "parameter.cannot_be_empty", "parameter.not_initialized",
                   "parameter.not_declared", "parameter.not_found")
 
@@ -93,8 +95,9 @@ def phrases() -> tuple[Phrase, ...]:
                          str(e["meaning"]), str(e["fix"]), str(e["source"]),
                          None if e.get("number") is None else int(e["number"]))
                   for e in _read("strerror.json")["errnos"]]
-        setup = [Phrase(str(p["id"]), str(p["kind"]), re.compile(str(p["pattern"]), re.I),
-                        source="; ".join(p["sources"])) for p in _read("setup_phrases.json")["phrases"]]
+        setup = [Phrase(str(p["id"]), str(p["kind"]), re.compile(str(p["pattern"]), re.I), p.get("cause"),
+                        str(p.get("meaning") or ""), str(p.get("fix") or ""), "; ".join(p["sources"]))
+                 for p in _read("setup_phrases.json")["phrases"]]
     except (KeyError, TypeError, re.error) as err:
         raise StatedDataError(f"malformed stated-cause data: {err}") from err
     return (*errnos, *setup)
@@ -149,13 +152,16 @@ def quoted_part(line: LogLine) -> str:
 
 
 def _param(m: re.Match[str]) -> str:
-    return next((str(v) for v in m.groupdict().values() if v), "")
+    """The parameter a set-up wording names, if it names one (a type mismatch names only the two types)."""
+    return next((str(v) for k, v in m.groupdict().items() if v and k in _NAME_GROUPS), "")
 
 
 def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: str,
-           controllers: frozenset[str]) -> tuple[str, str, str] | None:
+           controllers: frozenset[str]) -> tuple[str | None, str, str] | None:
     """(cause, meaning, fix) of a set-up wording, by who said it and what it names."""
     own = f"{prefix}configuration_error" if prefix in ("control.", "manipulation.") else BRINGUP
+    if phrase.kind == "device":  # a device library's own words for the exchange that failed (Dynamixel SDK)
+        return (phrase.cause, phrase.meaning, phrase.fix)  # None: the words name only candidates
     if phrase.kind == "version":
         if _HARDWARE_SIDE.search(line.name) or _REMOTE.search(part):
             return (HARDWARE, "the version of my driver's library and the version of the robot's own software do "
@@ -167,6 +173,11 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
     name = _param(m)
     node = line.name.strip("/").split("/")[-1]
     if phrase.id not in _MISSING_KINDS:  # it reached the node, with a wrong value or type
+        if not name:  # rclcpp's ParameterTypeException names the types only, not the parameter
+            return (own, f"one of its parameters has a value of the wrong type ({m['expected']} expected, "
+                         f"{m['actual']} given)",
+                    f"Find the parameter the node reads as {m['expected']} in the YAML file that sets it and give "
+                    f"it that type{_TYPE_HINT.get(m['expected'].split('_')[-1], '')}.")
         return (own, f"its parameter '{name}' has a value of the wrong type or out of its range",
                 "Fix that parameter's value in the YAML file that sets it (a double written as 1.0, not 1).")
     if _DESCRIPTION.search(name) or not (prefix == "control." and (

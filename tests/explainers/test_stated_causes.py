@@ -55,8 +55,11 @@ def test_the_data_loads_every_pattern_compiles_and_every_cause_is_known() -> Non
         assert re.search(e["pattern"], e["text"])  # the pattern finds its own strerror text
     for p in setup:
         re.compile(p["pattern"])
-        assert p["kind"] in {"version", "parameter"} and p["sources"]
+        assert p["kind"] in {"version", "parameter", "device"} and p["sources"]
         assert all(SOURCE.search(s) for s in p["sources"])
+        if p["kind"] == "device":  # a device library's words state their cause, told in the phrase's meaning
+            assert (p["cause"] is None or p["cause"] in vocabulary()) and p["meaning"] and p["fix"]
+            assert not read_claims(f"It failed because {p['meaning']}.").affirmed - {p["cause"]}
     assert len(phrases()) == len(errnos) + len(setup)
     # a meaning is told in the answer's own words: none of them may read as another cause
     for e in errnos:
@@ -222,3 +225,45 @@ def test_the_original_error_of_a_failed_transition_is_its_why(tmp_path: Path) ->
     assert found.causes == ["bringup.configuration_error"]
     assert "'waypoints' was empty or missing when move_1 needed it" in found.text
     assert "bringup.lifecycle_transition_failed" not in _claims(found)
+
+
+def test_a_dynamixel_bus_error_on_a_drivers_error_line_is_its_device_exchange(tmp_path: Path) -> None:
+    # DynamixelSDK protocol2_packet_handler.cpp:77 (COMM_PORT_BUSY), as dynamixel_hardware logs it, then its own
+    # line; before, the answer was "my control logs do not show a cause I know"
+    found = _explain(tmp_path, [
+        (0, "ros2_control_node-4", ERROR, "[TxRxResult] Port is in use!"),
+        (0.01, "ros2_control_node-4", ERROR, "groupSyncRead getdata failed")], fails_at=1)
+    assert found.causes == ["control.hardware_failure"]
+    assert _claims(found) == {"control.hardware_failure"}
+    assert "“[ros2_control_node-4] [TxRxResult] Port is in use!” at 1.0 s" in found.text
+    assert "another transfer was still using the port" in found.text
+    # a servo that never answers (COMM_RX_TIMEOUT) has several causes (a baud rate or ID in the settings that is
+    # not the servo's, no power, a loose cable): quoted with its candidates, none claimed
+    silent = _explain(tmp_path / "silent", [
+        (0, "DynamixelHardware", FATAL, "[TxRxResult] There is no status packet!")], fails_at=1)
+    assert silent.causes == ["control.unexplained_failure"] and not _claims(silent)
+    assert "“[DynamixelHardware] [TxRxResult] There is no status packet!” at 1.0 s" in silent.text
+    assert "Its words say that no status packet came back from a Dynamixel servo" in silent.text
+    assert "baud rate" in silent.text
+
+
+def test_a_dynamixel_text_on_a_warning_states_nothing(tmp_path: Path) -> None:
+    # a driver that retries logs the SDK's text at WARN and goes on: only an ERROR or FATAL line decides
+    found = _explain(tmp_path, [
+        (0, "dynamixel_hardware", WARN, "[TxRxResult] There is no status packet!"),
+        (0.5, "controller_manager", ERROR, "Could not configure controller with name 'arm_controller'")], fails_at=1)
+    assert "control.hardware_failure" not in found.causes
+
+
+def test_a_parameter_type_exception_that_ended_move_group_is_its_configuration(tmp_path: Path) -> None:
+    # rclcpp parameter_value.hpp:66@humble: ParameterTypeException names the two types, not the parameter;
+    # move_group terminates with it when a Jazzy pipeline's planning_plugins is given as a string
+    found = _explain(tmp_path, [
+        (0, "move_group-1", INFO, "terminate called after throwing an instance of 'rclcpp::ParameterTypeException'"
+                                  "\nwhat():  expected [string_array] got [string]")],
+        fails_at=1, explainer="manipulation", skill="move_arm")
+    assert found.causes == ["manipulation.configuration_error"]
+    assert _claims(found) == {"manipulation.configuration_error"}
+    assert "one of its parameters has a value of the wrong type (string_array expected, string given)" in found.text
+    assert "“[move_group-1] expected [string_array] got [string]” at 1.0 s" in found.text
+    assert "square brackets" in (found.fix or "")
