@@ -301,20 +301,10 @@ def parse_corpus(text: str) -> tuple[Excerpt, ...]:
 # The tuning corpus and the held-out set (threads the catalogue was never tuned on), both in the data package.
 CORPUS_FILE = "corpus.yaml"
 HELDOUT_FILE = "heldout.yaml"
-# Issue 20's blind set: collected by another hand from sources in neither file, measured once with the catalogue
-# frozen before it was read (README.md in the data folder).
-BLIND_FILE = "blind.yaml"
-# A second blind set, collected by another hand in the next round while the explainer was being tuned; measured
-# once before that round's changes and once after.
-BLIND2_FILE = "blind2.yaml"
-# A third, collected by another hand during round 5 and measured before that round's changes were merged and after.
-BLIND3_FILE = "blind3.yaml"
-# A fourth, collected by another hand during round 6 and measured the same way.
-BLIND4_FILE = "blind4.yaml"
-# A fifth, collected by another hand during round 7 and measured the same way.
-BLIND5_FILE = "blind5.yaml"
-# A sixth, collected by two other hands during round 8 and measured the same way.
-BLIND6_FILE = "blind6.yaml"
+# Issue 20's blind sets, in the order collected, each by other hands from sources in no file before it and measured
+# once before that round's tuning and once after (README.md in the data folder says who, when and how): the first
+# with the catalogue frozen before it was read, then one per round from round 4 on.
+BLIND_FILES = ("blind.yaml", "blind2.yaml", "blind3.yaml", "blind4.yaml", "blind5.yaml", "blind6.yaml")
 
 
 @cache
@@ -331,28 +321,13 @@ def heldout() -> tuple[Excerpt, ...]:
     return load_excerpts(HELDOUT_FILE)
 
 
+def blind_set(n: int) -> tuple[Excerpt, ...]:
+    """The n-th blind set (1: issue 20's first, blind.yaml)."""
+    return load_excerpts(BLIND_FILES[n - 1])
+
+
 def blind() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND_FILE)
-
-
-def blind2() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND2_FILE)
-
-
-def blind3() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND3_FILE)
-
-
-def blind4() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND4_FILE)
-
-
-def blind5() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND5_FILE)
-
-
-def blind6() -> tuple[Excerpt, ...]:
-    return load_excerpts(BLIND6_FILE)
+    return blind_set(1)
 
 
 # ---------------------------------------------------------------------------------------------------------------

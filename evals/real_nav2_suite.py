@@ -18,6 +18,7 @@ import re
 import tempfile
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import asdict, dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -26,14 +27,10 @@ from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS
 from hexar.evals.real_nav2 import (
+    BLIND_FILES,
     DISTROS,
     Excerpt,
-    blind,
-    blind2,
-    blind3,
-    blind4,
-    blind5,
-    blind6,
+    blind_set,
     corpus,
     heldout,
     task_plan,
@@ -43,18 +40,12 @@ from hexar.evals.real_nav2 import (
 SUITE = "real-nav2"
 # The same suite on threads the catalogue was never tuned on (evals/data/real_nav2/heldout.yaml).
 HELDOUT_SUITE = "real-nav2-heldout"
-# Issue 20's blind set (evals/data/real_nav2/blind.yaml), measured before and after tuning on the corpus.
+# Issue 20's blind sets (evals/data/real_nav2/blind.yaml, blind2.yaml, ...): real-nav2-blind, real-nav2-blind2, ...
 BLIND_SUITE = "real-nav2-blind"
-# The second blind set (blind2.yaml), collected while the next round tuned the explainer.
-BLIND2_SUITE = "real-nav2-blind2"
-BLIND3_SUITE = "real-nav2-blind3"  # the third, collected in round 5
-BLIND4_SUITE = "real-nav2-blind4"  # the fourth, collected in round 6
-BLIND5_SUITE = "real-nav2-blind5"  # the fifth, collected in round 7
-BLIND6_SUITE = "real-nav2-blind6"  # the sixth, collected in round 8
-SUITES = {SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout), BLIND_SUITE: ("blind.yaml", blind),
-          BLIND2_SUITE: ("blind2.yaml", blind2), BLIND3_SUITE: ("blind3.yaml", blind3),
-          BLIND4_SUITE: ("blind4.yaml", blind4), BLIND5_SUITE: ("blind5.yaml", blind5),
-          BLIND6_SUITE: ("blind6.yaml", blind6)}
+SUITES: dict[str, tuple[str, Callable[[], tuple[Excerpt, ...]]]] = {
+    SUITE: ("corpus.yaml", corpus), HELDOUT_SUITE: ("heldout.yaml", heldout),
+    **{BLIND_SUITE + (str(n) if n > 1 else ""): (name, partial(blind_set, n))
+       for n, name in enumerate(BLIND_FILES, start=1)}}
 NO_PROGRESS = "navigation.no_progress"
 UNEXPLAINED = "navigation.unexplained_failure"
 HONEST_CAUSES = frozenset({NO_PROGRESS, UNEXPLAINED})

@@ -12,14 +12,11 @@ import pytest
 
 from hexar.cli import main
 from hexar.evals.real_nav2 import (
+    BLIND_FILES,
     NAV_CAUSES,
     Excerpt,
     blind,
-    blind2,
-    blind3,
-    blind4,
-    blind5,
-    blind6,
+    blind_set,
     corpus,
     heldout,
     parse_console,
@@ -33,20 +30,23 @@ from hexar.events import read_recording
 BASELINES = Path(__file__).resolve().parents[2] / "evals" / "baselines"
 
 
-# each blind set in the order collected, its least size, and whether a fifth of it are successes or slow runs (the
-# third and sixth sets' collectors found too few to ask it of)
-BLIND_SETS = [(blind, 40, True), (blind2, 30, True), (blind3, 14, False), (blind4, 12, True), (blind5, 25, True),
-              (blind6, 9, False)]
+# each blind set in the order collected (blind_set(1), blind_set(2), ...), its least size, and whether a fifth of it
+# are successes or slow runs (the third and sixth sets' collectors found too few to ask it of)
+BLIND_SETS = [(40, True), (30, True), (14, False), (12, True), (25, True), (9, False)]
+
+
+def test_every_blind_file_has_its_expectations() -> None:
+    assert len(BLIND_SETS) == len(BLIND_FILES)
 
 
 @pytest.mark.parametrize("index", range(len(BLIND_SETS)), ids=lambda i: f"blind{i + 1}")
 def test_each_blind_set_loads_and_shares_no_excerpt_or_thread_with_the_sets_before_it(index: int) -> None:
-    load, least, successes = BLIND_SETS[index]
-    excerpts = load()
+    least, successes = BLIND_SETS[index]
+    excerpts = blind_set(index + 1)
     assert len(excerpts) >= least and {e.cause for e in excerpts} <= NAV_CAUSES
     if successes:
         assert sum(e.outcome != "failed" for e in excerpts) * 5 >= len(excerpts)
-    others = corpus() + heldout() + tuple(e for earlier, _, _ in BLIND_SETS[:index] for e in earlier())
+    others = corpus() + heldout() + tuple(e for n in range(1, index + 1) for e in blind_set(n))
     assert not {e.id for e in excerpts} & {e.id for e in others}
     assert not {e.url for e in excerpts} & {e.url for e in others}
 
@@ -58,7 +58,8 @@ def test_a_grep_line_number_before_a_launch_prefix_is_not_part_of_the_message() 
     assert line.name == "local_costmap.local_costmap" and line.msg.startswith("Received request")
 
 
-@pytest.mark.parametrize("excerpt", blind() + blind2() + blind3() + blind4() + blind5() + blind6(), ids=lambda e: e.id)
+@pytest.mark.parametrize("excerpt", [e for n in range(1, len(BLIND_FILES) + 1) for e in blind_set(n)],
+                         ids=lambda e: e.id)
 def test_every_blind_excerpt_becomes_a_readable_recording(excerpt: Excerpt, tmp_path: Path) -> None:
     # a paste from several terminals is not in time order; the recording is, as a robot's /rosout would be
     expected = sorted(stamped(parse_console(excerpt.lines)), key=lambda r: r.stamp_ns or 0)
@@ -91,7 +92,5 @@ def test_the_blind_suite_reports_every_excerpt_without_machine_paths(tmp_path: P
                                              ("real_nav2_blind6_none.json", "real-nav2-blind6")])
 def test_the_committed_blind_baselines_are_this_suites(name: str, suite: str) -> None:
     baseline = read_baseline(BASELINES / name, suite)
-    sets = {"real-nav2-blind": blind, "real-nav2-blind2": blind2, "real-nav2-blind3": blind3,
-            "real-nav2-blind4": blind4, "real-nav2-blind5": blind5,
-            "real-nav2-blind6": blind6}
-    assert set(baseline["excerpts"]) == {e.id for e in sets[suite]()}
+    n = int(suite.removeprefix("real-nav2-blind") or 1)
+    assert set(baseline["excerpts"]) == {e.id for e in blind_set(n)}

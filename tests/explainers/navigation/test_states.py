@@ -12,7 +12,7 @@ import pytest
 
 from hexar.causes import stated_causes
 from hexar.claims import ALL_FINE, read_claims
-from hexar.evals.real_nav2 import Excerpt, blind, blind2, blind4, write_recording
+from hexar.evals.real_nav2 import Excerpt, blind, blind_set, write_recording
 from hexar.evals.real_nav2_suite import grade
 from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, INFO, WARN
@@ -102,7 +102,7 @@ def test_a_position_no_map_can_hold_supports_a_robot_off_its_costmap(tmp_path: P
 
 
 def _spent(excerpt_id: str) -> Excerpt:
-    return next(e for e in blind() + blind2() if e.id == excerpt_id)
+    return next(e for e in blind() + blind_set(2) if e.id == excerpt_id)
 
 
 @pytest.mark.parametrize("excerpt_id", ["docsnav2-632-hybrid-zero-turning-radius-start-occupied",
@@ -119,7 +119,7 @@ def test_the_spent_blind_symptom_alone_cases_are_graded_honest(tmp_path: Path, e
 def test_a_broken_tf_tree_is_told_not_the_spawner_that_gave_up_on_a_crashed_simulator(tmp_path: Path) -> None:
     # turtlebot/turtlebot4_simulator#72 (blind4, spent): Gazebo segfaulted; the costmap waited for odom -> base_link
     # and the spawner died for want of a controller manager: the TF fault is told, the spawner's death is not
-    excerpt = next(e for e in blind4() if e.id == "tb4-sim-72-gazebo-segfault-odom-tree-broken")
+    excerpt = next(e for e in blind_set(4) if e.id == "tb4-sim-72-gazebo-segfault-odom-tree-broken")
     log = read_recording(write_recording(excerpt, tmp_path / "bag", task=True))
     answer = NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
     verdict = grade(excerpt, read_claims(answer.text).affirmed, answer.text)
