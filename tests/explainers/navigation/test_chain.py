@@ -12,7 +12,7 @@ import pytest
 from hexar.causes import stated_causes
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.reader import read_recording
-from hexar.events.records import ERROR, INFO, WARN
+from hexar.events.records import ERROR, FATAL, INFO, WARN
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.navigation import NavigationExplainer
 from hexar.explainers.navigation import diagnose as g
@@ -509,3 +509,26 @@ def test_a_slow_down_during_recoveries_after_a_failed_plan_is_not_why_the_goal_f
                                   "Exiting DriveOnHeading")])
     assert "navigation.collision_ahead" not in found.causes
     assert "navigation.controller_failure" not in found.causes
+
+
+# nav2_planner/src/planner_server.cpp:122@jazzy (f4108e5b1), in on_configure, then FAILURE: the planner's plugin
+# parameter was not set (nav2_util/include/nav2_util/node_utils.hpp:264-265@jazzy), so the server never came up
+NO_PLANNER_PLUGIN: list[Line] = [
+    ("planner_server", FATAL, "'plugin' param not defined for GridBased"),
+    ("planner_server", FATAL, "Failed to create global planner. Exception: No 'plugin' param for param ns!")]
+# nav2_docking/opennav_docking/src/dock_database.cpp:156,42@jazzy: DockDatabase::initialize fails, and with it the
+# docking server's on_configure (docking_server.cpp:92-94@jazzy); no docking was ever asked for
+NO_DOCK_PLUGINS: list[Line] = [
+    ("docking_server", ERROR, "Charging dock plugins not given!"),
+    ("docking_server", ERROR, "An error occurred while getting the dock plugins!")]
+
+
+@pytest.mark.parametrize("lines", [NO_PLANNER_PLUGIN, NO_DOCK_PLUGINS], ids=["planner", "docking"])
+def test_a_server_that_could_not_create_its_plugins_at_configure_never_came_up(tmp_path: Path,
+                                                                               lines: list[Line]) -> None:
+    # the lines as a recording that starts at the goal shows them (no lifecycle manager line after them)
+    found = _explain(tmp_path, [], lines)
+    assert set(found.causes) == {g.CONFIGURATION, g.BRINGUP}
+    assert stated_causes(found.text) == {g.CONFIGURATION, g.BRINGUP}
+    assert "navigation.docking_failure" not in found.causes  # the docking server's set-up, not a docking
+    assert "never came up" in found.text
