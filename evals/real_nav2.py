@@ -37,17 +37,20 @@ STEP_NS = NS // 10
 # a line's outer prefix: a numbered paste ("12: "), `grep -n` output ("115:[controller_server-2] …"), docker
 # compose's "service | ", a quote
 _OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|[\w.-]+\s+\| |> )")
-_PROC = r"(?:\[(?P<proc>[\w./-]+-\d+)\]\s*)?"
+# launch's process name is the command's basename, or the `name` a launch file gives it, spaces allowed
+# ("[controller_manager fd_controller-4]"): words joined by single spaces, then launch's "-N"
+_PROC_NAME = r"[\w./-]+(?: [\w./-]+)*-\d+"
+_PROC = rf"(?:\[(?P<proc>{_PROC_NAME})\]\s*)?"
 _LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
 _STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
-_LOGGER = r"\[(?P<logger>[^\]\s]*)\]:\s?"
+_LOGGER = rf"\[(?P<logger>[^\]\s]*|{_PROC_NAME})\]:\s?"
 LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
 # RCUTILS_CONSOLE_OUTPUT_FORMAT "[{severity} {time}] [{name}]: {message}": level and stamp in one bracket
 LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>\d+(?:\.\d+)?)\]\s*"
                          rf"(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
 PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
-PROC_ONLY = re.compile(r"^\[(?P<proc>[\w./-]+-\d+)\](?P<rest>.*)$")
+PROC_ONLY = re.compile(rf"^\[(?P<proc>{_PROC_NAME})\](?P<rest>.*)$")
 # Wall-clock consoles: "10:33:12  msg" (a summary pasted with times) and RCUTILS_CONSOLE_OUTPUT_FORMAT variants
 # such as "[ WARN][6:31:18.730 PM -03][controller_server]: msg". Their times become stamps on BASE_NS's day.
 _CLOCK = r"(?P<clock>\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)(?:\s*(?P<ampm>AM|PM))?(?:\s*[+-]\d{2}(?::?\d{2})?)?"
@@ -184,7 +187,8 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     q = PLAIN_NAMED.match(rest.strip())
     if q:
         records.append(_record(None, None, q["logger"], q["msg"], proc))
-    elif _is_continuation(rest if p else line, previous, records):
+    elif _is_continuation(rest if p else line, previous, records) and (not p or records[-1].process == proc):
+        # (behind launch's prefix, a line continues only its own process's message, never another's)
         records[-1].msg += "\n" + rest.strip()
     else:
         records.append(_record(None, None, None, rest.strip(), proc))

@@ -89,3 +89,22 @@ def test_the_committed_blind_baselines_are_this_suites(name: str) -> None:
 def test_every_blind_set_has_its_baseline_from_before_tuning() -> None:
     assert {p.name for p in BASELINES.glob("real_nav2_blind*_none_before.json")} == {
         f"real_nav2_blind{n if n > 1 else ''}_none_before.json" for n in range(1, len(BLIND_FILES) + 1)}
+
+
+def test_a_process_line_behind_launchs_prefix_continues_only_its_own_processs_message() -> None:
+    # innate-os (blind.yaml): the controller server's crash text is its own output, not the end of a logger's line;
+    # forcedimension_ros2#10 (heldout8.yaml): launch names processes with spaces in them
+    lines = parse_console("[controller_server]: [follow_path] [ActionServer] Aborting handle.\n"
+                          "[controller_server-6] double free or corruption (!prev)\n"
+                          "[controller_manager fd_controller-4] No executable found\n"
+                          "[controller_manager joint_state_broadcaster-5] No executable found\n"
+                          "[ERROR] [controller_manager fd_controller-4]: process has died [pid 399580, exit code 1]")
+    assert [(r.process, r.msg) for r in lines[1:4]] == [
+        ("controller_server-6", "double free or corruption (!prev)"),
+        ("controller_manager fd_controller-4", "No executable found"),
+        ("controller_manager joint_state_broadcaster-5", "No executable found")]
+    assert lines[4].name == "controller_manager fd_controller-4" and lines[4].msg.startswith("process has died")
+    # a message's own next line behind the same prefix still continues it (a C++ exception's what())
+    [thrown] = parse_console("[move_group-1] terminate called after throwing an instance of 'std::invalid_argument'\n"
+                             "[move_group-1]   what():  invalid argument passed")
+    assert thrown.msg.endswith("\nwhat():  invalid argument passed")
