@@ -7,7 +7,9 @@ it is often the C library's strerror text or a client library's wording, the sam
   program on the port (a set-up conflict), "Connection refused" a device that could not be reached (the hardware
   interface failed to reach it); "No such file or directory" names no single cause, so only its candidates are told;
 - set-up words (explainers/stack/setup_phrases.json, each grounded in real source strings): a version that does not
-  match, a parameter that is empty, missing, undeclared or of the wrong type.
+  match, a parameter that is empty, missing, undeclared or of the wrong type;
+- a device library's own result texts (the same file, kind `device`: the Dynamixel SDK's bus results), each with
+  the cause it states, or none when it leaves several open (a servo that sends no status packet).
 
 Such a text is a cause only on a decisive line: an ERROR or FATAL line, or the `what():` text of a C++ exception
 that ended a process (launch prints it under the process's name, whatever the level of the line it follows), at or
@@ -173,7 +175,7 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
     name = _param(m)
     node = line.name.strip("/").split("/")[-1]
     if phrase.id not in _MISSING_KINDS:  # it reached the node, with a wrong value or type
-        if not name:  # rclcpp's ParameterTypeException names the types only, not the parameter
+        if phrase.id == "parameter.type_mismatch":  # rclcpp's ParameterTypeException names the types only
             return (own, f"one of its parameters has a value of the wrong type ({m['expected']} expected, "
                          f"{m['actual']} given)",
                     f"Find the parameter the node reads as {m['expected']} in the YAML file that sets it and give "
