@@ -13,7 +13,8 @@ wordings below), with the node it concerns and its time:
                                     exits before it exists
              lifecycle_transition   a lifecycle transition failed or its callback threw (rclcpp_lifecycle's
                                     "Caught exception in callback for transition", with its "Original error: ..."),
-                                    or a lifecycle manager could not bring its nodes up
+                                    or a lifecycle manager could not bring its nodes up, or a Nav2 server's
+                                    configure failed because it could not create a plugin (`configure_failed`)
              process_died           launch reports the node's process died (with its exit code)
              launch_failed          launch itself caught an exception while reading its descriptions (a YAML
                                     file it could not parse, a package it could not find) and shut down: the
@@ -60,6 +61,19 @@ _TRANSITION = re.compile(r"transition (?P<id>\d+)")
 # then `return 1`, :368-370@0941f73c3). Their process's death is then the controller manager's absence told by a
 # client, not a node of the stack that failed to come up.
 _SPAWNERS = ("spawner", "hardware_spawner")
+# Nav2 servers whose on_configure logs FATAL "Failed to create … Exception: …" when pluginlib cannot create a plugin
+# their parameters name, and then returns FAILURE, so the lifecycle manager's configure of that node fails
+# (planner_server.cpp:121-127, controller_server.cpp:151/181/210, behavior_server.cpp:116 via loadBehaviorPlugins,
+# bt_navigator.cpp:133, nav2_smoother.cpp:147 via loadSmootherPlugins, dock_database.cpp:177 via initialize, and
+# route_server.cpp:116 catching edge_scorer.cpp:58 and graph_loader.cpp:57, all @jazzy; recovery_server.cpp@galactic;
+# nav2_controller.cpp@foxy-devel). Not the rotation shim (its configure returns after the FATAL and its server goes
+# on) nor the waypoint follower (waypoint_follower.cpp:123@jazzy cleans up, then returns SUCCESS).
+_CONFIGURE_FAILS = ("nav2_planner/src/planner_server.cpp", "nav2_controller/src/controller_server.cpp",
+                    "nav2_controller/src/nav2_controller.cpp", "nav2_behaviors/src/behavior_server.cpp",
+                    "nav2_recoveries/src/recovery_server.cpp", "nav2_bt_navigator/src/bt_navigator.cpp",
+                    "nav2_smoother/src/nav2_smoother.cpp", "nav2_docking/opennav_docking/src/dock_database.cpp",
+                    "nav2_route/src/edge_scorer.cpp", "nav2_route/src/graph_loader.cpp")
+_EXCEPTION = re.compile(r"\. Exception: (?P<error>.+)", re.S)
 _NO_MANAGER = ("Controller manager not available", "Could not contact service")
 # lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
 TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: "shutdown", 10: "configure",
@@ -128,6 +142,18 @@ def _node(line: LogLine, kind: str) -> str:
         if m:
             return m["node"]
     return "" if name in ("", "launch", "rcl") else name
+
+
+def configure_failed(entry: StackEntry) -> bool:
+    """A Nav2 server's FATAL that fails its own configure transition (see _CONFIGURE_FAILS)."""
+    return entry.level == "FATAL" and entry.source.split(":", 1)[0] in _CONFIGURE_FAILS \
+        and entry.text.startswith("Failed to create")
+
+
+def _configure_detail(line: LogLine) -> str:
+    m = _EXCEPTION.search(line.msg)
+    error = " ".join(m["error"].split())[:200] if m else ""
+    return f"transition configure: {error}" if error else "transition configure"
 
 
 def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
@@ -199,11 +225,15 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
                 out.append(loader)
             continue
         entry = cat.match(line.msg) or (_process_died(cat) if DIED in line.msg else None)
-        if entry is None or entry.cause != BRINGUP or (line.level < ERROR and entry.level == "WARN"):
+        if entry is not None and entry.cause != BRINGUP:
+            entry = next((e for e in cat.matches(line.msg) if configure_failed(e)), entry)
+        configure = entry is not None and configure_failed(entry)
+        if entry is None or (entry.cause != BRINGUP and not configure) \
+                or (line.level < ERROR and entry.level == "WARN"):
             continue
         if entry.text.startswith("Original error"):
             continue  # the second half of "Caught exception in callback ...": read as that line's detail
-        kind = _kind(line, entry)
+        kind = "lifecycle_transition" if configure else _kind(line, entry)
         if kind == "process_died" and client_gave_up(line, ordered[:i]):
             continue
         if kind == "params_file" and "Couldn't parse" not in line.msg:
@@ -214,5 +244,6 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         if (kind, node) in seen:
             continue
         seen.add((kind, node))
-        out.append(BringupFinding(kind, node, line.t, line, entry, _detail(line, kind, ordered[i + 1:i + 4])))
+        detail = _configure_detail(line) if configure else _detail(line, kind, ordered[i + 1:i + 4])
+        out.append(BringupFinding(kind, node, line.t, line, entry, detail))
     return out

@@ -532,3 +532,11 @@ def test_a_server_that_could_not_create_its_plugins_at_configure_never_came_up(t
     assert stated_causes(found.text) == {g.CONFIGURATION, g.BRINGUP}
     assert "navigation.docking_failure" not in found.causes  # the docking server's set-up, not a docking
     assert "never came up" in found.text
+
+
+def test_a_server_that_failed_its_configure_before_the_goal_explains_the_failed_goal(tmp_path: Path) -> None:
+    # the FATAL at bring-up, before the goal, with no lifecycle manager line after it (as pasted, abridged)
+    found = _explain(tmp_path, NO_PLANNER_PLUGIN[1:], UNAVAILABLE)
+    assert set(found.causes) == {g.CONFIGURATION, g.BRINGUP}
+    assert "planner_server" in found.text and "never came up" in found.text
+    assert _quoted(found, "Failed to create global planner")

@@ -144,3 +144,31 @@ def test_a_spawner_that_found_no_controller_manager_is_no_node_that_failed_to_co
 def test_a_spawner_that_died_without_saying_why_is_still_a_death(tmp_path: Path) -> None:
     [f] = bringup_findings(_logs(tmp_path, GAVE_UP.split("\n", 1)[1]))
     assert (f.kind, f.node, f.detail) == ("process_died", "spawner", "exit code 1")
+
+
+# zzx4king/sentry_nuc15 doc/nav2_jazzy_config_fix.md (blind7 sentry-jazzy-fix-record-humble-style-planner-plugin-name,
+# as its author abridged it): planner_server's on_configure could not create the planner and returned FAILURE
+# (nav2_planner/src/planner_server.cpp:121-127@jazzy), with no lifecycle manager line pasted after it.
+NO_PLANNER = "\n".join([
+    "[FATAL] [planner_server]: Failed to create global planner. Exception: ... the class",
+    "nav2_navfn_planner/NavfnPlanner ... does not exist.",
+    "Declared types are nav2_navfn_planner::NavfnPlanner ...",
+]) + "\n"
+# waypoint_follower.cpp:123-128@jazzy logs the same kind of FATAL, cleans up and returns SUCCESS: the node came up
+# (the line from that format string with pluginlib's ClassLoader wording, class_loader_imp.hpp@humble)
+NO_TASK_EXECUTOR = ("[FATAL] [waypoint_follower]: Failed to create waypoint_task_executor. Exception: According to "
+                    "the loaded plugin descriptions the class nav2_waypoint_follower::WaitAtWaypoint2 with base "
+                    "class type nav2_core::WaypointTaskExecutor does not exist.\n")
+
+
+def test_a_nav2_server_that_could_not_create_its_plugin_failed_its_configure(tmp_path: Path) -> None:
+    [f] = bringup_findings(_logs(tmp_path, NO_PLANNER))
+    assert (f.kind, f.node) == ("lifecycle_transition", "planner_server")
+    assert f.detail.startswith("transition configure: ... the class nav2_navfn_planner/NavfnPlanner")
+    assert f.entry is not None and f.entry.source.startswith("nav2_planner/src/planner_server.cpp:")
+    assert f.describe().startswith("planner_server stopped in a lifecycle transition and never became active")
+
+
+def test_a_waypoint_follower_that_goes_on_after_its_fatal_is_no_node_that_failed(tmp_path: Path) -> None:
+    assert bringup_findings(_logs(tmp_path / "wf", NO_TASK_EXECUTOR)) == []
+    assert bringup_findings(_logs(tmp_path / "both", NO_TASK_EXECUTOR + NO_PLANNER))[0].node == "planner_server"
