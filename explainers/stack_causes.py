@@ -14,6 +14,7 @@ from collections.abc import Sequence
 
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
+from hexar.explainers.stack.bringup import lifecycle_cli
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
@@ -123,6 +124,15 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                     "transition failed, so the node never became active.",
                     f"Read {node}'s own lines just before: why its {transition} failed (a device it could not open, "
                     "a parameter it rejected), or a transition asked in the wrong state.", line)
+    cli = lifecycle_cli(d.decisive.line) if d.decisive is not None else None
+    if cause == "bringup.lifecycle_transition_failed" and cli is not None:
+        node, transition = cli
+        return (f"{head} a node's lifecycle transition failed: my launch ran 'ros2 lifecycle set' to {transition} "
+                f"{node}, and that command failed, so the node never became active.",
+                "If the command said 'Node not found', it ran before the node existed (or under another name): start "
+                "the transitions when the node is up (launch_ros' LifecycleNode with its event handlers instead of a "
+                "fixed delay) and check the node's namespace. Otherwise read the node's own lines around the "
+                "transition.", line)
     if cause == "bringup.lifecycle_transition_failed":
         return (f"{head} a node's lifecycle transition (configure or activate) failed, so it never became active.",
                 "Read the node's error around the transition and bring it up in order (configure, then activate).",

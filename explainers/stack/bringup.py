@@ -74,6 +74,14 @@ _CONFIGURE_FAILS = ("nav2_planner/src/planner_server.cpp", "nav2_controller/src/
                     "nav2_smoother/src/nav2_smoother.cpp", "nav2_docking/opennav_docking/src/dock_database.cpp",
                     "nav2_route/src/edge_scorer.cpp", "nav2_route/src/graph_loader.cpp")
 _EXCEPTION = re.compile(r"\. Exception: (?P<error>.+)", re.S)
+# A launch that drives a lifecycle node with the CLI (`ros2 lifecycle set <node> <transition>`, often behind
+# `bash -c sleep N; ...`): the command exits 1 when the transition was not made, after printing why
+# (ros2lifecycle/verb/set.py:52-89@humble: "Node not found" when no such node was discovered yet, "Unknown
+# transition requested, available ones are:", "Transitioning failed"). Its process's death is that transition's
+# failure, not a node of the robot that was lost.
+_LIFECYCLE_SET = re.compile(r"cmd '[^']*\bros2 lifecycle set (?:--\S+ )*(?P<node>[/\w]+) (?P<transition>\w+)")
+_LIFECYCLE_SAID = ("Node not found", "Unknown transition requested", "Transitioning failed",
+                   "Exception while calling service of node")
 _NO_MANAGER = ("Controller manager not available", "Could not contact service")
 # lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
 TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: "shutdown", 10: "configure",
@@ -156,6 +164,19 @@ def _configure_detail(line: LogLine) -> str:
     return f"transition configure: {error}" if error else "transition configure"
 
 
+def _lifecycle_cli(line: LogLine, entry: StackEntry, asked: re.Match[str], before: list[LogLine]) -> BringupFinding:
+    """The transition a `ros2 lifecycle set` command of the launch could not make, with what the command printed."""
+    said = next((s for ln in reversed(before) for s in _LIFECYCLE_SAID if ln.msg.strip().startswith(s)), "")
+    detail = f"transition {asked['transition']}" + (f": the command said '{said}'" if said else "")
+    return BringupFinding("lifecycle_transition", asked["node"].strip("/").split("/")[-1], line.t, line, entry, detail)
+
+
+def lifecycle_cli(line: LogLine) -> tuple[str, str] | None:
+    """(node, transition) when `line` is launch's death line of a `ros2 lifecycle set` command, else None."""
+    asked = _LIFECYCLE_SET.search(line.msg) if DIED in line.msg else None
+    return (asked["node"], asked["transition"]) if asked is not None else None
+
+
 def _detail(line: LogLine, kind: str, following: list[LogLine]) -> str:
     if kind == "process_died":
         m = _EXIT.search(line.msg)
@@ -235,6 +256,13 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
             continue  # the second half of "Caught exception in callback ...": read as that line's detail
         kind = "lifecycle_transition" if configure else _kind(line, entry)
         if kind == "process_died" and client_gave_up(line, ordered[:i]):
+            continue
+        asked = _LIFECYCLE_SET.search(line.msg) if kind == "process_died" else None
+        if asked is not None:
+            finding = _lifecycle_cli(line, entry, asked, ordered[max(0, i - 4):i])
+            if ("lifecycle_transition", finding.node) not in seen:
+                seen.add(("lifecycle_transition", finding.node))
+                out.append(finding)
             continue
         if kind == "params_file" and "Couldn't parse" not in line.msg:
             # rcl's "Failed to parse global arguments" comes first; the line naming the file and its error follows

@@ -109,3 +109,22 @@ def test_a_dds_domain_cyclone_could_not_create_is_a_network_cause_with_its_fix(t
                                  "Error")])
     assert found.causes == ["system.network"] and _claims(found) == {"system.network"}
     assert "Cyclone DDS failed to create its domain" in found.text and found.fix and "CYCLONEDDS_URI" in found.fix
+
+
+# ouster-lidar/ouster-ros#345 (Humble, heldout9.yaml): sensor.launch.xml ran `ros2 lifecycle set` behind `sleep 0`
+# before the driver node existed; ros2lifecycle's set verb printed "Node not found" and returned 1
+# (ros2lifecycle/verb/set.py:52@humble), and launch reported the command's process dead
+OUSTER_CMD = "bash -c sleep {s}; $0 $@ /opt/ros/humble/bin/ros2 lifecycle set /ouster/os_driver {t}"
+OUSTER: list[Line] = [
+    (0.1, "os_driver-1", INFO, "process started with pid [75]"), (0.2, "bash-2", INFO, "process started with pid [77]"),
+    (0.5, "", INFO, "Node not found"),
+    (0.6, "bash-2", ERROR, f"process has died [pid 77, exit code 1, cmd '{OUSTER_CMD.format(s=0, t='configure')}']."),
+    (1.5, "", INFO, "Node not found"),
+    (1.6, "bash-3", ERROR, f"process has died [pid 79, exit code 1, cmd '{OUSTER_CMD.format(s=1, t='activate')}'].")]
+
+
+def test_a_lifecycle_command_of_the_launch_that_failed_is_that_transition_not_a_lost_process(tmp_path: Path) -> None:
+    found = _derived(tmp_path, OUSTER)
+    assert found.causes == ["bringup.lifecycle_transition_failed"]
+    assert "my launch ran 'ros2 lifecycle set' to configure /ouster/os_driver" in found.text
+    assert _claims(found) == {"bringup.lifecycle_transition_failed"}
