@@ -119,6 +119,8 @@ def test_a_parameter_not_set_in_on_init_never_reached_the_driver(tmp_path: Path)
                                        "Parameter 'robot_ip' is not set. Please update your URDF (aka "
                                        "franka_description).")])
     assert found.causes == ["bringup.configuration_error"] and "never reached my driver" in found.text
+    # and no words of another cause ("robot description was missing" is MoveIt's set-up in hexar/causes.yaml)
+    assert read_claims(found.text).affirmed == {"bringup.configuration_error"}
 
 
 def test_a_refused_switch_is_a_controller_that_could_not_be_activated(tmp_path: Path) -> None:
