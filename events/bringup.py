@@ -45,8 +45,9 @@ _MOVEIT_LOGGER = re.compile(r"move_group\b|moveit[._]")
 # and the UR driver hands its client library's log to "UR_Client_Library:<tf_prefix>" (ur_robot_driver/src/
 # urcl_log_handler.cpp:59@humble)
 _DRIVER_LOGGER = re.compile(r"driver|^UR_Client_Library:", re.I)
-# a line that names what a driver was set up with: a device (its file, serial port or baud rate) or a parameter
-_DEVICE = re.compile(r"/dev/\w|\bserial[ _]?port\b|\bbaud[ _]?rate\b", re.I)
+# a line that names what a driver was set up with: a device (its file, serial port or baud rate, or the word itself:
+# a driver's "No MTi device found.") or a parameter
+_DEVICE = re.compile(r"/dev/\w|\bserial[ _]?port\b|\bbaud[ _]?rate\b|\bdevices?\b", re.I)
 _PARAMETER = re.compile(r"\bparam(eter)?s?\b", re.I)
 # diff_drive_controller.cpp:466@jazzy (354@humble, 420@foxy): a velocity command came while the controller was
 # configured (on_configure makes its subscription) but not active (only on_activate sets subscriber_is_active_)

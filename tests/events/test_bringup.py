@@ -175,3 +175,10 @@ def test_a_drivers_own_lines_without_an_error_are_no_task_its_error_after_them_i
     msg = "Opening file '/opt/ur/resources/rtde_output_recipe.txt' failed with error: No such file or directory"
     assert _steps(_tasks(tmp_path / "b", [*lines, (1.0, "UR_Client_Library:", ERROR, msg)])) == [
         ("bring_up_controllers", "failed", msg)]
+
+
+def test_a_lone_error_naming_a_device_fails_that_nodes_start(tmp_path: Path) -> None:
+    # bluespace-ai/bluespace_ai_xsens_ros_mti_driver#1 (heldout9.yaml), as its console printed it: the Xsens driver's
+    # node found no MTi device (it could not open /dev/ttyUSB0), before any other line of it
+    msg = "No MTi device found."
+    assert _steps(_tasks(tmp_path, [(0.0, "xsens_mti_node", ERROR, msg)])) == [("bring_up_controllers", "failed", msg)]
