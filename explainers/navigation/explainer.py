@@ -53,6 +53,7 @@ from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
+from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
 
 if TYPE_CHECKING:
@@ -167,7 +168,7 @@ class NavigationExplainer:
         stack = bool(run.notes) and not (_inferred(context) and state == "failed")
         quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
         if not lines and not poses and not flags and not stack and not quiet_success:
-            return Explanation.not_enough(self.name, "Nothing from my navigation system was recorded then.")
+            return Explanation.not_enough(self.name, _unread(raw))
         until = run.end.t if run.end is not None else window[1]
         before = [ln for ln in context.log.logs if ln.t <= until]
         findings = flags + self._others(question, view, run, bool(flags), before, raw, _inferred(context))
@@ -364,3 +365,18 @@ def _stall(view: View, run: d.Run) -> d.Finding | None:
         Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
     found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
     return found
+
+
+def _unread(raw: list[LogLine]) -> str:
+    """Why there is nothing to tell: no line at all, or only lines the filter does not read (a message filter's
+    drops on no failed goal, a costmap filter's chatter), the first of which is quoted when it reads as no cause,
+    so the answer never says that nothing was recorded while a line was."""
+    if not raw:
+        return "Nothing from my navigation system was recorded then."
+    first = next((ln for ln in raw if ln.level >= WARN), raw[0])
+    msg = " ".join(first.msg.split())
+    who = first.name or "a node that gave no name"
+    head = "My navigation logged only lines I do not read as a goal or a cause then"
+    if not quotable(msg) or len(msg) > 240:
+        return f"{head} (the first from {who})."
+    return f"{head}, such as this one from {who}: '{msg}'."

@@ -540,3 +540,15 @@ def test_a_server_that_failed_its_configure_before_the_goal_explains_the_failed_
     assert set(found.causes) == {g.CONFIGURATION, g.BRINGUP}
     assert "planner_server" in found.text and "never came up" in found.text
     assert _quoted(found, "Failed to create global planner")
+
+
+def test_lines_the_filter_does_not_read_are_quoted_not_denied(tmp_path: Path) -> None:
+    # ozkannceylan/amr-agent (blind8.yaml): amcl's message filter dropping every scan at INFO, with no goal and no
+    # error (tf2_ros message_filter.h@humble "Message Filter dropping message: frame '%s' at time %.3f for reason
+    # '%s'"): not a cause on its own, but it was recorded, so the answer must not say that nothing was
+    drop = ("Message Filter dropping message: frame 'nav_lidar_link' at time 27.260 for reason 'discarding message "
+            "because the queue is full'")
+    found = _without_task(tmp_path, [("amcl", INFO, drop)])
+    assert "Nothing from my navigation system was recorded" not in found.text
+    assert drop in found.text and "amcl" in found.text
+    assert not stated_causes(found.text)
