@@ -14,7 +14,6 @@ from collections.abc import Sequence
 
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
-from hexar.explainers.stack.bringup import lifecycle_cli
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
@@ -110,6 +109,8 @@ def _launch_failed(line: LogLine) -> str | None:
 
 def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
     """(sentence, fix, details) for a bring-up or system cause; None for a module's own cause."""
+    from hexar.explainers.stack.bringup import lifecycle_cli
+
     line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what[:1].upper()}{what[1:]} failed because"
     if cause == "bringup.process_died":

@@ -164,11 +164,12 @@ def _configure_detail(line: LogLine) -> str:
     return f"transition configure: {error}" if error else "transition configure"
 
 
-def _lifecycle_cli(line: LogLine, entry: StackEntry, asked: re.Match[str], before: list[LogLine]) -> BringupFinding:
+def _lifecycle_cli(line: LogLine, entry: StackEntry, asked: tuple[str, str], before: list[LogLine]) -> BringupFinding:
     """The transition a `ros2 lifecycle set` command of the launch could not make, with what the command printed."""
+    node, transition = asked
     said = next((s for ln in reversed(before) for s in _LIFECYCLE_SAID if ln.msg.strip().startswith(s)), "")
-    detail = f"transition {asked['transition']}" + (f": the command said '{said}'" if said else "")
-    return BringupFinding("lifecycle_transition", asked["node"].strip("/").split("/")[-1], line.t, line, entry, detail)
+    detail = f"transition {transition}" + (f": the command said '{said}'" if said else "")
+    return BringupFinding("lifecycle_transition", node.strip("/").split("/")[-1], line.t, line, entry, detail)
 
 
 def lifecycle_cli(line: LogLine) -> tuple[str, str] | None:
@@ -246,7 +247,8 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
                 out.append(loader)
             continue
         entry = cat.match(line.msg) or (_process_died(cat) if DIED in line.msg else None)
-        if entry is not None and entry.cause != BRINGUP:
+        if entry is not None and entry.cause != BRINGUP and "Failed to create" in line.msg:
+            # another entry may match first (the generic "Failed to create (a )?(plugin|…)" rule)
             entry = next((e for e in cat.matches(line.msg) if configure_failed(e)), entry)
         configure = entry is not None and configure_failed(entry)
         if entry is None or (entry.cause != BRINGUP and not configure) \
@@ -257,7 +259,7 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         kind = "lifecycle_transition" if configure else _kind(line, entry)
         if kind == "process_died" and client_gave_up(line, ordered[:i]):
             continue
-        asked = _LIFECYCLE_SET.search(line.msg) if kind == "process_died" else None
+        asked = lifecycle_cli(line) if kind == "process_died" else None
         if asked is not None:
             finding = _lifecycle_cli(line, entry, asked, ordered[max(0, i - 4):i])
             if ("lifecycle_transition", finding.node) not in seen:
