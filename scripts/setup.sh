@@ -36,6 +36,14 @@ quiet() { local log; log="$(mktemp)"; "$@" >"$log" 2>&1 || { cat "$log"; rm -f "
 # regenerates it). HEXAR itself then installs without resolving anything, built by the locked setuptools.
 quiet $PIP install -q --require-hashes -r requirements.lock
 quiet $PIP install -q --no-deps --no-build-isolation -e .
+# The editable install leaves HEXAR's own modules uncompiled, and a shell or container image that sets
+# PYTHONDONTWRITEBYTECODE never writes their bytecode: every `hexar` start would compile them again (about a sixth
+# of a one-shot `ask`). Compile the folders pyproject.toml maps into the package.
+.venv/bin/python - <<'PY'
+import compileall, sys, tomllib
+dirs = sorted(set(tomllib.load(open("pyproject.toml", "rb"))["tool"]["setuptools"]["package-dir"].values()))
+sys.exit(0 if all(compileall.compile_dir(d, quiet=1, workers=0) for d in dirs) else "compiling HEXAR failed")
+PY
 # The ROS 2 wheels (x86_64 Linux only) re-execute every Python start; keep that out of the `hexar` command's start.
 .venv/bin/python - <<'PY'
 import importlib.util, shutil, sysconfig
