@@ -7,9 +7,10 @@ from dataclasses import dataclass
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, PLAN_BLAMED, TASK_FAILED, read_claims
 
-# Causes that describe a run in which nothing went wrong in that module.
-BENIGN_CAUSES = frozenset({"navigation.nominal", "navigation.nominal_speed", "ask_human.succeeded", "tts.completed",
-                           "planner.plan_ok", "pizza.ingredients"})
+# Causes that describe a run in which nothing went wrong in that module (the arm's and the controllers' too: a
+# phrasing of a motion or a start that went fine says so).
+BENIGN_CAUSES = frozenset({"navigation.nominal", "navigation.nominal_speed", "manipulation.nominal", "control.nominal",
+                           "ask_human.succeeded", "tts.completed", "planner.plan_ok", "pizza.ingredients"})
 
 
 @dataclass(frozen=True)

@@ -22,6 +22,14 @@ from hexar.agent.guard import check
     ("I was plugged into my charger and the joystick held my wheels.", ["navigation.charging"], "failed", False),
     ("I was plugged into my charger because my plan was wrong.", ["navigation.charging"], "failed", False),
     ("Nothing went wrong, the person just declined.", ["ask_human.refused"], "failed", False),
+    # kept: a start and an arm motion that went fine, said as such (the bring-up answer's own words)
+    ("Starting my drivers and controllers went fine: nothing went wrong, and my controllers came up without any "
+     "problem.", ["control.nominal"], "succeeded", True),
+    ("Nothing went wrong: I moved my arm to the shelf without any problem.", ["manipulation.nominal"], "succeeded",
+     True),
+    # rejected: "nothing went wrong" about an arm whose controllers failed
+    ("Nothing went wrong, but my arm controllers could not run because a controller was set up wrongly.",
+     ["control.configuration_error"], "failed", False),
 ])
 def test_guard(text: str, causes: list[str], outcome: str, ok: bool) -> None:
     assert check(text, causes, outcome).ok is ok, check(text, causes, outcome)
