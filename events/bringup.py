@@ -90,9 +90,14 @@ def starting(line: LogLine) -> bool:
     without an error: a GPS driver saying "NEO6M Driver Started" on a vehicle that then drives its route for
     minutes (a real recording) started fine, and its run is not a start still under way."""
     name = line.name
-    if control_logger(name) or _MOVEIT_LOGGER.match(name) or refused(line):
+    if control_logger(name) or moveit_logger(name) or refused(line):
         return True
     return completed(line)
+
+
+def moveit_logger(name: str) -> bool:
+    """MoveIt's own loggers: move_group and its capabilities, moveit2's "moveit.<package>.<part>", moveit_servo's."""
+    return _MOVEIT_LOGGER.match(name) is not None
 
 
 def control_logger(name: str) -> bool:

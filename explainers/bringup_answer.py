@@ -2,8 +2,12 @@
 
 A start that completed is told plainly as such: what came up (ros2_control's own "Configured and activated",
 "Successful initialization of hardware" lines), and each warning on the way named as one that only looks like a
-failure. A start the recording does not see complete is told as that: what began, that no error followed, and that
-the logs do not show what came of it; a warning on the way is quoted, never claimed as the cause. A controller that
+failure. A start the recording does not see complete, with no error on the way, is told as that: what began, that
+nothing went wrong that the recording shows, and that it ends before a line says the start completed (every such
+start in the spent module sets was a run that went fine: a demo's hardware writing its commands, a driver's check
+that passed, a deprecation warning). When the question says the start did not work ("why didn't that work?"), the
+person knows an outcome the recording does not show: the answer is then that no line says why. A warning on the way
+is quoted, never claimed as the cause. A controller that
 dropped commands because it was not active is told as that, with what can leave a controller inactive (never
 activated, its activation not gone through, deactivated later), none of them claimed; a controller manager still
 waiting for its robot description, as explainers/control/description.py reads it. A failed start is the module
@@ -13,21 +17,40 @@ driver's, its candidates are the driver's (`driver_candidates`), not a controlle
 
 from __future__ import annotations
 
-from hexar.events.bringup import completed, control_logger, names_device, names_parameter, refused, starting
+import re
+
+from hexar.events.bringup import (
+    completed,
+    control_logger,
+    moveit_logger,
+    names_device,
+    names_parameter,
+    refused,
+    starting,
+)
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waited, waiting_answer
 from hexar.explainers.logcause import at
 
 BRING_UP = "bring_up_controllers"
 MAX_QUOTED = 3
+MAX_WARNED = 2
 # what leaves a driver's start failed when its error names no cause: in words no cause pattern reads as a claim
 DRIVER_CANDIDATES = ("It may be the driver's settings (the port, address or baud rate it was given), the device itself "
                      "(its cable, its power, or another device on that port), or the access rights to its device "
                      "file.")
 PARAMETER_CANDIDATES = ("It may be the value of the parameter it names, or how that value is given to the node (its "
                         "launch or parameter file, the node's name or namespace there).")
+# a question that tells the start did not work, or asks what went wrong in it
+_FAILURE_WORDS = re.compile(r"n't\b|\b(not|never|fail\w*|wrong|errors?|problems?|broke\w*|crash\w*|stuck|abort\w*|"
+                            r"stop\w*)\b", re.I)
+
+
+def presumes_failure(question: str) -> bool:
+    """The question says something did not work ("why didn't that work?", "what went wrong?"), unlike "how did it
+    go?" or "what happened?"."""
+    return _FAILURE_WORDS.search(question) is not None
 
 
 def derived_start(run: SkillRun | None) -> bool:
@@ -36,10 +59,13 @@ def derived_start(run: SkillRun | None) -> bool:
             and run.state in {"succeeded", "running"})
 
 
-def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine], t0: int) -> Explanation:
-    from hexar.explainers.module_explainer import verbatim  # the module explainer asks this module first
+def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine], t0: int,
+                 question: str = "") -> Explanation:
+    # both import the module explainer, which asks this module first
+    from hexar.explainers.control.description import waited
+    from hexar.explainers.module_explainer import verbatim
 
-    warned = [ln for ln in lines if ln.level == WARN][:2]
+    warned = [ln for ln in lines if ln.level == WARN][:MAX_WARNED]
     if run.state == "succeeded":
         came = [ln for ln in lines if completed(ln)]
         last = came[-1].t if came else t0
@@ -58,16 +84,40 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     waiting = waited(lines)
     if waiting is not None:
         return _waiting_answer(explainer, prefix, lines, waiting, t0)
+    return _under_way(explainer, prefix, lines, t0, question)
+
+
+def _under_way(explainer: str, prefix: str, lines: list[LogLine], t0: int, question: str) -> Explanation:
+    """A start with no error that the recording does not see complete. MoveIt's own lines with none of
+    ros2_control's (moveit_servo starting) are the arm's motion software starting."""
+    from hexar.explainers.module_explainer import verbatim
+
     began = next((ln for ln in lines if starting(ln)), lines[0])
-    text = (f"The recording shows me starting my drivers and controllers ({verbatim(began)} at {at(began, t0)}), "
-            "but it ends before any line says the start completed. It shows no error, so my logs do not show what "
-            "came of the start.")
+    arm = moveit_logger(began.name) and not any(control_logger(ln.name) or completed(ln) for ln in lines)
+    what, verb = ("my arm's motion software (MoveIt)", "was") if arm else ("my drivers and controllers", "were")
+    # a warning said again (Servo's singularity warning, once per check) is quoted once
+    warned = list({(w.name, w.msg): w for w in reversed(lines) if w.level == WARN}.values())[::-1][:MAX_WARNED]
+    shown = "" if began in warned else f" ({verbatim(began)} at {at(began, t0)})"
+    if presumes_failure(question):
+        text = (f"My logs do not show why: the recording shows me starting {what}{shown}, and no line reports an "
+                "error or a failure. It ends before any line says the start completed.")
+        for w in warned:
+            text += (f" On the way, {verbatim(w)} at {at(w, t0)} is a warning; healthy robots print many, so my "
+                     "logs do not show whether it stopped the start.")
+        return Explanation(explainer=explainer, text=text, causes=[], confidence=0.3,
+                           evidence=[Evidence.of_log("warning", w) for w in warned],
+                           fix="Record the whole start (from launch on) to see whether it completed.")
+    cause = "manipulation.nominal" if arm else f"{prefix}nominal"
+    text = (f"Nothing went wrong that my recording shows: {what} {verb} starting without any problem{shown}, and "
+            "no line reports an error or a failure. The recording ends before any line says the start completed.")
     for w in warned:
-        text += (f" On the way, {verbatim(w)} at {at(w, t0)} is a warning; healthy robots print many, so my logs "
-                 "do not show whether it stopped the start.")
-    return Explanation(explainer=explainer, text=text, causes=[], confidence=0.3,
-                       evidence=[Evidence.of_log("warning", w) for w in warned],
-                       fix="Record the whole start (from launch on) to see whether it completed.")
+        text += f" {verbatim(w)} at {at(w, t0)} is a warning, and no error followed it."
+    last = max(ln.t for ln in lines)
+    return Explanation(explainer=explainer, text=text, causes=[cause], confidence=0.5,
+                       evidence=[Evidence.of_log(cause, began), *(Evidence.of_log("warning", w) for w in warned)],
+                       details=[f"{len(lines)} line(s) from {at(began, t0)} to {(last - t0) / 1e9:.1f} s, none at "
+                                "ERROR or FATAL."],
+                       fix="Record the whole start (from launch on) to see it complete.")
 
 
 def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: LogLine, t0: int) -> Explanation:
@@ -75,6 +125,7 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
     description.py): the description that never arrived when the recording shows the manager subscribe first, else
     both readings and no cause. Either way the start could not complete, so "why didn't that work?" is answered by
     this finding rather than by a plan that looks right."""
+    from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waiting_answer
     from hexar.explainers.module_explainer import verbatim
 
     if never_arrived(lines, waiting):

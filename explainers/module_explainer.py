@@ -93,7 +93,7 @@ class ModuleExplainer:
         step = context.task.skills[0] if len(context.task.skills) == 1 else None
         if derived_start(step) and step is not None:
             # no task, no goal: the robot's start, which completed or is still under way (a failed one is below)
-            told = start_answer(self.name, self.prefix, step, lines, context.task.created)
+            told = start_answer(self.name, self.prefix, step, lines, context.task.created, question)
             return phrase(self.model, self.name, question, self._facts(lines, told), told)
         readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         d = diagnose(readings, run.state if run is not None else None)

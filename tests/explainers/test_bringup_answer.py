@@ -6,9 +6,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.events.records import ERROR, FATAL, INFO, WARN
 from hexar.explainers.base import Explanation
+from hexar.explainers.bringup_answer import presumes_failure
 from tests.explainers.helpers import explain, write_lines
 
 # ros2_control's own lines: hardware_interface/src/resource_manager.cpp:88,120@humble,
@@ -35,11 +38,43 @@ def test_a_completed_start_says_nothing_failed_and_names_its_warning_as_only_loo
     assert "No clock received" in found.text and "only looks like a failure" in found.text
 
 
-def test_a_start_the_recording_does_not_see_complete_claims_neither_success_nor_failure(tmp_path: Path) -> None:
+def test_a_start_not_seen_complete_asked_why_it_failed_says_no_line_tells_why(tmp_path: Path) -> None:
     found = _explain(tmp_path, [LOADING, NO_CLOCK], "Why didn't that work?")
     claims = read_claims(found.text).affirmed
     assert found.causes == [] and not claims & {ALL_FINE, TASK_FAILED, "control.nominal"}
-    assert "do not show what came of the start" in found.text and "No clock received" in found.text
+    assert found.text.startswith("My logs do not show why") and "No clock received" in found.text
+
+
+def test_a_start_not_seen_complete_with_no_error_asked_how_it_went_says_nothing_went_wrong(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [LOADING, NO_CLOCK], "How did it go?")
+    claims = read_claims(found.text).affirmed
+    assert found.causes == ["control.nominal"] and {"control.nominal", ALL_FINE} <= claims
+    assert TASK_FAILED not in claims
+    # never told as a start that completed: the recording does not show that
+    assert "ends before any line says the start completed" in found.text and "came up" not in found.text
+    assert "“[resource_manager] Loading hardware 'RRBot'” at 0.0 s" in found.text
+    assert "No clock received" in found.text and "only looks like a failure" not in found.text
+
+
+def test_moveit_starting_alone_is_the_arms_motion_software_and_a_repeated_warning_is_quoted_once(
+        tmp_path: Path) -> None:
+    # moveit_servo's status text for HALT_FOR_SINGULARITY (moveit_ros/moveit_servo/include/moveit_servo/utils/
+    # datatypes.hpp:68@main), said at every check while the arm stays there
+    halt = "Very close to a singularity, emergency stop"
+    found = _explain(tmp_path, [(0.0, "moveit_servo.utilities", WARN, halt),
+                                (3.0, "moveit_servo.utilities", WARN, halt)], "How did it go?")
+    claims = read_claims(found.text).affirmed
+    assert found.causes == ["manipulation.nominal"] and "manipulation.nominal" in claims
+    assert "control.nominal" not in claims and "my arm's motion software (MoveIt)" in found.text
+    assert found.text.count(halt) == 1
+
+
+@pytest.mark.parametrize(("question", "failed"), [
+    ("Why didn't that work?", True), ("what went wrong", True), ("why did the arm stop?", True),
+    ("Why does it fail to start?", True), ("How did it go?", False), ("What happened?", False),
+    ("Did the controllers come up?", False)])
+def test_which_questions_say_the_start_did_not_work(question: str, failed: bool) -> None:
+    assert presumes_failure(question) is failed
 
 
 def test_a_failed_start_quotes_its_first_error_and_never_says_it_went_fine(tmp_path: Path) -> None:
