@@ -28,7 +28,8 @@ if TYPE_CHECKING:
     # Only a type: the one-shot path runs these nodes without importing LangGraph (agent/oneshot.py).
     from langgraph.runtime import Runtime
 
-BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
+BENIGN = {"planner.plan_ok", "navigation.nominal", "manipulation.nominal", "control.nominal", "ask_human.succeeded",
+          "tts.completed"}
 BENIGN_ANSWERS = BENIGN | {"navigation.nominal_speed", "tts.utterance_matches"}
 # Where a piece of evidence comes from, as the robot says it.
 _SOURCE = {
@@ -92,7 +93,9 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         for name in ctx.registry.for_module(run.skill):
             if name not in candidates:
                 candidates.append(name)
-    if "planner" not in candidates:
+    # a task derived from goals or start lines has no plan of the robot's to fault: HEXAR built its steps itself, so
+    # "my plan looks right" would say nothing (the planner stays the fallback when no explainer serves its steps)
+    if "planner" not in candidates and (not task.derived or not candidates):
         candidates.append("planner")
     return {"task_id": task.task_id, "task_outcome": task.outcome, "candidates": candidates,
             "timings_ms": _timings(state, "context", start)}
