@@ -65,8 +65,8 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     from hexar.explainers.control.description import waited
     from hexar.explainers.module_explainer import verbatim
 
-    warned = [ln for ln in lines if ln.level == WARN][:MAX_WARNED]
     if run.state == "succeeded":
+        warned = [ln for ln in lines if ln.level == WARN][:MAX_WARNED]
         came = [ln for ln in lines if completed(ln)]
         last = came[-1].t if came else t0
         cause = f"{prefix}nominal"
