@@ -116,6 +116,17 @@ def make_replayer(kind: str, domain: int) -> Any:
     return DdsReplayer(domain)
 
 
+def wait_matched(writer: Any, topics: set[str], timeout_s: float = 30.0, settle_s: float = 0.5) -> None:
+    """Block until each of `topics` has a matched reader, then `settle_s` more: the writer's side matches first,
+    and a Fast DDS reader drops samples from a writer it has not yet matched itself. A fixed sleep lost the
+    first messages of a volatile topic on a loaded CI machine."""
+    deadline = time.monotonic() + timeout_s
+    while not all(writer.matched(topic) for topic in topics):
+        assert time.monotonic() < deadline, f"no reader matched within {timeout_s} s: {sorted(topics)}"
+        time.sleep(0.02)
+    time.sleep(settle_s)
+
+
 @contextmanager
 def live_node(domain: int, limits: Limits | None = None, transport: str = "dds", **options: Any) -> Iterator[LiveNode]:
     node = LiveNode(make_transport(transport, domain, tts_topic=options.pop("tts_topic", None)), LiveLog(limits),

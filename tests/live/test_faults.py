@@ -15,7 +15,7 @@ import pytest
 from hexar.events import contract as c
 from hexar.live import msgs
 from hexar.live.replay import DdsReplayer, bag_messages, to_dds
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay_process
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay_process, wait_matched
 from tests.live.test_replay_explains import QUESTION, expected
 
 RUN = "bagfile_5_1"  # navigation: the path is blocked; ~70 s of traffic
@@ -58,8 +58,8 @@ def test_duplicated_reordered_and_a_10_mb_line(suite: Path, transport: str) -> N
     try:
         with live_node(domain, transport=transport) as node:
             writer.prepare()
-            time.sleep(0.5)
             messages = list(bag_messages(suite / RUN)[0])
+            wait_matched(writer, {topic for topic, *_ in messages} | {c.ROSOUT})
             # swap every pair of neighbouring messages and send each one twice
             for i in range(0, len(messages) - 1, 2):
                 messages[i], messages[i + 1] = messages[i + 1], messages[i]
@@ -71,8 +71,9 @@ def test_duplicated_reordered_and_a_10_mb_line(suite: Path, transport: str) -> N
             last_t = messages[-1][2]
             writer.write(c.ROSOUT, c.LOG_TYPE, msgs.Log(stamp=msgs.time_of(last_t + 1), level=40, name="flood",
                                                         msg=huge), last_t + 1)
-            got = listener.wait_answers(len(failures), "failure", timeout=10.0)
-            assert {a["task_id"]: a["causes"] for a in got} == failures
+            # generous: the first explanation imports the explainers while the 10 MB line is still arriving
+            got = listener.wait_answers(len(failures), "failure", timeout=30.0)
+            assert {a["task_id"]: a["causes"] for a in got} == failures, (node.log.stats(), node.errors)
             listener.ask(QUESTION)
             answer = listener.wait_answers(1, "question", timeout=15.0)
             assert answer and answer[0]["causes"] == asked
