@@ -29,6 +29,26 @@ NO_TASK_SOURCES = ("no Nav2 navigation goal, no MoveIt or arm controller goal, a
                    "or controllers in its logs")
 
 
+ERROR_LEVEL = 40  # rcl_interfaces/msg/Log ERROR; FATAL is 50
+
+
+def last_error(logs: Sequence[LogLine], limit: int = 160) -> str:
+    """'; the last error it logged came from move_group at 10:33:12.345 UTC: "..."' for the no-task error, or ""
+    when no line is an ERROR or FATAL: with no task to explain, the one error the recording holds is still what
+    a developer replaying it needs to see (a quote, never a cause)."""
+    errors = [ln for ln in logs if ln.level >= ERROR_LEVEL]
+    if not errors:
+        return ""
+    from hexar.render import clock  # the output layer imports events; only this path needs it
+
+    line = max(errors, key=lambda ln: ln.t)
+    text = " ".join(line.msg.split())
+    if len(text) > limit:
+        text = text[:limit - 1].rstrip() + "…"
+    who = line.name.strip("/") or "a node that gave no name"
+    return f'; the last error it logged came from {who} at {clock(line.t)} UTC: "{text}"'
+
+
 @dataclass(frozen=True, slots=True)
 class TopicInfo:
     topic: str
@@ -107,7 +127,8 @@ class EventLog:
         """
         tasks = self.tasks
         if not tasks:
-            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages, {NO_TASK_SOURCES}")
+            raise NoTaskError(f"no task to explain: {self.path} has no {c.TASK_INFO} messages, {NO_TASK_SOURCES}"
+                              f"{last_error(self.logs)}")
         if ref is None or ref in {"latest", "last"}:
             user = [t for t in tasks if not t.is_recovery]
             return max(user or tasks, key=lambda t: t.last_update)

@@ -103,3 +103,17 @@ def test_batch_questions_print_one_json_per_line(suite: Path, tmp_path: Path,
     assert all("navigation.joystick" in r["causes"] for r in lines[:2])
     assert lines[0]["thread"] != lines[1]["thread"]  # each line is a fresh conversation
     assert set(lines[0]) >= {"answer", "explainers", "route", "backend", "causes", "evidence", "timings_ms"}
+
+
+def test_bag_without_task_but_an_error_quotes_it_on_one_line(tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder
+
+    b = BagBuilder()
+    b.log(sec_ns(1_750_000_000), "moveit_task_constructor_executor", 40,
+          "Failed to connect to the 'execute_task_solution' action server")
+    assert main(["ask", str(b.write(tmp_path / "run")), "Why did the arm not move?", "--llm", "none"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("ERROR: no task to explain") and "\n" not in err
+    assert err.endswith("the last error it logged came from moveit_task_constructor_executor at 15:06:40.000 UTC: "
+                        "\"Failed to connect to the 'execute_task_solution' action server\"")

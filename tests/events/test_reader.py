@@ -134,6 +134,29 @@ def test_bag_without_task_info_has_no_task(tmp_path: Path) -> None:
         log.task()
 
 
+def test_no_task_error_quotes_the_last_error_line(tmp_path: Path) -> None:
+    """A recording with no task but an error in its logs: the refusal quotes the last ERROR/FATAL line (node,
+    time, text on one line), so a developer replaying it sees what went wrong without a made-up cause."""
+    b = BagBuilder()
+    b.log(T0, "moveit_task_constructor_executor", 40, "Failed to connect to the 'execute_task_solution' action server")
+    b.log(T0 + 10**9, "kinematics_base", 40, "This kinematic solver does not support\nIK solution cost functions")
+    b.log(T0 + 2 * 10**9, "rviz2", 20, "Waiting for next goal")
+    with pytest.raises(NoTaskError) as err:
+        read_recording(b.write(tmp_path / "run")).task()
+    message = str(err.value)
+    assert message.startswith("no task to explain:") and "\n" not in message
+    assert message.endswith('came from kinematics_base at 15:06:41.000 UTC: '
+                            '"This kinematic solver does not support IK solution cost functions"')
+
+
+def test_no_task_error_without_an_error_line_quotes_nothing(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "minimal_publisher", 30, "Publishing slowly")
+    with pytest.raises(NoTaskError) as err:
+        read_recording(b.write(tmp_path / "run")).task()
+    assert "last error" not in str(err.value)
+
+
 @pytest.mark.parametrize("name", ["rosbag2_talker_sqlite3", "rosbag2_talker_mcap", "gps_vehicle_run"])
 def test_real_recordings_open_and_have_no_task(real_bags: Path, name: str) -> None:
     log = read_recording(real_bags / name)
