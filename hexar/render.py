@@ -11,7 +11,7 @@ from rich.console import Console
 from rich.padding import Padding
 from rich.table import Table
 
-from hexar.events.log import NO_TASK_SOURCES, EventLog
+from hexar.events.log import NO_TASK_SOURCES, EventLog, last_error
 from hexar.events.tasks import Task
 from hexar.safe_text import clip, json_dumps, safe, visible
 
@@ -99,7 +99,8 @@ def print_inspection(console: Console, log: EventLog) -> None:
         start, end = task.window()
         console.print(f"  window: {clock(start)} to {clock(end)}")
     if not log.tasks:
-        console.print(f"[yellow]No task to explain: this recording has no /task_info, {NO_TASK_SOURCES}.[/yellow]")
+        console.print(f"[yellow]No task to explain: this recording has no /task_info, {NO_TASK_SOURCES}"
+                      f"{safe(last_error(log.logs))}.[/yellow]")
     for warning in log.warnings:
         console.print(f"[yellow]warning:[/yellow] {safe(warning)}")
 

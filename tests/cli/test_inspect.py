@@ -154,4 +154,12 @@ def test_inspect_labels_a_derived_start_as_such_and_a_quiet_recording_says_what_
     assert main(["inspect", str(quiet.path)]) == 0
     out = " ".join(capsys.readouterr().out.split())
     assert "No task to explain" in out and "no MoveIt or arm controller goal" in out
-    assert "no start of the robot's drivers or controllers" in out
+    assert "no start of the robot's drivers or controllers" in out and "last error" not in out
+    # moveit_task_constructor's executor (no goal, no start): the one error is quoted, not explained
+    lone = write_lines(tmp_path / "mtc", [(0.0, "moveit_task_constructor_executor", ERROR,
+                                          "Failed to connect to the 'execute_task_solution' action server")])
+    assert main(["inspect", str(lone.path)]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    assert "No task to explain" in out
+    assert "last error it logged came from moveit_task_constructor_executor" in out
+    assert "\"Failed to connect to the 'execute_task_solution' action server\"" in out
