@@ -18,6 +18,7 @@ from hexar.agent.overview import asks_fix, helped, recovery, steps_summary, whol
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
+from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ModelError
 from hexar.prompts import load
@@ -28,9 +29,6 @@ if TYPE_CHECKING:
     # Only a type: the one-shot path runs these nodes without importing LangGraph (agent/oneshot.py).
     from langgraph.runtime import Runtime
 
-BENIGN = {"planner.plan_ok", "navigation.nominal", "manipulation.nominal", "control.nominal", "ask_human.succeeded",
-          "tts.completed"}
-BENIGN_ANSWERS = BENIGN | {"navigation.nominal_speed", "tts.utterance_matches"}
 # Where a piece of evidence comes from, as the robot says it.
 _SOURCE = {
     "/rosout": "my log", "/task_info": "my task status", "/amcl_pose": "my localisation",
@@ -130,7 +128,7 @@ def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str]) -> str |
         if name in exclude:
             continue
         found = _probe(ctx, name, state["question"], state["task_id"])
-        if found.enough_information and not set(found.causes) <= BENIGN:
+        if found.enough_information and not set(found.causes) <= NOTHING_WRONG:
             return name
     return None
 
@@ -179,7 +177,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
-    elif set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= BENIGN:
+    elif set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
         # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
         # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
         # the drive was fine but the approach to the person was not).
@@ -221,7 +219,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     text = " ".join(texts) if texts else "I don't have enough information to say."
     question = state["question"]
     if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
-        text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN_ANSWERS, text)}".strip()
+        text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN, text)}".strip()
     if whole_task(question) and state.get("route") != "recovery":  # what became of every step, too
         summary = steps_summary(ctx.log.task(state["task_id"]))
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
@@ -280,7 +278,7 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
-        text = helped(exps, BENIGN_ANSWERS)
+        text = helped(exps, BENIGN)
     else:
         depth += 1
         if depth == 1:

@@ -11,7 +11,7 @@
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Sequence, Set
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -56,7 +56,7 @@ def asks_fix(question: str) -> bool:
     return _FIX.search(question.strip().lower()) is not None
 
 
-def helped(exps: Sequence[Explanation], benign: set[str], said: str = "") -> str:
+def helped(exps: Sequence[Explanation], benign: Set[str], said: str = "") -> str:
     """What would have helped, as the explainers found it: their counterfactuals and fixes (less what `said`
     already holds), or why there is none."""
     parts = [p for e in exps for p in (e.counterfactual, e.fix) if p and _new(p, said)]

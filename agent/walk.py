@@ -10,6 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from hexar.agent.content import task_name
+from hexar.causes import BENIGN
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Context, Explanation
@@ -17,9 +18,6 @@ from hexar.explainers.planner import task_findings
 from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, step_words, trips_inside, utterances
 from hexar.explainers.registry import Registry
 from hexar.explainers.tts import compare
-
-BENIGN = {"planner.plan_ok", "navigation.nominal", "navigation.nominal_speed", "ask_human.succeeded",
-          "tts.completed", "tts.utterance_matches"}
 
 
 @dataclass

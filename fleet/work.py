@@ -14,6 +14,7 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
+from hexar.causes import BENIGN
 from hexar.events import EventLog, EventsError, Task, read_recording
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ExplainerError
@@ -22,8 +23,6 @@ from hexar.explainers.registry import Registry
 from hexar.fleet.inputs import robot_of
 
 QUESTION = "What happened?"
-# What an explainer reports when nothing went wrong: not worth a look in a fleet report.
-BENIGN = {"planner.plan_ok", "navigation.nominal", "ask_human.succeeded", "tts.completed"}
 # Explainers whose answer needs scikit-learn and LIME (a second and more to import).
 NEEDS_SCIKIT_LEARN = frozenset({PizzaRecommenderExplainer.name})
 

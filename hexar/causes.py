@@ -1,4 +1,5 @@
-"""The cause vocabulary shared by the faithfulness guard and the eval graders."""
+"""The cause vocabulary shared by the faithfulness guard and the eval graders, and the causes that say nothing went
+wrong, which the router, the guard, the step-by-step walk and fleet triage all read."""
 
 from __future__ import annotations
 
@@ -8,6 +9,15 @@ from functools import cache
 from importlib import resources
 
 import yaml
+
+# What an explainer reports when nothing went wrong in its module: never a failure's cause, never a finding worth
+# a look in a fleet report, never a problem the person has "already heard".
+NOTHING_WRONG = frozenset({"planner.plan_ok", "navigation.nominal", "manipulation.nominal", "control.nominal",
+                           "ask_human.succeeded", "tts.completed"})
+# The figures of a run that went fine (its speed over the distance, the words said as asked): benign wherever a
+# nominal cause is, but the router still lets an explainer that found them answer a question about them.
+FIGURES_OF_SUCCESS = frozenset({"navigation.nominal_speed", "tts.utterance_matches"})
+BENIGN = NOTHING_WRONG | FIGURES_OF_SUCCESS
 
 
 @dataclass(frozen=True)

@@ -68,3 +68,7 @@ def test_triage_counts_the_arm_causes(arm_runs: Path, tmp_path: Path) -> None:
             "manipulation.planning_failed"} <= causes
     row = user[user["cause"] == "manipulation.controllers_not_found"].iloc[0]
     assert row["failed_skill"] == "pick" and row["explainer"] == "manipulation"
+    # the fetch that went fine is a success with nothing worth a look, as a drive that went fine is
+    fine = user[user["recording"].str.endswith(arm_recording_name("nominal", 1))]
+    assert len(fine) == 1 and fine.iloc[0]["outcome"] == "succeeded" and fine.iloc[0]["kind"] == ""
+    assert "0 succeeded with a finding worth a look" in (out / "report.md").read_text()
