@@ -266,6 +266,8 @@ class RclpyReplayer:
 
     def prepare(self) -> None:
         for topic, qos in self._qos.items():
+            if topic in self._pubs:
+                continue  # prepared before: a second publisher would have to be matched again
             ros_type = c.TYPE_OF[c.topic_key(topic)]
             self._pubs[topic] = self.ros.node.create_publisher(_msg_class(ros_type), topic, _profile(qos))
 

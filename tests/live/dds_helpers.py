@@ -127,6 +127,19 @@ def wait_matched(writer: Any, topics: set[str], timeout_s: float = 30.0, settle_
     time.sleep(settle_s)
 
 
+def replay_matched(run: Path, robot: Any, rate: float) -> None:
+    """Replay `run` in this process once every topic it carries that the node reads has a matched reader: a
+    goal's first status (keep-last 1) or the goal pose sent before discovery finished is lost for good."""
+    from hexar.live.replay import QOS_OF, bag_messages
+    from hexar.live.replay import replay as replay_in_process
+    from hexar.live.topics import SUBSCRIBED
+
+    read = {t.topic for t in SUBSCRIBED} & set(QOS_OF)
+    robot.prepare()
+    wait_matched(robot, {topic for topic, *_ in bag_messages(run)[0]} & read)
+    replay_in_process(run, robot, rate=rate, warmup_s=5.0)
+
+
 @contextmanager
 def live_node(domain: int, limits: Limits | None = None, transport: str = "dds", **options: Any) -> Iterator[LiveNode]:
     node = LiveNode(make_transport(transport, domain, tts_topic=options.pop("tts_topic", None)), LiveLog(limits),

@@ -22,9 +22,16 @@ from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, INFO
 from hexar.live.log import LiveLog
 from hexar.live.node import FAILURE_QUESTION
-from hexar.live.replay import replay as replay_in_process
 from hexar.live.topics import ARM_STATUS, SUBSCRIBED
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, make_replayer, make_transport, other
+from tests.live.dds_helpers import (
+    Listener,
+    fresh_domain,
+    live_node,
+    make_replayer,
+    make_transport,
+    other,
+    replay_matched,
+)
 
 T0 = 1_700_000_000_000_000_000
 TY = TYPESTORE.types
@@ -80,8 +87,8 @@ def explained_live(run: Path, transport: str) -> dict[str, Any]:
         with live_node(domain, transport=transport) as node:
             # the node reads six more status topics than a Nav2 robot's: a longer warm-up lets discovery match them
             # all before the goal's first status (keep-last 1), so the node sees the goal active, then aborted
-            replay_in_process(run, robot, rate=4.0, warmup_s=2.0)
-            answers = listener.wait_answers(1, "failure", timeout=10.0)
+            replay_matched(run, robot, rate=4.0)
+            answers = listener.wait_answers(1, "failure", timeout=30.0)
             assert node.errors == 0
             return answers[0] if answers else {}
     finally:
@@ -118,8 +125,8 @@ def test_the_arms_status_topics_are_subscribed_and_replayed(tmp_path: Path, tran
     node_side.start(log, lambda r: None, lambda q: None)
     robot = make_replayer(other(transport), domain)
     try:
-        replay_in_process(run, robot, rate=10.0, warmup_s=0.5)
-        deadline = time.monotonic() + 5.0
+        replay_matched(run, robot, rate=10.0)
+        deadline = time.monotonic() + 30.0
         while time.monotonic() < deadline and {s.status for s in log.snapshot().goal_statuses} != {4, 6}:
             time.sleep(0.05)
     finally:

@@ -26,7 +26,7 @@ from hexar.live.log import Limits, LiveLog
 from hexar.live.node import FAILURE_QUESTION
 from hexar.live.replay import DdsReplayer
 from hexar.live.replay import replay as replay_in_process
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay, replay_matched
 
 T0 = 1_700_000_000_000_000_000
 TY = TYPESTORE.types
@@ -100,8 +100,8 @@ def explained_live(run: Path) -> tuple[dict[str, Any], Any]:
     robot = DdsReplayer(domain)
     try:
         with live_node(domain) as node:
-            replay_in_process(run, robot, rate=10.0, warmup_s=0.5)
-            answers = listener.wait_answers(1, "failure", timeout=5.0)
+            replay_matched(run, robot, rate=10.0)
+            answers = listener.wait_answers(1, "failure", timeout=30.0)
             assert node.errors == 0
             return answers[0] if answers else {}, node.log.snapshot()
     finally:
@@ -216,13 +216,15 @@ def test_a_goal_that_failed_before_the_node_joined_is_answered_when_asked_not_an
         replay_in_process(run, robot, rate=20.0, warmup_s=0.0)
         assert PUBLISHED_BY_ROBOT[c.NAV_STATUS].durability == "transient_local"
         with live_node(domain) as node:
-            deadline = time.monotonic() + 5.0
-            while time.monotonic() < deadline and not node.log.snapshot().goal_statuses:
+            recorded = read_recording(run).logs
+            deadline = time.monotonic() + 30.0
+            while time.monotonic() < deadline and not (node.log.snapshot().goal_statuses
+                                                       and len(node.log.snapshot().logs) >= len(recorded)):
                 time.sleep(0.05)
-            time.sleep(0.5)
+            time.sleep(0.5)  # anything more would arrive now, and fail the equalities below
             snap = node.log.snapshot()
             assert [s.status for s in snap.goal_statuses] == [6]  # the late joiner got the last array only
-            assert snap.logs == read_recording(run).logs  # and /rosout's history, as rcl's rosout offers it
+            assert snap.logs == recorded  # and /rosout's history, as rcl's rosout offers it
             assert listener.answers("failure") == []
             listener.ask("Why did the task fail?")
             (answer,) = listener.wait_answers(1, "question", timeout=10.0)
