@@ -14,7 +14,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, task_ref_of
-from hexar.agent.overview import asks_fix, helped, recovery, steps_summary, whole_task
+from hexar.agent.overview import asks_fix, helped, presumes_not_done, recovery, steps_summary, whole_task
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
@@ -122,13 +122,14 @@ def _probe(ctx: RunContext, name: str, question: str, task_id: str) -> Explanati
     return ctx.probe.get(name).explain(question, Context.for_task(ctx.log, task, ctx.probe))
 
 
-def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str]) -> str | None:
+def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str],
+                 benign: frozenset[str] = NOTHING_WRONG) -> str | None:
     """For a question that names no module: the first explainer (in plan order) with a notable finding."""
     for name in state["candidates"]:
         if name in exclude:
             continue
         found = _probe(ctx, name, state["question"], state["task_id"])
-        if found.enough_information and not set(found.causes) <= NOTHING_WRONG:
+        if found.enough_information and not set(found.causes) <= benign:
             return name
     return None
 
@@ -181,7 +182,9 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
         # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
         # the drive was fine but the approach to the person was not).
-        other = _by_findings(ctx, state, {choice})
+        # Another module's figures of a run that went fine (its speed) are nothing unusual either: "was the arm
+        # slow?" about a clean pick is the arm's to answer, not the drive's.
+        other = _by_findings(ctx, state, {choice}, BENIGN)
         if other is not None:
             choice, route = other, "findings"
     return {"selected": [choice], "route": route, "timings_ms": _timings(state, "router", start)}
@@ -220,11 +223,15 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     question = state["question"]
     if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
         text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN, text)}".strip()
-    if whole_task(question) and state.get("route") != "recovery":  # what became of every step, too
-        summary = steps_summary(ctx.log.task(state["task_id"]))
+    task = ctx.log.task(state["task_id"])
+    failed = state.get("route") == "failure_check"
+    # what became of every step, too; and of a task done where nothing failed, when the question takes it for
+    # not done ("why didn't you bring it?": I did)
+    done = task.outcome == "succeeded" and not failed and presumes_not_done(question)
+    if (whole_task(question) or done) and state.get("route") != "recovery":
+        summary = steps_summary(task)
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
-        failed = state.get("route") == "failure_check"
         text = (f"{text} {summary}" if failed else f"{summary} {text}") if summary else text
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]

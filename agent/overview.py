@@ -48,6 +48,19 @@ def asks_why(question: str) -> bool:
     return _WHY.search(q) is not None or whole_task(q)
 
 
+# A question that takes the task for not done ("why didn't you bring it?"): of a task that was done, the answer
+# first says it was.
+_NOT_DONE = re.compile(
+    r"\bwhy (didn't|did not|couldn't|could not|haven't|have not|hasn't|has not|wasn't|was not) "
+    r"(you|it|that|the task)\b|"
+    r"\bwhy did (you|it|that|the task) (fail|not work)\b|\bhow come (you|it) (didn't|did not|couldn't|could not)\b"
+)
+
+
+def presumes_not_done(question: str) -> bool:
+    return _NOT_DONE.search(question.strip().lower()) is not None
+
+
 def whole_task(question: str) -> bool:
     return _WHOLE.search(question.strip().lower()) is not None
 

@@ -46,6 +46,29 @@ def test_a_failed_pick_after_a_bad_trip_asks_navigation(arm_runs: Path, capsys: 
     assert "not sure where I was on my map" in str(r["answer"])
 
 
+@pytest.mark.parametrize(("question", "explainer", "says"), [
+    ("Why did the arm stop?", "manipulation", "I moved my arm as asked without any problem"),
+    ("Was the arm slow?", "manipulation", "I moved my arm as asked without any problem"),
+    ("What did the controllers do?", "control", "My controllers followed the joint trajectory without any problem"),
+    ("Why were you so slow?", "navigation", "m/s"),
+])
+def test_without_a_model_the_arms_words_route_to_the_arm(arm_runs: Path, question: str, explainer: str, says: str,
+                                                         capsys: pytest.CaptureFixture[str]) -> None:
+    # nothing failed: the no-LLM router reads the question (before, the arm's words went to navigation or the plan)
+    r = _ask(arm_runs / arm_recording_name("nominal", 1), question, capsys)
+    assert r["route"] == "classifier" and r["explainers"] == [explainer]
+    assert says in str(r["answer"])
+
+
+def test_a_fetch_that_was_done_says_so_when_asked_why_it_was_not(arm_runs: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    r = _ask(arm_runs / arm_recording_name("nominal", 1), "Why didn't you bring me the cup?", capsys)
+    assert str(r["answer"]).startswith("I did all 5 steps of my plan: go to the kitchen, pick, go to the dining room, ")
+    # a failed fetch opens with its cause, as before
+    r = _ask(arm_runs / arm_recording_name("tolerance", 1), "Why didn't you bring me the cup?", capsys)
+    assert "I did all" not in str(r["answer"]) and "tolerance" in str(r["answer"])
+
+
 def test_piped_chat_answers_and_goes_deeper(arm_runs: Path, tmp_path: Path) -> None:
     env = {**os.environ, "HEXAR_LLM": "none"}
     done = subprocess.run([HEXAR, "chat", str(arm_runs / arm_recording_name("tolerance", 1)), "--llm", "none",
