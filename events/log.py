@@ -12,6 +12,7 @@ from typing import TypeVar
 from hexar.events import contract as c
 from hexar.events.errors import NoTaskError
 from hexar.events.records import (
+    ERROR,
     BoolSample,
     GoalPose,
     GoalStatus,
@@ -29,14 +30,11 @@ NO_TASK_SOURCES = ("no Nav2 navigation goal, no MoveIt or arm controller goal, a
                    "or controllers in its logs")
 
 
-ERROR_LEVEL = 40  # rcl_interfaces/msg/Log ERROR; FATAL is 50
-
-
 def last_error(logs: Sequence[LogLine], limit: int = 160) -> str:
     """'; the last error it logged came from move_group at 10:33:12.345 UTC: "..."' for the no-task error, or ""
     when no line is an ERROR or FATAL: with no task to explain, the one error the recording holds is still what
     a developer replaying it needs to see (a quote, never a cause)."""
-    errors = [ln for ln in logs if ln.level >= ERROR_LEVEL]
+    errors = [ln for ln in logs if ln.level >= ERROR]
     if not errors:
         return ""
     from hexar.render import clock  # the output layer imports events; only this path needs it
@@ -45,8 +43,7 @@ def last_error(logs: Sequence[LogLine], limit: int = 160) -> str:
     text = " ".join(line.msg.split())
     if len(text) > limit:
         text = text[:limit - 1].rstrip() + "…"
-    who = line.name.strip("/") or "a node that gave no name"
-    return f'; the last error it logged came from {who} at {clock(line.t)} UTC: "{text}"'
+    return f'; the last error it logged came from {line.speaker} at {clock(line.t)} UTC: "{text}"'
 
 
 @dataclass(frozen=True, slots=True)

@@ -33,6 +33,11 @@ class LogLine:
     def render(self) -> str:
         return f"[{self.name}] {self.level_name} {self.msg}"
 
+    @property
+    def speaker(self) -> str:
+        """The node that logged the line, as an answer names it."""
+        return self.name.strip("/") or "a node that gave no name"
+
 
 @dataclass(frozen=True, slots=True)
 class SkillStep:

@@ -9,7 +9,7 @@ recording plays ten times faster; the robot's clock as the node sees it runs ten
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -167,13 +167,15 @@ class DdsReplayer:
         self.endpoint.close()
 
 
-def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3) -> bool:
-    """Wait (at most `timeout_s`) until /rosout and /task_info each have a matched reader, then `settle_s` more
-    for the other topics: discovery across DDS vendors takes a second or more, and what a volatile topic
-    carries before its reader matched is lost. False when no reader came (a replay to nobody still plays)."""
+def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3,
+                     topics: Iterable[str] = (c.ROSOUT, c.TASK_INFO)) -> bool:
+    """Wait (at most `timeout_s`) until each of `topics` (/rosout and /task_info) has a matched reader, then
+    `settle_s` more for the other topics: discovery across DDS vendors takes a second or more, and what a volatile
+    topic carries before its reader matched is lost. False when no reader came (a replay to nobody still plays)."""
+    topics = tuple(topics)
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
-        if all(writer.matched(topic) for topic in (c.ROSOUT, c.TASK_INFO)):
+        if all(writer.matched(topic) for topic in topics):
             time.sleep(settle_s)
             return True
         time.sleep(0.02)

@@ -233,7 +233,7 @@ def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
     """'the last error before I gave up came from amcl: '...' (at 10:33:12.345 UTC)' (or '... my logs show ...'
     when the recording does not show the goal ending)."""
     line = lines[-1]
-    who = line.name.strip("/") or "a node that gave no name"
+    who = line.speaker
     when = "before I gave up" if gave_up else "my logs show"
     if not quotable(line.msg):
         return f"the last error {when} came from {who} (at {clock(line.t)} UTC; the line itself is in my evidence)"
@@ -254,7 +254,7 @@ def only_warned(found: Finding, run: Run) -> Finding | None:
         return None
     last = max(lines, key=lambda ln: ln.t)
     honest = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(set(lines), key=lambda x: x.t)])
-    who = last.name.strip("/") or "a node that gave no name"
+    who = last.speaker
     said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
     honest.notes.append(f"{WARNED} came from {who}{said} (at {clock(last.t)} UTC)")
     return honest

@@ -120,11 +120,10 @@ def wait_matched(writer: Any, topics: set[str], timeout_s: float = 30.0, settle_
     """Block until each of `topics` has a matched reader, then `settle_s` more: the writer's side matches first,
     and a Fast DDS reader drops samples from a writer it has not yet matched itself. A fixed sleep lost the
     first messages of a volatile topic on a loaded CI machine."""
-    deadline = time.monotonic() + timeout_s
-    while not all(writer.matched(topic) for topic in topics):
-        assert time.monotonic() < deadline, f"no reader matched within {timeout_s} s: {sorted(topics)}"
-        time.sleep(0.02)
-    time.sleep(settle_s)
+    from hexar.live.replay import wait_for_readers
+
+    matched = wait_for_readers(writer, timeout_s, settle_s, topics)
+    assert matched, f"no reader matched within {timeout_s} s: {sorted(topics)}"
 
 
 def replay_matched(run: Path, robot: Any, rate: float) -> None:
@@ -137,7 +136,7 @@ def replay_matched(run: Path, robot: Any, rate: float) -> None:
     read = {t.topic for t in SUBSCRIBED} & set(QOS_OF)
     robot.prepare()
     wait_matched(robot, {topic for topic, *_ in bag_messages(run)[0]} & read)
-    replay_in_process(run, robot, rate=rate, warmup_s=5.0)
+    replay_in_process(run, robot, rate=rate, warmup_s=0.0)  # matched and settled above
 
 
 @contextmanager
