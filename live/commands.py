@@ -187,7 +187,9 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
     finally:
         writer.close()
     skipped = f"; not replayed: {', '.join(stats.skipped_topics)}" if stats.skipped_topics else ""
-    print(f"replayed {stats.published} messages of {run.name} in {stats.seconds:.1f} s{skipped}")
+    unheard = (f"; no reader had matched {', '.join(stats.unmatched_topics)} when it began"
+               if stats.unmatched_topics else "")
+    print(f"replayed {stats.published} messages of {run.name} in {stats.seconds:.1f} s{skipped}{unheard}")
     return 0
 
 

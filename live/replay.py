@@ -12,7 +12,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 from hexar.events import contract as c
 from hexar.events.errors import CorruptRecordingError
@@ -22,16 +22,25 @@ from hexar.live.topics import PUBLISHED_BY_ROBOT, SUBSCRIBED, TopicQos
 QOS_OF: dict[str, TopicQos] = {t.topic: PUBLISHED_BY_ROBOT.get(t.topic, TopicQos(depth=100)) for t in SUBSCRIBED}
 
 
+class BagMessages(NamedTuple):
+    """A recording's contract messages as `replay` sends them."""
+
+    messages: Iterator[tuple[str, str, int, Any]]  # (topic, type, bag time, rosbags message) in bag order
+    skipped: list[str]  # the recording's topics that are not sent
+    start: int  # the recording's start time
+    topics: frozenset[str]  # the topics that are sent
+
+
 @dataclass
 class ReplayStats:
     published: int = 0
     skipped_topics: tuple[str, ...] = ()
+    unmatched_topics: tuple[str, ...] = ()  # sent while no reader had matched them (within the warm-up)
     seconds: float = 0.0
 
 
-def bag_messages(path: Path, start_s: float = 0.0) -> tuple[Iterator[tuple[str, str, int, Any]], list[str], int]:
-    """(topic, type, bag time, rosbags message) of the contract topics in bag order, the skipped topics, and
-    the recording's start time."""
+def bag_messages(path: Path, start_s: float = 0.0) -> BagMessages:
+    """The contract topics' messages of `path` from `start_s` on, and which topics are sent and skipped."""
     from rosbags.highlevel import AnyReader
 
     from hexar.events.reader import _humble, resolve_path
@@ -55,7 +64,7 @@ def bag_messages(path: Path, start_s: float = 0.0) -> tuple[Iterator[tuple[str, 
         finally:
             reader.close()
 
-    return gen(), skipped, reader.start_time
+    return BagMessages(gen(), skipped, reader.start_time, frozenset(conn.topic for conn in wanted))
 
 
 def to_dds(msgtype: str, m: Any) -> Any:
@@ -167,11 +176,11 @@ class DdsReplayer:
         self.endpoint.close()
 
 
-def wait_for_readers(writer: Any, timeout_s: float, settle_s: float = 0.3,
-                     topics: Iterable[str] = (c.ROSOUT, c.TASK_INFO)) -> bool:
-    """Wait (at most `timeout_s`) until each of `topics` (/rosout and /task_info) has a matched reader, then
-    `settle_s` more for the other topics: discovery across DDS vendors takes a second or more, and what a volatile
-    topic carries before its reader matched is lost. False when no reader came (a replay to nobody still plays)."""
+def wait_for_readers(writer: Any, topics: Iterable[str], timeout_s: float, settle_s: float = 0.5) -> bool:
+    """Wait (at most `timeout_s`) until each of `topics` has a matched reader, then `settle_s` more: discovery
+    across DDS vendors takes a second or more, and what a volatile topic carries before its reader matched is
+    lost; the writer's side matches first, and a Fast DDS reader drops samples from a writer it has not matched
+    itself yet. False when some reader did not come (a replay to nobody still plays)."""
     topics = tuple(topics)
     deadline = time.monotonic() + timeout_s
     while time.monotonic() < deadline:
@@ -189,14 +198,18 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
 
     `on_message(topic, bag_time, wall_time)` sees each message right after it was written. With `clock_hz`,
     the recording's time also goes out on /clock, at most `clock_hz` times per second of recording time and
-    before each message (as `ros2 bag play --clock` publishes it).
+    before each message (as `ros2 bag play --clock` publishes it). Playing starts once every topic the recording
+    sends has a matched reader, or after `warmup_s`: a HEXAR node reads them all, and a Nav2 goal's first status
+    or its velocity commands sent before the node's reader matched would be lost for good.
     """
     if not rate > 0:
         raise BadOptionError(f"--rate must be above 0, not {rate}")
-    messages, skipped, _ = bag_messages(path, start_s)
+    messages, skipped, _, topics = bag_messages(path, start_s)
     writer.prepare()
-    wait_for_readers(writer, warmup_s)
-    stats = ReplayStats(skipped_topics=tuple(skipped))
+    unmatched: tuple[str, ...] = ()
+    if not wait_for_readers(writer, sorted(topics), warmup_s):
+        unmatched = tuple(sorted(t for t in topics if not writer.matched(t)))
+    stats = ReplayStats(skipped_topics=tuple(skipped), unmatched_topics=unmatched)
     started = time.monotonic()
     first: int | None = None
     clock_every = int(1e9 / clock_hz) if clock_hz > 0 else 0

@@ -65,7 +65,7 @@ def traffic(runs: list[Path], sim_s: float, chatter: float) -> Iterator[tuple[in
     n = 0
     while True:
         for run in runs:
-            items, _, start = bag_messages(run)
+            items, _, start, _ = bag_messages(run)
             offset = cursor - start
             suffix = f"-p{n // len(runs)}"
             n += 1

@@ -122,21 +122,17 @@ def wait_matched(writer: Any, topics: set[str], timeout_s: float = 30.0, settle_
     first messages of a volatile topic on a loaded CI machine."""
     from hexar.live.replay import wait_for_readers
 
-    matched = wait_for_readers(writer, timeout_s, settle_s, topics)
+    matched = wait_for_readers(writer, topics, timeout_s, settle_s)
     assert matched, f"no reader matched within {timeout_s} s: {sorted(topics)}"
 
 
 def replay_matched(run: Path, robot: Any, rate: float) -> None:
-    """Replay `run` in this process once every topic it carries that the node reads has a matched reader: a
-    goal's first status (keep-last 1) or the goal pose sent before discovery finished is lost for good."""
-    from hexar.live.replay import QOS_OF, bag_messages
+    """Replay `run` in this process once every topic it carries has a matched reader (the node reads them all):
+    a goal's first status (keep-last 1) or the goal pose sent before discovery finished is lost for good."""
     from hexar.live.replay import replay as replay_in_process
-    from hexar.live.topics import SUBSCRIBED
 
-    read = {t.topic for t in SUBSCRIBED} & set(QOS_OF)
-    robot.prepare()
-    wait_matched(robot, {topic for topic, *_ in bag_messages(run)[0]} & read)
-    replay_in_process(run, robot, rate=rate, warmup_s=0.0)  # matched and settled above
+    stats = replay_in_process(run, robot, rate=rate, warmup_s=30.0)
+    assert not stats.unmatched_topics, f"no reader matched within 30 s: {stats.unmatched_topics}"
 
 
 @contextmanager

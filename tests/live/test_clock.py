@@ -37,7 +37,8 @@ def _restamp(msg: Any, shift: int) -> Any:
 
 def robot(run: Path, clock: str) -> tuple[Timeline, LiveLog, int]:
     """Feed the recording through a Timeline as `clock`'s robot would send it; the shift of its stamps."""
-    messages, _, start = bag_messages(run)
+    played = bag_messages(run)
+    messages, start = played.messages, played.start
     timeline, log = Timeline(), LiveLog()
     rate = 1.0 if clock == "live" else 10.0
     shift = 100 * NS - start if clock == "sim" else 0  # simulated time: the run starts 100 s into the simulation

@@ -58,7 +58,7 @@ def test_duplicated_reordered_and_a_10_mb_line(suite: Path, transport: str) -> N
     try:
         with live_node(domain, transport=transport) as node:
             writer.prepare()
-            messages = list(bag_messages(suite / RUN)[0])
+            messages = list(bag_messages(suite / RUN).messages)
             wait_matched(writer, {topic for topic, *_ in messages} | {c.ROSOUT})
             # swap every pair of neighbouring messages and send each one twice
             for i in range(0, len(messages) - 1, 2):

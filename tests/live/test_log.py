@@ -16,7 +16,7 @@ from hexar.live.replay import bag_messages
 
 def records_of(run: Path) -> list[object]:
     """What a transport hands the log: each bag message as records, dated like the DDS transport does."""
-    messages, _, _ = bag_messages(run)
+    messages = bag_messages(run).messages
     return [r for topic, _, t, m in messages for r in to_records(topic, m, t)]
 
 
