@@ -14,7 +14,15 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, task_ref_of
-from hexar.agent.overview import asks_fix, helped, presumes_not_done, recovery, steps_summary, whole_task
+from hexar.agent.overview import (
+    asks_fix,
+    helped,
+    presumes_goal_not_done,
+    presumes_not_done,
+    recovery,
+    steps_summary,
+    whole_task,
+)
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
@@ -230,9 +238,11 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     done = task.outcome == "succeeded" and not failed and presumes_not_done(question)
     if (whole_task(question) or done) and state.get("route") != "recovery":
         summary = steps_summary(task)
+        if done and presumes_goal_not_done(question) and all(set(e["causes"]) <= BENIGN for e in kept):
+            text = ""  # "why didn't you bring it?", all done and nothing wrong: a clean drive's speed is no answer
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
-        text = (f"{text} {summary}" if failed else f"{summary} {text}") if summary else text
+        text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,

@@ -25,7 +25,9 @@ _WHOLE = re.compile(
     r"\bhow did (it|that|the task|everything|things|your task|the job) go\b|"
     r"\b(everything|all) (ok|okay|fine|alright|all right|good|went well)\b|"
     r"\bany (problems?|issues?|trouble)\b|"
-    r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$"
+    r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$|"
+    r"^(so |and |ok |okay )?(did|have) you (finish(ed)?|complete(d)?|(do|done) (it|everything)|manage(d)?)"
+    r"( (it|the task|your task|the job|everything))?\W*$"
 )
 # A fix asked for: the same words as a "what would have helped?" follow-up (agent/followups.py).
 _FIX = re.compile(
@@ -57,8 +59,25 @@ _NOT_DONE = re.compile(
 )
 
 
+# Of those, the ones about the task's own goal ("why didn't you bring me the apple?", not "why didn't you take the
+# shorter way?"): of a task done with nothing wrong anywhere, every step done is the whole answer.
+_GOAL_NOT_DONE = re.compile(
+    r"\bwhy (didn't|did not|couldn't|could not|haven't|have not|hasn't|has not) (you|it) (bring|fetch|get|give|"
+    r"deliver|hand|pass)\b|"
+    # "why didn't you finish?", not "why didn't you finish telling me the recipe?" (the speech's own answer)
+    r"\bwhy (didn't|did not|couldn't|could not|haven't|have not|hasn't|has not) (you|it) (do|finish|complete|"
+    r"manage)( (it|that|the task|your task|the job|everything|what i asked))?\W*$|"
+    r"\bwhy did (you|it|that|the task) (fail|not work)\b|\bwhy (didn't|did not) (it|that|the task) work\b|"
+    r"\bhow come (you|it) (didn't|did not|couldn't|could not) (bring|fetch|get|give|deliver|do|finish|work)\b"
+)
+
+
 def presumes_not_done(question: str) -> bool:
     return _NOT_DONE.search(question.strip().lower()) is not None
+
+
+def presumes_goal_not_done(question: str) -> bool:
+    return _GOAL_NOT_DONE.search(question.strip().lower()) is not None
 
 
 def whole_task(question: str) -> bool:

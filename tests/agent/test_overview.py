@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from hexar.agent.context import RunSettings
+from hexar.agent.overview import presumes_goal_not_done, presumes_not_done
 from hexar.agent.session import Session
 from hexar.cli import main
 from hexar.evals.real_nav2 import corpus, write_recording
@@ -88,3 +89,18 @@ def test_the_evidence_of_a_why_is_told_in_time_order(suite: Path) -> None:
     times = re.findall(r"at (\d\d:\d\d:\d\d\.\d{3})", str(why["answer"]))
     assert len(times) == 3 and times == sorted(times)
     assert "navigation_failure = True" in str(why["answer"])  # the explainer's own strongest items are kept
+
+
+@pytest.mark.parametrize(("question", "about_the_goal"), [
+    ("Why didn't you bring me the apple?", True),
+    ("why didn't you finish?", True),
+    ("Why did you fail?", True),
+    ("why didn't it work", True),
+    ("Why didn't you finish telling me the recipe?", False),  # the speech's own answer says how far it got
+    ("Why didn't you take the shorter way?", False),  # the drive's figures answer it
+    ("Why didn't you ask me for help?", False),
+])
+def test_which_questions_take_the_tasks_goal_for_not_reached(question: str, about_the_goal: bool) -> None:
+    # of a task done with nothing wrong, only these are answered with every step done alone
+    assert presumes_goal_not_done(question) is about_the_goal
+    assert presumes_not_done(question)

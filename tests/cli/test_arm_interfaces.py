@@ -62,8 +62,18 @@ def test_without_a_model_the_arms_words_route_to_the_arm(arm_runs: Path, questio
 
 def test_a_fetch_that_was_done_says_so_when_asked_why_it_was_not(arm_runs: Path,
                                                                  capsys: pytest.CaptureFixture[str]) -> None:
-    r = _ask(arm_runs / arm_recording_name("nominal", 1), "Why didn't you bring me the cup?", capsys)
+    done = arm_runs / arm_recording_name("nominal", 1)
+    r = _ask(done, "Why didn't you bring me the cup?", capsys)
     assert str(r["answer"]).startswith("I did all 5 steps of my plan: go to the kitchen, pick, go to the dining room, ")
+    # about the task's goal, all done and nothing wrong: that is the whole answer (a clean drive's speed was added)
+    r = _ask(done, "Why didn't you bring me the apple?", capsys)
+    assert r["answer"] == ('I did all 5 steps of my plan: go to the kitchen, pick, go to the dining room, place and '
+                           'then say "Here is your cup."')
+    r = _ask(done, "Did you finish?", capsys)  # the task, not the sentence said at its end
+    assert str(r["answer"]).startswith("I did all 5 steps of my plan")
+    # about something else than the goal, the finding that answers it stays
+    r = _ask(done, "Why didn't you take the shorter way?", capsys)
+    assert str(r["answer"]).startswith("I did all 5 steps of my plan") and "m/s" in str(r["answer"])
     # a failed fetch opens with its cause, as before
     r = _ask(arm_runs / arm_recording_name("tolerance", 1), "Why didn't you bring me the cup?", capsys)
     assert "I did all" not in str(r["answer"]) and "tolerance" in str(r["answer"])
