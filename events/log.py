@@ -22,6 +22,7 @@ from hexar.events.records import (
     StatusRecord,
     TaskUpdate,
     TwistSample,
+    clock,
 )
 from hexar.events.tasks import Task, build_tasks
 
@@ -37,8 +38,6 @@ def last_error(logs: Sequence[LogLine], limit: int = 160) -> str:
     errors = [ln for ln in logs if ln.level >= ERROR]
     if not errors:
         return ""
-    from hexar.render import clock  # the output layer imports events; only this path needs it
-
     line = max(errors, key=lambda ln: ln.t)
     text = " ".join(line.msg.split())
     if len(text) > limit:

@@ -7,6 +7,7 @@ header stamp) or from the bag's receive time for message types without a stamp.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from datetime import UTC, datetime
 
 DEBUG, INFO, WARN, ERROR, FATAL = 10, 20, 30, 40, 50
 LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL: "FATAL"}
@@ -15,6 +16,15 @@ LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL
 def stamp_ns(sec: int, nanosec: int) -> int:
     """Join a ROS time into integer nanoseconds (never a float from a "sec.nanosec" string)."""
     return int(sec) * 1_000_000_000 + int(nanosec)
+
+
+def clock(t: int) -> str:
+    """Wall-clock time (UTC) of a nanosecond stamp, to the millisecond (a stamp no calendar holds: the raw number)."""
+    try:
+        wall = datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S")
+    except (OverflowError, OSError, ValueError):
+        return f"{t} ns"
+    return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
 @dataclass(frozen=True, slots=True)

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import re
-from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -12,6 +11,7 @@ from rich.padding import Padding
 from rich.table import Table
 
 from hexar.events.log import NO_TASK_SOURCES, EventLog, last_error
+from hexar.events.records import clock
 from hexar.events.tasks import Task
 from hexar.safe_text import clip, json_dumps, safe, visible
 
@@ -21,15 +21,6 @@ __all__ = ["clock", "json_dumps", "log_dict", "print_inspection", "safe", "task_
 def natural_key(path: Path) -> list[int | str]:
     """bagfile_2_1 before bagfile_10_1: digit runs compare as numbers."""
     return [int(part) if part.isdigit() else part.lower() for part in re.split(r"(\d+)", path.name)]
-
-
-def clock(t: int) -> str:
-    """Wall-clock time of a nanosecond stamp, to the millisecond (a stamp no calendar holds: the raw number)."""
-    try:
-        wall = datetime.fromtimestamp(t // 1_000_000_000, tz=UTC).strftime("%H:%M:%S")
-    except (OverflowError, OSError, ValueError):
-        return f"{t} ns"
-    return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
 def task_dict(task: Task) -> dict[str, Any]:

@@ -18,11 +18,10 @@ the decisive error to quote when no catalogued line explains a failure.
 from __future__ import annotations
 
 import re
-import time
 from collections.abc import Iterable
 from dataclasses import replace
 
-from hexar.events.records import ERROR, WARN, LogLine
+from hexar.events.records import ERROR, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import Entry, catalogue
@@ -222,11 +221,6 @@ def decisive_errors(logs: Iterable[LogLine], until: int | None) -> list[LogLine]
             continue
         out.append(line)
     return out
-
-
-def clock(t: int) -> str:
-    """A log time as a person reads it (UTC wall clock, to the millisecond)."""
-    return time.strftime("%H:%M:%S", time.gmtime(t // 1_000_000_000)) + f".{t % 1_000_000_000 // 1_000_000:03d}"
 
 
 def quote_last_error(lines: list[LogLine], gave_up: bool = True) -> str:
