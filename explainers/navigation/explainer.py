@@ -375,7 +375,7 @@ def _unread(raw: list[LogLine]) -> str:
         return "Nothing from my navigation system was recorded then."
     first = next((ln for ln in raw if ln.level >= WARN), raw[0])
     msg = " ".join(first.msg.split())
-    who = first.name or "a node that gave no name"
+    who = first.speaker
     head = "My navigation logged only lines I do not read as a goal or a cause then"
     if not quotable(msg) or len(msg) > 240:
         return f"{head} (the first from {who})."
