@@ -165,15 +165,16 @@ def _stop_on_signals() -> Iterator[threading.Event]:
 def replay_command(run: Path, rate: float, transport: str, domain: int | None, start_s: float,
                    clock_hz: float = 0.0) -> int:
     from hexar.events.reader import resolve_path
-    from hexar.live.replay import DdsReplayer, replay
+    from hexar.live.replay import DdsReplayer, check_start, replay
 
     resolve_path(run)  # a missing or wrong path fails before DDS starts
     if not rate > 0:
         raise BadOptionError(f"--rate must be above 0, not {rate}")
-    if start_s < 0:
-        raise BadOptionError(f"--start must not be negative, not {start_s}")
-    if clock_hz < 0:
+    if not start_s >= 0:  # also nan
+        raise BadOptionError(f"--start must be 0 or more seconds, not {start_s}")
+    if not clock_hz >= 0:
         raise BadOptionError(f"--clock must be 0 (off) or a rate in Hz, not {clock_hz}")
+    check_start(run, start_s)
     writer: Any
     if pick_transport(transport) == "rclpy":
         from hexar.live.ros import RclpyReplayer

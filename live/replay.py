@@ -39,8 +39,7 @@ class ReplayStats:
     seconds: float = 0.0
 
 
-def bag_messages(path: Path, start_s: float = 0.0) -> BagMessages:
-    """The contract topics' messages of `path` from `start_s` on, and which topics are sent and skipped."""
+def _open(path: Path) -> tuple[Any, Path]:
     from rosbags.highlevel import AnyReader
 
     from hexar.events.reader import _humble, resolve_path
@@ -51,11 +50,32 @@ def bag_messages(path: Path, start_s: float = 0.0) -> BagMessages:
         reader.open()
     except Exception as err:  # rosbags raises many unrelated classes for damaged files
         raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
+    return reader, src
+
+
+def _begin(reader: Any, src: Path, start_s: float) -> int:
+    length_s = (reader.end_time - reader.start_time) / 1e9
+    if start_s > length_s:  # also inf; a start past the end would overflow the storage's integer
+        reader.close()
+        raise BadOptionError(f"--start {start_s:g} s is past the end of {src.name}, which lasts {length_s:.1f} s")
+    return int(reader.start_time + int(start_s * 1e9))
+
+
+def check_start(path: Path, start_s: float) -> None:
+    """Fail on a damaged recording or a start past its end before any DDS participant exists."""
+    reader, src = _open(path)
+    _begin(reader, src, start_s)
+    reader.close()
+
+
+def bag_messages(path: Path, start_s: float = 0.0) -> BagMessages:
+    """The contract topics' messages of `path` from `start_s` on, and which topics are sent and skipped."""
+    reader, src = _open(path)
     # a Nav2 topic name that this robot uses for another type is skipped, as the reader skips it
     wanted = [conn for conn in reader.connections
               if conn.topic in QOS_OF and conn.msgtype in c.ACCEPTED_TYPES.get(c.topic_key(conn.topic), frozenset())]
     skipped = sorted({conn.topic for conn in reader.connections} - {conn.topic for conn in wanted})
-    begin = reader.start_time + int(start_s * 1e9)
+    begin = _begin(reader, src, start_s)
 
     def gen() -> Iterator[tuple[str, str, int, Any]]:
         try:

@@ -119,7 +119,11 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> Non
     (["serve", "--mic", "--wav", "q.wav"], "not both"),
     (["replay", "no/such/recording"], "recording not found"),
     (["replay", "RUN", "--rate", "0"], "--rate must be above 0"),
-    (["replay", "RUN", "--start", "-1"], "--start must not be negative"),
+    (["replay", "RUN", "--start", "-1"], "--start must be 0 or more seconds"),
+    (["replay", "RUN", "--start", "nan"], "--start must be 0 or more seconds"),
+    (["replay", "RUN", "--start", "1e12"], "past the end of bagfile_7_1, which lasts"),  # was an OverflowError
+    (["replay", "RUN", "--start", "inf"], "past the end of bagfile_7_1"),
+    (["replay", "RUN", "--clock", "nan"], "--clock must be 0"),
 ])
 def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsys: pytest.CaptureFixture[str],
                                monkeypatch: pytest.MonkeyPatch) -> None:
