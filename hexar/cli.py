@@ -63,6 +63,9 @@ def simulate(
 
         if storage not in {"sqlite3", "mcap"}:
             raise HexarError(f"unknown storage {storage!r}: use sqlite3 or mcap")
+        unknown = sorted(n for n in set(scenario or []) if not 1 <= n <= 20)
+        if unknown:
+            raise HexarError(f"--scenario {unknown[0]} is none of the paper's scenarios (1-20)")
         output_dir(out_dir, "--out")
         if arm:
             from hexar.evals.scenarios.arm import simulate_arm_suite
@@ -250,9 +253,10 @@ def web(
     """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
 
     def body() -> int:
-        from hexar.inputs import checkpoints_file
+        from hexar.inputs import checkpoints_file, port_number
         from hexar.web.server import serve
 
+        port_number(port, lowest=0)  # 0: any free port; the page's address line names the one it got
         checkpoints_file(checkpoints)
         return serve(folder, host, port, llm, checkpoints, live, domain)
 
@@ -419,8 +423,11 @@ def mcp(
     """Serve HEXAR's explainers to any MCP client (Claude Desktop, the mcp inspector): stdio or HTTP."""
 
     def body() -> int:
+        from hexar.inputs import port_number
         from hexar.tools.mcp_server import serve
 
+        if http:
+            port_number(port)
         return serve(folder, http, port, host, llm, explainers, token)
 
     raise typer.Exit(guarded(body))

@@ -27,3 +27,7 @@ class LinkOutsideError(HexarError):
 
 class McpOptionError(HexarError):
     """`hexar mcp` options that would expose the recordings: HTTP off loopback without a token."""
+
+
+class BadOptionValueError(HexarError):
+    """A number option out of its range: a port above 65535, a scenario the paper does not have."""

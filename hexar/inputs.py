@@ -10,7 +10,7 @@ import codecs
 import os
 from pathlib import Path
 
-from hexar.errors import InputFileError
+from hexar.errors import BadOptionValueError, InputFileError
 from hexar.safe_text import visible
 
 _BOMS = ((codecs.BOM_UTF8, "utf-8-sig"), (codecs.BOM_UTF16_LE, "utf-16"), (codecs.BOM_UTF16_BE, "utf-16"))
@@ -62,6 +62,14 @@ def decode_text(data: bytes, path: Path, what: str) -> str:
 def read_text_arg(path: Path, what: str) -> str:
     """The text of a file argument, checked and decoded, or one InputFileError line."""
     return decode_text(read_bytes_arg(path, what), path, what)
+
+
+def port_number(port: int, lowest: int = 1, what: str = "--port") -> int:
+    """A TCP port to listen on, from `lowest` (0: any free port) to 65535; the socket layer's own error for 70000
+    read as an internal error."""
+    if not lowest <= port <= 65535:
+        raise BadOptionValueError(f"{what} must be a port number from {lowest} to 65535, not {port}")
+    return port
 
 
 def output_dir(path: Path, what: str) -> Path:

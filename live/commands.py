@@ -89,8 +89,10 @@ def serve(opts: ServeOptions) -> int:
         raise BadOptionError(f"unknown --voice {opts.voice!r}: use {', '.join(VOICES)}")
     if opts.mic and opts.wavs:
         raise BadOptionError("give --mic or --wav FILE..., not both")
-    if opts.keep_tasks < 1 or opts.horizon_s <= 0:
+    if opts.keep_tasks < 1 or not opts.horizon_s > 0:  # also nan
         raise BadOptionError("--keep-tasks must be at least 1 and --horizon above 0")
+    if opts.duration_s is not None and not opts.duration_s > 0:
+        raise BadOptionError(f"--duration must be above 0 seconds, not {opts.duration_s}")
     ears_wanted = opts.mic or bool(opts.wavs)
     # handlers before the node exists: a signal during start-up still ends it through node.stop()
     with _stop_on_signals() as stop:

@@ -56,6 +56,7 @@ def test_real_bags_inspect_cleanly_and_say_there_is_no_task(real_bags: Path, nam
     (["inspect", "/definitely/not/here"], "recording not found"),
     (["runs", "/definitely/not/here"], "not a folder"),
     (["simulate", "--out", "x", "--storage", "zip"], "unknown storage"),
+    (["simulate", "--out", "x", "--scenario", "21"], "--scenario 21 is none of the paper's scenarios"),  # wrote 0
 ])
 def test_bad_input_is_one_line_and_exit_2(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(args) == 2

@@ -124,6 +124,8 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> Non
     (["replay", "RUN", "--start", "1e12"], "past the end of bagfile_7_1, which lasts"),  # was an OverflowError
     (["replay", "RUN", "--start", "inf"], "past the end of bagfile_7_1"),
     (["replay", "RUN", "--clock", "nan"], "--clock must be 0"),
+    (["serve", "--transport", "dds", "--horizon", "nan"], "--horizon above 0"),
+    (["serve", "--transport", "dds", "--duration", "-1"], "--duration must be above 0"),
 ])
 def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsys: pytest.CaptureFixture[str],
                                monkeypatch: pytest.MonkeyPatch) -> None:

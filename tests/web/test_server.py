@@ -167,6 +167,9 @@ def test_every_module_of_the_page_is_served_as_javascript(webroot: Path, tmp_pat
 @pytest.mark.parametrize(("args", "message"), [
     (["web", "/definitely/not/here", "--llm", "none"], "not a folder"),
     (["web", ".", "--llm", "nonsense"], "unknown LLM backend"),
+    (["web", ".", "--llm", "none", "--port", "70000"], "--port must be a port number from 0 to 65535"),  # was an
+    (["web", ".", "--llm", "none", "--port", "-1"], "--port must be a port number"),  # internal OverflowError
+    (["mcp", ".", "--http", "--port", "0"], "--port must be a port number from 1 to 65535"),
 ])
 def test_web_command_bad_input(args: list[str], message: str, capsys: pytest.CaptureFixture[str]) -> None:
     assert main(args) == 2
