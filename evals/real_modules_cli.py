@@ -11,7 +11,7 @@ from rich.console import Console
 
 from hexar.errors import HexarError
 from hexar.evals.real_modules import FILES, run_suite
-from hexar.evals.real_nav2_cli import pct, summary_table
+from hexar.evals.real_nav2_cli import pct, summary_table, unknown_suite
 
 
 def _row(name: str, row: dict[str, Any]) -> str:
@@ -46,7 +46,7 @@ def real_modules_main(suite: str, out: Path, runs: Path | None, llm: str, consol
     from hexar.agent.backends import resolve
 
     if suite not in FILES:
-        raise HexarError(f"unknown suite {suite!r}: use {', '.join(FILES)}")
+        raise unknown_suite(suite)
     if given := [name for name, value in others.items() if value]:
         raise HexarError(f"{', '.join(given)} do not apply to --suite {suite}")
     if out.exists() and not out.is_dir():

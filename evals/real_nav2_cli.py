@@ -161,12 +161,19 @@ def real_nav2_command(opts: RealNav2Options, console: Console | None = None) -> 
     return 1 if worse else 0
 
 
+def unknown_suite(suite: str) -> HexarError:
+    """The one error for a --suite no suite has: every suite's name (the nav and the module suites alike)."""
+    from hexar.evals.real_modules import FILES
+
+    return HexarError(f"unknown suite {suite!r}: use paper, {', '.join([*SUITES, *FILES])}")
+
+
 def real_nav2_main(suite: str, out: Path, runs: Path | None, llm: str, baseline: Path | None,
                    write_baseline: Path | None, tolerance: float, console: Console,
                    paper_only: dict[str, object]) -> int:
     """`hexar eval --suite NAME` for any suite but the paper's: checks the options that apply, then runs."""
     if suite not in SUITES:
-        raise HexarError(f"unknown suite {suite!r}: use paper, {' or '.join(SUITES)}")
+        raise unknown_suite(suite)
     if given := [name for name, value in paper_only.items() if value]:
         raise HexarError(f"{', '.join(given)} belong to the paper's suite, not to --suite {suite}")
     opts = RealNav2Options(out=out, runs=runs, llm=llm, baseline=baseline, write_baseline=write_baseline,
