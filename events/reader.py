@@ -105,6 +105,7 @@ def resolve_path(path: Path) -> Path:
         raise RecordingNotFoundError(f"recording not found: {path}")
     if path.is_file():
         if path.suffix == ".bag":
+            _rosbag1_header(path)
             return path
         if path.suffix in {".db3", ".mcap"}:
             return path.parent  # its folder's metadata.yaml, or the metadata rebuilt from the storage files
@@ -112,6 +113,20 @@ def resolve_path(path: Path) -> Path:
     if not (path / "metadata.yaml").is_file() and not holds_storage(path):
         raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml and no .db3 or .mcap file")
     return path
+
+
+# rosbag's format 2.0 (ROS 1) opens with this line (wiki.ros.org/Bags/Format/2.0)
+ROSBAG_V2 = b"#ROSBAG V2.0\n"
+
+
+def _rosbag1_header(path: Path) -> None:
+    try:
+        with path.open("rb") as f:
+            head = f.read(len(ROSBAG_V2))
+    except OSError as err:
+        raise CorruptRecordingError(f"cannot read {path}: {err.strerror or err}") from err
+    if head != ROSBAG_V2:
+        raise CorruptRecordingError(f"cannot read {path}: not a ROS 1 bag (it does not begin with '#ROSBAG V2.0')")
 
 
 def _yaw(qz: float, qw: float) -> float:
@@ -151,6 +166,13 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     return _guarded(src, lambda: _read_whole(src, wanted))
 
 
+def damage(err: BaseException) -> str:
+    """What a storage library said about a damaged file, its first line only: a YAML parser's message goes on
+    with the offending text and a caret on lines of their own."""
+    text = str(err).strip()
+    return text.splitlines()[0] if text else type(err).__name__
+
+
 def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
     """One error class per kind of damage, whatever the storage library raised."""
     try:
@@ -159,9 +181,9 @@ def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
             CorruptRecordingError):
         raise
     except (sqlite3.DatabaseError, OSError, EOFError) as err:
-        raise CorruptRecordingError(f"cannot read {src}: {err}") from err
+        raise CorruptRecordingError(f"cannot read {src}: {damage(err)}") from err
     except Exception as err:  # rosbags raises many unrelated classes for damaged files
-        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
+        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {damage(err)}") from err
 
 
 def _read_files(files: list[Path], src: Path, wanted: frozenset[str]) -> EventLog:

@@ -42,14 +42,14 @@ class ReplayStats:
 def _open(path: Path) -> tuple[Any, Path]:
     from rosbags.highlevel import AnyReader
 
-    from hexar.events.reader import _humble, resolve_path
+    from hexar.events.reader import _humble, damage, resolve_path
 
     src = resolve_path(path)
     reader = AnyReader([src], default_typestore=_humble())
     try:
         reader.open()
     except Exception as err:  # rosbags raises many unrelated classes for damaged files
-        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {err}") from err
+        raise CorruptRecordingError(f"cannot read {src}: {type(err).__name__}: {damage(err)}") from err
     return reader, src
 
 

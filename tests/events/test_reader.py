@@ -90,6 +90,19 @@ def test_garbage_db3_is_corrupt(tmp_path: Path) -> None:
         read_recording(path)
 
 
+def test_damage_is_said_in_one_readable_line(tmp_path: Path) -> None:
+    # a ROS 1 .bag that is something else (was: "UnicodeDecodeError: 'utf-8' codec can't decode byte ...")
+    (tmp_path / "run.bag").write_bytes(bytes(range(256)) * 10)
+    with pytest.raises(CorruptRecordingError, match=r"not a ROS 1 bag \(it does not begin with '#ROSBAG V2.0'\)"):
+        read_recording(tmp_path / "run.bag")
+    # a metadata.yaml that is not YAML: the parser's first line, not the quoted text and caret it goes on with
+    path = _full_bag().write(tmp_path / "run")
+    (path / "metadata.yaml").write_text("rosbag2_bagfile_information: {version: 5\n", encoding="utf-8")
+    with pytest.raises(CorruptRecordingError) as err:
+        read_recording(path)
+    assert "while parsing a flow mapping" in str(err.value) and "\n" not in str(err.value)
+
+
 def test_contract_topic_with_wrong_type_is_rejected(tmp_path: Path) -> None:
     from hexar.evals.scenarios.bag import TYPESTORE
 
