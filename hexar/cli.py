@@ -57,7 +57,7 @@ def simulate(
     """Write the paper's 20 scenarios x 3 variants as rosbag2 recordings of a simulated TIAGo."""
 
     def body() -> int:
-        from hexar.errors import HexarError
+        from hexar.errors import BadOptionValueError, HexarError
         from hexar.evals.scenarios.suite import simulate_suite
         from hexar.inputs import output_dir
 
@@ -65,7 +65,7 @@ def simulate(
             raise HexarError(f"unknown storage {storage!r}: use sqlite3 or mcap")
         unknown = sorted(n for n in set(scenario or []) if not 1 <= n <= 20)
         if unknown:
-            raise HexarError(f"--scenario {unknown[0]} is none of the paper's scenarios (1-20)")
+            raise BadOptionValueError(f"--scenario {unknown[0]} is none of the paper's scenarios (1-20)")
         output_dir(out_dir, "--out")
         if arm:
             from hexar.evals.scenarios.arm import simulate_arm_suite

@@ -58,7 +58,7 @@ def _begin(reader: Any, src: Path, start_s: float) -> int:
     if start_s > length_s:  # also inf; a start past the end would overflow the storage's integer
         reader.close()
         raise BadOptionError(f"--start {start_s:g} s is past the end of {src.name}, which lasts {length_s:.1f} s")
-    return int(reader.start_time + int(start_s * 1e9))
+    return int(reader.start_time) + int(start_s * 1e9)
 
 
 def check_start(path: Path, start_s: float) -> None:
@@ -196,19 +196,22 @@ class DdsReplayer:
         self.endpoint.close()
 
 
-def wait_for_readers(writer: Any, topics: Iterable[str], timeout_s: float, settle_s: float = 0.5) -> bool:
+def wait_for_readers(writer: Any, topics: Iterable[str], timeout_s: float,
+                     settle_s: float = 0.5) -> tuple[str, ...]:
     """Wait (at most `timeout_s`) until each of `topics` has a matched reader, then `settle_s` more: discovery
     across DDS vendors takes a second or more, and what a volatile topic carries before its reader matched is
     lost; the writer's side matches first, and a Fast DDS reader drops samples from a writer it has not matched
-    itself yet. False when some reader did not come (a replay to nobody still plays)."""
-    topics = tuple(topics)
+    itself yet. The topics still without a reader at the end, in order (a replay to nobody still plays)."""
     deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if all(writer.matched(topic) for topic in topics):
+    topics = sorted(topics)
+    while True:
+        missing = tuple(topic for topic in topics if not writer.matched(topic))
+        if not missing:
             time.sleep(settle_s)
-            return True
+            return ()
+        if time.monotonic() >= deadline:
+            return missing
         time.sleep(0.02)
-    return False
 
 
 def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 3.0,
@@ -226,10 +229,7 @@ def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, war
         raise BadOptionError(f"--rate must be above 0, not {rate}")
     messages, skipped, _, topics = bag_messages(path, start_s)
     writer.prepare()
-    unmatched: tuple[str, ...] = ()
-    if not wait_for_readers(writer, sorted(topics), warmup_s):
-        unmatched = tuple(sorted(t for t in topics if not writer.matched(t)))
-    stats = ReplayStats(skipped_topics=tuple(skipped), unmatched_topics=unmatched)
+    stats = ReplayStats(skipped_topics=tuple(skipped), unmatched_topics=wait_for_readers(writer, topics, warmup_s))
     started = time.monotonic()
     first: int | None = None
     clock_every = int(1e9 / clock_hz) if clock_hz > 0 else 0

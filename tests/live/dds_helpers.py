@@ -122,8 +122,8 @@ def wait_matched(writer: Any, topics: set[str], timeout_s: float = 30.0, settle_
     first messages of a volatile topic on a loaded CI machine."""
     from hexar.live.replay import wait_for_readers
 
-    matched = wait_for_readers(writer, topics, timeout_s, settle_s)
-    assert matched, f"no reader matched within {timeout_s} s: {sorted(topics)}"
+    missing = wait_for_readers(writer, topics, timeout_s, settle_s)
+    assert not missing, f"no reader matched within {timeout_s} s: {missing}"
 
 
 def replay_matched(run: Path, robot: Any, rate: float) -> None:
