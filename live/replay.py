@@ -206,12 +206,13 @@ def wait_for_readers(writer: Any, topics: Iterable[str], timeout_s: float,
     topics = sorted(topics)
     while True:
         missing = tuple(topic for topic in topics if not writer.matched(topic))
-        if not missing:
-            time.sleep(settle_s)
-            return ()
-        if time.monotonic() >= deadline:
-            return missing
+        if not missing or time.monotonic() >= deadline:
+            break
         time.sleep(0.02)
+    if len(missing) < len(topics):
+        # also when one topic timed out: the others may have matched just now, on the writer's side only
+        time.sleep(settle_s)
+    return missing
 
 
 def replay(path: Path, writer: Any, rate: float = 1.0, start_s: float = 0.0, warmup_s: float = 3.0,
