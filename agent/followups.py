@@ -36,7 +36,9 @@ _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where' or 'said' for a question about what the robot did; None for anything else."""
+    """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did; None for anything
+    else."""
+    from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
@@ -44,6 +46,8 @@ def content_kind(question: str) -> str | None:
         return "where"
     if _WENT.search(q):
         return "went"
+    if (measure := measure_kind(q)) is not None:
+        return measure
     if CONTENT_QUESTION.search(q):
         return "said"
     return None

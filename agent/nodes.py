@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from hexar import progress
 from hexar.agent import content as answers
-from hexar.agent import guard
+from hexar.agent import guard, measures
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
@@ -274,7 +274,8 @@ def walk(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
 
 
 def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
-    """Where I went and why, where I am, what I said: answered from the recording, not from a failure."""
+    """Where I went and why, where I am, how far and how long, what I said: answered from the recording, not from
+    a failure."""
     start = time.perf_counter()
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
@@ -283,6 +284,10 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = answers.where(ctx.log)
     elif kind == "went":
         exp = answers.went(state["question"], ctx.log, task)
+    elif kind == "far":
+        exp = measures.far(ctx.log, task)
+    elif kind in {"long", "when"}:
+        exp = measures.when(state["question"], ctx.log, task) if kind == "when" else measures.long(ctx.log, task)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

@@ -65,3 +65,80 @@ def test_content_then_why_goes_deeper_on_it(suite: Path) -> None:
     said, why = _ask(suite / "bagfile_19_2", "Did you read me the right recipe?", "why?")
     assert str(said["answer"]).startswith("No. What I said did not match your request")
     assert why["intent"] == "deeper" and "Margherita" in str(why["answer"])
+
+
+def _figure(text: str, before: str) -> float:
+    """The number of metres just before `before` in an answer."""
+    head = text.split(before)[0].split()
+    return float(head[-1])
+
+
+def test_how_far_adds_up_the_legs_of_the_trip(suite: Path) -> None:
+    """bagfile_10_1 fetched the coffee: each leg's figure is at least the straight line between where the leg began
+    and ended, and the legs add up to the total said first."""
+    from hexar.events import read_recording
+
+    (far,) = _ask(suite / "bagfile_10_1", "How far did you drive?")
+    text = str(far["answer"])
+    assert text.startswith('For your request "Bring me a coffee from the kitchen", I drove about ')
+    kitchen, helper, back = (_figure(text, " m to go to the kitchen"), _figure(text, " m during step 2"),
+                             _figure(text, " m to go to the living room"))
+    total = float(text.split("I drove about ")[1].split()[0])
+    assert abs(kitchen + helper + back - total) <= 0.15
+    log = read_recording(suite / "bagfile_10_1")
+    task = log.tasks[0]
+    for run, said in ((task.skills[0], kitchen), (task.skills[2], back)):
+        start = run.time_of("running")
+        assert start is not None
+        poses = [p for p in log.poses if start <= p.t <= run.last_change]
+        straight = ((poses[-1].x - poses[0].x) ** 2 + (poses[-1].y - poses[0].y) ** 2) ** 0.5
+        assert straight - 0.05 <= said <= 2 * straight
+
+
+def test_how_far_on_a_trip_that_failed_or_never_moved(suite: Path) -> None:
+    (failed,) = _ask(suite / "bagfile_5_1", "how far did you go")
+    assert ", to go to the kitchen, and I did not get there." in str(failed["answer"])
+    (still,) = _ask(suite / "bagfile_6_1", "How far did you travel?")  # the joystick held the base
+    assert str(still["answer"]) == 'I didn\'t drive anywhere for your request "Bring me a coffee from the kitchen".'
+
+
+def test_how_far_without_any_position_says_it_cannot_tell(tmp_path: Path) -> None:
+    from hexar.evals.real_nav2 import corpus, write_recording
+
+    excerpt = next(e for e in corpus() if e.outcome == "failed")
+    run = write_recording(excerpt, tmp_path / "run", task=False)
+    (far,) = _ask(run, "How far did you drive?")
+    assert "I can't tell how far I drove" in str(far["answer"])
+    assert "no /amcl_pose or /odom messages" in str(far["answer"])
+
+
+def test_how_long_and_when_read_the_plan_times(suite: Path) -> None:
+    from hexar.events import read_recording
+    from hexar.events.records import clock
+
+    log = read_recording(suite / "bagfile_14_1")
+    task, recovery = log.tasks
+    took, began = _ask(suite / "bagfile_14_1", "How long did it take?", "When did you start?")
+    start, end = clock(task.created).split(".")[0], clock(task.last_update).split(".")[0]
+    assert str(took["answer"]).startswith(f'Your request "Bring me a coffee from the kitchen" took 56 s, from {start} '
+                                          f"to {end} UTC; it ended when step 2 (to ask someone for help) failed.")
+    assert "Step 1 (to go to the kitchen) took 15 s; step 2 (to ask someone for help) took 41 s." in str(took["answer"])
+    assert str(began["answer"]).startswith(f"I started on your request \"Bring me a coffee from the kitchen\" at "
+                                           f"{start} UTC, and it ended when step 2")
+    # the request never drove back; its recovery task did, and "get back" is that trip
+    (back,) = _ask(suite / "bagfile_14_1", "When did you get back?")
+    arrived = clock(recovery.skills[0].last_change).split(".")[0]
+    assert str(back["answer"]).startswith(f"In my own recovery task, I got to the living room at {arrived} UTC")
+    (never,) = _ask(suite / "bagfile_5_1", "When did you get back?")
+    assert str(never["answer"]) == ('I never set off for the living room: that was step 3 of your request "Bring me a '
+                                    'coffee from the kitchen", and step 1 (to go to the kitchen) failed first.')
+
+
+def test_figures_questions_are_content_and_why_questions_are_not() -> None:
+    from hexar.agent.followups import content_kind
+
+    for question, kind in (("How far did you drive?", "far"), ("how long did it take", "long"),
+                           ("How long was the trip?", "long"), ("When did you get to the kitchen?", "when"),
+                           ("what time did you arrive", "when"), ("Why did it take you so long?", None),
+                           ("Why did it take so long to get there?", None), ("Why didn't you get there?", None)):
+        assert content_kind(question) == kind, question

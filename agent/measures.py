@@ -1,0 +1,224 @@
+"""Answers to "how far did you drive?", "how long did it take?" and "when did you get there?": figures read from
+the recording (the plan's status times and the robot's poses), not a finding about what went wrong.
+
+Distances are the length of the path the robot's own position estimate (/amcl_pose, else /odom) traced while a
+step ran, so a badly localised robot's jumps count too: the answers say "about".
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from dataclasses import dataclass
+from typing import Literal
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import clock
+from hexar.events.tasks import SkillRun, Task
+from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, step_words
+
+Measure = Literal["far", "long", "when"]
+
+_FAR = re.compile(r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b|"
+                  r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b|"
+                  r"\bwhat distance did you\b")
+_LONG = re.compile(r"^(and |so |ok |okay )?how long (did|had) (it|the task|that|this|the (trip|drive|errand)|you) "
+                   r"(take|need|spend|drive|be)\b|^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b|"
+                   r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b|"
+                   r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b")
+_WHEN = re.compile(r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|"
+                   r"arrive|reach|finish|stop|end|come back|return|drive|head)\b")
+_ARRIVED = re.compile(r"\b(get|arrive|reach|come|return)\b")
+
+
+def measure_kind(q: str) -> Measure | None:
+    """'far', 'long' or 'when' for a question (lower case, spaces collapsed) about distance or time."""
+    if _FAR.search(q):
+        return "far"
+    if _LONG.search(q):
+        return "long"
+    if _WHEN.search(q):
+        return "when"
+    return None
+
+
+@dataclass(frozen=True)
+class _Step:
+    run: SkillRun
+    start: int
+    end: int
+    metres: float | None  # None: no position recorded while it ran
+
+
+def _at(t: int) -> str:
+    """A time of day to the second (the recording's stamps are UTC)."""
+    return clock(t).split(".")[0]
+
+
+def _span(ns: int) -> str:
+    s = round(max(ns, 0) / 1e9)
+    if s == 0:
+        return "less than a second"
+    if s < 60:
+        return f"{s} s"
+    m, s = divmod(s, 60)
+    return f"{m} min {s} s" if s else f"{m} min"
+
+
+def _path(log: EventLog, start: int, end: int) -> float | None:
+    """Length of the path my position estimate traced in [start, end]: /amcl_pose, or /odom without it."""
+    points = [(p.x, p.y) for p in log.poses if start <= p.t <= end] or \
+        [(o.x, o.y) for o in log.odometry if start <= o.t <= end]
+    if not points:
+        return None
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(points))
+
+
+def _steps(log: EventLog, task: Task) -> list[_Step]:
+    """The steps that started, with when they ran and how far I moved meanwhile."""
+    out = []
+    for run in task.skills:
+        start = run.time_of("running")
+        if start is None:
+            continue
+        end = max(run.last_change, start)
+        out.append(_Step(run, start, end, _path(log, start, end)))
+    return out
+
+
+def _name(task: Task) -> str:
+    return f'your request "{task.instruction}"' if not task.is_recovery else "my own recovery task"
+
+
+def _goal(run: SkillRun) -> str:
+    loc = run.params.get("location")
+    if isinstance(loc, str) and loc:
+        return place_name(loc)
+    x, y = run.params.get("x"), run.params.get("y")
+    if isinstance(x, int | float) and isinstance(y, int | float):
+        return f"my goal at ({float(x):.2f}, {float(y):.2f})"
+    return "my goal"
+
+
+def _evidence(task: Task, steps: list[_Step]) -> list[Evidence]:
+    return [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=s.end,
+                     item=f"step {s.run.index + 1}: {s.run.label()} {s.run.state}") for s in steps] or \
+        [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
+
+
+def far(log: EventLog, task: Task) -> Explanation:
+    steps = _steps(log, task)
+    moved = [s for s in steps if s.metres is not None and s.metres >= 0.05]
+    if not any(s.metres is not None for s in steps):
+        drove = any(s.run.skill in NAV_SKILLS for s in steps)
+        text = (f"I can't tell how far I drove for {_name(task)}: this recording holds no position of mine "
+                f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove or not steps else
+                f"I didn't drive anywhere for {_name(task)}.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence(task, steps), enough_information=not drove and bool(steps))
+    if not moved:
+        return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {_name(task)}.",
+                           causes=["planner.plan_ok"], evidence=_evidence(task, steps))
+    total = sum(s.metres or 0.0 for s in moved)
+    took = _span(moved[-1].end - moved[0].start)
+    parts = [f"{s.metres or 0.0:.1f} m {_during(s.run)} ({_span(s.end - s.start)})" for s in moved]
+    head = f"For {_name(task)}, I drove about {total:.1f} m in {took}"
+    text = f"{head}: {join_words(parts)}." if len(moved) > 1 else \
+        f"{head}, {_during(moved[0].run)}."
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=_evidence(task, moved),
+                       details=["Distances are the path my position estimate traced, so they include its jumps."])
+
+
+def _during(run: SkillRun) -> str:
+    """What a distance was driven for: "to go to the kitchen", "during step 2, to ask someone for help"."""
+    if run.skill not in NAV_SKILLS:
+        return f"during step {run.index + 1}, to {step_words(run, short=True)}"
+    return f"to {step_words(run, short=True)}" + (", and I did not get there" if run.state == "failed" else "")
+
+
+def _ended(task: Task) -> str:
+    failed = task.failed_skill
+    if failed is not None:
+        return f"it ended when step {failed.index + 1} (to {step_words(failed, short=True)}) failed"
+    if task.outcome == "succeeded":
+        return "I finished it"
+    return "it was canceled"
+
+
+def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanation:
+    steps = _steps(log, task)
+    span = _span(task.last_update - task.created)
+    ended = _ended(task)
+    name = _name(task)
+    if task.outcome in {"running", "waiting"}:
+        text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
+                f"{_at(task.created)} UTC.")
+    elif lead_with_times:
+        text = f"I started on {name} at {_at(task.created)} UTC, and {ended} at {_at(task.last_update)}, {span} later."
+    else:
+        text = (f"{name[0].upper()}{name[1:]} took {span}, from {_at(task.created)} to {_at(task.last_update)} UTC; "
+                f"{ended}.")
+    if steps:
+        each = "; ".join(f"step {s.run.index + 1} (to {step_words(s.run, short=True)}) took {_span(s.end - s.start)}"
+                         for s in steps)
+        text += f" {each[0].upper()}{each[1:]}."
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence(task, steps))
+
+
+def _later_recoveries(log: EventLog, task: Task) -> list[Task]:
+    """The robot's own recovery tasks right after this one (they drive it back after a failure)."""
+    out = []
+    for later in sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order):
+        if not later.is_recovery:
+            break
+        out.append(later)
+    return out
+
+
+def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
+    """The trip a "when" question is about: a place it names, the way back ("get back", "return": the last trip,
+    also a recovery's), or "get there"/"arrive": the last trip that got there, else the last that set off."""
+    trips = [(task, r) for r in task.skills if r.skill in NAV_SKILLS]
+    after = [(t, r) for t in _later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS]
+    named = [(t, r) for t, r in trips + after if isinstance(loc := r.params.get("location"), str)
+             and re.search(rf"\b{re.escape(loc.replace('_', ' '))}\b", q)]
+    if named:
+        # one that got there, then one that set off: a recovery that drove there answers for the request
+        return min(named, key=lambda m: 0 if m[1].state == "succeeded" else 1 if m[1].time_of("running") else 2)
+    if re.search(r"\b(get|got|come|came) back\b|\breturn", q):
+        return (trips + after)[-1] if trips + after else None
+    if re.search(r"\b(get|got) there\b|\barriv|\breach", q) and trips:
+        return ([(t, r) for t, r in trips if r.state == "succeeded"] or
+                [(t, r) for t, r in trips if r.time_of("running") is not None] or trips)[-1]
+    return None
+
+
+def when(question: str, log: EventLog, task: Task) -> Explanation:
+    """A trip the question asks about (see _trip_asked): its times; otherwise the task's."""
+    asked = _trip_asked(question.lower().replace("_", " "), log, task)
+    if asked is None:
+        return long(log, task, lead_with_times=True)
+    owner, run = asked
+    start = run.time_of("running")
+    place = _goal(run)
+    lead = "In my own recovery task, " if owner is not task else ""
+    if start is None:
+        failed = owner.failed_skill
+        why = f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" \
+            if failed is not None and failed.index < run.index else "it never started"
+        text = f"I never set off for {place}: that was step {run.index + 1} of {_name(owner)}, and {why}."
+    elif run.state == "succeeded":
+        text = (f"{lead}I got to {place} at {_at(run.last_change)} UTC, {_span(run.last_change - start)} after I set "
+                f"off at {_at(start)}.")
+    elif run.state == "failed":
+        text = (f"{lead}I never got to {place}: I set off at {_at(start)} UTC and gave up at {_at(run.last_change)}, "
+                f"{_span(run.last_change - start)} later.")
+    else:
+        text = f"{lead}I set off for {place} at {_at(start)} UTC; the recording ends before I got there."
+    text = text[0].upper() + text[1:]
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=_evidence(owner, [s for s in _steps(log, owner) if s.run is run]))
