@@ -205,3 +205,19 @@ def said(question: str, log: EventLog, task: Task) -> Explanation:
     cut = " I was cut off before the end." if last.ended == "timed_out" else ""
     return Explanation(explainer="text_to_speech", text=f'I said "{first_sentence(last.text, 200)}".{cut}',
                        causes=["tts.completed"], evidence=evidence)
+
+
+def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
+    """"Can you try again?" and "what will you do next?": the agent explains from the recording and never commands
+    the robot, so it says so (with how the task ended) instead of answering with a failure nobody asked about."""
+    ended = {"succeeded": "was done", "failed": "failed", "invalid": "was rejected", "canceled": "was canceled"}.get(
+        task.outcome, "was not over when the recording ends")
+    now = f"{task_name(task, log)[0].upper()}{task_name(task, log)[1:]} {ended}."
+    if kind == "next":
+        text = ("I can't tell what I will do next: I only explain what I have already done, from what I recorded. "
+                + now)
+    else:
+        text = ("I can't do that here: here I only explain what I did, from my recording, and I don't act on "
+                f"requests. {now} To have me try again, give me the task again as you usually do.")
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=_plan_evidence(task, None, "planner.plan_ok"))

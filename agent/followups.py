@@ -31,17 +31,28 @@ _ORDINALS = {"first": "first", "second": "2", "third": "3", "last": "latest", "p
 # Questions about what the robot did, not about a problem: answered from the recording's content.
 _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( back| over)? (to|into|towards?)\b|"
                    r"^where did you (go|drive)\b|^where have you been\b")
+# A request to act, phrased as a question ("can you try again?"): the agent is read-only and says so.
+_ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|could|would|will|won't|wont) you "
+                  r"(please |just )?(try|retry|go|bring|fetch|get me|do it|do that|drive|move|come|start|restart|turn|"
+                  r"pick|put|open|close|give|carry|deliver|make|cook|read|tell maria)\b|"
+                  r"^(and |so |ok |okay |now )?(please )?(try|do it|do that) again\b")
+_NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna )?do (next|now)\b|"
+                   r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
 _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
                     r"where did you finish\b")
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did; None for anything
-    else."""
+    """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did, 'act' for a
+    request to do something and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
+    if _ACT.search(q):
+        return "act"
+    if _NEXT.search(q):
+        return "next"
     if _WHERE.search(q):
         return "where"
     if _WENT.search(q):

@@ -280,7 +280,9 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
     kind = content_kind(state["question"])
-    if kind == "where":
+    if kind in {"act", "next"}:
+        exp = answers.read_only(kind, ctx.log, task)
+    elif kind == "where":
         exp = answers.where(ctx.log)
     elif kind == "went":
         exp = answers.went(state["question"], ctx.log, task)

@@ -142,3 +142,16 @@ def test_figures_questions_are_content_and_why_questions_are_not() -> None:
                            ("what time did you arrive", "when"), ("Why did it take you so long?", None),
                            ("Why did it take so long to get there?", None), ("Why didn't you get there?", None)):
         assert content_kind(question) == kind, question
+
+
+def test_a_request_to_act_is_declined_not_answered_with_the_failure(suite: Path) -> None:
+    """The agent is read-only: "can you try again?" gets no failure cause dressed as an answer, and no action."""
+    again, bring, nxt, why = _ask(suite / "bagfile_5_1", "Can you try again?", "Could you bring me the coffee?",
+                                  "What are you going to do next?", "Can you tell me why you stopped?")
+    for answer in (again, bring):
+        text = str(answer["answer"])
+        assert text.startswith("I can't do that here: here I only explain what I did"), text
+        assert 'Your request "Bring me a coffee from the kitchen" failed.' in text
+        assert "blocked" not in text
+    assert str(nxt["answer"]).startswith("I can't tell what I will do next")
+    assert "something blocked my path" in str(why["answer"])  # "can you tell me why" is a why question
