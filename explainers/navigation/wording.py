@@ -15,6 +15,7 @@ from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.detectors import Finding, Run
+from hexar.explainers.stack.bringup import LAUNCH_ANY
 
 
 def quote(line: LogLine | None) -> str:
@@ -120,6 +121,7 @@ def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     what = f.notes[0] if f.notes else "a node of my navigation never came up"
     # a process that died may have died mid-goal: said as what launch reported, not as a node that never came up
     head = f"I couldn't reach {place} because " if what.startswith("the process of ") else \
+        f"I couldn't reach {place} because my nodes never came up: " if what.startswith(LAUNCH_ANY) else \
         f"I couldn't reach {place} because a node of my navigation never came up: "
     return (f"{head}{what.rstrip('.')}.",
             "Fix the error quoted from the failing node (its parameters file, its configure step, or why its "

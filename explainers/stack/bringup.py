@@ -89,6 +89,10 @@ TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: 
                15: "inactive_shutdown", 16: "active_shutdown"}
 
 
+LAUNCH_NAV = "my launch stopped with an error before it had started my navigation nodes"
+LAUNCH_ANY = "my launch stopped with an error before it had started any of my nodes"
+
+
 @dataclass(frozen=True)
 class BringupFinding:
     """One node that never came up (fields: see the module's docstring)."""
@@ -108,7 +112,7 @@ class BringupFinding:
             return f"{who} could not parse its parameters file, so it never started"
         if self.kind == "launch_failed":
             why = f" ({self.detail})" if self.detail else ""
-            return f"my launch stopped with an error before it had started my navigation nodes{why}"
+            return f"{LAUNCH_NAV}{why}"
         if self.kind == "process_died":
             code = f" ({self.detail})" if self.detail else ""
             return f"the process of {who} died{code}"

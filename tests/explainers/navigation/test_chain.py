@@ -318,6 +318,21 @@ def test_an_exception_in_launch_is_a_stack_that_never_came_up(tmp_path: Path) ->
     assert stated_causes(answer.text) >= {g.BRINGUP}
 
 
+# Kinovarobotics/ros2_kortex#216 (an arm's launch, no Nav2 in it): launch refused a parameter before any node ran.
+ARM_LAUNCH: list[Line] = [("launch", ERROR, "Caught exception in launch (see debug for traceback): Invalid parameter "
+                           "\"isaac_joint_commands\"")]
+
+
+def test_a_launch_that_names_no_navigation_is_not_told_as_the_navigations(tmp_path: Path) -> None:
+    """The same failure, but nothing in the recording names Nav2: the answer says no node came up, not that the
+    navigation's did not (the robot may be an arm)."""
+    answer = _task_only(tmp_path, ARM_LAUNCH, "failed")
+    assert answer.causes == [g.BRINGUP]
+    assert "because my nodes never came up: my launch stopped with an error before it had started any of my nodes" \
+        in answer.text
+    assert "navigation" not in answer.text
+
+
 # TheWindISeek/tianracer_ros2_ws docs/NAV2_ERRORS_AND_SOLUTIONS.md: nav2_costmap_2d's inflation layer rejects the
 # configured radius (ERROR), pasted cut short after "of your footprint".
 INFLATION: list[Line] = [("local_costmap.local_costmap", ERROR, "The configured inflation radius (0.050) is smaller "
