@@ -123,11 +123,11 @@ def far(log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {_name(task)}.",
                            causes=["planner.plan_ok"], evidence=_evidence(task, steps))
     total = sum(s.metres or 0.0 for s in moved)
-    took = _span(moved[-1].end - moved[0].start)
     parts = [f"{s.metres or 0.0:.1f} m {_during(s.run)} ({_span(s.end - s.start)})" for s in moved]
-    head = f"For {_name(task)}, I drove about {total:.1f} m in {took}"
+    head = f"For {_name(task)}, I drove about {total:.1f} m"
+    # each leg says how long it took; one span over all of them would count the steps between them as driving
     text = f"{head}: {join_words(parts)}." if len(moved) > 1 else \
-        f"{head}, {_during(moved[0].run)}."
+        f"{head} in {_span(moved[0].end - moved[0].start)}, {_during(moved[0].run)}."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(task, moved),
                        details=["Distances are the path my position estimate traced, so they include its jumps."])
