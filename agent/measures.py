@@ -22,26 +22,27 @@ from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, step_w
 
 Measure = Literal["far", "long", "when"]
 
-_FAR = re.compile(r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b|"
-                  r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b|"
-                  r"\bwhat distance did you\b")
-_LONG = re.compile(r"^(and |so |ok |okay )?how long (did|had) (it|the task|that|this|the (trip|drive|errand)|you) "
-                   r"(take|need|spend|drive|be)\b|^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b|"
-                   r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b|"
-                   r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b")
-_WHEN = re.compile(r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|"
-                   r"arrive|reach|finish|stop|end|come back|return|drive|head)\b")
-_ARRIVED = re.compile(r"\b(get|arrive|reach|come|return)\b")
+# Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
+_ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
+    ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
+             r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
+             r"\bwhat distance did you\b")),
+    ("long", (r"^(and |so |ok |okay )?how long (did|had) (it|the task|that|this|the (trip|drive|errand)|you) "
+              r"(take|need|spend|drive|be)\b",
+              r"^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b",
+              r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",
+              r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b")),
+    ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
+              r"reach|finish|stop|end|come back|return|drive|head)\b",)),
+)
+_KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
 
 
 def measure_kind(q: str) -> Measure | None:
     """'far', 'long' or 'when' for a question (lower case, spaces collapsed) about distance or time."""
-    if _FAR.search(q):
-        return "far"
-    if _LONG.search(q):
-        return "long"
-    if _WHEN.search(q):
-        return "when"
+    for kind, pattern in _KINDS:
+        if pattern.search(q):
+            return kind
     return None
 
 
