@@ -212,7 +212,8 @@ def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
     the robot, so it says so (with how the task ended) instead of answering with a failure nobody asked about."""
     ended = {"succeeded": "was done", "failed": "failed", "invalid": "was rejected", "canceled": "was canceled"}.get(
         task.outcome, "was not over when the recording ends")
-    now = f"{task_name(task, log)[0].upper()}{task_name(task, log)[1:]} {ended}."
+    name = task_name(task, log)
+    now = f"{name[0].upper()}{name[1:]} {ended}."
     if kind == "next":
         text = ("I can't tell what I will do next: I only explain what I have already done, from what I recorded. "
                 + now)

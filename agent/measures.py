@@ -13,6 +13,7 @@ import re
 from dataclasses import dataclass
 from typing import Literal
 
+from hexar.agent.content import task_name
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.records import clock
@@ -90,10 +91,6 @@ def _steps(log: EventLog, task: Task) -> list[_Step]:
     return out
 
 
-def _name(task: Task) -> str:
-    return f'your request "{task.instruction}"' if not task.is_recovery else "my own recovery task"
-
-
 def _goal(run: SkillRun) -> str:
     loc = run.params.get("location")
     if isinstance(loc, str) and loc:
@@ -104,33 +101,35 @@ def _goal(run: SkillRun) -> str:
     return "my goal"
 
 
-def _evidence(task: Task, steps: list[_Step]) -> list[Evidence]:
-    return [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=s.end,
-                     item=f"step {s.run.index + 1}: {s.run.label()} {s.run.state}") for s in steps] or \
+def _evidence(task: Task, runs: list[SkillRun]) -> list[Evidence]:
+    return [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=run.last_change,
+                     item=f"step {run.index + 1}: {run.label()} {run.state}") for run in runs] or \
         [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
 
 
 def far(log: EventLog, task: Task) -> Explanation:
     steps = _steps(log, task)
     moved = [s for s in steps if s.metres is not None and s.metres >= 0.05]
+    name = task_name(task, log)
+    evidence = _evidence(task, [s.run for s in steps])
     if not any(s.metres is not None for s in steps):
         drove = any(s.run.skill in NAV_SKILLS for s in steps)
-        text = (f"I can't tell how far I drove for {_name(task)}: this recording holds no position of mine "
+        text = (f"I can't tell how far I drove for {name}: this recording holds no position of mine "
                 f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove or not steps else
-                f"I didn't drive anywhere for {_name(task)}.")
-        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
-                           evidence=_evidence(task, steps), enough_information=not drove and bool(steps))
+                f"I didn't drive anywhere for {name}.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence,
+                           enough_information=not drove and bool(steps))
     if not moved:
-        return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {_name(task)}.",
-                           causes=["planner.plan_ok"], evidence=_evidence(task, steps))
+        return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {name}.",
+                           causes=["planner.plan_ok"], evidence=evidence)
     total = sum(s.metres or 0.0 for s in moved)
     parts = [f"{s.metres or 0.0:.1f} m {_during(s.run)} ({_span(s.end - s.start)})" for s in moved]
-    head = f"For {_name(task)}, I drove about {total:.1f} m"
+    head = f"For {name}, I drove about {total:.1f} m"
     # each leg says how long it took; one span over all of them would count the steps between them as driving
     text = f"{head}: {join_words(parts)}." if len(moved) > 1 else \
         f"{head} in {_span(moved[0].end - moved[0].start)}, {_during(moved[0].run)}."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
-                       evidence=_evidence(task, moved),
+                       evidence=_evidence(task, [s.run for s in moved]),
                        details=["Distances are the path my position estimate traced, so they include its jumps."])
 
 
@@ -154,7 +153,7 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
     steps = _steps(log, task)
     span = _span(task.last_update - task.created)
     ended = _ended(task)
-    name = _name(task)
+    name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
                 f"{_at(task.created)} UTC.")
@@ -167,7 +166,8 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
         each = "; ".join(f"step {s.run.index + 1} (to {step_words(s.run, short=True)}) took {_span(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
-    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence(task, steps))
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=_evidence(task, [s.run for s in steps]))
 
 
 def _later_recoveries(log: EventLog, task: Task) -> list[Task]:
@@ -211,7 +211,7 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
         failed = owner.failed_skill
         why = f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" \
             if failed is not None and failed.index < run.index else "it never started"
-        text = f"I never set off for {place}: that was step {run.index + 1} of {_name(owner)}, and {why}."
+        text = f"I never set off for {place}: that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
     elif run.state == "succeeded":
         text = (f"{lead}I got to {place} at {_at(run.last_change)} UTC, {_span(run.last_change - start)} after I set "
                 f"off at {_at(start)}.")
@@ -222,4 +222,4 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
         text = f"{lead}I set off for {place} at {_at(start)} UTC; the recording ends before I got there."
     text = text[0].upper() + text[1:]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
-                       evidence=_evidence(owner, [s for s in _steps(log, owner) if s.run is run]))
+                       evidence=_evidence(owner, [run] if start is not None else []))

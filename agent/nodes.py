@@ -288,8 +288,10 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = answers.went(state["question"], ctx.log, task)
     elif kind == "far":
         exp = measures.far(ctx.log, task)
-    elif kind in {"long", "when"}:
-        exp = measures.when(state["question"], ctx.log, task) if kind == "when" else measures.long(ctx.log, task)
+    elif kind == "long":
+        exp = measures.long(ctx.log, task)
+    elif kind == "when":
+        exp = measures.when(state["question"], ctx.log, task)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

@@ -187,12 +187,11 @@ def draw(df: pd.DataFrame, out: Path) -> list[str]:
         # places and x limits pandas computed (the same sums, so the same rounding), coloured from tab20 sampled at
         # len(causes) even steps as pandas did, so a cause keeps its colour
         ticks = np.arange(len(keys))
-        edges = ticks - 0.4
         bottom = np.zeros(len(keys))
         for cause, row, colour in zip(causes, counts, colormaps["tab20"](np.linspace(0, 1, len(causes))), strict=True):
-            ax.bar(edges + 0.4, row, 0.8, bottom=bottom, color=colour, label=cause)
+            ax.bar(ticks, row, 0.8, bottom=bottom, color=colour, label=cause)
             bottom = bottom + row
-        ax.set_xlim(edges[0] - 0.25, edges[-1] + 0.25 + 0.8)
+        ax.set_xlim(ticks[0] - 0.65, ticks[-1] + 0.65)  # half a bar and pandas' 0.25 beside the outer bars
         ax.set_xticks(ticks, keys, rotation=90)
         ax.set_title(title)
         ax.set_ylabel("tasks")
