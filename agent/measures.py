@@ -146,6 +146,8 @@ def _ended(task: Task) -> str:
         return f"it ended when step {failed.index + 1} (to {step_words(failed, short=True)}) failed"
     if task.outcome == "succeeded":
         return "I finished it"
+    if task.outcome == "invalid":
+        return "my plan for it was rejected before it started"
     return "it was canceled"
 
 

@@ -155,3 +155,10 @@ def test_a_request_to_act_is_declined_not_answered_with_the_failure(suite: Path)
         assert "blocked" not in text
     assert str(nxt["answer"]).startswith("I can't tell what I will do next")
     assert "something blocked my path" in str(why["answer"])  # "can you tell me why" is a why question
+
+
+def test_how_long_on_a_rejected_plan_says_it_was_rejected(suite: Path) -> None:
+    """bagfile_1_1: the plan held a skill the robot lacks and was rejected; nothing was canceled."""
+    (took,) = _ask(suite / "bagfile_1_1", "How long did it take?")
+    assert str(took["answer"]).endswith("UTC; my plan for it was rejected before it started."), took["answer"]
+    assert "canceled" not in str(took["answer"])
