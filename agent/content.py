@@ -6,6 +6,7 @@ and its instruction, the navigation goals, the last pose, the utterances.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
@@ -207,13 +208,17 @@ def said(question: str, log: EventLog, task: Task) -> Explanation:
                        causes=["tts.completed"], evidence=evidence)
 
 
-def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
-    """"Can you try again?" and "what will you do next?": the agent explains from the recording and never commands
-    the robot, so it says so (with how the task ended) instead of answering with a failure nobody asked about."""
+def _how_it_ended(task: Task, log: EventLog) -> str:
     ended = {"succeeded": "was done", "failed": "failed", "invalid": "was rejected", "canceled": "was canceled"}.get(
         task.outcome, "was not over when the recording ends")
     name = task_name(task, log)
-    now = f"{name[0].upper()}{name[1:]} {ended}."
+    return f"{name[0].upper()}{name[1:]} {ended}."
+
+
+def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
+    """"Can you try again?" and "what will you do next?": the agent explains from the recording and never commands
+    the robot, so it says so (with how the task ended) instead of answering with a failure nobody asked about."""
+    now = _how_it_ended(task, log)
     if kind == "next":
         text = ("I can't tell what I will do next: I only explain what I have already done, from what I recorded. "
                 + now)
@@ -222,3 +227,47 @@ def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
                 f"requests. {now} To have me try again, give me the task again as you usually do.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_plan_evidence(task, None, "planner.plan_ok"))
+
+
+# What each module asked about does, as the robot says it did not, and the explainers whose steps count as it
+# (a trajectory the controllers ran moved the arm as much as a MoveIt pick).
+_DOES = {"pizza_recommender": ("recommend anything", "recommend a pizza", {"pizza_recommender"}),
+         "ask_human_for_help": ("ask anyone for help", "ask someone for help", {"ask_human_for_help"}),
+         "manipulation": ("use my arm", "use my arm", {"manipulation", "control"})}
+
+
+def _steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> list[SkillRun]:
+    serving = _DOES[module][2]
+    return [run for run in task.skills if serving & set(explainers_of(run.skill))]
+
+
+def ran(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> bool:
+    """Whether a step of the task that `module` serves started; True for a module this answer does not know."""
+    return module not in _DOES or any(_started(run) for run in _steps_of(module, task, explainers_of))
+
+
+def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str], list[str]]) -> Explanation:
+    """"What did you recommend?" of a task whose plan had no such step, or never got to it: what the plan was and
+    how far it got, and the task of this recording that did, if any; never another step's failure as the answer."""
+    did, step, _ = _DOES[module]
+    name = task_name(task, log)
+    steps = _steps_of(module, task, explainers_of)
+    if steps:
+        first = steps[0]
+        failed = task.failed_skill
+        why = (f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" if failed is not None
+               else {"canceled": "the task was canceled first", "invalid": "my plan was rejected before it started"}
+               .get(task.outcome, "the recording ends before it started"))
+        text = (f"I didn't {did} for {name}: step {first.index + 1} of my plan was to {step_words(first)}, "
+                f"but I never got to it, because {why}.")
+        evidence = _plan_evidence(task, first, "planner.plan_ok")
+    else:
+        text = (f"I didn't {did} for {name}: no step of my plan was to {step}. "
+                f"{sentence(f'My plan was to {plan_words(task)}')} {_how_it_ended(task, log)}")
+        evidence = _plan_evidence(task, None, "planner.plan_ok")
+    others = [t for t in log.tasks if t is not task and ran(module, t, explainers_of) and _steps_of(module, t,
+                                                                                                  explainers_of)]
+    if others:
+        other = others[-1]
+        text += f' In task {other.order}, {task_name(other, log)}, I did: ask "what about task {other.order}?".'
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)

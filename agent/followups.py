@@ -16,7 +16,8 @@ _DEEPER = re.compile(
 _HELPED = re.compile(
     r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
     r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|how (can|could|do) (i|we) fix|"
-    r"how (can|could) (i|we|you) (avoid|prevent)|what should i (do|change)|how do i fix"
+    r"how (can|could) (i|we|you) (avoid|prevent)|what should i (do|change)|how do i fix|"
+    r"what (would|do|should) you (recommend|suggest) (i|we) (do|change)"
 )
 _ELSE = re.compile(r"what else|anything else|something else|any other (problem|issue)s?|what other")
 _SWITCH = re.compile(
@@ -40,6 +41,28 @@ _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna 
                    r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
 _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
                     r"where did you finish\b")
+
+
+# A question that names a module of the robot by what it does: of a task whose plan never ran that module, the
+# answer says so ("what did you recommend?" of a coffee fetch), instead of a failure nobody asked about.
+_MODULE_WORDS = {
+    "pizza_recommender": re.compile(r"\b(recommend(ed|ation)?|suggest(ed|ion)?|pizzas?|toppings?)\b(?! (i|we|that i|"
+                                    r"that we|to|doing)\b)"),
+    "ask_human_for_help": re.compile(
+        r"\b(did|has|have|had) (anyone|anybody|someone|somebody|a person|people|a human) help(ed)?\b|"
+        r"\bask(ed)? (anyone|anybody|someone|somebody|a person|a human|people|for help)\b|"
+        r"\b(who|whom) did you (ask|talk to|talk with|speak to|speak with)\b|"
+        r"\b(talk|talked|speak|spoke) (to|with) (anyone|anybody|someone|somebody|a person|people)\b"),
+    "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|drop(ped|ping)?|"
+                               r"pick(ed|ing)? (\w+ )?up|plac(e|ed|ing) (it|them|that|this|the)|put (\w+ )?down)\b"),
+}
+
+
+def module_asked(question: str) -> str | None:
+    """The one module a question names by what it does ('manipulation' for "why did you drop it?"), else None."""
+    q = normalise(question)
+    named = [module for module, words in _MODULE_WORDS.items() if words.search(q)]
+    return named[0] if len(named) == 1 else None
 
 
 def content_kind(question: str) -> str | None:

@@ -13,7 +13,7 @@ from hexar.agent import guard, measures
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
-from hexar.agent.followups import content_kind, intent_of, task_ref_of
+from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.overview import (
     asks_fix,
     helped,
@@ -66,7 +66,7 @@ def _recorded(t: int, topic: str, item: str) -> str:
 
 def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     start = time.perf_counter()
-    reset: dict[str, Any] = {"timings_ms": {}, "error": "", "fallback": []}
+    reset: dict[str, Any] = {"timings_ms": {}, "error": "", "fallback": [], "asked": ""}
     try:
         question = check_question(state.get("question", ""))
     except BadQuestionError as e:
@@ -103,8 +103,11 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     # "my plan looks right" would say nothing (the planner stays the fallback when no explainer serves its steps)
     if "planner" not in candidates and (not task.derived or not candidates):
         candidates.append("planner")
-    return {"task_id": task.task_id, "task_outcome": task.outcome, "candidates": candidates,
-            "timings_ms": _timings(state, "context", start)}
+    update: dict[str, Any] = {"task_id": task.task_id, "task_outcome": task.outcome, "candidates": candidates}
+    asked = module_asked(state["question"]) if state.get("intent") == "new" else None
+    if asked is not None and not answers.ran(asked, task, ctx.registry.for_module):
+        update.update(intent="content", asked=asked)  # its plan never ran the module asked about
+    return {**update, "timings_ms": _timings(state, "context", start)}
 
 
 def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -280,7 +283,9 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
     kind = content_kind(state["question"])
-    if kind in {"act", "next"}:
+    if state.get("asked"):
+        exp = answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module)
+    elif kind in {"act", "next"}:
         exp = answers.read_only(kind, ctx.log, task)
     elif kind == "where":
         exp = answers.where(ctx.log)

@@ -19,6 +19,7 @@ class AgentState(TypedDict, total=False):
     question: str
     intent: Intent
     task_ref: str | None
+    asked: str  # the module a question names that its task never ran ("" for none)
     # context vector C (the recording stays on disk; the run context caches its decoded log)
     task_id: str
     task_outcome: str

@@ -162,3 +162,60 @@ def test_how_long_on_a_rejected_plan_says_it_was_rejected(suite: Path) -> None:
     (took,) = _ask(suite / "bagfile_1_1", "How long did it take?")
     assert str(took["answer"]).endswith("UTC; my plan for it was rejected before it started."), took["answer"]
     assert "canceled" not in str(took["answer"])
+
+
+def test_a_module_the_plan_never_ran_is_said_so_not_the_failure(suite: Path) -> None:
+    """bagfile_5_1, a coffee fetch that failed on its first trip: a question about recommending, asking for help or
+    the arm is answered with what the plan was and how far it got, not with the blocked path."""
+    recommend, helped, arm, why = _ask(suite / "bagfile_5_1", "What did you recommend?", "Did anyone help you?",
+                                       "Why did you drop the cup?", "Why did you stop?")
+    assert str(recommend["answer"]).startswith('I didn\'t recommend anything for your request "Bring me a coffee '
+                                               'from the kitchen": no step of my plan was to recommend a pizza.')
+    assert str(recommend["answer"]).endswith('Your request "Bring me a coffee from the kitchen" failed.')
+    # the help step was planned but waited: never "I could not get help", never the blocked path as its cause
+    assert str(helped["answer"]).startswith("I didn't ask anyone for help for your request")
+    assert ("step 2 of my plan was to ask someone for help (\"Could you please put the coffee on my tray?\"), but I "
+            "never got to it, because step 1 (to go to the kitchen) failed first.") in str(helped["answer"])
+    assert str(arm["answer"]).startswith("I didn't use my arm for your request")
+    for answer in (recommend, helped, arm):
+        assert "blocked" not in str(answer["answer"]), answer["answer"]
+    assert "something blocked my path" in str(why["answer"])
+
+
+def test_a_module_another_task_ran_points_to_that_task(tmp_path: Path) -> None:
+    """One recording, a pizza recommendation then a coffee fetch: "what did you recommend?" about the coffee says
+    the pizza task did."""
+    import random
+
+    from hexar.evals.cases import scenario
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+    from hexar.evals.scenarios.suite import EPOCH, ROOMS, Robot, normal_plan
+
+    b = BagBuilder()
+    pizza, coffee = scenario(20).variants[0], scenario(10).variants[0]
+    robot = Robot(b, random.Random(3), 20, 1, sec_ns(EPOCH + 5), ROOMS[coffee.home])
+    assert robot.run_task(pizza.instruction, normal_plan(pizza, 1), "")
+    robot.sid = 10
+    assert robot.run_task(coffee.instruction, normal_plan(coffee, 1), "")
+    run = b.write(tmp_path / "two_tasks")
+    recommend, helped, switched = _ask(run, "What did you recommend?", "Did anyone help you?", "What about task 1?")
+    text = str(recommend["answer"])
+    assert text.startswith(f'I didn\'t recommend anything for your request "{coffee.instruction}"'), text
+    assert text.endswith(f'In task 1, your request "{pizza.instruction}", I did: ask "what about task 1?".'), text
+    # the coffee task did ask for help: that one is the ask-for-help explainer's to answer
+    assert str(helped["answer"]).startswith("Asking for help went as planned"), helped["answer"]
+    assert str(switched["answer"]).startswith("I recommended a "), switched["answer"]
+
+
+def test_which_questions_name_a_module() -> None:
+    from hexar.agent.followups import module_asked
+
+    for question, module in (("What did you recommend?", "pizza_recommender"),
+                             ("which pizza did you suggest", "pizza_recommender"),
+                             ("What would you recommend I do?", None),
+                             ("Did anyone help you?", "ask_human_for_help"),
+                             ("who did you talk to", "ask_human_for_help"),
+                             ("Why did you drop the cup?", "manipulation"),
+                             ("Did you pick it up?", "manipulation"), ("Why did you pick that route?", None),
+                             ("Why did you go to that place?", None), ("Why did you stop?", None)):
+        assert module_asked(question) == module, question

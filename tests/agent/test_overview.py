@@ -23,7 +23,8 @@ def _ask(run: Path, *questions: str, task: str | None = None) -> list[dict[str, 
     return [session.ask(q, thread=thread) for q in questions]
 
 
-@pytest.mark.parametrize("question", ["how can I fix this", "what would have helped?"])
+@pytest.mark.parametrize("question", ["how can I fix this", "what would have helped?",
+                                      "What would you recommend I do?"])
 def test_a_fix_question_is_answered_with_the_fix(suite: Path, question: str,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["ask", str(suite / "bagfile_5_1"), question, "--llm", "none"]) == 0
