@@ -222,6 +222,9 @@ def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
     if kind == "next":
         text = ("I can't tell what I will do next: I only explain what I have already done, from what I recorded. "
                 + now)
+    elif kind == "stop":
+        text = ("I can't stop from here: here I only explain what I did, from my recording, and I send no commands. "
+                f"To stop me now, press my emergency stop button. {now}")
     else:
         text = ("I can't do that here: here I only explain what I did, from my recording, and I don't act on "
                 f"requests. {now} To have me try again, give me the task again as you usually do.")

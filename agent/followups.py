@@ -36,7 +36,14 @@ _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( bac
 _ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|could|would|will|won't|wont) you "
                   r"(please |just )?(try|retry|go|bring|fetch|get me|do it|do that|drive|move|come|start|restart|turn|"
                   r"pick|put|open|close|give|carry|deliver|make|cook|read|tell maria)\b|"
-                  r"^(and |so |ok |okay |now )?(please )?(try|do it|do that) again\b")
+                  r"^(and |so |ok |okay |now )?(please )?(try|do it|do that) again\b|"
+                  # an order given as one, as people speak to a robot ("bring me the coffee", "go to the kitchen")
+                  r"^(ok |okay |now |then |robot |hey )?(please )?(retry|go (to|back|home|and|get)|bring|fetch|"
+                  r"get me|drive (to|back|home)|come (here|back|to)|start (again|over)|restart|pick (it |\w+ )?up|"
+                  r"put (it|that|this|the)|open the|close the|carry|deliver)\b")
+# "stop!", said to a robot: it is read-only and stops nothing, so it says what would.
+_STOP = re.compile(r"^(please |robot |hey |now |ok |okay )*(stop|halt|freeze)( (it|now|moving|driving|that|there|"
+                   r"right now|please|immediately))*\W*$")
 _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna )?do (next|now)\b|"
                    r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
 _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
@@ -67,11 +74,14 @@ def module_asked(question: str) -> str | None:
 
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did, 'act' for a
-    request to do something and 'next' for one about what it will do; None for anything else."""
+    request to do something, 'stop' for an order to stop and 'next' for one about what it will do; None for
+    anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
+    if _STOP.search(q):
+        return "stop"
     if _ACT.search(q):
         return "act"
     if _NEXT.search(q):

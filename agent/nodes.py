@@ -285,7 +285,7 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     kind = content_kind(state["question"])
     if state.get("asked"):
         exp = answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module)
-    elif kind in {"act", "next"}:
+    elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)
     elif kind == "where":
         exp = answers.where(ctx.log)

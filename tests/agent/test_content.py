@@ -219,3 +219,27 @@ def test_which_questions_name_a_module() -> None:
                              ("Did you pick it up?", "manipulation"), ("Why did you pick that route?", None),
                              ("Why did you go to that place?", None), ("Why did you stop?", None)):
         assert module_asked(question) == module, question
+
+
+def test_an_order_without_a_question_is_declined_not_refused_or_obeyed(suite: Path) -> None:
+    """"please try again", "bring me the coffee" and "stop!" are what people say to a robot: not refused as "not a
+    question", not answered with the failure, and "stop" says what would stop the robot."""
+    again, bring, stop, still_why = _ask(suite / "bagfile_5_1", "please try again", "bring me the coffee", "Stop!",
+                                         "stopped?")
+    for answer in (again, bring):
+        assert not answer["error"], answer
+        assert str(answer["answer"]).startswith("I can't do that here: here I only explain what I did"), answer
+    assert str(stop["answer"]).startswith("I can't stop from here"), stop["answer"]
+    assert "press my emergency stop button" in str(stop["answer"])
+    assert "blocked" not in str(stop["answer"])
+    assert "something blocked my path" in str(still_why["answer"])  # "stopped?" asks why
+
+
+def test_orders_and_stops_are_told_apart_from_questions() -> None:
+    from hexar.agent.followups import content_kind
+
+    for question, kind in (("stop", "stop"), ("please stop moving now", "stop"), ("go to the kitchen", "act"),
+                           ("Bring me the coffee", "act"), ("try again", "act"), ("go on", None),
+                           ("why did you stop", None), ("stop and tell me why", None), ("give me more details", None),
+                           ("go away", None)):
+        assert content_kind(question) == kind, question
