@@ -234,14 +234,19 @@ def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
 
 # What each module asked about does, as the robot says it did not, and the explainers whose steps count as it
 # (a trajectory the controllers ran moved the arm as much as a MoveIt pick).
-_DOES = {"pizza_recommender": ("recommend anything", "recommend a pizza", {"pizza_recommender"}),
-         "ask_human_for_help": ("ask anyone for help", "ask someone for help", {"ask_human_for_help"}),
-         "manipulation": ("use my arm", "use my arm", {"manipulation", "control"})}
+_DOES = {"pizza_recommender": ("recommend anything", "recommend a pizza", ("pizza_recommender",)),
+         "ask_human_for_help": ("ask anyone for help", "ask someone for help", ("ask_human_for_help",)),
+         "manipulation": ("use my arm", "use my arm", ("manipulation", "control"))}
+
+
+def serving(module: str, candidates: list[str]) -> str | None:
+    """The explainer of this task that answers about `module` (a trajectory task's arm is control's to tell)."""
+    return next((name for name in _DOES.get(module, (module, module, (module,)))[2] if name in candidates), None)
 
 
 def _steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> list[SkillRun]:
-    serving = _DOES[module][2]
-    return [run for run in task.skills if serving & set(explainers_of(run.skill))]
+    names = set(_DOES[module][2])
+    return [run for run in task.skills if names & set(explainers_of(run.skill))]
 
 
 def ran(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> bool:

@@ -28,7 +28,8 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
              r"\bwhat distance did you\b")),
-    ("long", (r"^(and |so |ok |okay )?how long (did|had) (it|the task|that|this|the (trip|drive|errand)|you) "
+    # "how long did the pick take?": every step's time is in the answer, the one asked about among them
+    ("long", (r"^(and |so |ok |okay )?how long (did|had) (it|that|this|you|(the|your) [a-z]+( up| down)?) "
               r"(take|need|spend|drive|be)\b",
               r"^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b",
               r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",

@@ -184,6 +184,9 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         with progress.step(f"asking the model ({ctx.backend.name}) which of my modules this question is about"):
             choice = _llm_choice(ctx, state)
     route = "llm"
+    named = module_asked(state["question"]) if choice is None and not whole else None
+    if named is not None and (choice := answers.serving(named, state["candidates"])) is not None:
+        route = "named"  # "did you drop anything?": the arm's to answer, however unsure the classifier is
     if choice is None:
         label, share = (GENERIC, 0.0) if whole else ctx.classifier.choose(state["question"], state["candidates"])
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any, Literal, TypedDict
 
 Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid"]
-Route = Literal["failure_check", "recovery", "llm", "classifier", "findings", "followup", "none"]
+Route = Literal["failure_check", "recovery", "llm", "named", "classifier", "findings", "followup", "none"]
 
 
 class Turn(TypedDict):

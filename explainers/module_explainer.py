@@ -21,6 +21,7 @@ from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.bringup_answer import derived_start, driver_candidates, start_answer
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
+from hexar.explainers.recorded import join_words
 from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words
 from hexar.explainers.stated_causes import adopt, first_thrown, quoted_part, stated_cause, stated_words
 
@@ -180,7 +181,7 @@ class ModuleExplainer:
             cause = f"{self.prefix}nominal"
             ends = [r.line for r in readings if r.kind in {"begin", "begin_server", "succeeded", "end_server"}]
             d.decisive = None
-            text, fix, details = self.words(cause, d, self._what(run))
+            text, fix, details = self.words(cause, d, self._done(context, run))
             return Explanation(explainer=self.name, text=text, causes=[cause], fix=fix, details=details,
                                evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
         decisive = d.decisive
@@ -242,6 +243,19 @@ class ModuleExplainer:
             return ""
         who = last.name or "a node"
         return f" The failure was told by {who} at {at(last, start)}, and no line before it says why."
+
+    def _done(self, context: Context, run: SkillRun | None) -> str:
+        """What the arm did in a window where it all went well: every pick and place in it ("did you pick up the
+        cup?" about a whole fetch is not answered with its last step, the putting down)."""
+        lo, hi = context.window
+        runs = [r for r in context.task.skills if r.skill in {"pick", "place"} and r.state == "succeeded"
+                and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
+        if len(runs) < 2:
+            return self._what(run)
+        objects = {r.params.get("object") for r in runs}
+        if [r.skill for r in runs] == ["pick", "place"] and len(objects) == 1:
+            return f"{self._what(runs[0])} and putting it down"
+        return join_words(list(dict.fromkeys(self._what(r) for r in runs)))
 
     def _what(self, run: SkillRun | None) -> str:
         if run is None:

@@ -129,6 +129,9 @@ def step_words(run: SkillRun, short: bool = False) -> str:
         return "say the pizza I recommend" if text.startswith("?") else f'say "{_clip(text, 60)}"'
     if run.skill == "recommend_pizza":
         return "choose a pizza from the ingredients available"
+    obj = p.get("object")
+    if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
+        return f"{'pick up' if run.skill == 'pick' else 'put down'} the {obj.replace('_', ' ')}"
     return run.skill.replace("_", " ")
 
 
