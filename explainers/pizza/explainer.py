@@ -127,7 +127,8 @@ class PizzaRecommenderExplainer:
         "recipe data set that picks a pizza from the ingredients the person said were available; this "
         "explainer reads the recorded request and recommendation and uses LIME to tell which of those "
         "ingredients pushed the choice toward that pizza, and what the robot would have recommended without "
-        "them. Use it for questions like 'why did you suggest a Margherita?' or 'why this pizza?'."
+        "them; asked 'why not a Hawaiian?' or 'what if I had no basil?', it asks the same tree again with the "
+        "ingredients changed. Use it for questions like 'why did you suggest a Margherita?' or 'why this pizza?'."
     )
 
     def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
@@ -161,9 +162,10 @@ class PizzaRecommenderExplainer:
                 cause=CAUSE, topic=PIZZA_EVENTS, t=recommendation.t, item=f"recommended_pizza = {pizza}"
             ),
         ]
-        return self._explain(pizza, available, evidence)
+        return self._explain(pizza, available, evidence, question)
 
-    def _explain(self, pizza: str, available: list[str], evidence: list[Evidence]) -> Explanation:
+    def _explain(self, pizza: str, available: list[str], evidence: list[Evidence], question: str = ""
+                 ) -> Explanation:
         from hexar.explainers.pizza.recommender import default_recommender
 
         rec = default_recommender()
@@ -220,6 +222,9 @@ class PizzaRecommenderExplainer:
         if missing:
             also = " also" if reasons else ""
             sentences.append(f"Not having {join_words([pretty(m) for m in missing], 'or')}{also} pointed to it.")
+        if predicted == pizza:
+            # "why not a Pepperoni?", "and without basil?": the same tree asked again, in place of the why
+            sentences = _asked(rec, known, pizza, question) or sentences
         causes = [CAUSE] if predicted == pizza else [CAUSE, MISMATCH]
         return Explanation(
             explainer=self.name,
@@ -243,3 +248,13 @@ class PizzaRecommenderExplainer:
             if other != pizza:
                 return f"Had you not had {pretty(ingredient)}, I would have recommended {a_pizza(other)}."
         return None
+
+
+def _asked(rec: PizzaRecommender, known: list[str], pizza: str, question: str) -> list[str]:
+    from hexar.explainers.pizza.whatif import asked_change, asked_pizza, what_if, why_not
+
+    wanted = asked_pizza(question, rec.classes, pizza)
+    if wanted is not None:
+        return [why_not(rec, known, pizza, wanted)]
+    change = asked_change(question, rec.ingredients)
+    return [what_if(rec, known, pizza, change)] if change is not None else []

@@ -83,6 +83,12 @@ class PizzaRecommender:
     def recommend(self, available: Iterable[str]) -> str:
         return str(self.tree.predict(self.vector(available).reshape(1, -1))[0])
 
+    def recommend_many(self, sets: list[list[str]]) -> list[str]:
+        """One tree prediction for many ingredient sets: a search over changed sets stays one call."""
+        if not sets:
+            return []
+        return [str(p) for p in self.tree.predict(np.stack([self.vector(s) for s in sets]))]
+
     def predict_proba(self, rows: Matrix) -> Matrix:
         """Class probabilities in the order of `classes`, for rows of 0/1 features (LIME's classifier_fn)."""
         return np.asarray(self.tree.predict_proba(np.asarray(rows, dtype=np.float64)), dtype=np.float64)

@@ -1,0 +1,135 @@
+"""The two questions people ask a recommender after "why?": "why not a Pepperoni?" and "what would you have
+recommended without basil?". Both are answered by asking the same decision tree again with the ingredients
+changed, so the answer is computed, never guessed; an ingredient or pizza the recipe data lacks is said so.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from itertools import combinations
+from typing import TYPE_CHECKING
+
+from hexar.explainers.recorded import join_words
+
+if TYPE_CHECKING:
+    from hexar.explainers.pizza.recommender import PizzaRecommender
+
+# Words just before an ingredient that take it away or add it ("without basil", "if I had no basil",
+# "with pineapple too", "if I had had ham"); taking away is checked first, since "had no" holds "had".
+_REMOVE = re.compile(r"\b(without|no|not|minus|except|hadn't|didn't have|did not have|don't have|do not have|"
+                     r"had no|out of|instead of)\s+(any\s+|the\s+|some\s+)?$")
+_ADD = re.compile(r"\b(with|had|have|plus|add|added|adding|also|and|got|some|extra)\s+(any\s+|the\s+|some\s+)?$")
+_WHY_NOT = re.compile(r"\bwhy (not|no|didn't you|did you not|wasn't it|isn't it)\b|\binstead of\b|\brather than\b|"
+                      r"\bwhat about\b|\bhow about\b")
+_WHAT_IF = re.compile(r"\bwhat (if|would you|would it|would have)\b|\bwould you (have )?(still )?(recommend|suggest|"
+                      r"pick|choose)\b|\bif i (had|hadn't|didn't|did not|had not)\b|\bhad i\b|\bwithout\b")
+
+
+MAX_CHANGE = 4  # ingredients added or taken away in a "why not ...?" answer: a bigger change is a new recipe
+
+
+@dataclass(frozen=True)
+class Change:
+    removed: tuple[str, ...]
+    added: tuple[str, ...]
+
+
+def _names(name: str) -> list[str]:
+    spoken = name.replace("_", " ").lower()
+    return [spoken, spoken[:-1]] if spoken.endswith("s") else [spoken, spoken + "s"]
+
+
+def asked_pizza(question: str, classes: list[str], recommended: str) -> str | None:
+    """The pizza a "why not ...?" question names other than the one recommended, if it asks why not."""
+    q = question.lower()
+    if not _WHY_NOT.search(q):
+        return None
+    for name in sorted(classes, key=len, reverse=True):  # "Quattro Formaggi" before any shorter name inside it
+        if name.lower() != recommended.lower() and re.search(rf"\b{re.escape(name.lower())}\b", q):
+            return name
+    return None
+
+
+def asked_change(question: str, ingredients: list[str]) -> Change | None:
+    """The ingredients a "what if ...?" question takes away or adds, as the recipe data names them."""
+    q = question.lower().replace("_", " ")
+    if not _WHAT_IF.search(q) and " with " not in f" {q} ":
+        return None
+    removed: list[str] = []
+    added: list[str] = []
+    for ingredient in ingredients:
+        for spoken in _names(ingredient):
+            m = re.search(rf"\b{re.escape(spoken)}\b", q)
+            if m is None:
+                continue
+            before = q[max(0, m.start() - 40):m.start()]
+            if _REMOVE.search(before):
+                removed.append(ingredient)
+            elif _ADD.search(before) or re.search(r",\s*$|\band\s+$", before):
+                added.append(ingredient)
+            break
+    return Change(tuple(removed), tuple(added)) if removed or added else None
+
+
+def _a(name: str) -> str:
+    return f"{'an' if name[:1].lower() in 'aeio' else 'a'} {name}"
+
+
+def _pretty(names: list[str] | tuple[str, ...], last: str = "and") -> str:
+    return join_words([n.replace("_", " ") for n in names], last)
+
+
+def what_if(rec: PizzaRecommender, known: list[str], pizza: str, change: Change) -> str:
+    """The recommendation for the changed ingredients, from the same tree."""
+    not_had = [r for r in change.removed if r not in known]
+    had = [a for a in change.added if a in known]
+    new = [k for k in known if k not in change.removed] + [a for a in change.added if a not in known]
+    other = rec.recommend(new)
+    parts = []
+    if [r for r in change.removed if r in known]:
+        parts.append(f"without {_pretty([r for r in change.removed if r in known])}")
+    if [a for a in change.added if a not in known]:
+        parts.append(f"with {_pretty([a for a in change.added if a not in known])} as well")
+    notes = []
+    if not_had:
+        notes.append(f"You didn't have {_pretty(not_had, 'or')} in the first place.")
+    if had:
+        notes.append(f"You already had {_pretty(had)}.")
+    if not parts:
+        return " ".join([*notes, f"So I would still recommend {_a(pizza)}."])
+    when = " and ".join(parts)
+    said = (f"{when[0].upper()}{when[1:]}, I would still have recommended {_a(pizza)}." if other == pizza
+            else f"{when[0].upper()}{when[1:]}, I would have recommended {_a(other)} instead of {_a(pizza)}.")
+    return " ".join([*notes, said])
+
+
+def why_not(rec: PizzaRecommender, known: list[str], pizza: str, wanted: str) -> str:
+    """What kept the asked-for pizza out: the smallest change to what you had (ingredients of its recipes added,
+    at most one of yours taken away) that makes the same tree pick it, else what its closest recipe needs."""
+    have = set(known)
+    recipes = [[name for name, v in zip(rec.ingredients, row, strict=True) if v]
+               for label, row in zip(rec.labels, rec.data, strict=True) if label == wanted]
+    closest = min(recipes, key=lambda r: (len([i for i in r if i not in have]), len(r)))
+    missing = [i for i in closest if i not in have]
+    if not missing:
+        return (f"I recommended {_a(pizza)}, not {_a(wanted)}: you had everything {_a(wanted)} needs, but my recipe "
+                f"model picks {_a(pizza)} for all that you had.")
+    lacking = sorted({i for r in recipes for i in r if i not in have}, key=rec.ingredients.index)
+    changes = [(added, removed) for size in range(1, MAX_CHANGE + 1) for removed in ([()] + [(k,) for k in known])
+               for added in combinations(lacking, size - len(removed))]
+    picks = rec.recommend_many([[*(k for k in known if k not in removed), *added] for added, removed in changes])
+    found = next((change for change, pick in zip(changes, picks, strict=True) if pick == wanted), None)
+    if found is None:
+        return (f"I recommended {_a(pizza)}, not {_a(wanted)}: {_a(wanted)} needs {_pretty(missing)}, which you "
+                f"didn't have, and even with {'it' if len(missing) == 1 else 'them'} my recipe model picks "
+                f"{_a(rec.recommend([*known, *missing]))}.")
+    added, removed = found
+    then = f"I would have recommended {_a(wanted)}"
+    if not removed:
+        return (f"I recommended {_a(pizza)}, not {_a(wanted)}, because you didn't have {_pretty(added)}: with "
+                f"{'it' if len(added) == 1 else 'them'}, {then}.")
+    if not added:
+        return f"I recommended {_a(pizza)}, not {_a(wanted)}, because you had {_pretty(removed)}: without it, {then}."
+    return (f"I recommended {_a(pizza)}, not {_a(wanted)}: you didn't have {_pretty(added)}, and you had "
+            f"{_pretty(removed)}; with {_pretty(added)} and without {_pretty(removed)}, {then}.")
