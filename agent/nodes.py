@@ -287,7 +287,7 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     task = ctx.log.task(state["task_id"])
     kind = content_kind(state["question"])
     if state.get("asked"):
-        exp = answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module)
+        exp = _with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
     elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)
     elif kind == "where":
@@ -303,6 +303,18 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)
+
+
+def _with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explanation:
+    """"Did anyone help you?" of a task that failed before asking: the answer names the step that failed, so
+    "why?" and "what would have helped?" go on to that failure (its evidence, details and fix), not to the plan."""
+    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
+    if name is None:
+        return exp
+    failed = _probe(ctx, name, state["question"], state["task_id"])
+    return exp.model_copy(update={"evidence": [*exp.evidence, *failed.evidence], "fix": failed.fix,
+                                  "counterfactual": failed.counterfactual,
+                                  "details": [failed.text, *failed.details]})
 
 
 def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:

@@ -140,7 +140,9 @@ def test_figures_questions_are_content_and_why_questions_are_not() -> None:
     for question, kind in (("How far did you drive?", "far"), ("how long did it take", "long"),
                            ("How long was the trip?", "long"), ("When did you get to the kitchen?", "when"),
                            ("what time did you arrive", "when"), ("Why did it take you so long?", None),
-                           ("Why did it take so long to get there?", None), ("Why didn't you get there?", None)):
+                           ("Why did it take so long to get there?", None), ("Why didn't you get there?", None),
+                           ("How long did the pick take?", "long"), ("how long did your speech take", "long"),
+                           ("why did the pick take so long", None)):
         assert content_kind(question) == kind, question
 
 
@@ -180,6 +182,15 @@ def test_a_module_the_plan_never_ran_is_said_so_not_the_failure(suite: Path) -> 
     for answer in (recommend, helped, arm):
         assert "blocked" not in str(answer["answer"]), answer["answer"]
     assert "something blocked my path" in str(why["answer"])
+
+
+def test_after_a_step_never_reached_why_goes_on_to_the_failure_before_it(suite: Path) -> None:
+    """The answer names step 1's failure as the reason: "why?" and "what would have helped?" are about it."""
+    _, why, deeper, fix = _ask(suite / "bagfile_5_1", "Did anyone help you?", "why?", "why?",
+                               "what would have helped?")
+    assert "[controller_server] ERROR Failed to make progress" in str(why["answer"]), why["answer"]
+    assert str(deeper["answer"]).startswith("I couldn't reach the kitchen because something blocked my path")
+    assert fix["answer"] == "Clear the way to the kitchen and ask me again."
 
 
 def test_a_module_another_task_ran_points_to_that_task(tmp_path: Path) -> None:
