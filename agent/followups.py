@@ -53,14 +53,16 @@ _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is
 # A question that names a module of the robot by what it does: of a task whose plan never ran that module, the
 # answer says so ("what did you recommend?" of a coffee fetch), instead of a failure nobody asked about.
 _MODULE_WORDS = {
-    "pizza_recommender": re.compile(r"\b(recommend(ed|ation)?|suggest(ed|ion)?|pizzas?|toppings?)\b(?! (i|we|that i|"
-                                    r"that we|to|doing)\b)"),
+    # "pizza" only as the one chosen ("which pizza"): "the pizza party" is a request's words, not the recommender
+    "pizza_recommender": re.compile(r"\b(recommend(ed|ation)?|suggest(ed|ion)?|(which|what|that|this) pizza)\b"
+                                    r"(?! (i|we|that i|that we|to|doing)\b)"),
     "ask_human_for_help": re.compile(
         r"\b(did|has|have|had) (anyone|anybody|someone|somebody|a person|people|a human) help(ed)?\b|"
+        # not "who did you talk to?": the robot also talks when it only speaks a message (text_to_speech)
         r"\bask(ed)? (anyone|anybody|someone|somebody|a person|a human|people|for help)\b|"
-        r"\b(who|whom) did you (ask|talk to|talk with|speak to|speak with)\b|"
-        r"\b(talk|talked|speak|spoke) (to|with) (anyone|anybody|someone|somebody|a person|people)\b"),
-    "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|drop(ped|ping)?|"
+        r"\b(who|whom) did you ask\b"),
+    # "drop off the coffee" is a delivery, which a tray robot makes without an arm
+    "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|drop(ped|ping)?(?! off\b)|"
                                r"pick(ed|ing)? (\w+ )?up|plac(e|ed|ing) (it|them|that|this|the)|put (\w+ )?down)\b"),
 }
 

@@ -225,9 +225,12 @@ def test_which_questions_name_a_module() -> None:
                              ("which pizza did you suggest", "pizza_recommender"),
                              ("What would you recommend I do?", None),
                              ("Did anyone help you?", "ask_human_for_help"),
-                             ("who did you talk to", "ask_human_for_help"),
+                             ("who did you ask for help", "ask_human_for_help"),
+                             ("who did you talk to", None),  # a message spoken is talking too
                              ("Why did you drop the cup?", "manipulation"),
-                             ("Did you pick it up?", "manipulation"), ("Why did you pick that route?", None),
+                             ("Did you pick it up?", "manipulation"), ("Did you drop off the coffee?", None),
+                             ("did you tell maria about the pizza party", None),
+                             ("why that pizza", "pizza_recommender"), ("Why did you pick that route?", None),
                              ("Why did you go to that place?", None), ("Why did you stop?", None)):
         assert module_asked(question) == module, question
 
