@@ -241,7 +241,7 @@ _DOES = {"pizza_recommender": ("recommend anything", "recommend a pizza", ("pizz
 
 def serving(module: str, candidates: list[str]) -> str | None:
     """The explainer of this task that answers about `module` (a trajectory task's arm is control's to tell)."""
-    return next((name for name in _DOES.get(module, (module, module, (module,)))[2] if name in candidates), None)
+    return next((name for name in _DOES[module][2] if name in candidates), None)
 
 
 def _steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> list[SkillRun]:
@@ -250,8 +250,8 @@ def _steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]
 
 
 def ran(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> bool:
-    """Whether a step of the task that `module` serves started; True for a module this answer does not know."""
-    return module not in _DOES or any(_started(run) for run in _steps_of(module, task, explainers_of))
+    """Whether a step of the task that `module` serves started."""
+    return any(_started(run) for run in _steps_of(module, task, explainers_of))
 
 
 def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str], list[str]]) -> Explanation:
@@ -273,8 +273,7 @@ def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str
         text = (f"I didn't {did} for {name}: no step of my plan was to {step}. "
                 f"{sentence(f'My plan was to {plan_words(task)}')} {_how_it_ended(task, log)}")
         evidence = _plan_evidence(task, None, "planner.plan_ok")
-    others = [t for t in log.tasks if t is not task and ran(module, t, explainers_of) and _steps_of(module, t,
-                                                                                                  explainers_of)]
+    others = [t for t in log.tasks if t is not task and ran(module, t, explainers_of)]
     if others:
         other = others[-1]
         text += f' In task {other.order}, {task_name(other, log)}, I did: ask "what about task {other.order}?".'

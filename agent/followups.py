@@ -74,6 +74,10 @@ def module_asked(question: str) -> str | None:
     return named[0] if len(named) == 1 else None
 
 
+# In this order: "stop" before a request to act, and both before the questions about what was done.
+_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT))
+
+
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did, 'act' for a
     request to do something, 'stop' for an order to stop and 'next' for one about what it will do; None for
@@ -82,21 +86,10 @@ def content_kind(question: str) -> str | None:
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
-    if _STOP.search(q):
-        return "stop"
-    if _ACT.search(q):
-        return "act"
-    if _NEXT.search(q):
-        return "next"
-    if _WHERE.search(q):
-        return "where"
-    if _WENT.search(q):
-        return "went"
-    if (measure := measure_kind(q)) is not None:
-        return measure
-    if CONTENT_QUESTION.search(q):
-        return "said"
-    return None
+    kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None)
+    if kind is None and (kind := measure_kind(q)) is None and CONTENT_QUESTION.search(q):
+        kind = "said"
+    return kind
 
 
 def normalise(question: str) -> str:

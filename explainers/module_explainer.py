@@ -38,10 +38,15 @@ def focus(context: Context, skills: tuple[str, ...]) -> SkillRun | None:
     failed = context.task.failed_skill
     if failed is not None and failed.skill in skills:
         return failed
-    lo, hi = context.window
-    inside = [r for r in context.task.skills if r.skill in skills and r.history
-              and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
+    inside = [r for r in inside_window(context, skills) if r.history]
     return inside[-1] if inside else None
+
+
+def inside_window(context: Context, skills: tuple[str, ...]) -> list[SkillRun]:
+    """The task's steps of these skills that overlap the context's window, in plan order."""
+    lo, hi = context.window
+    return [r for r in context.task.skills if r.skill in skills
+            and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
 
 
 def evidence_of(cause: str, readings: list[Reading]) -> list[Evidence]:
@@ -247,9 +252,7 @@ class ModuleExplainer:
     def _done(self, context: Context, run: SkillRun | None) -> str:
         """What the arm did in a window where it all went well: every pick and place in it ("did you pick up the
         cup?" about a whole fetch is not answered with its last step, the putting down)."""
-        lo, hi = context.window
-        runs = [r for r in context.task.skills if r.skill in {"pick", "place"} and r.state == "succeeded"
-                and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
+        runs = [r for r in inside_window(context, ("pick", "place")) if r.state == "succeeded"]
         if len(runs) < 2:
             return self._what(run)
         objects = {r.params.get("object") for r in runs}

@@ -164,8 +164,7 @@ class PizzaRecommenderExplainer:
         ]
         return self._explain(pizza, available, evidence, question)
 
-    def _explain(self, pizza: str, available: list[str], evidence: list[Evidence], question: str = ""
-                 ) -> Explanation:
+    def _explain(self, pizza: str, available: list[str], evidence: list[Evidence], question: str) -> Explanation:
         from hexar.explainers.pizza.recommender import default_recommender
 
         rec = default_recommender()
@@ -251,6 +250,7 @@ class PizzaRecommenderExplainer:
 
 
 def _asked(rec: PizzaRecommender, known: list[str], pizza: str, question: str) -> list[str]:
+    # imported here: whatif words its answers with this module's pretty() and a_pizza()
     from hexar.explainers.pizza.whatif import asked_change, asked_pizza, what_if, why_not
 
     wanted = asked_pizza(question, rec.classes, pizza)

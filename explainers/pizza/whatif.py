@@ -10,6 +10,7 @@ from dataclasses import dataclass
 from itertools import combinations
 from typing import TYPE_CHECKING
 
+from hexar.explainers.pizza.explainer import a_pizza, pretty
 from hexar.explainers.recorded import join_words
 
 if TYPE_CHECKING:
@@ -36,7 +37,7 @@ class Change:
 
 
 def _names(name: str) -> list[str]:
-    spoken = name.replace("_", " ").lower()
+    spoken = pretty(name).lower()
     return [spoken, spoken[:-1]] if spoken.endswith("s") else [spoken, spoken + "s"]
 
 
@@ -72,35 +73,32 @@ def asked_change(question: str, ingredients: list[str]) -> Change | None:
     return Change(tuple(removed), tuple(added)) if removed or added else None
 
 
-def _a(name: str) -> str:
-    return f"{'an' if name[:1].lower() in 'aeio' else 'a'} {name}"
-
-
 def _pretty(names: list[str] | tuple[str, ...], last: str = "and") -> str:
-    return join_words([n.replace("_", " ") for n in names], last)
+    return join_words([pretty(n) for n in names], last)
 
 
 def what_if(rec: PizzaRecommender, known: list[str], pizza: str, change: Change) -> str:
     """The recommendation for the changed ingredients, from the same tree."""
     not_had = [r for r in change.removed if r not in known]
+    taken = [r for r in change.removed if r in known]
     had = [a for a in change.added if a in known]
-    new = [k for k in known if k not in change.removed] + [a for a in change.added if a not in known]
-    other = rec.recommend(new)
+    new = [a for a in change.added if a not in known]
+    other = rec.recommend([*(k for k in known if k not in taken), *new])
     parts = []
-    if [r for r in change.removed if r in known]:
-        parts.append(f"without {_pretty([r for r in change.removed if r in known])}")
-    if [a for a in change.added if a not in known]:
-        parts.append(f"with {_pretty([a for a in change.added if a not in known])} as well")
+    if taken:
+        parts.append(f"without {_pretty(taken)}")
+    if new:
+        parts.append(f"with {_pretty(new)} as well")
     notes = []
     if not_had:
         notes.append(f"You didn't have {_pretty(not_had, 'or')} in the first place.")
     if had:
         notes.append(f"You already had {_pretty(had)}.")
     if not parts:
-        return " ".join([*notes, f"So I would still recommend {_a(pizza)}."])
+        return " ".join([*notes, f"So I would still recommend {a_pizza(pizza)}."])
     when = " and ".join(parts)
-    said = (f"{when[0].upper()}{when[1:]}, I would still have recommended {_a(pizza)}." if other == pizza
-            else f"{when[0].upper()}{when[1:]}, I would have recommended {_a(other)} instead of {_a(pizza)}.")
+    said = (f"{when[0].upper()}{when[1:]}, I would still have recommended {a_pizza(pizza)}." if other == pizza
+            else f"{when[0].upper()}{when[1:]}, I would have recommended {a_pizza(other)} instead of {a_pizza(pizza)}.")
     return " ".join([*notes, said])
 
 
@@ -108,28 +106,28 @@ def why_not(rec: PizzaRecommender, known: list[str], pizza: str, wanted: str) ->
     """What kept the asked-for pizza out: the smallest change to what you had (ingredients of its recipes added,
     at most one of yours taken away) that makes the same tree pick it, else what its closest recipe needs."""
     have = set(known)
+    lead = f"I recommended {a_pizza(pizza)}, not {a_pizza(wanted)}"
     recipes = [[name for name, v in zip(rec.ingredients, row, strict=True) if v]
                for label, row in zip(rec.labels, rec.data, strict=True) if label == wanted]
     closest = min(recipes, key=lambda r: (len([i for i in r if i not in have]), len(r)))
     missing = [i for i in closest if i not in have]
     if not missing:
-        return (f"I recommended {_a(pizza)}, not {_a(wanted)}: you had everything {_a(wanted)} needs, but my recipe "
-                f"model picks {_a(pizza)} for all that you had.")
+        return (f"{lead}: you had everything {a_pizza(wanted)} needs, but my recipe model picks {a_pizza(pizza)} "
+                "for all that you had.")
     lacking = sorted({i for r in recipes for i in r if i not in have}, key=rec.ingredients.index)
     changes = [(added, removed) for size in range(1, MAX_CHANGE + 1) for removed in ([()] + [(k,) for k in known])
                for added in combinations(lacking, size - len(removed))]
     picks = rec.recommend_many([[*(k for k in known if k not in removed), *added] for added, removed in changes])
     found = next((change for change, pick in zip(changes, picks, strict=True) if pick == wanted), None)
     if found is None:
-        return (f"I recommended {_a(pizza)}, not {_a(wanted)}: {_a(wanted)} needs {_pretty(missing)}, which you "
+        return (f"{lead}: {a_pizza(wanted)} needs {_pretty(missing)}, which you "
                 f"didn't have, and even with {'it' if len(missing) == 1 else 'them'} my recipe model picks "
-                f"{_a(rec.recommend([*known, *missing]))}.")
+                f"{a_pizza(rec.recommend([*known, *missing]))}.")
     added, removed = found
-    then = f"I would have recommended {_a(wanted)}"
+    then = f"I would have recommended {a_pizza(wanted)}"
     if not removed:
-        return (f"I recommended {_a(pizza)}, not {_a(wanted)}, because you didn't have {_pretty(added)}: with "
-                f"{'it' if len(added) == 1 else 'them'}, {then}.")
+        return f"{lead}, because you didn't have {_pretty(added)}: with {'it' if len(added) == 1 else 'them'}, {then}."
     if not added:
-        return f"I recommended {_a(pizza)}, not {_a(wanted)}, because you had {_pretty(removed)}: without it, {then}."
-    return (f"I recommended {_a(pizza)}, not {_a(wanted)}: you didn't have {_pretty(added)}, and you had "
+        return f"{lead}, because you had {_pretty(removed)}: without it, {then}."
+    return (f"{lead}: you didn't have {_pretty(added)}, and you had "
             f"{_pretty(removed)}; with {_pretty(added)} and without {_pretty(removed)}, {then}.")
