@@ -17,7 +17,7 @@ from typing import Literal
 
 from hexar.events import contract as c
 from hexar.events.log import View
-from hexar.events.records import WARN, BoolSample, LogLine, PoseSample, StatusRecord
+from hexar.events.records import ERROR, WARN, BoolSample, LogLine, PoseSample, StatusRecord
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import END_KINDS, Entry, catalogue
 from hexar.explainers.navigation.diagnose import Tagged
@@ -127,9 +127,21 @@ def summarise(tagged: list[tuple[LogLine, Entry | None]], poses: list[PoseSample
         outcome = "reached"
     elif skill_state == "failed":
         outcome = "failed"
+    elif (reached := _controller_reached(tagged)) is not None:
+        outcome, end = "reached", reached
     begin = max((b for b in begins if end is None or b.t <= end.t), key=lambda b: b.t, default=None)
     notes = [Tagged(ln, e) for ln, e in [*tagged, *(extra or [])] if e is not None and e.cause is not None]
     return Run(lines, poses, outcome, begin, end, sorted(notes, key=lambda n: n.line.t))
+
+
+def _controller_reached(tagged: list[tuple[LogLine, Entry | None]]) -> LogLine | None:
+    """The controller's "Reached the goal!" when it is the last word of the window: with neither the navigator's
+    end nor the task's status recorded, a path followed to the goal checker's satisfaction after earlier progress
+    failures is a goal reached late, not one given up on. Any later error leaves the end unknown."""
+    last = max((ln for ln, e in tagged if e is not None and e.id == "ctrl.reached"), key=lambda ln: ln.t, default=None)
+    if last is None or any(ln.t > last.t and ln.level >= ERROR for ln, _ in tagged):
+        return None
+    return last
 
 
 def _latched(view: View, topic: str, window: tuple[int, int]) -> list[BoolSample]:

@@ -86,7 +86,8 @@ def tag_logs(lines: Iterable[LogLine]) -> list[tuple[LogLine, Entry | None]]:
         if entry is not None and entry.id == "ctrl.carrot" and _TREE_NO_PATH.match(line.msg) \
                 and catalogue().role(line.name) == "bt_navigator":
             entry = None  # the tree's IsGoalNearby found no path (no plan was made), not a controller that failed
-        if not keep or previous.get(line.name) == line.msg:
+        # each "Failed to make progress" is one aborted FollowPath, so its copies count; other repeats say nothing new
+        if not keep or (previous.get(line.name) == line.msg and (entry is None or entry.kind != "progress")):
             continue
         previous[line.name] = line.msg
         out.append((line, entry))

@@ -226,6 +226,38 @@ def test_a_stop_seen_while_the_goal_still_runs_is_not_called_a_failed_goal(tmp_p
     assert "couldn't reach" not in text and "does not show whether I got there" in text
 
 
+_STUCK_THEN_REACHED = [
+    (1, "bt_navigator", INFO, "Begin navigating from current location (-4.03, -2.64) to (-4.00, 2.70)"),
+    (2, "controller_server", INFO, "Received a goal, begin computing control effort."),
+    (12, "controller_server", ERROR, "Failed to make progress"),
+    (12.1, "controller_server", WARN, "[follow_path] [ActionServer] Aborting handle."),
+    (13, "local_costmap.local_costmap", INFO, "Received request to clear entirely the local_costmap"),
+    (23, "controller_server", ERROR, "Failed to make progress"),
+    (24, "global_costmap.global_costmap", INFO, "Received request to clear entirely the global_costmap"),
+    (34, "controller_server", ERROR, "Failed to make progress"),
+    (44, "controller_server", ERROR, "Failed to make progress"),
+    (45, "behavior_server", INFO, "Running spin"),
+    (50, "behavior_server", INFO, "spin completed successfully")]
+
+
+def test_a_goal_the_controller_reached_after_progress_failures_is_reached_late_not_given_up(tmp_path: Path) -> None:
+    # blind7 pinklab-openarm-rack-aisle (Jazzy, no navigator end, no /task_info): four progress failures, a spin,
+    # then the controller's "Reached the goal!" (controller_server.cpp): the goal was reached, each failure counted
+    causes, text = _no_task(tmp_path, [*_STUCK_THEN_REACHED, (70, "controller_server", INFO, "Reached the goal!")],
+                            "Why did it take so long to get there?")
+    assert causes == [UNEXPLAINED]
+    assert text.startswith("I reached my goal, but it took longer") and "gave up" not in text
+    assert "4 times" in text and "can't tell what was in the way" in text
+
+
+def test_an_error_after_the_controller_reached_leaves_the_end_unknown(tmp_path: Path) -> None:
+    causes, text = _no_task(tmp_path, [*_STUCK_THEN_REACHED, (70, "controller_server", INFO, "Reached the goal!"),
+                                       (71, "controller_server", ERROR, "Failed to make progress")],
+                            "Why did it take so long to get there?")
+    # a progress failure after the controller's "Reached the goal!" belongs to a later goal, which gave up
+    assert causes == [g.NO_PROGRESS] and "I reached" not in text and "gave up" in text
+
+
 def test_a_short_collision_monitor_hold_is_not_worded_as_0_s(tmp_path: Path) -> None:
     b = BagBuilder()
     t = T0 + sec_ns(1)
