@@ -189,22 +189,25 @@ def where(log: EventLog) -> Explanation:
                        enough_information=pose is not None or bool(goals))
 
 
-def said(question: str, log: EventLog, task: Task) -> Explanation:
-    """What the robot said for this task, and whether it was what the person asked for."""
+def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -> Explanation:
+    """What the robot said for this task, and whether it was what the person asked for (`nothing`: the sentence
+    for having said nothing, where another answer already named the task)."""
     spoken = utterances(log, (task.created, task.last_update))
     if not spoken:
         later = [t for t in log.tasks if t.order > task.order and t.is_recovery]
         after = utterances(log, later[0].window()) if later else []
         extra = sentence(f' Afterwards, in my recovery, I said "{first_sentence(after[-1].text)}"') if after else ""
-        return Explanation(explainer="text_to_speech", text=f"I didn't say anything for {task_name(task, log)}.{extra}",
-                           causes=["tts.completed"])
+        none = nothing or f"I didn't say anything for {task_name(task, log)}."
+        return Explanation(explainer="text_to_speech", text=f"{none}{extra}", causes=["tts.completed"])
     last = spoken[-1]
     evidence = [Evidence(cause="tts.completed", topic=c.SAY_EVENTS, t=last.t, item=f"started: text = {last.text}")]
     compared = compare(task.instruction, last.text, evidence, question) if not task.is_recovery else None
     if compared is not None:
         return compared
     cut = " I was cut off before the end." if last.ended == "timed_out" else ""
-    return Explanation(explainer="text_to_speech", text=f'I said "{first_sentence(last.text, 200)}".{cut}',
+    quoted = first_sentence(last.text, 200)
+    stop = "" if quoted.endswith((".", "!", "?")) else "."  # 'I said "Here is your coffee."', one full stop
+    return Explanation(explainer="text_to_speech", text=f'I said "{quoted}"{stop}{cut}',
                        causes=["tts.completed"], evidence=evidence)
 
 
@@ -244,14 +247,22 @@ def serving(module: str, candidates: list[str]) -> str | None:
     return next((name for name in _DOES[module][2] if name in candidates), None)
 
 
-def _steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> list[SkillRun]:
+def steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> list[SkillRun]:
     names = set(_DOES[module][2])
     return [run for run in task.skills if names & set(explainers_of(run.skill))]
 
 
 def ran(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> bool:
     """Whether a step of the task that `module` serves started."""
-    return any(_started(run) for run in _steps_of(module, task, explainers_of))
+    return any(_started(run) for run in steps_of(module, task, explainers_of))
+
+
+def asked_someone(task: Task, explainers_of: Callable[[str], list[str]], found: Explanation) -> str:
+    """"Who did you talk to?" of a task that ran its ask-for-help step: the step, then the first sentence of what
+    that step's explainer found (whether I found the person, and what they said)."""
+    step = next(run for run in steps_of("ask_human_for_help", task, explainers_of) if _started(run))
+    head = re.split(r"(?<=[.!?])\s", found.text.strip(), maxsplit=1)[0]
+    return f"Step {step.index + 1} of my plan was to {step_words(step)}. {head}"
 
 
 def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str], list[str]]) -> Explanation:
@@ -259,7 +270,7 @@ def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str
     how far it got, and the task of this recording that did, if any; never another step's failure as the answer."""
     did, step, _ = _DOES[module]
     name = task_name(task, log)
-    steps = _steps_of(module, task, explainers_of)
+    steps = steps_of(module, task, explainers_of)
     if steps:
         first = steps[0]
         failed = task.failed_skill

@@ -46,6 +46,10 @@ _STOP = re.compile(r"^(please |robot |hey |now |ok |okay )*(stop|halt|freeze)( (
                    r"right now|please|immediately))*\W*$")
 _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna )?do (next|now)\b|"
                    r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
+# "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
+_TALKED = re.compile(r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
+                     r"^(and |so |but )?did you (talk|speak) (to|with) (anyone|anybody|someone|somebody|people|a person|me|her|him|"
+                     r"them|[a-z]+)\b")
 _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
                     r"where did you finish\b")
 
@@ -75,11 +79,12 @@ def module_asked(question: str) -> str | None:
 
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
-_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT))
+_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
+                  ("talked", _TALKED))
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'long', 'when' or 'said' for a question about what the robot did, 'act' for a
+    """'went', 'where', 'far', 'long', 'when', 'talked' or 'said' for a question about what the robot did, 'act' for a
     request to do something, 'stop' for an order to stop and 'next' for one about what it will do; None for
     anything else."""
     from hexar.agent.measures import measure_kind

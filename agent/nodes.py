@@ -37,6 +37,8 @@ if TYPE_CHECKING:
     # Only a type: the one-shot path runs these nodes without importing LangGraph (agent/oneshot.py).
     from langgraph.runtime import Runtime
 
+    from hexar.events.tasks import Task
+
 # Where a piece of evidence comes from, as the robot says it.
 _SOURCE = {
     "/rosout": "my log", "/task_info": "my task status", "/amcl_pose": "my localisation",
@@ -300,9 +302,29 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = measures.long(ctx.log, task)
     elif kind == "when":
         exp = measures.when(state["question"], ctx.log, task)
+    elif kind == "talked":
+        exp = _talked(ctx, state, task)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)
+
+
+def _talked(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
+    """"Who did you talk to?": the person I asked for help (that explainer's answer, or the step I never got to,
+    whose failure "why?" goes on to), then what I said aloud."""
+    module, of = "ask_human_for_help", ctx.registry.for_module
+    if answers.ran(module, task, of):
+        asked = _probe(ctx, module, state["question"], state["task_id"])
+        asked = asked.model_copy(update={"text": answers.asked_someone(task, of, asked)})
+        nothing = "Apart from that, I said nothing aloud for this task."
+    elif answers.steps_of(module, task, of):
+        asked = _with_failure(ctx, state, answers.not_run(module, ctx.log, task, of))
+        nothing = "I didn't say anything either."
+    else:
+        return answers.said(state["question"], ctx.log, task)
+    spoken = answers.said(state["question"], ctx.log, task, nothing)
+    return asked.model_copy(update={"text": f"{asked.text} {spoken.text}",
+                                    "evidence": [*asked.evidence, *spoken.evidence]})
 
 
 def _with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explanation:

@@ -257,3 +257,30 @@ def test_orders_and_stops_are_told_apart_from_questions() -> None:
                            ("why did you stop", None), ("stop and tell me why", None), ("give me more details", None),
                            ("go away", None)):
         assert content_kind(question) == kind, question
+
+
+def test_who_did_you_talk_to_is_whom_i_asked_and_what_i_said(suite: Path) -> None:
+    """Not the failure of another step: the person the robot asked for help, then what it said aloud."""
+    (declined,) = _ask(suite / "bagfile_15_1", "Who did you talk to?")
+    assert str(declined["answer"]).startswith('Step 2 of my plan was to ask someone for help ("Could you please '
+                                              'put the coffee on my tray?"). I could not get help: the person '
+                                              "declined to help."), declined["answer"]
+    assert 'in my recovery, I said "Sorry, I could not complete the task."' in str(declined["answer"])
+    never, why = _ask(suite / "bagfile_5_1", "who did you speak with", "why?")
+    assert str(never["answer"]).startswith("I didn't ask anyone for help for your request"), never["answer"]
+    assert "because step 1 (to go to the kitchen) failed first. I didn't say anything either." in str(never["answer"])
+    assert "[controller_server] ERROR Failed to make progress" in str(why["answer"]), why["answer"]
+    (maria,) = _ask(suite / "bagfile_10_3", "Did you talk to Maria?")
+    assert str(maria["answer"]).startswith('Yes: I said "Maria, dinner is at eight.", which is what you asked for')
+    (pizza,) = _ask(suite / "bagfile_20_1", "who did you talk to")
+    assert pizza["answer"] == 'I said "I recommend a Margherita."'
+
+
+def test_which_questions_ask_whom_i_talked_to() -> None:
+    from hexar.agent.followups import content_kind
+
+    for question, kind in (("Who did you talk to?", "talked"), ("whom did you speak with", "talked"),
+                           ("did you talk to anyone", "talked"), ("Did you speak to Maria?", "talked"),
+                           ("Why did you talk to Maria?", None), ("Did anyone help you?", None),
+                           ("What did you say?", "said")):
+        assert content_kind(question) == kind, question
