@@ -48,8 +48,7 @@ _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna 
                    r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
 # "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
 _TALKED = re.compile(r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
-                     r"^(and |so |but )?did you (talk|speak) (to|with) (anyone|anybody|someone|somebody|people|a person|me|her|him|"
-                     r"them|[a-z]+)\b")
+                     r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
 _WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
                     r"where did you finish\b")
 
