@@ -72,8 +72,15 @@ _GOAL_NOT_DONE = re.compile(
 )
 
 
+# "Why didn't you suggest a Hawaiian?" asks why one option and not another: it takes the choice as made, not the
+# task as undone, so it is answered by the choice alone.
+_OTHER_CHOICE = re.compile(r"\bwhy (didn't|did not) you (suggest|recommend|choose|propose|offer|go with|opt for|"
+                           r"pick (a|an|another|the other|something))\b")
+
+
 def presumes_not_done(question: str) -> bool:
-    return _NOT_DONE.search(question.strip().lower()) is not None
+    q = question.strip().lower()
+    return _NOT_DONE.search(q) is not None and _OTHER_CHOICE.search(q) is None
 
 
 def presumes_goal_not_done(question: str) -> bool:

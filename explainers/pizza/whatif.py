@@ -23,6 +23,23 @@ _REMOVE = re.compile(r"\b(without|no|not|minus|except|hadn't|didn't have|did not
 _ADD = re.compile(r"\b(with|had|have|plus|add|added|adding|also|and|got|some|extra)\s+(any\s+|the\s+|some\s+)?$")
 _WHY_NOT = re.compile(r"\bwhy (not|no|didn't you|did you not|wasn't it|isn't it)\b|\binstead of\b|\brather than\b|"
                       r"\bwhat about\b|\bhow about\b")
+# "Would a Diavola have worked?", "could I have made a Hawaiian?", "what does a Hawaiian need?": a "why not" too.
+_COULD = re.compile(r"\b(could|would|can|might) (you|i|we) (have )?(made|make|cook(ed)?|recommend(ed)?|suggest(ed)?|"
+                    r"pick(ed)?|choose|chosen|go(ne)? with|had)\b|"
+                    r"\bwould (a|an|the)\b.*\b(have )?(work(ed)?|been|do(ne)?)\b|"
+                    r"\bwhat (would|does|do|did) (a|an|the|i|we) (\w+ )*(have )?need\b")
+# "What ingredients did I have?": the recorded request, said back.
+_HAD = re.compile(r"\b(what|which) ingredients\b|\bwhat (did|do) (i|we) (have|tell you|give you)\b|"
+                  r"\bwhat (was|is) in (the|my|our) (fridge|kitchen|pantry)\b")
+# The words after the last of these in a "what if" are what it adds or takes away, whether the recipe data knows
+# them or not ("what if I had truffles?"); words that are no food stop the reading.
+_CHANGE_WORD = re.compile(r"\b(had|have|with|without|no|plus|add|added|adding|also|got|instead of)\s+")
+_NOT_FOOD = frozenset({"i", "you", "we", "it", "that", "this", "them", "one", "time", "money", "help", "been",
+                       "nothing", "everything", "something", "anything", "more", "less", "fewer", "to", "a", "an",
+                       "had", "have", "asked", "said", "told", "wanted", "known", "pizza", "pizzas", "ingredients",
+                       "ingredient", "any", "those", "these", "none", "else", "other", "another", "different"})
+_DETERMINERS = re.compile(r"^((some|any|the|a|an|extra|fresh|more|also|too|as well)\s+)+")
+_TRAILING = re.compile(r"(\s+(too|as well|also|instead|then|again|please|at home|in the fridge))+$")
 _WHAT_IF = re.compile(r"\bwhat (if|would you|would it|would have)\b|\bwould you (have )?(still )?(recommend|suggest|"
                       r"pick|choose)\b|\bif i (had|hadn't|didn't|did not|had not)\b|\bhad i\b|\bwithout\b")
 
@@ -34,6 +51,7 @@ MAX_CHANGE = 4  # ingredients added or taken away in a "why not ...?" answer: a 
 class Change:
     removed: tuple[str, ...]
     added: tuple[str, ...]
+    unknown: tuple[str, ...] = ()  # words the question adds or takes away that the recipe data lacks
 
 
 def _names(name: str) -> list[str]:
@@ -44,7 +62,7 @@ def _names(name: str) -> list[str]:
 def asked_pizza(question: str, classes: list[str], recommended: str) -> str | None:
     """The pizza a "why not ...?" question names other than the one recommended, if it asks why not."""
     q = question.lower()
-    if not _WHY_NOT.search(q):
+    if not _WHY_NOT.search(q) and not _COULD.search(q):
         return None
     for name in sorted(classes, key=len, reverse=True):  # "Quattro Formaggi" before any shorter name inside it
         if name.lower() != recommended.lower() and re.search(rf"\b{re.escape(name.lower())}\b", q):
@@ -70,7 +88,30 @@ def asked_change(question: str, ingredients: list[str]) -> Change | None:
             elif _ADD.search(before) or re.search(r",\s*$|\band\s+$", before):
                 added.append(ingredient)
             break
-    return Change(tuple(removed), tuple(added)) if removed or added else None
+    unknown = tuple(_unknown(q, ingredients))
+    return Change(tuple(removed), tuple(added), unknown) if removed or added or unknown else None
+
+
+def asks_what_was_had(question: str) -> bool:
+    return _HAD.search(question.lower()) is not None
+
+
+def _unknown(q: str, ingredients: list[str]) -> list[str]:
+    """The words after the question's last change word that name no ingredient of the recipe data: "truffles" in
+    "what if I had truffles and basil?". A phrase with a word that is no food ("more time") names none."""
+    found = list(_CHANGE_WORD.finditer(q))
+    if not found:
+        return []
+    tail = re.split(r"[?.!;]|\b(instead|would|could|then|what|how|do|does|did|is|was)\b", q[found[-1].end():])[0]
+    known = {n for i in ingredients for n in _names(i)}
+    out = []
+    for item in re.split(r",|\band\b|\bor\b|\bplus\b", tail):
+        words = _TRAILING.sub("", _DETERMINERS.sub("", item.strip()).strip())
+        if not words or words in known or len(words.split()) > 2 or not re.fullmatch(r"[a-z][a-z ]*", words):
+            continue
+        if _NOT_FOOD.isdisjoint(words.split()):
+            out.append(words)
+    return out
 
 
 def _pretty(names: list[str] | tuple[str, ...], last: str = "and") -> str:
@@ -90,6 +131,10 @@ def what_if(rec: PizzaRecommender, known: list[str], pizza: str, change: Change)
     if new:
         parts.append(f"with {_pretty(new)} as well")
     notes = []
+    if change.unknown:
+        many = len(change.unknown) > 1 or re.search(r"[^s]s$", change.unknown[0]) is not None  # "truffles are"
+        notes.append(f"{_pretty(change.unknown).capitalize()} {'are' if many else 'is'} not in my recipe data, so "
+                     f"{'they' if many else 'it'} could not change what I recommend.")
     if not_had:
         notes.append(f"You didn't have {_pretty(not_had, 'or')} in the first place.")
     if had:

@@ -92,6 +92,12 @@ def test_the_evidence_of_a_why_is_told_in_time_order(suite: Path) -> None:
     assert "navigation_failure = True" in str(why["answer"])  # the explainer's own strongest items are kept
 
 
+@pytest.mark.parametrize("question", ["Why didn't you suggest a Hawaiian?", "why did not you recommend pepperoni",
+                                      "Why didn't you pick another pizza?", "Why didn't you choose the Diavola?"])
+def test_why_not_another_option_takes_the_choice_as_made(question: str) -> None:
+    assert not presumes_not_done(question) and not presumes_goal_not_done(question)
+
+
 @pytest.mark.parametrize(("question", "about_the_goal"), [
     ("Why didn't you bring me the apple?", True),
     ("why didn't you finish?", True),

@@ -74,3 +74,33 @@ def test_which_questions_change_the_ingredients_or_name_another_pizza() -> None:
     assert asked_pizza("why not a pepperoni", rec.classes, "Margherita") == "Pepperoni"
     assert asked_pizza("Why a Margherita?", rec.classes, "Margherita") is None
     assert asked_pizza("why not a margherita", rec.classes, "Margherita") is None
+
+
+def test_an_ingredient_the_recipes_lack_is_said_to_change_nothing(pizza_bag: MakeBag) -> None:
+    log = pizza_bag(AVAILABLE)
+    assert default_recommender().known([*AVAILABLE, "truffles"]) == (AVAILABLE, ["truffles"])  # left out
+    assert _ask(log, "What if I had truffles?") == ("Truffles are not in my recipe data, so they could not change "
+                                                    "what I recommend. So I would still recommend a Margherita.")
+    assert _ask(log, "what if I had some saffron and basil") == (
+        "Saffron is not in my recipe data, so it could not change what I recommend. You already had basil. So I "
+        "would still recommend a Margherita.")
+    # a known change beside an unknown one is still computed
+    assert _ask(log, "What if I had no basil and no cheese?").startswith("Cheese is not in my recipe data")
+    # words that are no food leave the plain why
+    for question in ("What if I had more time?", "What if I had asked for something spicy?"):
+        assert _ask(log, question).startswith("I recommended a Margherita because you have basil"), question
+
+
+def test_what_was_had_is_the_recorded_request_said_back(pizza_bag: MakeBag) -> None:
+    log = pizza_bag(AVAILABLE)
+    for question in ("What ingredients did I have?", "what was in the fridge", "What did I tell you?"):
+        assert _ask(log, question) == ("You told me you had tomato sauce, mozzarella, basil, olive oil and capers, "
+                                       "and from that I recommended a Margherita."), question
+
+
+def test_could_and_would_questions_about_another_pizza_are_why_nots() -> None:
+    rec = default_recommender()
+    for question in ("Would a Diavola have worked?", "could I have made a diavola", "What does a Diavola need?",
+                     "could you have recommended the Diavola instead"):
+        assert asked_pizza(question, rec.classes, "Margherita") == "Diavola", question
+    assert asked_pizza("Was the Diavola spicy?", rec.classes, "Margherita") is None
