@@ -23,7 +23,7 @@ CLAUSES = {
         "is, or the self-collision matrix of the SRDF), or a joint outside its limits (where the robot was spawned "
         "or calibrated, or the limits in its description), and start from a valid state."),
     "manipulation.goal_state_invalid": (
-        "the arm goal itself was invalid: in collision or against its constraints.",
+        "the arm goal itself was invalid: {meaning}.",
         "Choose a goal pose clear of obstacles and within the joint limits and constraints."),
     "manipulation.no_joint_states": (
         "my motion planning never received my arm's joint states, so it did not know where my arm was.",
@@ -59,7 +59,9 @@ def _nominal(what: str) -> Worded:
             ["My MoveIt logs show the goal accepted and completed, with no error."])
 
 
-# a start state is told in the words of the line that showed it (in collision, or a joint outside its limits)
-MEANINGS = {"manipulation.start_state_in_collision": "already in collision in my planning scene"}
+# a start or goal state is told in the words of the line that showed it (in collision, a joint outside its limits,
+# a goal pose in a frame the planner refuses); these when the line says no more
+MEANINGS = {"manipulation.start_state_in_collision": "already in collision in my planning scene",
+            "manipulation.goal_state_invalid": "in collision or against its constraints"}
 
 template = Wording("I couldn't finish {what} because", "MoveIt", CLAUSES, meanings=MEANINGS, nominal=_nominal)

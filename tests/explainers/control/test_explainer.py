@@ -266,3 +266,17 @@ def test_a_second_load_is_no_load_failure_and_activating_an_unconfigured_control
                                           "activated.")])
     assert found.causes == ["control.controller_activation_failed"]
     assert "could not be activated" in found.text and "not loaded" not in found.text
+
+
+def test_gazebo_that_could_not_load_its_ros2_control_plugin_is_a_set_up_error(tmp_path: Path) -> None:
+    # idra-lab/z1_ros2#11 (held-out 6, spent): gz-sim's SystemLoader.cc could not find ign_ros2_control's library
+    # (its package not installed), so no controller manager came up and the spawners waited for its services
+    found = _explain(tmp_path, [
+        (0, "", ERROR, "[Err] [SystemLoader.cc:94] Failed to load system plugin [libign_ros2_control-system.so] : "
+                       "couldn't find shared library."),
+        (8, "spawner_joint_state_broadcaster", WARN, "Could not contact service /controller_manager/list_controllers"),
+        (8.1, "spawner_joint_state_broadcaster", INFO,
+         "waiting for service /controller_manager/list_controllers to become available...")])
+    assert found.causes == ["control.configuration_error"]
+    assert "Gazebo could not load its ros2_control system plugin" in found.text
+    assert "GZ_SIM_SYSTEM_PLUGIN_PATH" in found.text

@@ -228,3 +228,16 @@ def test_a_solver_plugin_not_among_the_installed_descriptions_is_a_set_up_error(
         *_aborted(1)])
     assert found.causes == ["manipulation.configuration_error"]
     assert "kdl_kinematics_plugin/KDLKinematicsPlugin" in " ".join(e.item for e in found.evidence)
+
+
+def test_a_goal_pose_pilz_refuses_for_its_frame_is_an_invalid_goal_told_by_its_frame(tmp_path: Path) -> None:
+    # moveit/moveit2#2857 (held-out 6, spent): pilz trajectory_functions.cpp computePoseIK refuses a goal pose whose
+    # frame_id is not the model frame; the answer names the frame, not a collision or IK that never ran
+    _, found = _explain(tmp_path, [
+        (0, MGI, INFO, "Plan and Execute request accepted"),
+        (1, "moveit.pilz_industrial_motion_planner.trajectory_functions", ERROR,
+         "Given frame (ur_base_link) is unequal to model frame(world)"),
+        *_aborted(1.1)])
+    assert found.causes == ["manipulation.goal_state_invalid"]
+    assert "a goal pose given in a frame other than my robot model's frame" in found.text
+    assert "collision" not in found.text and "inverse kinematics" not in found.text
