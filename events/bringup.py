@@ -163,6 +163,7 @@ def names_parameter(line: LogLine) -> bool:
 
 def bring_up(logs: list[LogLine]) -> BringUp | None:
     """The start of the robot in `logs` (time-ordered), or None when they show no start at all."""
+    from hexar.explainers.stack.bringup import ros2_run_said
     from hexar.explainers.stack_causes import stack_cause, transition_reason
 
     if not logs:
@@ -170,8 +171,9 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
     last = max(ln.t for ln in logs)
     stack = stack_cause(logs)
     if stack is not None:
-        # a transition launch saw fail began with the lifecycle's own reason for it, which the step must hold
-        reason = transition_reason(stack.line, logs)
+        # a transition launch saw fail began with the lifecycle's own reason for it, and a command ros2run could not
+        # start with ros2run's words: the step must hold them
+        reason = transition_reason(stack.line, logs) or ros2_run_said(stack.line, logs)
         return BringUp(reason.t if reason else stack.line.t, "failed", last, stack.line.msg)
     first = next((ln for ln in logs if starting(ln)), None)
     failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),

@@ -17,7 +17,7 @@ from hexar.explainers.logcause import Diagnosis, Reading, said
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
-              "node_failed": "bringup.lifecycle_transition_failed"}
+              "node_failed": "bringup.lifecycle_transition_failed", "no_program": "bringup.configuration_error"}
 PERMISSION = "system.device_permission"
 NETWORK = "system.network"
 # rmw_cyclonedds_cpp/src/rmw_node.cpp:1080@humble (1244@jazzy, 1241@rolling): Cyclone DDS could not create the
@@ -58,7 +58,9 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     findings = [f for f in bringup_findings(lines) if not _unexplained_request(f.line, lines)]
     if findings:
         f = findings[0]
-        found.append(Reading(f.line, None, KIND_CAUSE.get(f.kind, "bringup.configuration_error"), "stack"))
+        # a command ros2run could not start keeps what it did not find (the program, or the package) as its note
+        note = f.detail if f.kind == "no_program" else ""
+        found.append(Reading(f.line, None, KIND_CAUSE.get(f.kind, "bringup.configuration_error"), "stack", note))
     missing = next((ln for ln in lines if ln.level >= WARN and _params_missing(ln)), None)
     if missing is not None:
         found.append(Reading(missing, None, "bringup.configuration_error", "stack"))
@@ -145,6 +147,12 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                     "node without it and the parameters in it never reached the node.",
                     "Point the launch file at the parameter file the package installs (check its name and the "
                     "package's install rules), or install the file under that name.", line)
+        if d.decisive.note.startswith("'ros2 run "):
+            return (f"{head} a command my launch ran never started: {d.decisive.note}, so it exited with an error "
+                    "before any node of it ran.",
+                    "Fix the command in the launch file: the program's and package's names, and the spaces between "
+                    "the program and its arguments (launch_ros' Node(package=..., executable=...) builds it for you); "
+                    "or build and source the package that installs the program.", line)
         launch = _launch_failed(d.decisive.line)
         if launch is not None:
             why = f": {launch}" if launch else ""

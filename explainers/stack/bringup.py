@@ -20,6 +20,9 @@ wordings below), with the node it concerns and its time:
                                     file it could not parse, a package it could not find) and shut down: the
                                     nodes it had not started yet never came up
              node_failed            another bring-up line of the catalogue (e.g. a costmap that failed to configure)
+             no_program             launch's command was `ros2 run <package> <program>` and ros2run found no such
+                                    program ("No executable found") or package: the process exited 1 before any
+                                    node existed (a misspelt name, a command built without its spaces)
     node     the node the line is about: the logger name, or the process launch names (`controller_server-3` ->
              `controller_server`), or the node a lifecycle manager names; "" when the line names none
     t        the line's time (ns), line: the LogLine itself, entry: its catalogue entry (source file:line@branch)
@@ -40,7 +43,7 @@ from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_c
 
 BRINGUP = "stack.bringup_failure"
 DIED = "process has died"
-KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed")
+KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed", "no_program")
 
 _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
 _EXIT = re.compile(r"exit code (?P<code>-?\d+)")
@@ -53,6 +56,10 @@ _CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
 # libraries"): the program exits before its node exists, at no log level
 _LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
                      re.S)
+# ros2cli ros2run/command/run.py@rolling: `ros2 run` prints "No executable found" when the package has no program
+# of that name, or raises "Package '<name>' not found", and exits 1; launch then reports the process died
+_PROCESS_NAME = re.compile(r"-\d+$")  # launch's "<name>-<n>" of a process
+_ROS2_RUN = re.compile(r"cmd '(?:\S*/)?ros2 run (?P<pkg>[^\s']+) (?P<exe>[^\s']+)")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
 # ros2_control's spawners are clients: they wait for the controller manager's services and, when none answers, say
@@ -116,6 +123,8 @@ class BringupFinding:
         if self.kind == "process_died":
             code = f" ({self.detail})" if self.detail else ""
             return f"the process of {who} died{code}"
+        if self.kind == "no_program":
+            return f"the process of {who} never started: {self.detail}"
         if self.kind == "lifecycle_transition":
             why = f": {self.detail}" if self.detail else ""
             return f"{who} stopped in a lifecycle transition and never became active{why}"
@@ -221,6 +230,29 @@ def client_gave_up(died: LogLine, before: list[LogLine]) -> bool:
                for ln in before)
 
 
+def ros2_run_said(died: LogLine, before: list[LogLine]) -> LogLine | None:
+    """For launch's death line of a `ros2 run <package> <program>` command, ros2run's own words before it (under the
+    process's name, or none where a console lost it) that it found no such program or package."""
+    cmd = _ROS2_RUN.search(died.msg)
+    if cmd is None:
+        return None
+    said = ("No executable found", f"Package '{cmd['pkg']}' not found")
+    return next((ln for ln in reversed(before) if ln.t <= died.t and ln.name in ("", died.name)
+                 and ln.msg.strip() in said), None)
+
+
+def ros2_run_failed(died: LogLine, before: list[LogLine]) -> str | None:
+    """What ros2run did not find for the command of `died` (see ros2_run_said), said for a person; None if nothing."""
+    said = ros2_run_said(died, before)
+    cmd = _ROS2_RUN.search(died.msg)
+    if said is None or cmd is None:
+        return None
+    pkg, exe = cmd["pkg"], cmd["exe"]
+    if said.msg.strip() == "No executable found":
+        return f"'ros2 run {pkg} {exe}' found no program named '{exe}' in the package {pkg}"
+    return f"'ros2 run {pkg} {exe}' found no package named {pkg}"
+
+
 def loader_failure(line: LogLine) -> bool:
     """The dynamic loader could not start the program of `line` (a library missing or built against another)."""
     return _LOADER.search(line.msg) is not None
@@ -262,6 +294,13 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
             continue  # the second half of "Caught exception in callback ...": read as that line's detail
         kind = "lifecycle_transition" if configure else _kind(line, entry)
         if kind == "process_died" and client_gave_up(line, ordered[:i]):
+            continue
+        missing = ros2_run_failed(line, ordered[max(0, i - 8):i]) if kind == "process_died" else None
+        if missing is not None:
+            node = _PROCESS_NAME.sub("", line.name) or _node(line, kind)
+            if ("no_program", node) not in seen:
+                seen.add(("no_program", node))
+                out.append(BringupFinding("no_program", node, line.t, line, entry, missing))
             continue
         asked = lifecycle_cli(line) if kind == "process_died" else None
         if asked is not None:

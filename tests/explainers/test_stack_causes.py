@@ -128,3 +128,30 @@ def test_a_lifecycle_command_of_the_launch_that_failed_is_that_transition_not_a_
     assert found.causes == ["bringup.lifecycle_transition_failed"]
     assert "my launch ran 'ros2 lifecycle set' to configure /ouster/os_driver" in found.text
     assert _claims(found) == {"bringup.lifecycle_transition_failed"}
+
+
+# ICube-Robotics/forcedimension_ros2#10 (heldout8.yaml, spent): the launch's ExecuteProcess lost the space between
+# `spawner` and its first argument, so `ros2 run` found no such program (ros2run/command/run.py: "No executable
+# found", return 1) and launch reported both commands dead
+FD_CMD = "ros2 run controller_manager spawner--controller-manager /fd/controller_manager {c}"
+NO_PROGRAM: list[Line] = [
+    (0.1, "", INFO, "No executable found"), (0.1, "", INFO, "No executable found"),
+    (0.2, "controller_manager joint_state_broadcaster-5", ERROR,
+     f"process has died [pid 399582, exit code 1, cmd '{FD_CMD.format(c='joint_state_broadcaster')}']."),
+    (0.2, "controller_manager fd_controller-4", ERROR,
+     f"process has died [pid 399580, exit code 1, cmd '{FD_CMD.format(c='fd_controller')}'].")]
+
+
+def test_a_launch_command_ros2_run_could_not_find_is_a_set_up_error_not_a_process_that_died(tmp_path: Path) -> None:
+    found = _derived(tmp_path, NO_PROGRAM)
+    assert found.causes == ["bringup.configuration_error"]
+    assert ("a command my launch ran never started: 'ros2 run controller_manager spawner--controller-manager' found "
+            "no program named 'spawner--controller-manager' in the package controller_manager") in found.text
+    assert _claims(found) == {"bringup.configuration_error"} and found.fix and "Node(package=" in found.fix
+
+
+def test_a_ros2_run_command_that_died_after_starting_stays_a_process_that_died(tmp_path: Path) -> None:
+    # the same death line without ros2run's words before it: the program ran, then exited
+    found = _derived(tmp_path, NO_PROGRAM[2:])
+    assert found.causes != ["bringup.configuration_error"]
+    assert "never started" not in found.text
