@@ -124,12 +124,15 @@ def test_each_real_moveit_cause_line_names_its_cause(tmp_path: Path, logger: str
     assert found.evidence[0].item.endswith(line)
 
 
+def _one_line_goal(tmp_path, logger: str, level: int, msg: str):  # type: ignore[no-untyped-def]
+    """A plan-and-execute goal accepted, one line of `logger`, then aborted: what the explainer finds."""
+    return _explain(tmp_path, [(0, MGI, INFO, "Plan and Execute request accepted"), (0.6, logger, level, msg),
+                               *_aborted(1)])[1]
+
+
 def test_move_groups_result_text_alone_is_a_symptom_not_a_cause(tmp_path: Path) -> None:
-    _, found = _explain(tmp_path, [
-        (0, MGI, INFO, "Plan and Execute request accepted"),
-        (0.6, "moveit_move_group_default_capabilities.move_action_capability", INFO,
-         "No motion plan found. No execution attempted."),
-        *_aborted(1)])
+    found = _one_line_goal(tmp_path, "moveit_move_group_default_capabilities.move_action_capability", INFO,
+                           "No motion plan found. No execution attempted.")
     assert found.causes == ["manipulation.unexplained_failure"]
     assert "do not show a cause I know" in found.text
 
@@ -233,11 +236,8 @@ def test_a_solver_plugin_not_among_the_installed_descriptions_is_a_set_up_error(
 def test_a_goal_pose_pilz_refuses_for_its_frame_is_an_invalid_goal_told_by_its_frame(tmp_path: Path) -> None:
     # moveit/moveit2#2857 (held-out 6, spent): pilz trajectory_functions.cpp computePoseIK refuses a goal pose whose
     # frame_id is not the model frame; the answer names the frame, not a collision or IK that never ran
-    _, found = _explain(tmp_path, [
-        (0, MGI, INFO, "Plan and Execute request accepted"),
-        (1, "moveit.pilz_industrial_motion_planner.trajectory_functions", ERROR,
-         "Given frame (ur_base_link) is unequal to model frame(world)"),
-        *_aborted(1.1)])
+    found = _one_line_goal(tmp_path, "moveit.pilz_industrial_motion_planner.trajectory_functions", ERROR,
+                           "Given frame (ur_base_link) is unequal to model frame(world)")
     assert found.causes == ["manipulation.goal_state_invalid"]
     assert "a goal pose given in a frame other than my robot model's frame" in found.text
     assert "collision" not in found.text and "inverse kinematics" not in found.text
