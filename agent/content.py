@@ -205,9 +205,7 @@ def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -
     if compared is not None:
         return compared
     cut = " I was cut off before the end." if last.ended == "timed_out" else ""
-    quoted = first_sentence(last.text, 200)
-    stop = "" if quoted.endswith((".", "!", "?")) else "."  # 'I said "Here is your coffee."', one full stop
-    return Explanation(explainer="text_to_speech", text=f'I said "{quoted}"{stop}{cut}',
+    return Explanation(explainer="text_to_speech", text=sentence(f'I said "{first_sentence(last.text, 200)}"') + cut,
                        causes=["tts.completed"], evidence=evidence)
 
 
@@ -252,17 +250,20 @@ def steps_of(module: str, task: Task, explainers_of: Callable[[str], list[str]])
     return [run for run in task.skills if names & set(explainers_of(run.skill))]
 
 
+def started_step(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> SkillRun | None:
+    """The first step of the task that `module` serves and that started, if any."""
+    return next((run for run in steps_of(module, task, explainers_of) if _started(run)), None)
+
+
 def ran(module: str, task: Task, explainers_of: Callable[[str], list[str]]) -> bool:
     """Whether a step of the task that `module` serves started."""
-    return any(_started(run) for run in steps_of(module, task, explainers_of))
+    return started_step(module, task, explainers_of) is not None
 
 
-def asked_someone(task: Task, explainers_of: Callable[[str], list[str]], found: Explanation) -> str:
-    """"Who did you talk to?" of a task that ran its ask-for-help step: the step, then the first sentence of what
+def asked_someone(step: SkillRun, found: Explanation) -> str:
+    """"Who did you talk to?" of a task that ran its ask-for-help `step`: the step, then the first sentence of what
     that step's explainer found (whether I found the person, and what they said)."""
-    step = next(run for run in steps_of("ask_human_for_help", task, explainers_of) if _started(run))
-    head = re.split(r"(?<=[.!?])\s", found.text.strip(), maxsplit=1)[0]
-    return f"Step {step.index + 1} of my plan was to {step_words(step)}. {head}"
+    return f"Step {step.index + 1} of my plan was to {step_words(step)}. {first_sentence(found.text, None)}"
 
 
 def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str], list[str]]) -> Explanation:

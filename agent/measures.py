@@ -7,8 +7,6 @@ step ran, so a badly localised robot's jumps count too: the answers say "about".
 
 from __future__ import annotations
 
-import itertools
-import math
 import re
 from dataclasses import dataclass
 from typing import Literal
@@ -19,7 +17,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import clock
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, step_words
+from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_words
 
 Measure = Literal["far", "long", "when"]
 
@@ -77,7 +75,7 @@ def _path(log: EventLog, start: int, end: int) -> float | None:
         [(o.x, o.y) for o in log.odometry if start <= o.t <= end]
     if not points:
         return None
-    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(points))
+    return path_length(points)
 
 
 def _steps(log: EventLog, task: Task) -> list[_Step]:

@@ -313,9 +313,10 @@ def _talked(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     """"Who did you talk to?": the person I asked for help (that explainer's answer, or the step I never got to,
     whose failure "why?" goes on to), then what I said aloud."""
     module, of = "ask_human_for_help", ctx.registry.for_module
-    if answers.ran(module, task, of):
+    step = answers.started_step(module, task, of)
+    if step is not None:
         asked = _probe(ctx, module, state["question"], state["task_id"])
-        asked = asked.model_copy(update={"text": answers.asked_someone(task, of, asked)})
+        asked = asked.model_copy(update={"text": answers.asked_someone(step, asked)})
         nothing = "Apart from that, I said nothing aloud for this task."
     elif answers.steps_of(module, task, of):
         asked = _with_failure(ctx, state, answers.not_run(module, ctx.log, task, of))

@@ -5,8 +5,11 @@ was recommended. `hexar inspect` shows them, and the agent answers content quest
 
 from __future__ import annotations
 
+import itertools
 import json
+import math
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 from hexar.events import contract as c
@@ -133,6 +136,11 @@ def step_words(run: SkillRun, short: bool = False) -> str:
     if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
         return f"{'pick up' if run.skill == 'pick' else 'put down'} the {obj.replace('_', ' ')}"
     return run.skill.replace("_", " ")
+
+
+def path_length(points: Iterable[tuple[float, float]]) -> float:
+    """Length of the path through (x, y) points in their order, in metres."""
+    return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(points))
 
 
 def join_words(words: list[str], last: str = "and") -> str:

@@ -83,9 +83,10 @@ def requested_topic(instruction: str) -> list[str]:
     return list(dict.fromkeys(w for w in _words(m.group(2), _FILLER) if len(w) > 1))
 
 
-def first_sentence(text: str, limit: int = 120) -> str:
+def first_sentence(text: str, limit: int | None = 120) -> str:
+    """The text up to its first sentence's end, clipped to `limit` characters (None: never clipped)."""
     sentence = re.split(r"(?<=[.!?])\s", text.strip(), maxsplit=1)[0]
-    return sentence if len(sentence) <= limit else sentence[: limit - 3].rstrip() + "..."
+    return sentence if limit is None or len(sentence) <= limit else sentence[: limit - 3].rstrip() + "..."
 
 
 def compare(instruction: str, text: str, evidence: list[Evidence], question: str = "") -> Explanation | None:

@@ -29,7 +29,7 @@ from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, pla
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
-from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, BringupFinding, loader_failure
+from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding, loader_failure
 from hexar.explainers.stack.catalogue import StackEntry
 
 BRINGUP = "navigation.bringup_failure"
@@ -61,7 +61,6 @@ NEVER_CAME_UP = "never_came_up"
 _NAVIGATION = re.compile(r"nav2|navigation|bt_navigator|planner_server|controller_server|behavior_server|amcl|costmap|"
                          r"waypoint_follower|velocity_smoother|collision_monitor|docking_server|slam_toolbox|"
                          r"lifecycle_manager", re.IGNORECASE)
-_PROCESS_NAME = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
 
 
@@ -171,7 +170,7 @@ def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
         return None
     cat = catalogue()
     before = [ln for ln in logs if ln.t <= died.t and ln is not died.line
-              and _PROCESS_NAME.sub("", ln.name.strip("/").split("/")[-1]) == died.node
+              and PROCESS_SUFFIX.sub("", ln.name.strip("/").split("/")[-1]) == died.node
               and not ln.msg.startswith("process started with pid")]
     line = before[-1] if before else None
     if line is None or cat.match(line.msg) is not None or stack_entry(line) is not None or not quotable(line.msg):

@@ -8,7 +8,6 @@ it hides blocked_path and moving_obstacles.
 
 from __future__ import annotations
 
-import itertools
 import math
 import re
 from collections.abc import Iterable
@@ -21,6 +20,7 @@ from hexar.events.records import ERROR, WARN, BoolSample, LogLine, PoseSample, S
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import END_KINDS, Entry, catalogue
 from hexar.explainers.navigation.diagnose import Tagged
+from hexar.explainers.recorded import path_length
 
 BLOCKED = "navigation.blocked_path"
 JOYSTICK = "navigation.joystick"
@@ -99,7 +99,7 @@ class Run:
         lo = self.begin.t if self.begin else -math.inf
         hi = self.end.t if self.end else math.inf
         ps = [p for p in self.poses if lo <= p.t <= hi]
-        return sum(math.hypot(b.x - a.x, b.y - a.y) for a, b in itertools.pairwise(ps))
+        return path_length((p.x, p.y) for p in ps)
 
     def duration_s(self) -> float | None:
         if self.begin and self.end and self.end.t > self.begin.t:

@@ -58,7 +58,7 @@ _LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while 
                      re.S)
 # ros2cli ros2run/command/run.py@rolling: `ros2 run` prints "No executable found" when the package has no program
 # of that name, or raises "Package '<name>' not found", and exits 1; launch then reports the process died
-_PROCESS_NAME = re.compile(r"-\d+$")  # launch's "<name>-<n>" of a process
+PROCESS_SUFFIX = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 _ROS2_RUN = re.compile(r"cmd '(?:\S*/)?ros2 run (?P<pkg>[^\s']+) (?P<exe>[^\s']+)")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")
@@ -230,23 +230,30 @@ def client_gave_up(died: LogLine, before: list[LogLine]) -> bool:
                for ln in before)
 
 
-def ros2_run_said(died: LogLine, before: list[LogLine]) -> LogLine | None:
-    """For launch's death line of a `ros2 run <package> <program>` command, ros2run's own words before it (under the
-    process's name, or none where a console lost it) that it found no such program or package."""
+def _ros2_run(died: LogLine, before: list[LogLine]) -> tuple[re.Match[str], LogLine] | None:
+    """The `ros2 run` command of launch's death line `died`, and ros2run's own words before it (under the process's
+    name, or none where a console lost it) that it found no such program or package."""
     cmd = _ROS2_RUN.search(died.msg)
     if cmd is None:
         return None
-    said = ("No executable found", f"Package '{cmd['pkg']}' not found")
-    return next((ln for ln in reversed(before) if ln.t <= died.t and ln.name in ("", died.name)
-                 and ln.msg.strip() in said), None)
+    words = ("No executable found", f"Package '{cmd['pkg']}' not found")
+    said = next((ln for ln in reversed(before) if ln.t <= died.t and ln.name in ("", died.name)
+                 and ln.msg.strip() in words), None)
+    return (cmd, said) if said is not None else None
+
+
+def ros2_run_said(died: LogLine, before: list[LogLine]) -> LogLine | None:
+    """ros2run's line that it found no program or package for the command `died` reports dead (see _ros2_run)."""
+    found = _ros2_run(died, before)
+    return found[1] if found is not None else None
 
 
 def ros2_run_failed(died: LogLine, before: list[LogLine]) -> str | None:
-    """What ros2run did not find for the command of `died` (see ros2_run_said), said for a person; None if nothing."""
-    said = ros2_run_said(died, before)
-    cmd = _ROS2_RUN.search(died.msg)
-    if said is None or cmd is None:
+    """What ros2run did not find for the command of `died` (see _ros2_run), said for a person; None if nothing."""
+    found = _ros2_run(died, before)
+    if found is None:
         return None
+    cmd, said = found
     pkg, exe = cmd["pkg"], cmd["exe"]
     if said.msg.strip() == "No executable found":
         return f"'ros2 run {pkg} {exe}' found no program named '{exe}' in the package {pkg}"
@@ -297,7 +304,7 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
             continue
         missing = ros2_run_failed(line, ordered[max(0, i - 8):i]) if kind == "process_died" else None
         if missing is not None:
-            node = _PROCESS_NAME.sub("", line.name) or _node(line, kind)
+            node = PROCESS_SUFFIX.sub("", line.name) or _node(line, kind)
             if ("no_program", node) not in seen:
                 seen.add(("no_program", node))
                 out.append(BringupFinding("no_program", node, line.t, line, entry, missing))
