@@ -240,8 +240,8 @@ class TextToSpeechExplainer:
             ],
             counterfactual=(
                 ("If the default limit applied, h" if assumed.any else "H")
-                + f"ad the message been shorter than about {max_words} words, or had the timeout been "
-                f"{enough} seconds, I would have finished it."
+                + f"ad the message been shorter than about {max_words} words, or had my speech time limit been "
+                f"{enough} seconds instead of {_num(timeout)}, I would have finished it."
             ),
             fix="Ask for a shorter message, or split it into several shorter ones.",
             details=details,

@@ -71,8 +71,8 @@ def test_timed_out_utterance(tmp_path: Path) -> None:
         "(96 words at 150 words per minute). I got through the first 48 of 96 words."
     )
     assert exp.counterfactual == (
-        "Had the message been shorter than about 50 words, or had the timeout been 40 seconds, "
-        "I would have finished it."
+        "Had the message been shorter than about 50 words, or had my speech time limit been 40 seconds "
+        "instead of 20, I would have finished it."
     )
     assert exp.fix is not None and "shorter" in exp.fix
     assert [(e.topic, e.t) for e in exp.evidence] == [(SAY_EVENTS, started.t), (SAY_EVENTS, cut.t)]

@@ -96,7 +96,7 @@ def test_tts_timeout_more_and_helped(runs: Path, tmp_path: Path, stt: Transcribe
     assert len(turns) == 4 and turns[-1]["answer"] == "Goodbye."
     assert cause in stated_causes(heard(stt, turns[0]))
     assert [t["route"] for t in turns[1:3]] == ["followup", "followup"]
-    assert cause in stated_causes(heard(stt, turns[2]))  # "had the timeout been 45 seconds"
+    assert cause in stated_causes(heard(stt, turns[2]))  # "had my speech time limit been 45 seconds"
     assert sum(len(u.split()) for u in turns[1]["spoken"]) <= 50  # evidence is summarised, not read out whole
 
 
