@@ -22,7 +22,8 @@ from typing import Any, Literal
 
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.errors import ExplainerError
-from hexar.explainers.navigation.catalogue import Catalogue, Entry, clean
+from hexar.explainers.navigation.catalogue import Catalogue, Entry
+from hexar.explainers.stack.catalogue import clean
 
 Outcome = Literal["succeeded", "failed", "canceled", "unknown"]
 _SPACED = re.compile(r"[ \t]+([:;,])")

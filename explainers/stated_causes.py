@@ -31,7 +31,7 @@ from typing import Any
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.errors import ExplainerError
 from hexar.explainers.logcause import Diagnosis, Reading, at
-from hexar.explainers.navigation.catalogue import clean
+from hexar.explainers.stack.catalogue import clean
 
 PERMISSION = "system.device_permission"
 BRINGUP = "bringup.configuration_error"

@@ -17,8 +17,8 @@ from importlib import resources
 from typing import Any
 
 from hexar.explainers.errors import ExplainerError
+from hexar.explainers.stack.catalogue import clean, unwrapped
 
-_ANSI = re.compile(r"\x1b\[[0-9;]*m")
 END_KINDS = frozenset({"succeeded", "failed", "canceled"})
 GOAL_KINDS = END_KINDS | {"begin"}
 
@@ -52,11 +52,6 @@ class Entry:
         if self.keys and not any(k in text for k in self.keys):
             return None
         return self.pattern.search(text)
-
-
-def clean(msg: str) -> str:
-    """The message without the ANSI colour codes the lifecycle manager wraps its lines in."""
-    return _ANSI.sub("", msg) if "\x1b" in msg else msg
 
 
 def _literal_runs(pattern: str) -> tuple[list[str], list[str]] | None:
@@ -180,13 +175,18 @@ class Catalogue:
         if msg in self._seen:  # Nav2 repeats its lines (replanning at 1 Hz, recoveries, warnings in loops)
             return self._seen[msg]
         text = clean(msg)
-        hits = {i for k, i in self._literals if k in text}
-        candidates = [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
-        found = self._scan(text, candidates)
+        found = self._find(text)
+        if found is None and (joined := unwrapped(text)) is not None:
+            found = self._find(joined)
         if len(self._seen) > 20_000:
             self._seen.clear()
         self._seen[msg] = found
         return found
+
+    def _find(self, text: str) -> Entry | None:
+        hits = {i for k, i in self._literals if k in text}
+        candidates = [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
+        return self._scan(text, candidates)
 
     @staticmethod
     def _scan(text: str, entries: Iterable[Entry]) -> Entry | None:

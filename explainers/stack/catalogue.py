@@ -38,6 +38,9 @@ ROLES = ("cause", "symptom", "noise")
 LEVELS = ("WARN", "ERROR", "FATAL")
 FILE = "stack_catalogue.json"
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
+# A message hard-wrapped onto indented lines (a terminal's or a document's paste, a logger that wraps) is read as
+# one line: the mined literals hold spaces where the wrap put a line break.
+_WRAP = re.compile(r"[ \t]*\r?\n[ \t]*")
 # A message cut short is read as its entry only with this much of the entry's literal text (and this much of the
 # piece it stops in): less would read any sentence that shares a few words with a mined message.
 CUT_MIN_LITERAL = 30
@@ -98,6 +101,17 @@ class StackEntry:
         return sum(ch.isalnum() for ch in re.sub(r"\.\*\?", "", self.pattern))
 
 
+
+def clean(msg: str) -> str:
+    """The message without the ANSI colour codes the lifecycle manager wraps its lines in."""
+    return _ANSI.sub("", msg) if "\x1b" in msg else msg
+
+
+def unwrapped(text: str) -> str | None:
+    """A message of several lines read as one (its line breaks as spaces), or None for a one-line message: the
+    reading to try when its lines match nothing, so that a hard wrap does not hide a mined message."""
+    return _WRAP.sub(" ", text) if "\n" in text else None
+
 def _rank(e: StackEntry) -> tuple[bool, int]:
     return e.cause is not None, e.specificity
 
@@ -137,14 +151,10 @@ class StackCatalogue:
         the message is a cut-short copy of (StackEntry.cut_match); else None."""
         if msg in self._seen:
             return self._seen[msg]
-        text = _ANSI.sub("", msg) if "\x1b" in msg else msg
-        best: StackEntry | None = None
-        for key, entries in self._by_key.items():
-            if key not in text:
-                continue
-            for e in entries:
-                if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
-                    best = e
+        text = clean(msg)
+        best = self._best(text)
+        if best is None and (joined := unwrapped(text)) is not None:
+            best = self._best(joined)
         if best is None and len(text.rstrip(" .…")) >= CUT_MIN_LITERAL:
             cut = [e for e in self.entries if e.pieces[0] and e.pieces[0] in text and e.cut_match(text)]
             best = max(cut, key=_rank, default=None)
@@ -153,10 +163,20 @@ class StackCatalogue:
         self._seen[msg] = best
         return best
 
+    def _best(self, text: str) -> StackEntry | None:
+        best: StackEntry | None = None
+        for key, entries in self._by_key.items():
+            if key not in text:
+                continue
+            for e in entries:
+                if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
+                    best = e
+        return best
+
     def matches(self, msg: str) -> list[StackEntry]:
         """Every entry the message holds, best reading first (a message may quote several: an exception's text
         inside the line that caught it)."""
-        text = _ANSI.sub("", msg) if "\x1b" in msg else msg
+        text = clean(msg)
         found = [e for key, entries in self._by_key.items() if key in text for e in entries if e.regex.search(text)]
         return sorted(found, key=_rank, reverse=True)
 

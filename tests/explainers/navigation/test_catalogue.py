@@ -103,3 +103,22 @@ def test_sizes_cover_every_distro() -> None:
     assert set(sizes) == {"foxy", "galactic", "humble", "iron", "jazzy", "kilted", "rolling"}
     assert all(sum(roles.values()) >= 40 for roles in sizes.values())
     assert sizes["jazzy"].get("docking_server", 0) > 0 and "docking_server" not in sizes["foxy"]
+
+
+def test_a_message_hard_wrapped_onto_indented_lines_reads_as_the_one_line_message() -> None:
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    # blind5 indoor-nav-sim (NavFn, navfn_planner.cpp) and mirte (legacy_inflation_layer.cpp), wrapped as pasted
+    navfn = ("Failed to create a plan from potential when a legal\n        potential was found. This shouldn't "
+             "happen.")
+    entry = stack_catalogue().match(navfn)
+    assert entry is not None and entry == stack_catalogue().match(" ".join(navfn.split()))
+    assert entry.package == "nav2_navfn_planner"
+    inflation = ("The configured inflation radius (0.150) is smaller than the computed inscribed\nradius (0.150) "
+                 "of your footprint, it is highly recommended to set inflation\nradius to be at least as big as the "
+                 "inscribed radius to avoid collisions")
+    found = stack_catalogue().match(inflation)
+    assert found is not None and found.cause == "stack.configuration_error"
+    # a message whose first line already matches keeps that reading (its later lines are another message's)
+    assert catalogue().match("Failed to make progress\nPassing new path to controller.") == \
+        catalogue().match("Failed to make progress")
