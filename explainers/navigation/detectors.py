@@ -226,10 +226,36 @@ def plan_failures(run: Run) -> list[LogLine]:
     return [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "plan_failed"]
 
 
+# tf2_ros's message-filter drop reasons that say a message was stamped before the transforms it needs (geometry2
+# tf2_ros/message_filter.h): data and transforms from clocks that disagree.
+_STAMPED_EARLY = ("earlier than all the data in the transform cache", "timestamp on the message is too old")
+# Nav2's behaviour tree replans at 1 Hz: a controller failure this soon after the planner gave up meets the same
+# start and goal the planner could not plan between.
+SAME_ATTEMPT_S = 2.0
+CLOCK_DOUBT = "clock_doubt"  # a finding's fact: obstacles the controller saw may come from mistimed data
+
+
+def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:
+    """`lines` of the controller less those right after the planner found no path or reported my start on occupied
+    cells: rejected trajectories there do not tell an obstacle on the way from a goal off the map or a start in an
+    obstacle, so they are symptoms of what the planner met (its candidates), not a cause of their own."""
+    gave_up = [ln.t for ln in plan_failures(run)]
+    gave_up += [n.line.t for n in run.notes if n.entry.cause == "navigation.start_in_obstacle"]
+    return [ln for ln in lines if not any(0 <= ln.t - t <= SAME_ATTEMPT_S * 1e9 for t in gave_up)]
+
+
+def stamped_early(run: Run, before: int) -> LogLine | None:
+    """The first message-filter drop of the window, before `before`, for data stamped earlier than its transforms."""
+    return next((n.line for n in run.notes if n.line.t < before and any(w in n.line.msg for w in _STAMPED_EARLY)),
+                None)
+
+
 def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
     """An obstacle on the way: the controller's obstacle critic before it gave up, or a planner that had planned
     to this goal from here and then found no path any more, even after clearing its maps (so neither the goal nor
-    the start is the trouble: the way got blocked). A planner that never found a path is only a symptom."""
+    the start is the trouble: the way got blocked). A planner that never found a path is only a symptom, and so
+    is the critic right after it. When the critic alone says so and data had been dropped for being stamped before
+    its transforms, the obstacles may be misplaced readings: told as that doubt (a transform finding)."""
     if run.outcome == "reached":
         return None
     gave_up = [ln.t for ln in run.matching((*PROGRESS, "[follow_path] [ActionServer] Aborting handle"))]
@@ -237,6 +263,9 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
                # DWB's obstacle critic is an obstacle on the way only when the controller then gave up; while
                # it keeps driving, rejected trajectories are the controller's own trouble (or a passer-by)
                and (n.entry.kind != "disturbance" or any(t >= n.line.t for t in gave_up))]
+    planner = after_planner_gave_up(run, planner)
+    if planner and strength == "strong" and (early := stamped_early(run, planner[0].t)) is not None:
+        return _clock_doubt(run, early, planner)
     failed = plan_failures(run)
     planned = run.first(_PLANNED)
     if strength == "strong" and failed and planned is not None and planned.t < failed[0].t:
@@ -251,6 +280,15 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
     found.evidence = [Evidence.of_log(BLOCKED, ln) for ln in sorted(set(picks), key=lambda ln: ln.t)]
     recoveries = run.matching(("Running ",))
     found.facts = {"planner_failures": float(len(planner)), "recoveries": float(len(recoveries))}
+    return found
+
+
+def _clock_doubt(run: Run, early: LogLine, critic: list[LogLine]) -> Finding:
+    found = Finding("navigation.transform_error", [Evidence.of_log("navigation.transform_error", early)])
+    picks = critic[:1] + run.matching(PROGRESS)[:1] + ([run.end] if run.outcome == "failed" and run.end else [])
+    found.evidence += [Evidence.of_log("navigation.transform_error", ln) for ln in picks]
+    found.facts = {CLOCK_DOUBT: 1.0}
+    found.notes = [f"{early.speaker} had dropped sensor data stamped before my transforms (“{early.msg.strip()}”)"]
     return found
 
 

@@ -244,6 +244,8 @@ class NavigationExplainer:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
                         lines = chain.unresolved(lines, before)
+                    elif cause == g.CONTROLLER:
+                        lines = d.after_planner_gave_up(run, lines)
                     lines = states.claimable(run.notes, cause, lines)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))

@@ -14,7 +14,7 @@ from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import states
-from hexar.explainers.navigation.detectors import Finding, Run
+from hexar.explainers.navigation.detectors import CLOCK_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
 
@@ -198,6 +198,15 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Set the initial pose (e.g. '2D Pose Estimate' in RViz) so that the robot is on the map, and "
                 "check the map -> odom transform.",
                 [*seen, "Nav2 plans from the robot's position; a start outside the map makes every plan fail."])
+    if f.cause == g.TRANSFORM and CLOCK_DOUBT in f.facts:
+        # the critic's word is the costmap's, and mistimed scans put obstacles where nothing stands
+        return (f"I couldn't reach {place}: my controller found that every trajectory would hit an obstacle in my "
+                f"costmap, and gave up. That may not have been a real obstacle: {f.notes[0]}, a sign that the "
+                "clocks of my computers disagree (a clock skew), and readings placed with the wrong transform mark "
+                "obstacles where nothing stands. My logs alone do not tell which it was.",
+                "Check that every computer of the robot keeps the same time (chrony or NTP on each), then look at "
+                "what the local costmap shows around the robot.",
+                seen)
     if f.cause == g.TRANSFORM and f.notes:
         return (f"I couldn't reach {place} because of a transform (TF) error: {f.notes[0]}.",
                 "Check that whatever publishes that transform runs (for map -> odom: localisation, which waits for "

@@ -309,3 +309,63 @@ def test_no_progress_says_how_long_the_recorded_position_stood_still(tmp_path: P
     assert answer.causes == [g.NO_PROGRESS]
     # the last pose farther than 0.5 m from where it stood: x = 1.44 at 4.1 s; the failure at 20.5 s
     assert "made no progress for 16 s (my recorded position stayed within 0.5 m" in answer.text
+
+
+def _timed(lines: list[tuple[float, str, int, str]]) -> BagBuilder:
+    """A failed goal with its lines at the given seconds after the goal began (real Nav2 lines come in bursts)."""
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    b.log(t, "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    for at, name, level, msg in lines:
+        b.log(t + sec_ns(at), name, level, msg)
+    b.log(t + sec_ns(max(at for at, *_ in lines) + 1), "bt_navigator", ERROR, "Goal failed")
+    return b
+
+
+STAMPED_EARLY = (  # blind3 tb4-530 (turtlebot/turtlebot4#530), amcl's line verbatim
+    "amcl", INFO, "Message Filter dropping message: frame 'rplidar_link' at time 1738229894.744 for reason 'the "
+    "timestamp on the message is earlier than all the data in the transform cache'")
+PATIENCE = ("controller_server", ERROR, "Controller patience exceeded")
+
+
+def test_obstacle_critic_after_data_stamped_before_its_transforms_is_told_as_that_doubt(tmp_path: Path) -> None:
+    hits = [(116.0, *DWB_HITS[1]), (116.001, *DWB_HITS[0]), (116.002, *PATIENCE)]
+    causes, text = _explain(tmp_path, _timed([(0.0, *STAMPED_EARLY), *hits]), "skew")
+    assert causes == [g.TRANSFORM]
+    assert "may not have been a real obstacle" in text and "chrony" in text
+    assert BLOCKED not in stated_causes(text) and g.TRANSFORM in stated_causes(text)
+    # the same critic with no such drop, or with one only after it, is an obstacle on the way
+    assert _explain(tmp_path, _timed(hits), "plain")[0] == [BLOCKED]
+    assert _explain(tmp_path, _timed([*hits, (117.0, *STAMPED_EARLY)]), "later")[0] == [BLOCKED]
+    # a drop at start-up, before the goal began, is none of this goal's data: robots print a few then
+    assert _explain(tmp_path, _timed([(-5.0, *STAMPED_EARLY), *hits]), "startup")[0] == [BLOCKED]
+
+
+PLANNER_GAVE_UP = [  # blind7 rafism-notes (TurtleBot 3, goal sent outside the map), verbatim
+    ("planner_server", WARN, "GridBased: failed to create plan with tolerance 0.50."),
+    ("planner_server", WARN, "Planning algorithm GridBased failed to generate a valid path to (-4.12, 4.78)"),
+]
+
+
+def test_controller_rejections_right_after_the_planner_gave_up_are_not_a_cause(tmp_path: Path) -> None:
+    planner = [(0.0, *PLANNER_GAVE_UP[0]), (0.0001, *PLANNER_GAVE_UP[1])]
+    dwb = [(0.043, *DWB_HITS[0]), (0.0431, *DWB_HITS[1]),
+           (0.0432, "controller_server", WARN, "[follow_path] [ActionServer] Aborting handle.")]
+    causes, text = _explain(tmp_path, _timed([*planner, *dwb]), "rafism")
+    assert causes == [UNEXPLAINED] and "my planner could not compute a route" in text
+    assert not stated_causes(text) & {BLOCKED, g.CONTROLLER}
+    # the controller's own trouble when the planner had not just given up
+    later = [(at + 10.0, *rest) for at, *rest in dwb]
+    assert _explain(tmp_path, _timed([*planner, *later]), "later")[0] == [BLOCKED]
+
+
+def test_optimizer_failing_after_a_start_on_occupied_cells_is_not_the_controllers_fault(tmp_path: Path) -> None:
+    # blind5 mirte (inflation radius below the inscribed radius), the planner's and MPPI's lines verbatim
+    lethal = (0.0, "planner_server", ERROR,
+              "GridBased: failed to create plan, invalid use: Starting point in lethal space! Cannot create feasible "
+              "plan..")
+    mppi = (0.1, "controller_server", ERROR, "Optimizer fail to compute path")
+    causes, text = _explain(tmp_path, _timed([lethal, mppi]), "lethal")
+    assert causes == [UNEXPLAINED] and "reported the cells under me as occupied" in text
+    assert g.CONTROLLER not in stated_causes(text)
+    assert _explain(tmp_path, _timed([mppi]), "mppi")[0] == [g.CONTROLLER]
