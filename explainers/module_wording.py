@@ -23,6 +23,9 @@ class Wording:
     clauses: Mapping[str, tuple[str, str]]  # cause -> (clause, fix)
     meanings: Mapping[str, str] = field(default_factory=dict)  # cause -> {meaning} when the line has none
     nominal: Callable[[str], Worded] | None = None
+    # causes whose {meaning} comes only from a code-built note (a refinement): their entries' meanings restate the
+    # clause ("a controller could not be activated (...)"), so a line without a note takes the default
+    notes_only: frozenset[str] = frozenset()
 
     def __call__(self, cause: str, d: Diagnosis, what: str) -> Worded:
         if cause.endswith(".nominal") and self.nominal is not None:
@@ -37,6 +40,8 @@ class Wording:
         own = entry.meaning if entry is not None and entry.cause == cause else ""
         if d.decisive is not None and d.decisive.note and d.decisive.cause == cause:
             own = d.decisive.note  # a code-built text in the line says more than the line's mined entry
+        elif cause in self.notes_only:
+            own = ""
         if own and "{meaning}" not in clause:
             seen.append(f"That line means: {own}.")
         return f"{head} {clause.format(meaning=own or self.meanings.get(cause, ''))}", fix, seen

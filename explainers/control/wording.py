@@ -16,8 +16,7 @@ CLAUSES = {
         "Install the controller's package (add it to package.xml) and declare the controller with its 'type' under "
         "controller_manager in the controllers yaml."),
     "control.controller_activation_failed": (
-        "a controller could not be activated: switching my controllers took too long or its interfaces were not "
-        "available.",
+        "a controller could not be activated: {meaning}.",
         "Check that the controller manager's update loop runs (a paused simulation stops it), and that no other "
         "active controller claims the same command interfaces."),
     "control.hardware_failure": (
@@ -44,6 +43,8 @@ MEANINGS = {
     "control.configuration_error": "its joints or interfaces did not match my robot description or its parameters",
     "bringup.configuration_error": "the robot description or the driver's parameters did not reach the node that "
                                    "needs them",
+    "control.controller_activation_failed": "switching my controllers took too long or its interfaces were not "
+                                            "available",
 }
 
 
@@ -52,7 +53,8 @@ def _nominal(what: str) -> Worded:
             ["The controller logs show no error for this goal."])
 
 
-template = Wording("{what} could not run because", "ros2_control", CLAUSES, MEANINGS, _nominal)
+template = Wording("{what} could not run because", "ros2_control", CLAUSES, MEANINGS, _nominal,
+                   notes_only=frozenset({"control.controller_activation_failed"}))
 
 
 # A driver's error read by the callback it is logged in (explainers/control/driver_roles.py): the clause says what

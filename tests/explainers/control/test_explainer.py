@@ -280,3 +280,22 @@ def test_gazebo_that_could_not_load_its_ros2_control_plugin_is_a_set_up_error(tm
     assert found.causes == ["control.configuration_error"]
     assert "Gazebo could not load its ros2_control system plugin" in found.text
     assert "GZ_SIM_SYSTEM_PLUGIN_PATH" in found.text
+
+
+def test_a_controller_that_needs_an_interface_the_hardware_lacks_says_so(tmp_path: Path) -> None:
+    # UniversalRobots/Universal_Robots_ROS2_Driver#327 (held-out 2, spent): fake hardware exports no speed scaling
+    missing = _explain(tmp_path / "missing", [
+        (0, "controller_manager", ERROR, "Can't activate controller 'scaled_joint_trajectory_controller': State "
+                                         "interface with key 'speed_scaling/speed_scaling_factor' does not exist")])
+    assert missing.causes == ["control.controller_activation_failed"]
+    assert "could not be activated: it needs an interface my hardware does not provide" in missing.text
+    # moveit/moveit2#2698 (corpus): two controllers claiming one joint's command interface
+    claimed = _explain(tmp_path / "claimed", [
+        (0, "controller_manager", ERROR, "Resource conflict for controller 'both_arm_controller'. Command interface "
+                                         "'robot_joint1_l/position' is already claimed.")])
+    assert claimed.causes == ["control.controller_activation_failed"]
+    assert "another active controller already claims the command interface" in claimed.text
+    # with no reason on the line, the clause keeps its general words
+    switch = "Switch controller timed out after 5.000000 seconds!"
+    timed_out = _explain(tmp_path / "timed_out", [(0, "controller_manager", ERROR, switch)])
+    assert "switching my controllers took too long" in timed_out.text
