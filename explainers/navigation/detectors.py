@@ -19,7 +19,7 @@ from hexar.events.log import View
 from hexar.events.records import ERROR, WARN, BoolSample, LogLine, PoseSample, StatusRecord
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import END_KINDS, Entry, catalogue
-from hexar.explainers.navigation.diagnose import Tagged
+from hexar.explainers.navigation.diagnose import START_IN_OBSTACLE, TRANSFORM, Tagged
 from hexar.explainers.recorded import path_length
 
 BLOCKED = "navigation.blocked_path"
@@ -240,7 +240,7 @@ def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:
     cells: rejected trajectories there do not tell an obstacle on the way from a goal off the map or a start in an
     obstacle, so they are symptoms of what the planner met (its candidates), not a cause of their own."""
     gave_up = [ln.t for ln in plan_failures(run)]
-    gave_up += [n.line.t for n in run.notes if n.entry.cause == "navigation.start_in_obstacle"]
+    gave_up += [n.line.t for n in run.notes if n.entry.cause == START_IN_OBSTACLE]
     return [ln for ln in lines if not any(0 <= ln.t - t <= SAME_ATTEMPT_S * 1e9 for t in gave_up)]
 
 
@@ -284,9 +284,9 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
 
 
 def _clock_doubt(run: Run, early: LogLine, critic: list[LogLine]) -> Finding:
-    found = Finding("navigation.transform_error", [Evidence.of_log("navigation.transform_error", early)])
+    found = Finding(TRANSFORM, [Evidence.of_log(TRANSFORM, early)])
     picks = critic[:1] + run.matching(PROGRESS)[:1] + ([run.end] if run.outcome == "failed" and run.end else [])
-    found.evidence += [Evidence.of_log("navigation.transform_error", ln) for ln in picks]
+    found.evidence += [Evidence.of_log(TRANSFORM, ln) for ln in picks]
     found.facts = {CLOCK_DOUBT: 1.0}
     found.notes = [f"{early.speaker} had dropped sensor data stamped before my transforms (“{early.msg.strip()}”)"]
     return found
