@@ -152,14 +152,27 @@ def test_no_task_error_quotes_the_last_error_line(tmp_path: Path) -> None:
     time, text on one line), so a developer replaying it sees what went wrong without a made-up cause."""
     b = BagBuilder()
     b.log(T0, "moveit_task_constructor_executor", 40, "Failed to connect to the 'execute_task_solution' action server")
-    b.log(T0 + 10**9, "kinematics_base", 40, "This kinematic solver does not support\nIK solution cost functions")
+    # rviz_rendering's mesh loader ("Could not load resource [%s]: %s"), its reason on a second line; a line no
+    # catalogue reads (a wrapped MoveIt line would now be read, and start an arm task)
+    mesh = "package://tiago_description/meshes/base/base.stl"
+    b.log(T0 + 10**9, "rviz2", 40, f"Could not load resource [{mesh}]:\nUnable to open file \"{mesh}\".")
     b.log(T0 + 2 * 10**9, "rviz2", 20, "Waiting for next goal")
     with pytest.raises(NoTaskError) as err:
         read_recording(b.write(tmp_path / "run")).task()
     message = str(err.value)
     assert message.startswith("no task to explain:") and "\n" not in message
-    assert message.endswith('came from kinematics_base at 15:06:41.000 UTC: '
-                            '"This kinematic solver does not support IK solution cost functions"')
+    assert message.endswith(f'came from rviz2 at 15:06:41.000 UTC: "Could not load resource [{mesh}]: Unable to open '
+                            f'file "{mesh}"."')
+
+
+def test_a_moveit_error_wrapped_onto_two_lines_starts_the_task_its_one_line_form_starts(tmp_path: Path) -> None:
+    skills = []
+    for name, msg in [("one", "This kinematic solver does not support IK solution cost functions"),
+                      ("wrapped", "This kinematic solver does not support\nIK solution cost functions")]:
+        b = BagBuilder()
+        b.log(T0, "kinematics_base", 40, msg)
+        skills.append([[s.skill for s in t.skills] for t in read_recording(b.write(tmp_path / name)).tasks])
+    assert skills[0] == skills[1] == [["move_arm"]]
 
 
 def test_no_task_error_without_an_error_line_quotes_nothing(tmp_path: Path) -> None:
