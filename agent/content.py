@@ -20,6 +20,7 @@ from hexar.explainers.recorded import (
     place_name,
     plan_words,
     sentence,
+    step_ref,
     step_words,
     trips_inside,
     utterances,
@@ -135,7 +136,7 @@ def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Expla
         lead = f"I tried to go to {place} because {because}, but {ended}."
     else:
         failed = task.failed_skill
-        why = (f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" if failed is not None
+        why = (f"{step_ref(failed)} failed first" if failed is not None
                else "that step never started")
         lead = f"I did not go to {place}: {because}, but {why}, so I never set off."
     text = lead + " " + sentence(f"The whole plan was to {plan_words(task)}")
@@ -275,7 +276,7 @@ def not_run(module: str, log: EventLog, task: Task, explainers_of: Callable[[str
     if steps:
         first = steps[0]
         failed = task.failed_skill
-        why = (f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" if failed is not None
+        why = (f"{step_ref(failed)} failed first" if failed is not None
                else {"canceled": "the task was canceled first", "invalid": "my plan was rejected before it started"}
                .get(task.outcome, "the recording ends before it started"))
         text = (f"I didn't {did} for {name}: step {first.index + 1} of my plan was to {step_words(first)}, "

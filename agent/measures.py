@@ -17,7 +17,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import clock
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_words
+from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_ref, step_words
 
 Measure = Literal["far", "long", "when"]
 
@@ -142,7 +142,7 @@ def _during(run: SkillRun) -> str:
 def _ended(task: Task) -> str:
     failed = task.failed_skill
     if failed is not None:
-        return f"it ended when step {failed.index + 1} (to {step_words(failed, short=True)}) failed"
+        return f"it ended when {step_ref(failed)} failed"
     if task.outcome == "succeeded":
         return "I finished it"
     if task.outcome == "invalid":
@@ -164,7 +164,7 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
         text = (f"{name[0].upper()}{name[1:]} took {span}, from {_at(task.created)} to {_at(task.last_update)} UTC; "
                 f"{ended}.")
     if steps:
-        each = "; ".join(f"step {s.run.index + 1} (to {step_words(s.run, short=True)}) took {_span(s.end - s.start)}"
+        each = "; ".join(f"{step_ref(s.run)} took {_span(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
@@ -210,7 +210,7 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
     lead = "In my own recovery task, " if owner is not task else ""
     if start is None:
         failed = owner.failed_skill
-        why = f"step {failed.index + 1} (to {step_words(failed, short=True)}) failed first" \
+        why = f"{step_ref(failed)} failed first" \
             if failed is not None and failed.index < run.index else "it never started"
         text = f"I never set off for {place}: that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
     elif run.state == "succeeded":

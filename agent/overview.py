@@ -16,7 +16,7 @@ from collections.abc import Sequence, Set
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Context, Evidence, Explanation
-from hexar.explainers.recorded import join_words, plan_words, sentence, step_words
+from hexar.explainers.recorded import join_words, plan_words, sentence, step_ref
 
 # Questions about the task as a whole ("what happened" asks for the whole story, not one step of it).
 _WHOLE = re.compile(
@@ -125,7 +125,7 @@ def steps_summary(task: Task) -> str:
     if all(r.state == "succeeded" for r in runs):
         return sentence(f"I did all {len(runs)} steps of my plan: {plan_words(task)}")
     done = [r for r in runs if r.state == "succeeded"]
-    ended = [f"step {r.index + 1} (to {step_words(r, short=True)}) {_STATE[r.state]}" for r in runs
+    ended = [f"{step_ref(r)} {_STATE[r.state]}" for r in runs
              if r.state in {"failed", "running", "canceled"}]
     never = [str(r.index + 1) for r in runs if r.state not in _STATE or r.state == "waiting"]
     if never:

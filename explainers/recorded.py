@@ -138,6 +138,11 @@ def step_words(run: SkillRun, short: bool = False) -> str:
     return run.skill.replace("_", " ")
 
 
+def step_ref(run: SkillRun) -> str:
+    """"step 2 (to ask someone for help)": a step named by its number and, briefly, what it was to do."""
+    return f"step {run.index + 1} (to {step_words(run, short=True)})"
+
+
 def path_length(points: Iterable[tuple[float, float]]) -> float:
     """Length of the path through (x, y) points in their order, in metres."""
     return sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in itertools.pairwise(points))
