@@ -61,7 +61,7 @@ class ModuleExplainer:
     description: ClassVar[str]
     skills: ClassVar[tuple[str, ...]]
     prefix: ClassVar[str]
-    module_words: ClassVar[str]  # "my arm's motion", "my arm controllers"
+    module_words: ClassVar[str]  # "my arm's motion", "my controllers"
     # catalogue entries that only report that a step failed, not why, where the why is one of several causes:
     # entry id -> the candidates, told beside the quoted line instead of one of them
     ambiguous: ClassVar[dict[str, str]] = {}

@@ -1,6 +1,6 @@
 """The sentences of the arm's log explainers (manipulation, control), one table per module: (clause, fix) per cause.
 
-A clause follows the module's head ("I couldn't finish picking up the cup because", "My arm controllers could not
+A clause follows the module's head ("I couldn't finish picking up the cup because", "My controllers could not
 run because"); `{meaning}` in it stands for what the decisive line means (its catalogue entry's meaning when that
 entry states this very cause, else the table's default), so a general cause such as a configuration error is told
 in the words of the line that showed it. Every answer quotes the decisive line in its details.

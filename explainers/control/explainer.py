@@ -43,7 +43,7 @@ class ControlExplainer(ModuleExplainer):
     name: ClassVar[str] = "control"
     skills: ClassVar[tuple[str, ...]] = SKILLS
     prefix: ClassVar[str] = "control."
-    module_words: ClassVar[str] = "my arm controllers"
+    module_words: ClassVar[str] = "my controllers"  # a mobile base has them too: nothing says whose
     description: ClassVar[str] = (
         "Explains the robot's motor controllers and hardware interfaces (ros2_control): why a controller could "
         "not be loaded or activated, why the hardware interface failed, why a joint trajectory was aborted "
