@@ -50,6 +50,9 @@ def test_the_held_out_sets_parse_and_share_no_excerpt_or_thread_with_the_corpus(
     assert not urls["real-modules-heldout9"] & (earlier | urls["real-modules-heldout3"] | urls["real-modules-heldout4"]
                                                 | urls["real-modules-heldout5"] | urls["real-modules-heldout6"]
                                                 | urls["real-modules-heldout7"] | urls["real-modules-heldout8"])
+    assert len(by_suite["real-modules-heldout10"]) >= 10
+    before10 = set().union(*(u for s, u in urls.items() if s != "real-modules-heldout10"))
+    assert not urls["real-modules-heldout10"] & before10
 
 
 def test_an_excerpt_becomes_a_recording_with_or_without_a_task(tmp_path: Path) -> None:
