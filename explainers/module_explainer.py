@@ -165,7 +165,7 @@ class ModuleExplainer:
                       if first is not None else self._last_said(d, start))
             # what is left open, in words no cause pattern reads as a claim: the line's own, else the module's
             maybe = (f" Its words say that {d.candidates}." if d.candidates
-                     else f" {driver_candidates(run, first) or self.candidates}")
+                     else f" {driver_candidates(run, first) or self.candidates_of(first)}")
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
                 text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
@@ -212,6 +212,10 @@ class ModuleExplainer:
                     + text)
         return Explanation(explainer=self.name, text=text, causes=[cause], evidence=ev, fix=fix, details=details,
                            confidence=0.9 if decisive.strong else 0.6)
+
+    def candidates_of(self, first: LogLine | None) -> str:
+        """What is left open when `first`, the first error, names no cause: the module's candidates."""
+        return self.candidates
 
     def _unsure(self, decisive: Reading, start: int) -> Explanation:
         """No line ends the goal, and the only problem line is one many healthy robots print too (a weak cause):

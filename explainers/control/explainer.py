@@ -22,8 +22,10 @@ cause.
 
 from __future__ import annotations
 
+import re
 from typing import ClassVar
 
+from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue
@@ -34,6 +36,7 @@ from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer, verbatim
 
+CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
 
 
@@ -62,6 +65,17 @@ class ControlExplainer(ModuleExplainer):
 
     candidates: ClassVar[str] = ("It may be a controller's settings (its parameters, joints or interfaces), its "
                                  "hardware interface's settings, or its device.")
+
+    def candidates_of(self, first: LogLine | None) -> str:
+        # spawner.py (controller_manager/scripts, :120@foxy) gives up after waiting for the controller manager's
+        # services ("Waiting for '/controller_manager' node to exist" before it): no controller was ever asked
+        # for, so a controller's settings cannot be why; what hosts the controller manager can
+        if first is not None and CM_NOT_AVAILABLE.search(first.msg):
+            return ("My spawners waited for my controller manager, which never appeared, so no controller was "
+                    "loaded at all. It may be that what runs it (ros2_control_node, or a simulator's ros2_control "
+                    "plugin such as gz_ros2_control) was not started or is missing, died as it started, or runs "
+                    "under another name or namespace than the spawners looked for.")
+        return self.candidates
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]

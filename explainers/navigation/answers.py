@@ -82,9 +82,14 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
                  "(e.g. 'No valid trajectories'), and I cleared my maps and replanned.",
                  "Each time the way opened again and I finally reached the goal."])
     if f.cause == d.NOMINAL_SPEED:
-        return (f"Nothing went wrong on the way to {place}: {_speed_sentence(f)}".rstrip(": "), None,
+        figures = _speed_sentence(f)
+        # without odometry or a speed limit in the recording there is no figure to give, and a bare "Nothing
+        # went wrong" would leave the question unanswered
+        said = (f"Nothing went wrong on the way to {place}: {figures}" if figures else
+                f"I reached {place} without any problem; my recording has no figures of how fast I went.")
+        return (said, None,
                 ["I accelerate, turn along the path and slow down near the goal, so my average speed is "
-                 "below my speed limit."])
+                 "below my speed limit."] if figures else [])
     if f.cause == d.NOMINAL:
         figures = _speed_sentence(f)
         warned = [ln for ln in run.lines if ln.level >= WARN]

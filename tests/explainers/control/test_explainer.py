@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from hexar.causes import stated_causes
 from hexar.events.records import ERROR, FATAL, INFO, WARN
 from hexar.explainers.base import Explanation
 from tests.explainers.helpers import explain, write_lines
@@ -299,3 +300,21 @@ def test_a_controller_that_needs_an_interface_the_hardware_lacks_says_so(tmp_pat
     switch = "Switch controller timed out after 5.000000 seconds!"
     timed_out = _explain(tmp_path / "timed_out", [(0, "controller_manager", ERROR, switch)])
     assert "switching my controllers took too long" in timed_out.text
+
+
+def test_spawners_that_never_reached_a_controller_manager_name_what_hosts_it(tmp_path: Path) -> None:
+    # ZeinBarhoum/chess_manipulator#5 (heldout10.yaml), as its console printed it: both spawners waited for the
+    # controller manager, then gave up (spawner.py:120@foxy); gazebo_ros2_control, which hosts it, was not installed
+    waiting = "Waiting for '/controller_manager' node to exist"
+    found = _explain(tmp_path, [
+        (0, "spawner_joint_trajectory_controller", INFO, waiting),
+        (0.02, "spawner_joint_state_broadcaster", INFO, waiting),
+        (6.0, "spawner_joint_trajectory_controller", INFO, waiting),
+        (6.02, "spawner_joint_state_broadcaster", INFO, waiting),
+        (8.0, "spawner_joint_trajectory_controller", ERROR, "Controller manager not available"),
+        (8.02, "spawner_joint_state_broadcaster", ERROR, "Controller manager not available")])
+    assert found.causes == ["control.unexplained_failure"]
+    assert "Controller manager not available" in found.text
+    assert "never appeared" in found.text and "ros2_control_node" in found.text and "gz_ros2_control" in found.text
+    assert "a controller's settings" not in found.text  # no controller was ever asked for
+    assert not set(stated_causes(found.text)) - {"control.unexplained_failure", "claim.task_failed"}

@@ -567,3 +567,15 @@ def test_lines_the_filter_does_not_read_are_quoted_not_denied(tmp_path: Path) ->
     assert "Nothing from my navigation system was recorded" not in found.text
     assert drop in found.text and "amcl" in found.text
     assert not stated_causes(found.text)
+
+
+def test_a_slow_trip_with_no_speed_figures_is_still_answered_in_a_sentence(tmp_path: Path) -> None:
+    # NachtaktiverHalbaffe/Autonomous-Ape's troubleshooting page (blind9.yaml): the local costmap waiting for odom
+    # at start-up, which the page calls normal; the recording has no odometry, so there is no speed to give
+    waited = ("Timed out waiting for transform from base_link to odom to become available, tf error: Invalid frame "
+              "ID \"odom\" passed to canTransform argument target_frame - frame does not exist")
+    found = _explain(tmp_path, [("turtle1.local_costmap.local_costmap", INFO, waited),
+                                ("lifecycle_manager_navigation", INFO, "Managed nodes are active")],
+                     [], SUCCEEDED, "Why did it take so long to get there?")
+    assert found.text == "I reached my goal without any problem; my recording has no figures of how fast I went."
+    assert "navigation.nominal" in stated_causes(found.text)
