@@ -82,6 +82,12 @@ _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WH
                   ("talked", _TALKED))
 
 
+def is_order(question: str) -> bool:
+    """An order to stop or to act ("stop", "bring me the coffee"), which content_kind reads as 'stop' or 'act'."""
+    q = normalise(question)
+    return _STOP.search(q) is not None or _ACT.search(q) is not None
+
+
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'far', 'long', 'when', 'talked' or 'said' for a question about what the robot did, 'act' for a
     request to do something, 'stop' for an order to stop and 'next' for one about what it will do; None for

@@ -11,7 +11,7 @@ from functools import cache
 
 from hexar.agent.classifier import examples
 from hexar.agent.errors import BadQuestionError
-from hexar.agent.followups import content_kind
+from hexar.agent.followups import is_order
 
 
 def _words(text: str) -> frozenset[str]:
@@ -218,7 +218,7 @@ def check_question(question: str) -> str:
     if known / len(words) < 0.5 or (len(words) == 1 and not _known(words[0])):
         raise BadQuestionError(f"I don't understand {quoted(question)}: ask me in words why I did something, "
                                f"{EXAMPLE}")
-    if content_kind(q) in {"act", "stop"}:
+    if is_order(q):
         return q  # an order ("bring me the coffee", "stop"): declined as one, since the agent acts on nothing
     if _SMALL_TALK.match(q.lower()) or not _asks(q.lower(), words):
         raise BadQuestionError(f"{quoted(question)} is not a question: ask me why I did something, {EXAMPLE}")

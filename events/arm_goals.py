@@ -256,9 +256,10 @@ def _nav2_own(line: LogLine) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
     logged by no logger of the arm's software (launch's generic "process has died" is anybody's)."""
     from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
     cat = nav2()
-    if cat.role(line.name) is not None or cat.role(re.sub(r"-\d+$", "", line.name)) is not None:
+    if cat.role(line.name) is not None or cat.role(PROCESS_SUFFIX.sub("", line.name)) is not None:
         return True
     if _arms_logger(line.name):
         return False  # e.g. the resource manager's pluginlib error: a text Nav2 shares, logged by ros2_control

@@ -56,9 +56,9 @@ _CMD_EXE = re.compile(r"cmd '(?:[^' ]*/)?(?P<node>[A-Za-z_]\w*)[ ']")
 # libraries"): the program exits before its node exists, at no log level
 _LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
                      re.S)
+PROCESS_SUFFIX = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 # ros2cli ros2run/command/run.py@rolling: `ros2 run` prints "No executable found" when the package has no program
 # of that name, or raises "Package '<name>' not found", and exits 1; launch then reports the process died
-PROCESS_SUFFIX = re.compile(r"-\d+$")  # launch's process suffix: controller_server-6 -> controller_server
 _ROS2_RUN = re.compile(r"cmd '(?:\S*/)?ros2 run (?P<pkg>[^\s']+) (?P<exe>[^\s']+)")
 _ORIGINAL = re.compile(r"Original error: (?P<error>.+)", re.S)
 _TRANSITION = re.compile(r"transition (?P<id>\d+)")

@@ -101,7 +101,6 @@ class StackEntry:
         return sum(ch.isalnum() for ch in re.sub(r"\.\*\?", "", self.pattern))
 
 
-
 def clean(msg: str) -> str:
     """The message without the ANSI colour codes the lifecycle manager wraps its lines in."""
     return _ANSI.sub("", msg) if "\x1b" in msg else msg
