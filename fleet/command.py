@@ -22,7 +22,7 @@ from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, T
 
 from hexar.fleet.errors import TriageError
 from hexar.fleet.inputs import expand, robot_of
-from hexar.fleet.local import default_workers, run_local
+from hexar.fleet.local import default_workers, one_math_thread, run_local
 
 RESULTS = "results.jsonl"
 
@@ -57,6 +57,7 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
     if opts.workers is not None and opts.workers < 1:
         raise TriageError(f"--workers must be 1 or more, not {opts.workers}")
     workers = opts.workers or default_workers()
+    one_math_thread()
     found = [(str(path.resolve()), rel) for path, rel in expand(opts.inputs)]
     if not found:
         raise TriageError(f"no recordings under {', '.join(opts.inputs)}")

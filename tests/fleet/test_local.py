@@ -16,6 +16,7 @@ import pandas as pd
 import pytest
 
 from hexar.fleet.command import RESULTS
+from hexar.fleet.local import MATH_THREADS, one_math_thread
 
 HEXAR = str(Path(sys.executable).with_name("hexar"))
 
@@ -67,3 +68,13 @@ def test_workers_that_die_end_the_run_with_one_line_and_a_rerun_finishes(suite: 
     assert again.returncode == 0, again.stderr
     assert f"{kept} done before, {60 - kept} to triage" in again.stdout
     assert len((out / RESULTS).read_text().splitlines()) == 60
+
+
+def test_triage_gives_each_math_library_one_thread_unless_the_user_chose(monkeypatch: pytest.MonkeyPatch) -> None:
+    for var in MATH_THREADS:
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setenv("OMP_NUM_THREADS", "4")
+    one_math_thread()
+    assert os.environ["OPENBLAS_NUM_THREADS"] == "1"
+    assert os.environ["MKL_NUM_THREADS"] == "1"
+    assert os.environ["OMP_NUM_THREADS"] == "4"
