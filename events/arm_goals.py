@@ -152,10 +152,11 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
             return []  # no start shown: a lone error may be anybody's, and no task is claimed from it
         return [_start_goal(start)]
     skill = MOVE_ARM if any(s == MOVE_ARM for _, s in active) else FOLLOW
-    # the step began with the first warning or error of the arm's own software, so that a warning it logged
-    # before (a controller manager waiting for its robot description) is in the explained window
+    # the step began with the first warning or error of the arm's own software (its words, or its node), so that
+    # a warning it logged before (a controller manager waiting for its robot description) is in the explained window
     first = next((ln.t for ln in logs if ln.level >= WARN and ln.t <= active[0][0].t
-                  and any(cat.match(ln.msg) is not None for cat in (moveit(), control()))), active[0][0].t)
+                  and (_arms_logger(ln.name) or any(cat.match(ln.msg) is not None for cat in (moveit(), control())))),
+                 active[0][0].t)
     goal = _Goal(skill, first, "log (no goal line)")
     failed = next((ln for ln, _ in active if ln.level >= ERROR), None)
     if failed is None:
@@ -275,6 +276,22 @@ def _arms_logger(name: str) -> bool:
     return bool(name) and any(cat.role(name) is not None for cat in (moveit(), control()))
 
 
+def _only_arms_nodes(task: Task, logs: list[LogLine] | None) -> bool:
+    """A Nav2 task found from activity alone in a recording whose only named loggers of either catalogue are the
+    arm's (controller_manager, resource_manager, move_group): its lines that name no node (a process's stderr, such
+    as "terminate called after throwing ...  what(): Failed to configure 'hsrb'") matched Nav2's catalogue by
+    words alone, and the nodes that did log are the arm's."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
+
+    if logs is None or task.skills[0].params.get("derived_from") != "Nav2 log (no goal line)":
+        return False
+    cat = nav2()
+    if any(cat.role(ln.name) is not None or cat.role(PROCESS_SUFFIX.sub("", ln.name)) is not None for ln in logs):
+        return False
+    return any(_arms_logger(ln.name) for ln in logs)
+
+
 def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:
     """A Nav2 task found from activity alone whose first bring-up finding is a lifecycle transition of a node with
     no Nav2 role, in a recording where no line is Nav2's own: a driver's or another robot's lifecycle node."""
@@ -303,6 +320,8 @@ def merge_tasks(nav: list[Task], arm: list[Task], logs: list[LogLine] | None = N
         return arm  # the only failure was a process of the arm's packages (ros2_control_node, move_group) dying
     if not arm_goals and len(nav) == 1 and _others_lifecycle(nav[0], logs):
         return arm  # e.g. a drone's or a driver's lifecycle node that failed its transition: not navigation's
+    if not arm_goals and len(nav) == 1 and _only_arms_nodes(nav[0], logs):
+        return arm  # a line of no node ("terminate called ...") in words Nav2 shares, where only the arm's logged
     if not arm_goals:
         return nav
     real_nav = [t for t in nav if t.skills[0].params.get("derived_from") != "Nav2 log (no goal line)"]

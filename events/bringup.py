@@ -131,6 +131,10 @@ def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
     """The error belongs to a start the recording shows: an error of the starting software after a lesser line of
     it, a driver's error after a lesser line of its own, or a start line that goes on to tell an abort (a console's
     "Loading hardware '…'" whose next line is the abort)."""
+    # a console prints a process's uncaught C++ exception on stderr, which names no node: the line printed before
+    # it is the only sign of whose it was
+    if not line.name and ABORT in line.msg and before and starting(before[-1]):
+        return True
     own = starting(line)
     if not own and not _driver(line.name, logs):
         return False

@@ -42,6 +42,31 @@ def killed_by_signal(msg: str) -> bool:
 _ONE_SHOT = re.compile(r"exit code [1-9]\d*, cmd '\S*(controller_manager/spawner|/unspawner) ")
 
 
+# libstdc++-v3/libsupc++/vterminate.cc (__verbose_terminate_handler): an uncaught C++ exception; the handler
+# prints its type and what() to stderr and calls abort(), so the process that threw it ends there
+_UNCAUGHT = re.compile(r"terminate called after throwing an instance of '(?P<type>[^']+)'(?:\s*what\(\):\s*"
+                       r"(?P<what>[^\n]*))?")
+
+
+def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | None:
+    """The first line that carries an uncaught C++ exception, its process's end, unless the line is an error of its
+    own before it (a driver's "Open [/dev/…]: Bad file descriptor" and then the abort): that error is the first to
+    tell, the death its consequence."""
+    return next((ln for ln in sorted(lines, key=lambda ln: ln.t) if (before is None or ln.t <= before)
+                 and (m := _UNCAUGHT.search(ln.msg)) is not None
+                 and (ln.level < ERROR or not ln.msg[:m.start()].strip())), None)
+
+
+def _uncaught_words(line: LogLine) -> str:
+    """"of an uncaught C++ exception (std::invalid_argument), so the software it ran was gone: “[node] invalid argument
+    passed”": the what() quoted as the log's words (hexar/claims.py reads none of them as the answer's claim)."""
+    m = _UNCAUGHT.search(line.msg)
+    kind = f" ({m['type']})" if m is not None else ""
+    what = (m["what"] or "").strip() if m is not None else ""
+    quoted = f": “[{line.name or 'unnamed node'}] {what[:160]}”" if what else ""
+    return f"of an uncaught C++ exception{kind}, so the software it ran was gone{quoted}"
+
+
 def one_shot_failed(msg: str) -> bool:
     """launch's death line of a controller spawner that exited with an error: the spawner is a one-shot command that
     returns 1 when its controller could not be loaded, configured or activated (ros2_control
@@ -115,6 +140,10 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
 
     line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what[:1].upper()}{what[1:]} failed because"
+    if cause == "bringup.process_died" and d.decisive is not None and _UNCAUGHT.search(d.decisive.line.msg):
+        return (f"{head} one of my processes died {_uncaught_words(d.decisive.line)}.",
+                "Read what the exception says and the lines just before it: the call that threw it (a parameter, "
+                "a plugin or an interface that does not fit) is what to fix.", line)
     if cause == "bringup.process_died":
         return (f"{head} one of my processes died during bring-up or the run, so the software it runs was gone.",
                 "Read that process's last lines before it died (a crash, an exception, a missing library).", line)

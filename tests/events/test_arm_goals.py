@@ -9,7 +9,7 @@ from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import contract as c
 from hexar.events import read_recording
 from hexar.events.reader import read_tasks
-from hexar.events.records import ERROR, INFO
+from hexar.events.records import ERROR, FATAL, INFO
 
 T0 = 1_700_000_000_000_000_000
 MGI = "move_group_interface"
@@ -155,3 +155,25 @@ def test_the_same_pluginlib_line_from_a_nav2_node_stays_navigations(tmp_path: Pa
     b.log(T0, "bt_navigator", ERROR, _no_plugin("nav2_custom/MyCondition", "BT::ConditionNode"))
     tasks = read_recording(b.write(tmp_path / "run")).tasks
     assert [t.skills[0].params["source"] for t in tasks] == ["nav2"]
+
+
+def test_a_line_of_no_node_in_nav2s_words_is_the_arms_where_only_the_arms_nodes_logged(tmp_path: Path) -> None:
+    # a console wrapped line by line (hsr-ros2 docs): the abort names no node, and "Failed to configure" is a text
+    # Nav2's lifecycle manager logs too; the one node that logged is the controller manager
+    b = BagBuilder()
+    b.log(T0, "controller_manager", FATAL,
+          "System cannot communicate with servo motors. Error message: Permission denied")
+    b.log(T0 + sec_ns(0.1), "", ERROR, "terminate called after throwing an instance of 'std::runtime_error'\n"
+                                       "what():  Failed to configure 'hsrb'")
+    (task,) = read_recording(b.write(tmp_path / "run")).tasks
+    assert task.skills[0].skill != "navigate_to_pose"
+    assert task.created == T0  # the window opens at the controller manager's own line, which says why
+
+
+def test_the_same_line_of_no_node_beside_a_nav2_node_stays_navigations(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "lifecycle_manager_navigation", INFO, "Configuring controller_server")
+    b.log(T0 + sec_ns(0.1), "", ERROR, "terminate called after throwing an instance of 'std::runtime_error'\n"
+                                       "what():  Failed to configure 'controller_server'")
+    (task,) = read_recording(b.write(tmp_path / "run")).tasks
+    assert task.skills[0].skill == "navigate_to_pose"

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from hexar.causes import stated_causes
+from hexar.claims import read_claims
 from hexar.events.records import ERROR, FATAL, INFO, WARN
 from hexar.explainers.base import Explanation
 from tests.explainers.helpers import explain, write_lines
@@ -318,3 +319,54 @@ def test_spawners_that_never_reached_a_controller_manager_name_what_hosts_it(tmp
     assert "never appeared" in found.text and "ros2_control_node" in found.text and "gz_ros2_control" in found.text
     assert "a controller's settings" not in found.text  # no controller was ever asked for
     assert not set(stated_causes(found.text)) - {"control.unexplained_failure", "claim.task_failed"}
+
+
+# libstdc++'s verbose terminate handler, as ur_robot_driver's console printed it (Universal_Robots_ROS2_Driver#677)
+_UNCAUGHT = ("terminate called after throwing an instance of 'std::runtime_error'\n"
+             "  what():  Wrong state or command interface configuration.\nmissing state interfaces:")
+
+
+def test_an_uncaught_exception_is_a_process_that_died_with_its_what(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [
+        (0, "resource_manager", INFO, "Successful initialization of hardware 'bmt_1'"),
+        (0.1, "resource_manager", INFO, "Successful initialization of hardware 'bmt_1'\n" + _UNCAUGHT)],
+        skill="bring_up_controllers")
+    assert found.causes == ["bringup.process_died"]
+    assert "bringup.process_died" in stated_causes(found.text)
+    assert found.text == ("Starting my drivers and controllers failed because one of my processes died of an uncaught "
+                          "C++ exception (std::runtime_error), so the software it ran was gone: “[resource_manager] "
+                          "Wrong state or command interface configuration.”.")
+
+
+def test_an_exception_printed_as_a_line_of_no_node_is_the_process_of_the_line_before(tmp_path: Path) -> None:
+    # a console wrapped line by line: the abort names no node, after move_group's own lines (moveit2_tutorials#864)
+    found = _explain(tmp_path, [
+        (0, "move_group.moveit.cartesian_path_service_capability", INFO, "Received request to compute Cartesian "
+                                                                          "path"),
+        (0.1, "", INFO, "terminate called after throwing an instance of 'std::invalid_argument'\n"
+                        "  what():  invalid argument passed")], skill="bring_up_controllers")
+    assert found.causes == ["bringup.process_died"]
+    assert "(std::invalid_argument), so the software it ran was gone: “[unnamed node] invalid argument passed”" \
+        in found.text
+    assert read_claims(found.text).affirmed == {"bringup.process_died"}  # "invalid argument" is the log's word
+
+
+def test_an_unexplained_error_before_the_exception_is_quoted_not_the_death(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [
+        (0, "resource_manager", INFO, "Loading hardware 'arm'"),
+        (0.1, "resource_manager", ERROR, "Something odd happened to 'arm'"),
+        (0.2, "resource_manager", INFO, "Loading hardware 'arm'\n" + _UNCAUGHT)], skill="bring_up_controllers")
+    assert found.causes == ["control.unexplained_failure"]
+    assert "Something odd happened" in found.text and "died" not in found.text
+
+
+def test_a_drivers_error_on_the_line_of_the_abort_is_quoted_before_the_death(tmp_path: Path) -> None:
+    # the feetech driver's console (moveit_pro_example_ws#930): its own error, then the abort, on one record
+    found = _explain(tmp_path, [
+        (0, "FeetechHardware", INFO, "Connecting to port: /dev/so101_follower"),
+        (0.1, "FeetechHardware", ERROR, "FeetechHardware::on_init -> Open [/dev/so101_follower]: Bad file "
+                                        "descriptor\nterminate called after throwing an instance of "
+                                        "'LibSerial::NotOpen'\n  what():  Serial port not open.")],
+        skill="bring_up_controllers")
+    assert "bringup.process_died" not in found.causes
+    assert "Bad file descriptor" in found.text and "died" not in found.text
