@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from hexar.causes import stated_causes
+from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, FATAL, INFO, WARN
@@ -579,3 +580,19 @@ def test_a_slow_trip_with_no_speed_figures_is_still_answered_in_a_sentence(tmp_p
                      [], SUCCEEDED, "Why did it take so long to get there?")
     assert found.text == "I reached my goal without any problem; my recording has no figures of how fast I went."
     assert "navigation.nominal" in stated_causes(found.text)
+
+
+def test_a_failed_plan_while_the_goal_still_runs_at_the_end_is_no_goal_missed(tmp_path: Path) -> None:
+    # the tugbot phase-3 notes (blind7.yaml): a far frontier goal, one failed plan, recoveries, then the controller
+    # took a new path; the recording (no task, no end line) stops there, so it does not show whether it got there
+    found = _explain(tmp_path, [], [
+        ("planner_server", ERROR, 'GridBased plugin failed to plan from (0.00, 0.00) to (1.00, 2.00): "Failed to '
+                                  'create plan with tolerance of: 0.500000"'),
+        ("planner_server", ERROR, "[compute_path_to_pose] [ActionServer] Aborting handle."),
+        ("behavior_server", INFO, "Running spin"),
+        ("controller_server", INFO, "Received a goal, begin computing control effort.")], None,
+        "Why did it take so long to get there?")
+    assert found.text.startswith("The recording ends before my navigation to my goal finished, so it does not "
+                                 "show whether I got there; on the way my planner could not compute a route to it "
+                                 "(1 time), and I can't tell why")
+    assert "claim.task_failed" not in read_claims(found.text).affirmed
