@@ -319,13 +319,14 @@ class NavigationExplainer:
 
 def _unfinished(text: str, place: str) -> str:
     """A cause seen while the goal was still running when the recording ended (no end line, no task status):
-    what the logs show, without claiming the goal failed."""
-    head = f"I couldn't reach {place} because "
-    if not text.startswith(head):
-        return text
-    what = text.removeprefix(head).removeprefix("of ")
-    return (f"The recording ends before my navigation to {place} finished, so it does not show whether I got "
-            f"there; on the way my logs show a problem: {what}")
+    what the logs show, without claiming the goal failed ("I couldn't reach … because …" or "…: my planner …")."""
+    for head, joint in ((f"I couldn't reach {place} because ", "my logs show a problem: "),
+                        (f"I couldn't reach {place}: ", "")):
+        if text.startswith(head):
+            what = text.removeprefix(head).removeprefix("of ")
+            return (f"The recording ends before my navigation to {place} finished, so it does not show whether I "
+                    f"got there; on the way {joint}{what}")
+    return text
 
 
 # nav2_collision_monitor/src/collision_monitor_node.cpp:628-642@jazzy: the actions that slow the robot rather than

@@ -158,13 +158,9 @@ def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     if "plan_failures" in f.facts:
         tail = f" {last[0].upper()}{last[1:]}." if last else ""
         n = int(f.facts["plan_failures"])
-        times = f"{n} time{'s' if n != 1 else ''}"
-        # a goal still running when the recording ends (a bag cut mid-goal, Nav2 replanning) is no goal missed
-        head = (f"The recording ends before my navigation to {place} finished, so it does not show whether I got "
-                f"there; on the way my planner could not compute a route to it ({times})"
-                if run.outcome == "unknown" else f"I couldn't reach {place}: my planner could not compute a route "
-                                                 f"to it ({times})")
-        return (f"{head}, and I can't tell why from my logs alone: {PLAN_CANDIDATES}.{tail}",
+        # a goal still running when the recording ends is told as unfinished by the explainer (_unfinished)
+        return (f"I couldn't reach {place}: my planner could not compute a route to it ({n} time{'s' * (n != 1)}), "
+                f"and I can't tell why from my logs alone: {PLAN_CANDIDATES}.{tail}",
                 PLAN_CHECKS, [f"Nav2 said: {_said(f)}"])
     if last and run.outcome == "unknown":
         return (f"The recording does not show whether my navigation to {place} finished. I can't tell what went "

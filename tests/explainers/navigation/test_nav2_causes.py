@@ -341,6 +341,20 @@ def test_obstacle_critic_after_data_stamped_before_its_transforms_is_told_as_tha
     assert _explain(tmp_path, _timed([(-5.0, *STAMPED_EARLY), *hits]), "startup")[0] == [BLOCKED]
 
 
+def test_that_doubt_with_no_end_of_the_goal_recorded_claims_no_goal_missed(tmp_path: Path) -> None:
+    b = BagBuilder()
+    t = T0 + sec_ns(1)
+    b.log(t, "bt_navigator", INFO, "Begin navigating from current location (0.00, 0.00) to (1.00, 2.00)")
+    for at, name, level, msg in [(0.0, *STAMPED_EARLY), (116.0, *DWB_HITS[1]), (116.001, *DWB_HITS[0]),
+                                 (116.002, *PATIENCE)]:
+        b.log(t + sec_ns(at), name, level, msg)
+    causes, text = _explain(tmp_path, b, "cut")  # the recording stops before any line ends the goal
+    assert causes == [g.TRANSFORM]
+    assert text.startswith("The recording ends before my navigation to my goal finished, so it does not show "
+                           "whether I got there; on the way my controller found that every trajectory would hit")
+    assert "may not have been a real obstacle" in text
+
+
 PLANNER_GAVE_UP = [  # blind7 rafism-notes (TurtleBot 3, goal sent outside the map), verbatim
     ("planner_server", WARN, "GridBased: failed to create plan with tolerance 0.50."),
     ("planner_server", WARN, "Planning algorithm GridBased failed to generate a valid path to (-4.12, 4.78)"),
