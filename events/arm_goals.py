@@ -257,15 +257,22 @@ def _nav2_own(line: LogLine) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
     logged by no logger of the arm's software (launch's generic "process has died" is anybody's)."""
     from hexar.explainers.navigation.catalogue import catalogue as nav2
-    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
-    cat = nav2()
-    if cat.role(line.name) is not None or cat.role(PROCESS_SUFFIX.sub("", line.name)) is not None:
+    if _nav2_logger(line.name):
         return True
     if _arms_logger(line.name):
         return False  # e.g. the resource manager's pluginlib error: a text Nav2 shares, logged by ros2_control
-    entry = cat.match(line.msg)
+    entry = nav2().match(line.msg)
     return entry is not None and not entry.id.startswith("launch.")
+
+
+def _nav2_logger(name: str) -> bool:
+    """A logger (or launch's process name for one) with a Nav2 role: amcl, controller_server-6, bt_navigator."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
+
+    cat = nav2()
+    return cat.role(name) is not None or cat.role(PROCESS_SUFFIX.sub("", name)) is not None
 
 
 def _arms_logger(name: str) -> bool:
@@ -281,15 +288,9 @@ def _only_arms_nodes(task: Task, logs: list[LogLine] | None) -> bool:
     arm's (controller_manager, resource_manager, move_group): its lines that name no node (a process's stderr, such
     as "terminate called after throwing ...  what(): Failed to configure 'hsrb'") matched Nav2's catalogue by
     words alone, and the nodes that did log are the arm's."""
-    from hexar.explainers.navigation.catalogue import catalogue as nav2
-    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
-
     if logs is None or task.skills[0].params.get("derived_from") != "Nav2 log (no goal line)":
         return False
-    cat = nav2()
-    if any(cat.role(ln.name) is not None or cat.role(PROCESS_SUFFIX.sub("", ln.name)) is not None for ln in logs):
-        return False
-    return any(_arms_logger(ln.name) for ln in logs)
+    return not any(_nav2_logger(ln.name) for ln in logs) and any(_arms_logger(ln.name) for ln in logs)
 
 
 def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:

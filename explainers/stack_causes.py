@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
+from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 
@@ -42,10 +43,9 @@ def killed_by_signal(msg: str) -> bool:
 _ONE_SHOT = re.compile(r"exit code [1-9]\d*, cmd '\S*(controller_manager/spawner|/unspawner) ")
 
 
-# libstdc++-v3/libsupc++/vterminate.cc (__verbose_terminate_handler): an uncaught C++ exception; the handler
-# prints its type and what() to stderr and calls abort(), so the process that threw it ends there
-_UNCAUGHT = re.compile(r"terminate called after throwing an instance of '(?P<type>[^']+)'(?:\s*what\(\):\s*"
-                       r"(?P<what>[^\n]*))?")
+# ABORT (libstdc++'s __verbose_terminate_handler, events/bringup.py) with the exception's type and what(): the
+# handler prints them to stderr and calls abort(), so the process that threw it ends there
+_UNCAUGHT = re.compile(re.escape(ABORT) + r" '(?P<type>[^']+)'(?:\s*what\(\):\s*(?P<what>[^\n]*))?")
 
 
 def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | None:

@@ -111,6 +111,7 @@ def unwrapped(text: str) -> str | None:
     reading to try when its lines match nothing, so that a hard wrap does not hide a mined message."""
     return _WRAP.sub(" ", text) if "\n" in text else None
 
+
 def _rank(e: StackEntry) -> tuple[bool, int]:
     return e.cause is not None, e.specificity
 
