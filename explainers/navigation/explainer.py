@@ -167,11 +167,22 @@ class NavigationExplainer:
         # /task_info reports succeeded with no node warning in its window is a normal trip.
         stack = bool(run.notes) and not (_inferred(context) and state == "failed")
         quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
+        findings: list[d.Finding] = []
         if not lines and not poses and not flags and not stack and not quiet_success:
-            return Explanation.not_enough(self.name, _unread(raw))
+            # A node that never came up explains every later failure, read first; else an error none of the
+            # catalogues knows is still the log's own words on what went wrong: quoted with its node and time,
+            # never "nothing I read" while it is there (issue 20).
+            came_up = chain.bringup(context.log.logs, None)
+            if came_up is None and _inferred(context):
+                run.outcome = "unknown"  # a goal inferred from this error alone: no goal is shown, none failed
+            quoted = came_up or chain.with_last_error(d.Finding(d.UNEXPLAINED), raw, run)
+            if not quoted.notes:
+                return Explanation.not_enough(self.name, _unread(raw))
+            findings = [quoted]
         until = run.end.t if run.end is not None else window[1]
         before = [ln for ln in context.log.logs if ln.t <= until]
-        findings = flags + self._others(question, view, run, bool(flags), before, raw, _inferred(context))
+        findings = findings or flags + self._others(question, view, run, bool(flags), before, raw,
+                                                    _inferred(context))
         for f in findings:
             if f.cause == d.UNEXPLAINED and not f.evidence:
                 f.evidence += _status_evidence(context, d.UNEXPLAINED)

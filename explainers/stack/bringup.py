@@ -23,6 +23,9 @@ wordings below), with the node it concerns and its time:
              no_program             launch's command was `ros2 run <package> <program>` and ros2run found no such
                                     program ("No executable found") or package: the process exited 1 before any
                                     node existed (a misspelt name, a command built without its spaces)
+             lifecycle_wait         a Nav2 lifecycle manager kept waiting for a managed node's `get_state`
+                                    service and, as far as the recording goes, never found it: it configures none
+                                    of its nodes while it waits (the node is not running under that name)
     node     the node the line is about: the logger name, or the process launch names (`controller_server-3` ->
              `controller_server`), or the node a lifecycle manager names; "" when the line names none
     t        the line's time (ns), line: the LogLine itself, entry: its catalogue entry (source file:line@branch)
@@ -43,7 +46,8 @@ from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_c
 
 BRINGUP = "stack.bringup_failure"
 DIED = "process has died"
-KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed", "no_program")
+KINDS = ("params_file", "lifecycle_transition", "process_died", "launch_failed", "node_failed", "no_program",
+         "lifecycle_wait")
 
 _PROCESS = re.compile(r"^(?P<node>[A-Za-z_][\w]*?)(?:-\d+)?$")
 _EXIT = re.compile(r"exit code (?P<code>-?\d+)")
@@ -96,6 +100,15 @@ TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: 
                15: "inactive_shutdown", 16: "active_shutdown"}
 
 
+# nav2_util's LifecycleServiceClient blocks the lifecycle manager that creates it until the managed node's
+# get_state service exists, logging this INFO line after each failed 2 s wait (nav2_util/src/
+# lifecycle_service_client.cpp:40-44 and 56-60@humble, @jazzy; include/nav2_util/lifecycle_service_client.hpp:50-53
+# @main), called from lifecycle_manager.cpp:165-168@humble (createLifecycleServiceClients) before any node is
+# configured. One wait is a node that starts a little later; repeats that are the manager's last words mean the
+# node never appeared under that name (not started, died, or in another namespace than the manager's node_names).
+_LIFECYCLE_WAIT = re.compile(r"Waiting for service (?P<service>(?:[/\w]*/)?(?P<node>\w+)/get_state)\.\.\.")
+UNSERVED_WAITS = 2
+
 LAUNCH_NAV = "my launch stopped with an error before it had started my navigation nodes"
 LAUNCH_ANY = "my launch stopped with an error before it had started any of my nodes"
 
@@ -128,6 +141,9 @@ class BringupFinding:
         if self.kind == "lifecycle_transition":
             why = f": {self.detail}" if self.detail else ""
             return f"{who} stopped in a lifecycle transition and never became active{why}"
+        if self.kind == "lifecycle_wait":
+            return (f"my lifecycle manager kept waiting for {who}'s lifecycle service ({self.detail}) and never "
+                    f"found it, so it configured none of my nodes")
         return f"{who} failed to come up"
 
 
@@ -276,11 +292,34 @@ def _loader_finding(line: LogLine) -> BringupFinding | None:
     return BringupFinding("process_died", node, line.t, line, None, f"{found['what']}: {why}")
 
 
+def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:
+    """A lifecycle manager's waits for a node's get_state service (see _LIFECYCLE_WAIT), repeated and never followed
+    by another line of that manager: one finding per service, at its last wait."""
+    waits: dict[tuple[str, str], list[LogLine]] = {}
+    for line in ordered:
+        m = _LIFECYCLE_WAIT.fullmatch(line.msg.strip())
+        if m is not None:
+            waits.setdefault((line.name, m["service"]), []).append(line)
+    out = []
+    for (who, service), said in waits.items():
+        last = said[-1]
+        moved_on = any(ln.t > last.t and ln.name == who and not ln.msg.strip().endswith(f"{service}...")
+                       for ln in ordered)
+        if len(said) < UNSERVED_WAITS or moved_on:
+            continue
+        span = (last.t - said[0].t) / 1e9
+        over = f" over {span:.0f} s" if span >= 1 else ""
+        node = service.rsplit("/", 2)[-2]
+        out.append(BringupFinding("lifecycle_wait", node, last.t, last, None,
+                                  f"'{service}', {len(said)} times{over}"))
+    return out
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
     ordered = sorted((ln for ln in lines if before is None or ln.t <= before), key=lambda ln: ln.t)
-    out: list[BringupFinding] = []
+    out: list[BringupFinding] = unserved_waits(ordered)
     seen: set[tuple[str, str]] = set()
     for i, line in enumerate(ordered):
         loader = _loader_finding(line)
@@ -326,4 +365,4 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         seen.add((kind, node))
         detail = _configure_detail(line) if configure else _detail(line, kind, ordered[i + 1:i + 4])
         out.append(BringupFinding(kind, node, line.t, line, entry, detail))
-    return out
+    return sorted(out, key=lambda f: f.t)

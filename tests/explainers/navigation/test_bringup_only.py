@@ -1,0 +1,79 @@
+"""Recordings that hold Nav2's bring-up and no goal (no /task_info, no navigator line), written with rosbags from
+real console lines: a lifecycle manager that never found a node it manages is a node that never came up, and an
+error no catalogue reads is quoted with its node and time instead of "lines I do not read" (issue 20)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.claims import read_claims
+from hexar.evals.real_nav2 import Excerpt, write_recording
+from hexar.events import contract as c
+from hexar.events import read_recording
+from hexar.explainers.base import Context, Explanation
+from hexar.explainers.navigation import NavigationExplainer
+from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.detectors import UNEXPLAINED
+from hexar.explainers.stack import bringup_findings
+
+# ros-navigation/navigation2#4350 (blind2, spent): robot2's lifecycle manager looked for controller_server/get_state,
+# not robot2/controller_server/get_state, while launch shut the servers down
+_WAIT = ("[lifecycle_manager-8] [INFO] [1715949712.{}] [robot2.lifecycle_manager_navigation]: Waiting for service "
+         "controller_server/get_state...\n")
+UNSERVED = (_WAIT.format("764654791") + _WAIT.format("814797211")
+            + "[INFO] [controller_server-1]: process has finished cleanly [pid 22610]\n" + _WAIT.format("864954029"))
+# the same waits, then the manager goes on (nav2_lifecycle_manager lifecycle_manager.cpp:214@humble, "Configuring "
+# + node name, and :288 "Managed nodes are active"): the node came up a little late
+SERVED = UNSERVED + """\
+[lifecycle_manager-8] [INFO] [1715949714.864954029] [robot2.lifecycle_manager_navigation]: Configuring controller_server
+[lifecycle_manager-8] [INFO] [1715949715.864954029] [robot2.lifecycle_manager_navigation]: Managed nodes are active
+"""
+# ROBOTIS-GIT/turtlebot3#386 (blind9, spent): the map's image path, which no catalogue reads
+MAP_IMAGE = ('[ERROR] [map_server]: failed to open image file "/root/ws/install/turtlebot3_navigation2/share/'
+             'turtlebot3_navigation2/map/~/map.pgm": Couldn\'t open /root/ws/install/turtlebot3_navigation2/share/'
+             'turtlebot3_navigation2/map/~/map.pgm\n')
+
+
+def _write(tmp: Path, lines: str, task: bool) -> Path:
+    ex = Excerpt(id="t", source="test", url="", distro="humble", outcome="failed",
+                 cause="navigation.bringup_failure", cause_quote="", logs_show_cause=True, lines=lines)
+    return write_recording(ex, tmp / f"bag{int(task)}", task=task)
+
+
+def _explain(tmp: Path, lines: str, task: bool) -> Explanation:
+    log = read_recording(_write(tmp, lines, task))
+    return NavigationExplainer().explain("Why didn't you get there?", Context.for_task(log, log.task()))
+
+
+def test_repeated_waits_that_are_the_managers_last_words_are_a_node_that_never_came_up(tmp_path: Path) -> None:
+    logs = read_recording(_write(tmp_path, UNSERVED, False)).view(frozenset({c.ROSOUT})).logs()
+    [f] = bringup_findings(logs)
+    assert (f.kind, f.node) == ("lifecycle_wait", "controller_server")
+    assert f.detail == "'controller_server/get_state', 3 times"
+    assert f.line is logs[-1]
+
+
+def test_waits_the_manager_got_past_are_no_finding(tmp_path: Path) -> None:
+    logs = read_recording(_write(tmp_path, SERVED, False)).view(frozenset({c.ROSOUT})).logs()
+    assert [f for f in bringup_findings(logs) if f.kind == "lifecycle_wait"] == []
+
+
+@pytest.mark.parametrize("task", [False, True], ids=["no_task", "task"])
+def test_an_unserved_node_is_told_as_a_bringup_failure(tmp_path: Path, task: bool) -> None:
+    answer = _explain(tmp_path, UNSERVED, task)
+    assert answer.causes == [g.BRINGUP]
+    assert "never came up" in answer.text and "controller_server/get_state', 3 times" in answer.text
+    assert "do not read" not in answer.text
+    assert read_claims(answer.text).affirmed >= {g.BRINGUP}
+
+
+@pytest.mark.parametrize("task", [False, True], ids=["no_task", "task"])
+def test_an_error_no_catalogue_reads_is_quoted_with_its_node(tmp_path: Path, task: bool) -> None:
+    answer = _explain(tmp_path, MAP_IMAGE, task)
+    assert answer.causes == [UNEXPLAINED]
+    assert "came from map_server: 'failed to open image file" in answer.text and " UTC)" in answer.text
+    assert "do not read" not in answer.text and "enough information" not in answer.text
+    # with no goal recorded, no goal is said to have failed
+    assert ("failed" in answer.text.split(". ")[0]) is task
