@@ -116,6 +116,7 @@ def _bringup_error(line: LogLine) -> bool:
     unless the line is about a node that is not Nav2's (a driver whose configure launch_ros saw fail): a line that
     names no node (launch's own exception, rcl's params file) may still be Nav2's."""
     from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack import bringup_findings
     from hexar.explainers.stack.bringup import loader_failure
     from hexar.explainers.stack.catalogue import stack_catalogue
@@ -127,6 +128,8 @@ def _bringup_error(line: LogLine) -> bool:
         if entry is None or entry.cause != "stack.bringup_failure":
             return False
     found = bringup_findings([line])
+    if found and found[0].kind == "launch_failed" and not NAVIGATION.search(line.msg):
+        return False  # launch itself failed on a description that names nothing of Nav2's: any robot's launch
     node = found[0].node.strip("/").split("/")[-1] if found else ""
     return not node or catalogue().role(node) is not None
 

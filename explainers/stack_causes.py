@@ -12,6 +12,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
+from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
@@ -184,7 +185,8 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                     "or build and source the package that installs the program.", line)
         launch = _launch_failed(d.decisive.line)
         if launch is not None:
-            why = f": {launch}" if launch else ""
+            # an exception's words that read as another cause ("Invalid parameter") stay in the evidence only
+            why = f": {launch}" if launch and not read_claims(launch).causes - {cause} else ""
             return (f"{head} my launch stopped with an error before it had started my nodes, so none of them ran{why}.",
                     "Fix the launch file or argument the quoted exception names (run the launch with --debug for the "
                     "traceback).", line)

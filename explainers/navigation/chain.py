@@ -58,7 +58,7 @@ _GENERIC_BRINGUP_IDS = frozenset({"lm.bringup_failed", "launch.process_died", "b
 _AT_BRINGUP_IDS = frozenset({"bt.plugin_load", "lm.bringup_failed", "launch.process_died"})
 NEVER_CAME_UP = "never_came_up"
 # Words that tie a launch to the navigation: Nav2's packages, servers and the plugins they load.
-_NAVIGATION = re.compile(r"nav2|navigation|bt_navigator|planner_server|controller_server|behavior_server|amcl|costmap|"
+NAVIGATION = re.compile(r"nav2|navigation|bt_navigator|planner_server|controller_server|behavior_server|amcl|costmap|"
                          r"waypoint_follower|velocity_smoother|collision_monitor|docking_server|slam_toolbox|"
                          r"lifecycle_manager", re.IGNORECASE)
 _END = ("Goal failed", "Goal was aborted", "Aborting handle", "Navigation failed")
@@ -120,7 +120,7 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
     cause = CONFIGURATION if first.kind in ("lifecycle_transition", "node_failed") else BRINGUP
     finding = Finding(cause, [Evidence.of_log(cause, f.line) for f in found[:3]])
     finding.notes = [_told(f) for f in found[:3]]
-    if first.kind == "launch_failed" and not any(_NAVIGATION.search(f"{ln.name} {ln.msg}") for ln in logs_list):
+    if first.kind == "launch_failed" and not any(NAVIGATION.search(f"{ln.name} {ln.msg}") for ln in logs_list):
         # Launch stopped before any node ran, and no line names the navigation: the launch may be any robot's
         # (an arm's driver, a lidar's), so the answer does not say it was the navigation's.
         finding.notes[0] = finding.notes[0].replace(LAUNCH_NAV, LAUNCH_ANY)

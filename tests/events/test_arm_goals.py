@@ -177,3 +177,22 @@ def test_the_same_line_of_no_node_beside_a_nav2_node_stays_navigations(tmp_path:
                                        "what():  Failed to configure 'controller_server'")
     (task,) = read_recording(b.write(tmp_path / "run")).tasks
     assert task.skills[0].skill == "navigate_to_pose"
+
+
+# frankarobotics/franka_ros2#205 (heldout11, spent): launch failed on a move_group description, naming nothing of Nav2
+FRANKA_LAUNCH = ("Caught exception in launch (see debug for traceback): launch configuration 'namespace' does not "
+                 "exist")
+# ROBOTIS-GIT/turtlebot3#945 (Humble): launch failed on the navigation's own parameters file
+TB3_LAUNCH = ("Caught exception in launch (see debug for traceback): while parsing a block mapping\n  in \"/opt/ros/"
+              "humble/share/turtlebot3_navigation2/param/waffle.yaml\", line 2, column 3")
+
+
+def test_a_launch_that_failed_naming_nothing_of_nav2_is_the_robots_start_not_a_navigation(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.log(T0, "launch", ERROR, FRANKA_LAUNCH)
+    tasks = read_recording(b.write(tmp_path / "a")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("bring_up_controllers", "failed")]
+    b = BagBuilder()
+    b.log(T0, "launch", ERROR, TB3_LAUNCH)  # the same failure, of the navigation's description
+    tasks = read_recording(b.write(tmp_path / "b")).tasks
+    assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("navigate_to_pose", "failed")]

@@ -59,6 +59,18 @@ def test_a_launch_that_stopped_before_any_node_is_told_as_launch_not_as_a_parame
     assert "parameter file" not in found.text and _claims(found) == {"bringup.configuration_error"}
 
 
+# Kinovarobotics/ros2_kortex#216 (heldout8, spent): xacro's words, which read as a planner parameter, with no Nav2 line
+INVALID = 'Caught exception in launch (see debug for traceback): Invalid parameter "isaac_joint_commands"'
+
+
+def test_a_launch_exception_that_reads_as_another_cause_stays_in_the_evidence(tmp_path: Path) -> None:
+    found = _derived(tmp_path, [(0.5, "launch", ERROR, INVALID)])
+    assert found.causes == ["bringup.configuration_error"]
+    assert found.text.startswith("Starting my drivers and controllers failed because my launch stopped with an error")
+    assert "Invalid parameter" not in found.text and _claims(found) == {"bringup.configuration_error"}
+    assert any("isaac_joint_commands" in e.item for e in found.evidence)
+
+
 # MOCAP4ROS2-Project/mocap4ros2_vicon#16: the launch file named a parameter file the package did not install
 # (launch_ros/actions/node.py:461@humble warns and starts the node without it)
 MISSING = ("/home/mocap_ws/install/mocap_vicon_driver/share/mocap_vicon_driver/config/"
