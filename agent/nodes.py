@@ -246,8 +246,10 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     done = task.outcome == "succeeded" and not failed and presumes_not_done(question)
     if (whole_task(question) or done) and state.get("route") != "recovery":
         summary = steps_summary(task)
-        if done and presumes_goal_not_done(question) and all(set(e["causes"]) <= BENIGN for e in kept):
-            text = ""  # "why didn't you bring it?", all done and nothing wrong: a clean drive's speed is no answer
+        if summary and done and presumes_goal_not_done(question) and all(set(e["causes"]) <= BENIGN for e in kept):
+            # "why didn't you bring it?", all done and nothing wrong: a clean drive's speed is no answer; a task
+            # with no plan recorded (a goal found in the logs) has no steps to say, so its explainer's words stay
+            text = ""
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text

@@ -12,7 +12,7 @@ from hexar.agent.context import RunSettings
 from hexar.agent.overview import presumes_goal_not_done, presumes_not_done
 from hexar.agent.session import Session
 from hexar.cli import main
-from hexar.evals.real_nav2 import corpus, write_recording
+from hexar.evals.real_nav2 import Excerpt, corpus, write_recording
 
 
 def _ask(run: Path, *questions: str, task: str | None = None) -> list[dict[str, object]]:
@@ -111,3 +111,15 @@ def test_which_questions_take_the_tasks_goal_for_not_reached(question: str, abou
     # of a task done with nothing wrong, only these are answered with every step done alone
     assert presumes_goal_not_done(question) is about_the_goal
     assert presumes_not_done(question)
+
+
+def test_why_not_on_a_goal_the_logs_show_reached_says_it_was_reached(tmp_path: Path) -> None:
+    # CIT-Autonomous-Robot-Lab/daifuku_autonomous (blind10, spent): Nav2's lines only, ending in "Goal succeeded";
+    # "why didn't you get there?" once got an empty answer (no plan recorded, so no steps to say instead)
+    excerpt = Excerpt(id="t", source="test", url="", distro="humble", outcome="succeeded", cause="navigation.nominal",
+                      cause_quote="", logs_show_cause=True, lines="\n".join([
+                          "[bt_navigator]: Begin navigating from current location (0.00, 0.00) to (44.08, -5.12)",
+                          "[controller_server]: Received a goal, begin computing control effort.",
+                          "[controller_server]: Reached the goal!", "[bt_navigator]: Goal succeeded"]) + "\n")
+    [said] = _ask(write_recording(excerpt, tmp_path / "bag", task=False), "Why didn't you get there?")
+    assert str(said["answer"]).startswith("I reached the goal at (44.08, -5.12)")
