@@ -7,11 +7,12 @@ nothing went wrong that the recording shows, and that it ends before a line says
 start in the spent module sets was a run that went fine: a demo's hardware writing its commands, a driver's check
 that passed, a deprecation warning). When the question says the start did not work ("why didn't that work?"), the
 person knows an outcome the recording does not show: the answer is then that no line says why. A warning on the way
-is quoted, never claimed as the cause. A controller that
-dropped commands because it was not active is told as that, with what can leave a controller inactive (never
-activated, its activation not gone through, deactivated later), none of them claimed; a controller manager still
-waiting for its robot description, as explainers/control/description.py reads it. A failed start is the module
-explainer's ordinary failure answer (the earliest decisive line); when no line says why and the error is a device
+is quoted, never claimed as the cause, but for one: a controller manager whose clock never started (use_sim_time
+with nothing on /clock), told so when asked why the start did not work. A controller that dropped commands because
+it was not active is told as that, with what can leave a controller inactive (never activated, its activation not
+gone through, deactivated later), none of them claimed; a controller manager still waiting for its robot
+description, as explainers/control/description.py reads it. A failed start is the module explainer's ordinary
+failure answer (the earliest decisive line); when no line says why and the error is a device
 driver's, its candidates are the driver's (`driver_candidates`), not a controller's.
 """
 
@@ -84,7 +85,42 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     waiting = waited(lines)
     if waiting is not None:
         return _waiting_answer(explainer, prefix, lines, waiting, t0)
+    # told the start did not work, the one thing the recording shows wrong is a clock that never came; asked how it
+    # went, a start cut short after that warning is still under way (a clock often comes a second later)
+    clockless = no_clock(lines) if presumes_failure(question) else None
+    if clockless is not None:
+        return _no_clock_answer(explainer, clockless, t0)
     return _under_way(explainer, prefix, lines, t0, question)
+
+
+# controller_manager.cpp:3401-3403@jazzy (3409-3411@master), in update(): a WARN throttled to once a second while the
+# node's clock has not started, which "can happen with use_sim_time=true until the /clock is received" (its comment)
+NO_CLOCK = "No clock received, using time argument instead!"
+CONFIGURATION = "bringup.configuration_error"
+
+
+def no_clock(lines: list[LogLine]) -> LogLine | None:
+    """The controller manager's last no-clock warning when nothing came up after it: its clock never started."""
+    said = next((ln for ln in reversed(lines) if ln.msg.strip().startswith(NO_CLOCK)), None)
+    if said is None or any(completed(ln) and ln.t >= said.t for ln in lines):
+        return None
+    return said
+
+
+def _no_clock_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
+    """A start whose controller manager never had a clock: on simulated time it waits for /clock, which nothing sent."""
+    from hexar.explainers.module_explainer import verbatim
+
+    return Explanation(
+        explainer=explainer, causes=[CONFIGURATION], confidence=0.6, evidence=[Evidence.of_log(CONFIGURATION, line)],
+        text="Starting my drivers and controllers did not complete as far as my recording shows, and what it shows "
+             "wrong is that my controller manager never received a clock: it runs on simulated time (use_sim_time) "
+             "and nothing published /clock to it, so my controllers could not run on time. The line that says so: "
+             f"{verbatim(line)} at {at(line, t0)}.",
+        fix="Bridge the simulator's clock to ROS (ros_gz_bridge's /clock, or the simulator's ROS clock plugin), or "
+            "set use_sim_time to false where no simulator runs.",
+        details=["controller_manager.cpp:3401-3403@jazzy: warned while its clock had not started, and no line says "
+                 "a controller came up after it."])
 
 
 def _under_way(explainer: str, prefix: str, lines: list[LogLine], t0: int, question: str) -> Explanation:

@@ -23,6 +23,11 @@ NO_CLOCK = (0.1, "controller_manager", WARN, "No clock received, using time argu
             "clock configuration (use_sim_time parameter) and if a valid clock source is available")
 
 
+# the controller manager's deprecation warning as a real console printed it (a spent module set's excerpt)
+WARNED = (0.1, "controller_manager", WARN, "[Deprecated] Passing the robot description parameter directly to the "
+          "control_manager node is deprecated. Use '~/robot_description' topic from 'robot_state_publisher' instead.")
+
+
 def _explain(tmp_path: Path, lines: list[tuple[float, str, int, str]], question: str) -> Explanation:
     task, found = explain(write_lines(tmp_path, lines), "control", question)
     assert task.derived and task.skills[0].skill == "bring_up_controllers"
@@ -39,10 +44,22 @@ def test_a_completed_start_says_nothing_failed_and_names_its_warning_as_only_loo
 
 
 def test_a_start_not_seen_complete_asked_why_it_failed_says_no_line_tells_why(tmp_path: Path) -> None:
-    found = _explain(tmp_path, [LOADING, NO_CLOCK], "Why didn't that work?")
+    found = _explain(tmp_path, [LOADING, WARNED], "Why didn't that work?")
     claims = read_claims(found.text).affirmed
     assert found.causes == [] and not claims & {ALL_FINE, TASK_FAILED, "control.nominal"}
-    assert found.text.startswith("My logs do not show why") and "No clock received" in found.text
+    assert found.text.startswith("My logs do not show why") and "Deprecated" in found.text
+
+
+def test_a_start_that_never_had_its_clock_asked_why_it_failed_names_the_missing_clock(tmp_path: Path) -> None:
+    # automaticaddison/yahboom_rosmaster#5 and xArm-Developer/xarm_ros2#114 (spent sets): Gazebo's clock was never
+    # bridged to ROS, and the controller manager's no-clock warning was all the start printed
+    found = _explain(tmp_path, [LOADING, NO_CLOCK], "Why didn't that work?")
+    assert found.causes == ["bringup.configuration_error"]
+    assert "never received a clock" in found.text and "No clock received" in found.text
+    assert read_claims(found.text).affirmed - {TASK_FAILED} == {"bringup.configuration_error"}
+    # the clock came after all: a controller came up after the warning
+    found = _explain(tmp_path / "later", [LOADING, NO_CLOCK, *DONE], "Why didn't that work?")
+    assert "never received a clock" not in found.text
 
 
 def test_a_start_not_seen_complete_with_no_error_asked_how_it_went_says_nothing_went_wrong(tmp_path: Path) -> None:
