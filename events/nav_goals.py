@@ -144,6 +144,9 @@ def _arms_logger(line: LogLine) -> bool:
     return bool(line.name) and any(cat.role(line.name) is not None for cat in (moveit(), control()))
 
 
+REACHED = "ctrl.reached"
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
@@ -160,7 +163,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         if _arms_logger(line):
             continue  # ros2_control's or MoveIt's own node: its line is the arm's to explain, not Nav2's activity
         entry = cat.match(line.msg)
-        nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"})
+        # the controller server's "Reached the goal!" (controller_server.cpp:411@humble) ends a path it followed
+        nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"}
+                                      or entry.id == REACHED)
         # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no
         # catalogued line: a stack that came up and ran normally has a navigation to tell about too
         nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None)

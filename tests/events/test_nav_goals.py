@@ -12,6 +12,8 @@ from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, sec_ns
 from hexar.events.errors import NoTaskError
 from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, INFO
+from hexar.explainers.base import Context
+from hexar.explainers.navigation import NavigationExplainer
 from tests.events.helpers import T0, two_skill_task
 
 # bt_navigator's begin/end wording per distro (shared reference nav2_log_messages.md; Foxy bt_navigator.cpp;
@@ -90,6 +92,19 @@ def test_nav2_nodes_at_work_without_a_goal_line_are_a_navigation_still_running(t
     b.log(T0 + sec_ns(2), "minimal_publisher", INFO, "Publishing: 'Hello, world! 0'")
     task = read_recording(b.write(tmp_path / "bag")).task()
     assert task.derived and task.skills[0].state == "running"
+
+
+def test_the_controllers_reached_line_with_no_name_is_a_navigation_that_reached_its_goal(tmp_path: Path) -> None:
+    # ganapetya forklift MPC notes (blind10, spent): a custom controller's own lines, then the controller server's
+    # "Reached the goal!" (controller_server.cpp:411@humble) pasted without its logger
+    b = BagBuilder()
+    b.log(T0, "", INFO, "P5 curvature speed limit active: max_v 0.450 -> 0.080")
+    b.log(T0 + sec_ns(1), "", INFO, "Reached the goal!")
+    log = read_recording(b.write(tmp_path / "bag"))
+    task = log.task()
+    assert task.derived and task.skills[0].skill == "navigate_to_pose"
+    found = NavigationExplainer().explain("How did the navigation go?", Context.for_task(log, task))
+    assert found.causes == ["navigation.nominal"] and found.text.startswith("I reached my goal")
 
 
 def test_no_nav2_activity_still_no_task(tmp_path: Path) -> None:
