@@ -341,12 +341,30 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
     return found
 
 
+def _warns(line: LogLine) -> bool:
+    """A line the mined catalogue knows as logged at WARN or above, whatever level it came with (a console pasted
+    without levels is read as INFO): MPPI's "Inconsistent configuration in collision checking" is a warning."""
+    entry = stack_entry(line)
+    return entry is not None and entry.level in ("WARN", "ERROR", "FATAL")
+
+
+def last_warning(lines: list[LogLine]) -> str:
+    """' The last warning my logs show came from X: '...' (at ...).' for the last warning of `lines` (by its level or
+    the catalogue's), quoted when it reads as no cause; "" when there is none."""
+    warned = [ln for ln in lines if ln.level >= WARN or _warns(ln)]
+    if not warned:
+        return ""
+    last = warned[-1]
+    said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
+    return f" {WARNED[0].upper()}{WARNED[1:]} came from {last.speaker}{said} (at {clock(last.t)} UTC)."
+
+
 def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     """A stack that came up and ran with no goal's end recorded: which Nav2 nodes logged their work, when none of
     them logged a warning or an error (None otherwise, or when no Nav2 node logged at all)."""
     cat = catalogue()
     own = [ln for ln in lines if ln.name and cat.role(ln.name) is not None]
-    if not own or any(ln.level >= WARN for ln in own):
+    if not own or any(ln.level >= WARN or _warns(ln) for ln in own):
         return None
     nodes = list(dict.fromkeys(cat.role(ln.name) or ln.name for ln in own))
     said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"

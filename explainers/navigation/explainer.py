@@ -191,7 +191,8 @@ class NavigationExplainer:
             # claim without evidence; a stack whose nodes ran without a warning is told as just that
             quiet = chain.ran_quietly(raw)
             if quiet is None:
-                return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal.")
+                return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal."
+                                              + chain.last_warning(raw))
             return Explanation(explainer=self.name, text=quiet[0], causes=[d.NOMINAL], confidence=0.6,
                                evidence=[Evidence.of_log(d.NOMINAL, ln) for ln in quiet[1]])
         grounded = self._compose(question, context, run, findings, lines)

@@ -148,7 +148,7 @@ class StackCatalogue:
     def match(self, msg: str) -> StackEntry | None:
         """The entry whose pattern the message (ANSI colours removed) holds: one with a cause id before one without
         (an rcl parse error quoted inside "Couldn't parse params file: ..."), then the most specific; else the entry
-        the message is a cut-short copy of (StackEntry.cut_match); else None."""
+        the message is a cut-short copy of (StackEntry.cut_match), or the whole first sentences of; else None."""
         if msg in self._seen:
             return self._seen[msg]
         text = clean(msg)
@@ -158,6 +158,12 @@ class StackCatalogue:
         if best is None and len(text.rstrip(" .…")) >= CUT_MIN_LITERAL:
             cut = [e for e in self.entries if e.pieces[0] and e.pieces[0] in text and e.cut_match(text)]
             best = max(cut, key=_rank, default=None)
+        if best is None and len(text) >= CUT_MIN_LITERAL and text.rstrip().endswith((".", "!")):
+            # the message's first sentences alone: a console that broke the line after them (MPPI's "Inconsistent
+            # configuration in collision checking." with its "Please verify ..." on a line of its own)
+            said = text.strip()
+            first = [e for e in self.entries if e.pieces[0].startswith(f"{said} ")]
+            best = max(first, key=_rank, default=None)
         if len(self._seen) > 20_000:
             self._seen.clear()
         self._seen[msg] = best

@@ -15,7 +15,7 @@ from hexar.events import read_recording
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.navigation import NavigationExplainer
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation.detectors import UNEXPLAINED
+from hexar.explainers.navigation.detectors import NOMINAL, UNEXPLAINED
 from hexar.explainers.stack import bringup_findings
 
 # ros-navigation/navigation2#4350 (blind2, spent): robot2's lifecycle manager looked for controller_server/get_state,
@@ -77,3 +77,14 @@ def test_an_error_no_catalogue_reads_is_quoted_with_its_node(tmp_path: Path, tas
     assert "do not read" not in answer.text and "enough information" not in answer.text
     # with no goal recorded, no goal is said to have failed
     assert ("failed" in answer.text.split(". ")[0]) is task
+
+
+# slam-wheeled-robot's notes (blind5, spent): MPPI's warning, pasted without its level, broken after its first sentence
+MPPI = ("[controller_server]: Inconsistent configuration in collision checking.\n"
+        "Please verify the robot's shape settings in both the costmap and the cost critic.\n")
+
+
+def test_a_warning_pasted_without_its_level_is_no_run_that_went_normally(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, MPPI, False)
+    assert "went normally" not in answer.text and NOMINAL not in answer.causes
+    assert "The last warning my logs show came from controller_server: 'Inconsistent configuration" in answer.text

@@ -93,3 +93,12 @@ def test_a_message_pasted_cut_short_reads_as_its_entry(tail: str) -> None:
 def test_a_few_shared_words_are_no_cut_short_message(msg: str) -> None:
     e = stack_catalogue().match(msg)
     assert e is None or not e.text.startswith("The configured inflation radius")
+
+
+def test_a_messages_first_sentence_on_a_line_of_its_own_reads_as_its_entry() -> None:
+    # MPPI's cost critic (cost_critic.cpp:60-62@jazzy, RCLCPP_WARN) as a console broke it (blind5, spent)
+    e = stack_catalogue().match("Inconsistent configuration in collision checking.")
+    assert e is not None and e.level == "WARN" and e.package == "nav2_mppi_controller"
+    # a sentence that only begins like one, or too short to say which, is not read
+    assert stack_catalogue().match("Inconsistent configuration in collision") is None
+    assert stack_catalogue().match("Aborting.") is None
