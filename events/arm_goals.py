@@ -22,6 +22,7 @@ from hexar.events.tasks import SkillRun, StatusChange, Task
 
 if TYPE_CHECKING:
     from hexar.events.bringup import BringUp
+    from hexar.explainers.logcause import ModuleCatalogue
 
 MOVE_ARM = "move_arm"
 FOLLOW = "follow_joint_trajectory"
@@ -127,7 +128,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
 
     active: list[tuple[LogLine, str]] = []
     for line in logs:
-        for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
+        for skill, cat in _readers(line):
             if cat.cause_of(line.msg, cat.match(line.msg)) is not None:  # a catalogued text or one built in code
                 active.append((line, skill))
                 break
@@ -143,7 +144,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         # launch's and rcl's own bring-up lines are not the arm's words, whatever short text of MoveIt they contain
         # (conversions.cpp's "Caught %s" matches launch's "Caught exception in launch")
         active = [(line, skill) for line in logs if line.level >= ERROR and not _stack_bringup(line)
-                  for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())) if cat.match(line.msg) is not None][:1]
+                  for skill, cat in _readers(line) if cat.match(line.msg) is not None][:1]
     if not active:
         if any(_nav2_own(ln) for ln in logs):
             return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
@@ -243,6 +244,20 @@ def _arms_process(task: Task) -> bool:
     if run.params.get("derived_from") != "Nav2 log (no goal line)" or found is None:
         return False
     return any(cat.role(name) is not None for cat in (moveit(), control()) for name in found.groups())
+
+
+def _readers(line: LogLine) -> tuple[tuple[str, ModuleCatalogue], ...]:
+    """The arm catalogues that may read `line`: the one its logger has a role in, when that one knows its text (a
+    spawner's "Controller : … parameters not found in parameter file" is ros2_control's, however MoveIt's looser
+    "Controller … not found" also matches it); else both, MoveIt's first."""
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    both = ((MOVE_ARM, moveit()), (FOLLOW, control()))
+    own = [(skill, cat) for skill, cat in both if line.name and cat.role(line.name) is not None]
+    if len(own) == 1 and own[0][1].match(line.msg) is not None:
+        return (own[0],)
+    return both
 
 
 def _stack_bringup(line: LogLine) -> bool:

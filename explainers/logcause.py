@@ -160,11 +160,13 @@ class Reading:
 
 def read(lines: Iterable[LogLine], catalogues: Sequence[ModuleCatalogue]) -> list[Reading]:
     """Each line with the first catalogue that recognises it (the order of `catalogues` is the explainer's
-    own module first)."""
+    own module first). A line its logger's own module knows is read by that module's catalogue alone, cause or not:
+    a spawner's "Controller : … parameters not found in parameter file" is no MoveIt "Controller … not found"."""
     out = []
     for line in lines:
         found: Reading | None = None
-        for cat in catalogues:
+        own = [cat for cat in catalogues if line.name and cat.role(line.name) is not None]
+        for cat in own[:1] if len(own) == 1 and own[0].match(line.msg) is not None else catalogues:
             entry = cat.match(line.msg)
             cause = cat.cause_of(line.msg, entry)
             if entry is not None or cause is not None:

@@ -196,3 +196,22 @@ def test_a_launch_that_failed_naming_nothing_of_nav2_is_the_robots_start_not_a_n
     b.log(T0, "launch", ERROR, TB3_LAUNCH)  # the same failure, of the navigation's description
     tasks = read_recording(b.write(tmp_path / "b")).tasks
     assert [(t.skills[0].skill, t.outcome) for t in tasks] == [("navigate_to_pose", "failed")]
+
+
+# ros-controls/ros2_control#1932 (heldout11, spent): the spawner's FATAL (controller_manager_services.py:292@iron),
+# whose words MoveIt's looser "Controller … not found" (trajectory_execution_manager.cpp:808@jazzy) also matches
+SPAWNER_FATAL = ("Controller : /my_controller parameters not found in parameter file : /home/user/workspace/my_ws/"
+                 "install/app_bringup/share/app_bringup/config/my_controller_params.yaml")
+
+
+def test_a_spawners_line_is_ros2_controls_to_read_not_moveits(tmp_path: Path) -> None:
+    from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.logcause import read
+    from hexar.explainers.manipulation.catalogue import catalogue as moveit
+
+    b = BagBuilder()
+    b.log(T0, "spawner_my_controller", FATAL, SPAWNER_FATAL)
+    log = read_recording(b.write(tmp_path / "a"))
+    assert [(t.skills[0].skill, t.outcome) for t in log.tasks] == [("follow_joint_trajectory", "failed")]
+    [reading] = read(log.logs, [moveit(), control()])
+    assert reading.cause is None and reading.catalogue == control().name
