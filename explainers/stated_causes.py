@@ -7,7 +7,7 @@ it is often the C library's strerror text or a client library's wording, the sam
   program on the port (a set-up conflict), "Connection refused" a device that could not be reached (the hardware
   interface failed to reach it); "No such file or directory" names no single cause, so only its candidates are told;
 - set-up words (explainers/stack/setup_phrases.json, each grounded in real source strings): a version that does not
-  match, a parameter that is empty, missing, undeclared or of the wrong type;
+  match, a parameter that is empty, missing, undeclared or of the wrong type, a driver's address it was never given;
 - a device library's own result texts (the same file, kind `device`: the Dynamixel SDK's bus results), each with
   the cause it states, or none when it leaves several open (a servo that sends no status packet).
 
@@ -164,6 +164,9 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
     own = f"{prefix}configuration_error" if prefix in ("control.", "manipulation.") else BRINGUP
     if phrase.kind == "device":  # a device library's own words for the exchange that failed (Dynamixel SDK)
         return (phrase.cause, phrase.meaning, phrase.fix)  # None: the words name only candidates
+    if phrase.kind == "address":  # a driver's own words for an address it was never given (an empty parameter)
+        who = line.name.strip("/").split("/")[-1] or "my driver"
+        return (phrase.cause, f"{who} {phrase.meaning.removeprefix('it ')}", phrase.fix)
     if phrase.kind == "version":
         if _HARDWARE_SIDE.search(line.name) or _REMOTE.search(part):
             return (HARDWARE, "the version of my driver's library and the version of the robot's own software do "

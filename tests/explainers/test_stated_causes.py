@@ -10,6 +10,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from hexar.causes import vocabulary
 from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
@@ -55,7 +57,7 @@ def test_the_data_loads_every_pattern_compiles_and_every_cause_is_known() -> Non
         assert re.search(e["pattern"], e["text"])  # the pattern finds its own strerror text
     for p in setup:
         re.compile(p["pattern"])
-        assert p["kind"] in {"version", "parameter", "device"} and p["sources"]
+        assert p["kind"] in {"version", "parameter", "device", "address"} and p["sources"]
         assert all(SOURCE.search(s) for s in p["sources"])
         if p["kind"] == "device":  # a device library's words state their cause, told in the phrase's meaning
             assert (p["cause"] is None or p["cause"] in vocabulary()) and p["meaning"] and p["fix"]
@@ -267,3 +269,30 @@ def test_a_parameter_type_exception_that_ended_move_group_is_its_configuration(t
     assert "one of its parameters has a value of the wrong type (string_array expected, string given)" in found.text
     assert "“[move_group-1] expected [string_array] got [string]” at 1.0 s" in found.text
     assert "square brackets" in (found.fix or "")
+
+
+# SICKAG/sick_scan_xd#287 (heldout4, spent): an empty udp_receiver_ip (sick_scan_services.cpp:546@2d4796699158);
+# ros-drivers/ros2_ouster_drivers#38 (heldout5, spent): no lidar_ip parameter (ouster_driver.cpp:86@c0f5a174b846)
+SICK = [(0.0, "sick_scan_xd", ERROR, "## ERROR SickScanServices::sendMultiScanStartCmd() failed: can't split ip "
+         "address \"\" into 4 tokens, check ip address"),
+        (0.0, "sick_scan_xd", ERROR, "## ERROR parsing ip address, check configuration of parameter \"hostname\" "
+         "(launch file or commandline).")]
+OUSTER = [(0.0, "OusterDriver", INFO, "Configuring Ouster driver node."),
+          (0.1, "OusterDriver", FATAL, "Failed to get lidar or IMU IP address or hostname. An IP address for both are "
+           "required!")]
+
+
+@pytest.mark.parametrize("lines", [SICK, OUSTER], ids=["sick_empty_ip", "ouster_no_ip"])
+def test_a_driver_that_was_given_no_address_is_a_parameter_that_never_reached_it(tmp_path: Path,
+                                                                                   lines: list[Any]) -> None:
+    found = _explain(tmp_path, lines, 0.5)
+    assert found.causes == ["bringup.configuration_error"] and _claims(found) == {"bringup.configuration_error"}
+    assert "had no IP address or host name to connect with" in found.text
+
+
+def test_an_address_the_driver_was_given_is_no_missing_one(tmp_path: Path) -> None:
+    # the same words with the address in them: it reached the driver (which then found it wrong)
+    given = [(0.0, "sick_scan_xd", ERROR, "## ERROR SickScanServices::sendMultiScanStartCmd() failed: can't split ip "
+              "address \"192.168.0\" into 4 tokens, check ip address")]
+    found = _explain(tmp_path, given, 0.5)
+    assert "had no IP address" not in found.text
