@@ -133,7 +133,9 @@ def test_hexar_web_live_command(tmp_path: Path) -> None:
     robot = Robot(domain)
     cmd = [sys.executable, "-m", "hexar", "web", "--live", "--domain", str(domain), "--port", "0", "--llm", "none",
            "--checkpoints", str(tmp_path / "t.sqlite")]
-    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    # a test run started in the background ignores SIGINT, and a child would inherit that (as in fleet's test)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=tmp_path,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     try:
         assert proc.stdout is not None
         line = proc.stdout.readline()
