@@ -247,17 +247,15 @@ def _arms_process(task: Task) -> bool:
 
 
 def _readers(line: LogLine) -> tuple[tuple[str, ModuleCatalogue], ...]:
-    """The arm catalogues that may read `line`: the one its logger has a role in, when that one knows its text (a
-    spawner's "Controller : … parameters not found in parameter file" is ros2_control's, however MoveIt's looser
-    "Controller … not found" also matches it); else both, MoveIt's first."""
+    """The arm catalogues that may read `line`, with their skills: its logger's own one alone
+    (explainers/logcause.own_catalogue), else both, MoveIt's first."""
     from hexar.explainers.control.catalogue import catalogue as control
+    from hexar.explainers.logcause import own_catalogue
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
     both = ((MOVE_ARM, moveit()), (FOLLOW, control()))
-    own = [(skill, cat) for skill, cat in both if line.name and cat.role(line.name) is not None]
-    if len(own) == 1 and own[0][1].match(line.msg) is not None:
-        return (own[0],)
-    return both
+    own = own_catalogue(line, [cat for _, cat in both])
+    return tuple(pair for pair in both if pair[1] is own) if own is not None else both
 
 
 def _stack_bringup(line: LogLine) -> bool:

@@ -96,7 +96,6 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
 # controller_manager.cpp:3401-3403@jazzy (3409-3411@master), in update(): a WARN throttled to once a second while the
 # node's clock has not started, which "can happen with use_sim_time=true until the /clock is received" (its comment)
 NO_CLOCK = "No clock received, using time argument instead!"
-CONFIGURATION = "bringup.configuration_error"
 
 
 def no_clock(lines: list[LogLine]) -> LogLine | None:
@@ -109,10 +108,11 @@ def no_clock(lines: list[LogLine]) -> LogLine | None:
 
 def _no_clock_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
     """A start whose controller manager never had a clock: on simulated time it waits for /clock, which nothing sent."""
+    from hexar.explainers.control.description import BRINGUP
     from hexar.explainers.module_explainer import verbatim
 
     return Explanation(
-        explainer=explainer, causes=[CONFIGURATION], confidence=0.6, evidence=[Evidence.of_log(CONFIGURATION, line)],
+        explainer=explainer, causes=[BRINGUP], confidence=0.6, evidence=[Evidence.of_log(BRINGUP, line)],
         text="Starting my drivers and controllers did not complete as far as my recording shows, and what it shows "
              "wrong is that my controller manager never received a clock: it runs on simulated time (use_sim_time) "
              "and nothing published /clock to it, so my controllers could not run on time. The line that says so: "

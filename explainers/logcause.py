@@ -158,15 +158,22 @@ class Reading:
         return self.entry is None or self.entry.strength == "strong"
 
 
+def own_catalogue(line: LogLine, catalogues: Sequence[ModuleCatalogue]) -> ModuleCatalogue | None:
+    """The one catalogue of `catalogues` whose module the line's logger belongs to (a role in it), when it knows the
+    line's text: that catalogue alone reads the line, cause or not (a spawner's "Controller : … parameters not found
+    in parameter file" is ros2_control's, however MoveIt's looser "Controller … not found" also matches it)."""
+    own = [cat for cat in catalogues if line.name and cat.role(line.name) is not None]
+    return own[0] if len(own) == 1 and own[0].match(line.msg) is not None else None
+
+
 def read(lines: Iterable[LogLine], catalogues: Sequence[ModuleCatalogue]) -> list[Reading]:
     """Each line with the first catalogue that recognises it (the order of `catalogues` is the explainer's
-    own module first). A line its logger's own module knows is read by that module's catalogue alone, cause or not:
-    a spawner's "Controller : … parameters not found in parameter file" is no MoveIt "Controller … not found"."""
+    own module first), or its logger's own module's catalogue alone (`own_catalogue`)."""
     out = []
     for line in lines:
         found: Reading | None = None
-        own = [cat for cat in catalogues if line.name and cat.role(line.name) is not None]
-        for cat in own[:1] if len(own) == 1 and own[0].match(line.msg) is not None else catalogues:
+        own = own_catalogue(line, catalogues)
+        for cat in (own,) if own is not None else catalogues:
             entry = cat.match(line.msg)
             cause = cat.cause_of(line.msg, entry)
             if entry is not None or cause is not None:

@@ -255,10 +255,14 @@ def only_warned(found: Finding, run: Run) -> Finding | None:
         return None
     last = max(lines, key=lambda ln: ln.t)
     honest = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(set(lines), key=lambda x: x.t)])
-    who = last.speaker
-    said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
-    honest.notes.append(f"{WARNED} came from {who}{said} (at {clock(last.t)} UTC)")
+    honest.notes.append(_warned(last))
     return honest
+
+
+def _warned(line: LogLine) -> str:
+    """'the last warning my logs show came from X: '...' (at ...)', quoted when the line reads as no cause."""
+    said = f": '{line.msg.strip()}'" if quotable(line.msg) else ""
+    return f"{WARNED} came from {line.speaker}{said} (at {clock(line.t)} UTC)"
 
 
 WARNED = "the last warning my logs show"
@@ -354,9 +358,8 @@ def last_warning(lines: list[LogLine]) -> str:
     warned = [ln for ln in lines if ln.level >= WARN or _warns(ln)]
     if not warned:
         return ""
-    last = warned[-1]
-    said = f": '{last.msg.strip()}'" if quotable(last.msg) else ""
-    return f" {WARNED[0].upper()}{WARNED[1:]} came from {last.speaker}{said} (at {clock(last.t)} UTC)."
+    said = _warned(warned[-1])
+    return f" {said[0].upper()}{said[1:]}."
 
 
 def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
