@@ -22,6 +22,7 @@ from hexar.agent.overview import (
     recovery,
     steps_summary,
     whole_task,
+    yes_or_no,
 )
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
@@ -253,6 +254,9 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
+    lead = yes_or_no(question, task.outcome) if state.get("route") != "recovery" else ""
+    if lead and text and not re.match(r"(?i)(yes|no)\b", text):
+        text = f"{lead} {text}"
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,

@@ -26,7 +26,8 @@ _WHOLE = re.compile(
     r"\b(everything|all) (ok|okay|fine|alright|all right|good|went well)\b|"
     r"\bany (problems?|issues?|trouble)\b|"
     r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$|"
-    r"^(so |and |ok |okay )?(did|have) you (finish(ed)?|complete(d)?|(do|done) (it|everything)|manage(d)?)"
+    r"^(so |and |ok |okay )?(did|have) you (finish(ed)?|complete(d)?|(do|done) (it|everything)|manage(d)?|"
+    r"make it|made it|succeed(ed)?)"
     r"( (it|the task|your task|the job|everything))?\W*$"
 )
 # A fix asked for: the same words as a "what would have helped?" follow-up (agent/followups.py).
@@ -76,6 +77,35 @@ _GOAL_NOT_DONE = re.compile(
 # task as undone, so it is answered by the choice alone.
 _OTHER_CHOICE = re.compile(r"\bwhy (didn't|did not) you (suggest|recommend|choose|propose|offer|go with|opt for|"
                            r"pick (a|an|another|the other|something))\b")
+
+
+# "Did you make it?", "were you able to do it?": a yes-or-no question about the task's outcome, answered "Yes." or
+# "No." before the explanation. Only verbs that say done or failed whatever the task was: "did you bring the
+# coffee?" names an object the task may not have had, so it gets no yes or no.
+_LEAD = r"^(?:(?:so|and|ok|okay|hey|well|um|uh|robot|tiago|hexar)\W+)*"
+_SUBJECT = r"(?:you|it|the task|the robot|tiago|everything)"
+_YES_NO = re.compile(
+    _LEAD + r"(?:did|didn't|did not|have|haven't|have not|has|hasn't|has not|could|couldn't|could not) "
+    + _SUBJECT + r" (?:(?:actually|really|even|ever|finally|successfully) )?(?:(?:manage|managed) to )?"
+    r"(?P<verb>reach(?:ed)? (?:the|your|my|its) (?:goal|destination|target)|get there|got there|make it|made it|"
+    r"succeed(?:ed)?|finish(?:ed)?|complete(?:d)?|arrive(?:d)?|do it|done it|do that|done that|"
+    r"fail(?:ed)?|give up|given up|gave up|get stuck|got stuck)\b|"
+    + _LEAD + r"(?:were|was|weren't|wasn't) " + _SUBJECT
+    + r" (?P<state>successful|a success|able to do it|a failure|unsuccessful)\b"
+)
+_FAILING = ("fail", "give up", "given up", "gave up", "get stuck", "got stuck", "a failure", "unsuccessful")
+_DONE = {"succeeded": True, "failed": False, "canceled": False, "invalid": False, "waiting": False}
+
+
+def yes_or_no(question: str, outcome: str) -> str:
+    """ "Yes." or "No." for a yes-or-no question about whether the task was done (or failed), from its recorded
+    outcome; "" for any other question, and for a task still running when the recording ends."""
+    m = _YES_NO.search(question.strip().lower())
+    done = _DONE.get(outcome)
+    if m is None or done is None:
+        return ""
+    failing = (m.group("verb") or m.group("state") or "").startswith(_FAILING)
+    return "Yes." if done != failing else "No."
 
 
 def presumes_not_done(question: str) -> bool:

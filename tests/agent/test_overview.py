@@ -123,3 +123,36 @@ def test_why_not_on_a_goal_the_logs_show_reached_says_it_was_reached(tmp_path: P
                           "[controller_server]: Reached the goal!", "[bt_navigator]: Goal succeeded"]) + "\n")
     [said] = _ask(write_recording(excerpt, tmp_path / "bag", task=False), "Why didn't you get there?")
     assert str(said["answer"]).startswith("I reached the goal at (44.08, -5.12)")
+
+
+@pytest.mark.parametrize(("run", "question", "lead"), [
+    ("bagfile_5_1", "Did you reach the goal?", "No. I couldn't reach the kitchen"),
+    ("bagfile_5_1", "so did you make it", "No. I couldn't reach the kitchen"),
+    ("bagfile_5_1", "Did you fail?", "Yes. I couldn't reach the kitchen"),
+    ("bagfile_5_1", "were you successful?", "No. "),
+    ("bagfile_2_1", "Did you finish?", "No. I didn't start because my plan was faulty"),
+    ("bagfile_10_1", "Did you make it?", "Yes. I did all 4 steps of my plan"),
+    ("bagfile_10_1", "did you get stuck?", "No. "),
+])
+def test_a_yes_or_no_question_on_the_outcome_is_answered_yes_or_no(suite: Path, run: str, question: str,
+                                                                   lead: str) -> None:
+    (answer,) = _ask(suite / run, question)
+    assert str(answer["answer"]).startswith(lead)
+
+
+@pytest.mark.parametrize("question", ["did you bring me the coffee?", "why didn't you reach the goal?",
+                                      "what happened", "did you see the person?"])
+def test_no_yes_or_no_where_the_question_is_not_about_the_outcome(suite: Path, question: str) -> None:
+    (answer,) = _ask(suite / "bagfile_5_1", question)
+    assert not str(answer["answer"]).startswith(("Yes.", "No."))
+
+
+def test_a_goal_found_in_real_nav2_logs_is_answered_yes_or_no(tmp_path: Path) -> None:
+    by_outcome = {}
+    for excerpt in corpus():  # the first goal that ends in the lines ("Goal succeeded" / "Goal failed")
+        if "Goal succeeded" in excerpt.lines or "Goal failed" in excerpt.lines:
+            by_outcome.setdefault(excerpt.outcome, excerpt)
+    for outcome, lead in (("succeeded", "Yes."), ("failed", "No.")):
+        run = write_recording(by_outcome[outcome], tmp_path / outcome, task=False)  # the goal from the logs alone
+        (answer,) = _ask(run, "did you reach the goal?")
+        assert str(answer["answer"]).startswith(lead), answer["answer"]
