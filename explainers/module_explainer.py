@@ -90,6 +90,10 @@ class ModuleExplainer:
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         raise NotImplementedError
 
+    def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
+        """A module's reading of the lines before the goal that say why its decisive line happened."""
+        return d
+
     def explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)
         lines = view.logs()
@@ -102,7 +106,7 @@ class ModuleExplainer:
             told = start_answer(self.name, self.prefix, step, lines, context.task.created, question)
             return phrase(self.model, self.name, question, self._facts(lines, told), told)
         readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
-        d = diagnose(readings, run.state if run is not None else None)
+        d = self.reason_before(context, diagnose(readings, run.state if run is not None else None))
         if d.outcome == "succeeded":
             # a goal that completed: warnings and errors on the way did not stop it (many healthy arms print some)
             d = Diagnosis("succeeded", end=d.end)

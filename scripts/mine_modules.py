@@ -236,10 +236,19 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--mirror", type=Path, required=True, help="folder of owner+name/repo bare mirrors")
     ap.add_argument("--check", action="store_true", help="fail when the committed catalogues differ")
+    ap.add_argument("--module", action="append", help="only this module of the config (repeatable; default all): "
+                    "a re-mine of one needs only its own mirrors")
     args = ap.parse_args(argv)
     cfg = yaml.safe_load(CONFIG.read_text(encoding="utf-8"))
+    unknown = sorted(set(args.module or ()) - set(cfg["modules"]))
+    if unknown:
+        print(f"ERROR: no module {', '.join(unknown)} in {CONFIG.name}; use {', '.join(cfg['modules'])}",
+              file=sys.stderr)
+        return 2
     status = 0
     for module, mcfg in cfg["modules"].items():
+        if args.module and module not in args.module:
+            continue
         rows = classify(collect(cfg, args.mirror, module), cfg, module)
         doc = {"about": mcfg["about"], "distros": list(dict.fromkeys(cfg["distro_of_branch"].values())),
                "roles": mcfg["roles"], "error_codes": mcfg.get("error_codes", {}),

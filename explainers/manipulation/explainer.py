@@ -23,7 +23,7 @@ from typing import ClassVar
 
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.control.catalogue import catalogue as control_catalogue
-from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, read
 from hexar.explainers.manipulation.catalogue import catalogue
 from hexar.explainers.manipulation.wording import template
 from hexar.explainers.module_explainer import ModuleExplainer, focus
@@ -31,6 +31,7 @@ from hexar.explainers.module_explainer import ModuleExplainer, focus
 SKILLS = ("pick", "place", "move_arm")
 NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
 REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "manipulation.goal_state_invalid"})
+FOUND_NONE = "manipulation.controllers_not_found"
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
 _TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
                     r"(?P<last>\d+(?:\.\d+)?)")
@@ -71,13 +72,34 @@ class ManipulationExplainer(ModuleExplainer):
 
     def refine(self, readings: list[Reading]) -> list[Reading]:
         out = []
-        for r in readings:
+        for i, r in enumerate(readings):
             cause = state_monitor_cause(r.line.msg) if r.cause == "manipulation.stale_robot_state" else None
+            if r.cause == FOUND_NONE and r.note and r.entry is not None and r.entry.cause != FOUND_NONE and not any(
+                    later.cause == FOUND_NONE and not later.note for later in readings[i + 1:]):
+                # a controller left out of MoveIt's list (its settings lack a field) is why MoveIt found none for
+                # the joints only where MoveIt then says so; alone, it is the set-up error its entry names
+                cause = r.entry.cause
+                out.append(Reading(r.line, r.entry, cause, r.catalogue))
+                continue
             out.append(Reading(r.line, r.entry, cause, r.catalogue) if cause is not None else r)
         return out
 
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         return template(cause, d, what)
+
+    def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
+        """MoveIt found no controller for the goal's joints, and before the goal (at its start) its controller
+        manager left one out for a field its settings lack: that line says why, and is kept as support."""
+        if d.cause != FOUND_NONE or d.decisive is None or d.decisive.note or context.window[0] <= 0:
+            return d
+        earlier = context.view(self.topics, (0, context.window[0] - 1)).logs()
+        why = [r for r in read(earlier, self.catalogues()) if r.cause == FOUND_NONE and r.note]
+        if not why:
+            return d
+        first = d.decisive
+        d.decisive = Reading(first.line, first.entry, first.cause, first.catalogue, why[-1].note)
+        d.support = [why[-1], *d.support][:3]
+        return d
 
     def explain(self, question: str, context: Context) -> Explanation:
         found = super().explain(question, context)

@@ -38,7 +38,7 @@ CLAUSES = {
         "executing the planned arm trajectory failed.",
         "Read the arm controller's own log around that time (tolerances, goal rejected, hardware)."),
     "manipulation.controllers_not_found": (
-        "MoveIt found no controllers for my arm's joints.",
+        "MoveIt found no controllers for my arm's joints{meaning}.",
         "Declare the arm controller in moveit_controllers.yaml (controller_names, action_ns, joints) and check "
         "that it is loaded and active (ros2 control list_controllers)."),
     "manipulation.configuration_error": (
@@ -62,6 +62,11 @@ def _nominal(what: str) -> Worded:
 # a start or goal state is told in the words of the line that showed it (in collision, a joint outside its limits,
 # a goal pose in a frame the planner refuses); these when the line says no more
 MEANINGS = {"manipulation.start_state_in_collision": "already in collision in my planning scene",
-            "manipulation.goal_state_invalid": "in collision or against its constraints"}
+            "manipulation.goal_state_invalid": "in collision or against its constraints",
+            "manipulation.controllers_not_found": ""}
+# a controller left out of MoveIt's list is said with what its settings lack (a refinement's note); the other lines
+# of this cause mean what the clause says already
+NOTES_ONLY = frozenset({"manipulation.controllers_not_found"})
 
-template = Wording("I couldn't finish {what} because", "MoveIt", CLAUSES, meanings=MEANINGS, nominal=_nominal)
+template = Wording("I couldn't finish {what} because", "MoveIt", CLAUSES, meanings=MEANINGS, nominal=_nominal,
+                   notes_only=NOTES_ONLY)

@@ -136,3 +136,11 @@ def test_a_drivers_lines_carry_the_callbacks_that_log_them_and_their_role(tmp_pa
     connect = rows["Cannot connect to the Robotiq gripper"]
     assert connect["functions"] == ["on_configure"] and connect["hw_role"] == "setup"
     assert "functions" not in rows["Cannot spin the gripper node"]
+
+
+def test_an_unknown_module_is_a_one_line_error(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    mod = load_script("mine_modules")
+    assert mod.main(["--mirror", str(tmp_path), "--module", "navigation"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("ERROR: no module navigation in modules_mining.yaml; use manipulation, control")
+    assert "\n" not in err

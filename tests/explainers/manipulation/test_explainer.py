@@ -241,3 +241,34 @@ def test_a_goal_pose_pilz_refuses_for_its_frame_is_an_invalid_goal_told_by_its_f
     assert found.causes == ["manipulation.goal_state_invalid"]
     assert "a goal pose given in a frame other than my robot model's frame" in found.text
     assert "collision" not in found.text and "inverse kinematics" not in found.text
+
+
+# Day 15 of mhered/RoboticsChallenge's devlog (real-modules-heldout12, spent): moveit_controllers.yaml without action_ns
+SCM = "move_group.moveit.moveit.plugins.simple_controller_manager"
+NO_NS = ("No action namespace specified for controller `arm_controller` through parameter "
+         "`moveit_simple_controller_manager.arm_controller.action_ns`")
+NONE_FOR_JOINTS = ("Unable to identify any set of controllers that can actuate the specified joints: "
+                   "[ ur5_elbow_joint ur5_shoulder_lift_joint ur5_shoulder_pan_joint ]")
+
+
+def test_a_controller_left_out_for_its_action_ns_is_why_moveit_found_none(tmp_path: Path) -> None:
+    task, found = _explain(tmp_path, [
+        (0, SCM, ERROR, NO_NS),
+        (0.01, SCM, INFO, "Returned 0 controllers in list"),
+        (5, "move_group.moveit.moveit.ros.move_group.clear_octomap_service", INFO, "Execution request received"),
+        (5.01, "move_group.moveit.moveit.ros.trajectory_execution_manager", ERROR, NONE_FOR_JOINTS),
+        (5.02, "moveit_2553292408.moveit.ros.move_group_interface", INFO, "Execute request aborted"),
+        (5.03, "moveit_2553292408.moveit.ros.move_group_interface", ERROR,
+         "MoveGroupInterface::execute() failed or timeout reached")], "Why didn't that work?")
+    assert task.outcome == "failed"
+    assert found.causes == ["manipulation.controllers_not_found"]
+    assert "MoveIt found no controllers for my arm's joints: its controller manager left out a controller whose " \
+           "action_ns" in found.text
+    assert any(e.item.endswith("arm_controller.action_ns`") for e in found.evidence)  # the line that says why
+
+
+def test_a_controller_left_out_with_no_goal_failing_for_it_is_a_set_up_error(tmp_path: Path) -> None:
+    # moveit/moveit2#3717 (corpus): the line alone, nothing of MoveIt looking for a controller after it
+    _, found = _explain(tmp_path, [(0, SCM, ERROR, NO_NS)], "Why didn't that work?")
+    assert found.causes == ["manipulation.configuration_error"]
+    assert "found no controllers" not in found.text
