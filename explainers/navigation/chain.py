@@ -25,7 +25,7 @@ from hexar.events.records import ERROR, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
@@ -316,6 +316,24 @@ def slow_retries(run: Run) -> Finding | None:
     found.facts = {"plan_failures": float(len(plans)), "progress_failures": float(len(stuck)),
                    "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0}
     found.notes.append(_recovered(behaviours, bool(clears)))
+    return found
+
+
+def reached_without_pose(run: Run) -> Finding | None:
+    """A goal the controller judged reached on the line after it could not place the robot on its plan ("Unable to
+    transform robot pose into global plan's frame", then "Reached the goal!"): the goal checker used a pose the
+    controller had just failed to get, so the reach is not told as a clean one."""
+    cat = catalogue()
+    ids = [e.id if (e := cat.match(ln.msg)) is not None else "" for ln in run.lines]
+    if run.outcome != "reached" or "ctrl.reached" not in ids:
+        return None
+    at = len(ids) - 1 - ids[::-1].index("ctrl.reached")
+    if at == 0 or ids[at - 1] != "ctrl.transform_plan":
+        return None
+    lost, reached = run.lines[at - 1], run.lines[at]
+    found = Finding(TRANSFORM, [Evidence.of_log(TRANSFORM, lost), Evidence.of_log(TRANSFORM, reached)])
+    found.facts = {REACH_DOUBT: 1.0}
+    found.notes.append(f"'{lost.msg.strip()}'")
     return found
 
 

@@ -233,6 +233,7 @@ _STAMPED_EARLY = ("earlier than all the data in the transform cache", "timestamp
 # start and goal the planner could not plan between.
 SAME_ATTEMPT_S = 2.0
 CLOCK_DOUBT = "clock_doubt"  # a finding's fact: obstacles the controller saw may come from mistimed data
+REACH_DOUBT = "reach_doubt"  # a finding's fact: the goal was judged reached right after the robot's pose was lost
 
 
 def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:

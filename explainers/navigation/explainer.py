@@ -211,8 +211,8 @@ class NavigationExplainer:
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:
-            problem = d.poor_localisation(run) or _held_by_collision_monitor(run) or d.moving_obstacles(run) \
-                or chain.slow_retries(run)
+            problem = chain.reached_without_pose(run) or d.poor_localisation(run) or _held_by_collision_monitor(run) \
+                or d.moving_obstacles(run) or chain.slow_retries(run)
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":

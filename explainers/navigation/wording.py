@@ -14,7 +14,7 @@ from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import states
-from hexar.explainers.navigation.detectors import CLOCK_DOUBT, Finding, Run
+from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
 
@@ -199,6 +199,14 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Set the initial pose (e.g. '2D Pose Estimate' in RViz) so that the robot is on the map, and "
                 "check the map -> odom transform.",
                 [*seen, "Nav2 plans from the robot's position; a start outside the map makes every plan fail."])
+    if f.cause == g.TRANSFORM and REACH_DOUBT in f.facts:
+        lost = f.notes[0] if f.notes else _said(f)
+        return (f"Nav2 logged {place} as reached, but I can't be sure I got there: on the line before, my controller "
+                f"said {lost}, so it judged the goal without knowing where I was on my plan. That is a transform "
+                "(TF) error: a transform it needs was missing or stale.",
+                "Check where the robot really is, and that localisation keeps publishing map -> odom (its scans "
+                "must reach it with timestamps the transforms cover).",
+                seen)
     if f.cause == g.TRANSFORM and CLOCK_DOUBT in f.facts:
         # the critic's word is the costmap's, and mistimed scans put obstacles where nothing stands
         return (f"I couldn't reach {place}: my controller found that every trajectory would hit an obstacle in my "

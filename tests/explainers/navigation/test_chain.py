@@ -596,3 +596,27 @@ def test_a_failed_plan_while_the_goal_still_runs_at_the_end_is_no_goal_missed(tm
                                  "show whether I got there; on the way my planner could not compute a route to it "
                                  "(1 time), and I can't tell why")
     assert "claim.task_failed" not in read_claims(found.text).affirmed
+
+
+# The daifuku Pi4 reproduction notes (blind10.yaml, spent): emcl2's map -> odom froze, the controller could not place
+# the robot on the plan, and its goal checker said "Reached the goal!" 0.2 s after the 44 m path came in.
+LOST: Line = ("controller_server", WARN, "Unable to transform robot pose into global plan's frame")
+REACHED: Line = ("controller_server", INFO, "Reached the goal!")
+RECEIVED: Line = ("controller_server", INFO, "Received a goal, begin computing control effort.")
+
+
+def test_a_goal_judged_reached_right_after_the_pose_was_lost_is_not_a_clean_reach(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [], [RECEIVED, LOST, REACHED], SUCCEEDED)
+    assert found.causes == [g.TRANSFORM]
+    assert found.text.startswith("Nav2 logged my goal as reached, but I can't be sure I got there: on the line "
+                                 "before, my controller said 'Unable to transform robot pose into global plan's "
+                                 "frame'")
+    assert "navigation.nominal" not in stated_causes(found.text)
+    assert _quoted(found, "Reached the goal!")
+
+
+def test_a_pose_lost_and_found_again_before_the_reach_is_a_clean_reach(tmp_path: Path) -> None:
+    # the controller worked again after the warning (it passed on a new path) before it judged the goal reached
+    found = _explain(tmp_path, [], [RECEIVED, LOST, ("controller_server", INFO, "Passing new path to controller."),
+                                    REACHED], SUCCEEDED)
+    assert found.causes == [NOMINAL]
