@@ -59,6 +59,9 @@ def test_the_held_out_sets_parse_and_share_no_excerpt_or_thread_with_the_corpus(
     assert len(by_suite["real-modules-heldout12"]) >= 4
     before12 = set().union(*(u for s, u in urls.items() if s != "real-modules-heldout12"))
     assert not urls["real-modules-heldout12"] & before12
+    assert len(by_suite["real-modules-heldout13"]) >= 2
+    before13 = set().union(*(u for s, u in urls.items() if s != "real-modules-heldout13"))
+    assert not urls["real-modules-heldout13"] & before13
 
 
 def test_an_excerpt_becomes_a_recording_with_or_without_a_task(tmp_path: Path) -> None:
