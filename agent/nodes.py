@@ -255,12 +255,22 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
     lead = yes_or_no(question, task.outcome) if state.get("route") != "recovery" else ""
-    if lead and text and not re.match(r"(?i)(yes|no)\b", text):
-        text = f"{lead} {text}"
+    if lead and text:
+        text = with_lead(text, lead)
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
             "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start)}
+
+
+def with_lead(text: str, lead: str) -> str:
+    """`text` opened by `lead` ("Yes." or "No."): a model's own "Yes," or "No." is kept where it agrees with the
+    recorded outcome and replaced where it does not ("No pizza was recorded" opens with no answer word)."""
+    said = re.match(r"(?i)(yes|no)[,.!]\s*", text)
+    if said is not None and said.group(1).lower() == lead.rstrip(".").lower():
+        return text
+    rest = text[said.end():] if said is not None else text
+    return f"{lead} {rest[:1].upper()}{rest[1:]}"
 
 
 def remembered(state: AgentState, turn: Any) -> list[Any]:

@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from hexar.agent.context import RunSettings
+from hexar.agent.nodes import with_lead
 from hexar.agent.overview import presumes_goal_not_done, presumes_not_done
 from hexar.agent.session import Session
 from hexar.cli import main
@@ -156,3 +157,13 @@ def test_a_goal_found_in_real_nav2_logs_is_answered_yes_or_no(tmp_path: Path) ->
         run = write_recording(by_outcome[outcome], tmp_path / outcome, task=False)  # the goal from the logs alone
         (answer,) = _ask(run, "did you reach the goal?")
         assert str(answer["answer"]).startswith(lead), answer["answer"]
+
+
+@pytest.mark.parametrize(("text", "lead", "said"), [
+    ("I couldn't reach the kitchen.", "No.", "No. I couldn't reach the kitchen."),
+    ("No, I couldn't reach the kitchen.", "No.", "No, I couldn't reach the kitchen."),  # a model's own, agreeing
+    ("Yes, i reached it.", "No.", "No. I reached it."),  # a model's own, against the recorded outcome
+    ("No pizza recommendation was recorded.", "Yes.", "Yes. No pizza recommendation was recorded."),
+])
+def test_the_lead_is_the_recorded_outcome_whatever_a_model_said(text: str, lead: str, said: str) -> None:
+    assert with_lead(text, lead) == said
