@@ -73,8 +73,8 @@ def test_a_fetch_that_was_done_says_so_when_asked_why_it_was_not(arm_runs: Path,
     r = _ask(done, "Why didn't you bring me the apple?", capsys)
     assert r["answer"] == ('I did all 5 steps of my plan: go to the kitchen, pick up the cup, go to the dining room, '
                            'put down the cup and then say "Here is your cup."')
-    r = _ask(done, "Did you finish?", capsys)  # the task, not the sentence said at its end
-    assert str(r["answer"]).startswith("I did all 5 steps of my plan")
+    r = _ask(done, "Did you finish?", capsys)  # the task, not the sentence said at its end; a yes-or-no question
+    assert str(r["answer"]).startswith("Yes. I did all 5 steps of my plan")
     # about something else than the goal, the finding that answers it stays
     r = _ask(done, "Why didn't you take the shorter way?", capsys)
     assert str(r["answer"]).startswith("I did all 5 steps of my plan") and "m/s" in str(r["answer"])
