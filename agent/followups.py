@@ -10,7 +10,8 @@ import re
 from hexar.agent.state import Intent
 
 _DEEPER = re.compile(
-    r"^(and |but |so |ok |okay )?(why( is| was| did)?( that| this| it)?( so| happen(ed)?)?|how do you know( that)?|"
+    r"^(and |but |so |ok |okay )?(why( is| was| did)?( that| this| it)?( so| happen(ed)?)?|why not|how come|"
+    r"how do you know( that)?|"
     r"tell me more|more details?|go on|explain( that| more)?|what do you mean|because of what)\W*$"
 )
 _HELPED = re.compile(

@@ -98,3 +98,14 @@ def test_the_second_why_is_told_in_whole_sentences(suite: Path, tmp_path: Path, 
     assert deeper.endswith((".", "!", "?", '."', ".'"))
     # no note runs into the next: a sentence never ends in a quote followed by a lower-case word
     assert not re.search(r"['\"] [a-z]", deeper), deeper
+
+
+@pytest.mark.parametrize("followup", ["why not?", "how come"])
+def test_why_not_after_a_no_goes_deeper(suite: Path, tmp_path: Path, followup: str) -> None:
+    s = _session(suite, "bagfile_5_1", tmp_path / "threads.sqlite")
+    first = s.ask("did you make it?")
+    assert str(first["answer"]).startswith("No. I couldn't reach the kitchen")
+    deeper = s.ask(followup, thread=first["thread"])
+    # the evidence behind the "no", not the same sentence again
+    assert deeper["intent"] == "deeper" and "Failed to make progress" in str(deeper["answer"])
+    assert not str(deeper["answer"]).startswith("I couldn't reach the kitchen")
