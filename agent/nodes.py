@@ -22,6 +22,7 @@ from hexar.agent.overview import (
     recovery,
     steps_summary,
     whole_task,
+    with_lead,
     yes_or_no,
 )
 from hexar.agent.questions import check_question
@@ -261,16 +262,6 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
             "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start)}
-
-
-def with_lead(text: str, lead: str) -> str:
-    """`text` opened by `lead` ("Yes." or "No."): a model's own "Yes," or "No." is kept where it agrees with the
-    recorded outcome and replaced where it does not ("No pizza was recorded" opens with no answer word)."""
-    said = re.match(r"(?i)(yes|no)[,.!]\s*", text)
-    if said is not None and said.group(1).lower() == lead.rstrip(".").lower():
-        return text
-    rest = text[said.end():] if said is not None else text
-    return f"{lead} {rest[:1].upper()}{rest[1:]}"
 
 
 def remembered(state: AgentState, turn: Any) -> list[Any]:

@@ -108,6 +108,16 @@ def yes_or_no(question: str, outcome: str) -> str:
     return "Yes." if done != failing else "No."
 
 
+def with_lead(text: str, lead: str) -> str:
+    """`text` opened by `lead` ("Yes." or "No."): a model's own "Yes," or "No." is kept where it agrees with the
+    recorded outcome and replaced where it does not ("No pizza was recorded" opens with no answer word)."""
+    said = re.match(r"(?i)(yes|no)[,.!]\s*", text)
+    if said is not None and said.group(1).lower() == lead.rstrip(".").lower():
+        return text
+    rest = text[said.end():] if said is not None else text
+    return f"{lead} {rest[:1].upper()}{rest[1:]}"
+
+
 def presumes_not_done(question: str) -> bool:
     q = question.strip().lower()
     return _NOT_DONE.search(q) is not None and _OTHER_CHOICE.search(q) is None

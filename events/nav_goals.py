@@ -144,16 +144,13 @@ def _arms_logger(line: LogLine) -> bool:
     return bool(line.name) and any(cat.role(line.name) is not None for cat in (moveit(), control()))
 
 
-REACHED = "ctrl.reached"
-
-
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
     a cause or to the progress checker, the lines of Nav2's own nodes, and the bring-up errors of the stack
     catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
     an abort, else still running as far as the recording shows."""
-    from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.navigation.catalogue import REACHED, catalogue
     from hexar.explainers.stack.bringup import loader_failure
 
     cat = catalogue()

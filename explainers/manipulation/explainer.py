@@ -72,10 +72,12 @@ class ManipulationExplainer(ModuleExplainer):
 
     def refine(self, readings: list[Reading]) -> list[Reading]:
         out = []
+        # the last line in which MoveIt itself says it found no controller (a left-out one carries a note)
+        found_none = max((i for i, r in enumerate(readings) if r.cause == FOUND_NONE and not r.note), default=-1)
         for i, r in enumerate(readings):
             cause = state_monitor_cause(r.line.msg) if r.cause == "manipulation.stale_robot_state" else None
-            if r.cause == FOUND_NONE and r.note and r.entry is not None and r.entry.cause != FOUND_NONE and not any(
-                    later.cause == FOUND_NONE and not later.note for later in readings[i + 1:]):
+            if r.cause == FOUND_NONE and r.note and r.entry is not None and r.entry.cause != FOUND_NONE \
+                    and found_none < i:
                 # a controller left out of MoveIt's list (its settings lack a field) is why MoveIt found none for
                 # the joints only where MoveIt then says so; alone, it is the set-up error its entry names
                 cause = r.entry.cause

@@ -21,6 +21,10 @@ from hexar.explainers.stack.catalogue import clean, unwrapped
 
 END_KINDS = frozenset({"succeeded", "failed", "canceled"})
 GOAL_KINDS = END_KINDS | {"begin"}
+# entries read by id: the controller server's "Reached the goal!" (controller_server.cpp:411@humble), which ends a
+# path it followed, and its "Unable to transform robot pose into global plan's frame" family
+REACHED = "ctrl.reached"
+TRANSFORM_PLAN = "ctrl.transform_plan"
 
 
 class CatalogueError(ExplainerError):

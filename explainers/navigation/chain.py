@@ -24,7 +24,7 @@ from dataclasses import replace
 from hexar.events.records import ERROR, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
-from hexar.explainers.navigation.catalogue import Entry, catalogue
+from hexar.explainers.navigation.catalogue import REACHED, TRANSFORM_PLAN, Entry, catalogue
 from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
@@ -323,12 +323,14 @@ def reached_without_pose(run: Run) -> Finding | None:
     """A goal the controller judged reached on the line after it could not place the robot on its plan ("Unable to
     transform robot pose into global plan's frame", then "Reached the goal!"): the goal checker used a pose the
     controller had just failed to get, so the reach is not told as a clean one."""
+    if run.outcome != "reached":
+        return None
     cat = catalogue()
     ids = [e.id if (e := cat.match(ln.msg)) is not None else "" for ln in run.lines]
-    if run.outcome != "reached" or "ctrl.reached" not in ids:
+    if REACHED not in ids:
         return None
-    at = len(ids) - 1 - ids[::-1].index("ctrl.reached")
-    if at == 0 or ids[at - 1] != "ctrl.transform_plan":
+    at = len(ids) - 1 - ids[::-1].index(REACHED)
+    if at == 0 or ids[at - 1] != TRANSFORM_PLAN:
         return None
     lost, reached = run.lines[at - 1], run.lines[at]
     found = Finding(TRANSFORM, [Evidence.of_log(TRANSFORM, lost), Evidence.of_log(TRANSFORM, reached)])

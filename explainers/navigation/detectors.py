@@ -18,7 +18,7 @@ from hexar.events import contract as c
 from hexar.events.log import View
 from hexar.events.records import ERROR, WARN, BoolSample, LogLine, PoseSample, StatusRecord
 from hexar.explainers.base import Evidence
-from hexar.explainers.navigation.catalogue import END_KINDS, Entry, catalogue
+from hexar.explainers.navigation.catalogue import END_KINDS, REACHED, Entry, catalogue
 from hexar.explainers.navigation.diagnose import START_IN_OBSTACLE, TRANSFORM, Tagged
 from hexar.explainers.recorded import path_length
 
@@ -138,7 +138,7 @@ def _controller_reached(tagged: list[tuple[LogLine, Entry | None]]) -> LogLine |
     """The controller's "Reached the goal!" when it is the last word of the window: with neither the navigator's
     end nor the task's status recorded, a path followed to the goal checker's satisfaction after earlier progress
     failures is a goal reached late, not one given up on. Any later error leaves the end unknown."""
-    last = max((ln for ln, e in tagged if e is not None and e.id == "ctrl.reached"), key=lambda ln: ln.t, default=None)
+    last = max((ln for ln, e in tagged if e is not None and e.id == REACHED), key=lambda ln: ln.t, default=None)
     if last is None or any(ln.t > last.t and ln.level >= ERROR for ln, _ in tagged):
         return None
     return last

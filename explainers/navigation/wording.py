@@ -200,9 +200,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "check the map -> odom transform.",
                 [*seen, "Nav2 plans from the robot's position; a start outside the map makes every plan fail."])
     if f.cause == g.TRANSFORM and REACH_DOUBT in f.facts:
-        lost = f.notes[0] if f.notes else _said(f)
         return (f"Nav2 logged {place} as reached, but I can't be sure I got there: on the line before, my controller "
-                f"said {lost}, so it judged the goal without knowing where I was on my plan. That is a transform "
+                f"said {f.notes[0]}, so it judged the goal without knowing where I was on my plan. That is a transform "
                 "(TF) error: a transform it needs was missing or stale.",
                 "Check where the robot really is, and that localisation keeps publishing map -> odom (its scans "
                 "must reach it with timestamps the transforms cover).",

@@ -9,8 +9,7 @@ from pathlib import Path
 import pytest
 
 from hexar.agent.context import RunSettings
-from hexar.agent.nodes import with_lead
-from hexar.agent.overview import presumes_goal_not_done, presumes_not_done
+from hexar.agent.overview import presumes_goal_not_done, presumes_not_done, with_lead
 from hexar.agent.session import Session
 from hexar.cli import main
 from hexar.evals.real_nav2 import Excerpt, corpus, write_recording
