@@ -28,13 +28,12 @@ from typing import Any
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS, HexarError
+from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     DISTROS,
     OUTCOMES,
     TaskMaker,
-    parse_console,
     parse_entries,
-    stamped,
     task_plan,
     write_excerpt,
 )

@@ -1,23 +1,13 @@
 """The real-Nav2 corpus (evals/data/real_nav2/corpus.yaml): console excerpts people pasted in public threads, each
-with the cause the thread diagnosed, and the converter that turns an excerpt into a rosbag2 recording.
-
-Console formats read (a `NN: ` ctest prefix, a `name | ` docker-compose prefix and a `> ` quote prefix are removed):
-- `[process-N] [LEVEL] [stamp] [logger]: msg`          ros2 launch, Foxy onwards
-- `[LEVEL] [stamp] [logger]: msg`                       a node run on its own (`ros2 run`)
-- `[process-N] [LEVEL] [logger]: msg`, `[LEVEL] [logger]: msg`   without stamps (Dashing/Eloquent-era output)
-- `[process-N] [logger]: msg`, `logger: msg`            no level (hand-trimmed pastes)
-- anything else is a bare message; a line that starts lower-case or indented, a launch prefix with nothing after
-  it, or a line after one that ended in whitespace, continues the message before it (console-wrapped text).
-What the console did not print is synthesised and marked so: levels from the message's wording, increasing stamps
-between (or around) the printed ones, and an empty logger name when none was printed (rcl's own value for lines
-logged before a node exists, e.g. `[ERROR] [stamp] []: Caught exception ...`).
+with the cause the thread diagnosed, and the converter that turns an excerpt into a rosbag2 recording (the console
+formats it reads are listed in `hexar.evals.console`).
 """
 
 from __future__ import annotations
 
 import re
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 from typing import Any, Protocol, TypeVar
@@ -25,44 +15,10 @@ from typing import Any, Protocol, TypeVar
 import yaml
 
 from hexar.errors import HexarError
+from hexar.evals.console import NS, ConsoleLine, parse_console, stamped
 
 DISTROS = ("foxy", "galactic", "humble", "iron", "jazzy", "kilted", "rolling", "unknown")
 OUTCOMES = ("failed", "succeeded", "slow")
-LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50}
-NS = 1_000_000_000
-# A corpus line with no stamp at all gets stamps from here (2023-11-14), 100 ms apart.
-BASE_NS = 1_700_000_000 * NS
-STEP_NS = NS // 10
-
-# a line's outer prefix: a numbered paste ("12: "), `grep -n` output ("115:[controller_server-2] …"), docker
-# compose's "service | ", a quote
-_OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|[\w.-]+\s+\| |> )")
-# launch's process name is the command's basename, or the `name` a launch file gives it, spaces allowed
-# ("[controller_manager fd_controller-4]"): words joined by single spaces, then launch's "-N"
-_PROC_NAME = r"[\w./-]+(?: [\w./-]+)*-\d+"
-_PROC = rf"(?:\[(?P<proc>{_PROC_NAME})\]\s*)?"
-_LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
-_STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
-_LOGGER = rf"\[(?P<logger>[^\]\s]*|{_PROC_NAME})\]:\s?"
-LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
-# RCUTILS_CONSOLE_OUTPUT_FORMAT "[{severity} {time}] [{name}]: {message}": level and stamp in one bracket
-LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>\d+(?:\.\d+)?)\]\s*"
-                         rf"(?:{_LOGGER})?(?P<msg>.*)$")
-NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
-PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
-PROC_ONLY = re.compile(rf"^\[(?P<proc>{_PROC_NAME})\](?P<rest>.*)$")
-# Wall-clock consoles: "10:33:12  msg" (a summary pasted with times) and RCUTILS_CONSOLE_OUTPUT_FORMAT variants
-# such as "[ WARN][6:31:18.730 PM -03][controller_server]: msg". Their times become stamps on BASE_NS's day.
-_CLOCK = r"(?P<clock>\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)(?:\s*(?P<ampm>AM|PM))?(?:\s*[+-]\d{2}(?::?\d{2})?)?"
-CLOCK_LEVELED = re.compile(rf"^{_PROC}{_LEVEL}\[{_CLOCK}\]\s*(?:{_LOGGER})?(?P<msg>.*)$")
-CLOCK_PREFIX = re.compile(rf"^{_CLOCK}\s+(?P<rest>\S.*)$")
-# launch's screen format with timestamps ("{created:.7f} {line}"): the wall time it printed the line, in epoch seconds
-EPOCH_PREFIX = re.compile(r"^(?P<epoch>\d{9,10}\.\d+)\s+(?P<rest>\[.*)$")
-# Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
-ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
-                         r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
-WARN_WORDS = re.compile(r"\b(warn\w*|timed out|time out|dropping|cannot|could not|couldn't|unable|exceeded|"
-                        r"not available|does not exist|out of (map )?bounds)\b", re.I)
 
 
 @dataclass(frozen=True)
@@ -79,166 +35,6 @@ class Excerpt:
     logs_show_cause: bool
     lines: str
     notes: str = ""
-
-
-@dataclass
-class ConsoleLine:
-    """One log record as read from a console excerpt; `synthesised` names the fields the console did not print."""
-
-    stamp_ns: int | None
-    level: int
-    name: str
-    msg: str
-    process: str = ""
-    synthesised: set[str] = field(default_factory=set)
-
-
-def _stamp_ns(text: str) -> int:
-    sec, _, frac = text.partition(".")
-    return int(sec) * NS + int((frac + "000000000")[:9])
-
-
-def infer_level(msg: str) -> int:
-    if ERROR_WORDS.search(msg):
-        return LEVELS["ERROR"]
-    if WARN_WORDS.search(msg):
-        return LEVELS["WARN"]
-    return LEVELS["INFO"]
-
-
-def _clock_ns(clock: str, ampm: str | None) -> int:
-    h, m, sec = clock.split(":")
-    hours = int(h) % 12 + (12 if ampm == "PM" else 0) if ampm else int(h)
-    whole, _, frac = sec.partition(".")
-    day = BASE_NS - BASE_NS % (86_400 * NS)
-    return day + (hours * 3600 + int(m) * 60 + int(whole)) * NS + int((frac + "000000000")[:9])
-
-
-def _record(level: str | None, stamp: str | None, logger: str | None, msg: str, proc: str | None,
-            stamp_ns: int | None = None) -> ConsoleLine:
-    made: set[str] = set()
-    if level is None:
-        made.add("level")
-    if not stamp and stamp_ns is None:
-        made.add("stamp")
-    if logger is None:
-        made.add("name")
-    return ConsoleLine(
-        stamp_ns=_stamp_ns(stamp) if stamp else stamp_ns,
-        level=LEVELS[level] if level is not None else infer_level(msg),
-        name=logger or "",
-        msg=msg,
-        process=proc or "",
-        synthesised=made,
-    )
-
-
-def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]) -> bool:
-    if not records:
-        return False
-    if raw[:1].isspace() or raw[:1].islower():
-        return True
-    return previous_raw[-1:].isspace()
-
-
-def _behind_prefix(rest: str, stamp_ns: int, records: list[ConsoleLine], keep_own: bool) -> None:
-    """The records of a line printed behind a time prefix, stamped with that time (unless `keep_own` and the line
-    prints its own stamp)."""
-    inner: list[ConsoleLine] = []
-    _parse_line(rest, "", inner)
-    for r in inner:
-        if not (keep_own and r.stamp_ns is not None):
-            r.stamp_ns = stamp_ns
-            r.synthesised.discard("stamp")
-    records.extend(inner)
-
-
-def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
-    c = CLOCK_LEVELED.match(line)
-    if c:
-        records.append(_record(c["level"].upper(), None, c["logger"], c["msg"], c["proc"],
-                               _clock_ns(c["clock"], c["ampm"])))
-        return
-    t = CLOCK_PREFIX.match(line)
-    if t:
-        _behind_prefix(t["rest"], _clock_ns(t["clock"], t["ampm"]), records, keep_own=False)
-        return
-    e = EPOCH_PREFIX.match(line)
-    if e:  # the node's own stamp, where printed, is the record's
-        _behind_prefix(e["rest"], _stamp_ns(e["epoch"]), records, keep_own=True)
-        return
-    m = LEVELED.match(line) or LEVEL_STAMP.match(line)
-    if m:
-        msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
-        records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))
-        return
-    n = NAMED.match(line)
-    if n:
-        records.append(_record(None, None, n["logger"], n["msg"], n["proc"]))
-        return
-    p = PROC_ONLY.match(line)
-    proc, rest = (p["proc"], p["rest"]) if p else (None, line)
-    if p and (not rest.strip() or rest[1:2].isspace()):
-        if records and rest.strip():  # launch prints each line of a multi-line message behind its prefix
-            records[-1].msg += "\n" + rest.strip()
-        elif rest.strip():  # the excerpt begins inside such a message (an exception's what()): kept, not dropped
-            records.append(_record(None, None, None, rest.strip(), proc))
-        return
-    q = PLAIN_NAMED.match(rest.strip())
-    if q:
-        records.append(_record(None, None, q["logger"], q["msg"], proc))
-    elif _is_continuation(rest if p else line, previous, records) and (not p or records[-1].process == proc):
-        # (behind launch's prefix, a line continues only its own process's message, never another's)
-        records[-1].msg += "\n" + rest.strip()
-    else:
-        records.append(_record(None, None, None, rest.strip(), proc))
-
-
-def parse_console(text: str) -> list[ConsoleLine]:
-    """The log records of a pasted console excerpt, in the order printed (stamps may be missing: see `stamped`)."""
-    records: list[ConsoleLine] = []
-    previous = ""
-    for raw in text.splitlines():
-        line = _OUTER.sub("", raw, count=1)
-        if line.strip():
-            _parse_line(line, previous, records)
-        previous = line
-    for r in records:
-        r.msg = r.msg.rstrip()
-        if "level" in r.synthesised:
-            r.level = infer_level(r.msg)
-    return records
-
-
-def stamped(records: Sequence[ConsoleLine]) -> list[ConsoleLine]:
-    """`records` with every stamp set: printed stamps kept, missing ones spread between their printed neighbours
-    (or 100 ms apart before the first / after the last printed one, or from BASE_NS when none is printed)."""
-    known = [i for i, r in enumerate(records) if r.stamp_ns is not None]
-    out = [ConsoleLine(r.stamp_ns, r.level, r.name, r.msg, r.process, set(r.synthesised)) for r in records]
-    if not known:
-        for i, r in enumerate(out):
-            r.stamp_ns = BASE_NS + i * STEP_NS
-        return out
-    for i, r in enumerate(out):
-        if r.stamp_ns is not None:
-            continue
-        before = max((k for k in known if k < i), default=None)
-        after = min((k for k in known if k > i), default=None)
-        if before is not None and after is not None:
-            lo, hi = records[before].stamp_ns, records[after].stamp_ns
-            assert lo is not None and hi is not None
-            span = max(hi - lo, 0)
-            r.stamp_ns = lo + span * (i - before) // (after - before) if span else lo + (i - before)
-        elif before is not None:
-            lo = records[before].stamp_ns
-            assert lo is not None
-            r.stamp_ns = lo + (i - before) * STEP_NS
-        else:
-            assert after is not None
-            hi = records[after].stamp_ns
-            assert hi is not None
-            r.stamp_ns = hi - (after - i) * STEP_NS
-    return out
 
 
 _REQUIRED = ("id", "source", "url", "distro", "outcome", "cause", "cause_quote", "logs_show_cause", "lines")

@@ -8,16 +8,18 @@ from pathlib import Path
 import pytest
 
 from hexar.errors import HexarError
-from hexar.evals.real_nav2 import (
+from hexar.evals.console import (
     BASE_NS,
+    NS,
+    parse_console,
+    stamped,
+)
+from hexar.evals.real_nav2 import (
     DISTROS,
     NAV_CAUSES,
-    NS,
     SKILL_ERROR,
     corpus,
-    parse_console,
     parse_corpus,
-    stamped,
     task_plan,
     with_task,
     write_recording,

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
+from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     BLIND_FILES,
     NAV_CAUSES,
@@ -19,8 +20,6 @@ from hexar.evals.real_nav2 import (
     blind_set,
     corpus,
     heldout,
-    parse_console,
-    stamped,
     write_recording,
 )
 from hexar.evals.real_nav2_cli import read_baseline

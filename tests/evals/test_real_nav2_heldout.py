@@ -11,14 +11,13 @@ import pytest
 
 from hexar.cli import main
 from hexar.errors import HexarError
+from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     DISTROS,
     NAV_CAUSES,
     Excerpt,
     corpus,
     heldout,
-    parse_console,
-    stamped,
     write_recording,
 )
 from hexar.evals.real_nav2_cli import read_baseline
