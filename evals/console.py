@@ -5,6 +5,13 @@ Formats read (a `NN: ` ctest prefix, a `name | ` docker-compose prefix and a `> 
 - `[LEVEL] [stamp] [logger]: msg`                       a node run on its own (`ros2 run`)
 - `[process-N] [LEVEL] [logger]: msg`, `[LEVEL] [logger]: msg`   without stamps (Dashing/Eloquent-era output)
 - `[process-N] [logger]: msg`, `logger: msg`            no level (hand-trimmed pastes)
+- RCUTILS_CONSOLE_OUTPUT_FORMAT variants: `{date_time_with_ms}` ("2024-06-11 09:29:19.304") or
+  `{time_as_nanoseconds}` as the stamp, a date-time in front of the line, level and stamp in one bracket, and the
+  ROS 2 logging guide's ` ({function_name}() at {file_name}:{line_number})` after the message (kept as the record's
+  function, file and line, as /rosout carries them)
+- colour: RCUTILS_COLORIZED_OUTPUT's escape sequences, also where a paste lost the escape character ("[33m") or
+  shows it in caret notation ("^[[33m")
+- journald (`journalctl`, a robot started by robot_upstart or systemd): "Nov 14 22:13:20 host unit[pid]: " in front
 - anything else is a bare message; a line that starts lower-case or indented, a launch prefix with nothing after
   it, or a line after one that ended in whitespace, continues the message before it (console-wrapped text).
 What the console did not print is synthesised and marked so: levels from the message's wording, increasing stamps
@@ -16,7 +23,8 @@ from __future__ import annotations
 
 import re
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from datetime import UTC, datetime
 
 LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50}
 NS = 1_000_000_000
@@ -32,13 +40,19 @@ _OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|[\w.-]+\s+\| |> )")
 _PROC_NAME = r"[\w./-]+(?: [\w./-]+)*-\d+"
 _PROC = rf"(?:\[(?P<proc>{_PROC_NAME})\]\s*)?"
 _LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
-_STAMP = r"(?:\[(?P<stamp>\d+(?:\.\d+)?|)\]\s*)?"
+# {time} (seconds), {time_as_nanoseconds} or {date_time_with_ms} ("2024-06-11 09:29:19.304", local time: read as UTC)
+_DATE_TIME = r"\d{4}-\d{2}-\d{2}[ T]\d{2}:\d{2}:\d{2}(?:[.,]\d+)?"
+_STAMP_TEXT = rf"\d+(?:\.\d+)?|{_DATE_TIME}"
+_STAMP = rf"(?:\[(?P<stamp>{_STAMP_TEXT}|)\]\s*)?"
 _LOGGER = rf"\[(?P<logger>[^\]\s]*|{_PROC_NAME})\]:\s?"
 LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
 # RCUTILS_CONSOLE_OUTPUT_FORMAT "[{severity} {time}] [{name}]: {message}": level and stamp in one bracket
-LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>\d+(?:\.\d+)?)\]\s*"
+LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>{_STAMP_TEXT})\]\s*"
                          rf"(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
+# spdlog's default "[date] [info] msg", which drivers built on spdlog print beside ROS's own lines
+SPDLOG = re.compile(rf"^{_PROC}\[(?P<level>trace|debug|info|warning|error|critical)\]\s+(?P<msg>\S.*)$")
+_SPDLOG_LEVELS = {"trace": "DEBUG", "critical": "FATAL"}
 PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
 PROC_ONLY = re.compile(rf"^\[(?P<proc>{_PROC_NAME})\](?P<rest>.*)$")
 # Wall-clock consoles: "10:33:12  msg" (a summary pasted with times) and RCUTILS_CONSOLE_OUTPUT_FORMAT variants
@@ -48,6 +62,18 @@ CLOCK_LEVELED = re.compile(rf"^{_PROC}{_LEVEL}\[{_CLOCK}\]\s*(?:{_LOGGER})?(?P<m
 CLOCK_PREFIX = re.compile(rf"^{_CLOCK}\s+(?P<rest>\S.*)$")
 # launch's screen format with timestamps ("{created:.7f} {line}"): the wall time it printed the line, in epoch seconds
 EPOCH_PREFIX = re.compile(r"^(?P<epoch>\d{9,10}\.\d+)\s+(?P<rest>\[.*)$")
+# a date-time in front of the line ("[{date_time_with_ms}] [{severity}] ...", or bare)
+DATE_PREFIX = re.compile(rf"^\[?(?P<date>{_DATE_TIME})\]?\s+(?P<rest>\S.*)$")
+# journald's short formats (`journalctl` of a robot started by systemd or robot_upstart): "Nov 14 22:13:20 host
+# unit[pid]: ", "2024-06-11T09:29:19+0000 host unit[pid]: "; the time stamps the records that print none
+JOURNAL_PREFIX = re.compile(r"^(?:[A-Z][a-z]{2} [ \d]\d |\d{4}-\d{2}-\d{2}T)(?P<clock>\d{2}:\d{2}:\d{2}(?:\.\d+)?)\S* "
+                            r"\S+ [^\s:\[]+(?:\[\d+\])?: (?P<rest>.*)$")
+# RCUTILS_COLORIZED_OUTPUT's colours: escape sequences, shown "^[[33m" by `cat -v`, or "[33m" where a paste lost the
+# escape character (at the start of the record, behind launch's prefix, and the closing reset)
+_ESCAPE = re.compile(r"(?:\x1b|\^\[)\[[0-9;]*m")
+_LOST_ESCAPE = re.compile(rf"^(?P<head>(?:\[{_PROC_NAME}\]\s*)?)(?:\[\d{{1,2}}(?:;\d{{1,2}})*m)+|(?:\[\d{{1,2}}m)+\s*$")
+# the ROS 2 logging guide's format "... {message} ({function_name}() at {file_name}:{line_number})"
+_WHERE = re.compile(r"\s\((?P<function>\S*?)\(\) at (?P<file>\S+):(?P<line>\d+)\)\s*$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
 ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
                          r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
@@ -65,9 +91,18 @@ class ConsoleLine:
     msg: str
     process: str = ""
     synthesised: set[str] = field(default_factory=set)
+    file: str = ""
+    function: str = ""
+    line: int = 0
 
 
 def _stamp_ns(text: str) -> int:
+    if "-" in text:  # {date_time_with_ms}
+        whole, _, frac = text.replace(",", ".").replace("T", " ").partition(".")
+        day = datetime.strptime(whole, "%Y-%m-%d %H:%M:%S").replace(tzinfo=UTC)
+        return int(day.timestamp()) * NS + int((frac + "000000000")[:9])
+    if "." not in text and len(text) >= 16:  # {time_as_nanoseconds}
+        return int(text)
     sec, _, frac = text.partition(".")
     return int(sec) * NS + int((frac + "000000000")[:9])
 
@@ -137,14 +172,20 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     if t:
         _behind_prefix(t["rest"], _clock_ns(t["clock"], t["ampm"]), records, keep_own=False)
         return
-    e = EPOCH_PREFIX.match(line)
+    e = EPOCH_PREFIX.match(line) or DATE_PREFIX.match(line)
     if e:  # the node's own stamp, where printed, is the record's
-        _behind_prefix(e["rest"], _stamp_ns(e["epoch"]), records, keep_own=True)
+        _behind_prefix(e["rest"], _stamp_ns(e["epoch"] if "epoch" in e.re.groupindex else e["date"]), records,
+                       keep_own=True)
         return
     m = LEVELED.match(line) or LEVEL_STAMP.match(line)
     if m:
         msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
         records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))
+        return
+    d = SPDLOG.match(line)
+    if d:
+        level = d["level"].upper()
+        records.append(_record(_SPDLOG_LEVELS.get(d["level"], level), None, None, d["msg"], d["proc"]))
         return
     n = NAMED.match(line)
     if n:
@@ -173,12 +214,24 @@ def parse_console(text: str) -> list[ConsoleLine]:
     records: list[ConsoleLine] = []
     previous = ""
     for raw in text.splitlines():
-        line = _OUTER.sub("", raw, count=1)
+        line = _ESCAPE.sub("", raw)
+        j = JOURNAL_PREFIX.match(line)
+        at = _clock_ns(j["clock"], None) if j else None
+        if j:
+            line = j["rest"]
+        line = _LOST_ESCAPE.sub(lambda m: m["head"] or "", _OUTER.sub("", line, count=1))
         if line.strip():
+            n = len(records)
             _parse_line(line, previous, records)
+            for r in records[n:] if at is not None else ():
+                if r.stamp_ns is None:
+                    r.stamp_ns = at
+                    r.synthesised.discard("stamp")
         previous = line
     for r in records:
         r.msg = r.msg.rstrip()
+        if w := _WHERE.search(r.msg):
+            r.msg, r.function, r.file, r.line = r.msg[: w.start()].rstrip(), w["function"], w["file"], int(w["line"])
         if "level" in r.synthesised:
             r.level = infer_level(r.msg)
     return records
@@ -188,7 +241,7 @@ def stamped(records: Sequence[ConsoleLine]) -> list[ConsoleLine]:
     """`records` with every stamp set: printed stamps kept, missing ones spread between their printed neighbours
     (or 100 ms apart before the first / after the last printed one, or from BASE_NS when none is printed)."""
     known = [i for i, r in enumerate(records) if r.stamp_ns is not None]
-    out = [ConsoleLine(r.stamp_ns, r.level, r.name, r.msg, r.process, set(r.synthesised)) for r in records]
+    out = [replace(r, synthesised=set(r.synthesised)) for r in records]
     if not known:
         for i, r in enumerate(out):
             r.stamp_ns = BASE_NS + i * STEP_NS

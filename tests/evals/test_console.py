@@ -1,0 +1,106 @@
+"""Console formats beyond ros2 launch's default: rcutils' other stamps, colour, journald, the logging guide's
+function/file/line suffix and spdlog's levels, each read from real lines of the corpora (reformatted only where the
+test is about a format the corpus line was not printed in)."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+from pathlib import Path
+
+from rosbags.highlevel import AnyReader
+
+from hexar.evals.console import NS, parse_console, stamped
+from hexar.evals.real_nav2 import write_excerpt
+from hexar.events import contract as c
+
+# navigation2#3230, as launch printed it (planner_server's WARN)
+MSG = ("Cannot create a plan: the robot's start position is off the global costmap. Planning will always fail, are "
+       "you sure the robot has been properly localized?")
+STAMP_NS = 1664956617010995992
+# fanuc_driver#47 (real-modules corpus): RCUTILS_CONSOLE_OUTPUT_FORMAT with the logging guide's suffix
+FANUC = (
+    "[ros2_control_node-1] [ERROR 1781509379.841754359] [tolerances]: State tolerances failed for joint 4: "
+    "(check_state_tolerance_per_joint() at /opt/ros/jazzy/include/joint_trajectory_controller/"
+    "joint_trajectory_controller/tolerances.hpp:319)\n"
+    "[move_group-8] [INFO 1781509377.922598405] [moveit.simple_controller_manager.follow_joint_trajectory_controller_"
+    "handle]: /joint_trajectory_controller started execution (operator()() at ./src/follow_joint_trajectory_"
+    "controller_handle.cpp:75)"
+)
+
+
+def test_colour_escapes_are_not_part_of_the_record_however_the_paste_kept_them() -> None:
+    # rcutils colours a WARN line yellow and resets after it; launch puts its prefix in front
+    for esc in ("\x1b", "^[", ""):  # as printed, as `cat -v` shows it, and pasted without the escape character
+        line = f"[planner_server-2] {esc}[33m[WARN] [1664956617.010995992] [planner_server]: {MSG}{esc}[0m"
+        [r] = parse_console(line)
+        assert (r.level, r.name, r.process, r.msg, r.stamp_ns) == (30, "planner_server", "planner_server-2", MSG,
+                                                                   STAMP_NS), esc
+        assert not r.synthesised
+    [r] = parse_console(f"\x1b[31m[ERROR] [1664956617.010995992] [planner_server]: {MSG}\x1b[0m")
+    assert (r.level, r.name) == (40, "planner_server")
+
+
+def test_date_time_with_ms_and_nanosecond_stamps_of_rcutils_console_formats() -> None:
+    when = datetime(2024, 6, 11, 9, 29, 19, 304000, tzinfo=UTC)
+    want = int(when.timestamp()) * NS + 304_000_000
+    forms = (f"[WARN] [2024-06-11 09:29:19.304] [planner_server]: {MSG}",  # {date_time_with_ms} as the stamp
+             f"[2024-06-11 09:29:19.304] [WARN] [planner_server]: {MSG}",  # ... in front of the line
+             f"[WARN 2024-06-11 09:29:19.304] [planner_server]: {MSG}")
+    for line in forms:
+        [r] = parse_console(line)
+        assert (r.level, r.name, r.msg, r.stamp_ns) == (30, "planner_server", MSG, want), line
+        assert not r.synthesised
+    [r] = parse_console(f"[WARN] [{STAMP_NS}] [planner_server]: {MSG}")  # {time_as_nanoseconds}
+    assert r.stamp_ns == STAMP_NS
+
+
+def test_journald_lines_of_a_robot_started_by_systemd() -> None:
+    # turtlebot4#20 (blind2): robot_upstart's service, read with journalctl
+    text = ("Jun 14 11:09:32 ubuntu systemd[1]: Started \"bringup turtlebot4\".\n"
+            "Jun 14 11:09:35 ubuntu turtlebot4-start[2517]: [INFO] [launch]: Default logging verbosity is set to INFO\n"
+            "Jun 14 11:09:37 ubuntu turtlebot4-start[2517]: [ERROR] [launch]: Caught exception in launch (see debug "
+            "for traceback): executabl>")
+    started, verbosity, caught = parse_console(text)
+    assert started.msg == 'Started "bringup turtlebot4".'
+    assert (verbosity.name, verbosity.level, caught.name, caught.level) == ("launch", 20, "launch", 40)
+    assert caught.msg.startswith("Caught exception in launch")
+    assert verbosity.stamp_ns is not None and caught.stamp_ns is not None and started.stamp_ns is not None
+    assert caught.stamp_ns - verbosity.stamp_ns == 2 * NS and verbosity.stamp_ns - started.stamp_ns == 3 * NS
+    assert "stamp" not in caught.synthesised
+
+
+def test_function_file_and_line_of_the_logging_guides_format_leave_the_message() -> None:
+    failed, started = parse_console(FANUC)
+    assert failed.msg == "State tolerances failed for joint 4:"
+    assert (failed.function, failed.line) == ("check_state_tolerance_per_joint", 319)
+    assert failed.file.endswith("joint_trajectory_controller/tolerances.hpp")
+    assert started.msg == "/joint_trajectory_controller started execution"
+    assert (started.function, started.file, started.line) == (
+        "operator()", "./src/follow_joint_trajectory_controller_handle.cpp", 75)
+
+
+def test_the_recording_carries_function_file_and_line_as_rosout_does(tmp_path: Path) -> None:
+    path = write_excerpt(stamped(parse_console(FANUC)), "fanuc-47", True, tmp_path / "rec", None, "")
+    with AnyReader([Path(path)]) as reader:
+        logs = [reader.deserialize(raw, conn.msgtype)
+                for conn, _, raw in reader.messages([x for x in reader.connections if x.topic == c.ROSOUT])]
+    by_msg = {m.msg: m for m in logs}
+    m = by_msg["State tolerances failed for joint 4:"]
+    assert (m.function, m.line, m.level) == ("check_state_tolerance_per_joint", 319, 40)
+    assert m.file.endswith("tolerances.hpp")
+
+
+def test_spdlog_levels_of_a_driver_beside_ros_lines() -> None:
+    # moveit_pro_example_ws#930 (real-modules heldout5): the Feetech driver logs through spdlog
+    text = ("[INFO] [2026-09-10 21:38:06.236] Initialize hardware 'so101' \n"
+            "[2026-09-10 21:38:06.237] [info] Connecting to port: /dev/so101_follower\n"
+            "[2026-09-10 21:38:06.237] [error] FeetechHardware::on_init -> Open [/dev/so101_follower]: Bad file "
+            "descriptor\n"
+            "terminate called after throwing an instance of 'LibSerial::NotOpen'\n"
+            "  what():  Serial port not open.")
+    init, connecting, error = parse_console(text)
+    assert (init.msg, init.level) == ("Initialize hardware 'so101'", 20)
+    assert (connecting.msg, connecting.level) == ("Connecting to port: /dev/so101_follower", 20)
+    assert error.level == 40 and error.msg.startswith("FeetechHardware::on_init -> Open")
+    assert error.msg.endswith("what():  Serial port not open.")  # the crash's lines continue the error
+    assert "level" not in error.synthesised and init.stamp_ns == connecting.stamp_ns - NS // 1000
