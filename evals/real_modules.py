@@ -54,13 +54,15 @@ HELDOUT11_SUITE = "real-modules-heldout11"  # and in round 20
 HELDOUT12_SUITE = "real-modules-heldout12"  # and in round 21
 HELDOUT13_SUITE = "real-modules-heldout13"  # and in round 21, from stored web pages
 HELDOUT14_SUITE = "real-modules-heldout14"  # and a third in round 21
+HELDOUT15_SUITE = "real-modules-heldout15"  # and in round 22
 FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
          HELDOUT3_SUITE: "heldout3.yaml", HELDOUT4_SUITE: "heldout4.yaml",
          HELDOUT5_SUITE: "heldout5.yaml", HELDOUT6_SUITE: "heldout6.yaml",
          HELDOUT7_SUITE: "heldout7.yaml", HELDOUT8_SUITE: "heldout8.yaml",
          HELDOUT9_SUITE: "heldout9.yaml", HELDOUT10_SUITE: "heldout10.yaml",
          HELDOUT11_SUITE: "heldout11.yaml", HELDOUT12_SUITE: "heldout12.yaml",
-         HELDOUT13_SUITE: "heldout13.yaml", HELDOUT14_SUITE: "heldout14.yaml"}
+         HELDOUT13_SUITE: "heldout13.yaml", HELDOUT14_SUITE: "heldout14.yaml",
+         HELDOUT15_SUITE: "heldout15.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}
