@@ -78,7 +78,7 @@ _WHERE = re.compile(r"\s\((?P<function>\S*?)\(\) at (?P<file>\S+):(?P<line>\d+)\
 ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
                          r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
 WARN_WORDS = re.compile(r"\b(warn\w*|timed out|time out|dropping|cannot|could not|couldn't|unable|exceeded|"
-                        r"not available|does not exist|out of (map )?bounds)\b", re.I)
+                        r"not available|does not exist|out of (map )?bounds|(highly |strongly )?recommended)\b", re.I)
 
 
 @dataclass

@@ -126,7 +126,8 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
         finding.notes[0] = finding.notes[0].replace(LAUNCH_NAV, LAUNCH_ANY)
     last = last_words(logs_list, first) if first.kind == "process_died" else None
     if last is not None:
-        finding.notes[0] += f" right after it logged '{last.msg.strip().splitlines()[0]}'"
+        who = "it" if CONTAINER.search(first.node) is None else last.name.strip("/").split("/")[-1]
+        finding.notes[0] += f" right after {who} logged '{last.msg.strip().splitlines()[0]}'"
         finding.evidence.insert(0, Evidence.of_log(cause, last))
     if first.kind == "process_died" and not loader_failure(first.line) and not [
             ln for ln in decisive_errors(logs_list, first.line.t) if ln.t < first.line.t]:
@@ -163,14 +164,22 @@ def _transform_first(first: BringupFinding, waited: list[LogLine]) -> Finding:
     return out
 
 
+# rclcpp_components' containers (component_container, _mt, _isolated; Nav2's bring-up composes its servers into one
+# by default since Humble): the process that died hosts nodes of other names
+CONTAINER = re.compile(r"(?:^|_)container(?:_mt|_isolated)?$")
+
+
 def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
-    """The node's own last line before launch reported its process dead (what it was doing when it died), unless
-    it is a line a catalogue reads (a symptom or a cause, told on its own) or one that reads as another cause."""
+    """The node's own last line before launch reported its process dead (what it was doing when it died), or for a
+    component container the last line of any node but launch, unless it is a line a catalogue reads (a symptom or a
+    cause, told on its own) or one that reads as another cause."""
     if not died.node:
         return None
     cat = catalogue()
+    composed = CONTAINER.search(died.node) is not None
     before = [ln for ln in logs if ln.t <= died.t and ln is not died.line
-              and PROCESS_SUFFIX.sub("", ln.name.strip("/").split("/")[-1]) == died.node
+              and (PROCESS_SUFFIX.sub("", ln.name.strip("/").split("/")[-1]) == died.node
+                   or composed and ln.name not in ("", "launch"))
               and not ln.msg.startswith("process started with pid")]
     line = before[-1] if before else None
     if line is None or cat.match(line.msg) is not None or stack_entry(line) is not None or not quotable(line.msg):

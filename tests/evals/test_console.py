@@ -104,3 +104,12 @@ def test_spdlog_levels_of_a_driver_beside_ros_lines() -> None:
     assert error.level == 40 and error.msg.startswith("FeetechHardware::on_init -> Open")
     assert error.msg.endswith("what():  Serial port not open.")  # the crash's lines continue the error
     assert "level" not in error.synthesised and init.stamp_ns == connecting.stamp_ns - NS // 1000
+
+
+def test_advice_to_change_a_setting_reads_as_a_warning_where_no_level_was_printed() -> None:
+    # blind5 mirte: nav2_costmap_2d's inflation layer (an ERROR in its source), pasted bare and wrapped by the console
+    text = ("The configured inflation radius (0.150) is smaller than the computed inscribed\n"
+            "radius (0.150) of your footprint, it is highly recommended to set inflation\n"
+            "radius to be at least as big as the inscribed radius to avoid collisions")
+    [r] = parse_console(text)
+    assert r.level == 30 and "level" in r.synthesised

@@ -421,6 +421,21 @@ def test_a_died_process_is_told_with_what_it_last_logged(tmp_path: Path) -> None
     assert _quoted(answer, "Computing path to goal")
 
 
+def test_a_component_container_that_died_is_told_with_the_last_line_of_a_node_it_may_host(tmp_path: Path) -> None:
+    # Nav2's bring-up composes its servers into one component_container_isolated (engdiegomaia/toradex-demo-aquila-
+    # am69-ros2, docs/results/ml35-regressao-navegacao.md: route_server crashed configuring its ReroutingService)
+    lines = [("route_server", INFO, "Created route operation ReroutingService of type nav2_route::ReroutingService"),
+             ("route_server", INFO, "Configuring Rerouting service operation."),
+             ("component_container_isolated-4", ERROR, "process has died [pid 40, exit code -11, ...]")]
+    answer = _explain(tmp_path, [], lines)
+    assert answer.causes == [g.BRINGUP]
+    assert ("the process of component_container_isolated died (exit code -11) right after route_server logged "
+            "'Configuring Rerouting service operation.'") in answer.text
+    # a process of one node is still told only with that node's own lines
+    other = [("route_server", INFO, "Configuring Rerouting service operation."), *DIED]
+    assert "right after" not in _explain(tmp_path / "b", [], other).text
+
+
 # nav2_collision_monitor/src/collision_monitor_node.cpp:619@jazzy (WARN, one message over three literals)
 INVALID_SOURCE: Line = ("collision_monitor", WARN, "Robot to stop due to invalid source. Either due to data not "
                         "published yet, or to lack of new data received within the sensor timeout, or if impossible "
