@@ -164,8 +164,7 @@ def _transform_first(first: BringupFinding, waited: list[LogLine]) -> Finding:
     return out
 
 
-# rclcpp_components' containers (component_container, _mt, _isolated; Nav2's bring-up composes its servers into one
-# by default since Humble): the process that died hosts nodes of other names
+# rclcpp_components' containers, which host nodes of other names (Nav2's bring-up composes its servers into one)
 CONTAINER = re.compile(r"(?:^|_)container(?:_mt|_isolated)?$")
 
 
@@ -179,7 +178,7 @@ def last_words(logs: list[LogLine], died: BringupFinding) -> LogLine | None:
     composed = CONTAINER.search(died.node) is not None
     before = [ln for ln in logs if ln.t <= died.t and ln is not died.line
               and (PROCESS_SUFFIX.sub("", ln.name.strip("/").split("/")[-1]) == died.node
-                   or composed and ln.name not in ("", "launch"))
+                   or (composed and ln.name not in ("", "launch")))
               and not ln.msg.startswith("process started with pid")]
     line = before[-1] if before else None
     if line is None or cat.match(line.msg) is not None or stack_entry(line) is not None or not quotable(line.msg):
