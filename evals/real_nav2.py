@@ -105,7 +105,8 @@ HELDOUT_FILE = "heldout.yaml"
 # once before that round's tuning and once after (README.md in the data folder says who, when and how): the first
 # with the catalogue frozen before it was read, then one per round from round 4 on.
 BLIND_FILES = ("blind.yaml", "blind2.yaml", "blind3.yaml", "blind4.yaml", "blind5.yaml", "blind6.yaml", "blind7.yaml",
-               "blind8.yaml", "blind9.yaml", "blind10.yaml", "blind11.yaml", "blind12.yaml")
+               "blind8.yaml", "blind9.yaml", "blind10.yaml", "blind11.yaml", "blind12.yaml",
+               "blind13.yaml")
 
 
 @cache
