@@ -239,7 +239,8 @@ REACH_DOUBT = "reach_doubt"  # a finding's fact: the goal was judged reached rig
 def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:
     """`lines` of the controller less those right after the planner found no path or reported my start on occupied
     cells: rejected trajectories there do not tell an obstacle on the way from a goal off the map or a start in an
-    obstacle, so they are symptoms of what the planner met (its candidates), not a cause of their own."""
+    obstacle, so they are symptoms of what the planner met (its candidates), not a cause of their own. Transform
+    errors that begin only after the planner gave up cannot have made it give up either."""
     gave_up = [ln.t for ln in plan_failures(run)]
     gave_up += [n.line.t for n in run.notes if n.entry.cause == START_IN_OBSTACLE]
     return [ln for ln in lines if not any(0 <= ln.t - t <= SAME_ATTEMPT_S * 1e9 for t in gave_up)]

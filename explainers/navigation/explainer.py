@@ -255,7 +255,7 @@ class NavigationExplainer:
                 else:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
-                        lines = chain.unresolved(lines, before)
+                        lines = d.after_planner_gave_up(run, chain.unresolved(lines, before))
                     elif cause == g.CONTROLLER:
                         lines = d.after_planner_gave_up(run, lines)
                     lines = states.claimable(run.notes, cause, lines)

@@ -383,3 +383,18 @@ def test_optimizer_failing_after_a_start_on_occupied_cells_is_not_the_controller
     assert causes == [UNEXPLAINED] and "reported the cells under me as occupied" in text
     assert g.CONTROLLER not in stated_causes(text)
     assert _explain(tmp_path, _timed([mppi]), "mppi")[0] == [g.CONTROLLER]
+
+
+def test_transform_errors_right_after_the_planner_gave_up_do_not_explain_its_failure(tmp_path: Path) -> None:
+    # blind13 NavGreen wp10: the planner found no path, then the controller's extrapolation errors a second later
+    planner = [(2.0, "planner_server", WARN, "GridBased: failed to create plan, no valid path found."),
+               (2.0001, "planner_server", WARN,
+                "Planning algorithm GridBased failed to generate a valid path to (5.50, 0.00)")]
+    tf = (3.0, "controller_server", ERROR, "Extrapolation Error looking up target frame: Lookup would require "
+          "extrapolation into the future. from frame [map] to frame [odom]")
+    causes, text = _explain(tmp_path, _timed([*planner, tf]), "after")
+    assert causes == [UNEXPLAINED] and "my planner could not compute a route" in text
+    assert g.TRANSFORM not in stated_causes(text)
+    # the same error before the planner gave up, or long after it, is still the transform's
+    assert _explain(tmp_path, _timed([(1.0, *tf[1:]), *planner]), "before")[0] == [g.TRANSFORM]
+    assert _explain(tmp_path, _timed([*planner, (12.0, *tf[1:])]), "later")[0] == [g.TRANSFORM]
