@@ -33,8 +33,8 @@ BASE_NS = 1_700_000_000 * NS
 STEP_NS = NS // 10
 
 # a line's outer prefix: a numbered paste ("12: "), `grep -n` output ("115:[controller_server-2] …"), docker
-# compose's "service | ", a quote
-_OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|[\w.-]+\s+\| |> )")
+# compose's "service | ", an editor's or `cat -n`'s line number column ("1124  [bt_navigator-16] …"), a quote
+_OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|\s*\d+(?:\t| {2,})(?=\[)|[\w.-]+\s+\| |> )")
 # launch's process name is the command's basename, or the `name` a launch file gives it, spaces allowed
 # ("[controller_manager fd_controller-4]"): words joined by single spaces, then launch's "-N"
 _PROC_NAME = r"[\w./-]+(?: [\w./-]+)*-\d+"
@@ -50,6 +50,8 @@ LEVELED = re.compile(rf"^{_PROC}{_LEVEL}{_STAMP}(?:{_LOGGER})?(?P<msg>.*)$")
 LEVEL_STAMP = re.compile(rf"^{_PROC}\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\s+(?P<stamp>{_STAMP_TEXT})\]\s*"
                          rf"(?:{_LOGGER})?(?P<msg>.*)$")
 NAMED = re.compile(rf"^{_PROC}{_LOGGER}(?P<msg>.*)$")
+# RCUTILS_CONSOLE_OUTPUT_FORMAT "[{time}] [{name}]: {message}" or "[{time}] {message}": no level
+STAMP_ONLY = re.compile(rf"^{_PROC}\[(?P<stamp>\d{{9,10}}\.\d+)\]\s+(?:{_LOGGER})?(?P<msg>\S.*)$")
 # spdlog's default "[date] [info] msg", which drivers built on spdlog print beside ROS's own lines
 SPDLOG = re.compile(rf"^{_PROC}\[(?P<level>trace|debug|info|warning|error|critical)\]\s+(?P<msg>\S.*)$")
 _SPDLOG_LEVELS = {"trace": "DEBUG", "critical": "FATAL"}
@@ -181,6 +183,10 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     if m:
         msg = m["msg"] if m["logger"] is not None else re.sub(r"^:\s*", "", m["msg"])  # "[ERROR] : msg"
         records.append(_record(m["level"].upper(), m["stamp"], m["logger"], msg, m["proc"]))
+        return
+    o = STAMP_ONLY.match(line)
+    if o:
+        records.append(_record(None, o["stamp"], o["logger"], o["msg"], o["proc"]))
         return
     d = SPDLOG.match(line)
     if d:

@@ -25,7 +25,7 @@ from hexar.events.records import ERROR, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import REACHED, TRANSFORM_PLAN, Entry, catalogue
-from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Finding, Run, attempts, plan_failures
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
@@ -321,7 +321,7 @@ def slow_retries(run: Run) -> Finding | None:
     found = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(picks, key=lambda x: x.t)])
     if run.end is not None:
         found.evidence.append(Evidence.of_log(UNEXPLAINED, run.end))
-    found.facts = {"plan_failures": float(len(plans)), "progress_failures": float(len(stuck)),
+    found.facts = {"plan_failures": float(attempts(plans)), "progress_failures": float(len(stuck)),
                    "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0}
     found.notes.append(_recovered(behaviours, bool(clears)))
     return found

@@ -226,6 +226,16 @@ def plan_failures(run: Run) -> list[LogLine]:
     return [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "plan_failed"]
 
 
+# One planning attempt that fails logs two lines within milliseconds: the plugin's ("GridBased: failed to create
+# plan ...") and the planner server's ("Planning algorithm GridBased failed to generate a valid path to ...").
+ONE_ATTEMPT_S = 0.5
+
+
+def attempts(lines: list[LogLine]) -> int:
+    """How many planning attempts `lines` (plan_failures, oldest first) come from."""
+    return sum(1 for i, ln in enumerate(lines) if i == 0 or ln.t - lines[i - 1].t > ONE_ATTEMPT_S * 1e9)
+
+
 # tf2_ros's message-filter drop reasons that say a message was stamped before the transforms it needs (geometry2
 # tf2_ros/message_filter.h): data and transforms from clocks that disagree.
 _STAMPED_EARLY = ("earlier than all the data in the transform cache", "timestamp on the message is too old")

@@ -280,7 +280,7 @@ class NavigationExplainer:
         plans = d.plan_failures(run)
         if plans:
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln in plans[:2]])
-            found.facts = {"plan_failures": float(len(plans))}
+            found.facts = {"plan_failures": float(d.attempts(plans))}
             if run.end is not None and run.outcome == "failed":
                 found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
             return found

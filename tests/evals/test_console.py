@@ -113,3 +113,19 @@ def test_advice_to_change_a_setting_reads_as_a_warning_where_no_level_was_printe
             "radius to be at least as big as the inscribed radius to avoid collisions")
     [r] = parse_console(text)
     assert r.level == 30 and "level" in r.synthesised
+
+
+def test_line_number_columns_and_a_format_with_a_stamp_but_no_level() -> None:
+    # blind13 NavGreen: lines quoted from a log file with its line numbers; blind1 frontier-exploration's
+    # "[{time}] [{name}]: {message}"
+    text = ("1124  [bt_navigator-16] [1776645869.700] Begin navigating from current location (7.00, 0.00) to "
+            "(5.50, 0.00)\n"
+            "1125  [planner_server-13] [1776645869.886] GridBased: failed to create plan, no valid path found.\n"
+            "[1765479882.488445639] [nav2_costmap_2d]: Robot is out of bounds of the costmap!")
+    begin, failed, bounds = parse_console(text)
+    assert (begin.process, begin.stamp_ns, begin.level) == ("bt_navigator-16", 1776645869700000000, 20)
+    assert begin.msg.startswith("Begin navigating from current location (7.00, 0.00)")
+    assert (failed.process, failed.level, failed.msg) == (
+        "planner_server-13", 40, "GridBased: failed to create plan, no valid path found.")
+    assert (bounds.name, bounds.stamp_ns, bounds.level) == ("nav2_costmap_2d", 1765479882488445639, 30)
+    assert bounds.msg == "Robot is out of bounds of the costmap!" and bounds.synthesised == {"level"}

@@ -398,3 +398,14 @@ def test_transform_errors_right_after_the_planner_gave_up_do_not_explain_its_fai
     # the same error before the planner gave up, or long after it, is still the transform's
     assert _explain(tmp_path, _timed([(1.0, *tf[1:]), *planner]), "before")[0] == [g.TRANSFORM]
     assert _explain(tmp_path, _timed([*planner, (12.0, *tf[1:])]), "later")[0] == [g.TRANSFORM]
+
+
+def test_a_failed_planning_attempt_is_counted_once_though_it_logs_two_lines(tmp_path: Path) -> None:
+    # navigation2's planner plugin and planner server each log one line per failed attempt (blind13 NavGreen wp10)
+    attempt = [(0.0, "planner_server", WARN, "GridBased: failed to create plan, no valid path found."),
+               (0.0001, "planner_server", WARN,
+                "Planning algorithm GridBased failed to generate a valid path to (5.50, 0.00)")]
+    causes, text = _explain(tmp_path, _timed(attempt), "one")
+    assert causes == [UNEXPLAINED] and "my planner could not compute a route to it (1 time)" in text
+    again = [(at + 1.0, *rest) for at, *rest in attempt]
+    assert "could not compute a route to it (2 times)" in _explain(tmp_path, _timed([*attempt, *again]), "two")[1]
