@@ -63,9 +63,9 @@ _CLOCK = r"(?P<clock>\d{1,2}:\d{2}:\d{2}(?:\.\d+)?)(?:\s*(?P<ampm>AM|PM))?(?:\s*
 CLOCK_LEVELED = re.compile(rf"^{_PROC}{_LEVEL}\[{_CLOCK}\]\s*(?:{_LOGGER})?(?P<msg>.*)$")
 CLOCK_PREFIX = re.compile(rf"^{_CLOCK}\s+(?P<rest>\S.*)$")
 # launch's screen format with timestamps ("{created:.7f} {line}"): the wall time it printed the line, in epoch seconds
-EPOCH_PREFIX = re.compile(r"^(?P<epoch>\d{9,10}\.\d+)\s+(?P<rest>\[.*)$")
+EPOCH_PREFIX = re.compile(r"^(?P<at>\d{9,10}\.\d+)\s+(?P<rest>\[.*)$")
 # a date-time in front of the line ("[{date_time_with_ms}] [{severity}] ...", or bare)
-DATE_PREFIX = re.compile(rf"^\[?(?P<date>{_DATE_TIME})\]?\s+(?P<rest>\S.*)$")
+DATE_PREFIX = re.compile(rf"^\[?(?P<at>{_DATE_TIME})\]?\s+(?P<rest>\S.*)$")
 # journald's short formats (`journalctl` of a robot started by systemd or robot_upstart): "Nov 14 22:13:20 host
 # unit[pid]: ", "2024-06-11T09:29:19+0000 host unit[pid]: "; the time stamps the records that print none
 JOURNAL_PREFIX = re.compile(r"^(?:[A-Z][a-z]{2} [ \d]\d |\d{4}-\d{2}-\d{2}T)(?P<clock>\d{2}:\d{2}:\d{2}(?:\.\d+)?)\S* "
@@ -98,15 +98,19 @@ class ConsoleLine:
     line: int = 0
 
 
+def _fraction_ns(digits: str) -> int:
+    """The nanoseconds of a second's decimal digits ("304" -> 304_000_000)."""
+    return int((digits + "000000000")[:9])
+
+
 def _stamp_ns(text: str) -> int:
-    if "-" in text:  # {date_time_with_ms}
-        whole, _, frac = text.replace(",", ".").replace("T", " ").partition(".")
-        day = datetime.strptime(whole, "%Y-%m-%d %H:%M:%S").replace(tzinfo=UTC)
-        return int(day.timestamp()) * NS + int((frac + "000000000")[:9])
-    if "." not in text and len(text) >= 16:  # {time_as_nanoseconds}
+    if "." not in text and "-" not in text and len(text) >= 16:  # {time_as_nanoseconds}
         return int(text)
-    sec, _, frac = text.partition(".")
-    return int(sec) * NS + int((frac + "000000000")[:9])
+    whole, _, frac = text.replace(",", ".").partition(".")
+    if "-" in whole:  # {date_time_with_ms}
+        day = datetime.strptime(whole.replace("T", " "), "%Y-%m-%d %H:%M:%S").replace(tzinfo=UTC)
+        return int(day.timestamp()) * NS + _fraction_ns(frac)
+    return int(whole) * NS + _fraction_ns(frac)
 
 
 def infer_level(msg: str) -> int:
@@ -122,7 +126,7 @@ def _clock_ns(clock: str, ampm: str | None) -> int:
     hours = int(h) % 12 + (12 if ampm == "PM" else 0) if ampm else int(h)
     whole, _, frac = sec.partition(".")
     day = BASE_NS - BASE_NS % (86_400 * NS)
-    return day + (hours * 3600 + int(m) * 60 + int(whole)) * NS + int((frac + "000000000")[:9])
+    return day + (hours * 3600 + int(m) * 60 + int(whole)) * NS + _fraction_ns(frac)
 
 
 def _record(level: str | None, stamp: str | None, logger: str | None, msg: str, proc: str | None,
@@ -152,15 +156,20 @@ def _is_continuation(raw: str, previous_raw: str, records: Sequence[ConsoleLine]
     return previous_raw[-1:].isspace()
 
 
+def _stamp_all(records: Sequence[ConsoleLine], stamp_ns: int, keep_own: bool) -> None:
+    """`records` stamped with a prefix's time (unless `keep_own` and a record printed its own stamp)."""
+    for r in records:
+        if not (keep_own and r.stamp_ns is not None):
+            r.stamp_ns = stamp_ns
+            r.synthesised.discard("stamp")
+
+
 def _behind_prefix(rest: str, stamp_ns: int, records: list[ConsoleLine], keep_own: bool) -> None:
     """The records of a line printed behind a time prefix, stamped with that time (unless `keep_own` and the line
     prints its own stamp)."""
     inner: list[ConsoleLine] = []
     _parse_line(rest, "", inner)
-    for r in inner:
-        if not (keep_own and r.stamp_ns is not None):
-            r.stamp_ns = stamp_ns
-            r.synthesised.discard("stamp")
+    _stamp_all(inner, stamp_ns, keep_own)
     records.extend(inner)
 
 
@@ -176,8 +185,7 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         return
     e = EPOCH_PREFIX.match(line) or DATE_PREFIX.match(line)
     if e:  # the node's own stamp, where printed, is the record's
-        _behind_prefix(e["rest"], _stamp_ns(e["epoch"] if "epoch" in e.re.groupindex else e["date"]), records,
-                       keep_own=True)
+        _behind_prefix(e["rest"], _stamp_ns(e["at"]), records, keep_own=True)
         return
     m = LEVELED.match(line) or LEVEL_STAMP.match(line)
     if m:
@@ -229,10 +237,8 @@ def parse_console(text: str) -> list[ConsoleLine]:
         if line.strip():
             n = len(records)
             _parse_line(line, previous, records)
-            for r in records[n:] if at is not None else ():
-                if r.stamp_ns is None:
-                    r.stamp_ns = at
-                    r.synthesised.discard("stamp")
+            if at is not None:  # not through _behind_prefix: a journal's wrapped line still continues the one before
+                _stamp_all(records[n:], at, keep_own=True)
         previous = line
     for r in records:
         r.msg = r.msg.rstrip()
