@@ -34,6 +34,7 @@ from hexar.evals.real_nav2 import (
     OUTCOMES,
     TaskMaker,
     parse_entries,
+    read_text_file,
     task_plan,
     write_excerpt,
 )
@@ -119,6 +120,11 @@ def load_excerpts(suite: str) -> tuple[Excerpt, ...]:
     except OSError as err:
         raise HexarError(f"cannot read evals/data/real_modules/{FILES[suite]}: {err}") from err
     return parse_corpus(text)
+
+
+def read_cases(path: Path) -> tuple[Excerpt, ...]:
+    """A user's own excerpts (`hexar eval --suite real-modules --cases FILE`), checked as the corpus is."""
+    return parse_entries(read_text_file(path, "--cases"), _excerpt, f"--cases file {path}", f"ids in {path}")
 
 
 def _task(task_id: str, skill: str, status: str, error: str) -> dict[str, Any]:
@@ -226,8 +232,9 @@ def summarise(results: Sequence[Result], key: Callable[[Result], str] | None = N
     return out
 
 
-def build_report(results: Sequence[Result], backend: str, suite: str) -> dict[str, Any]:
-    return {"suite": suite, "data": FILES[suite], "backend": backend, "n": len(results),
+def build_report(results: Sequence[Result], backend: str, suite: str, cases: Path | None = None) -> dict[str, Any]:
+    data = {"data": str(cases), "cases": True} if cases is not None else {"data": FILES[suite]}
+    return {"suite": suite, **data, "backend": backend, "n": len(results),
             "summary": summarise(results)["all"],
             "by_module": dict(sorted(summarise(results, key=lambda r: r.module).items())),
             "by_cause": dict(sorted(summarise(results, key=lambda r: r.cause).items())),
@@ -235,11 +242,13 @@ def build_report(results: Sequence[Result], backend: str, suite: str) -> dict[st
 
 
 def run_suite(backend: Any, suite: str = SUITE, runs: Path | None = None, ask: Ask | None = None,
-              excerpts: Sequence[Excerpt] | None = None) -> dict[str, Any]:
-    excerpts = load_excerpts(suite) if excerpts is None else excerpts
+              excerpts: Sequence[Excerpt] | None = None, cases: Path | None = None) -> dict[str, Any]:
+    """`cases`: a file of the user's own excerpts in the corpus's format, run instead of the suite's data."""
+    if excerpts is None:
+        excerpts = read_cases(cases) if cases is not None else load_excerpts(suite)
     ask = ask or hexar_asker(backend)
     if runs is None:
         with tempfile.TemporaryDirectory(prefix="hexar-real-modules-") as tmp:
-            return build_report(evaluate(excerpts, Path(tmp), ask), backend.name, suite)
+            return build_report(evaluate(excerpts, Path(tmp), ask), backend.name, suite, cases)
     runs.mkdir(parents=True, exist_ok=True)
-    return build_report(evaluate(excerpts, runs, ask), backend.name, suite)
+    return build_report(evaluate(excerpts, runs, ask), backend.name, suite, cases)

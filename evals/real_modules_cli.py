@@ -10,8 +10,8 @@ from typing import Any
 from rich.console import Console
 
 from hexar.errors import HexarError
-from hexar.evals.real_modules import FILES, run_suite
-from hexar.evals.real_nav2_cli import pct, summary_table, unknown_suite
+from hexar.evals.real_modules import FILES, SUITE, run_suite
+from hexar.evals.real_nav2_cli import check_cases, data_path, pct, summary_table, unknown_suite
 
 
 def _row(name: str, row: dict[str, Any]) -> str:
@@ -24,7 +24,7 @@ def render(report: dict[str, Any]) -> str:
     head = ["| {0} | excerpts | cause named (logs show it) ↑ | no unsupported cause ↑ | honest not-enough | wrong ↓ |",
             "|---|---|---|---|---|---|"]
     lines = [f"# hexar eval --suite {report['suite']} ({report['backend']})", "",
-             f"{report['n']} real console excerpts (evals/data/real_modules/{report['data']}), each written as a "
+             f"{report['n']} real console excerpts ({data_path(report, 'real_modules')}), each written as a "
              "rosbag2 recording; half of each outcome with a task on /task_info, half with none. Graded from the "
              "answer's text.", "", "### By module", "", head[0].format("module"), head[1],
              *(_row(k, v) for k, v in report["by_module"].items()), _row("all", report["summary"]), "",
@@ -41,19 +41,20 @@ def render(report: dict[str, Any]) -> str:
 
 
 def real_modules_main(suite: str, out: Path, runs: Path | None, llm: str, console: Console,
-                      others: dict[str, object]) -> int:
+                      others: dict[str, object], cases: Path | None = None) -> int:
     """Checks the options that apply, runs the suite and writes its report under `out`."""
     from hexar.agent.backends import resolve
 
     if suite not in FILES:
         raise unknown_suite(suite)
+    check_cases(suite, cases, SUITE)
     if given := [name for name, value in others.items() if value]:
         raise HexarError(f"{', '.join(given)} do not apply to --suite {suite}")
     if out.exists() and not out.is_dir():
         raise HexarError(f"--out must be a folder: {out}")
     if runs is not None and runs.exists() and not runs.is_dir():
         raise HexarError(f"--runs must be a folder: {runs}")
-    report = run_suite(resolve(llm), suite, runs)
+    report = run_suite(resolve(llm), suite, runs, cases=cases)
     out.mkdir(parents=True, exist_ok=True)
     (out / "report.json").write_text(json.dumps(report, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
     (out / "results.md").write_text(render(report), encoding="utf-8")

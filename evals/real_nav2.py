@@ -10,6 +10,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import cache
 from importlib import resources
+from pathlib import Path
 from typing import Any, Protocol, TypeVar
 
 import yaml
@@ -84,7 +85,7 @@ def parse_entries(text: str, make: Callable[[Any, int], E], corpus: str, ids_of:
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as err:
-        raise HexarError(f"the {corpus} is not valid YAML: {err}") from err
+        raise HexarError(f"the {corpus} is not valid YAML: {' '.join(str(err).split())}") from err
     if not isinstance(data, list) or not data:
         raise HexarError(f"the {corpus} must be a non-empty list of excerpts")
     out = tuple(make(e, i) for i, e in enumerate(data))
@@ -113,6 +114,22 @@ BLIND_FILES = ("blind.yaml", "blind2.yaml", "blind3.yaml", "blind4.yaml", "blind
 def load_excerpts(name: str) -> tuple[Excerpt, ...]:
     text = resources.files("hexar.evals").joinpath(f"data/real_nav2/{name}").read_text(encoding="utf-8")
     return parse_corpus(text)
+
+
+def read_text_file(path: Path, what: str) -> str:
+    """A data file the user named, or one HexarError that says which and why."""
+    if path.is_dir():
+        raise HexarError(f"{what} must be a YAML file, not a folder: {path}")
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise HexarError(f"cannot read {what} {path}: {err}") from err
+
+
+def read_cases(path: Path) -> tuple[Excerpt, ...]:
+    """A user's own excerpts (`hexar eval --suite real-nav2 --cases FILE`), checked as the corpus is."""
+    return parse_entries(read_text_file(path, "--cases"), lambda e, i: _excerpt(e, i, NAV_CAUSES),
+                         f"--cases file {path}", f"ids in {path}")
 
 
 def corpus() -> tuple[Excerpt, ...]:

@@ -31,6 +31,7 @@ class RealNav2Options:
     tolerance: float = 0.02
     progress: bool = True
     suite: str = SUITE
+    cases: Path | None = None
 
 
 def pct(x: float | None) -> str:
@@ -56,7 +57,7 @@ def render(report: dict[str, Any]) -> str:
     lines = [
         f"# hexar eval --suite {report['suite']} ({report['backend']})", "",
         f"{report['n']} real Nav2 console excerpts from {report['sources']} public threads "
-        f"(evals/data/real_nav2/{report['data']}), each written as a rosbag2 recording; half with a navigation task on "
+        f"({data_path(report, 'real_nav2')}), each written as a rosbag2 recording; half with a navigation task on "
         "/task_info, half with none. Cause named is counted over the excerpts whose pasted lines show the "
         "diagnosed cause; honest not-enough (\"the logs do not show why\") is counted apart from wrong.", "",
         *_table("All excerpts (graded on the answer's text)", {"all": s}, "set"),
@@ -74,6 +75,11 @@ def render(report: dict[str, Any]) -> str:
     if not wrong:
         lines.append("none")
     return "\n".join(lines) + "\n"
+
+
+def data_path(report: dict[str, Any], folder: str) -> str:
+    """Where the report's excerpts came from: a data file of the suite, or the user's --cases file."""
+    return report["data"] if report.get("cases") else f"evals/data/{folder}/{report['data']}"
 
 
 def baseline_of(report: dict[str, Any]) -> dict[str, Any]:
@@ -141,7 +147,7 @@ def real_nav2_command(opts: RealNav2Options, console: Console | None = None) -> 
     if baseline is not None and baseline["backend"] != backend.name:
         raise HexarError(f"the baseline {opts.baseline} is for backend {baseline['backend']!r}, this run uses "
                          f"{backend.name!r}")
-    report = run_suite(backend, opts.runs, suite=opts.suite)
+    report = run_suite(backend, opts.runs, suite=opts.suite, cases=opts.cases)
     worse = compare(report, baseline, opts.tolerance) if baseline is not None else []
     if baseline is not None:
         report["regression"] = {"baseline": str(opts.baseline), "worse": worse}
@@ -170,12 +176,20 @@ def unknown_suite(suite: str) -> HexarError:
 
 def real_nav2_main(suite: str, out: Path, runs: Path | None, llm: str, baseline: Path | None,
                    write_baseline: Path | None, tolerance: float, console: Console,
-                   paper_only: dict[str, object]) -> int:
+                   paper_only: dict[str, object], cases: Path | None = None) -> int:
     """`hexar eval --suite NAME` for any suite but the paper's: checks the options that apply, then runs."""
     if suite not in SUITES:
         raise unknown_suite(suite)
+    check_cases(suite, cases, SUITE)
     if given := [name for name, value in paper_only.items() if value]:
         raise HexarError(f"{', '.join(given)} belong to the paper's suite, not to --suite {suite}")
     opts = RealNav2Options(out=out, runs=runs, llm=llm, baseline=baseline, write_baseline=write_baseline,
-                           tolerance=tolerance, suite=suite)
+                           tolerance=tolerance, suite=suite, cases=cases)
     return real_nav2_command(opts, console)
+
+
+def check_cases(suite: str, cases: Path | None, base: str) -> None:
+    """--cases replaces a suite's data, so it goes with the suite that names the file's format, not a data set."""
+    if cases is not None and suite != base:
+        raise HexarError(f"--cases goes with --suite real-nav2 or --suite real-modules (the file's format), "
+                         f"not --suite {suite}")

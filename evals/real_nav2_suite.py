@@ -33,6 +33,7 @@ from hexar.evals.real_nav2 import (
     blind_set,
     corpus,
     heldout,
+    read_cases,
     task_plan,
     write_recording,
 )
@@ -200,11 +201,12 @@ def by_distro(results: Sequence[Result]) -> dict[str, dict[str, Any]]:
     return {d: rows[d] for d in DISTROS if d in rows}
 
 
-def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Excerpt], suite: str = SUITE
-                 ) -> dict[str, Any]:
+def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Excerpt], suite: str = SUITE,
+                 cases: Path | None = None) -> dict[str, Any]:
     sources = sorted({e.source for e in excerpts})
+    data = {"data": str(cases), "cases": True} if cases is not None else {"data": SUITES[suite][0]}
     return {
-        "suite": suite, "data": SUITES[suite][0], "backend": backend, "n": len(results), "sources": len(sources),
+        "suite": suite, **data, "backend": backend, "n": len(results), "sources": len(sources),
         "summary": summarise(results)["all"], "by_distro": by_distro(results),
         "by_cause": dict(sorted(summarise(results, key=lambda r: r.cause).items())),
         "excerpts": [r.as_dict() for r in results],
@@ -213,11 +215,14 @@ def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Exc
 
 def run_suite(backend: Backend, runs: Path | None = None, ask: Ask | None = None,
               step: Callable[[str], None] | None = None,
-              excerpts: Sequence[Excerpt] | None = None, suite: str = SUITE) -> dict[str, Any]:
-    excerpts = SUITES[suite][1]() if excerpts is None else excerpts
+              excerpts: Sequence[Excerpt] | None = None, suite: str = SUITE, cases: Path | None = None
+              ) -> dict[str, Any]:
+    """`cases`: a file of the user's own excerpts in the corpus's format, run instead of the suite's data."""
+    if excerpts is None:
+        excerpts = read_cases(cases) if cases is not None else SUITES[suite][1]()
     ask = ask or hexar_asker(backend)
     if runs is None:
         with tempfile.TemporaryDirectory(prefix="hexar-real-nav2-") as tmp:
-            return build_report(evaluate(excerpts, Path(tmp), ask, step), backend.name, excerpts, suite)
+            return build_report(evaluate(excerpts, Path(tmp), ask, step), backend.name, excerpts, suite, cases)
     runs.mkdir(parents=True, exist_ok=True)
-    return build_report(evaluate(excerpts, runs, ask, step), backend.name, excerpts, suite)
+    return build_report(evaluate(excerpts, runs, ask, step), backend.name, excerpts, suite, cases)

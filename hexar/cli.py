@@ -376,6 +376,9 @@ def eval_(
                                        "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",
+    cases: Annotated[Path | None, typer.Option(help="your own excerpts, a YAML file in the format of the "
+                                               "real-nav2 or real-modules data (their README.md), run with "
+                                               "--suite real-nav2 or --suite real-modules")] = None,
 ) -> None:
     """Reproduce the paper's evaluation: 180 cases x HEXAR and both baselines, graded, tested, plotted."""
 
@@ -387,16 +390,19 @@ def eval_(
                                      others={"--method": method, "--scenario": scenario, "--module": module,
                                              "--kind": kind, "--first": first, "--judge": judge,
                                              "--audit": audit or None, "--baseline": baseline,
-                                             "--write-baseline": write_baseline})
+                                             "--write-baseline": write_baseline}, cases=cases)
         if suite != "paper":
             from hexar.evals.real_nav2_cli import real_nav2_main
 
             return real_nav2_main(suite, out_dir, runs, llm, baseline, write_baseline, tolerance, out,
                                   paper_only={"--method": method, "--scenario": scenario, "--module": module,
                                               "--kind": kind, "--first": first, "--judge": judge,
-                                              "--audit": audit or None})
+                                              "--audit": audit or None}, cases=cases)
+        from hexar.errors import HexarError
         from hexar.evals.cli import EvalOptions, eval_command
 
+        if cases is not None:
+            raise HexarError("--cases goes with --suite real-nav2 or --suite real-modules, not the paper's suite")
         opts = EvalOptions(
             out=out_dir, runs=runs, llm=llm, methods=tuple(method or ()), scenarios=tuple(scenario or ()),
             modules=tuple(module or ()), kinds=tuple(kind or ()), first=first, judge=judge, audit=audit,
