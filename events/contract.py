@@ -1,8 +1,8 @@
 """The HEXAR topic contract: what a compatible robot records, and what the event log decodes.
 
 The first seven topics are those of the original HEXAR release; the two skill topics are ours (README,
-"Topic contract"); the last four are ordinary Nav2 topics that most robots record anyway (README, "What a robot
-must record").
+"Topic contract"); the rest are ordinary Nav2 and MoveIt topics that most robots record anyway (README, "What a
+robot must record"), the two occupancy grids included.
 """
 
 from __future__ import annotations
@@ -23,6 +23,9 @@ CMD_VEL = "/cmd_vel"
 ODOM = "/odom"
 GOAL_POSE = "/goal_pose"
 NAV_STATUS = "/navigate_to_pose/_action/status"
+# The maps the planner plans on: map_server's static map and the global costmap (Costmap2DPublisher's topic).
+MAP = "/map"
+GLOBAL_COSTMAP = "/global_costmap/costmap"
 # MoveIt's and the arm controllers' action statuses: arm tasks are derived from them (events/arm_goals.py).
 MOVE_ACTION_STATUS = "/move_action/_action/status"
 EXECUTE_TRAJECTORY_STATUS = "/execute_trajectory/_action/status"
@@ -40,6 +43,7 @@ TWIST_STAMPED_TYPE = "geometry_msgs/msg/TwistStamped"
 ODOM_TYPE = "nav_msgs/msg/Odometry"
 POSE_STAMPED_TYPE = "geometry_msgs/msg/PoseStamped"
 GOAL_STATUS_TYPE = "action_msgs/msg/GoalStatusArray"
+GRID_TYPE = "nav_msgs/msg/OccupancyGrid"
 
 ASK_HUMAN_STATUS_NAME = "/skills/skill_ask_human_for_help"
 SAY_STATUS_NAME = "/skills/skill_say"
@@ -84,6 +88,11 @@ CONTRACT: tuple[TopicSpec, ...] = (
               "a navigation goal (RViz's Nav2 Goal); tasks are derived from goals when /task_info is absent"),
     TopicSpec(NAV_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
               "NavigateToPose goals and how they ended (4 succeeded, 5 canceled, 6 aborted)"),
+    TopicSpec(MAP, GRID_TYPE, "header.frame_id, info.resolution/width/height/origin, data",
+              "map_server's map (trinary: 100 occupied, 0 free, -1 unknown); where a goal or the robot lay on it"),
+    TopicSpec(GLOBAL_COSTMAP, GRID_TYPE, "header.frame_id, info.resolution/width/height/origin, data",
+              "the planner's costmap as nav2_costmap_2d's publisher translates it: 100 lethal, 99 inscribed, 1-98 "
+              "cost, 0 free, -1 unknown"),
     TopicSpec(MOVE_ACTION_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
               "MoveIt's MoveGroup (plan and execute) goals; arm tasks are derived from them"),
     TopicSpec(EXECUTE_TRAJECTORY_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
@@ -111,6 +120,8 @@ ACCEPTED_TYPES[CMD_VEL] = frozenset({TWIST_TYPE, TWIST_STAMPED_TYPE})
 ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
 # The ordinary Nav2 topics: optional; another type under one of these names is skipped with a warning.
 NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
+# The grids a planner failure is checked on: optional like the ordinary Nav2 topics.
+GRID_TOPICS: frozenset[str] = frozenset({MAP, GLOBAL_COSTMAP})
 # What deriving tasks from Nav2 goals reads (recordings without /task_info).
 NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})
 ARM_STATUS_TOPICS: frozenset[str] = frozenset({MOVE_ACTION_STATUS, EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})

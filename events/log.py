@@ -16,6 +16,7 @@ from hexar.events.records import (
     BoolSample,
     GoalPose,
     GoalStatus,
+    Grid,
     LogLine,
     OdomSample,
     PoseSample,
@@ -80,6 +81,7 @@ class EventLog:
     odometry: list[OdomSample] = field(default_factory=list)
     goals: list[GoalPose] = field(default_factory=list)
     goal_statuses: list[GoalStatus] = field(default_factory=list)
+    grids: list[Grid] = field(default_factory=list)
     _times: dict[str, list[int]] = field(default_factory=dict, repr=False)
 
     def finish(self) -> None:
@@ -92,6 +94,7 @@ class EventLog:
             records.sort(key=lambda r: r.t)
         for motion in (self.twists, self.odometry, self.goals, self.goal_statuses):
             motion.sort(key=lambda r: r.t)
+        self.grids.sort(key=lambda r: r.t)
         self.__dict__.pop("tasks", None)
         self._times.clear()
 
@@ -198,3 +201,11 @@ class View:
         self._check(c.ODOM)
         start, end = self._bounds()
         return _slice_by_t(self.log.odometry, self.log.times("odometry", self.log.odometry), start, end)
+
+    def grid_at(self, topic: str, t: int) -> Grid | None:
+        """The grid of `topic` current at time t: the latest before it, else (a map latched before the recording
+        began reaches it only then) the first; it may predate the window, as a map usually does."""
+        self._check(topic)
+        grids = [g for g in self.log.grids if g.topic == topic]
+        before = [g for g in grids if g.t <= t]
+        return before[-1] if before else (grids[0] if grids else None)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import sqlite3
+import zlib
 from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
@@ -41,6 +42,7 @@ from hexar.events.records import (
     BoolSample,
     GoalPose,
     GoalStatus,
+    Grid,
     LogLine,
     OdomSample,
     PoseSample,
@@ -237,8 +239,8 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
             continue
         expected = c.TYPE_OF.get(key)
-        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[key] and (key in c.NAV2_TOPICS
-                                                                                  or key in c.ARM_STATUS_TOPICS):
+        if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[key] and (
+                key in c.NAV2_TOPICS or key in c.ARM_STATUS_TOPICS or key in c.GRID_TOPICS):
             # an ordinary topic name that this robot uses for another type: not ours to read, not an error
             warnings.append(f"skipped {conn.topic}: type {conn.msgtype}, HEXAR reads it as {expected}")
             continue
@@ -328,6 +330,29 @@ def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw:
             log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status), topic))
 
 
+def _grid(log: EventLog, m: Any, topic: str, t: int, warnings: list[str]) -> None:
+    info = m.info
+    cells = bytes(m.data.astype("int8").tobytes()) if hasattr(m.data, "astype") else bytes(
+        (int(v) + 256) % 256 for v in m.data)
+    if len(cells) != int(info.width) * int(info.height) or not float(info.resolution) > 0:
+        # a grid that does not hold what its header says cannot place a point: left out, never guessed at
+        warnings.append(f"{topic}: left out a grid of {info.width} x {info.height} cells at resolution "
+                        f"{info.resolution} that holds {len(cells)} values")
+        return
+    grid = _grid_record(m, topic, t, cells)
+    last = next((g for g in reversed(log.grids) if g.topic == topic), None)
+    if last is None or (last.packed, last.width, last.origin_x, last.origin_y, last.frame) != (
+            grid.packed, grid.width, grid.origin_x, grid.origin_y, grid.frame):
+        log.grids.append(grid)  # an unchanged grid adds nothing: the one before stands for it
+
+
+def _grid_record(m: Any, topic: str, t: int, cells: bytes) -> Grid:
+    info, o = m.info, m.info.origin
+    return Grid(stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t, topic, str(m.header.frame_id),
+                float(info.resolution), int(info.width), int(info.height), float(o.position.x),
+                float(o.position.y), _yaw(float(o.orientation.z), float(o.orientation.w)), zlib.compress(cells, 1))
+
+
 def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, ros2: bool, standard: bool,
             warnings: list[str]) -> None:
     """Append the record(s) of one message to `log`."""
@@ -377,6 +402,8 @@ def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, 
                     float(cov[0]), float(cov[7]), float(cov[35]),
                 )
             )
+    elif msgtype == c.GRID_TYPE:
+        _grid(log, _deser(ts, raw, msgtype, ros2), conn.topic, t, warnings)
     elif msgtype == c.DIAG_TYPE:
         diag = decode_diagnostics(raw) if standard else None
         if diag is None:

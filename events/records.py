@@ -6,6 +6,8 @@ header stamp) or from the bag's receive time for message types without a stamp.
 
 from __future__ import annotations
 
+import math
+import zlib
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
 
@@ -175,3 +177,45 @@ class GoalPose:
     x: float
     y: float
     frame: str
+
+
+@dataclass(frozen=True, slots=True)
+class Grid:
+    """One occupancy grid (`/map` or `/global_costmap/costmap`, nav_msgs/msg/OccupancyGrid). The cells are kept
+    zlib-compressed: a costmap published every second for an hour is mostly the same few obstacles."""
+
+    t: int
+    topic: str
+    frame: str
+    resolution: float
+    width: int
+    height: int
+    origin_x: float
+    origin_y: float
+    origin_yaw: float
+    packed: bytes  # zlib of the int8 cells, row-major from the origin's corner
+
+    def index(self, x: float, y: float) -> tuple[int, int] | None:
+        """(column, row) of the cell holding the point (x, y) of the grid's frame, None outside the grid."""
+        dx, dy = x - self.origin_x, y - self.origin_y
+        cos, sin = math.cos(self.origin_yaw), math.sin(self.origin_yaw)
+        col = math.floor((cos * dx + sin * dy) / self.resolution)
+        row = math.floor((-sin * dx + cos * dy) / self.resolution)
+        return (col, row) if 0 <= col < self.width and 0 <= row < self.height else None
+
+    def cells(self) -> bytes:
+        return zlib.decompress(self.packed)
+
+    def value(self, x: float, y: float) -> int | None:
+        """The cell's value at (x, y) (-1 unknown, 0 free ... 100 occupied), None outside the grid."""
+        at = self.index(x, y)
+        if at is None:
+            return None
+        byte = self.cells()[at[1] * self.width + at[0]]
+        return byte - 256 if byte > 127 else byte
+
+    def corners(self) -> tuple[float, float, float, float]:
+        """x from, x to, y from, y to of an unrotated grid (the usual map and costmap)."""
+        return (self.origin_x, self.origin_x + self.width * self.resolution,
+                self.origin_y, self.origin_y + self.height * self.resolution)
+

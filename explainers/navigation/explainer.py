@@ -48,7 +48,7 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, states
+from hexar.explainers.navigation import chain, grids, held, states
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -120,7 +120,7 @@ class NavigationExplainer:
 
     name: ClassVar[str] = "navigation"
     topics: ClassVar[frozenset[str]] = frozenset({c.ROSOUT, c.AMCL_POSE, c.JOY_PRIORITY, c.IS_CHARGING,
-                                                  c.DIAGNOSTICS, c.CMD_VEL, c.ODOM})
+                                                  c.DIAGNOSTICS, c.CMD_VEL, c.ODOM, c.MAP, c.GLOBAL_COSTMAP})
     description: ClassVar[str] = (
         "Explains the robot's movement between places (Nav2 navigation): why it could not reach a location "
         "(path blocked by an obstacle, joystick/manual mode holding the base, plugged into the charger, "
@@ -211,7 +211,7 @@ class NavigationExplainer:
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:
-            problem = chain.reached_without_pose(run) or d.poor_localisation(run) or _held_by_collision_monitor(run) \
+            problem = chain.reached_without_pose(run) or d.poor_localisation(run) or held.by_collision_monitor(run) \
                 or d.moving_obstacles(run) or chain.slow_retries(run)
             if problem is not None:
                 return [problem]
@@ -244,14 +244,14 @@ class NavigationExplainer:
                     planned = next(iter(d.plan_failures(run)), None)
                     lines = [ln for ln in g.supporting(run.notes, cause, strength) if (progress is None
                              or ln.t <= progress.t or not ln.msg.startswith("Collision Ahead - Exiting"))
-                             and not (planned is not None and ln.t > planned.t and _SLOWED.match(ln.msg))]
+                             and not (planned is not None and ln.t > planned.t and held.SLOWED.match(ln.msg))]
                     found = d.Finding(cause, g.evidence(cause, lines)) if lines else None
                 elif cause == g.POOR_LOCALISATION:
                     found = d.poor_localisation(run) if strength == "strong" else None
                 elif cause == g.BLOCKED:
                     found = d.blocked_path(run, strength)
                 elif cause == g.NOT_REACHING_BASE:
-                    found = _stall(view, run) if strength == "strong" else None
+                    found = held.stall(view, run) if strength == "strong" else None
                 else:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
@@ -270,6 +270,9 @@ class NavigationExplainer:
                             found.evidence.append(Evidence.of_log(cause, line))
                     return found
         said = states.reported(run.notes)
+        if said and said[0][1] is states.START and (
+                mapped := grids.read_grids(view, run, said[0][0])) is not None and mapped.cause == g.START_IN_OBSTACLE:
+            return _ended(mapped, run)  # the costmap the planner used shows the obstacle under the robot
         if said:
             # a state of the costmap or planner with no line that supports one of its causes: told as what it is
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln, _ in said[:2]])
@@ -278,9 +281,16 @@ class NavigationExplainer:
                 found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
             return found
         plans = d.plan_failures(run)
+        mapped = grids.read_grids(view, run, plans[0]) if plans else None
+        if mapped is not None and grids.FREE_WAY not in mapped.facts:
+            return _ended(mapped, run)  # the recorded grids say which of the candidates it was
         if plans:
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln in plans[:2]])
             found.facts = {"plan_failures": float(d.attempts(plans))}
+            if mapped is not None:
+                found.facts.update(mapped.facts)
+                found.notes += mapped.notes
+                found.evidence += mapped.evidence
             if run.end is not None and run.outcome == "failed":
                 found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
             return found
@@ -329,6 +339,13 @@ class NavigationExplainer:
         return "\n".join(out)
 
 
+def _ended(found: d.Finding, run: d.Run) -> d.Finding:
+    """`found` with the line that ended a failed goal as evidence too."""
+    if run.end is not None and run.outcome == "failed" and all(e.t != run.end.t for e in found.evidence):
+        found.evidence.append(Evidence.of_log(found.cause, run.end))
+    return found
+
+
 def _unfinished(text: str, place: str) -> str:
     """A cause seen while the goal was still running when the recording ended (no end line, no task status):
     what the logs show, without claiming the goal failed ("I couldn't reach … because …" or "…: my planner …")."""
@@ -339,47 +356,6 @@ def _unfinished(text: str, place: str) -> str:
             return (f"The recording ends before my navigation to {place} finished, so it does not show whether I "
                     f"got there; on the way {joint}{what}")
     return text
-
-
-# nav2_collision_monitor/src/collision_monitor_node.cpp:628-642@jazzy: the actions that slow the robot rather than
-# stop it ("Robot to slowdown for … percents due to … polygon", "Robot to limit speed due to …", "Robot to approach
-# for … seconds away from collision": its speed scaled to stay that long from a collision)
-_SLOWED = re.compile(r"^Robot to (slowdown|limit speed|approach)\b")
-
-def _held_by_collision_monitor(run: d.Run) -> d.Finding | None:
-    """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
-    held the robot (until it let it continue). Slowing down (an approach, slowdown or limit polygon) that the
-    monitor then released is no stop: the robot kept moving and got there."""
-    stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
-    if not stops:
-        return None
-    resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),
-                   None)
-    if resumed is not None and all(_SLOWED.match(ln.msg) for ln in stops):
-        return None
-    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
-    if resumed is not None:
-        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, resumed))
-        found.facts["held_s"] = (resumed.t - stops[0].t) / 1e9
-    if run.end is not None:
-        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, run.end))
-    return found
-
-
-def _stall(view: View, run: d.Run) -> d.Finding | None:
-    """Commands on /cmd_vel that /odom never followed: the only evidence for commands_not_reaching_base."""
-    if c.CMD_VEL not in view.log.topics or c.ODOM not in view.log.topics:
-        return None
-    stall = g.stalled(view.twists(), view.odometry())
-    if stall is None:
-        return None
-    item = f"vx={stall.first.vx:.2f} vy={stall.first.vy:.2f} wz={stall.first.wz:.2f}"
-    odom = f"x={stall.odom.x:.2f} y={stall.odom.y:.2f} vx={stall.odom.vx:.3f} wz={stall.odom.wz:.3f}"
-    found = d.Finding(g.NOT_REACHING_BASE, [
-        Evidence(cause=g.NOT_REACHING_BASE, topic=c.CMD_VEL, t=stall.first.t, item=item),
-        Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
-    found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
-    return found
 
 
 def _unread(raw: list[LogLine]) -> str:

@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import states
+from hexar.explainers.navigation import grids, states
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -158,9 +158,13 @@ def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     if "plan_failures" in f.facts:
         tail = f" {last[0].upper()}{last[1:]}." if last else ""
         n = int(f.facts["plan_failures"])
+        head = f"I couldn't reach {place}: my planner could not compute a route to it ({n} time{'s' * (n != 1)})"
+        if free := grids.free_way(f):
+            return (f"{head}, and it was not for want of a way: {free}.{tail}",
+                    "Check the planner plugin's parameters (its time and iteration limits, footprint and "
+                    "motion model) against this start and goal.", [f"Nav2 said: {_said(f)}"])
         # a goal still running when the recording ends is told as unfinished by the explainer (_unfinished)
-        return (f"I couldn't reach {place}: my planner could not compute a route to it ({n} time{'s' * (n != 1)}), "
-                f"and I can't tell why from my logs alone: {PLAN_CANDIDATES}.{tail}",
+        return (f"{head}, and I can't tell why from my logs alone: {PLAN_CANDIDATES}.{tail}",
                 PLAN_CHECKS, [f"Nav2 said: {_said(f)}"])
     if last and run.outcome == "unknown":
         return (f"The recording does not show whether my navigation to {place} finished. I can't tell what went "
@@ -179,6 +183,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     seen = [f"Nav2 said: {said}"] if said else []
     if f.cause == g.BRINGUP:
         return _bringup(f, place)
+    if (mapped := grids.template(f, place)) is not None:
+        return mapped
     if f.cause == g.START_IN_OBSTACLE:
         return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap, so "
                 "no plan could start from it.",

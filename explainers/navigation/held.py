@@ -1,0 +1,52 @@
+"""Findings from what held the robot back: the collision monitor's stops on a goal reached late, and velocity
+commands that the base never followed (commands_not_reaching_base, claimed only from /cmd_vel and /odom)."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.events import contract as c
+from hexar.events.log import View
+from hexar.explainers.base import Evidence
+from hexar.explainers.navigation import detectors as d
+from hexar.explainers.navigation import diagnose as g
+
+# nav2_collision_monitor/src/collision_monitor_node.cpp:628-642@jazzy: the actions that slow the robot rather than
+# stop it ("Robot to slowdown for … percents due to … polygon", "Robot to limit speed due to …", "Robot to approach
+# for … seconds away from collision": its speed scaled to stay that long from a collision)
+SLOWED = re.compile(r"^Robot to (slowdown|limit speed|approach)\b")
+
+def by_collision_monitor(run: d.Run) -> d.Finding | None:
+    """A goal reached late because the collision monitor stopped the robot: its stop lines, and how long it
+    held the robot (until it let it continue). Slowing down (an approach, slowdown or limit polygon) that the
+    monitor then released is no stop: the robot kept moving and got there."""
+    stops = [n.line for n in run.notes if n.entry.id == "cmon.stop"]
+    if not stops:
+        return None
+    resumed = next((ln for ln in run.lines if ln.t > stops[0].t and "Robot to continue normal operation" in ln.msg),
+                   None)
+    if resumed is not None and all(SLOWED.match(ln.msg) for ln in stops):
+        return None
+    found = d.Finding(g.COLLISION_AHEAD, g.evidence(g.COLLISION_AHEAD, stops))
+    if resumed is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, resumed))
+        found.facts["held_s"] = (resumed.t - stops[0].t) / 1e9
+    if run.end is not None:
+        found.evidence.append(Evidence.of_log(g.COLLISION_AHEAD, run.end))
+    return found
+
+
+def stall(view: View, run: d.Run) -> d.Finding | None:
+    """Commands on /cmd_vel that /odom never followed: the only evidence for commands_not_reaching_base."""
+    if c.CMD_VEL not in view.log.topics or c.ODOM not in view.log.topics:
+        return None
+    stall = g.stalled(view.twists(), view.odometry())
+    if stall is None:
+        return None
+    item = f"vx={stall.first.vx:.2f} vy={stall.first.vy:.2f} wz={stall.first.wz:.2f}"
+    odom = f"x={stall.odom.x:.2f} y={stall.odom.y:.2f} vx={stall.odom.vx:.3f} wz={stall.odom.wz:.3f}"
+    found = d.Finding(g.NOT_REACHING_BASE, [
+        Evidence(cause=g.NOT_REACHING_BASE, topic=c.CMD_VEL, t=stall.first.t, item=item),
+        Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
+    found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
+    return found
