@@ -281,10 +281,13 @@ def _nav2_own(line: LogLine) -> bool:
 
 def _nav2_logger(name: str) -> bool:
     """A logger (or launch's process name for one) with a Nav2 role: amcl, controller_server-6, bt_navigator."""
+    from hexar.events.nav_goals import any_robots
     from hexar.explainers.navigation.catalogue import catalogue as nav2
     from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
     cat = nav2()
+    if any_robots(PROCESS_SUFFIX.sub("", name)):
+        return False  # robot_state_publisher runs on every robot, an arm alone too: no sign of Nav2
     return cat.role(name) is not None or cat.role(PROCESS_SUFFIX.sub("", name)) is not None
 
 

@@ -127,6 +127,11 @@ def _driver(name: str, logs: list[LogLine]) -> bool:
     return _DRIVER_LOGGER.search(name) is not None or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
 
 
+# pluginlib's ClassLoader (pluginlib/class_loader_imp.hpp: RCUTILS_LOG_*_NAMED("pluginlib.ClassLoader", ...)) and
+# class_loader's own (class_loader/src/class_loader_core.cpp: "class_loader.impl")
+_LIBRARY_LOGGER = re.compile(r"^(pluginlib\.ClassLoader|class_loader(\.\w+)*)$")
+
+
 def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
     """The error belongs to a start the recording shows: an error of the starting software after a lesser line of
     it, a driver's error after a lesser line of its own, or a start line that goes on to tell an abort (a console's
@@ -134,6 +139,10 @@ def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
     # a console prints a process's uncaught C++ exception on stderr, which names no node: the line printed before
     # it is the only sign of whose it was
     if not line.name and ABORT in line.msg and before and starting(before[-1]):
+        return True
+    # a library's logger (pluginlib's class loader) logs inside whichever node loads through it: its error right
+    # after a line of the starting software is that start's
+    if _LIBRARY_LOGGER.match(line.name) and before and starting(before[-1]) and line.t - before[-1].t <= 1e9:
         return True
     own = starting(line)
     if not own and not _driver(line.name, logs):

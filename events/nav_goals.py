@@ -134,6 +134,16 @@ def _bringup_error(line: LogLine) -> bool:
     return not node or catalogue().role(node) is not None
 
 
+# TF publishers every robot runs, an arm alone too (their own lines are no sign of Nav2; Nav2's TF helpers'
+# loggers, transformPoseInTargetFrame and the like, are)
+_ANY_ROBOTS = ("robot_state_publisher", "static_transform_publisher")
+
+
+def any_robots(name: str) -> bool:
+    """A logger of a node every robot runs (robot_state_publisher, static_transform_publisher)."""
+    return name.strip("/").split("/")[-1].split(".")[-1].startswith(_ANY_ROBOTS)
+
+
 def _arms_logger(line: LogLine) -> bool:
     """A line logged by a node the arm's catalogues name (controller_manager, resource_manager, move_group...):
     generic texts of such a node (pluginlib's "... does not exist", "Failed to configure") match Nav2's catalogue
@@ -156,22 +166,28 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     cat = catalogue()
     active: list[LogLine] = []
     failed: LogLine | None = None
+    own = arms = False
     for line in logs:
         if _arms_logger(line):
+            arms = True
             continue  # ros2_control's or MoveIt's own node: its line is the arm's to explain, not Nav2's activity
         entry = cat.match(line.msg)
         # the controller server's "Reached the goal!" (controller_server.cpp:411@humble) ends a path it followed
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"}
                                       or entry.id == REACHED)
         # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no
-        # catalogued line: a stack that came up and ran normally has a navigation to tell about too
-        nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None)
+        # catalogued line: a stack that came up and ran normally has a navigation to tell about too; a TF
+        # publisher's own line (robot_state_publisher's "Robot initialized") is not: every robot runs one
+        nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None and not any_robots(line.name))
+        own = own or nav2 or "[ActionServer] Aborting handle" in line.msg
         if not nav2 and "[ActionServer] Aborting handle" not in line.msg and not _bringup_error(line):
             continue
         active.append(line)
         if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg or loader_failure(line)):
             failed = line
-    if not active:
+    if not active or (arms and not own):
+        # bring-up errors that name no node (pluginlib's, launch's) beside an arm's nodes at work and no Nav2 node:
+        # the arm's bring-up, not Nav2's
         return []
     goal = _Goal(active[0].t, None, None, "Nav2 log (no goal line)")
     if failed is not None:

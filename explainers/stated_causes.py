@@ -60,7 +60,8 @@ class StatedDataError(ExplainerError):
 
 @dataclass(frozen=True)
 class Phrase:
-    """One standard text: a strerror (kind `errno`) or a set-up wording (kind `version` or `parameter`)."""
+    """One standard text: a strerror (kind `errno`) or a set-up wording (kind `version`, `parameter`, `address`,
+    `manifest`, `section` or `device`)."""
 
     id: str
     kind: str
@@ -167,6 +168,14 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
     if phrase.kind == "address":  # a driver's own words for an address it was never given (an empty parameter)
         who = line.name.strip("/").split("/")[-1] or "my driver"
         return (phrase.cause, f"{who} {phrase.meaning.removeprefix('it ')}", phrase.fix)
+    if phrase.kind == "section":  # a node's own list of what one section of its configuration lacks
+        from hexar.events.bringup import moveit_logger
+
+        listed = ", ".join(p.strip(" '") for p in m["params"].split(",") if p.strip(" '"))
+        own = "manipulation.configuration_error" if moveit_logger(line.name) else own  # MoveIt's own settings
+        return (own, f"the settings under '{m['section']}' lack parameters it needs ({listed})", phrase.fix)
+    if phrase.kind == "manifest":  # pluginlib cannot read the manifest of the package that exports the plugin
+        return (own, phrase.meaning.format(package=m["package"]), phrase.fix)
     if phrase.kind == "version":
         if _HARDWARE_SIDE.search(line.name) or _REMOTE.search(part):
             return (HARDWARE, "the version of my driver's library and the version of the robot's own software do "

@@ -256,6 +256,41 @@ def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:
     return [ln for ln in lines if not any(0 <= ln.t - t <= SAME_ATTEMPT_S * 1e9 for t in gave_up)]
 
 
+# nav2_costmap_2d's static layer (static_layer.cpp:410@humble) while no /map has come: the costmap keeps its default
+# size and is never current, so the planner's "Costmap timed out waiting for update" (planner_server.cpp@jazzy) is
+# that missing map, not stale transforms.
+NO_MAP = "Can't update static costmap layer, no map received"
+COSTMAP_TIMEOUT = "Costmap timed out waiting for update"
+# rclcpp's subscription_base.cpp:373@rolling: the map's publisher and the costmap's subscription do not match
+MAP_QOS = re.compile(r"^New publisher discovered on topic '/?(\w+/)*map', offering incompatible QoS")
+
+
+def map_never_came(seen: list[LogLine]) -> list[LogLine]:
+    """The lines that say the costmap got no map: the static layer's, and a QoS mismatch on the map's topic."""
+    return [ln for ln in seen if NO_MAP in ln.msg or MAP_QOS.match(ln.msg)]
+
+
+NO_MAP_FACT = "no_map"  # an off_costmap finding's fact: the costmap never got its map (notes: the QoS policy, if said)
+
+
+def no_map_finding(found: Finding, seen: list[LogLine]) -> Finding:
+    """`found` (off_costmap) marked with the map that never came, and the QoS policy that kept it away if logged."""
+    gone = map_never_came(seen)
+    if any(NO_MAP in ln.msg for ln in gone):
+        found.facts[NO_MAP_FACT] = 1.0
+        policy = next((ln.msg.rsplit(":", 1)[-1].strip() for ln in gone if MAP_QOS.match(ln.msg)), "")
+        if policy:
+            found.notes.append(policy.removesuffix("_QOS_POLICY").replace("_", " ").lower())
+    return found
+
+
+def without_map_timeouts(lines: list[LogLine], seen: list[LogLine]) -> list[LogLine]:
+    """`lines` less the costmap timeouts that a map that never came explains."""
+    if not any(NO_MAP in ln.msg for ln in seen):
+        return lines
+    return [ln for ln in lines if COSTMAP_TIMEOUT not in ln.msg]
+
+
 def stamped_early(run: Run, before: int) -> LogLine | None:
     """The first message-filter drop of the window, before `before`, for data stamped earlier than its transforms."""
     return next((n.line for n in run.notes if n.line.t < before and any(w in n.line.msg for w in _STAMPED_EARLY)),

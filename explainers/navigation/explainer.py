@@ -255,12 +255,15 @@ class NavigationExplainer:
                 else:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
-                        lines = d.after_planner_gave_up(run, chain.unresolved(lines, before))
+                        lines = d.without_map_timeouts(d.after_planner_gave_up(run, chain.unresolved(lines, before)),
+                                                       before)
                     elif cause == g.CONTROLLER:
                         lines = d.after_planner_gave_up(run, lines)
-                    lines = states.claimable(run.notes, cause, lines)
+                    lines = states.claimable(run.notes, cause, lines, before)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
+                if found is not None and found.cause == g.OFF_COSTMAP:
+                    found = d.no_map_finding(found, before)
                 if found is not None:
                     notes = ((n.line, n.entry) for n in run.notes)
                     if found.cause == g.CONFIGURATION and chain.never_came_up(notes, before):

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.catalogue import Entry, catalogue
+from hexar.explainers.navigation.detectors import NO_MAP, map_never_came
 from hexar.explainers.navigation.diagnose import Tagged
 
 
@@ -118,10 +119,12 @@ def sentence(state: State, place: str, verb: str) -> str:
             f"several things: {state.candidates}.")
 
 
-def claimable(notes: list[Tagged], cause: str, lines: list[LogLine]) -> list[LogLine]:
+def claimable(notes: list[Tagged], cause: str, lines: list[LogLine], seen: list[LogLine] | None = None
+              ) -> list[LogLine]:
     """`lines` (those supporting `cause`) as far as they may be claimed: when every one of them only reports a
     state, the lines of another kind that support that state's reading join them, and without any they are not
-    enough (an empty list)."""
+    enough (an empty list). A robot outside its costmap is backed, too, by the static layer's word that no map ever
+    came (in `seen`, the lines up to the goal's end): such a costmap keeps its default size."""
     entries = {id(n.line): n.entry for n in notes}
     said = [s for ln in lines if (e := entries.get(id(ln))) is not None and (s := state_of(e, ln.msg))]
     if len(said) < len(lines) or not said:
@@ -130,6 +133,8 @@ def claimable(notes: list[Tagged], cause: str, lines: list[LogLine]) -> list[Log
     backing = [n.line for n in notes if n.entry.cause in support and state_of(n.entry, n.line.msg) is None]
     if said[0] is OUTSIDE:
         backing += [ln for ln in lines if _beyond_any_map(ln.msg)]
+        if any(NO_MAP in ln.msg for ln in seen or []):
+            backing += map_never_came(seen or [])
     return sorted({*lines, *backing}, key=lambda ln: ln.t) if backing else []
 
 

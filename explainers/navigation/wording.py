@@ -14,7 +14,7 @@ from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, states
-from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
+from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
 
@@ -198,6 +198,14 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return (f"I couldn't reach {place} because the goal itself cannot be reached: it lies outside my map or "
                 "inside an obstacle, so planning to it always fails.",
                 "The goal is outside the map / in an obstacle: pick a reachable goal on free space of the map.",
+                seen)
+    if f.cause == g.OFF_COSTMAP and NO_MAP_FACT in f.facts:
+        qos = (f", because its subscription did not match what the map's publisher offers (the {f.notes[0]} of their "
+               "QoS)") if f.notes else ""
+        return (f"I couldn't reach {place} because my own position was outside my global costmap: the costmap never "
+                f"received its map ('{NO_MAP}'){qos}, so it kept a default size that does not hold where I am.",
+                "Make the map reach the costmap: map_server or SLAM must publish /map, with the durability the "
+                "static layer subscribes with (transient local unless map_subscribe_transient_local is false).",
                 seen)
     if f.cause == g.OFF_COSTMAP:
         return (f"I couldn't reach {place} because my own position was off my costmap, "

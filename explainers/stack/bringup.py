@@ -315,6 +315,13 @@ def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:
     return out
 
 
+# CPython's asyncio (base_events.py default_exception_handler, "Task exception was never retrieved") prints the
+# task: "future: <Task finished name='Task-2' coro=<LaunchService._process_one_event() done, defined at …>
+# exception=SubstitutionFailure("executable '…' not found on the libexec directory '…'")>"
+_LAUNCH_TASK = re.compile(r"^(future: )?<Task finished .*coro=<LaunchService\.\w+\(\) .*\bexception=\w+\("
+                          r"(?P<q>['\"])(?P<text>.+)(?P=q)\)>$")
+
+
 def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> list[BringupFinding]:
     """The bring-up problems in `lines` (see the module's docstring), oldest first, one per (kind, node)."""
     cat = stack_catalogue()
@@ -322,6 +329,15 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
     out: list[BringupFinding] = unserved_waits(ordered)
     seen: set[tuple[str, str]] = set()
     for i, line in enumerate(ordered):
+        # a console line "future: <Task …>" reads as logger "future"
+        unretrieved = _LAUNCH_TASK.match(line.msg.strip()) if line.name in ("", "future") else None
+        if unretrieved is not None and ("launch_failed", "") not in seen:
+            # launch's event loop died on the exception before it could log "Caught exception in launch": asyncio
+            # printed it instead ("Task exception was never retrieved", then the task and its exception)
+            seen.add(("launch_failed", ""))
+            detail = unretrieved["text"].replace('\\"', '"').strip()
+            out.append(BringupFinding("launch_failed", "", line.t, line, None, detail))
+            continue
         loader = _loader_finding(line)
         if loader is not None:
             if ("process_died", loader.node) not in seen:
