@@ -330,27 +330,34 @@ def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw:
             log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status), topic))
 
 
-def _grid(log: EventLog, m: Any, topic: str, t: int, warnings: list[str]) -> None:
+def grid_of(m: Any, topic: str, t: int) -> Grid | str:
+    """An OccupancyGrid (a rosbags, rclpy or DDS message: the fields have the same names) as a Grid, or why it is
+    left out: a grid that does not hold what its header says cannot place a point, and is never guessed at."""
+    import numpy as np
+
     info = m.info
-    cells = bytes(m.data.astype("int8").tobytes()) if hasattr(m.data, "astype") else bytes(
-        (int(v) + 256) % 256 for v in m.data)
+    cells = np.asarray(m.data, dtype=np.int8).tobytes()
     if len(cells) != int(info.width) * int(info.height) or not float(info.resolution) > 0:
-        # a grid that does not hold what its header says cannot place a point: left out, never guessed at
-        warnings.append(f"{topic}: left out a grid of {info.width} x {info.height} cells at resolution "
-                        f"{info.resolution} that holds {len(cells)} values")
-        return
-    grid = _grid_record(m, topic, t, cells)
-    last = next((g for g in reversed(log.grids) if g.topic == topic), None)
-    if last is None or (last.packed, last.width, last.origin_x, last.origin_y, last.frame) != (
-            grid.packed, grid.width, grid.origin_x, grid.origin_y, grid.frame):
-        log.grids.append(grid)  # an unchanged grid adds nothing: the one before stands for it
-
-
-def _grid_record(m: Any, topic: str, t: int, cells: bytes) -> Grid:
-    info, o = m.info, m.info.origin
+        return (f"{topic}: left out a grid of {info.width} x {info.height} cells at resolution {info.resolution} "
+                f"that holds {len(cells)} values")
+    o = info.origin
     return Grid(stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t, topic, str(m.header.frame_id),
                 float(info.resolution), int(info.width), int(info.height), float(o.position.x),
                 float(o.position.y), _yaw(float(o.orientation.z), float(o.orientation.w)), zlib.compress(cells, 1))
+
+
+def same_grid(a: Grid | None, b: Grid) -> bool:
+    """Whether `b` repeats `a` (the same cells where they were): an unchanged costmap republished."""
+    return a is not None and (a.packed, a.width, a.origin_x, a.origin_y, a.frame) == (
+        b.packed, b.width, b.origin_x, b.origin_y, b.frame)
+
+
+def _grid(log: EventLog, m: Any, topic: str, t: int, warnings: list[str]) -> None:
+    grid = grid_of(m, topic, t)
+    if isinstance(grid, str):
+        warnings.append(grid)
+    elif not same_grid(next((g for g in reversed(log.grids) if g.topic == topic), None), grid):
+        log.grids.append(grid)  # an unchanged grid adds nothing: the one before stands for it
 
 
 def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, ros2: bool, standard: bool,

@@ -5,11 +5,12 @@ from __future__ import annotations
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.reader import _statuses, _yaw
+from hexar.events.reader import _statuses, _yaw, grid_of
 from hexar.events.records import (
     BoolSample,
     GoalPose,
     GoalStatus,
+    Grid,
     LogLine,
     OdomSample,
     PoseSample,
@@ -21,7 +22,7 @@ from hexar.events.records import (
 from hexar.events.task_info import parse_task_info
 
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
-          | GoalStatus)
+          | GoalStatus | Grid)
 
 
 def _stamp(header: Any) -> int:
@@ -71,4 +72,7 @@ def to_records(topic: str, msg: Any, t: int) -> list[Record]:
         return [BoolSample(t, topic, bool(msg.data))]
     if c.TYPE_OF.get(topic) == c.DIAG_TYPE:
         return list(_statuses(t, topic, msg))
+    if c.TYPE_OF.get(topic) == c.GRID_TYPE:
+        grid = grid_of(msg, topic, t)
+        return [grid] if isinstance(grid, Grid) else []
     return _motion(topic, msg, t)

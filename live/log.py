@@ -17,10 +17,12 @@ from typing import TypeVar
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog, TopicInfo
+from hexar.events.reader import same_grid
 from hexar.events.records import (
     BoolSample,
     GoalPose,
     GoalStatus,
+    Grid,
     LogLine,
     OdomSample,
     PoseSample,
@@ -31,8 +33,8 @@ from hexar.events.records import (
 
 NS = 1_000_000_000
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
-          | GoalStatus)
-S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus)
+          | GoalStatus | Grid)
+S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus, Grid)
 
 
 @dataclass(frozen=True)
@@ -45,6 +47,9 @@ class Limits:
     max_records: int = 100_000
     max_chars: int = 16_384
     dedup_keys: int = 50_000
+    # Grids (/map, /global_costmap/costmap) changed this many times per topic are kept, the latest: a latched map
+    # may be hours old and still the one the planner uses, so no horizon applies to them.
+    max_grids: int = 16
     # A clock that goes back by more than this, on several fresh messages in a row, is a clock jump.
     jump_back_s: float = 30.0
     jump_confirm: int = 3
@@ -73,6 +78,7 @@ class LiveLog:
         self._odom: list[OdomSample] = []
         self._goals: list[GoalPose] = []
         self._goal_statuses: list[GoalStatus] = []
+        self._grids: dict[str, list[Grid]] = {}
         self._tasks: dict[str, list[TaskUpdate]] = {}  # insertion order = order first seen
         self._runs: dict[str, tuple[str, int]] = {}  # task id as published -> (its current run's id, run number)
         self._counts: dict[str, int] = {}
@@ -113,6 +119,8 @@ class LiveLog:
             return hash(("pose", r.t, r.x, r.y, r.yaw))
         if isinstance(r, BoolSample):
             return hash(("flag", r.topic, r.t, r.value))
+        if isinstance(r, Grid):
+            return hash(("grid", r.topic, r.t, r.width, r.height, r.packed))
         if isinstance(r, (TwistSample, OdomSample, GoalPose, GoalStatus)):
             return hash((type(r).__name__, *(getattr(r, f) for f in r.__slots__)))
         return hash(("status", r.topic, r.t, r.name, r.message, r.values))
@@ -129,6 +137,9 @@ class LiveLog:
         self._seen_order.append(key)
         if len(self._seen_order) > self.limits.dedup_keys:
             self._seen.discard(self._seen_order.popleft())
+        if isinstance(r, Grid):
+            self._add_grid(r)
+            return True
         if not isinstance(r, BoolSample):  # a latched flag may legitimately be hours old
             self._watch_clock(r.t, fresh=isinstance(r, (LogLine, TaskUpdate)))
         if isinstance(r, LogLine):
@@ -163,6 +174,16 @@ class LiveLog:
             self._prune()
             self._since_prune = 0
         return True
+
+    def _add_grid(self, r: Grid) -> None:
+        """A grid, unless it repeats the last of its topic; the oldest beyond `max_grids` is dropped."""
+        self._count(r.topic)
+        grids = self._grids.setdefault(r.topic, [])
+        if same_grid(grids[-1] if grids else None, r):
+            return
+        self._insert(grids, r, r.topic)
+        self._counts[r.topic] -= 1  # _insert counted it again
+        del grids[:-self.limits.max_grids]
 
     def _run_of(self, r: TaskUpdate) -> TaskUpdate:
         """A robot that restarts numbers its tasks again from the start: an update that starts a task anew after
@@ -262,6 +283,7 @@ class LiveLog:
             statuses = {k: list(v) for k, v in self._statuses.items()}
             twists, odom, goals = list(self._twists), list(self._odom), list(self._goals)
             goal_statuses = list(self._goal_statuses)
+            grids = [g for kept in self._grids.values() for g in kept]
             counts = dict(self._counts)
             warnings = list(self.warnings)
         stamps = [*(r.t for r in logs[:1] + logs[-1:]), *(r.t for r in poses[:1] + poses[-1:]),
@@ -271,7 +293,7 @@ class LiveLog:
         log = EventLog(path=Path(self.name), storage="live", start=min(stamps, default=0),
                        end=max(stamps, default=0), topics=topics, warnings=warnings, logs=logs,
                        task_updates=updates, poses=poses, flags=flags, statuses=statuses, twists=twists,
-                       odometry=odom, goals=goals, goal_statuses=goal_statuses)
+                       odometry=odom, goals=goals, goal_statuses=goal_statuses, grids=grids)
         log.finish()
         return log
 
@@ -281,7 +303,7 @@ class LiveLog:
                     "clock_jumps": self.clock_jumps, "logs": len(self._logs), "poses": len(self._poses),
                     "tasks": len(self._tasks), "statuses": sum(len(v) for v in self._statuses.values()),
                     "twists": len(self._twists), "odometry": len(self._odom), "goals": len(self._goals),
-                    "goal_statuses": len(self._goal_statuses)}
+                    "goal_statuses": len(self._goal_statuses), "grids": sum(len(v) for v in self._grids.values())}
 
 
 def _finished(u: TaskUpdate) -> bool:

@@ -6,8 +6,9 @@ final structs. Each field has the IDL type rosidl gives it: `byte` is an octet, 
 (the project's shared reference msg_definitions.md: rcl_interfaces/Log, builtin_interfaces/Time,
 std_msgs/String|Bool|Header, geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray,
 geometry_msgs/Twist|Vector3|PoseStamped, action_msgs/GoalStatusArray|GoalStatus|GoalInfo,
-unique_identifier_msgs/UUID; nav_msgs/Odometry and geometry_msgs/TwistWithCovariance as rosbags' Humble type
-store defines them). A test checks each against the Kilted rclpy message classes (tests/live/test_msgs.py).
+unique_identifier_msgs/UUID; nav_msgs/Odometry, nav_msgs/OccupancyGrid, nav_msgs/MapMetaData and
+geometry_msgs/TwistWithCovariance as rosbags' Humble type store defines them). A test checks each against the
+Kilted rclpy message classes (tests/live/test_msgs.py).
 """
 
 # No `from __future__ import annotations` here: cyclonedds resolves field annotations by name in this
@@ -16,7 +17,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cyclonedds.idl import IdlStruct
-from cyclonedds.idl.types import array, byte, float64, int8, int32, sequence, uint8, uint32
+from cyclonedds.idl.types import array, byte, float32, float64, int8, int32, sequence, uint8, uint32
 
 
 def _dds(ros_type: str) -> str:
@@ -196,6 +197,28 @@ else:
 @dataclass
 class GoalStatusArray(IdlStruct, typename=_dds("action_msgs/msg/GoalStatusArray")):
     status_list: GoalStatuses = field(default_factory=list)
+
+
+@dataclass
+class MapMetaData(IdlStruct, typename=_dds("nav_msgs/msg/MapMetaData")):
+    map_load_time: Time = field(default_factory=Time)
+    resolution: float32 = 0.0
+    width: uint32 = 0
+    height: uint32 = 0
+    origin: Pose = field(default_factory=Pose)
+
+
+if TYPE_CHECKING:
+    Cells = list[int]
+else:
+    Cells = sequence[int8]
+
+
+@dataclass
+class OccupancyGrid(IdlStruct, typename=_dds("nav_msgs/msg/OccupancyGrid")):
+    header: Header = field(default_factory=Header)
+    info: MapMetaData = field(default_factory=MapMetaData)
+    data: Cells = field(default_factory=list)
 
 
 @dataclass

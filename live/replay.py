@@ -133,6 +133,11 @@ def to_dds(msgtype: str, m: Any) -> Any:
                                            covariance=[float(v) for v in m.twist.covariance]))
     if msgtype == c.TWIST_STAMPED_TYPE:
         return _twist(m.twist)  # the live topic carries Humble's Twist; the header's stamp is not sent
+    if msgtype == c.GRID_TYPE:
+        i = m.info
+        return msgs.OccupancyGrid(header=header, info=msgs.MapMetaData(
+            map_load_time=msgs.Time(i.map_load_time.sec, i.map_load_time.nanosec), resolution=float(i.resolution),
+            width=int(i.width), height=int(i.height), origin=_pose(i.origin)), data=[int(v) for v in m.data])
     raise BadOptionError(f"cannot replay type {msgtype}")
 
 

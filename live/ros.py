@@ -40,6 +40,7 @@ ROS_TYPES = {
     c.DIAG_TYPE: ("diagnostic_msgs.msg", "DiagnosticArray"), c.TWIST_TYPE: ("geometry_msgs.msg", "Twist"),
     c.ODOM_TYPE: ("nav_msgs.msg", "Odometry"), c.POSE_STAMPED_TYPE: ("geometry_msgs.msg", "PoseStamped"),
     c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"), CLOCK_TYPE: ("rosgraph_msgs.msg", "Clock"),
+    c.GRID_TYPE: ("nav_msgs.msg", "OccupancyGrid"),
 }
 TAKE_BATCH = 256  # at most this many more messages of one topic per callback
 NO_ROS = ("--transport rclpy needs rclpy: on Linux x86_64 pip install 'hexar[ros]' (the ROS 2 Kilted wheels); "

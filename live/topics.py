@@ -65,6 +65,10 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=100)),
     LiveTopic(c.GOAL_POSE, c.POSE_STAMPED_TYPE, TopicQos(depth=10)),
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
+    # The maps the planner plans on: map_server and nav2_costmap_2d's publisher offer them latched
+    # (nav2::qos::LatchedPublisherQoS: reliable, transient-local, keep-last 1), so a node that joins late gets both.
+    *(LiveTopic(topic, c.GRID_TYPE, TopicQos(durability="transient_local", depth=1))
+      for topic in (c.MAP, c.GLOBAL_COSTMAP)),
     # The arm's actions (MoveIt's move_action and execute_trajectory, a joint trajectory controller's
     # follow_joint_trajectory): their status topics, so a robot without /task_info gets arm tasks and an aborted
     # arm goal is explained unasked. A controller's status topic carries its own name, and a DDS reader needs the
@@ -99,5 +103,7 @@ PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.ODOM: TopicQos(depth=10),
     c.GOAL_POSE: TopicQos(depth=10),
     c.NAV_STATUS: TopicQos(durability="transient_local", depth=1),  # rcl_action_qos_profile_status_default
+    c.MAP: TopicQos(durability="transient_local", depth=1),
+    c.GLOBAL_COSTMAP: TopicQos(durability="transient_local", depth=1),
     **{topic: TopicQos(durability="transient_local", depth=1) for topic in ARM_STATUS},
 }

@@ -11,6 +11,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
@@ -19,12 +20,13 @@ from hexar.events.records import INFO
 from hexar.live.log import LiveLog
 from hexar.live.replay import replay as replay_in_process
 from hexar.live.topics import ANSWER, ANSWER_QOS, ARM_STATUS, SUBSCRIBED
+from tests.explainers.navigation.maps import grid_msg
 from tests.live.dds_helpers import fresh_domain, make_replayer, make_transport
 from tests.live.test_nav2_topics import T0, TY, _odom, _pose, _status, _time, _twist
 
 pytest.importorskip("rclpy")
 
-STAMPED = ("logs", "poses", "statuses", "odometry", "goals")  # same stamps whatever the sender's clock
+STAMPED = ("logs", "poses", "statuses", "odometry", "goals", "grids")  # same stamps whatever the sender's clock
 
 
 def every_type(out: Path) -> Path:
@@ -47,6 +49,11 @@ def every_type(out: Path) -> Path:
     b.raw(T0 + sec_ns(1.3), c.NAV_STATUS, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(1.3), 2))
     for i, topic in enumerate(sorted(ARM_STATUS)):  # MoveIt's and the arm controllers' action status topics
         b.raw(T0 + sec_ns(1.4 + i * 0.1), topic, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(1.4 + i * 0.1), 2))
+    # the maps: every cell value a costmap publishes (-1 unknown, 0 free, 1-98 cost, 99 inscribed, 100 lethal)
+    cells = np.array([[-1, 0, 1], [50, 98, 99], [100, 100, 0], [0, -1, 7]], dtype=np.int8)
+    for i, topic in enumerate((c.MAP, c.GLOBAL_COSTMAP)):
+        t = T0 + sec_ns(2.5 + i * 0.1)
+        b.raw(t, topic, c.GRID_TYPE, grid_msg(t, cells, 0.05, (-1.5, 2.25)))
     return b.write(out)
 
 
@@ -80,6 +87,7 @@ def test_every_subscribed_type_crosses_dds_vendors(tmp_path: Path, robot: str, n
         assert getattr(snap, name) == getattr(rec, name), name
     assert [s.level for s in snap.statuses[c.DIAGNOSTICS]] == [2]  # an octet, not b'\x02'
     assert (snap.poses[0].cov_x, snap.poses[0].cov_yaw) == (0.25, 0.1)
+    assert [g.value(-1.5 + 0.125, 2.25 + 0.075) for g in snap.grids] == [99, 99]  # a signed cell, in its place
     assert unstamped(snap.task_updates) == unstamped(rec.task_updates)
     assert {k: unstamped(v) for k, v in snap.flags.items()} == {k: unstamped(v) for k, v in rec.flags.items()}
     assert unstamped(snap.twists) == unstamped(rec.twists)

@@ -19,8 +19,8 @@ from cyclonedds.idl import IdlStruct
 from cyclonedds.idl.types import array, sequence
 
 # the names cyclonedds uses for primitive kinds, as rosidl writes them
-PRIMITIVE = {"byte": "octet", "float64": "double", "int8": "int8", "uint8": "uint8", "int32": "int32",
-             "uint32": "uint32"}
+PRIMITIVE = {"byte": "octet", "float32": "float", "float64": "double", "int8": "int8", "uint8": "uint8",
+             "int32": "int32", "uint32": "uint32"}
 
 
 def ros_name(cls: type[Any]) -> str:

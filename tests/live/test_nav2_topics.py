@@ -232,3 +232,40 @@ def test_a_goal_that_failed_before_the_node_joined_is_answered_when_asked_not_an
         listener.close()
         robot.close()
     assert answer["task_id"] == task_id and answer["causes"] == causes
+
+
+def test_a_goal_on_a_wall_of_the_latched_map_is_explained_live_from_the_costmap(tmp_path: Path) -> None:
+    # nav2_bringup's real tb3_sandbox map, latched on /map and /global_costmap/costmap as map_server and
+    # nav2_costmap_2d offer it; the planner only says it found no path, the costmap says why
+    from tests.explainers.navigation.maps import costmap, record_grids, sandbox
+    from tests.explainers.navigation.test_grids import nearest
+
+    static, res, origin = sandbox()
+    wall = nearest(static, 100, 1.3, 1.0)
+    b = BagBuilder()
+    record_grids(b, T0 - sec_ns(5), static, costmap(static, res), res, origin)
+    b.raw(T0 + sec_ns(0.1), c.NAV_STATUS, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(0.1), 2))
+    b.log(T0 + sec_ns(0.2), "bt_navigator", INFO,
+          f"Begin navigating from current location (-2.00, -0.50) to ({wall[0]:.2f}, {wall[1]:.2f})")
+    b.log(T0 + sec_ns(0.3), "planner_server", WARN, "GridBased: failed to create plan with tolerance 0.50.")
+    b.log(T0 + sec_ns(3), "bt_navigator", ERROR, "Goal failed")
+    b.raw(T0 + sec_ns(3.05), c.NAV_STATUS, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(3.05), 6))
+    run = b.write(tmp_path / "nav2")
+    _, causes = recorded_answer(run)
+    assert causes == [g.GOAL_UNREACHABLE]
+    answer, snap = explained_live(run)
+    assert answer and answer["causes"] == causes and "lies on an obstacle" in answer["sentence"]
+    assert {grid.topic for grid in snap.grids} == {c.MAP, c.GLOBAL_COSTMAP}
+    assert snap.grids == read_recording(run).grids
+
+
+def test_a_costmap_republished_for_hours_keeps_only_its_changes(tmp_path: Path) -> None:
+    from hexar.events.records import Grid
+
+    log = LiveLog(Limits(max_grids=3))
+    for i in range(100):
+        packed = bytes([i // 10])  # one change every ten publications
+        log.add(Grid(T0 + sec_ns(i), c.GLOBAL_COSTMAP, "map", 0.05, 1, 1, 0.0, 0.0, 0.0, packed))
+    kept = log.snapshot().grids
+    assert [grid.packed for grid in kept] == [bytes([7]), bytes([8]), bytes([9])]
+    assert log.snapshot().topics[c.GLOBAL_COSTMAP].count == 100
