@@ -55,6 +55,10 @@ STAMP_ONLY = re.compile(rf"^{_PROC}\[(?P<stamp>\d{{9,10}}\.\d+)\]\s+(?:{_LOGGER}
 # spdlog's default "[date] [info] msg", which drivers built on spdlog print beside ROS's own lines
 SPDLOG = re.compile(rf"^{_PROC}\[(?P<level>trace|debug|info|warning|error|critical)\]\s+(?P<msg>\S.*)$")
 _SPDLOG_LEVELS = {"trace": "DEBUG", "critical": "FATAL"}
+# gz-common's console (gz/common/Console.cc: gzerr/gzwarn/gzmsg/gzdbg) as Gazebo prints it beside ROS's lines:
+# "[Err] [Physics.cc:1801] msg", the source place when it prints one
+GZ = re.compile(rf"^{_PROC}\[(?P<level>Err|Wrn|Msg|Dbg)\] (?:\[(?P<file>[\w.+-]+):(?P<line>\d+)\] )?(?P<msg>\S.*)$")
+_GZ_LEVELS = {"Err": "ERROR", "Wrn": "WARN", "Msg": "INFO", "Dbg": "DEBUG"}
 PLAIN_NAMED = re.compile(r"^(?P<logger>[A-Za-z_][\w.]*):\s+(?P<msg>\S.*)$")
 PROC_ONLY = re.compile(rf"^\[(?P<proc>{_PROC_NAME})\](?P<rest>.*)$")
 # Wall-clock consoles: "10:33:12  msg" (a summary pasted with times) and RCUTILS_CONSOLE_OUTPUT_FORMAT variants
@@ -200,6 +204,11 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
     if d:
         level = d["level"].upper()
         records.append(_record(_SPDLOG_LEVELS.get(d["level"], level), None, None, d["msg"], d["proc"]))
+        return
+    z = GZ.match(line)
+    if z:
+        records.append(_record(_GZ_LEVELS[z["level"]], None, None, z["msg"], z["proc"]))
+        records[-1].file, records[-1].line = z["file"] or "", int(z["line"] or 0)
         return
     n = NAMED.match(line)
     if n:

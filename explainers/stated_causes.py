@@ -61,7 +61,7 @@ class StatedDataError(ExplainerError):
 @dataclass(frozen=True)
 class Phrase:
     """One standard text: a strerror (kind `errno`) or a set-up wording (kind `version`, `parameter`, `address`,
-    `manifest`, `section` or `device`)."""
+    `manifest`, `section`, `simulation` or `device`)."""
 
     id: str
     kind: str
@@ -174,6 +174,8 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
         listed = ", ".join(p.strip(" '") for p in m["params"].split(",") if p.strip(" '"))
         own = "manipulation.configuration_error" if moveit_logger(line.name) else own  # MoveIt's own settings
         return (own, f"the settings under '{m['section']}' lack parameters it needs ({listed})", phrase.fix)
+    if phrase.kind == "simulation":  # the simulator's physics engine cannot do what the description asks
+        return (own, phrase.meaning.format(joint=m["joint"]), phrase.fix)
     if phrase.kind == "manifest":  # pluginlib cannot read the manifest of the package that exports the plugin
         return (own, phrase.meaning.format(package=m["package"]), phrase.fix)
     if phrase.kind == "version":

@@ -129,3 +129,17 @@ def test_line_number_columns_and_a_format_with_a_stamp_but_no_level() -> None:
         "planner_server-13", 40, "GridBased: failed to create plan, no valid path found.")
     assert (bounds.name, bounds.stamp_ns, bounds.level) == ("nav2_costmap_2d", 1765479882488445639, 30)
     assert bounds.msg == "Robot is out of bounds of the costmap!" and bounds.synthesised == {"level"}
+
+
+def test_gazebos_own_console_levels_and_source_place() -> None:
+    # darshmenon/UR3_ROS2_PICK_AND_PLACE#1 (real-modules heldout17) and gz-common's gzerr/gzwarn/gzmsg prefixes
+    text = ("[Err] [Physics.cc:1801] Attempting to create a mimic constraint for joint [left_inner_finger_joint], "
+            "but the chosen physics engine does not support mimic constraints, so no constraint will be created.\n"
+            "[gazebo-2] [Wrn] [Util.cc:859] Failed to load mesh from [model://robot_description/meshes/a.stl].\n"
+            "[Msg] Serving world names on [/gazebo/worlds]")
+    err, warn, msg = parse_console(text)
+    assert (err.level, err.file, err.line) == (40, "Physics.cc", 1801)
+    assert err.msg.startswith("Attempting to create a mimic constraint for joint")
+    assert (warn.level, warn.process, warn.msg) == (30, "gazebo-2", "Failed to load mesh from "
+                                                                    "[model://robot_description/meshes/a.stl].")
+    assert (msg.level, msg.file, msg.msg) == (20, "", "Serving world names on [/gazebo/worlds]")

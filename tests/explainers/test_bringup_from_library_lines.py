@@ -1,7 +1,8 @@
 """A robot's start told from lines that name no node of its own, on recordings without /task_info: pluginlib's
 class loader failing right after the controller manager began (enactic/openarm_ros2#14, its real lines), launch's
-event loop dying on an exception asyncio printed (Universal_Robots_ROS2_Driver#293, Galactic), and a section of
-MoveIt's sensor settings that lacks parameters (moveit/moveit2#3514)."""
+event loop dying on an exception asyncio printed (Universal_Robots_ROS2_Driver#293, Galactic), a section of
+MoveIt's sensor settings that lacks parameters (moveit/moveit2#3514), and Gazebo's physics engine without mimic
+joints (darshmenon/UR3_ROS2_PICK_AND_PLACE#1)."""
 
 from __future__ import annotations
 
@@ -71,3 +72,20 @@ def test_a_section_of_moveits_settings_without_its_parameters_is_moveits_set_up(
     assert found.causes == ["manipulation.configuration_error"]
     assert "the settings under 'vision_perception_node' lack parameters it needs (max_update_rate, " \
            "filtered_cloud_topic)" in found.text
+
+
+def test_a_physics_engine_without_mimic_joints_is_the_simulations_set_up(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+    from tests.explainers.helpers import T0
+    from tests.explainers.test_stated_causes import _task
+
+    b = BagBuilder()
+    b.task_info(T0 - sec_ns(1), _task("Running", "bring_up_controllers"))
+    b.task_info(T0 + sec_ns(3), _task("failed", "bring_up_controllers"))
+    log = write_lines(tmp_path, [(1.0, "", ERROR, "Attempting to create a mimic constraint for joint "
+                                  "[left_inner_finger_joint], but the chosen physics engine does not support mimic "
+                                  "constraints, so no constraint will be created.")], b)
+    _, found = explain(log, "control", "Why didn't that work?")
+    assert found.causes == ["control.configuration_error"]
+    assert "does not support the <mimic> joints of my robot description" in found.text
+    assert found.fix is not None and "bullet-featherstone" in found.fix

@@ -57,7 +57,8 @@ def test_the_data_loads_every_pattern_compiles_and_every_cause_is_known() -> Non
         assert re.search(e["pattern"], e["text"])  # the pattern finds its own strerror text
     for p in setup:
         re.compile(p["pattern"])
-        assert p["kind"] in {"version", "parameter", "device", "address", "manifest", "section"} and p["sources"]
+        kinds = {"version", "parameter", "device", "address", "manifest", "section", "simulation"}
+        assert p["kind"] in kinds and p["sources"]
         assert all(SOURCE.search(s) for s in p["sources"])
         if p["kind"] == "device":  # a device library's words state their cause, told in the phrase's meaning
             assert (p["cause"] is None or p["cause"] in vocabulary()) and p["meaning"] and p["fix"]
