@@ -22,7 +22,9 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
 - symptoms are never the cause: a planner that never found a path (unexplained_failure naming the candidates and
   what tells them apart), `Failed to make progress` alone (navigation.no_progress: the checks a person can make),
   AMCL asking for an initial pose, the collision monitor stopping for a source without data (wording.SYMPTOMS).
-  Either quotes the decisive unknown ERROR/FATAL line with its node and time when there is one (chain.py).
+  Either quotes the decisive unknown ERROR/FATAL line with its node and time when there is one (chain.py). A planner
+  that found no path is checked on the recorded global costmap or map when there is one (grids.py): the goal off the
+  grid or on an obstacle, the robot's own position on one, or no free way between them is claimed from the grid.
 - a recording with no goal line, no /task_info and no error: a background layer's warning alone (costmap, TF, AMCL)
   is quoted, never read as a cause (chain.only_warned); a transform wait that bring-up got past is no cause
   (chain.unresolved).
