@@ -206,12 +206,13 @@ class Grid:
     def cells(self) -> bytes:
         return zlib.decompress(self.packed)
 
-    def value(self, x: float, y: float) -> int | None:
-        """The cell's value at (x, y) (-1 unknown, 0 free ... 100 occupied), None outside the grid."""
+    def value(self, x: float, y: float, cells: bytes | None = None) -> int | None:
+        """The cell's value at (x, y) (-1 unknown, 0 free ... 100 occupied), None outside the grid. `cells`: this
+        grid's cells() when already unpacked, so that several look-ups unpack it once."""
         at = self.index(x, y)
         if at is None:
             return None
-        byte = self.cells()[at[1] * self.width + at[0]]
+        byte = (cells if cells is not None else self.cells())[at[1] * self.width + at[0]]
         return byte - 256 if byte > 127 else byte
 
     def corners(self) -> tuple[float, float, float, float]:

@@ -174,10 +174,9 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
         listed = ", ".join(p.strip(" '") for p in m["params"].split(",") if p.strip(" '"))
         own = "manipulation.configuration_error" if moveit_logger(line.name) else own  # MoveIt's own settings
         return (own, f"the settings under '{m['section']}' lack parameters it needs ({listed})", phrase.fix)
-    if phrase.kind == "simulation":  # the simulator's physics engine cannot do what the description asks
-        return (own, phrase.meaning.format(joint=m["joint"]), phrase.fix)
-    if phrase.kind == "manifest":  # pluginlib cannot read the manifest of the package that exports the plugin
-        return (own, phrase.meaning.format(package=m["package"]), phrase.fix)
+    if phrase.kind in ("manifest", "simulation"):  # pluginlib's unreadable manifest, a physics engine's lack: the
+        # meaning names what the line names (its pattern's groups)
+        return (own, phrase.meaning.format(**m.groupdict()), phrase.fix)
     if phrase.kind == "version":
         if _HARDWARE_SIDE.search(line.name) or _REMOTE.search(part):
             return (HARDWARE, "the version of my driver's library and the version of the robot's own software do "

@@ -9,6 +9,7 @@ timestamp), which is the robot's clock, like a bag's receive time on the robot.
 from __future__ import annotations
 
 import threading
+from bisect import insort
 from collections import deque
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
@@ -181,8 +182,7 @@ class LiveLog:
         grids = self._grids.setdefault(r.topic, [])
         if same_grid(grids[-1] if grids else None, r):
             return
-        self._insert(grids, r, r.topic)
-        self._counts[r.topic] -= 1  # _insert counted it again
+        insort(grids, r, key=lambda g: g.t)
         del grids[:-self.limits.max_grids]
 
     def _run_of(self, r: TaskUpdate) -> TaskUpdate:

@@ -266,8 +266,10 @@ MAP_QOS = re.compile(r"^New publisher discovered on topic '/?(\w+/)*map', offeri
 
 
 def map_never_came(seen: list[LogLine]) -> list[LogLine]:
-    """The lines that say the costmap got no map: the static layer's, and a QoS mismatch on the map's topic."""
-    return [ln for ln in seen if NO_MAP in ln.msg or MAP_QOS.match(ln.msg)]
+    """The lines that say the costmap got no map: the static layer's, and a QoS mismatch on the map's topic beside
+    it; none unless the static layer said so (a mismatch alone may be any subscriber's)."""
+    gone = [ln for ln in seen if NO_MAP in ln.msg or MAP_QOS.match(ln.msg)]
+    return gone if any(NO_MAP in ln.msg for ln in gone) else []
 
 
 NO_MAP_FACT = "no_map"  # an off_costmap finding's fact: the costmap never got its map (notes: the QoS policy, if said)
@@ -276,7 +278,7 @@ NO_MAP_FACT = "no_map"  # an off_costmap finding's fact: the costmap never got i
 def no_map_finding(found: Finding, seen: list[LogLine]) -> Finding:
     """`found` (off_costmap) marked with the map that never came, and the QoS policy that kept it away if logged."""
     gone = map_never_came(seen)
-    if any(NO_MAP in ln.msg for ln in gone):
+    if gone:
         found.facts[NO_MAP_FACT] = 1.0
         policy = next((ln.msg.rsplit(":", 1)[-1].strip() for ln in gone if MAP_QOS.match(ln.msg)), "")
         if policy:
@@ -286,7 +288,7 @@ def no_map_finding(found: Finding, seen: list[LogLine]) -> Finding:
 
 def without_map_timeouts(lines: list[LogLine], seen: list[LogLine]) -> list[LogLine]:
     """`lines` less the costmap timeouts that a map that never came explains."""
-    if not any(NO_MAP in ln.msg for ln in seen):
+    if not map_never_came(seen):
         return lines
     return [ln for ln in lines if COSTMAP_TIMEOUT not in ln.msg]
 

@@ -36,7 +36,7 @@ FREE_WAY = "grid_free_way"  # a hedged finding's fact: both ends free and joined
 MAX_SEARCH_CELLS = 16_000_000
 
 _FROM = re.compile(r"from current location \((?P<x>-?[\d.]+), (?P<y>-?[\d.]+)\)")
-_TO = re.compile(r"(?:\bto|path to|from .* to) \((?P<x>-?[\d.]+), (?P<y>-?[\d.]+)\)")
+_TO = re.compile(r"(?:\bto|from .* to) \((?P<x>-?[\d.]+), (?P<y>-?[\d.]+)\)")
 
 
 @dataclass(frozen=True)
@@ -91,7 +91,7 @@ def _blocked(value: int | None) -> bool:
     return value is not None and value >= INSCRIBED
 
 
-def _joined(grid: Grid, a: Point, b: Point, lethal: int) -> bool | None:
+def _joined(grid: Grid, unpacked: bytes, a: Point, b: Point, lethal: int) -> bool | None:
     """Whether a way of passable cells (below `lethal`, unknown included) joins a and b; None when not searched."""
     if grid.width * grid.height > MAX_SEARCH_CELLS:
         return None
@@ -101,7 +101,7 @@ def _joined(grid: Grid, a: Point, b: Point, lethal: int) -> bool | None:
     ia, ib = grid.index(a.x, a.y), grid.index(b.x, b.y)
     if ia is None or ib is None:
         return None
-    cells = np.frombuffer(grid.cells(), dtype=np.int8).reshape(grid.height, grid.width)
+    cells = np.frombuffer(unpacked, dtype=np.int8).reshape(grid.height, grid.width)
     passable = cells < lethal
     passable[ia[1], ia[0]] = passable[ib[1], ib[0]] = True  # the ends were read apart; only the way is asked
     labels, _ = ndimage.label(passable, structure=np.ones((3, 3), dtype=bool))
@@ -141,27 +141,30 @@ def read_grids(view: View, run: Run, failed: LogLine) -> Finding | None:
     if goal is None:
         return None
     name = "my global costmap" if grid is costmap else "my map"
-    start_value = grid.value(start.x, start.y) if start is not None else None
+    # each grid unpacked once for all its look-ups (a costmap of millions of cells takes tens of milliseconds)
+    cells = grid.cells()
+    map_cells = static.cells() if static is not None and static is not grid else None
+    start_value = grid.value(start.x, start.y, cells) if start is not None else None
     if start is not None and _blocked(start_value):
         assert start_value is not None
-        on_wall = static is not None and static is not grid and static.value(start.x, start.y) == LETHAL
+        on_wall = static is not None and map_cells is not None and static.value(start.x, start.y, map_cells) == LETHAL
         why = (" That cell is a wall of my map itself, where I cannot have stood: my position estimate was "
                "probably wrong." if on_wall else " My map shows no wall there, so it was an obstacle my sensors "
                "marked around me (or a keepout zone), or my position estimate was wrong."
-               if static is not None and static is not grid else "")
+               if map_cells is not None else "")
         where = ("was on an obstacle" if start_value >= LETHAL else
                  "was inside an obstacle's inflated border, closer to it than my robot's radius,")
         return _found(g.START_IN_OBSTACLE,
                       f"my own start position {where} in {name} (at {start.text()}), so my planner could not start "
                       f"a plan from there.{why}",
                       grid, f"my position {start.text()} on a cell of value {start_value}", failed)
-    goal_value = grid.value(goal.x, goal.y)
+    goal_value = grid.value(goal.x, goal.y, cells)
     if goal_value is None:
         return _found(g.GOAL_UNREACHABLE,
                       f"my goal lies outside {name} (the goal is at {goal.text()}; it covers {_where(grid)}), so no "
                       "plan can reach it.", grid, f"the goal {goal.text()} outside the grid", failed)
     if _blocked(goal_value):
-        wall = static is not None and static is not grid and static.value(goal.x, goal.y) == LETHAL
+        wall = static is not None and map_cells is not None and static.value(goal.x, goal.y, map_cells) == LETHAL
         where = ("lies on an obstacle" if goal_value >= LETHAL else
                  "lies in an obstacle's inflated border, closer to it than my robot's radius,")
         also = " (a wall or obstacle of my map itself)" if wall else ""
@@ -169,9 +172,9 @@ def read_grids(view: View, run: Run, failed: LogLine) -> Finding | None:
                       grid, f"the goal {goal.text()} on a cell of value {goal_value}", failed)
     if start is None or start_value is None:
         return None
-    joined = _joined(grid, start, goal, INSCRIBED)
+    joined = _joined(grid, cells, start, goal, INSCRIBED)
     if joined is False:
-        static_joined = _joined(static, start, goal, LETHAL) if static is not None and static is not grid else None
+        static_joined = _joined(static, map_cells, start, goal, LETHAL) if static is not None and map_cells else None
         if static_joined is False:
             return _found(g.GOAL_UNREACHABLE,
                           f"my goal cannot be reached from where I stood: even my map has no free way from "

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import NO_MAP, map_never_came
+from hexar.explainers.navigation.detectors import map_never_came
 from hexar.explainers.navigation.diagnose import Tagged
 
 
@@ -133,8 +133,7 @@ def claimable(notes: list[Tagged], cause: str, lines: list[LogLine], seen: list[
     backing = [n.line for n in notes if n.entry.cause in support and state_of(n.entry, n.line.msg) is None]
     if said[0] is OUTSIDE:
         backing += [ln for ln in lines if _beyond_any_map(ln.msg)]
-        if any(NO_MAP in ln.msg for ln in seen or []):
-            backing += map_never_came(seen or [])
+        backing += map_never_came(seen or [])
     return sorted({*lines, *backing}, key=lambda ln: ln.t) if backing else []
 
 
