@@ -36,6 +36,8 @@ from rosbags.rosbag2.storage_sqlite3 import Sqlite3Reader
 from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_typestore
 from rosbags.typesys.store import Typestore
 
+from hexar.events.humble import humble
+
 if TYPE_CHECKING:
     from rosbags.rosbag2.reader import ReaderProtocol
 
@@ -52,7 +54,8 @@ _LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 class Reader(AnyReader):
     """AnyReader, opened the same way and raising the same errors, with its typestore from the shared cache and
-    its storages parsing each distinct QoS text once."""
+    its storages parsing each distinct QoS text once; a recording that stores no definitions is read with the
+    standard (Humble) ones unless another default is given."""
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -71,7 +74,10 @@ class Reader(AnyReader):
             self.stack.enter_context(reader)
         connections = [y for x in self.readers for y in x.connections]
         if connections:
-            self.typestore = typestore_for(definitions(connections), self.is2, self.default_typestore)
+            defs = definitions(connections)
+            # the standard store only for a recording that stores no definitions: building it is not free
+            default = self.default_typestore if self.default_typestore is not None or defs else humble()
+            self.typestore = typestore_for(defs, self.is2, default)
         self.connections = connections
 
 

@@ -13,7 +13,6 @@ from typing import Any
 from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
 from rosbags.serde import SerdeError
-from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
@@ -36,6 +35,7 @@ from hexar.events.errors import (
     RecordingNotFoundError,
     UnknownMessageTypeError,
 )
+from hexar.events.humble import has_standard, humble, humble_hash, is_humble
 from hexar.events.log import EventLog, TopicInfo
 from hexar.events.mcap_index import check_mcap
 from hexar.events.records import (
@@ -54,15 +54,6 @@ from hexar.events.recover import holds_storage, is_cut_short, read_recovered, st
 from hexar.events.storage_rows import mcap_rows, sqlite_messages
 from hexar.events.task_info import parse_task_info
 
-_HUMBLE: Typestore | None = None
-
-
-def _humble() -> Typestore:
-    global _HUMBLE
-    if _HUMBLE is None:
-        _HUMBLE = get_typestore(Stores.ROS2_HUMBLE)
-    return _HUMBLE
-
 
 class _Unreadable(Exception):
     """A connection whose messages do not fit the definition HEXAR would decode them with."""
@@ -79,11 +70,10 @@ _MISFIT = (LayoutError, SerdeError, AttributeError, TypeError, KeyError)
 @lru_cache(maxsize=256)  # typestores are shared between recordings (events.bag), and hashing one is not cheap
 def _same_layout(ts: Typestore, msgtype: str) -> bool:
     """Whether the recording's definition of `msgtype` is the standard (Humble) one the fast decoders assume."""
-    humble = _humble()
-    if ts is humble:
+    if is_humble(ts):
         return True
     try:
-        return ts.hash_rihs01(msgtype) == humble.hash_rihs01(msgtype)
+        return ts.hash_rihs01(msgtype) == humble_hash(msgtype)
     except Exception:  # a type rosbags cannot hash is no standard layout
         return False
 
@@ -190,21 +180,21 @@ def _guarded(src: Path, read: Callable[[], EventLog]) -> EventLog:
 
 def _read_files(files: list[Path], src: Path, wanted: frozenset[str]) -> EventLog:
     """The recording at `src` read from other storage files (a recovered copy): rosbags only, no fast paths."""
-    with AnyReader(files, default_typestore=_humble()) as reader:
+    with AnyReader(files, default_typestore=humble()) as reader:
         return _read_skipping(reader, src, wanted, fast=False)[0]
 
 
 def _read_whole(src: Path, wanted: frozenset[str]) -> EventLog:
     for file in sorted(src.glob("*.mcap")) if src.is_dir() else []:
         check_mcap(file, crc=False)
-    with Reader([src], default_typestore=_humble()) as reader:
+    with Reader([src]) as reader:
         log, complete = _read_skipping(reader, src, wanted)
     if not complete:
         # Some rosbag2 versions write different QoS into metadata.yaml than into the storage file, and
         # rosbags then matches no message to its connection; the storage files alone are consistent.
         files = storage_files(src)
         if files:
-            with Reader(files, default_typestore=_humble()) as reader:
+            with Reader(files) as reader:
                 log, _ = _read_skipping(reader, src, wanted)
     return log
 
@@ -226,7 +216,6 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
         raise EmptyRecordingError(f"empty recording: {src} holds no messages")
 
     known = set(reader.typestore.fielddefs)
-    humble = _humble()
     selected = []
     typestores: dict[int, Typestore] = {}
     for conn in reader.connections:
@@ -235,7 +224,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
             continue
         key = c.topic_key(conn.topic)
         if key not in wanted:
-            if conn.msgtype not in known and conn.msgtype not in humble.fielddefs:
+            if conn.msgtype not in known and not has_standard(conn.msgtype):
                 warnings.append(f"skipped {conn.topic}: unknown type {conn.msgtype}")
             continue
         expected = c.TYPE_OF.get(key)
@@ -250,8 +239,8 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
             )
         if conn.msgtype in known:
             typestores[conn.id] = reader.typestore
-        elif conn.msgtype in humble.fielddefs:
-            typestores[conn.id] = humble
+        elif has_standard(conn.msgtype):
+            typestores[conn.id] = humble()
         else:
             raise UnknownMessageTypeError(f"{conn.topic} has unknown type {conn.msgtype} and the bag defines none")
         selected.append(conn)
@@ -286,11 +275,11 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
             # A stored definition that does not fit its own bytes (test bags carry such stand-ins): the standard
             # one may still fit them exactly, which the strict decoders check.
             try:
-                _decode(log, conn, t, raw, humble, ros2, True, warnings)
+                _decode(log, conn, t, raw, humble(), ros2, True, warnings)
             except Exception as err2:
                 raise _Unreadable(conn, f"its messages fit neither the definition of {conn.msgtype} stored in "
                                         f"the recording nor the standard one ({type(err).__name__}: {err})") from err2
-            standard[conn.id], typestores[conn.id] = True, humble
+            standard[conn.id], typestores[conn.id] = True, humble()
             warnings.append(f"{conn.topic}: the definition of {conn.msgtype} stored in the recording does not fit "
                             "its messages; they fit the standard definition exactly and were read with it")
     log.finish()

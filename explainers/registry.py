@@ -5,12 +5,12 @@ from __future__ import annotations
 import importlib
 import inspect
 import tomllib
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from functools import cache
 from importlib import resources
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 from hexar.explainers.base import Explainer, TextModel
 from hexar.explainers.errors import RegistryConfigError, UnknownExplainerError
@@ -32,17 +32,47 @@ def _load_class(ref: str) -> type[Any]:
         raise RegistryConfigError(f"cannot load explainer {ref!r}: {err}") from err
 
 
-@cache
-def _entry_point_classes() -> dict[str, type[Any]]:
-    # Scanning every installed distribution's entry points costs tens of milliseconds; a batch over many
-    # recordings loads a registry per recording, and the installed set does not change while it runs.
-    classes: dict[str, type[Any]] = {}
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
+class _EntryPoint(Protocol):
+    name: str
+
+    def load(self) -> Any: ...
+
+
+class Classes(Mapping[str, type[Any]]):
+    """Explainer classes by name; one given as an entry point is imported when it is first asked for, so a
+    question one explainer answers does not import the others (each brings its catalogue)."""
+
+    def __init__(self, given: Mapping[str, type[Any] | _EntryPoint]) -> None:
+        self._given = dict(given)
+
+    def __getitem__(self, name: str) -> type[Any]:
+        value = self._given[name]
+        if isinstance(value, type):
+            return value
         try:
-            classes[ep.name] = ep.load()
+            cls = value.load()
         except (ImportError, AttributeError) as err:
-            raise RegistryConfigError(f"entry point {ep.name!r} cannot be loaded: {err}") from err
-    return classes
+            raise RegistryConfigError(f"entry point {name!r} cannot be loaded: {err}") from err
+        if not isinstance(cls, type):
+            raise RegistryConfigError(f"entry point {name!r} is not a class")
+        self._given[name] = cls
+        return cls
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._given  # without importing it
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._given)
+
+    def __len__(self) -> int:
+        return len(self._given)
+
+
+@cache
+def _entry_points() -> dict[str, _EntryPoint]:
+    # Scanning every installed distribution's entry points costs milliseconds; a batch over many recordings
+    # loads a registry per recording, and the installed set does not change while it runs.
+    return {ep.name: ep for ep in entry_points(group=ENTRY_POINT_GROUP)}
 
 
 def read_config(path: Path | None = None) -> dict[str, Any]:
@@ -67,11 +97,11 @@ class Registry:
 
     def __init__(
         self,
-        classes: Mapping[str, type[Any]],
+        classes: Mapping[str, type[Any] | _EntryPoint],
         modules: Mapping[str, Iterable[str]],
         model: TextModel | None = None,
     ) -> None:
-        self.classes = dict(classes)
+        self.classes = Classes(classes)
         self.modules = {skill: list(names) for skill, names in modules.items()}
         self.model = model
         self._instances: dict[str, Explainer] = {}
@@ -83,7 +113,7 @@ class Registry:
     @classmethod
     def load(cls, model: TextModel | None = None, config: Path | None = None) -> Registry:
         """Entry points of the `hexar.explainers` group, then the config's own [explainers] and [modules]."""
-        classes = dict(_entry_point_classes())
+        classes: dict[str, type[Any] | _EntryPoint] = dict(_entry_points())
         data = read_config(None)
         if config is not None:
             extra = read_config(config)

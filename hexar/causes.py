@@ -37,7 +37,8 @@ class Cause:
 
 @cache
 def vocabulary() -> dict[str, Cause]:
-    raw = yaml.safe_load(resources.files("hexar").joinpath("causes.yaml").read_text(encoding="utf-8"))
+    text = resources.files("hexar").joinpath("causes.yaml").read_text(encoding="utf-8")
+    raw = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # libyaml's parser: same data
     return {
         cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]),
                    tuple(entry.get("implies", ())))

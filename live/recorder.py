@@ -47,9 +47,9 @@ class RollingRecorder:
                 self._rotate()
             conn = self._conns.get(topic)
             if conn is None:
-                from hexar.events.reader import _humble
+                from hexar.events.humble import humble
 
-                conn = self._conns[topic] = self._writer.add_connection(topic, ros_type, typestore=_humble())
+                conn = self._conns[topic] = self._writer.add_connection(topic, ros_type, typestore=humble())
             self._writer.write(conn, t, raw)
         except Exception as err:  # a full disk must not stop the node from answering
             self.failed = True

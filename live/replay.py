@@ -42,10 +42,11 @@ class ReplayStats:
 def _open(path: Path) -> tuple[Any, Path]:
     from rosbags.highlevel import AnyReader
 
-    from hexar.events.reader import _humble, damage, resolve_path
+    from hexar.events.humble import humble
+    from hexar.events.reader import damage, resolve_path
 
     src = resolve_path(path)
-    reader = AnyReader([src], default_typestore=_humble())
+    reader = AnyReader([src], default_typestore=humble())
     try:
         reader.open()
     except Exception as err:  # rosbags raises many unrelated classes for damaged files

@@ -178,9 +178,9 @@ class RclpyTransport:
         return sorted(self._pubs)
 
     def start(self, log: LiveLog, on_record: Callable[[Any], None], on_question: Callable[[str], None]) -> None:
-        from hexar.events.reader import _humble
+        from hexar.events.humble import humble
 
-        self._humble = _humble()
+        self._humble = humble()
         # rclpy's executor hands over one message per ready subscription per wait, in creation order: the
         # callback takes the rest of its topic's backlog itself, and the triggers come last (topics.READ_ORDER)
         for spec in READ_ORDER:
@@ -257,11 +257,11 @@ class RclpyReplayer:
     wants_dds = False
 
     def __init__(self, domain_id: int = 0) -> None:
-        from hexar.events.reader import _humble
+        from hexar.events.humble import humble
         from hexar.live.replay import QOS_OF
 
         self.ros = RosNode("hexar_replay", domain_id)
-        self._humble = _humble()
+        self._humble = humble()
         self._qos = QOS_OF
         self._pubs: dict[str, Any] = {}
 

@@ -1,6 +1,7 @@
 """Cold-start benchmark: wall time of one-shot `hexar` commands, each a fresh process, median of N rounds.
 
     .venv/bin/python scripts/bench_coldstart.py [--rounds 5] [--suite runs/suite] [--no-embedded] [--no-voice]
+                                                [--baseline OLD/bin/hexar]
 
 Commands are interleaved round by round, so `ask --llm none / inspect` is a ratio of figures taken under the same
 load (other work on the machine slows both alike). Measured: `inspect`; `ask --llm none` (the before-stop hook's
@@ -8,7 +9,8 @@ command); `ask --llm embedded` when the failure check decides and when the model
 time apart; `chat` until its first prompt (in a pseudo-terminal); `listen` until its first spoken answer is
 printed (a WAV question made with espeak-ng). Then an import-time breakdown of `ask --llm none` (`python -X
 importtime`, self time summed per top-level package). Targets are the issue's: ask <= 1.0 s and <= 1.3x inspect;
-embedded <= 3 s (failure check) and <= 4 s (model routes).
+embedded <= 3 s (failure check) and <= 4 s (model routes). `--baseline` times another installation's `hexar`
+(the code before a change) on `inspect` and `ask --llm none` in the same rounds and prints new / old.
 """
 
 from __future__ import annotations
@@ -110,6 +112,7 @@ def main() -> None:
     parser.add_argument("--no-embedded", action="store_true")
     parser.add_argument("--no-voice", action="store_true")
     parser.add_argument("--json", type=Path, help="also write the figures here")
+    parser.add_argument("--baseline", help="another installation's hexar executable, timed in the same rounds")
     args = parser.parse_args()
     suite: Path = args.suite
     if not (suite / FAILED).is_dir():
@@ -125,6 +128,11 @@ def main() -> None:
         "ask --llm none": lambda: timed([*hexar(), "ask", str(suite / FAILED), QUESTION, "--llm", "none"])[0],
         "chat (to first prompt)": lambda: chat_first_prompt(suite / FAILED, tmp / "threads.sqlite"),
     }
+    if args.baseline:
+        old = [args.baseline]
+        cmds["inspect (baseline)"] = lambda: timed([*old, "inspect", str(suite / FAILED)])[0]
+        cmds["ask --llm none (baseline)"] = lambda: timed(
+            [*old, "ask", str(suite / FAILED), QUESTION, "--llm", "none"])[0]
     if importlib.util.find_spec("ros_wheels_bootstrapper") is not None:
         # The `ros` extra's wheels re-execute every Python start to set LD_LIBRARY_PATH, unless
         # _ROS_WHEELS_BOOTSTRAP_COMPLETE is set. This script inherits it from its own start, so the rows above
@@ -182,6 +190,14 @@ def main() -> None:
     ok = figures["ask_over_inspect"]["of_medians"] <= RATIO_TARGET  # type: ignore[index]
     print(f"  ask --llm none / inspect (same run)    {ask_med / inspect_med:6.2f} x  target <= {RATIO_TARGET} x: "
           f"{'ok' if ok else 'MISSED'} (per-round median {median(ratios):.2f} x)")
+    if args.baseline:
+        for name in ("inspect", "ask --llm none"):
+            new, old_t = times[name], times[f"{name} (baseline)"]
+            per_round = median([a / b for a, b in zip(new, old_t, strict=True)])
+            figures[f"{name} new/old"] = {"of_medians": round(median(new) / median(old_t), 3),
+                                          "median_per_round": round(per_round, 3)}
+            print(f"  {name + ' new / baseline':38s} {median(new) / median(old_t):6.2f} x  "
+                  f"(per-round median {per_round:.2f} x)")
     print(f"import time of `ask --llm none`: {total:.2f} s; by package (self time):")
     for pkg, secs in breakdown:
         print(f"  {pkg:24s} {secs * 1000:7.0f} ms")

@@ -10,13 +10,13 @@ from pathlib import Path
 from typing import Any, Literal
 
 from rosbags.rosbag2 import StoragePlugin, Writer
-from rosbags.typesys import Stores, get_typestore
 
 from hexar.events import contract as c
+from hexar.events.humble import humble
 
 Storage = Literal["sqlite3", "mcap"]
 NS = 1_000_000_000
-TYPESTORE = get_typestore(Stores.ROS2_HUMBLE)
+TYPESTORE = humble()
 _T = TYPESTORE.types
 
 

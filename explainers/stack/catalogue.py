@@ -30,6 +30,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from functools import cache, cached_property
 from importlib import resources
+from operator import itemgetter
 from typing import Any
 
 from hexar.explainers.stack.errors import StackCatalogueError
@@ -46,6 +47,7 @@ _WRAP = re.compile(r"[ \t]*\r?\n[ \t]*")
 CUT_MIN_LITERAL = 30
 CUT_MIN_TAIL = 4
 _LITERAL = re.compile(r"(?:\\.|[^\\.*?()\[\]{}|+^$])+")
+_ESCAPE = re.compile(r"\\(.)")
 
 
 @dataclass(frozen=True)
@@ -70,13 +72,12 @@ class StackEntry:
     @cached_property
     def key(self) -> str:
         """The pattern's longest literal run (unescaped): a message without it cannot match."""
-        runs = [re.sub(r"\\(.)", r"\1", r) for r in _LITERAL.findall(self.pattern)]
-        return max(runs, key=len, default="")
+        return literal_key(self.pattern)
 
     @cached_property
     def pieces(self) -> tuple[str, ...]:
         """The pattern's literal text between its fields (unescaped), in order."""
-        return tuple(re.sub(r"\\(.)", r"\1", p) for p in self.pattern.split(".*?"))
+        return literal_pieces(self.pattern)
 
     def cut_match(self, text: str) -> bool:
         """Whether `text` is this message cut short (a console line pasted at its terminal's width, a note that
@@ -99,6 +100,21 @@ class StackEntry:
         """Letters and digits of the pattern's literal text: of two matching entries the more specific one is the
         reading (a helper's "[…] [ActionServer] …" frame says less than the "Aborting handle." it carries)."""
         return sum(ch.isalnum() for ch in re.sub(r"\.\*\?", "", self.pattern))
+
+
+def _unescaped(text: str) -> str:
+    # itemgetter(1) is the group itself, taken in C: a template ("\\1") is expanded in Python for each escape
+    return _ESCAPE.sub(itemgetter(1), text) if "\\" in text else text
+
+
+def literal_key(pattern: str) -> str:
+    """A pattern's longest literal run (unescaped)."""
+    return max((_unescaped(r) for r in _LITERAL.findall(pattern)), key=len, default="")
+
+
+def literal_pieces(pattern: str) -> tuple[str, ...]:
+    """A pattern's literal text between its fields (unescaped), in order."""
+    return tuple(_unescaped(p) for p in pattern.split(".*?"))
 
 
 def clean(msg: str) -> str:
@@ -133,17 +149,39 @@ class StackCatalogue:
         try:
             self.distros: tuple[str, ...] = tuple(raw["distros"])
             self.mined: tuple[str, ...] = tuple(raw["mined"])
-            self.entries: tuple[StackEntry, ...] = tuple(_entry(e) for e in raw["entries"])
+            self._raw: list[Any] = list(raw["entries"])
+            for e in self._raw:
+                if e["role"] not in ROLES or e["level"] not in LEVELS:
+                    raise ValueError(f"entry {e.get('source')}: role {e['role']!r} / level {e['level']!r}")
         except (KeyError, TypeError, ValueError, AttributeError) as err:
             raise StackCatalogueError(f"malformed stack catalogue: {err}") from err
+        # An entry is built when a message holds its key (or it is asked for): a question reads a few dozen
+        # lines, and building all two thousand is most of a cold start's catalogue time.
+        self._built: dict[int, StackEntry] = {}
         self._seen: dict[str, StackEntry | None] = {}
 
+    def _at(self, i: int) -> StackEntry:
+        if (entry := self._built.get(i)) is None:
+            try:
+                entry = self._built[i] = _entry(self._raw[i])
+            except (KeyError, TypeError, ValueError, AttributeError) as err:
+                raise StackCatalogueError(f"malformed stack catalogue: {err}") from err
+        return entry
+
     @cached_property
-    def _by_key(self) -> dict[str, list[StackEntry]]:
-        out: dict[str, list[StackEntry]] = {}
-        for e in self.entries:
-            out.setdefault(e.key, []).append(e)
+    def entries(self) -> tuple[StackEntry, ...]:
+        return tuple(self._at(i) for i in range(len(self._raw)))
+
+    @cached_property
+    def _by_key(self) -> dict[str, list[int]]:
+        out: dict[str, list[int]] = {}
+        for i, e in enumerate(self._raw):
+            out.setdefault(literal_key(str(e["pattern"])), []).append(i)
         return out
+
+    @cached_property
+    def _first_pieces(self) -> list[tuple[str, int]]:
+        return [(_unescaped(str(e["pattern"]).split(".*?", 1)[0]), i) for i, e in enumerate(self._raw)]
 
     def match(self, msg: str) -> StackEntry | None:
         """The entry whose pattern the message (ANSI colours removed) holds: one with a cause id before one without
@@ -156,13 +194,14 @@ class StackCatalogue:
         if best is None and (joined := unwrapped(text)) is not None:
             best = self._best(joined)
         if best is None and len(text.rstrip(" .…")) >= CUT_MIN_LITERAL:
-            cut = [e for e in self.entries if e.pieces[0] and e.pieces[0] in text and e.cut_match(text)]
+            cut = [e for first, i in self._first_pieces if first and first in text
+                   if (e := self._at(i)).cut_match(text)]
             best = max(cut, key=_rank, default=None)
         if best is None and len(text) >= CUT_MIN_LITERAL and text.rstrip().endswith((".", "!")):
             # the message's first sentences alone: a console that broke the line after them (MPPI's "Inconsistent
             # configuration in collision checking." with its "Please verify ..." on a line of its own)
             said = text.strip()
-            first = [e for e in self.entries if e.pieces[0].startswith(f"{said} ")]
+            first = [self._at(i) for piece, i in self._first_pieces if piece.startswith(f"{said} ")]
             best = max(first, key=_rank, default=None)
         if len(self._seen) > 20_000:
             self._seen.clear()
@@ -171,10 +210,11 @@ class StackCatalogue:
 
     def _best(self, text: str) -> StackEntry | None:
         best: StackEntry | None = None
-        for key, entries in self._by_key.items():
+        for key, indices in self._by_key.items():
             if key not in text:
                 continue
-            for e in entries:
+            for i in indices:
+                e = self._at(i)
                 if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
                     best = e
         return best
@@ -183,7 +223,8 @@ class StackCatalogue:
         """Every entry the message holds, best reading first (a message may quote several: an exception's text
         inside the line that caught it)."""
         text = clean(msg)
-        found = [e for key, entries in self._by_key.items() if key in text for e in entries if e.regex.search(text)]
+        found = [e for key, indices in self._by_key.items() if key in text for i in indices
+                 if (e := self._at(i)).regex.search(text)]
         return sorted(found, key=_rank, reverse=True)
 
     def with_cause(self, cause: str) -> list[StackEntry]:

@@ -13,7 +13,7 @@ from rosbags.highlevel import AnyReader
 from hexar.evals.scenarios.bag import BagBuilder
 from hexar.events import contract as c
 from hexar.events.bag import Directory, Reader
-from hexar.events.reader import _humble
+from hexar.events.humble import humble
 from tests.events.helpers import T0, two_skill_task
 
 # offered_qos_profiles as rosbag2 (Foxy to Humble) writes it into metadata.yaml: one YAML string per topic
@@ -31,7 +31,7 @@ def _bag(tmp_path: Path, name: str, storage: str) -> Path:
 
 
 def _opened(cls: type[AnyReader], path: Path) -> tuple[Any, ...]:
-    with cls([path], default_typestore=_humble()) as r:
+    with cls([path], default_typestore=humble()) as r:
         return ([conn._replace(owner=None) for conn in r.connections], r.message_count, r.start_time, r.end_time,
                 [reader.storage.metadata for reader in r.readers], sorted(r.typestore.fielddefs.items()))
 
@@ -47,7 +47,7 @@ def test_opens_a_recording_as_rosbags_does(tmp_path: Path, storage: str) -> None
     qos = _bag(tmp_path, "qos", storage)
     _with_qos_strings(qos)
     for path in (plain, qos):
-        with Reader([path], default_typestore=_humble()) as r:
+        with Reader([path], default_typestore=humble()) as r:
             assert all(isinstance(reader.storage, Directory) for reader in r.readers)  # the fast way was taken
         assert _opened(Reader, path) == _opened(AnyReader, path)
     conn = _opened(Reader, qos)[0][0]
@@ -77,7 +77,7 @@ def test_a_damaged_recording_fails_with_rosbags_own_words(tmp_path: Path, damage
 
 def test_recordings_with_the_same_definitions_share_their_types(tmp_path: Path) -> None:
     a, b = _bag(tmp_path, "a", "sqlite3"), _bag(tmp_path, "b", "sqlite3")
-    with Reader([a], default_typestore=_humble()) as ra, Reader([b], default_typestore=_humble()) as rb:
+    with Reader([a], default_typestore=humble()) as ra, Reader([b], default_typestore=humble()) as rb:
         assert ra.typestore is rb.typestore
-        with AnyReader([a], default_typestore=_humble()) as plain:
+        with AnyReader([a], default_typestore=humble()) as plain:
             assert ra.typestore is not plain.typestore

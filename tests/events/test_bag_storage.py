@@ -20,8 +20,9 @@ from hexar.evals.scenarios.suite import record
 from hexar.events import bag
 from hexar.events import contract as c
 from hexar.events.errors import CorruptRecordingError
+from hexar.events.humble import humble
 from hexar.events.log import EventLog
-from hexar.events.reader import _humble, _read_skipping, read_recording
+from hexar.events.reader import _read_skipping, read_recording
 
 T = TYPESTORE.types
 
@@ -82,12 +83,12 @@ def _write(scenario: int, out: Path, storage: str) -> Path:
 
 def _rosbags_way(path: Path) -> EventLog:
     """rosbags' AnyReader opened afresh, every message through its own time-ordered reader."""
-    with AnyReader([path], default_typestore=_humble()) as reader:
+    with AnyReader([path], default_typestore=humble()) as reader:
         return _read_skipping(reader, path, c.ALL_TOPICS, fast=False)[0]
 
 
 def _storage_connections(cls: type[AnyReader], path: Path) -> list[Any]:
-    with cls([path], default_typestore=_humble()) as reader:
+    with cls([path], default_typestore=humble()) as reader:
         return [[conn._replace(owner=None) for conn in storage.connections]
                 for r in reader.readers for storage in r.storage.storages]
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 from typing import ClassVar
 
@@ -12,6 +14,7 @@ from hexar.agent.session import Session
 from hexar.events import contract as c
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.errors import RegistryConfigError, UnknownExplainerError
+from hexar.explainers.navigation import NavigationExplainer
 from hexar.explainers.registry import Registry
 from hexar.tools.explainer_tools import tools_for
 
@@ -77,3 +80,29 @@ def test_bad_config_is_a_clear_error(tmp_path: Path) -> None:
         Registry.load(config=broken)
     with pytest.raises(UnknownExplainerError):
         Registry.load().get("nope")
+
+
+def test_an_explainer_is_imported_when_it_is_first_asked_for() -> None:
+    # a fresh interpreter: this test process has imported every explainer already
+    code = ("import sys; from hexar.explainers.registry import Registry; r = Registry.load(); "
+            "loaded = lambda: sorted(n for n in ('navigation', 'control', 'manipulation', 'pizza') "
+            "if f'hexar.explainers.{n}' in sys.modules); "
+            "before = loaded(); known = 'control' in r.classes and 'manipulation' in r.names; "
+            "r.get('navigation'); print(before, known, loaded())")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == "[] True ['navigation']"
+
+
+def test_an_entry_point_that_cannot_be_imported_is_a_clear_error_when_used() -> None:
+    class Broken:
+        name = "broken"
+
+        def load(self) -> type:
+            raise ImportError("No module named 'hexar_extra'")
+
+    registry = Registry({"broken": Broken(), "navigation": NavigationExplainer}, {"self_check": ["broken"]})
+    assert registry.for_module("self_check") == ["broken"] and "broken" in registry.names
+    assert registry.get("navigation").name == "navigation"
+    with pytest.raises(RegistryConfigError, match="entry point 'broken' cannot be loaded: No module named"):
+        registry.get("broken")

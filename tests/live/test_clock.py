@@ -16,7 +16,7 @@ import pytest
 from hexar.agent.context import RunSettings
 from hexar.agent.session import Session
 from hexar.events import read_recording
-from hexar.events.reader import _humble
+from hexar.events.humble import humble
 from hexar.live.clock import CLOCK, NS, Timeline
 from hexar.live.log import LiveLog
 from hexar.live.node import FAILURE_QUESTION
@@ -42,8 +42,8 @@ def robot(run: Path, clock: str) -> tuple[Timeline, LiveLog, int]:
     timeline, log = Timeline(), LiveLog()
     rate = 1.0 if clock == "live" else 10.0
     shift = 100 * NS - start if clock == "sim" else 0  # simulated time: the run starts 100 s into the simulation
-    clock_type = _humble().types["rosgraph_msgs/msg/Clock"]
-    time_type = _humble().types["builtin_interfaces/msg/Time"]
+    clock_type = humble().types["rosgraph_msgs/msg/Clock"]
+    time_type = humble().types["builtin_interfaces/msg/Time"]
     for topic, _, t, msg in messages:
         source = t if clock == "live" else TODAY + int((t - start) / rate)
         if clock in {"bag-play --clock", "sim"}:
@@ -75,7 +75,7 @@ def test_every_clock_gives_the_recordings_answer(suite: Path, clock: str) -> Non
 def test_a_robot_with_no_clock_of_its_own_keeps_source_times() -> None:
     """Before any reference an unstamped message waits; a robot that never sends one is dated by source time."""
     timeline = Timeline(hold_s=0.05)
-    msg = _humble().types["std_msgs/msg/Bool"](data=True)
+    msg = humble().types["std_msgs/msg/Bool"](data=True)
     assert timeline.records("/joy_priority", msg, 5 * NS) == []  # held: no reference yet
     assert timeline.flush() == []
     time.sleep(0.1)

@@ -55,9 +55,9 @@ def test_a_taken_bag_name_does_not_stop_recording(tmp_path: Path) -> None:
     # another recorder (a restarted `hexar serve`) already wrote the names this one would pick next
     for n in range(1, 40):
         (folder / f"live_{time.strftime('%Y%m%d_%H%M%S', time.gmtime())}_{n:04d}").mkdir()
-    from hexar.events.reader import _humble
+    from hexar.events.humble import humble
 
-    store = _humble()
+    store = humble()
     from rosbags.typesys.stores.ros2_humble import builtin_interfaces__msg__Time as Time
     from rosbags.typesys.stores.ros2_humble import rcl_interfaces__msg__Log as Log
 
