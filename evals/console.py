@@ -36,8 +36,9 @@ STEP_NS = NS // 10
 # compose's "service | ", an editor's or `cat -n`'s line number column ("1124  [bt_navigator-16] …"), a quote
 _OUTER = re.compile(r"^(?:\d+: |\d+:(?=\[)|\s*\d+(?:\t| {2,})(?=\[)|[\w.-]+\s+\| |> )")
 # launch's process name is the command's basename, or the `name` a launch file gives it, spaces allowed
-# ("[controller_manager fd_controller-4]"): words joined by single spaces, then launch's "-N"
-_PROC_NAME = r"[\w./-]+(?: [\w./-]+)*-\d+"
+# ("[controller_manager fd_controller-4]"), or the command line as ros_gz_sim's launch gives it to launch
+# ("[ruby $(which gz) sim-1]"): words joined by single spaces, then launch's "-N"
+_PROC_NAME = r"[\w./$()-]+(?: [\w./$()-]+)*-\d+"
 _PROC = rf"(?:\[(?P<proc>{_PROC_NAME})\]\s*)?"
 _LEVEL = r"\[\s*(?P<level>DEBUG|INFO|WARN|WARNING|ERROR|FATAL)\]\s*"
 # {time} (seconds), {time_as_nanoseconds} or {date_time_with_ms} ("2024-06-11 09:29:19.304", local time: read as UTC)

@@ -143,3 +143,18 @@ def test_gazebos_own_console_levels_and_source_place() -> None:
     assert (warn.level, warn.process, warn.msg) == (30, "gazebo-2", "Failed to load mesh from "
                                                                     "[model://robot_description/meshes/a.stl].")
     assert (msg.level, msg.file, msg.msg) == (20, "", "Serving world names on [/gazebo/worlds]")
+
+
+def test_gazebo_started_by_ros_gz_sim_under_its_command_line_as_process_name() -> None:
+    # open-rmf/rmf_simulation#125 as launch printed it; gz-sim#2517's SystemLoader error under the same prefix
+    text = ("[spawner-5] [INFO] [1717499382.790573223] [spawner_joint_state_broadcaster]: Waiting for "
+            "'/simulation_controller_manager' node to exist\n"
+            "[ruby $(which ign) gazebo-1] Stack trace (most recent call last):\n"
+            "[ruby $(which gz) sim-1] [Err] [SystemLoader.cc:92] Failed to load system plugin "
+            "[libgz-sim8-python-system-loader-system.so] : Could not find shared library.")
+    spawner, trace, err = parse_console(text)
+    assert (spawner.process, spawner.name) == ("spawner-5", "spawner_joint_state_broadcaster")
+    assert (trace.process, trace.msg) == ("ruby $(which ign) gazebo-1", "Stack trace (most recent call last):")
+    assert (err.process, err.level, err.file, err.line) == ("ruby $(which gz) sim-1", 40, "SystemLoader.cc", 92)
+    assert err.msg == ("Failed to load system plugin [libgz-sim8-python-system-loader-system.so] : Could not find "
+                       "shared library.")
