@@ -50,7 +50,7 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, grids, held, states
+from hexar.explainers.navigation import chain, grids, held, mapsave, states
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -177,7 +177,9 @@ class NavigationExplainer:
             came_up = chain.bringup(context.log.logs, None)
             if came_up is None and _inferred(context):
                 run.outcome = "unknown"  # a goal inferred from this error alone: no goal is shown, none failed
-            quoted = came_up or chain.with_last_error(d.Finding(d.UNEXPLAINED), raw, run)
+            # no navigation line at all: a map saver that got no map is what went wrong (a SLAM session's save)
+            unsaved = None if came_up else mapsave.map_not_saved(raw)
+            quoted = came_up or unsaved or chain.with_last_error(d.Finding(d.UNEXPLAINED), raw, run)
             if not quoted.notes:
                 return Explanation.not_enough(self.name, _unread(raw))
             findings = [quoted]

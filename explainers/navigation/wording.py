@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from hexar.claims import read_claims
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import grids, states
+from hexar.explainers.navigation import grids, mapsave, states
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -185,6 +185,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return _bringup(f, place)
     if (mapped := grids.template(f, place)) is not None:
         return mapped
+    if (unsaved := mapsave.template(f)) is not None:
+        return unsaved
     if f.cause == g.START_IN_OBSTACLE:
         return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap, so "
                 "no plan could start from it.",
