@@ -1,5 +1,5 @@
 """A map that could not be saved: nav2_map_server's map_saver got no map in time, read from its real lines (spent
-blind16: ADLINK NeuronBot2#15 and rt-net raspimouse_slam_navigation_ros2 PR #38 on Foxy, navigation2#3048 on
+blind16: Adlink-ROS/neuronbot2#15 and rt-net/raspimouse_ros2_examples#38 on Foxy, ros-navigation/navigation2#3048 on
 Galactic with gmapping's volatile map)."""
 
 from __future__ import annotations
