@@ -48,6 +48,7 @@ CUT_MIN_LITERAL = 30
 CUT_MIN_TAIL = 4
 _LITERAL = re.compile(r"(?:\\.|[^\\.*?()\[\]{}|+^$])+")
 _ESCAPE = re.compile(r"\\(.)")
+_FIELDS = frozenset({"pattern", "text", "level", "form", "layer", "package", "source", "distros", "role"})
 
 
 @dataclass(frozen=True)
@@ -151,6 +152,8 @@ class StackCatalogue:
             self.mined: tuple[str, ...] = tuple(raw["mined"])
             self._raw: list[Any] = list(raw["entries"])
             for e in self._raw:
+                if not e.keys() >= _FIELDS:
+                    raise KeyError(f"entry {e.get('source')} lacks {sorted(_FIELDS - e.keys())}")
                 if e["role"] not in ROLES or e["level"] not in LEVELS:
                     raise ValueError(f"entry {e.get('source')}: role {e['role']!r} / level {e['level']!r}")
         except (KeyError, TypeError, ValueError, AttributeError) as err:

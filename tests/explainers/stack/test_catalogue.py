@@ -68,7 +68,11 @@ def test_a_line_no_source_prints_is_not_matched() -> None:
 @pytest.mark.parametrize("text", ["", "[]", '{"distros": []}', '{"distros": [], "mined": [], "entries": [{}]}',
                                   '{"distros": [], "mined": [], "entries": [{"pattern": "x", "text": "x", '
                                   '"level": "LOUD", "form": "log", "layer": "l", "package": "p", "source": "s", '
-                                  '"distros": [], "role": "cause"}]}'])
+                                  '"distros": [], "role": "cause"}]}',
+                                  # an entry without its text is refused when the file loads, not when a line
+                                  # first holds its key
+                                  '{"distros": [], "mined": [], "entries": [{"pattern": "x", "level": "WARN", '
+                                  '"role": "cause"}]}'])
 def test_a_malformed_catalogue_is_a_clear_error(text: str) -> None:
     with pytest.raises(StackCatalogueError, match="malformed stack catalogue"):
         load(text)
