@@ -280,10 +280,15 @@ def no_map_finding(found: Finding, seen: list[LogLine]) -> Finding:
     gone = map_never_came(seen)
     if gone:
         found.facts[NO_MAP_FACT] = 1.0
-        policy = next((ln.msg.rsplit(":", 1)[-1].strip() for ln in gone if MAP_QOS.match(ln.msg)), "")
+        policy = next((policy_words(ln.msg) for ln in gone if MAP_QOS.match(ln.msg)), "")
         if policy:
-            found.notes.append(policy.removesuffix("_QOS_POLICY").replace("_", " ").lower())
+            found.notes.append(policy)
     return found
+
+
+def policy_words(warning: str) -> str:
+    """The policy at the end of rclcpp's incompatible-QoS warning, in words ("DURABILITY_QOS_POLICY": durability)."""
+    return warning.rsplit(":", 1)[-1].strip().removesuffix("_QOS_POLICY").replace("_", " ").lower()
 
 
 def without_map_timeouts(lines: list[LogLine], seen: list[LogLine]) -> list[LogLine]:

@@ -23,7 +23,7 @@ SAVER = "map_saver"
 TIMED_OUT = ("Failed to save the map: timeout", "Failed to spin map subscription")
 FACT = "map_not_saved"  # a configuration finding's fact: 1.0 with the QoS mismatch logged, 0.0 without
 # rclcpp's warning on the subscription's side (subscription_base.cpp:373@rolling), the policy at its end
-_QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: (\w+)_QOS_POLICY$")
+_QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: \w+_QOS_POLICY$")
 
 
 def map_not_saved(lines: list[LogLine]) -> d.Finding | None:
@@ -35,8 +35,8 @@ def map_not_saved(lines: list[LogLine]) -> d.Finding | None:
     qos = next((ln for ln in saver if ln.t <= failed.t and _QOS.match(ln.msg.strip())), None)
     found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln) for ln in (qos, failed) if ln])
     found.facts[FACT] = 1.0 if qos is not None else 0.0
-    if qos is not None and (m := _QOS.match(qos.msg.strip())) is not None:
-        found.notes.append(m.group(1).replace("_", " ").lower())
+    if qos is not None:
+        found.notes.append(d.policy_words(qos.msg))
     found.notes.append(failed.msg.strip())
     return found
 
