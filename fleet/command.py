@@ -139,8 +139,11 @@ def relabel(result: dict[str, Any], rel: str) -> dict[str, Any]:
 
 
 def _import_report() -> None:
-    """The report's pandas and pyarrow (half a second), imported while the workers triage rather than after."""
+    """The report's modules and pyarrow's Parquet writer, imported while the workers triage rather than after."""
     with contextlib.suppress(ImportError):  # said in one line where the report needs it
+        import pyarrow.json
+        import pyarrow.parquet  # noqa: F401
+
         import hexar.fleet.report  # noqa: F401
 
 

@@ -7,29 +7,26 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
-
 from hexar.fleet.errors import TriageError
-from hexar.fleet.report import _md, flag
+from hexar.fleet.report import Row, _md, flag, read_table
 
 _PERIOD = re.compile(r"^(\d{4}-\d{2}-\d{2})(?:\.\.(\d{4}-\d{2}-\d{2}))?$")
 
 
-def _side(spec: str, base: Path | None) -> pd.DataFrame:
+def _side(spec: str, base: Path | None) -> list[Row]:
     """A triage output folder, its tasks.jsonl/.parquet, or a day range DAY[..DAY] of the run in --out."""
     path = Path(spec)
     if path.is_dir():
         path = path / "tasks.parquet" if (path / "tasks.parquet").is_file() else path / "tasks.jsonl"
     if path.is_file():
         try:
-            return pd.read_parquet(path) if path.suffix == ".parquet" else pd.read_json(path, lines=True, dtype=False)
-        except (ValueError, OSError, ImportError) as err:
+            return read_table(path)
+        except (ValueError, OSError, ImportError) as err:  # pyarrow's ArrowInvalid is a ValueError
             raise TriageError(f"cannot read triage results {path}: {err}") from err
     m = _PERIOD.match(spec)
     if m and base is not None and (base / "tasks.jsonl").is_file():
-        df = _side(str(base), None)
         first, last = m.group(1), m.group(2) or m.group(1)
-        return df[(df["day"] >= first) & (df["day"] <= last)]
+        return [row for row in _side(str(base), None) if first <= row["day"] <= last]
     raise TriageError(f"cannot compare {spec!r}: give a triage output folder, a tasks file, or a day range "
                       "YYYY-MM-DD[..YYYY-MM-DD] of the run in --out")
 
@@ -37,13 +34,14 @@ def _side(spec: str, base: Path | None) -> pd.DataFrame:
 def compare(a: str, b: str, base: Path | None) -> dict[str, Any]:
     """Per cause: tasks in A and in B, per 100 tasks, and the change; causes that appeared or disappeared."""
     da, db = _side(a, base), _side(b, base)
-    ca, cb = Counter(flag(da)["cause"]), Counter(flag(db)["cause"])
+    ca, cb = Counter(row["cause"] for row in flag(da)), Counter(row["cause"] for row in flag(db))
     na, nb = max(len(da), 1), max(len(db), 1)
     rows = [{"cause": cause, "a": ca[cause], "b": cb[cause], "a_per_100": round(100 * ca[cause] / na, 1),
              "b_per_100": round(100 * cb[cause] / nb, 1), "change": cb[cause] - ca[cause]}
             for cause in sorted(set(ca) | set(cb), key=lambda k: (-abs(cb[k] - ca[k]), k))]
     return {"a": a, "b": b, "tasks_a": len(da), "tasks_b": len(db),
-            "failed_a": int((da["kind"] == "failure").sum()), "failed_b": int((db["kind"] == "failure").sum()),
+            "failed_a": sum(row["kind"] == "failure" for row in da),
+            "failed_b": sum(row["kind"] == "failure" for row in db),
             "new": [r["cause"] for r in rows if r["a"] == 0], "gone": [r["cause"] for r in rows if r["b"] == 0],
             "causes": rows}
 

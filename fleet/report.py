@@ -5,11 +5,11 @@ from __future__ import annotations
 import json
 import re
 from collections import Counter
+from collections.abc import Iterable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from hexar.fleet.errors import TriageError
 from hexar.safe_text import visible
@@ -23,35 +23,74 @@ COLUMNS = ["recording", "robot", "storage", "task_id", "order", "instruction", "
            "kind", "explainer", "cause", "causes", "explanation", "evidence", "time", "day", "t_ns", "duration_s"]
 TOP = 10
 DPI = 110
+Row = dict[str, Any]
 
 
-def table(results: list[dict[str, Any]]) -> pd.DataFrame:
-    rows = [row for r in sorted(results, key=lambda r: r["recording"]) for row in r["rows"]]
-    return pd.DataFrame(rows, columns=COLUMNS)
+def table(results: list[dict[str, Any]]) -> list[Row]:
+    """Every task row, by recording, with the columns in COLUMNS' order (None for one an older results file lacks).
+    Plain rows rather than a data frame: importing pandas took longer than triaging a small fleet."""
+    return [{c: row.get(c) for c in COLUMNS} for r in sorted(results, key=lambda r: r["recording"])
+            for row in r["rows"]]
+
+
+def _schema() -> Any:
+    """The Parquet columns' types: the ones pandas wrote for this table (large strings, a list of strings)."""
+    import pyarrow as pa
+
+    text, whole = pa.large_string(), pa.int64()
+    kinds = {"order": whole, "recovery": pa.bool_(), "causes": pa.list_(pa.string()), "evidence": whole,
+             "t_ns": whole, "duration_s": pa.float64()}
+    return pa.schema([(c, kinds.get(c, text)) for c in COLUMNS])
+
+
+def write_parquet(jsonl: Path, path: Path) -> None:
+    """tasks.jsonl as Parquet, parsed by Arrow's JSON reader: building the table from Python values makes pyarrow
+    import pandas, which costs more than the rest of a small fleet's triage."""
+    try:
+        import pyarrow.json as pj
+        import pyarrow.parquet as pq
+    except ImportError as err:
+        raise TriageError("Parquet output needs pyarrow: pip install 'hexar[fleet]'") from err
+    schema = _schema()
+    if jsonl.stat().st_size:
+        tasks = pj.read_json(jsonl, parse_options=pj.ParseOptions(explicit_schema=schema,
+                                                                  unexpected_field_behavior="error"))
+    else:  # no task at all: Arrow's reader refuses an empty file
+        tasks = schema.empty_table()
+    pq.write_table(tasks, path)
+
+
+def read_table(path: Path) -> list[Row]:
+    """A triage run's tasks.parquet or tasks.jsonl, as rows."""
+    if path.suffix == ".parquet":
+        import pyarrow.parquet as pq
+
+        rows: list[Row] = pq.read_table(path).to_pylist()
+        return rows
+    with path.open(encoding="utf-8") as f:
+        return [json.loads(line) for line in f if line.strip()]
 
 
 def write_outputs(results: list[dict[str, Any]], out: Path, figures: bool = True,
                   parquet: bool = True) -> dict[str, int]:
-    df = table(results)
+    rows = table(results)
     with (out / "tasks.jsonl").open("w", encoding="utf-8") as f:
-        for row in df.to_dict(orient="records"):
+        for row in rows:
             f.write(json.dumps(row, ensure_ascii=False) + "\n")
     if parquet:
-        try:
-            df.to_parquet(out / "tasks.parquet", index=False)
-        except ImportError as err:
-            raise TriageError("Parquet output needs pyarrow: pip install 'hexar[fleet]'") from err
+        write_parquet(out / "tasks.jsonl", out / "tasks.parquet")
     else:
         (out / "tasks.parquet").unlink(missing_ok=True)  # an earlier run's table would be read as this run's
-    pictures = draw(df, out) if figures else []
-    (out / "report.md").write_text(report(df, results, pictures), encoding="utf-8")
-    return summary(df, results)
+    pictures = draw(rows, out) if figures else []
+    (out / "report.md").write_text(report(rows, results, pictures), encoding="utf-8")
+    return summary(rows, results)
 
 
-def summary(df: pd.DataFrame, results: list[dict[str, Any]]) -> dict[str, int]:
+def summary(rows: list[Row], results: list[dict[str, Any]]) -> dict[str, int]:
+    kinds = Counter(row["kind"] for row in rows)
     return {"recordings": len(results), "unreadable": sum(1 for r in results if r["error"]),
-            "without_tasks": sum(1 for r in results if not r["error"] and not r["rows"]), "tasks": len(df),
-            "failed": int((df["kind"] == "failure").sum()), "findings": int((df["kind"] == "finding").sum())}
+            "without_tasks": sum(1 for r in results if not r["error"] and not r["rows"]), "tasks": len(rows),
+            "failed": kinds["failure"], "findings": kinds["finding"]}
 
 
 def _md(text: object) -> str:
@@ -59,65 +98,69 @@ def _md(text: object) -> str:
     return re.sub(r"[|<>\n\r`]", " ", visible(text)).strip()
 
 
-def _counts(series: pd.Series, title: str, what: str) -> list[str]:
+def counted(values: Iterable[Any]) -> list[tuple[Any, int]]:
+    """Each value and how often it occurs, the most frequent first, ties in order of first occurrence."""
+    return Counter(values).most_common()
+
+
+def _counts(rows: list[Row], key: str, title: str, what: str) -> list[str]:
     lines = [f"### By {title}", "", f"| {what} | tasks |", "|---|---:|"]
-    lines += [f"| {_md(k) or '(none)'} | {v} |" for k, v in series.value_counts().items()]
+    lines += [f"| {_md(k) or '(none)'} | {v} |" for k, v in counted(row[key] for row in rows)]
     return [*lines, ""]
 
 
 UNEXPLAINED = "(failed, no cause found)"
 
 
-def flag(df: pd.DataFrame) -> pd.DataFrame:
+def flag(rows: list[Row]) -> list[Row]:
     """Tasks worth a look: those with a cause, and failures no explainer found a cause for (a new problem is
     often exactly that)."""
-    rows = df[(df["cause"] != "") | (df["kind"] == "failure")].copy()
-    rows.loc[rows["cause"] == "", "cause"] = UNEXPLAINED
-    return rows
+    return [{**row, "cause": row["cause"] or UNEXPLAINED} for row in rows
+            if row["cause"] != "" or row["kind"] == "failure"]
 
 
-def look_first(df: pd.DataFrame) -> pd.DataFrame:
+def look_first(rows: list[Row]) -> list[Row]:
     """Recordings with failures first, a rare cause (a new problem) before a common one, then more findings."""
-    flagged = flag(df)
-    if flagged.empty:
-        return flagged
-    freq = flagged["cause"].value_counts()
-    # counted as columns, not by a Python function per group: a thousand recordings are a thousand groups
-    per = flagged.assign(failures=flagged["kind"] == "failure", findings=flagged["kind"] == "finding").groupby(
-        "recording").agg(failures=("failures", "sum"), findings=("findings", "sum"), cause=("cause", "first"),
-                         explanation=("explanation", "first"), robot=("robot", "first"), time=("time", "first"))
-    per["rarity"] = per["cause"].map(freq)
-    return per.sort_values(["failures", "rarity", "findings"], ascending=[False, True, False]).head(TOP)
+    flagged = flag(rows)
+    freq = Counter(row["cause"] for row in flagged)
+    per: dict[str, Row] = {}
+    for row in flagged:
+        got = per.setdefault(row["recording"], {"recording": row["recording"], "failures": 0, "findings": 0,
+                                                 **{k: row[k] for k in ("cause", "explanation", "robot", "time")}})
+        got["failures"] += row["kind"] == "failure"
+        got["findings"] += row["kind"] == "finding"
+    ordered = sorted(per.values(), key=lambda g: g["recording"])
+    return sorted(ordered, key=lambda g: (-g["failures"], freq[g["cause"]], -g["findings"]))[:TOP]
 
 
-def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str]) -> str:
-    s = summary(df, results)
-    flagged = flag(df)
+def report(rows: list[Row], results: list[dict[str, Any]], pictures: list[str]) -> str:
+    s = summary(rows, results)
+    flagged = flag(rows)
     lines = ["# HEXAR fleet triage", "",
              f"{s['recordings']} recordings ({s['unreadable']} unreadable, {s['without_tasks']} without a task), "
              f"{s['tasks']} tasks: {s['failed']} failed "
              f"or wrongly planned, {s['findings']} succeeded with a finding worth a look. Explained without an LLM "
              "by the failure check and the component explainers; every cause is backed by recorded evidence.", ""]
     lines += ["## Most frequent causes", ""]
-    for cause, n in flagged["cause"].value_counts().head(TOP).items():
-        ex = flagged[flagged["cause"] == cause].iloc[0]
+    for cause, n in counted(row["cause"] for row in flagged)[:TOP]:
+        ex = next(row for row in flagged if row["cause"] == cause)
         lines += [f"- **{_md(cause)}**: {n} tasks. Example, {_md(ex['recording'])} ({ex['time']}): "
                   f"\"{_md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
     lines += ["", "## Counts", "",
               f"The tables by cause, module, robot and day count the {len(flagged)} tasks worth a look (a failure, "
               f"a wrong plan or a finding); the other {s['tasks'] - len(flagged)} of the {s['tasks']} tasks went as "
               "planned and are counted only under Outcomes.", ""]
-    lines += _counts(flagged["cause"], "cause", "cause")
-    lines += _counts(flagged["explainer"], "module (explainer)", "explainer")
-    lines += _counts(flagged["robot"], "robot", "robot")
-    lines += _counts(flagged["day"], "day", "day")
+    lines += _counts(flagged, "cause", "cause", "cause")
+    lines += _counts(flagged, "explainer", "module (explainer)", "explainer")
+    lines += _counts(flagged, "robot", "robot", "robot")
+    lines += _counts(flagged, "day", "day", "day")
     lines += ["### Outcomes", "", "| outcome | tasks |", "|---|---:|"]
-    lines += [f"| {k} | {v} |" for k, v in df["outcome"].value_counts().items()] + [""]
+    lines += [f"| {k} | {v} |" for k, v in counted(row["outcome"] for row in rows)] + [""]
     lines += ["## Recordings to look at first", "", "| recording | robot | time | failures | findings | cause | "
               "explanation |", "|---|---|---|---:|---:|---|---|"]
-    for rec, row in look_first(df).iterrows():
-        lines.append(f"| {_md(rec)} | {_md(row['robot'])} | {row['time']} | {row['failures']} | {row['findings']} | "
-                     f"{_md(row['cause'])} | {_md(row['explanation'])} |")
+    for row in look_first(rows):
+        lines.append(f"| {_md(row['recording'])} | {_md(row['robot'])} | {row['time']} | {row['failures']} | "
+                     f"{row['findings']} | {_md(row['cause'])} | {_md(row['explanation'])} |")
     bad = [r for r in results if r["error"]]
     if bad:
         lines += ["", "## Unreadable recordings", "", "| recording | error |", "|---|---|"]
@@ -133,14 +176,14 @@ def report(df: pd.DataFrame, results: list[dict[str, Any]], pictures: list[str])
     return "\n".join(lines) + "\n"
 
 
-def _stacks(flagged: pd.DataFrame, key: str) -> tuple[list[str], list[str], npt.NDArray[np.int64]]:
+def _stacks(flagged: list[Row], key: str) -> tuple[list[str], list[str], npt.NDArray[np.int64]]:
     """Tasks per key (day or robot) and cause: the keys and the causes, sorted as pivot_table sorted them, and a
     causes x keys array of counts. Counted with a Counter: pivot_table took milliseconds a figure for the same
     numbers (every row has a task_id, so counting rows counts what pivot_table's count of task_id counted)."""
-    keys = flagged[key].tolist()
+    keys = [row[key] for row in flagged]
     if key == "robot":
         keys = [k or "(unnamed)" for k in keys]
-    causes = flagged["cause"].tolist()
+    causes = [row["cause"] for row in flagged]
     n = Counter(zip(keys, causes, strict=True))
     index, columns = sorted(set(keys)), sorted(set(causes))
     return index, columns, np.array([[n[k, c] for k in index] for c in columns], dtype=np.int64)
@@ -165,9 +208,9 @@ def _fit(fig: Figure, ax: Axes) -> None:
         fig.subplots_adjust(left=left, right=1 - right, bottom=bottom, top=1 - top)
 
 
-def draw(df: pd.DataFrame, out: Path) -> list[str]:
-    flagged = flag(df)
-    if flagged.empty:
+def draw(rows: list[Row], out: Path) -> list[str]:
+    flagged = flag(rows)
+    if not flagged:
         return []
     # imported here so that `--no-figures` never imports matplotlib; a Figure on an Agg canvas rather than pyplot,
     # whose import and backend setup took about a third of the time the two figures took

@@ -78,3 +78,26 @@ def test_triage_gives_each_math_library_one_thread_unless_the_user_chose(monkeyp
     assert os.environ["OPENBLAS_NUM_THREADS"] == "1"
     assert os.environ["MKL_NUM_THREADS"] == "1"
     assert os.environ["OMP_NUM_THREADS"] == "4"
+
+
+def test_a_fleet_without_pizza_is_triaged_without_pandas_or_scikit_learn(suite: Path, tmp_path: Path) -> None:
+    """Importing pandas took longer than triaging 57 recordings: the tables and the report are written from plain
+    rows, and the Parquet table keeps the column types pandas gave it. Checked in a fresh interpreter."""
+    fleet = tmp_path / "fleet"
+    fleet.mkdir()
+    for rec in suite.iterdir():
+        if not rec.name.startswith("bagfile_20_"):  # the three pizza recommendations, LIME's answers
+            (fleet / rec.name).symlink_to(rec)
+    out = tmp_path / "out"
+    code = (
+        "import sys\nfrom hexar.cli import main\n"
+        f"code = main(['triage', {str(fleet)!r}, '--out', {str(out)!r}, '--workers', '1', '--no-figures'])\n"
+        "print('HEAVY', sorted({m.split('.')[0] for m in sys.modules} & {'pandas', 'sklearn', 'lime'}), code)\n"
+    )
+    said = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True).stdout
+    assert said.strip().splitlines()[-1] == "HEAVY [] 0"
+    df = pd.read_parquet(out / "tasks.parquet")
+    assert len(df) == len((out / "tasks.jsonl").read_text().splitlines()) > 57
+    assert str(df["order"].dtype) == "int64" and str(df["recovery"].dtype) == "bool"
+    assert str(df["duration_s"].dtype) == "float64" and str(df["cause"].dtype) == "str"
+    assert {tuple(c) for c in df["causes"]} >= {("navigation.blocked_path",)}
