@@ -41,6 +41,7 @@ class Refinement:
     cause: str
     source: str
     meaning: str = ""
+    also: str = ""  # words the line must hold too: the library's name in a stack trace is no failure to load it
 
 
 @dataclass(frozen=True)
@@ -64,7 +65,7 @@ class ModuleCatalogue(Catalogue):
             self.name = name
             self.error_codes: dict[str, str] = {str(k): str(v) for k, v in (raw.get("error_codes") or {}).items()}
             self.refinements = tuple(Refinement(str(r["contains"]), str(r["cause"]), str(r["source"]),
-                                                str(r.get("meaning") or ""))
+                                                str(r.get("meaning") or ""), str(r.get("also") or ""))
                                      for r in raw.get("refinements") or [])
             # kept from this one parse, so that no reader parses the file again for them
             self.mined: dict[str, Mined] = {
@@ -111,7 +112,7 @@ class ModuleCatalogue(Catalogue):
     def refinement(self, msg: str) -> Refinement | None:
         """The code-built text in the line, if any."""
         text = clean(msg)
-        return next((r for r in self.refinements if r.contains in text), None)
+        return next((r for r in self.refinements if r.contains in text and r.also in text), None)
 
     def cause_of(self, msg: str, entry: Entry | None) -> str | None:
         """The cause a line states: a code-built text or an error-code name in it first, else its entry's."""

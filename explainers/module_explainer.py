@@ -22,7 +22,14 @@ from hexar.explainers.bringup_answer import derived_start, driver_candidates, st
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
-from hexar.explainers.stack_causes import killed_by_signal, one_shot_failed, stack_cause, stack_words, uncaught
+from hexar.explainers.stack_causes import (
+    killed_by_signal,
+    mixed_clocks,
+    one_shot_failed,
+    stack_cause,
+    stack_words,
+    uncaught,
+)
 from hexar.explainers.stated_causes import adopt, first_thrown, quoted_part, stated_cause, stated_words
 
 if TYPE_CHECKING:
@@ -136,7 +143,10 @@ class ModuleExplainer:
             if d.cause is None and d.unknown is None:
                 d.unknown = first_thrown(own, before)
             died = uncaught(own, before) if d.cause is None else None
-            if died is not None and (d.unknown is None or died.t <= d.unknown.t):
+            if died is not None and (d.unknown is None or died.t <= d.unknown.t) and (
+                    clocks := mixed_clocks(died)) is not None:
+                d.unknown, d.candidates = died, clocks
+            elif died is not None and (d.unknown is None or died.t <= d.unknown.t):
                 # nothing explained comes before an uncaught C++ exception: its process died there, which is
                 # what the lines show (an unexplained error before it would be the death's cause, quoted instead)
                 d.cause, d.decisive, d.support = "bringup.process_died", Reading(died, None, "bringup.process_died",

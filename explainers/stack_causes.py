@@ -68,6 +68,24 @@ def _uncaught_words(line: LogLine) -> str:
     return f"of an uncaught C++ exception{kind}, so the software it ran was gone{quoted}"
 
 
+# rclcpp/src/rclcpp/time.cpp (operator==, <, -, +): "can't compare|subtract|add times with different time sources",
+# since Iron with the two clock types ("[1 != 2]": RCL_ROS_TIME against RCL_SYSTEM_TIME). A node's clock is ROS time
+# whether or not use_sim_time is set, so the other time came from code that built it on the system or steady clock.
+_MIXED_CLOCKS = re.compile(r"can't (compare|subtract|add) times with different time sources")
+
+
+def mixed_clocks(line: LogLine) -> str | None:
+    """What rclcpp's exception for times of two clocks leaves open, in words no cause pattern reads as a claim; None
+    for any other line. The process died of it, but the exception, not the death, says what went wrong."""
+    if _MIXED_CLOCKS.search(line.msg) is None:
+        return None
+    return ("two times from different clocks met, which rclcpp refuses (the process that threw it ended there, on "
+            "that uncaught exception): ROS time (a node's clock) against a time built on the system or steady clock. "
+            "Some code mixes the two, often only where simulated time is in use "
+            "(use_sim_time set, or Gazebo's /clock bridged or not), so check which node's update threw it and how "
+            "its times are made")
+
+
 def one_shot_failed(msg: str) -> bool:
     """launch's death line of a controller spawner that exited with an error: the spawner is a one-shot command that
     returns 1 when its controller could not be loaded, configured or activated (ros2_control

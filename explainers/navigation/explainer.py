@@ -220,6 +220,10 @@ class NavigationExplainer:
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":
+            # nothing else explains the failure: a costmap that refused its map's publisher does
+            refused = mapsave.costmap_refused_map(before)
+            if refused is not None:
+                return [refused]
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])
             return [chain.with_last_error(found, raw, run)]
         if run.outcome == "unknown":

@@ -1,4 +1,6 @@
-"""A map that could not be saved: nav2_map_server's map_saver got no map on its topic in time.
+"""A map that never reached the node that reads it: map_saver's save, or a costmap's static layer.
+
+A map that could not be saved: nav2_map_server's map_saver got no map on its topic in time.
 
 map_saver (`ros2 run nav2_map_server map_saver_cli`, or its save_map service) waits `save_map_timeout` for one
 map on its topic, then gives up: "Failed to save the map: timeout" on Foxy (map_saver.cpp:191@foxy-devel, the
@@ -8,6 +10,13 @@ timeout in milliseconds, 2000 by default), "Failed to spin map subscription" fro
 rclcpp then warns of the publisher's incompatible QoS. A SLAM node that publishes its map only every few seconds
 outlasts the default timeout. Both are the map saver's settings against the map's publisher; that no node
 published the map at all is the other reading, which the lines alone cannot rule out.
+
+A costmap that refused its map: the static layer subscribes transient local too (its own
+`map_subscribe_transient_local`, true by default from Foxy on, static_layer.cpp:125@foxy-devel), and rclcpp logs the
+incompatible-QoS warning under the subscribing node's name, so "[global_costmap.global_costmap] New publisher
+discovered on topic '/map', offering incompatible QoS" is that costmap refusing that publisher (a map bridged from
+ROS 1, or published volatile). Unless its static layer then says "StaticLayer: Received a ... map"
+(static_layer.cpp:193@rolling), the costmap planned without the map.
 """
 
 from __future__ import annotations
@@ -24,6 +33,9 @@ TIMED_OUT = ("Failed to save the map: timeout", "Failed to spin map subscription
 FACT = "map_not_saved"  # a configuration finding's fact: 1.0 with the QoS mismatch logged, 0.0 without
 # rclcpp's warning on the subscription's side (subscription_base.cpp:373@rolling), the policy at its end
 _QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: \w+_QOS_POLICY$")
+REFUSED = "costmap_refused_map"  # a configuration finding's fact; notes: the policy, the costmap, the topic
+RECEIVED = "StaticLayer: Received a "
+_TOPIC = re.compile(r"topic '([^']*)'")
 
 
 def map_not_saved(lines: list[LogLine]) -> d.Finding | None:
@@ -41,8 +53,34 @@ def map_not_saved(lines: list[LogLine]) -> d.Finding | None:
     return found
 
 
+def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
+    """A costmap whose subscription refused the map's publisher, in `lines`, and no word of its static layer after
+    that that a map came; None when there is none."""
+    for ln in lines:
+        if "costmap" not in ln.name or not d.MAP_QOS.match(ln.msg.strip()):
+            continue
+        if any(r.name == ln.name and r.t >= ln.t and r.msg.startswith(RECEIVED) for r in lines):
+            continue
+        found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln)])
+        found.facts[REFUSED] = 1.0
+        topic = m.group(1) if (m := _TOPIC.search(ln.msg)) else "map"
+        found.notes += [d.policy_words(ln.msg), ln.name.split(".")[0].replace("_", " "), topic, ln.name, ln.msg.strip()]
+        return found
+    return None
+
+
 def template(f: d.Finding) -> tuple[str, str | None, list[str]] | None:
-    """The answer of a map_not_saved finding, or None for any other finding."""
+    """The answer of a map_not_saved or costmap_refused_map finding, or None for any other finding."""
+    if REFUSED in f.facts:
+        policy, costmap, topic, node, said = f.notes[:5]
+        return (f"My {costmap} never got my map: its subscription to {topic} did not match what the map's publisher "
+                f"offers (the {policy} of their QoS), so no map reached it: “[{node}] {said}”. That is a "
+                "configuration problem, and without the map my navigation could not work.",
+                "Make the two sides match: publish the map transient local (a map bridged from ROS 1 or published "
+                "volatile is not), or set the static layer's `map_subscribe_transient_local: false` in that "
+                "costmap's parameters (under its static layer's name, e.g. `static_layer.map_subscribe_transient_"
+                "local`).",
+                [])
     if FACT not in f.facts:
         return None
     said = f.notes[-1]

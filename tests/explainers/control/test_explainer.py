@@ -370,3 +370,22 @@ def test_a_drivers_error_on_the_line_of_the_abort_is_quoted_before_the_death(tmp
         skill="bring_up_controllers")
     assert "bringup.process_died" not in found.causes
     assert "Bad file descriptor" in found.text and "died" not in found.text
+
+
+def test_rclcpps_exception_for_times_of_two_clocks_is_told_by_its_meaning_not_as_a_death(tmp_path: Path) -> None:
+    # ros-controls/ros2_control_demos#755 (held-out 19, spent): Gazebo aborted inside gz_ros2_control's update on
+    # rclcpp's time comparison (whether a setting or code mixed the clocks, the lines do not say); the stack trace
+    # names the plugin's library at the frame that threw, which shows it loaded, not that it could not be
+    frame = ('#9    Object "/ws/install/gz_ros2_control/lib/libgz_ros2_control-system.so", at 0x7d5daa9717c5, in '
+             "gz_ros2_control::GazeboSimROS2ControlPlugin::PostUpdate(gz::sim::v8::UpdateInfo const&, "
+             "gz::sim::v8::EntityComponentManager const&)")
+    lines = [(0, "resource_manager", INFO, "Loading hardware 'RRBot'"),
+             (1, "", INFO, "terminate called after throwing an instance of 'std::runtime_error'\n"
+                           "  what():  can't compare times with different time sources"),
+             (1.1, "", INFO, frame)]
+    found = _explain(tmp_path, lines, skill="bring_up_controllers")
+    assert found.causes == ["control.unexplained_failure"]
+    assert "“[unnamed node] can't compare times with different time sources”" in found.text
+    assert "two times from different clocks met" in found.text and "died" not in found.text
+    assert "could not load its ros2_control system plugin" not in found.text
+    assert not read_claims(found.text).affirmed - {"claim.task_failed"}
