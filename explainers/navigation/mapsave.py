@@ -15,8 +15,10 @@ A costmap that refused its map: the static layer subscribes transient local too 
 `map_subscribe_transient_local`, true by default from Foxy on, static_layer.cpp:125@foxy-devel), and rclcpp logs the
 incompatible-QoS warning under the subscribing node's name, so "[global_costmap.global_costmap] New publisher
 discovered on topic '/map', offering incompatible QoS" is that costmap refusing that publisher (a map bridged from
-ROS 1, or published volatile). Unless its static layer then says "StaticLayer: Received a ... map"
-(static_layer.cpp:193@rolling), the costmap planned without the map.
+ROS 1, or published volatile). Unless its static layer then says a map came ("StaticLayer: Resizing costmap to …",
+or "… static layer to …", INFO, when a map came that changed the size; "StaticLayer: Received a … map", DEBUG, for
+every map; static_layer.cpp:203, :218 and :188@humble),
+the costmap planned without the map.
 """
 
 from __future__ import annotations
@@ -34,7 +36,7 @@ FACT = "map_not_saved"  # a configuration finding's fact: 1.0 with the QoS misma
 # rclcpp's warning on the subscription's side (subscription_base.cpp:373@rolling), the policy at its end
 _QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: \w+_QOS_POLICY$")
 REFUSED = "costmap_refused_map"  # a configuration finding's fact; notes: the policy, the costmap, the topic
-RECEIVED = "StaticLayer: Received a "
+RECEIVED = ("StaticLayer: Received a ", "StaticLayer: Resizing costmap to ", "StaticLayer: Resizing static layer to ")
 _TOPIC = re.compile(r"topic '([^']*)'")
 
 

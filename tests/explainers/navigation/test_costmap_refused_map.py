@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.records import INFO, WARN
@@ -40,10 +42,11 @@ def test_a_costmap_that_refused_the_maps_publisher_is_a_configuration_problem(tm
     assert fix is not None and "map_subscribe_transient_local: false" in fix
 
 
-def test_a_map_that_came_later_is_no_such_finding(tmp_path: Path) -> None:
-    came = [*REFUSED, (1.0, "global_costmap.global_costmap", INFO,
-                       "StaticLayer: Received a 384 X 384 map at 0.050000 m/pix")]
-    text, causes, _ = _ask(tmp_path, came)
+@pytest.mark.parametrize("said", ["StaticLayer: Received a 384 X 384 map at 0.050000 m/pix",  # DEBUG
+                                  "StaticLayer: Resizing costmap to 384 X 384 at 0.050000 m/pix"])  # INFO
+def test_a_map_that_came_later_is_no_such_finding(tmp_path: Path, said: str) -> None:
+    # another publisher of the map (a map_server beside the bridge) may still serve the costmap
+    text, causes, _ = _ask(tmp_path, [*REFUSED, (1.0, "global_costmap.global_costmap", INFO, said)])
     assert g.CONFIGURATION not in causes and "never got my map" not in text
 
 
