@@ -45,6 +45,9 @@ _MOVEIT_LOGGER = re.compile(r"move_group\b|moveit[._]")
 # and the UR driver hands its client library's log to "UR_Client_Library:<tf_prefix>" (ur_robot_driver/src/
 # urcl_log_handler.cpp:59@humble)
 _DRIVER_LOGGER = re.compile(r"driver|^UR_Client_Library:", re.I)
+# what only a node that talks to a device can say of it: its firmware, its serial number (rplidar_node's "RPLIDAR S/N:
+# …" and "Firmware Ver: …", sllidar_node.cpp and rplidar_node.cpp@ros2; realsense's "Device with serial number …")
+_DEVICE_SAID = re.compile(r"\bfirmware\b|\bS/N\b|\bserial (number|no\.?)\b", re.I)
 # a line that names what a driver was set up with: a device (its file, serial port or baud rate, or the word itself:
 # a driver's "No MTi device found.") or a parameter
 _DEVICE = re.compile(r"/dev/\w|\bserial[ _]?port\b|\bbaud[ _]?rate\b|\bdevices?\b", re.I)
@@ -122,9 +125,11 @@ def _error(line: LogLine) -> bool:
 
 def _driver(name: str, logs: list[LogLine]) -> bool:
     """A node that drives a device: its name says so (ROS packages name device drivers `*_driver`: ur_robot_driver,
-    ydlidar_ros2_driver), or one of its lines names a device file. A node that only runs the robot's behaviour
-    (a turtlebot4_node undocking, then missing a camera service) is no start of the robot."""
-    return _DRIVER_LOGGER.search(name) is not None or any(ln.name == name and "/dev/" in ln.msg for ln in logs)
+    ydlidar_ros2_driver), or one of its lines names a device file or tells the device's firmware or serial number. A
+    node that only runs the robot's behaviour (a turtlebot4_node undocking, then missing a camera service) is no
+    start of the robot."""
+    return _DRIVER_LOGGER.search(name) is not None or any(
+        ln.name == name and ("/dev/" in ln.msg or _DEVICE_SAID.search(ln.msg) is not None) for ln in logs)
 
 
 # pluginlib's ClassLoader (pluginlib/class_loader_imp.hpp: RCUTILS_LOG_*_NAMED("pluginlib.ClassLoader", ...)) and

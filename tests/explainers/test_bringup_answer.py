@@ -167,6 +167,17 @@ def test_a_drivers_error_after_its_own_start_names_the_drivers_candidates_not_a_
     assert "the port, address or baud rate it was given" in found.text and "a controller's settings" not in found.text
 
 
+def test_a_node_that_told_its_devices_firmware_is_a_driver_whose_error_fails_the_start(tmp_path: Path) -> None:
+    # whatibroke.com's "Lidar Failing to Start" (spent held-out 20): rplidar_node, no "driver" in its name, named
+    # its device's serial number and firmware before its error (the battery powering it had run flat)
+    node = "rplidar_node"
+    found, _ = _lone(tmp_path, [(0.0, node, INFO, "RPLIDAR S/N: CD8EED93C0EA98C7A0E69BF55D504560"),
+                                (0.1, node, INFO, "Firmware Ver: 1.29"),
+                                (2.6, node, ERROR, "Cannot start scan: '80008000'")])
+    assert "“[rplidar_node] Cannot start scan: '80008000'”" in found.text
+    assert "its cable, its power" in found.text and not read_claims(found.text).affirmed - {TASK_FAILED}
+
+
 def test_asked_why_it_did_not_work_the_agent_tells_the_dropped_commands_not_the_plan(tmp_path: Path) -> None:
     from hexar.agent.context import RunSettings
     from hexar.agent.session import Session
