@@ -24,11 +24,10 @@ _SPACE = re.compile(r"\s\s+")
 
 
 def examples() -> dict[str, list[str]]:
-    import yaml
+    from hexar.fastyaml import load
 
     text = resources.files("hexar.agent").joinpath("data/router_examples.yaml").read_text(encoding="utf-8")
-    # libyaml's parser when PyYAML has it: the same data, without a pure-Python parse on every cold start
-    data: dict[str, list[str]] = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+    data: dict[str, list[str]] = load(text)
     return data
 
 

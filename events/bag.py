@@ -37,6 +37,7 @@ from rosbags.typesys import Stores, get_types_from_idl, get_types_from_msg, get_
 from rosbags.typesys.store import Typestore
 
 from hexar.events.humble import humble
+from hexar.fastyaml import LIBYAML, load
 
 if TYPE_CHECKING:
     from rosbags.rosbag2.reader import ReaderProtocol
@@ -48,8 +49,6 @@ SETS_KEPT = 32  # distinct definition sets whose typestores stay built: a few pe
 QOS_KEPT = 256  # distinct offered-QoS texts kept parsed: a few per topic and robot software version
 
 
-LIBYAML = hasattr(yaml, "CSafeLoader")  # PyYAML built with libyaml, as its wheels are
-_LOADER: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
 class Reader(AnyReader):
@@ -254,7 +253,7 @@ def _plain_metadata(path: Path) -> tuple[dict[str, Any], list[Path], list[Any]] 
         for t in info["topics_with_message_count"]:
             meta = t["topic_metadata"]
             given = meta.get("offered_qos_profiles", [])
-            qos.append(yaml.load(given, Loader=_LOADER) if isinstance(given, str) and given else given)
+            qos.append(load(given) if isinstance(given, str) and given else given)
             if not (isinstance(meta["name"], str) and isinstance(meta["type"], str) and type(t["message_count"]) is int
                     and meta["serialization_format"] == "cdr" and isinstance(meta.get("type_description_hash", ""), str)
                     and isinstance(qos[-1], list)):
@@ -280,4 +279,4 @@ def metadata(path: Path) -> Any:
 
 @lru_cache(maxsize=4)
 def _parsed(path: str, mtime_ns: int, size: int) -> Any:
-    return yaml.load(Path(path).read_text(), Loader=_LOADER)
+    return load(Path(path).read_text())

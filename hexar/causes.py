@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from functools import cache
 from importlib import resources
 
-import yaml
+from hexar.fastyaml import load
 
 # What an explainer reports when nothing went wrong in its module: never a failure's cause, never a finding worth
 # a look in a fleet report, never a problem the person has "already heard".
@@ -38,7 +38,7 @@ class Cause:
 @cache
 def vocabulary() -> dict[str, Cause]:
     text = resources.files("hexar").joinpath("causes.yaml").read_text(encoding="utf-8")
-    raw = yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))  # libyaml's parser: same data
+    raw = load(text)
     return {
         cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]),
                    tuple(entry.get("implies", ())))
