@@ -143,14 +143,15 @@ class ModuleExplainer:
             if d.cause is None and d.unknown is None:
                 d.unknown = first_thrown(own, before)
             died = uncaught(own, before) if d.cause is None else None
-            if died is not None and (d.unknown is None or died.t <= d.unknown.t) and (
-                    clocks := mixed_clocks(died)) is not None:
-                d.unknown, d.candidates = died, clocks
-            elif died is not None and (d.unknown is None or died.t <= d.unknown.t):
-                # nothing explained comes before an uncaught C++ exception: its process died there, which is
-                # what the lines show (an unexplained error before it would be the death's cause, quoted instead)
-                d.cause, d.decisive, d.support = "bringup.process_died", Reading(died, None, "bringup.process_died",
-                                                                                "stack"), []
+            if died is not None and (d.unknown is None or died.t <= d.unknown.t):
+                if (clocks := mixed_clocks(died)) is not None:
+                    d.unknown, d.candidates = died, clocks  # the exception's meaning, not the death, tells it
+                else:
+                    # nothing explained comes before an uncaught C++ exception: its process died there, which is
+                    # what the lines show (an unexplained error before it would be the death's cause, quoted
+                    # instead)
+                    d.cause, d.decisive, d.support = ("bringup.process_died",
+                                                      Reading(died, None, "bringup.process_died", "stack"), [])
         if d.cause is not None and not d.cause.startswith(self.prefix):
             asked = self._ask_owner(question, context, d)
             if asked is not None:

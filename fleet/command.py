@@ -141,10 +141,10 @@ def relabel(result: dict[str, Any], rel: str) -> dict[str, Any]:
 def _import_report() -> None:
     """The report's modules and pyarrow's Parquet writer, imported while the workers triage rather than after."""
     with contextlib.suppress(ImportError):  # said in one line where the report needs it
+        import hexar.fleet.report  # noqa: F401
+    with contextlib.suppress(ImportError):  # no pyarrow: the same (a missing one does not stop the import above)
         import pyarrow.json
         import pyarrow.parquet  # noqa: F401
-
-        import hexar.fleet.report  # noqa: F401
 
 
 def parquet_available() -> bool:

@@ -129,8 +129,7 @@ def look_first(rows: list[Row]) -> list[Row]:
                                                  **{k: row[k] for k in ("cause", "explanation", "robot", "time")}})
         got["failures"] += row["kind"] == "failure"
         got["findings"] += row["kind"] == "finding"
-    ordered = sorted(per.values(), key=lambda g: g["recording"])
-    return sorted(ordered, key=lambda g: (-g["failures"], freq[g["cause"]], -g["findings"]))[:TOP]
+    return sorted(per.values(), key=lambda g: (-g["failures"], freq[g["cause"]], -g["findings"], g["recording"]))[:TOP]
 
 
 def report(rows: list[Row], results: list[dict[str, Any]], pictures: list[str]) -> str:

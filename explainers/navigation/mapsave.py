@@ -35,7 +35,7 @@ TIMED_OUT = ("Failed to save the map: timeout", "Failed to spin map subscription
 FACT = "map_not_saved"  # a configuration finding's fact: 1.0 with the QoS mismatch logged, 0.0 without
 # rclcpp's warning on the subscription's side (subscription_base.cpp:373@rolling), the policy at its end
 _QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: \w+_QOS_POLICY$")
-REFUSED = "costmap_refused_map"  # a configuration finding's fact; notes: the policy, the costmap, the topic
+REFUSED = "costmap_refused_map"  # a configuration finding's fact; notes: the costmap's node, its warning
 RECEIVED = ("StaticLayer: Received a ", "StaticLayer: Resizing costmap to ", "StaticLayer: Resizing static layer to ")
 _TOPIC = re.compile(r"topic '([^']*)'")
 
@@ -65,8 +65,7 @@ def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
             continue
         found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln)])
         found.facts[REFUSED] = 1.0
-        topic = m.group(1) if (m := _TOPIC.search(ln.msg)) else "map"
-        found.notes += [d.policy_words(ln.msg), ln.name.split(".")[0].replace("_", " "), topic, ln.name, ln.msg.strip()]
+        found.notes += [ln.name, ln.msg.strip()]
         return found
     return None
 
@@ -74,9 +73,11 @@ def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
 def template(f: d.Finding) -> tuple[str, str | None, list[str]] | None:
     """The answer of a map_not_saved or costmap_refused_map finding, or None for any other finding."""
     if REFUSED in f.facts:
-        policy, costmap, topic, node, said = f.notes[:5]
+        node, said = f.notes[:2]
+        costmap = node.split(".")[0].replace("_", " ")
+        topic = m.group(1) if (m := _TOPIC.search(said)) else "map"
         return (f"My {costmap} never got my map: its subscription to {topic} did not match what the map's publisher "
-                f"offers (the {policy} of their QoS), so no map reached it: “[{node}] {said}”. That is a "
+                f"offers (the {d.policy_words(said)} of their QoS), so no map reached it: “[{node}] {said}”. That is a "
                 "configuration problem, and without the map my navigation could not work.",
                 "Make the two sides match: publish the map transient local (a map bridged from ROS 1 or published "
                 "volatile is not), or set the static layer's `map_subscribe_transient_local: false` in that "
