@@ -260,6 +260,8 @@ def after_planner_gave_up(run: Run, lines: list[LogLine]) -> list[LogLine]:
 # size and is never current, so the planner's "Costmap timed out waiting for update" (planner_server.cpp@jazzy) is
 # that missing map, not stale transforms.
 NO_MAP = "Can't update static costmap layer, no map received"
+# the static layer's words once a map came (static_layer.cpp:188 DEBUG, :203 INFO, :218 INFO @humble)
+MAP_CAME = ("StaticLayer: Received a ", "StaticLayer: Resizing costmap to ", "StaticLayer: Resizing static layer to ")
 COSTMAP_TIMEOUT = "Costmap timed out waiting for update"
 # rclcpp's subscription_base.cpp:373@rolling: the map's publisher and the costmap's subscription do not match
 MAP_QOS = re.compile(r"^New publisher discovered on topic '/?(\w+/)*map', offering incompatible QoS")
@@ -267,9 +269,12 @@ MAP_QOS = re.compile(r"^New publisher discovered on topic '/?(\w+/)*map', offeri
 
 def map_never_came(seen: list[LogLine]) -> list[LogLine]:
     """The lines that say the costmap got no map: the static layer's, and a QoS mismatch on the map's topic beside
-    it; none unless the static layer said so (a mismatch alone may be any subscriber's)."""
+    it; none unless the static layer said so (a mismatch alone may be any subscriber's), and none when that layer
+    then said a map came (its warning stops once it has one)."""
     gone = [ln for ln in seen if NO_MAP in ln.msg or MAP_QOS.match(ln.msg)]
-    return gone if any(NO_MAP in ln.msg for ln in gone) else []
+    came = [ln for ln in seen if ln.msg.startswith(MAP_CAME)]
+    last = [ln for ln in gone if NO_MAP in ln.msg and not any(c.name == ln.name and c.t >= ln.t for c in came)]
+    return gone if last else []
 
 
 NO_MAP_FACT = "no_map"  # an off_costmap finding's fact: the costmap never got its map (notes: the QoS policy, if said)

@@ -36,7 +36,6 @@ FACT = "map_not_saved"  # a configuration finding's fact: 1.0 with the QoS misma
 # rclcpp's warning on the subscription's side (subscription_base.cpp:373@rolling), the policy at its end
 _QOS = re.compile(r"^New publisher discovered on topic '[^']*', offering incompatible QoS\..*: \w+_QOS_POLICY$")
 REFUSED = "costmap_refused_map"  # a configuration finding's fact; notes: the costmap's node, its warning
-RECEIVED = ("StaticLayer: Received a ", "StaticLayer: Resizing costmap to ", "StaticLayer: Resizing static layer to ")
 _TOPIC = re.compile(r"topic '([^']*)'")
 
 
@@ -61,7 +60,7 @@ def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
     for ln in lines:
         if "costmap" not in ln.name or not d.MAP_QOS.match(ln.msg.strip()):
             continue
-        if any(r.name == ln.name and r.t >= ln.t and r.msg.startswith(RECEIVED) for r in lines):
+        if any(r.name == ln.name and r.t >= ln.t and r.msg.startswith(d.MAP_CAME) for r in lines):
             continue
         found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln)])
         found.facts[REFUSED] = 1.0

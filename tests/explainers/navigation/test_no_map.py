@@ -52,3 +52,23 @@ def test_without_the_static_layers_word_the_timeout_is_still_a_stale_costmap(tmp
     _, found = explain(write_lines(tmp_path, lines, _with_task(tmp_path, lines)), "navigation",
                        "Why didn't you get there?")
     assert found.causes == [g.TRANSFORM] and "never received its map" not in found.text
+
+
+def test_a_map_that_came_after_the_warning_is_no_missing_map(tmp_path: Path) -> None:
+    # the static layer stops warning once a map comes and says so (static_layer.cpp:203@humble, INFO)
+    came: Line = (50.0, "global_costmap.global_costmap", INFO,
+                  "StaticLayer: Resizing costmap to 384 X 384 at 0.050000 m/pix")
+    lines = sorted([ln for ln in HECTOR if ln[0] != 100.6] + [came], key=lambda ln: ln[0])
+    _, found = explain(write_lines(tmp_path, lines, _with_task(tmp_path, lines)), "navigation",
+                       "Why didn't you get there?")
+    assert "never received its map" not in found.text
+    assert g.OFF_COSTMAP not in read_claims(found.text).affirmed
+
+
+def test_another_costmaps_map_does_not_answer_for_this_one(tmp_path: Path) -> None:
+    came: Line = (50.0, "local_costmap.local_costmap", INFO,
+                  "StaticLayer: Resizing costmap to 384 X 384 at 0.050000 m/pix")
+    lines = sorted([*HECTOR, came], key=lambda ln: ln[0])
+    _, found = explain(write_lines(tmp_path, lines, _with_task(tmp_path, lines)), "navigation",
+                       "Why didn't you get there?")
+    assert found.causes == [g.OFF_COSTMAP] and "never received its map" in found.text
