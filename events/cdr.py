@@ -174,9 +174,27 @@ def _count(raw: bytes, pos: int) -> tuple[int, int]:
 Status = tuple[int, str, str, str, tuple[tuple[str, str], ...]]  # level, name, message, hardware_id, values
 
 
-def decode_diagnostics(raw: bytes) -> tuple[int, int, list[Status]] | None:
+# The statuses of the DiagnosticArrays decoded so far, by the bytes after their stamp: an aggregator publishes the
+# same statuses again and again, only the stamp moves (2,883 arrays of 50 simulated recordings held 136 texts).
+_SEEN: dict[bytes, tuple[Status, ...]] = {}
+SEEN_KEPT = 4096
+
+
+def decode_diagnostics(raw: bytes) -> tuple[int, int, tuple[Status, ...]] | None:
     """(header stamp sec, nanosec, statuses) of a diagnostic_msgs/msg/DiagnosticArray, or None (then rosbags
     decodes it). /diagnostics and HEXAR's status topics are the most frequent messages after /rosout."""
+    if len(raw) >= 12 and raw[1] == 1 and (seen := _SEEN.get(raw[12:])) is not None:
+        sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
+        return sec, nanosec, seen
+    decoded = _decode_diagnostics(raw)
+    if decoded is not None:
+        if len(_SEEN) >= SEEN_KEPT:
+            _SEEN.clear()
+        _SEEN[raw[12:]] = decoded[2]
+    return decoded
+
+
+def _decode_diagnostics(raw: bytes) -> tuple[int, int, tuple[Status, ...]] | None:
     try:
         if raw[1] != 1:
             return None
@@ -200,7 +218,7 @@ def decode_diagnostics(raw: bytes) -> tuple[int, int, list[Status]] | None:
         return None
     if not 0 <= len(raw) - (4 + pos) <= _MAX_PAD:
         raise LayoutError(f"DiagnosticArray of {len(raw)} bytes where the standard layout ends at {4 + pos}")
-    return sec, nanosec, statuses
+    return sec, nanosec, tuple(statuses)
 
 
 def decode_bool(raw: bytes) -> bool | None:

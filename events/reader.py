@@ -125,11 +125,11 @@ def _yaw(qz: float, qw: float) -> float:
     return 2.0 * math.atan2(qz, qw)
 
 
-def _diag_fields(msg: Any) -> tuple[int, int, list[Status]]:
+def _diag_fields(msg: Any) -> tuple[int, int, tuple[Status, ...]]:
     """What `decode_diagnostics` reads, from rosbags' message object."""
     return (msg.header.stamp.sec, msg.header.stamp.nanosec,
-            [(int(s.level), str(s.name), str(s.message), str(s.hardware_id),
-              tuple((str(kv.key), str(kv.value)) for kv in s.values)) for s in msg.status])
+            tuple((int(s.level), str(s.name), str(s.message), str(s.hardware_id),
+                   tuple((str(kv.key), str(kv.value)) for kv in s.values)) for s in msg.status))
 
 
 def _statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
@@ -137,7 +137,7 @@ def _statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
     return _status_records(t, topic, _diag_fields(msg))
 
 
-def _status_records(t: int, topic: str, diag: tuple[int, int, list[Status]]) -> list[StatusRecord]:
+def _status_records(t: int, topic: str, diag: tuple[int, int, tuple[Status, ...]]) -> list[StatusRecord]:
     sec, nanosec, statuses = diag
     stamp = stamp_ns(sec, nanosec) or t
     return [StatusRecord(t=stamp, topic=topic, level=level, name=name, message=message, hardware_id=hardware_id,

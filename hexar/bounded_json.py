@@ -27,7 +27,9 @@ def loads(text: str | bytes, max_chars: int = MAX_CHARS, max_depth: int = MAX_DE
         raise BadJsonError(f"JSON nested deeper than {max_depth} levels refused") from err
     except (json.JSONDecodeError, UnicodeDecodeError) as err:
         raise BadJsonError(f"not JSON: {type(err).__name__} at position {getattr(err, 'pos', '?')}") from err
-    if depth_over(value, max_depth):
+    # a value nests no deeper than the text has opening brackets: most texts need no walk
+    opening = text.count("[") + text.count("{") if isinstance(text, str) else text.count(b"[") + text.count(b"{")
+    if opening > max_depth and depth_over(value, max_depth):
         raise BadJsonError(f"JSON nested deeper than {max_depth} levels refused")
     return value
 

@@ -11,6 +11,8 @@ from hexar.events.task_info import parse_task_info
 
 @pytest.mark.parametrize("text", ["[" * 2000 + "]" * 2000, '{"a":' * 5000 + "1" + "}" * 5000,
                                   "[" * (MAX_DEPTH + 1) + "]" * (MAX_DEPTH + 1), '"' + "x" * 2_000_000 + '"',
+                                  b"[" * (MAX_DEPTH + 1) + b"]" * (MAX_DEPTH + 1),
+                                  '{"a": "' + "{" * 40 + '", "b": ' + "[" * 40 + "]" * 40 + "}",
                                   '{"secret": 1', b"\xff\xfe"])
 def test_refused_with_one_line_that_quotes_nothing(text: str | bytes) -> None:
     with pytest.raises(BadJsonError) as refused:
@@ -22,6 +24,8 @@ def test_refused_with_one_line_that_quotes_nothing(text: str | bytes) -> None:
 def test_ordinary_json_is_read() -> None:
     assert loads('{"task_id": "t1", "skill_sequence": [{"params": {"zone": [1, 2]}}]}')["task_id"] == "t1"
     assert loads("[" * MAX_DEPTH + "]" * MAX_DEPTH) is not None
+    assert loads(b"[" * MAX_DEPTH + b"]" * MAX_DEPTH) is not None
+    assert loads('{"a": "' + "[" * 100 + '"}') == {"a": "[" * 100}  # brackets in a string nest nothing
 
 
 def test_a_task_update_too_deep_to_read_is_no_task_update() -> None:

@@ -39,6 +39,27 @@ def test_diagnostics_decoded_by_hand_equal_rosbags_own() -> None:
         assert decode_diagnostics(raw) == _diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
 
 
+def test_a_repeated_array_keeps_its_own_stamp_and_a_changed_one_its_own_statuses() -> None:
+    # decoded statuses are kept by the bytes after the stamp: the stamp and any change after it must still show
+    rng = np.random.default_rng(11)
+    for _ in range(100):
+        msg = _array(rng)
+        first = bytes(TYPESTORE.serialize_cdr(msg, DIAG))
+        msg.header.stamp.sec += 1  # type: ignore[attr-defined]
+        again = bytes(TYPESTORE.serialize_cdr(msg, DIAG))
+        for raw in (first, again):
+            assert decode_diagnostics(raw) == _diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
+    level = TY["diagnostic_msgs/msg/DiagnosticStatus"](level=0, name="battery", message="ok", hardware_id="",
+                                                        values=[TY["diagnostic_msgs/msg/KeyValue"](key="v", value="1")])
+    stamp = TY["builtin_interfaces/msg/Time"](sec=1, nanosec=2)
+    arr = TY[DIAG](header=TY["std_msgs/msg/Header"](stamp=stamp, frame_id="f"), status=[level])
+    before = decode_diagnostics(bytes(TYPESTORE.serialize_cdr(arr, DIAG)))
+    level.values[0].value = "2"
+    after = decode_diagnostics(bytes(TYPESTORE.serialize_cdr(arr, DIAG)))
+    assert before is not None and after is not None
+    assert before[2][0][4] == (("v", "1"),) and after[2][0][4] == (("v", "2"),)
+
+
 def test_diagnostics_rosbags_cannot_decode_are_left_to_it() -> None:
     status = TY["diagnostic_msgs/msg/DiagnosticStatus"](level=2, name="ab", message="cd", hardware_id="",
                                                          values=[])
