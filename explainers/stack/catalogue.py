@@ -89,10 +89,10 @@ class StackEntry:
         for i, piece in enumerate(pieces):
             found = text.find(piece, at) if piece else at
             if found < 0 or (i == 0 and piece and found != text.find(piece)):
-                rest = text[at:].rstrip(" .…")
-                tail = next((j for j in range(len(piece) - 1, CUT_MIN_TAIL - 1, -1)
-                             if rest.endswith(piece[:j])), 0)
-                return i > 0 and tail > 0 and matched + tail >= CUT_MIN_LITERAL
+                if i == 0:
+                    return False
+                tail = cut_tail(text[at:].rstrip(" .…"), piece, max(CUT_MIN_TAIL, CUT_MIN_LITERAL - matched))
+                return tail > 0
             at, matched = found + len(piece), matched + len(piece)
         return False
 
@@ -101,6 +101,21 @@ class StackEntry:
         """Letters and digits of the pattern's literal text: of two matching entries the more specific one is the
         reading (a helper's "[…] [ActionServer] …" frame says less than the "Aborting handle." it carries)."""
         return sum(ch.isalnum() for ch in re.sub(r"\.\*\?", "", self.pattern))
+
+
+def cut_tail(rest: str, piece: str, least: int) -> int:
+    """The longest start of `piece` (short of all of it, at least `least` characters) that `rest` ends with, in
+    characters; 0 if none. Found where `rest` holds the first `least` characters, not by trying every length."""
+    least = max(least, 1)
+    if least > min(len(piece) - 1, len(rest)):
+        return 0
+    head = piece[:least]
+    p = rest.find(head, max(0, len(rest) - (len(piece) - 1)))
+    while 0 <= p <= len(rest) - least:
+        if piece.startswith(rest[p:]):
+            return len(rest) - p
+        p = rest.find(head, p + 1)
+    return 0
 
 
 def _unescaped(text: str) -> str:
@@ -127,6 +142,37 @@ def unwrapped(text: str) -> str | None:
     """A message of several lines read as one (its line breaks as spaces), or None for a one-line message: the
     reading to try when its lines match nothing, so that a hard wrap does not hide a mined message."""
     return _WRAP.sub(" ", text) if "\n" in text else None
+
+
+class Needles:
+    """Strings to look for in a text, found without testing each one: indexed by their first GRAM characters, so
+    a text is read once and only the strings starting somewhere in it are tested."""
+
+    GRAM = 4
+
+    def __init__(self, needles: Iterable[str]) -> None:
+        self.needles = list(needles)
+        self._starts: dict[str, list[int]] = {}
+        self._short: list[int] = []  # shorter than a gram: always tested
+        for n, needle in enumerate(self.needles):
+            if len(needle) < self.GRAM:
+                self._short.append(n)
+            else:
+                self._starts.setdefault(needle[: self.GRAM], []).append(n)
+
+    def found_in(self, text: str) -> list[int]:
+        """The positions, in order, of the strings `text` holds."""
+        starts = self._starts
+        tried = set(self._short)
+        for i in range(len(text) - self.GRAM + 1):
+            if (hit := starts.get(text[i : i + self.GRAM])) is not None:
+                tried.update(hit)
+        return [n for n in sorted(tried) if self.needles[n] in text]
+
+    def starting_with(self, prefix: str) -> list[int]:
+        """The positions, in order, of the strings that start with `prefix`."""
+        tried = self._starts.get(prefix[: self.GRAM], []) if len(prefix) >= self.GRAM else range(len(self.needles))
+        return [n for n in tried if self.needles[n].startswith(prefix)]
 
 
 def _rank(e: StackEntry) -> tuple[bool, int]:
@@ -183,8 +229,22 @@ class StackCatalogue:
         return out
 
     @cached_property
+    def _keys(self) -> tuple[Needles, list[list[int]]]:
+        """The literal keys to look for, and the entries of each."""
+        return Needles(self._by_key), list(self._by_key.values())
+
+    @cached_property
     def _first_pieces(self) -> list[tuple[str, int]]:
         return [(_unescaped(str(e["pattern"]).split(".*?", 1)[0]), i) for i, e in enumerate(self._raw)]
+
+    @cached_property
+    def _first_needles(self) -> Needles:
+        return Needles(first for first, _ in self._first_pieces)
+
+    def _held(self, text: str) -> Iterable[int]:
+        """The entries whose key `text` holds, in the catalogue's order of keys."""
+        needles, entries = self._keys
+        return (i for n in needles.found_in(text) for i in entries[n])
 
     def match(self, msg: str) -> StackEntry | None:
         """The entry whose pattern the message (ANSI colours removed) holds: one with a cause id before one without
@@ -197,14 +257,15 @@ class StackCatalogue:
         if best is None and (joined := unwrapped(text)) is not None:
             best = self._best(joined)
         if best is None and len(text.rstrip(" .…")) >= CUT_MIN_LITERAL:
-            cut = [e for first, i in self._first_pieces if first and first in text
-                   if (e := self._at(i)).cut_match(text)]
+            pieces = self._first_pieces
+            cut = [e for n in self._first_needles.found_in(text) if pieces[n][0]
+                   if (e := self._at(pieces[n][1])).cut_match(text)]
             best = max(cut, key=_rank, default=None)
         if best is None and len(text) >= CUT_MIN_LITERAL and text.rstrip().endswith((".", "!")):
             # the message's first sentences alone: a console that broke the line after them (MPPI's "Inconsistent
             # configuration in collision checking." with its "Please verify ..." on a line of its own)
             said = text.strip()
-            first = [self._at(i) for piece, i in self._first_pieces if piece.startswith(f"{said} ")]
+            first = [self._at(self._first_pieces[n][1]) for n in self._first_needles.starting_with(f"{said} ")]
             best = max(first, key=_rank, default=None)
         if len(self._seen) > 20_000:
             self._seen.clear()
@@ -213,21 +274,17 @@ class StackCatalogue:
 
     def _best(self, text: str) -> StackEntry | None:
         best: StackEntry | None = None
-        for key, indices in self._by_key.items():
-            if key not in text:
-                continue
-            for i in indices:
-                e = self._at(i)
-                if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
-                    best = e
+        for i in self._held(text):
+            e = self._at(i)
+            if (best is None or _rank(e) > _rank(best)) and e.regex.search(text):
+                best = e
         return best
 
     def matches(self, msg: str) -> list[StackEntry]:
         """Every entry the message holds, best reading first (a message may quote several: an exception's text
         inside the line that caught it)."""
         text = clean(msg)
-        found = [e for key, indices in self._by_key.items() if key in text for i in indices
-                 if (e := self._at(i)).regex.search(text)]
+        found = [e for i in self._held(text) if (e := self._at(i)).regex.search(text)]
         return sorted(found, key=_rank, reverse=True)
 
     def with_cause(self, cause: str) -> list[StackEntry]:

@@ -2,9 +2,21 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
-from hexar.explainers.stack.catalogue import LEVELS, ROLES, compile_all, load, stack_catalogue
+from hexar.explainers.stack.catalogue import (
+    LEVELS,
+    ROLES,
+    Needles,
+    StackEntry,
+    clean,
+    compile_all,
+    cut_tail,
+    load,
+    stack_catalogue,
+)
 from hexar.explainers.stack.errors import StackCatalogueError
 
 
@@ -106,3 +118,71 @@ def test_a_messages_first_sentence_on_a_line_of_its_own_reads_as_its_entry() -> 
     # a sentence that only begins like one, or too short to say which, is not read
     assert stack_catalogue().match("Inconsistent configuration in collision") is None
     assert stack_catalogue().match("Aborting.") is None
+
+
+def _real_lines() -> list[str]:
+    """Every line of every real excerpt HEXAR is evaluated on (the console prefix left on: a matcher must cope)."""
+    import yaml
+
+    root = Path(__file__).resolve().parents[3] / "evals" / "data"
+    lines: list[str] = []
+    for path in sorted([*root.glob("real_nav2/*.yaml"), *root.glob("real_modules/*.yaml")]):
+        for excerpt in yaml.safe_load(path.read_text("utf-8")) or []:
+            lines += str(excerpt.get("lines", "")).splitlines()
+    return lines
+
+
+def test_the_key_index_finds_exactly_the_keys_a_plain_scan_finds() -> None:
+    cat = stack_catalogue()
+    needles = Needles(cat._by_key)
+    texts = _real_lines()
+    texts += [e.text for e in cat.entries[::7]] + ["", "a", "abc", "[ERROR]", "x" * 500]
+    assert len(texts) > 2000
+    for text in texts:
+        assert needles.found_in(text) == [n for n, key in enumerate(needles.needles) if key in text], text
+    short = Needles(["", "a", "Er", "ERR", "ERROR", "[ERROR] [", "costmap", "rror"])
+    for text in texts[::5]:
+        assert short.found_in(text) == [n for n, key in enumerate(short.needles) if key in text], text
+    for text in texts[::10]:
+        prefix = text[:40]
+        assert needles.starting_with(prefix) == [n for n, key in enumerate(needles.needles) if key.startswith(prefix)]
+
+
+def test_every_real_line_reads_as_a_plain_scan_of_every_key_reads_it() -> None:
+    cat = stack_catalogue()
+
+    def plain_best(text: str) -> StackEntry | None:
+        best = None
+        for key, indices in cat._by_key.items():
+            for i in indices if key in text else ():
+                e = cat._at(i)
+                if (best is None or (e.cause is not None, e.specificity) > (best.cause is not None, best.specificity)
+                        ) and e.regex.search(text):
+                    best = e
+        return best
+
+    lines = _real_lines()
+    named = 0
+    for line in lines:
+        text = clean(line)
+        assert cat._best(text) is plain_best(text), line
+        named += cat._best(text) is not None
+    assert named > 300
+
+
+def test_a_cut_tail_is_the_longest_start_of_the_piece_the_text_ends_with() -> None:
+    import numpy as np
+
+    def every_length(rest: str, piece: str, least: int) -> int:
+        return next((j for j in range(len(piece) - 1, least - 1, -1) if rest.endswith(piece[:j])), 0)
+
+    rng = np.random.default_rng(5)
+    pieces = [p for e in stack_catalogue().entries[::25] for p in e.pieces if p]
+    for _ in range(3000):
+        piece = pieces[int(rng.integers(len(pieces)))]
+        cut = int(rng.integers(len(piece) + 1))
+        rest = "".join(rng.choice(list("ab ["), int(rng.integers(6)))) + piece[:cut]
+        if rng.random() < 0.3:
+            rest = rest + piece[: int(rng.integers(len(piece) + 1))]  # the start twice: the longer one counts
+        least = int(rng.integers(1, 12))
+        assert cut_tail(rest, piece, least) == every_length(rest, piece, least), (rest, piece, least)
