@@ -107,7 +107,8 @@ HELDOUT_FILE = "heldout.yaml"
 # with the catalogue frozen before it was read, then one per round from round 4 on.
 BLIND_FILES = ("blind.yaml", "blind2.yaml", "blind3.yaml", "blind4.yaml", "blind5.yaml", "blind6.yaml", "blind7.yaml",
                "blind8.yaml", "blind9.yaml", "blind10.yaml", "blind11.yaml", "blind12.yaml",
-               "blind13.yaml", "blind14.yaml", "blind15.yaml", "blind16.yaml", "blind17.yaml", "blind18.yaml")
+               "blind13.yaml", "blind14.yaml", "blind15.yaml", "blind16.yaml", "blind17.yaml", "blind18.yaml",
+               "blind19.yaml")
 
 
 @cache
