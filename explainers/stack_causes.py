@@ -155,7 +155,7 @@ def _launch_failed(line: LogLine) -> str | None:
 
 def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
     """(sentence, fix, details) for a bring-up or system cause; None for a module's own cause."""
-    from hexar.explainers.stack.bringup import lifecycle_cli
+    from hexar.explainers.stack.bringup import lifecycle_cli, loader_words
 
     line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what[:1].upper()}{what[1:]} failed because"
@@ -163,6 +163,9 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
         return (f"{head} one of my processes died {_uncaught_words(d.decisive.line)}.",
                 "Read what the exception says and the lines just before it: the call that threw it (a parameter, "
                 "a plugin or an interface that does not fit) is what to fix.", line)
+    loader = loader_words(d.decisive.line) if d.decisive is not None else None
+    if cause == "bringup.process_died" and loader is not None:
+        return f"{head} one of my processes died as it started: {loader[0]}.", loader[1], line
     if cause == "bringup.process_died":
         return (f"{head} one of my processes died during bring-up or the run, so the software it runs was gone.",
                 "Read that process's last lines before it died (a crash, an exception, a missing library).", line)

@@ -7,10 +7,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.base import Explanation
+from hexar.explainers.stack.bringup import cpp_name
 from tests.explainers.helpers import T0, explain, write_lines
 
 Line = tuple[float, str, int, str]
@@ -167,3 +170,46 @@ def test_a_ros2_run_command_that_died_after_starting_stays_a_process_that_died(t
     found = _derived(tmp_path, NO_PROGRAM[2:])
     assert found.causes != ["bringup.configuration_error"]
     assert "never started" not in found.text
+
+
+# flexivrobotics/flexiv_ros2#15 (Foxy, heldout21, spent): glibc's "symbol lookup error" (elf/dl-lookup.c) on the
+# controller manager's stderr, then launch's report of its death; the fix linked the RDK library built for the
+# robot computer's processor (flexiv_ros2#16)
+FLEXIV: list[Line] = [
+    (0.4, "ros2_control_node-1", ERROR, "/opt/ros/foxy/lib/controller_manager/ros2_control_node: symbol lookup error: "
+     "/ros-flexiv_ws/install/flexiv_hardware/lib/libflexiv_hardware.so: undefined symbol: "
+     "_ZN6flexiv5RobotC1ERKNSt7__cxx1112basic_stringIcSt11char_traitsIcESaIcEEES8_"),
+    (0.5, "ros2_control_node-1", ERROR, "process has died [pid 2567, exit code 127, cmd '/opt/ros/foxy/lib/"
+     "controller_manager/ros2_control_node --ros-args --params-file /tmp/launch_params_lwng52a_']."),
+]
+
+
+def test_a_program_the_loader_stopped_names_the_library_and_the_symbol_it_lacked(tmp_path: Path) -> None:
+    for found in (_on_task(tmp_path / "task", FLEXIV), _derived(tmp_path / "derived", FLEXIV)):
+        assert found.causes == ["bringup.process_died"] and _claims(found) == {"bringup.process_died"}
+        assert "the dynamic loader stopped ros2_control_node, because libflexiv_hardware.so needs " \
+               "flexiv::Robot::Robot(…)" in found.text
+        assert found.fix is not None and "rebuild it against the libraries installed here" in found.fix
+
+
+def test_a_library_the_loader_could_not_find_is_named_with_where_to_look(tmp_path: Path) -> None:
+    # glibc's words when a needed library is not on the loader's path (elf/dl-load.c "cannot open shared object file")
+    missing = ("/opt/ros/humble/lib/controller_manager/ros2_control_node: error while loading shared libraries: "
+               "libhardware_interface.so: cannot open shared object file: No such file or directory")
+    found = _on_task(tmp_path, [(0.4, "ros2_control_node-1", ERROR, missing), FLEXIV[1]])
+    assert found.causes == ["bringup.process_died"]
+    assert "the dynamic loader could not start ros2_control_node: libhardware_interface.so: cannot open" in found.text
+    assert found.fix is not None and "not installed or not on the loader's path" in found.fix
+
+
+@pytest.mark.parametrize(("symbol", "name"), [
+    ("_ZN6flexiv5RobotC1ERKNSt7__cxx1112basic_stringIcSt11char_traitsIcESaIcEEES8_", "flexiv::Robot::Robot(…)"),
+    ("_ZN8eprosima7fastcdr3Cdr9serializeEj", "eprosima::fastcdr::Cdr::serialize(…)"),  # ros2_control heldout
+    ("_ZN9nav2_amcl20LikelihoodFieldModelC1EddddmP5map_t",
+     "nav2_amcl::LikelihoodFieldModel::LikelihoodFieldModel(…)"),
+    ("_ZN3fooD1Ev", "foo::~foo(…)"), ("_Z3fooi", "foo(…)"),
+    ("_ZN3foo3barIiE3bazEv", None), ("_ZNSt6vectorIiSaIiEE9push_backERKi", None), ("_ZN3foo", None),
+    ("rcl_init", None),
+])
+def test_a_mangled_symbol_reads_as_its_cpp_name_or_not_at_all(symbol: str, name: str | None) -> None:
+    assert cpp_name(symbol) == name

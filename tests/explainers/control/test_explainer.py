@@ -389,3 +389,28 @@ def test_rclcpps_exception_for_times_of_two_clocks_is_told_by_its_meaning_not_as
     assert "two times from different clocks met" in found.text and "died" not in found.text
     assert "could not load its ros2_control system plugin" not in found.text
     assert not read_claims(found.text).affirmed - {"claim.task_failed"}
+
+
+# ROBOTIS-GIT/open_manipulator#364 (Jazzy, heldout21, spent): the hardware's on_init indexed an empty list read from
+# the ros2_control tag; the reporter fixed it by reverting the xacro that writes that tag
+OUT_OF_RANGE = ("Exception of type : St12out_of_range occurred while initializing hardware 'OpenManipulatorXSystem': "
+                "vector::_M_range_check: __n (which is 0) >= this->size() (which is 0)")
+
+
+def test_an_index_out_of_range_while_initializing_hardware_is_its_description_not_its_device(tmp_path: Path) -> None:
+    found = _explain(tmp_path, [(0, "controller_manager", ERROR, OUT_OF_RANGE)])
+    assert found.causes == ["control.configuration_error"]
+    assert "looked up something the ros2_control tag of my robot description does not give it" in found.text
+    assert {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")} == {
+        "control.configuration_error"}
+
+
+def test_a_value_the_hardware_could_not_convert_is_its_description_and_other_exceptions_its_device(
+        tmp_path: Path) -> None:
+    # libstdc++'s std::stod throws invalid_argument("stod") for a text that is no number
+    found = _explain(tmp_path / "a", [(0, "controller_manager", ERROR, "Exception of type : St16invalid_argument "
+                                       "occurred while initializing hardware 'RobotSystem': stod")])
+    assert found.causes == ["control.configuration_error"] and "not a number" in found.text
+    found = _explain(tmp_path / "b", [(0, "controller_manager", ERROR, "Exception of type : St13runtime_error "
+                                       "occurred while initializing hardware 'RobotSystem': Failed to open port")])
+    assert found.causes == ["control.hardware_failure"]
