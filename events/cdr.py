@@ -176,8 +176,10 @@ Status = tuple[int, str, str, str, tuple[tuple[str, str], ...]]  # level, name, 
 
 # The statuses of the DiagnosticArrays decoded so far, by the bytes after their stamp: an aggregator publishes the
 # same statuses again and again, only the stamp moves (2,883 arrays of 50 simulated recordings held 136 texts).
+# Arrays up to SEEN_BYTES, at most SEEN_KEPT of them: a few MB at most in a process that runs for days.
 _SEEN: dict[bytes, tuple[Status, ...]] = {}
-SEEN_KEPT = 4096
+SEEN_KEPT = 2048
+SEEN_BYTES = 4096
 
 
 def decode_diagnostics(raw: bytes) -> tuple[int, int, tuple[Status, ...]] | None:
@@ -187,7 +189,7 @@ def decode_diagnostics(raw: bytes) -> tuple[int, int, tuple[Status, ...]] | None
         sec, nanosec = _LOG_HEAD.unpack_from(raw, 4)[:2]
         return sec, nanosec, seen
     decoded = _decode_diagnostics(raw)
-    if decoded is not None:
+    if decoded is not None and len(raw) <= SEEN_BYTES:
         if len(_SEEN) >= SEEN_KEPT:
             _SEEN.clear()
         _SEEN[raw[12:]] = decoded[2]

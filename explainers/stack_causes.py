@@ -163,8 +163,7 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
         return (f"{head} one of my processes died {_uncaught_words(d.decisive.line)}.",
                 "Read what the exception says and the lines just before it: the call that threw it (a parameter, "
                 "a plugin or an interface that does not fit) is what to fix.", line)
-    loader = loader_words(d.decisive.line) if d.decisive is not None else None
-    if cause == "bringup.process_died" and loader is not None:
+    if cause == "bringup.process_died" and d.decisive is not None and (loader := loader_words(d.decisive.line)):
         return f"{head} one of my processes died as it started: {loader[0]}.", loader[1], line
     if cause == "bringup.process_died":
         return (f"{head} one of my processes died during bring-up or the run, so the software it runs was gone.",
