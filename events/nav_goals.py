@@ -118,8 +118,8 @@ def _bringup_error(line: LogLine) -> bool:
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack import bringup_findings
-    from hexar.explainers.stack.bringup import loader_failure
     from hexar.explainers.stack.catalogue import stack_catalogue
+    from hexar.explainers.stack.loader import loader_failure
 
     if not loader_failure(line):  # the loader's words come at no level (stderr)
         if line.level < ERROR:
@@ -161,7 +161,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
     an abort, else still running as far as the recording shows."""
     from hexar.explainers.navigation.catalogue import REACHED, catalogue
-    from hexar.explainers.stack.bringup import loader_failure
+    from hexar.explainers.stack.loader import loader_failure
 
     cat = catalogue()
     active: list[LogLine] = []

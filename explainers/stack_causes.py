@@ -155,7 +155,8 @@ def _launch_failed(line: LogLine) -> str | None:
 
 def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
     """(sentence, fix, details) for a bring-up or system cause; None for a module's own cause."""
-    from hexar.explainers.stack.bringup import lifecycle_cli, loader_words
+    from hexar.explainers.stack.bringup import lifecycle_cli
+    from hexar.explainers.stack.loader import loader_words
 
     line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what[:1].upper()}{what[1:]} failed because"

@@ -29,8 +29,9 @@ from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Find
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
-from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding, loader_failure
+from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
+from hexar.explainers.stack.loader import loader_failure
 
 BRINGUP = "navigation.bringup_failure"
 CONFIGURATION = "navigation.configuration_error"

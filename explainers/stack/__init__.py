@@ -1,5 +1,6 @@
 """The ROS 2 stack layers Nav2 (and other) failures come from: a catalogue mined from their sources (catalogue.py),
-and the bring-up problems any explainer can cite (bringup.py: `bringup_findings`)."""
+the bring-up problems any explainer can cite (bringup.py: `bringup_findings`), and the dynamic loader's words when it
+stops a program (loader.py)."""
 
 from __future__ import annotations
 

@@ -13,7 +13,7 @@ from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.base import Explanation
-from hexar.explainers.stack.bringup import cpp_name
+from hexar.explainers.stack.loader import cpp_name
 from tests.explainers.helpers import T0, explain, write_lines
 
 Line = tuple[float, str, int, str]

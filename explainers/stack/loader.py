@@ -1,0 +1,72 @@
+"""The dynamic loader's words when it stops a program before its node exists (a library missing, or built against
+other versions of what it links than the ones found at run time), read as what stopped the process."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.events.records import LogLine
+
+# the dynamic loader's own words, written to the process's stderr as it gives up (glibc elf/dl-lookup.c:808@master
+# "symbol lookup error" with "undefined symbol: %s%s%s", elf/dl-catch.c:85@master "error while loading shared
+# libraries"): the program exits before its node exists, at no log level
+LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
+                    re.S)
+
+
+def loader_failure(line: LogLine) -> bool:
+    """The dynamic loader could not start the program of `line` (a library missing or built against another)."""
+    return LOADER.search(line.msg) is not None
+
+
+# The Itanium C++ ABI's mangled names as far as a person needs them: _Z, then a nested name N <length><name>... up to
+# a constructor (C1-C3), a destructor (D0-D2) or its end (E); std:: is abbreviated St.
+_MANGLED = re.compile(r"_?Z(?P<nested>N)?[rVK]*")
+_ENDS = {"C1": "ctor", "C2": "ctor", "C3": "ctor", "D0": "dtor", "D1": "dtor", "D2": "dtor"}
+
+
+def cpp_name(symbol: str) -> str | None:
+    """The qualified C++ name a mangled symbol stands for ("flexiv::Robot::Robot(…)"), or None when it is not a
+    plain nested name (templates, operators and other forms are left mangled)."""
+    m = _MANGLED.match(symbol)
+    if m is None:
+        return None
+    i, parts = m.end(), []
+    if m["nested"] and symbol.startswith("St", i):
+        parts.append("std")
+        i += 2
+    while (d := re.match(r"\d+", symbol[i:])) is not None:
+        i += len(d[0])
+        parts.append(symbol[i : i + int(d[0])])
+        i += int(d[0])
+        if not m["nested"]:
+            return f"{parts[0]}(…)" if parts[0] else None
+    end = _ENDS.get(symbol[i : i + 2])
+    if not parts or not m["nested"] or (end is None and not symbol.startswith("E", i)):
+        return None
+    if end is not None:
+        parts.append(parts[-1] if end == "ctor" else f"~{parts[-1]}")
+    return f"{'::'.join(parts)}(…)"
+
+
+def loader_words(line: LogLine) -> tuple[str, str] | None:
+    """What the dynamic loader said as it stopped the program of `line`, in words, and what to check; None for any
+    other line."""
+    found = LOADER.search(line.msg)
+    if found is None:
+        return None
+    exe = found["exe"].rsplit("/", 1)[-1]
+    why = " ".join(found["why"].split())
+    lib, _, symbol = why.partition(": undefined symbol: ")
+    if found["what"] == "symbol lookup error" and symbol:
+        name = cpp_name(symbol)
+        said = f"{name} (symbol {symbol[:32]}…)" if name else f"the symbol {symbol[:90]}"
+        return (f"the dynamic loader stopped {exe}, because {lib.rsplit('/', 1)[-1]} needs {said}, which no library "
+                "loaded with it defines",
+                "The library was built against other versions of what it links than the ones found at run time: "
+                "rebuild it against the libraries installed here (a clean build), check which copy of each library "
+                "is found first (ldd on the library, LD_LIBRARY_PATH), and that any prebuilt library in it matches "
+                "this OS and processor.")
+    return (f"the dynamic loader could not start {exe}: {why[:160]}",
+            "A library it needs is not installed or not on the loader's path: install the package that holds it, "
+            "or source the workspace that built it (LD_LIBRARY_PATH).")
