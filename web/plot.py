@@ -19,6 +19,7 @@ from matplotlib.patches import Ellipse, Rectangle
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
+from hexar.safe_text import visible
 from hexar.web.errors import PlotError
 from hexar.web.runview import POOR_COV, SIGMAS, spans, track
 
@@ -86,7 +87,7 @@ def _draw_path(fig: PathFigure, ax: Any, log: EventLog, task: Task) -> None:
     if tr.stop is not None:
         failed = task.failed_skill is not None
         (fig.stop,) = ax.plot(tr.stop.x, tr.stop.y, "X" if failed else "*", color="#c62828" if failed else "#2e7d32",
-                              ms=14, label=tr.stop_label.replace("$", r"\$"))  # a legend reads $...$ as mathtext
+                              ms=14, label=visible(tr.stop_label).replace("$", r"\$"))  # legends read $…$ as math
     ax.legend(loc="upper left", fontsize=8, framealpha=0.85)
 
 
@@ -99,7 +100,8 @@ def _draw_timeline(fig: PathFigure, ax: Any, task: Task, evidence_t: list[int]) 
         bar = ax.barh(s.index, width, left=(s.start - t0) / NS, color=STATUS_COLOURS.get(s.status, "#9e9e9e"),
                       height=0.6)
         fig.bars[s.index] = bar.patches[0]
-        ax.text((s.start - t0) / NS, s.index - 0.38, f"{s.skill}: {s.status}", fontsize=8, parse_math=False)
+        ax.text((s.start - t0) / NS, s.index - 0.38, visible(f"{s.skill}: {s.status}"), fontsize=8,
+                parse_math=False)
     failed = task.failed_skill
     if failed is not None:
         ft = ((failed.time_of("failed") or failed.last_change) - t0) / NS
@@ -149,9 +151,10 @@ def build(log: EventLog, task: Task, result: dict[str, Any] | None = None) -> Pa
     _draw_timeline(fig, figure.add_subplot(grid[0, 1]), task, evidence_t)
     _draw_covariance(fig, figure.add_subplot(grid[1, 1]), log, task, evidence_t)
     title = f"{log.path.name} · task {task.order}: {task.instruction or '(recovery)'} — {task.outcome}"
-    figure.suptitle(textwrap.shorten(title, 110), fontsize=12, parse_math=False, y=0.975)
+    figure.suptitle(textwrap.shorten(visible(title), 110), fontsize=12, parse_math=False, y=0.975)
     if result and result.get("answer"):
         causes = ", ".join(result.get("causes", []))
-        text = textwrap.fill(f"HEXAR: {result['answer']}" + (f"  [{causes}]" if causes else ""), 150)
+        said = visible(f"HEXAR: {result['answer']}" + (f"  [{causes}]" if causes else ""), keep_newlines=True)
+        text = textwrap.fill(said, 150)
         figure.text(0.01, 0.01, text, fontsize=8.5, va="bottom", parse_math=False, color="#333333")
     return fig

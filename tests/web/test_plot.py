@@ -133,3 +133,28 @@ def test_bad_plot_input_is_one_line(suite: Path, args: list[str], message: str,
 
 def _rgb(hex_colour: str) -> tuple[float, float, float]:
     return tuple(int(hex_colour[i:i + 2], 16) / 255 for i in (1, 3, 5))  # type: ignore[return-value]
+
+
+def test_a_control_character_in_recorded_text_is_drawn_as_its_escape(tmp_path: Path) -> None:
+    """Recorded strings reach the figure as `hexar.safe_text.visible` shows them everywhere else: a C1 control
+    (U+0085) in a skill name is drawn as its escape, not as a glyph the font lacks."""
+    import warnings
+
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+
+    skill = "go\x85to"
+    b = BagBuilder()
+    t0 = sec_ns(1_741_600_000)
+    for t, status in ((t0, "Running"), (t0 + sec_ns(6), "failed")):
+        b.task_info(t, {"instruction": "go\x1b[31m", "task_id": "c1", "task_status": "valid", "task_error_msg": "",
+                        "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": "x"}]})
+    for i in range(30):
+        b.pose(t0 + i * 200_000_000, 0.1 * i, 0.0, 0.0, 0.02, 0.02, 0.01)
+    log = read_recording(b.write(tmp_path / "ctl"))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        fig = build(log, log.task(), {"answer": "stopped\x85here", "causes": [], "evidence": []})
+        fig.save(tmp_path / "c.png")
+    assert not [w for w in seen if "missing from font" in str(w.message)]
+    texts = [t.get_text() for ax in fig.figure.axes for t in ax.texts] + [t.get_text() for t in fig.figure.texts]
+    assert any("go\\x85to" in t for t in texts) and not any("\x85" in t or "\x1b" in t for t in texts)
