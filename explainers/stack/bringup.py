@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_catalogue
-from hexar.explainers.stack.loader import LOADER
+from hexar.explainers.stack.loader import LOADER, needed
 
 BRINGUP = "stack.bringup_failure"
 DIED = "process has died"
@@ -279,8 +279,10 @@ def _loader_finding(line: LogLine) -> BringupFinding | None:
     node = _node(line, "process_died")
     if not node or node == line.name:
         node = found["exe"].rsplit("/", 1)[-1]
-    why = " ".join(found["why"].split())[:200]
-    return BringupFinding("process_died", node, line.t, line, None, f"{found['what']}: {why}")
+    why = " ".join(found["why"].split())
+    lacked = needed(why, with_symbol=False) if found["what"] == "symbol lookup error" else None  # the line has it
+    said = f"{lacked[0]} needs {lacked[1]}, which no library loaded with it defines" if lacked else why[:200]
+    return BringupFinding("process_died", node, line.t, line, None, f"{found['what']}: {said}")
 
 
 def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:

@@ -49,6 +49,18 @@ def cpp_name(symbol: str) -> str | None:
     return f"{'::'.join(parts)}(…)"
 
 
+def needed(why: str, with_symbol: bool = True) -> tuple[str, str] | None:
+    """For the loader's "LIBRARY: undefined symbol: SYMBOL": the library's file name and what it needs in words (the
+    C++ name when the symbol is a plain nested one, with the symbol's start if asked); None for other words."""
+    lib, _, symbol = why.partition(": undefined symbol: ")
+    if not symbol:
+        return None
+    name = cpp_name(symbol)
+    if name is None:
+        return lib.rsplit("/", 1)[-1], f"the symbol {symbol[:90]}"
+    return lib.rsplit("/", 1)[-1], f"{name} (symbol {symbol[:32]}…)" if with_symbol else name
+
+
 def loader_words(line: LogLine) -> tuple[str, str] | None:
     """What the dynamic loader said as it stopped the program of `line`, in words, and what to check; None for any
     other line."""
@@ -57,12 +69,9 @@ def loader_words(line: LogLine) -> tuple[str, str] | None:
         return None
     exe = found["exe"].rsplit("/", 1)[-1]
     why = " ".join(found["why"].split())
-    lib, _, symbol = why.partition(": undefined symbol: ")
-    if found["what"] == "symbol lookup error" and symbol:
-        name = cpp_name(symbol)
-        said = f"{name} (symbol {symbol[:32]}…)" if name else f"the symbol {symbol[:90]}"
-        return (f"the dynamic loader stopped {exe}, because {lib.rsplit('/', 1)[-1]} needs {said}, which no library "
-                "loaded with it defines",
+    if found["what"] == "symbol lookup error" and (lacked := needed(why)) is not None:
+        return (f"the dynamic loader stopped {exe}, because {lacked[0]} needs {lacked[1]}, which no library loaded "
+                "with it defines",
                 "The library was built against other versions of what it links than the ones found at run time: "
                 "rebuild it against the libraries installed here (a clean build), check which copy of each library "
                 "is found first (ldd on the library, LD_LIBRARY_PATH), and that any prebuilt library in it matches "

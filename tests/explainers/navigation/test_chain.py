@@ -135,6 +135,7 @@ def test_a_program_the_loader_could_not_start_is_a_process_that_died_with_the_lo
     answer = _explain(tmp_path, [("amcl-37", INFO, lost)], UNAVAILABLE)
     assert answer.causes[0] == g.BRINGUP and g.BRINGUP in stated_causes(answer.text)
     assert "the process of amcl died (symbol lookup error: " in answer.text
+    assert "libamcl_core.so needs nav2_amcl::LikelihoodFieldModel::LikelihoodFieldModel(…)" in answer.text
     assert "nothing in my logs says why it died" not in answer.text
 
 
