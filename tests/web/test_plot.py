@@ -8,12 +8,26 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
-from hexar.events import read_recording
+from hexar.events import EventLog, read_recording
 from hexar.web.plot import STATUS_COLOURS, build
 from hexar.web.runview import pose_at
 from tests.web.helpers import HOSTILE_ERROR, hostile_recording
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def _one_skill_run(out: Path, skill: str, instruction: str = "go", error: str = "x") -> EventLog:
+    """A recording of one task of one skill that ran and failed, with a straight path of poses."""
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+
+    b = BagBuilder()
+    t0 = sec_ns(1_741_600_000)
+    for t, status in ((t0, "Running"), (t0 + sec_ns(6), "failed")):
+        b.task_info(t, {"instruction": instruction, "task_id": "d1", "task_status": "valid", "task_error_msg": "",
+                        "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": error}]})
+    for i in range(30):
+        b.pose(t0 + i * 200_000_000, 0.1 * i, 0.0, 0.0, 0.02, 0.02, 0.01)
+    return read_recording(b.write(out))
 
 
 def _ask(suite: Path, name: str, capsys: pytest.CaptureFixture[str], png: Path) -> dict[str, object]:
@@ -99,17 +113,8 @@ def test_hostile_text_is_drawn_not_parsed(tmp_path: Path) -> None:
 
 def test_a_dollar_in_a_skill_name_is_drawn_not_parsed(tmp_path: Path) -> None:
     """The stop point's legend names the failed skill; a legend reads `$...$` as mathtext."""
-    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-
     skill = "go$\\frac{$_to"  # two dollars: mathtext between them, and unbalanced
-    b = BagBuilder()
-    t0 = sec_ns(1_741_600_000)
-    for t, status in ((t0, "Running"), (t0 + sec_ns(6), "failed")):
-        b.task_info(t, {"instruction": "go", "task_id": "d1", "task_status": "valid", "task_error_msg": "",
-                        "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": "x$"}]})
-    for i in range(30):
-        b.pose(t0 + i * 200_000_000, 0.1 * i, 0.0, 0.0, 0.02, 0.02, 0.01)
-    log = read_recording(b.write(tmp_path / "dollar"))
+    log = _one_skill_run(tmp_path / "dollar", skill, error="x$")
     fig = build(log, log.task(), {"answer": "", "causes": [], "evidence": []})
     fig.save(tmp_path / "d.png")
     legend = [t.get_text() for ax in fig.figure.axes if ax.get_legend() for t in ax.get_legend().get_texts()]
@@ -140,17 +145,7 @@ def test_a_control_character_in_recorded_text_is_drawn_as_its_escape(tmp_path: P
     (U+0085) in a skill name is drawn as its escape, not as a glyph the font lacks."""
     import warnings
 
-    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
-
-    skill = "go\x85to"
-    b = BagBuilder()
-    t0 = sec_ns(1_741_600_000)
-    for t, status in ((t0, "Running"), (t0 + sec_ns(6), "failed")):
-        b.task_info(t, {"instruction": "go\x1b[31m", "task_id": "c1", "task_status": "valid", "task_error_msg": "",
-                        "skill_sequence": [{"skill": skill, "params": {}, "status": status, "error_msg": "x"}]})
-    for i in range(30):
-        b.pose(t0 + i * 200_000_000, 0.1 * i, 0.0, 0.0, 0.02, 0.02, 0.01)
-    log = read_recording(b.write(tmp_path / "ctl"))
+    log = _one_skill_run(tmp_path / "ctl", "go\x85to", instruction="go\x1b[31m")
     with warnings.catch_warnings(record=True) as seen:
         warnings.simplefilter("always")
         fig = build(log, log.task(), {"answer": "stopped\x85here", "causes": [], "evidence": []})
