@@ -49,8 +49,6 @@ SETS_KEPT = 32  # distinct definition sets whose typestores stay built: a few pe
 QOS_KEPT = 256  # distinct offered-QoS texts kept parsed: a few per topic and robot software version
 
 
-
-
 class Reader(AnyReader):
     """AnyReader, opened the same way and raising the same errors, with its typestore from the shared cache and
     its storages parsing each distinct QoS text once; a recording that stores no definitions is read with the

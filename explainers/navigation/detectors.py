@@ -272,9 +272,16 @@ def map_never_came(seen: list[LogLine]) -> list[LogLine]:
     it; none unless the static layer said so (a mismatch alone may be any subscriber's), and none when that layer
     then said a map came (its warning stops once it has one)."""
     gone = [ln for ln in seen if NO_MAP in ln.msg or MAP_QOS.match(ln.msg)]
-    came = [ln for ln in seen if ln.msg.startswith(MAP_CAME)]
-    last = [ln for ln in gone if NO_MAP in ln.msg and not any(c.name == ln.name and c.t >= ln.t for c in came)]
-    return gone if last else []
+    last: dict[str, LogLine] = {}  # each costmap's last warning: it warns until a map comes
+    for ln in gone:
+        if NO_MAP in ln.msg and (ln.name not in last or ln.t >= last[ln.name].t):
+            last[ln.name] = ln
+    return gone if any(not map_came_after(ln, seen) for ln in last.values()) else []
+
+
+def map_came_after(line: LogLine, lines: list[LogLine]) -> bool:
+    """Whether the static layer of `line`'s node said, at or after it, that a map came."""
+    return any(r.name == line.name and r.t >= line.t and r.msg.startswith(MAP_CAME) for r in lines)
 
 
 NO_MAP_FACT = "no_map"  # an off_costmap finding's fact: the costmap never got its map (notes: the QoS policy, if said)

@@ -60,7 +60,7 @@ def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
     for ln in lines:
         if "costmap" not in ln.name or not d.MAP_QOS.match(ln.msg.strip()):
             continue
-        if any(r.name == ln.name and r.t >= ln.t and r.msg.startswith(d.MAP_CAME) for r in lines):
+        if d.map_came_after(ln, lines):
             continue
         found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln)])
         found.facts[REFUSED] = 1.0

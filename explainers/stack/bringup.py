@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_catalogue
-from hexar.explainers.stack.loader import LOADER, needed
+from hexar.explainers.stack.loader import loader_said, needed
 
 BRINGUP = "stack.bringup_failure"
 DIED = "process has died"
@@ -273,16 +273,16 @@ def ros2_run_failed(died: LogLine, before: list[LogLine]) -> str | None:
 
 
 def _loader_finding(line: LogLine) -> BringupFinding | None:
-    found = LOADER.search(line.msg)
-    if found is None:
+    loader = loader_said(line)
+    if loader is None:
         return None
+    exe, what, why = loader
     node = _node(line, "process_died")
     if not node or node == line.name:
-        node = found["exe"].rsplit("/", 1)[-1]
-    why = " ".join(found["why"].split())
-    lacked = needed(why, with_symbol=False) if found["what"] == "symbol lookup error" else None  # the line has it
+        node = exe
+    lacked = needed(why, with_symbol=False) if what == "symbol lookup error" else None  # the line has the symbol
     said = f"{lacked[0]} needs {lacked[1]}, which no library loaded with it defines" if lacked else why[:200]
-    return BringupFinding("process_died", node, line.t, line, None, f"{found['what']}: {said}")
+    return BringupFinding("process_died", node, line.t, line, None, f"{what}: {said}")
 
 
 def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:

@@ -10,13 +10,22 @@ from hexar.events.records import LogLine
 # the dynamic loader's own words, written to the process's stderr as it gives up (glibc elf/dl-lookup.c:808@master
 # "symbol lookup error" with "undefined symbol: %s%s%s", elf/dl-catch.c:85@master "error while loading shared
 # libraries"): the program exits before its node exists, at no log level
-LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
-                    re.S)
+_LOADER = re.compile(r"^(?P<exe>/\S+): (?P<what>symbol lookup error|error while loading shared libraries): (?P<why>.+)",
+                     re.S)
+
+
+def loader_said(line: LogLine) -> tuple[str, str, str] | None:
+    """The loader's words in `line`: the program's file name, what failed ("symbol lookup error" or "error while
+    loading shared libraries") and why, on one line; None for any other line."""
+    found = _LOADER.search(line.msg)
+    if found is None:
+        return None
+    return found["exe"].rsplit("/", 1)[-1], found["what"], " ".join(found["why"].split())
 
 
 def loader_failure(line: LogLine) -> bool:
     """The dynamic loader could not start the program of `line` (a library missing or built against another)."""
-    return LOADER.search(line.msg) is not None
+    return _LOADER.search(line.msg) is not None
 
 
 # The Itanium C++ ABI's mangled names as far as a person needs them: _Z, then a nested name N <length><name>... up to
@@ -64,12 +73,11 @@ def needed(why: str, with_symbol: bool = True) -> tuple[str, str] | None:
 def loader_words(line: LogLine) -> tuple[str, str] | None:
     """What the dynamic loader said as it stopped the program of `line`, in words, and what to check; None for any
     other line."""
-    found = LOADER.search(line.msg)
-    if found is None:
+    said = loader_said(line)
+    if said is None:
         return None
-    exe = found["exe"].rsplit("/", 1)[-1]
-    why = " ".join(found["why"].split())
-    if found["what"] == "symbol lookup error" and (lacked := needed(why)) is not None:
+    exe, what, why = said
+    if what == "symbol lookup error" and (lacked := needed(why)) is not None:
         return (f"the dynamic loader stopped {exe}, because {lacked[0]} needs {lacked[1]}, which no library loaded "
                 "with it defines",
                 "The library was built against other versions of what it links than the ones found at run time: "
