@@ -43,7 +43,8 @@ if TYPE_CHECKING:
 
 # Where a piece of evidence comes from, as the robot says it.
 _SOURCE = {
-    "/rosout": "my log", "/task_info": "my task status", "/amcl_pose": "my localisation",
+    "/rosout": "my log", "launch.log": "my launch's log", "/task_info": "my task status",
+    "/amcl_pose": "my localisation",
     "/joy_priority": "my joystick switch", "/power/is_charging": "my charger", "/diagnostics": "my diagnostics",
     "/episodic_memory": "my ask-for-help skill", "/skills/say/events": "my speech",
     "/skills/recommend_pizza/events": "my pizza recommender",

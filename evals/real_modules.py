@@ -28,7 +28,6 @@ from typing import Any
 from hexar.causes import vocabulary
 from hexar.claims import ALL_FINE, TASK_FAILED, read_claims
 from hexar.errors import USER_ERRORS, HexarError
-from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     DISTROS,
     OUTCOMES,
@@ -39,6 +38,7 @@ from hexar.evals.real_nav2 import (
     write_excerpt,
 )
 from hexar.evals.real_nav2_suite import Grade, hexar_asker  # one grade, one asker; only the allowed causes differ
+from hexar.events.console import parse_console, stamped
 
 SUITE = "real-modules"
 HELDOUT_SUITE = "real-modules-heldout"

@@ -1,6 +1,6 @@
 """The real-Nav2 corpus (evals/data/real_nav2/corpus.yaml): console excerpts people pasted in public threads, each
 with the cause the thread diagnosed, and the converter that turns an excerpt into a rosbag2 recording (the console
-formats it reads are listed in `hexar.evals.console`).
+formats it reads are listed in `hexar.events.console`).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from typing import Any, Protocol, TypeVar
 import yaml
 
 from hexar.errors import HexarError
-from hexar.evals.console import NS, ConsoleLine, parse_console, stamped
+from hexar.events.console import NS, ConsoleLine, parse_console, stamped
 
 DISTROS = ("foxy", "galactic", "humble", "iron", "jazzy", "kilted", "rolling", "unknown")
 OUTCOMES = ("failed", "succeeded", "slow")

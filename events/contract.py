@@ -10,6 +10,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 ROSOUT = "/rosout"
+# ROS 2 launch's log file copied beside a recording (events/roslog.py): log lines that never reached /rosout
+LAUNCH_LOG = "launch.log"
+LOG_SOURCES = frozenset({ROSOUT, LAUNCH_LOG})
 TASK_INFO = "/task_info"
 AMCL_POSE = "/amcl_pose"
 JOY_PRIORITY = "/joy_priority"

@@ -154,8 +154,14 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     src = resolve_path(Path(path))
     cut = [f for f in src.glob("*.mcap") if is_cut_short(f)] if src.is_dir() else []
     if cut or holds_storage(src):
-        return _guarded(src, lambda: read_recovered(src, cut, lambda files: _read_files(files, src, wanted)))
-    return _guarded(src, lambda: _read_whole(src, wanted))
+        log = _guarded(src, lambda: read_recovered(src, cut, lambda files: _read_files(files, src, wanted)))
+    else:
+        log = _guarded(src, lambda: _read_whole(src, wanted))
+    if c.ROSOUT in wanted:
+        from hexar.events.roslog import merge_launch_logs
+
+        merge_launch_logs(log)
+    return log
 
 
 def damage(err: BaseException) -> str:

@@ -31,12 +31,14 @@ def clock(t: int) -> str:
 
 @dataclass(frozen=True, slots=True)
 class LogLine:
-    """One `/rosout` line (rcl_interfaces/msg/Log)."""
+    """One `/rosout` line (rcl_interfaces/msg/Log), or one line of launch's log file (origin "launch.log",
+    events/roslog.py: a line the recording's /rosout never carried)."""
 
     t: int
     level: int
     name: str
     msg: str
+    origin: str = "/rosout"
 
     @property
     def level_name(self) -> str:

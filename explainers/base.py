@@ -26,7 +26,7 @@ class Evidence(BaseModel):
 
     @classmethod
     def of_log(cls, cause: str, line: LogLine) -> Evidence:
-        return cls(cause=cause, topic="/rosout", t=line.t, item=line.render())
+        return cls(cause=cause, topic=line.origin, t=line.t, item=line.render())
 
 
 class Explanation(BaseModel):

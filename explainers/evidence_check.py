@@ -28,8 +28,8 @@ def _pairs(item: str) -> list[tuple[str, str]]:
 
 def exists(log: EventLog, ev: Evidence) -> bool:
     """True when a message on `ev.topic` at exactly `ev.t` shows what `ev.item` says."""
-    if ev.topic == c.ROSOUT:
-        return any(line.t == ev.t and line.render() == ev.item for line in log.logs)
+    if ev.topic in c.LOG_SOURCES:
+        return any(line.t == ev.t and line.origin == ev.topic and line.render() == ev.item for line in log.logs)
     if ev.topic == c.TASK_INFO:
         return any(u.t == ev.t and (ev.item in u.raw or ev.item == u.instruction or ev.item in u.task_error_msg)
                    for u in log.task_updates)

@@ -241,7 +241,7 @@ class Workspace:
                 for ch in run.history:
                     err = f" ({ch.error_msg})" if ch.error_msg else ""
                     entries.append((ch.t, c.TASK_INFO, f"step {run.index + 1} {run.skill}: {ch.status}{err}"))
-        entries += [(line.t, c.ROSOUT, line.render()) for line in log.logs]
+        entries += [(line.t, line.origin, line.render()) for line in log.logs]
         for topic, samples in log.flags.items():
             previous: bool | None = None
             for s in samples:

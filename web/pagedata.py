@@ -220,5 +220,5 @@ def filtered_lines(log: EventLog, task: Task) -> dict[str, Any]:
     window = log.logs[bisect_left(times, task.created):bisect_right(times, task.last_update)]
     kept = filter_logs(window)
     return {"total": len(window), "kept": len(kept), "shown": min(len(kept), MAX_LINES),
-            "lines": [{"key": f"{c.ROSOUT}|{ln.t}", "t_ns": ln.t, "topic": c.ROSOUT, "item": ln.render(),
+            "lines": [{"key": f"{ln.origin}|{ln.t}", "t_ns": ln.t, "topic": ln.origin, "item": ln.render(),
                        "level": ln.level_name} for ln in kept[:MAX_LINES]]}

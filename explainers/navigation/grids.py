@@ -213,6 +213,6 @@ def template(f: Finding, place: str) -> tuple[str, str | None, list[str]] | None
         g.BLOCKED: "Look at what the costmap marks on the way (a real obstacle, or stale marks to clear), and at "
                    "the inflation radius against the narrowest passage.",
     }
-    grid = next((e.item for e in f.evidence if e.topic != "/rosout"), "")
+    grid = next((e.item for e in f.evidence if e.topic not in c.LOG_SOURCES), "")
     return (f"I couldn't reach {place} because {f.notes[0]}", fixes.get(f.cause),
             [f"The recorded grid: {grid}"] if grid else [])

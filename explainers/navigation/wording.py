@@ -11,6 +11,7 @@ import math
 from collections.abc import Iterable
 
 from hexar.claims import read_claims
+from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, mapsave, states
@@ -52,7 +53,7 @@ def quotable(msg: str, own: Iterable[str] = ()) -> bool:
 
 def _said(f: Finding) -> str:
     """The first supporting line, quoted, with its logger."""
-    ev = next((e for e in f.evidence if e.topic == "/rosout"), None)
+    ev = next((e for e in f.evidence if e.topic in c.LOG_SOURCES), None)
     return f"{ev.item}" if ev is not None else ""
 
 

@@ -8,12 +8,6 @@ from pathlib import Path
 import pytest
 
 from hexar.errors import HexarError
-from hexar.evals.console import (
-    BASE_NS,
-    NS,
-    parse_console,
-    stamped,
-)
 from hexar.evals.real_nav2 import (
     DISTROS,
     NAV_CAUSES,
@@ -26,6 +20,12 @@ from hexar.evals.real_nav2 import (
 )
 from hexar.events import contract as c
 from hexar.events import read_recording
+from hexar.events.console import (
+    BASE_NS,
+    NS,
+    parse_console,
+    stamped,
+)
 
 LAUNCH = ("[planner_server-2] [WARN] [1664956617.010995992] [planner_server]: Cannot create a plan: the robot's "
           "start position is off the global costmap. Planning will always fail, are you sure the robot has been "

@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
-from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     BLIND_FILES,
     NAV_CAUSES,
@@ -25,6 +24,7 @@ from hexar.evals.real_nav2 import (
 from hexar.evals.real_nav2_cli import read_baseline
 from hexar.events import contract as c
 from hexar.events import read_recording
+from hexar.events.console import parse_console, stamped
 
 BASELINES = Path(__file__).resolve().parents[2] / "evals" / "baselines"
 

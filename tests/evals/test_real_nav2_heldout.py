@@ -11,7 +11,6 @@ import pytest
 
 from hexar.cli import main
 from hexar.errors import HexarError
-from hexar.evals.console import parse_console, stamped
 from hexar.evals.real_nav2 import (
     DISTROS,
     NAV_CAUSES,
@@ -23,6 +22,7 @@ from hexar.evals.real_nav2 import (
 from hexar.evals.real_nav2_cli import read_baseline
 from hexar.events import contract as c
 from hexar.events import read_recording
+from hexar.events.console import parse_console, stamped
 
 BASELINE = Path(__file__).resolve().parents[2] / "evals" / "baselines" / "real_nav2_none.json"
 

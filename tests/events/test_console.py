@@ -9,9 +9,9 @@ from pathlib import Path
 
 from rosbags.highlevel import AnyReader
 
-from hexar.evals.console import NS, parse_console, stamped
 from hexar.evals.real_nav2 import write_excerpt
 from hexar.events import contract as c
+from hexar.events.console import NS, parse_console, stamped
 
 # navigation2#3230, as launch printed it (planner_server's WARN)
 MSG = ("Cannot create a plan: the robot's start position is off the global costmap. Planning will always fail, are "

@@ -1,4 +1,4 @@
-"""Console excerpts as log records: the formats people paste when they quote ROS 2 output.
+"""Console output as log records: the formats ROS 2 prints and people paste when they quote it (launch.log too).
 
 Formats read (a `NN: ` ctest prefix, a `name | ` docker-compose prefix and a `> ` quote prefix are removed):
 - `[process-N] [LEVEL] [stamp] [logger]: msg`          ros2 launch, Foxy onwards
@@ -12,6 +12,10 @@ Formats read (a `NN: ` ctest prefix, a `name | ` docker-compose prefix and a `> 
 - colour: RCUTILS_COLORIZED_OUTPUT's escape sequences, also where a paste lost the escape character ("[33m") or
   shows it in caret notation ("^[[33m")
 - journald (`journalctl`, a robot started by robot_upstart or systemd): "Nov 14 22:13:20 host unit[pid]: " in front
+- a Python traceback (an uncaught exception a Python node printed, rclpy's RCLError from rcl included) is one ERROR
+  record: the exception's line first, then the traceback as printed ("Traceback (most recent call last):", the frames)
+- Cyclone DDS's stderr lines behind a time prefix ("1795927356.580085 [0]     python: msg": domain, thread name), a
+  WARN at least (the core prints only its fatal, error and warning categories there, ddsrt/src/log.c's log mask)
 - anything else is a bare message; a line that starts lower-case or indented, a launch prefix with nothing after
   it, or a line after one that ended in whitespace, continues the message before it (console-wrapped text).
 What the console did not print is synthesised and marked so: levels from the message's wording, increasing stamps
@@ -79,6 +83,14 @@ JOURNAL_PREFIX = re.compile(r"^(?:[A-Z][a-z]{2} [ \d]\d |\d{4}-\d{2}-\d{2}T)(?P<
 # escape character (at the start of the record, behind launch's prefix, and the closing reset)
 _ESCAPE = re.compile(r"(?:\x1b|\^\[)\[[0-9;]*m")
 _LOST_ESCAPE = re.compile(rf"^(?P<head>(?:\[{_PROC_NAME}\]\s*)?)(?:\[\d{{1,2}}(?:;\d{{1,2}})*m)+|(?:\[\d{{1,2}}m)+\s*$")
+# the Cyclone DDS core's own log line behind its "{sec}.{usec} " time: "[{domain id}] {thread name, 16 wide}: msg"
+CYCLONE = re.compile(r"^\[(?:\d+|-)\]\s+[^:\[\]]{1,16}:\s+(?P<msg>\S.*)$")
+# CPython's traceback.print_exception: the header, "  File ..." frames with their source lines, then the exception's
+# own line, unindented ("ValueError: ...", "rclpy._rclpy_pybind11.RCLError: ...", or a bare class name)
+TRACEBACK = "Traceback (most recent call last):"
+# CPython's warnings.formatwarning: "{file}:{line}: {category}: {message}" (then the source line, indented)
+PY_WARNING = re.compile(r"^(?P<file>\S+\.py):(?P<line>\d+): (?P<category>\w*Warning): (?P<msg>.*)$")
+_EXCEPTION_LINE = re.compile(r"^[A-Za-z_][\w.]*(?::\s.*)?$")
 # the ROS 2 logging guide's format "... {message} ({function_name}() at {file_name}:{line_number})"
 _WHERE = re.compile(r"\s\((?P<function>\S*?)\(\) at (?P<file>\S+):(?P<line>\d+)\)\s*$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
@@ -179,6 +191,13 @@ def _behind_prefix(rest: str, stamp_ns: int, records: list[ConsoleLine], keep_ow
 
 
 def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
+    if _in_traceback(line, records):
+        return
+    w = PY_WARNING.match(line)
+    if w:
+        records.append(_record("WARN", None, None, f"{w['category']}: {w['msg']}", None))
+        records[-1].file, records[-1].line = w["file"], int(w["line"])
+        return
     c = CLOCK_LEVELED.match(line)
     if c:
         records.append(_record(c["level"].upper(), None, c["logger"], c["msg"], c["proc"],
@@ -189,6 +208,11 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         _behind_prefix(t["rest"], _clock_ns(t["clock"], t["ampm"]), records, keep_own=False)
         return
     e = EPOCH_PREFIX.match(line) or DATE_PREFIX.match(line)
+    if e and _in_traceback(e["rest"], records):  # launch.log stamps every line of a traceback on its own
+        return
+    if e and (y := CYCLONE.match(e["rest"])):
+        records.append(_record("WARN", e["at"], None, y["msg"], None))
+        return
     if e:  # the node's own stamp, where printed, is the record's
         _behind_prefix(e["rest"], _stamp_ns(e["at"]), records, keep_own=True)
         return
@@ -231,6 +255,37 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         records[-1].msg += "\n" + rest.strip()
     else:
         records.append(_record(None, None, None, rest.strip(), proc))
+
+
+def _in_traceback(line: str, records: list[ConsoleLine]) -> bool:
+    """Whether `line` went into the traceback the last record holds (see _traceback_line)."""
+    if not records or not (records[-1].msg.startswith(TRACEBACK) or "exception" in records[-1].synthesised):
+        return False
+    return _traceback_line(line, records[-1])
+
+
+def _traceback_line(line: str, tb: ConsoleLine) -> bool:
+    """Whether `line` belongs to the open traceback `tb` (its frames, then the exception's line, which closes it:
+    moved in front, so the record begins with what went wrong). Behind launch's prefix, only its own process's."""
+    p = PROC_ONLY.match(line)
+    proc, rest = (p["proc"], p["rest"][1:] if p["rest"][:1] == " " else p["rest"]) if p else ("", line)
+    if proc != tb.process or not rest.strip():
+        return False
+    if "exception" in tb.synthesised:  # the exception's message goes on ("\n, at /project/src/rcl/node.c:249")
+        if not rest[:1].isspace() and not rest.startswith(","):
+            return False
+        said, _, frames = tb.msg.partition(f"\n{TRACEBACK}")
+        tb.msg = f"{said}\n{rest.rstrip()}\n{TRACEBACK}{frames}"
+        return True
+    if rest[:1].isspace():
+        tb.msg += "\n" + rest.strip()
+        return True
+    if _EXCEPTION_LINE.match(rest.strip()) is None or rest.startswith(TRACEBACK):
+        return False
+    tb.msg = f"{rest.strip()}\n{tb.msg}"
+    tb.level = LEVELS["ERROR"]
+    tb.synthesised = (tb.synthesised - {"level"}) | {"exception"}
+    return True
 
 
 def parse_console(text: str) -> list[ConsoleLine]:
