@@ -37,7 +37,8 @@ CONFIG = ROOT / "explainers" / "stack" / "sources.yaml"
 OUT = ROOT / "explainers" / "stack" / "stack_catalogue.json"
 DISTRO_ORDER = ("foxy", "galactic", "humble", "iron", "jazzy", "kilted", "rolling")
 SOURCE_EXT = (".c", ".cc", ".cpp", ".cxx", ".h", ".hh", ".hpp", ".py")
-START = r"RCLCPP_(WARN|ERROR|FATAL)|RCUTILS_LOG_(WARN|ERROR|FATAL)|SET_ERROR_MSG|throw |raise |gzerr|ignerr|gzwarn|" \
+START = r"RCLCPP_(WARN|ERROR|FATAL)|(Exception|Error)\.__init__\(|RCUTILS_LOG_(WARN|ERROR|FATAL)|SET_ERROR_MSG|" \
+        r"throw |raise |gzerr|ignerr|gzwarn|" \
         r"ignwarn|logger[A-Za-z_]*(\(\))?\.(warn|warning|error|fatal|critical|exception)\(|logging\.(warn|error)"
 _TESTS = re.compile(r"(^|/)(test|tests|testing|system_tests|nav2_system_tests|benchmark|examples?|doc|docs)/|"
                     r"(^|/)test_[^/]*$|_test\.(c|cc|cpp|py)$")
@@ -67,9 +68,11 @@ def branches(repo: Path) -> set[str]:
     return {b.split("/", 1)[1] if b.startswith("origin/") else b for b in out.decode().split()}
 
 
-def files_with_calls(repo: Path, branch: str, packages: Iterable[str], wrappers: Iterable[str]) -> list[str]:
+def files_with_calls(repo: Path, branch: str, packages: Iterable[str], wrappers: Iterable[str],
+                     exclude: Iterable[str] = ()) -> list[str]:
     specs = [f"{p}/*{ext}" for p in packages for ext in SOURCE_EXT] or [f"*{ext}" for ext in SOURCE_EXT]
-    out = git(repo, "grep", "-l", "-E", "|".join([START, *(rf"\b{w}\(" for w in wrappers)]), branch, "--", *specs)
+    specs += [f":(exclude){x}" for x in exclude]  # e.g. a vendored file the mirror stores without its content
+    out = git(repo, "grep", "-l", "-E", "|".join([START, *(rf"\b{w}\s*\(" for w in wrappers)]), branch, "--", *specs)
     paths = [ln.split(":", 1)[1] for ln in out.decode(errors="replace").splitlines() if ":" in ln]
     return sorted(p for p in set(paths) if not _TESTS.search(p))
 
@@ -119,7 +122,7 @@ def mine_repo(repo: Path, spec: dict[str, Any], min_literal: int, rules: list[di
         if branch not in have:
             log.append(f"{spec['name']}: no branch {branch}")
             continue
-        paths = files_with_calls(repo, branch, list(packages), spec.get("wrappers") or {})
+        paths = files_with_calls(repo, branch, list(packages), spec.get("wrappers") or {}, spec.get("exclude") or ())
         texts = read_blobs(repo, branch, paths)
         for path, src in texts.items():
             package, layer = package_of(path, packages)

@@ -23,7 +23,10 @@ _CPP_CALL = re.compile(
     r"|(?:gz|ign)(?P<l3>err|warn))\s*(?P<open>\(|\{|<<)")
 _PY_CALL = re.compile(
     r"(?:\b\w*logger\w*(?:\(\))?|\blogging)\.(?P<lvl>warn|warning|error|fatal|critical|exception)\s*\("
-    r"|\braise\s+[\w.]+\s*\(")
+    r"|\braise\s+[\w.]+\s*\("
+    # an exception class that words its message where it is defined (rclpy's InvalidParameterTypeException:
+    # `ParameterException.__init__(self, f"Trying to set parameter …")`): raised wherever, its text is here
+    r"|\b\w*(?:Exception|Error)\.__init__\s*\(\s*self\s*,")
 _PRINTF = re.compile(r"%[-+ #0]*(?:\d+|\*)?(?:\.(?:\d+|\*))?(?:hh|h|ll|l|L|z|j|t|q)?[diouxXeEfgGcspaA]")
 _PYFIELD = re.compile(r"\{[^{}]*\}|%[-+ #0]*\d*(?:\.\d+)?[sdrfgixXeE]")
 _ESCAPES = {"n": "\n", "t": "\t", "r": "", "\\": "\\", '"': '"', "'": "'", "0": ""}
@@ -138,8 +141,10 @@ def _message(arg: list[tuple[str, str]], fields: re.Pattern[str]) -> str:
             if parts and parts[-1].endswith("%"):  # "%" PRIu64 style: the field's rest is a macro
                 parts[-1] = parts[-1][:-1] + WILD
             parts.append(fields.sub(WILD, text.replace("%%", "\x01")).replace("\x01", "%"))
-        elif parts and not text.startswith("."):
-            parts.append(WILD)  # a variable streamed (<<) or added (+) into the message; `.format(...)` adds none
+        elif parts and not text.startswith(".") and text.strip("<+ \n\t"):
+            # a variable streamed (<<) or added (+) into the message; `.format(...)` adds none, nor does the bare
+            # operator between two literals ("… over 232 or " << "portBase …")
+            parts.append(WILD)
     text = "".join(parts)
     return re.sub(WILD + "+", WILD, text)
 
@@ -198,7 +203,7 @@ def py_calls(src: str) -> Iterator[Call]:
     for m in _PY_CALL.finditer(src):
         lvl = (m["lvl"] or "").lower()
         level = "WARN" if lvl.startswith("warn") else "FATAL" if lvl in ("fatal", "critical") else "ERROR"
-        form = "throw" if m.group(0).startswith("raise") else "log"
+        form = "throw" if m.group(0).startswith("raise") or "__init__" in m.group(0) else "log"
         toks, _ = _tokens(src, m.end(), stop_at_semicolon=False)
         args = _args(toks)
         arg = next((a for a in args if any(k == "str" for k, _ in a)), None)

@@ -66,3 +66,60 @@ def test_a_config_without_repos_is_a_one_line_error(tmp_path: Path, capsys: pyte
     (tmp_path / "sources.yaml").write_text("rules: []\n")
     rc = load_script("mine_catalogue").main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml")])
     assert rc == 1 and capsys.readouterr().err.startswith("ERROR: sources.yaml: a mapping with a `repos` list")
+
+
+MIDDLEWARE = """
+min_literal: 10
+repos:
+  - name: someone/dds
+    layer: fastdds
+    branches: {main: [rolling]}
+    packages: [src/cpp]
+    exclude: [src/cpp/vendored.c]
+    wrappers: {EPROSIMA_LOG_ERROR: ERROR, GVERROR: ERROR}
+  - name: someone/rclpy
+    layer: rclpy
+    branches: {main: [rolling]}
+    packages: []
+rules:
+  - {text: "Calculated port number is too high", role: cause, cause: stack.network}
+"""
+
+
+def test_mines_a_dds_libraries_stream_and_printf_helpers_and_python_exception_classes(tmp_path: Path) -> None:
+    # Fast DDS's EPROSIMA_LOG_ERROR(CATEGORY, "text" << value) and Cyclone's `GVERROR ("fmt", ...)` (a space before
+    # the parenthesis), with a vendored file left out; rclpy's exception classes word their text in __init__
+    dds = new_repo(tmp_path / "someone+dds" / "repo", "main")
+    (dds / "src" / "cpp").mkdir(parents=True)
+    (dds / "src" / "cpp" / "net.cpp").write_text(
+        'EPROSIMA_LOG_ERROR(RTPS, "Calculated port number is too high. Probably the domainId is over 232 or "\n'
+        '    << "portBase is too high.");\n'
+        'EPROSIMA_LOG_ERROR(XMLPARSER, "Error opening \'" << filename << "\'");\n'
+        'GVERROR ("%s: does not match an available interface.\\n", name);\n')
+    (dds / "src" / "cpp" / "vendored.c").write_text('EPROSIMA_LOG_ERROR(X, "a vendored file is never read");\n')
+    git(dds, "add", ".")
+    git(dds, "commit", "-q", "-m", "main")
+    py = new_repo(tmp_path / "someone+rclpy" / "repo", "main")
+    (py / "rclpy").mkdir()
+    (py / "rclpy" / "exceptions.py").write_text(
+        "class InvalidParameterTypeException(ParameterException):\n"
+        "    def __init__(self, p, expected):\n"
+        "        ParameterException.__init__(\n"
+        "            self,\n"
+        "            f\"Trying to set parameter '{p._name}' to '{p._value}'\"\n"
+        "            f\", expecting type '{expected}'\",\n"
+        "            p.name)\n")
+    git(py, "add", ".")
+    git(py, "commit", "-q", "-m", "main")
+    (tmp_path / "sources.yaml").write_text(MIDDLEWARE)
+    out = tmp_path / "out.json"
+    assert load_script("mine_catalogue").main(["--mirrors", str(tmp_path), "--config", str(tmp_path / "sources.yaml"),
+                                               "--out", str(out)]) == 0
+    by_text = {e["text"]: e for e in json.loads(out.read_text())["entries"]}
+    assert set(by_text) == {
+        "Calculated port number is too high. Probably the domainId is over 232 or portBase is too high.",
+        "Error opening '…'", "…: does not match an available interface.",
+        "Trying to set parameter '…' to '…', expecting type '…'"}
+    port = by_text["Calculated port number is too high. Probably the domainId is over 232 or portBase is too high."]
+    assert (port["cause"], port["source"]) == ("stack.network", "src/cpp/net.cpp:1@main")
+    assert by_text["Trying to set parameter '…' to '…', expecting type '…'"]["form"] == "throw"
