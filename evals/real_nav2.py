@@ -201,7 +201,8 @@ def write_excerpt(records: Sequence[ConsoleLine], excerpt_id: str, failed: bool,
     b = BagBuilder()
     for r in records:
         assert r.stamp_ns is not None
-        b.log(r.stamp_ns, r.name, r.level, r.msg, r.file, r.function, r.line)
+        # a line without a logger (stderr) keeps the process launch printed it under, as launch.log is read
+        b.log(r.stamp_ns, r.name or r.process, r.level, r.msg, r.file, r.function, r.line)
     if task is not None:
         first = min(r.stamp_ns or 0 for r in records)
         last = max(r.stamp_ns or 0 for r in records)
