@@ -270,11 +270,14 @@ def _nav2_own(line: LogLine) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
     logged by no logger of the arm's software (launch's generic "process has died" is anybody's)."""
     from hexar.explainers.navigation.catalogue import catalogue as nav2
+    from hexar.explainers.stack.thrown import python_exception
 
     if _nav2_logger(line.name):
         return True
     if _arms_logger(line.name):
         return False  # e.g. the resource manager's pluginlib error: a text Nav2 shares, logged by ros2_control
+    if python_exception(line) is not None:
+        return False  # a Python program's uncaught exception: Nav2's servers are C++ programs
     entry = nav2().match(line.msg)
     return entry is not None and not entry.id.startswith("launch.")
 

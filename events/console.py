@@ -94,8 +94,12 @@ _EXCEPTION_LINE = re.compile(r"^[A-Za-z_][\w.]*(?::\s.*)?$")
 # the ROS 2 logging guide's format "... {message} ({function_name}() at {file_name}:{line_number})"
 _WHERE = re.compile(r"\s\((?P<function>\S*?)\(\) at (?P<file>\S+):(?P<line>\d+)\)\s*$")
 # Wording that decides a synthesised level; Nav2's own lines of these kinds are WARN/ERROR.
+# glibc's malloc_printerr texts ("malloc(): memory corruption", "double free or corruption (out)", "free(): invalid
+# pointer", "corrupted size vs. prev_size") are the process's last words: glibc aborts right after printing them.
 ERROR_WORDS = re.compile(r"\b(error|exception|failed|fail|fatal|abort(ed|ing)?|died|illegal instruction|"
-                         r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT))\b", re.I)
+                         r"segmentation fault|core dumped|SIG(ILL|SEGV|ABRT)|memory corruption|double free|"
+                         r"corrupted (size|double-linked list|top size)|invalid (pointer|chunk size|next size))\b",
+                         re.I)
 WARN_WORDS = re.compile(r"\b(warn\w*|timed out|time out|dropping|cannot|could not|couldn't|unable|exceeded|"
                         r"not available|does not exist|out of (map )?bounds|(highly |strongly )?recommended)\b", re.I)
 
@@ -258,10 +262,17 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
 
 
 def _in_traceback(line: str, records: list[ConsoleLine]) -> bool:
-    """Whether `line` went into the traceback the last record holds (see _traceback_line)."""
-    if not records or not (records[-1].msg.startswith(TRACEBACK) or "exception" in records[-1].synthesised):
+    """Whether `line` went into the traceback its process's last record holds (see _traceback_line): behind launch's
+    prefix, other processes' lines may come between; without one, only the last record can be it."""
+    p = PROC_ONLY.match(line)
+    proc = p["proc"] if p else ""
+    for r in reversed(records[-50:]):
+        if r.process != proc and proc:
+            continue
+        if r.process == proc and (r.msg.startswith(TRACEBACK) or "exception" in r.synthesised):
+            return _traceback_line(line, r)
         return False
-    return _traceback_line(line, records[-1])
+    return False
 
 
 def _traceback_line(line: str, tb: ConsoleLine) -> bool:

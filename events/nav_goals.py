@@ -115,6 +115,12 @@ def _bringup_error(line: LogLine) -> bool:
     transition that threw, a process that died: the mined stack catalogue), which the navigation explains too,
     unless the line is about a node that is not Nav2's (a driver whose configure launch_ros saw fail): a line that
     names no node (launch's own exception, rcl's params file) may still be Nav2's."""
+    return _bringup_node(line) is not None
+
+
+def _bringup_node(line: LogLine) -> str | None:
+    """The Nav2 node a bring-up error is about ("" when it names none); None when the line is no bring-up error
+    that Nav2's could be (see _bringup_error)."""
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack import bringup_findings
@@ -123,15 +129,15 @@ def _bringup_error(line: LogLine) -> bool:
 
     if not loader_failure(line):  # the loader's words come at no level (stderr)
         if line.level < ERROR:
-            return False
+            return None
         entry = stack_catalogue().match(line.msg)
         if entry is None or entry.cause != "stack.bringup_failure":
-            return False
+            return None
     found = bringup_findings([line])
     if found and found[0].kind == "launch_failed" and not NAVIGATION.search(line.msg):
-        return False  # launch itself failed on a description that names nothing of Nav2's: any robot's launch
+        return None  # launch itself failed on a description that names nothing of Nav2's: any robot's launch
     node = found[0].node.strip("/").split("/")[-1] if found else ""
-    return not node or catalogue().role(node) is not None
+    return node if not node or catalogue().role(node) is not None else None
 
 
 # TF publishers every robot runs, an arm alone too (their own lines are no sign of Nav2; Nav2's TF helpers'
@@ -161,16 +167,22 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
     an abort, else still running as far as the recording shows."""
     from hexar.explainers.navigation.catalogue import REACHED, catalogue
+    from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack.loader import loader_failure
+    from hexar.explainers.stack.thrown import python_exception
 
     cat = catalogue()
     active: list[LogLine] = []
     failed: LogLine | None = None
-    own = arms = False
+    own = arms = named = False
+    # the processes (launch's names for them) that printed a Python traceback
+    python_died = {line.name for line in logs if line.name and python_exception(line) is not None}
     for line in logs:
         if _arms_logger(line):
             arms = True
             continue  # ros2_control's or MoveIt's own node: its line is the arm's to explain, not Nav2's activity
+        if python_exception(line) is not None:
+            continue  # a Python program's uncaught exception: Nav2's servers are C++ programs
         entry = cat.match(line.msg)
         # the controller server's "Reached the goal!" (controller_server.cpp:411@humble) ends a path it followed
         nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"}
@@ -179,15 +191,21 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         # catalogued line: a stack that came up and ran normally has a navigation to tell about too; a TF
         # publisher's own line (robot_state_publisher's "Robot initialized") is not: every robot runs one
         nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None and not any_robots(line.name))
+        if nav2 and entry is not None and entry.id.startswith("launch.") and line.name in python_died:
+            continue  # launch's word that a Python program died (its traceback above): Nav2's servers are C++
         own = own or nav2 or "[ActionServer] Aborting handle" in line.msg
-        if not nav2 and "[ActionServer] Aborting handle" not in line.msg and not _bringup_error(line):
+        node = _bringup_node(line) if not nav2 and "[ActionServer] Aborting handle" not in line.msg else ""
+        if node is None:
             continue
+        # a bring-up error that names no node still ties to Nav2 when its words name one of its nodes or packages
+        # (rcl's params file error quoting ".../planner_server.yaml")
+        named = named or bool(node) or NAVIGATION.search(line.msg) is not None
         active.append(line)
         if failed is None and (line.level >= ERROR or "Aborting handle" in line.msg or loader_failure(line)):
             failed = line
-    if not active or (arms and not own):
-        # bring-up errors that name no node (pluginlib's, launch's) beside an arm's nodes at work and no Nav2 node:
-        # the arm's bring-up, not Nav2's
+    if not active or (not own and (arms or not named)):
+        # bring-up errors that name no node (pluginlib's, launch's, rcl's) beside an arm's nodes at work and no Nav2
+        # node, or with no Nav2 line at all: the robot's bring-up, which nothing ties to Nav2
         return []
     goal = _Goal(active[0].t, None, None, "Nav2 log (no goal line)")
     if failed is not None:

@@ -16,16 +16,14 @@ from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
+from hexar.explainers.stack.middleware import middleware_line, middleware_words
+from hexar.explainers.stack.thrown import python_exception, thrown_words
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
               "node_failed": "bringup.lifecycle_transition_failed", "no_program": "bringup.configuration_error"}
 PERMISSION = "system.device_permission"
 NETWORK = "system.network"
-# rmw_cyclonedds_cpp/src/rmw_node.cpp:1080@humble (1244@jazzy, 1241@rolling): Cyclone DDS could not create the
-# domain a node joins, so no node of that process exists (its configuration, CYCLONEDDS_URI, names network
-# interfaces it cannot use)
-_NO_DOMAIN = "rmw_create_node: failed to create domain"
 _DENIED = "Permission denied"  # strerror(EACCES)
 
 
@@ -52,15 +50,32 @@ _UNCAUGHT = re.compile(re.escape(ABORT) + r" '(?P<type>[^']+)'(?:\s*what\(\):\s*
 def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | None:
     """The first line that carries an uncaught C++ exception, its process's end, unless the line is an error of its
     own before it (a driver's "Open [/dev/…]: Bad file descriptor" and then the abort): that error is the first to
-    tell, the death its consequence."""
+    tell, the death its consequence; or the record of a Python exception its process died of (explainers/stack/
+    thrown.py)."""
     return next((ln for ln in sorted(lines, key=lambda ln: ln.t) if (before is None or ln.t <= before)
-                 and (m := _UNCAUGHT.search(ln.msg)) is not None
-                 and (ln.level < ERROR or not ln.msg[:m.start()].strip())), None)
+                 and ((((m := _UNCAUGHT.search(ln.msg)) is not None
+                        and (ln.level < ERROR or not ln.msg[:m.start()].strip())))
+                      or python_exception(ln) is not None)), None)
+
+
+def _configuration(line: LogLine) -> bool:
+    """A Python node's uncaught exception whose text the stack catalogue reads as a configuration error (rclpy's
+    InvalidParameterTypeException: a parameter given a value of another type than the node declares). A C++ one is
+    left to the module catalogues, which read its what() in their own words."""
+    from hexar.explainers.stack.catalogue import stack_catalogue
+
+    exc = python_exception(line)
+    entry = stack_catalogue().match(exc.text) if exc is not None and exc.text else None
+    return entry is not None and entry.cause == "stack.configuration_error"
 
 
 def _uncaught_words(line: LogLine) -> str:
     """"of an uncaught C++ exception (std::invalid_argument), so the software it ran was gone: “[node] invalid argument
     passed”": the what() quoted as the log's words (hexar/claims.py reads none of them as the answer's claim)."""
+    if (exc := python_exception(line)) is not None:
+        where = f", raised in {exc.where}" if exc.where else ""
+        return (f"of an uncaught Python exception ({exc.name}), so the software it ran was gone: "
+                f"“[{line.name or 'unnamed node'}] {exc.text[:160]}”{where}")
     m = _UNCAUGHT.search(line.msg)
     kind = f" ({m['type']})" if m is not None else ""
     what = (m["what"] or "").strip() if m is not None else ""
@@ -99,6 +114,12 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     from hexar.explainers.stack import bringup_findings
 
     found: list[Reading] = []
+    middleware = middleware_line(lines)
+    if middleware is not None:
+        # the DDS layer that kept a node from the others (system), or a middleware setting that never applied; first,
+        # so that its reading of a line wins over a generic one of the same line (Fast DDS's "Error parsing '…'")
+        line, cause = middleware
+        found.append(Reading(line, None, cause, "system" if cause == NETWORK else "stack", "middleware"))
     findings = [f for f in bringup_findings(lines) if not _unexplained_request(f.line, lines)]
     if findings:
         f = findings[0]
@@ -108,9 +129,13 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     missing = next((ln for ln in lines if ln.level >= WARN and _params_missing(ln)), None)
     if missing is not None:
         found.append(Reading(missing, None, "bringup.configuration_error", "stack"))
-    domain = next((ln for ln in lines if ln.level >= ERROR and _NO_DOMAIN in ln.msg), None)
-    if domain is not None:
-        found.append(Reading(domain, None, NETWORK, "system"))
+    thrown = uncaught(lines)
+    if thrown is not None and python_exception(thrown) is not None:
+        # a Python process that died of an exception (after the readings above: rcl's own error raised as RCLError
+        # is theirs); one whose text is a parameter of the wrong type (rclpy's InvalidParameterTypeException) is
+        # that configuration error, told with the process's end
+        cause = "bringup.configuration_error" if _configuration(thrown) else "bringup.process_died"
+        found.append(Reading(thrown, None, cause, "stack", "thrown"))
     # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
@@ -155,12 +180,16 @@ def _launch_failed(line: LogLine) -> str | None:
 
 def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]] | None:
     """(sentence, fix, details) for a bring-up or system cause; None for a module's own cause."""
-    from hexar.explainers.stack.bringup import lifecycle_cli
+    from hexar.explainers.stack.bringup import lifecycle_cli, rcl_refused
     from hexar.explainers.stack.loader import loader_words
 
     line = [f"The log said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
     head = f"{what[:1].upper()}{what[1:]} failed because"
-    if cause == "bringup.process_died" and d.decisive is not None and _UNCAUGHT.search(d.decisive.line.msg):
+    if d.decisive is not None and d.decisive.note == "middleware":
+        happened, fix = middleware_words(d.decisive.line)
+        return f"{head} {happened}.", fix, line
+    if cause == "bringup.process_died" and d.decisive is not None and (
+            _UNCAUGHT.search(d.decisive.line.msg) or python_exception(d.decisive.line) is not None):
         return (f"{head} one of my processes died {_uncaught_words(d.decisive.line)}.",
                 "Read what the exception says and the lines just before it: the call that threw it (a parameter, "
                 "a plugin or an interface that does not fit) is what to fix.", line)
@@ -191,6 +220,11 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
         return (f"{head} a node's lifecycle transition (configure or activate) failed, so it never became active.",
                 "Read the node's error around the transition and bring it up in order (configure, then activate).",
                 line)
+    if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.note == "thrown":
+        return (f"{head} a parameter never reached one of my nodes as it should: its value was not of the type the "
+                f"node declares, and its process ended there ({thrown_words(d.decisive.line)}).",
+                "Give the parameter a value of the type the node declares (in its params file, launch file or "
+                "overrides: quote a string, write 1.0 for a double), or declare it with the type you set.", line)
     if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.catalogue == "stack":
         if _params_missing(d.decisive.line):
             path = d.decisive.line.msg.split(": ", 1)[-1].strip()
@@ -211,14 +245,22 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
             return (f"{head} my launch stopped with an error before it had started my nodes, so none of them ran{why}.",
                     "Fix the launch file or argument the quoted exception names (run the launch with --debug for the "
                     "traceback).", line)
+        refused = rcl_refused(d.decisive.line.msg)
+        if refused is not None and refused[0] != "params file":
+            return (f"{head} a node's command-line arguments could not be parsed (the {refused[0]} '{refused[1]}'), so "
+                    "rcl stopped it before the node existed.",
+                    f"Fix that {refused[0]} where the launch file or command gives it (a ROS name has letters, digits "
+                    "and underscores only; a remap rule is from:=to; log levels are debug, info, warn, error, fatal).",
+                    line)
+        if "Error opening YAML file" in d.decisive.line.msg:
+            # rcl_yaml_param_parser's parser.c: fopen() of the file named by --params-file failed
+            return (f"{head} a parameter never reached one of my nodes: its parameter file could not be opened "
+                    f"({refused[1] if refused else 'the --params-file'}), so rcl stopped it before the node existed.",
+                    "Check the path the launch file or command gives to --params-file (relative paths are read from "
+                    "the working directory), and that the file is installed.", line)
         return (f"{head} a parameter never reached one of my nodes: its parameter file could not be parsed.",
                 "Fix the parameter file's YAML (the quoted error names the line) and the node's namespace in it.",
                 line)
-    if cause == NETWORK and d.decisive is not None and _NO_DOMAIN in d.decisive.line.msg:
-        return (f"{head} my DDS middleware could not start: Cyclone DDS failed to create its domain, so my node "
-                "could not be created.",
-                "Check the Cyclone DDS configuration (CYCLONEDDS_URI): the network interfaces it selects must exist "
-                "on this machine, each named once; unset it to try the defaults.", line)
     if cause == PERMISSION:
         return (f"{head} the operating system denied access to a device: permission denied on its device file.",
                 "Give the user (or the container) access to the device: its group (dialout, video) or a udev rule.",

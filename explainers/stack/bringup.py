@@ -105,6 +105,18 @@ TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: 
 _LIFECYCLE_WAIT = re.compile(r"Waiting for service (?P<service>(?:[/\w]*/)?(?P<node>\w+)/get_state)\.\.\.")
 UNSERVED_WAITS = 2
 
+# rcl/src/rcl/arguments.c (rcl_parse_arguments): "Couldn't parse params file: '--params-file …'. Error: …", and the
+# same words for a remap rule, a log level, a parameter override rule, an external log config file, an enclave
+_RCL_REFUSED = re.compile(r"Couldn't parse (?P<what>params file|remap rule|log level|parameter override rule|"
+                          r"external log config file|enclave|[a-z ]+?): '(?P<arg>[^']*)'")
+
+
+def rcl_refused(msg: str) -> tuple[str, str] | None:
+    """(what rcl could not parse, the argument as given) of rcl's "Couldn't parse …: '…'" error; None otherwise."""
+    m = _RCL_REFUSED.search(msg)
+    return (m["what"], m["arg"]) if m is not None else None
+
+
 LAUNCH_NAV = "my launch stopped with an error before it had started my navigation nodes"
 LAUNCH_ANY = "my launch stopped with an error before it had started any of my nodes"
 
@@ -125,6 +137,10 @@ class BringupFinding:
         """One sentence for a person: what failed, for which node."""
         who = self.node or "a node"
         if self.kind == "params_file":
+            refused = rcl_refused(self.line.msg)
+            if refused is not None and refused[0] != "params file":
+                return (f"{who} could not parse its command-line arguments (the {refused[0]} '{refused[1]}'), so it "
+                        "never started")
             return f"{who} could not parse its parameters file, so it never started"
         if self.kind == "launch_failed":
             why = f" ({self.detail})" if self.detail else ""

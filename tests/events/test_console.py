@@ -158,3 +158,53 @@ def test_gazebo_started_by_ros_gz_sim_under_its_command_line_as_process_name() -
     assert (err.process, err.level, err.file, err.line) == ("ruby $(which gz) sim-1", 40, "SystemLoader.cc", 92)
     assert err.msg == ("Failed to load system plugin [libgz-sim8-python-system-loader-system.so] : Could not find "
                        "shared library.")
+
+
+# A Python node's uncaught exception as CPython's excepthook prints it, alone (`ros2 run`) and behind launch's prefix
+# with launch.log's time in front (real output of rclpy 9.1.2 on ROS 2 Kilted, scripts/stack_faults.py)
+TRACEBACK = """\
+Traceback (most recent call last):
+  File "/home/robot/ws/scan_filter.py", line 6, in <module>
+    node = Node('scan_filter')
+           ^^^^^^^^^^^^^^^^^^^
+rclpy._rclpy_pybind11.RCLError: error creating node: Unable to resolve peer robot-base.local
+, at /project/src/participant.cpp:256, at /project/src/rcl/node.c:249"""
+
+
+def test_a_python_traceback_is_one_error_record_with_the_exception_first() -> None:
+    (record,) = parse_console(TRACEBACK)
+    first, second, rest = record.msg.split("\n", 2)
+    assert first == "rclpy._rclpy_pybind11.RCLError: error creating node: Unable to resolve peer robot-base.local"
+    assert second == ", at /project/src/participant.cpp:256, at /project/src/rcl/node.c:249"  # its message goes on
+    assert rest.startswith("Traceback (most recent call last):\nFile \"/home/robot/ws/scan_filter.py\", line 6")
+    assert record.level == 40 and "level" not in record.synthesised
+
+
+def test_a_traceback_in_launch_log_keeps_its_process_and_first_stamp() -> None:
+    text = "\n".join(f"1795927629.{7235756 + i:07d} [scan_filter-2] {line}" for i, line in
+                     enumerate(TRACEBACK.splitlines()))
+    text += "\n1795927629.8761501 [ERROR] [scan_filter-2]: process has died [pid 21679, exit code 1, cmd 'x']."
+    raised, died = parse_console(text)
+    assert raised.process == "scan_filter-2" and raised.msg.startswith("rclpy._rclpy_pybind11.RCLError: ")
+    assert raised.stamp_ns == 1795927629723575600 and raised.level == 40
+    assert (died.name, died.level) == ("scan_filter-2", 40)
+
+
+def test_another_process_line_between_does_not_break_a_traceback() -> None:
+    text = ("[a-1] Traceback (most recent call last):\n[a-1]   File \"a.py\", line 1, in <module>\n"
+            "[b-2] [INFO] [1795927629.1] [b]: still running\n[a-1] ValueError: boom\n"
+            "[b-2] [INFO] [1795927629.2] [b]: ok")
+    raised, running, ok = parse_console(text)
+    assert raised.msg.splitlines()[:2] == ["ValueError: boom", "Traceback (most recent call last):"]
+    assert (running.msg, ok.msg) == ("still running", "ok")
+
+
+def test_python_warnings_and_cyclone_dds_lines_get_their_levels() -> None:
+    warned, cyclone = parse_console(
+        "/opt/venv/lib/python3/site-packages/rclpy/node.py:221: RuntimeWarning: Failed to fini rosout publisher\n"
+        "  self.__node = _rclpy.Node(\n"
+        "1795927276.580085 [0]     python: wlan0: does not match an available interface.")
+    assert (warned.level, warned.msg.splitlines()[0]) == (30, "RuntimeWarning: Failed to fini rosout publisher")
+    assert (warned.file, warned.line) == ("/opt/venv/lib/python3/site-packages/rclpy/node.py", 221)
+    assert (cyclone.level, cyclone.msg) == (30, "wlan0: does not match an available interface.")
+    assert cyclone.stamp_ns == 1795927276580085000

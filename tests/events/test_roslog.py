@@ -4,6 +4,7 @@ recordings written with rosbags around their times."""
 
 from __future__ import annotations
 
+import json
 import shutil
 from pathlib import Path
 
@@ -84,3 +85,29 @@ def test_without_a_launch_log_nothing_is_added(tmp_path: Path) -> None:
     (rec / "log" / "robot.log").write_text("1795927629.2598693 [ERROR] [launch]: not launch.log\n")
     log = read_recording(rec)
     assert [ln.origin for ln in log.logs] == [c.ROSOUT]
+
+
+def test_ask_explains_a_death_only_launch_log_shows_and_cites_it(tmp_path: Path,
+                                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.cli import main
+
+    # the robot's /rosout held only the scan filter's start line: its traceback and death went to launch.log
+    started = LogLine(1795927630609408233, INFO, "scan_filter", "filtering scans at 10 Hz")
+    rec = _recording(tmp_path, "crash", 1795927630300000000, 1795927631000000000, [started])
+    assert main(["ask", str(rec), "Why didn't that work?", "--llm", "none", "--json", "--verbose"]) == 0
+    row = json.loads(capsys.readouterr().out)
+    assert "died of an uncaught Python exception (ValueError)" in row["answer"]
+    assert "“[scan_filter-3] min() arg is an empty sequence”, raised in tick" in row["answer"]
+    cited = [e for e in row["evidence"] if e["topic"] == c.LAUNCH_LOG]
+    assert cited and cited[0]["item"].startswith("[scan_filter-3] ERROR ValueError: min() arg is an empty sequence")
+
+
+def test_without_its_launch_log_the_same_recording_shows_no_failure(tmp_path: Path,
+                                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.cli import main
+
+    started = LogLine(1795927630609408233, INFO, "scan_filter", "filtering scans at 10 Hz")
+    rec = _recording(tmp_path, "crash", 1795927630300000000, 1795927631000000000, [started])
+    shutil.rmtree(rec / "log")
+    assert main(["ask", str(rec), "Why didn't that work?", "--llm", "none"]) == 2
+    assert "no task to explain" in capsys.readouterr().err

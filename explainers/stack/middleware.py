@@ -1,0 +1,117 @@
+"""The middleware under every node (rcl's rmw check, rmw_fastrtps, rmw_cyclonedds, Fast DDS, Cyclone DDS): a line that
+kept a node from joining the others, or a middleware setting that never applied (stable API).
+
+    middleware_line(lines, before=None) -> tuple[LogLine, str] | None
+    middleware_words(line) -> tuple[str, str]
+
+Read through the mined stack catalogue (explainers/stack/sources.yaml: its entries of cause `stack.network` and
+`stack.middleware_configuration`). Fast DDS prints its own errors to stderr as "[CATEGORY Error] text -> Function f",
+and Cyclone DDS as "{time} [{domain}] {thread}: text" (events/console.py reads both), so such a line names no node.
+What each line means is said from the line's own words and the source that prints it, never from a guess about the
+network: a DDS that could not start names no firewall.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+
+from hexar.events.records import WARN, LogLine
+from hexar.explainers.stack.catalogue import stack_catalogue
+
+NETWORK = "stack.network"
+CONFIGURATION = "stack.middleware_configuration"
+CAUSES = {NETWORK: "system.network", CONFIGURATION: "bringup.configuration_error"}
+
+_QUOTED = re.compile(r"'([^']*)'")
+# Fast DDS's console decoration: "[RTPS Error] text -> Function getMulticastPort"
+_FASTDDS = re.compile(r"^\[(?P<category>[A-Z][A-Z0-9_]*) (?:Error|Warning|Info)\] (?P<text>.*?)(?: -> Function \w+)?$",
+                      re.S)
+
+
+def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tuple[LogLine, str] | None:
+    """The first line (WARN or above: Cyclone's stderr lines carry no level) whose catalogue entry is the
+    middleware's, with the project cause it supports; None when there is none."""
+    cat = stack_catalogue()
+    for line in lines:
+        if line.level < WARN or (before is not None and line.t > before):
+            continue
+        entry = cat.match(line.msg)
+        if entry is not None and entry.cause in CAUSES:
+            return line, CAUSES[entry.cause]
+    return None
+
+
+def text(line: LogLine) -> str:
+    """The middleware's own words, without Fast DDS's category and function decoration, first line only."""
+    first = line.msg.strip().splitlines()[0] if line.msg.strip() else ""
+    m = _FASTDDS.match(first)
+    return (m["text"] if m else first).strip()
+
+
+def _quoted(words: str, n: int = 0) -> str:
+    found = _QUOTED.findall(words)
+    return found[n] if len(found) > n else ""
+
+
+def middleware_words(line: LogLine) -> tuple[str, str]:
+    """(what happened, the fix), for a person, from a line `middleware_line` found."""
+    words = text(line)
+    if "Calculated port number is too high" in words:
+        # NetworkFactory.cpp (Fast DDS): the RTPS ports are computed from the domain id; past 232 none fits
+        return ("my DDS middleware (Fast DDS) could not open its network ports: the ports it computes from "
+                "ROS_DOMAIN_ID do not exist for that domain (it says the domain id is probably over 232), so my "
+                "node could not join the others",
+                "Set ROS_DOMAIN_ID to a number from 0 to 101 (the range every platform supports) on every computer "
+                "of the robot, the same everywhere.")
+    if "does not match an available interface" in words:
+        iface = words.split(":", 1)[0].strip()
+        return (f"my DDS middleware (Cyclone DDS) could not start: its configuration names a network interface "
+                f"this machine does not have ({iface}), so my node could not join the others",
+                "Name an interface that `ip link` lists in CYCLONEDDS_URI (NetworkInterface), or leave the choice to "
+                "Cyclone DDS by removing it.")
+    if "Unable to resolve peer" in words:
+        peer = words.split("Unable to resolve peer", 1)[1].strip().split()[0] if words.split(
+            "Unable to resolve peer", 1)[1].strip() else ""
+        return (f"my DDS middleware could not resolve a static peer ROS_STATIC_PEERS names ({peer}), so my node "
+                "could not be created",
+                "Give ROS_STATIC_PEERS addresses or host names this machine resolves (check with `getent hosts`), "
+                "or add the name to /etc/hosts.")
+    if "assuming localhost only" in words:
+        value = _quoted(words)
+        return (f"DDS discovery stayed on this computer: ROS_AUTOMATIC_DISCOVERY_RANGE had a value rcl does not know "
+                f"('{value}'), so nodes on the robot's other computers are never seen",
+                "Set ROS_AUTOMATIC_DISCOVERY_RANGE to SUBNET (or LOCALHOST, OFF, SYSTEM_DEFAULT) on every computer.")
+    if "failed to create domain" in words:
+        return ("my DDS middleware could not start: Cyclone DDS failed to create its domain, so my node could not be "
+                "created",
+                "Check the Cyclone DDS configuration (CYCLONEDDS_URI): the network interfaces it selects must exist "
+                "on this machine, each named once; unset it to try the defaults.")
+    if "free participant index" in words:
+        return ("my DDS middleware (Cyclone DDS) found no free participant index for this domain on this computer, "
+                "so my node could not join the others",
+                "Run fewer ROS processes per computer, or raise Cyclone DDS's ParticipantIndex/MaxAutoParticipantIndex "
+                "in CYCLONEDDS_URI.")
+    if "Expected RMW implementation identifier" in words:
+        wanted, found = _quoted(words), _quoted(words, 1)
+        return (f"the middleware's settings never reached my node: RMW_IMPLEMENTATION names {wanted}, but the program "
+                f"was built with {found}, so rcl stopped it before any node existed",
+                f"Install {wanted} for this program's ROS distribution, or set RMW_IMPLEMENTATION to {found} (or "
+                "unset it); every node of the robot should use the same middleware.")
+    if "failed to load shared library" in words:
+        return (f"the middleware's settings never reached my node: the middleware library RMW_IMPLEMENTATION names "
+                f"could not be loaded ({_quoted(words) or words[:120]})",
+                "Install that rmw package for this ROS distribution, or unset RMW_IMPLEMENTATION.")
+    if "environment variable" in words:
+        value, var = _quoted(words), _quoted(words, 1)
+        return (f"the middleware's settings never reached my node: Fast DDS did not understand {var or 'a variable'}"
+                f"{f' ({value})' if value else ''} and kept its defaults",
+                f"Set {var or 'the variable'} to a value Fast DDS documents (for FASTDDS_BUILTIN_TRANSPORTS: DEFAULT, "
+                "UDPv4, UDPv6, SHM, LARGE_DATA, DEFAULTv6, ...), or unset it.")
+    if words.startswith(("Error opening '", "Error parsing '")):
+        return (f"the middleware's settings never reached my node: Fast DDS could not load its XML profiles file "
+                f"({_quoted(words)}), so it ran on its default settings instead of that file's",
+                "Fix the XML file (a closing tag missing, a misspelt element) and check its path in "
+                "FASTDDS_DEFAULT_PROFILES_FILE; Fast DDS prints each parse error before this line.")
+    return (f"my DDS middleware reported a problem that kept my node from working with the others: '{words[:160]}'",
+            "Read the middleware's lines around it (Fast DDS and Cyclone DDS print their errors on stderr).")
