@@ -30,6 +30,7 @@ from typing import Any
 
 import yaml
 
+from hexar.explainers.stack.catalogue import literal_key
 from hexar.explainers.stack.mining import Call, cpp_calls, literal_length, literals, py_calls, to_display, to_pattern
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -148,7 +149,7 @@ def _add(merged: dict[tuple[str, str, str], dict[str, Any]], call: Call, layer: 
         role, cause = classify(text, call.level, layer, package, rules)
         merged[key] = {"pattern": pattern, "text": text, "level": call.level, "form": call.form, "layer": layer,
                        "package": package, "source": source, "distros": list(distros), "role": role,
-                       "cause": cause}
+                       "cause": cause, "key": literal_key(pattern)}
         return
     newer = [d for d in distros if d not in entry["distros"]]
     entry["distros"] = sorted(set(entry["distros"]) | set(distros), key=DISTRO_ORDER.index)

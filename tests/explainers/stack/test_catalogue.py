@@ -14,6 +14,7 @@ from hexar.explainers.stack.catalogue import (
     clean,
     compile_all,
     cut_tail,
+    literal_key,
     load,
     stack_catalogue,
 )
@@ -31,10 +32,16 @@ def test_the_shipped_catalogue_loads_and_every_pattern_compiles() -> None:
         assert e.cause is None or e.cause.startswith("stack."), e.source
 
 
+def test_every_stored_key_is_its_patterns_longest_literal_run() -> None:
+    # the matcher indexes entries by these keys: a stale one would hide an entry from every message
+    raw = stack_catalogue()._raw
+    assert all(e["key"] == literal_key(e["pattern"]) for e in raw)
+
+
 def test_every_layer_the_issue_names_was_mined() -> None:
     layers = stack_catalogue().layers()
     for layer in ("nav2", "rcl", "rclcpp", "lifecycle", "tf", "message_filters", "launch", "robot_localization",
-                  "slam_toolbox", "twist_mux", "ros_gz"):
+                  "slam_toolbox", "twist_mux", "ros_gz", "rclpy", "middleware", "fastdds", "cyclonedds"):
         assert layers.get(layer, 0) > 0, layer
 
 
