@@ -25,10 +25,11 @@ from pathlib import Path
 from hexar.events.console import ConsoleLine, parse_console, stamped
 from hexar.events.contract import LAUNCH_LOG
 from hexar.events.errors import CorruptRecordingError
-from hexar.events.log import EventLog
+from hexar.events.log import EventLog, TopicInfo
 from hexar.events.records import LogLine
 
 NAME = "launch.log"
+LOG_FILE_TYPE = "text: ROS 2 launch's log file (lines read)"
 MAX_BYTES = 64 * 1024 * 1024  # a launch that ran for weeks with chatty nodes: read its first 64 MiB only
 
 
@@ -73,4 +74,6 @@ def merge_launch_logs(log: EventLog) -> None:
     if added:
         # the recording now begins with the launch's first line: times in answers count from there
         log.start = min(log.start, min(ln.t for ln in log.logs))
+        # shown beside the recorded topics (`hexar inspect`, the web page's contract), as what it is
+        log.topics[LAUNCH_LOG] = TopicInfo(LAUNCH_LOG, LOG_FILE_TYPE, added)
         log.finish()

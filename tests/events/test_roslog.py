@@ -74,6 +74,7 @@ def test_a_recording_reads_the_launch_log_in_its_folder(tmp_path: Path, where: s
     died = next(ln for ln in log.logs if ln.msg.startswith("process has died"))
     assert (died.name, died.origin) == ("scan_filter-2", c.LAUNCH_LOG)
     assert log.start == FIRST  # the recording now begins with the launch's first line
+    assert log.topics[c.LAUNCH_LOG].count == sum(1 for ln in log.logs if ln.origin == c.LAUNCH_LOG)
     assert [ln.t for ln in log.logs] == sorted(ln.t for ln in log.logs)
 
 
@@ -111,3 +112,16 @@ def test_without_its_launch_log_the_same_recording_shows_no_failure(tmp_path: Pa
     shutil.rmtree(rec / "log")
     assert main(["ask", str(rec), "Why didn't that work?", "--llm", "none"]) == 2
     assert "no task to explain" in capsys.readouterr().err
+
+
+def test_a_launch_log_of_garbage_bytes_is_read_without_inventing_a_failure(tmp_path: Path,
+                                                                           capsys: pytest.CaptureFixture[str]) -> None:
+    from hexar.cli import main
+
+    rec = _recording(tmp_path, "screen", FIRST, FIRST + 10**9, [])
+    (next(rec.glob("log/*")) / "launch.log").write_bytes(bytes(range(256)) * 40)
+    log = read_recording(rec)
+    assert not [t for t in log.tasks if t.outcome == "failed"]
+    assert main(["ask", str(rec), "Why didn't that work?", "--llm", "none"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("ERROR: no task to explain") and len(err.strip().splitlines()) == 1
