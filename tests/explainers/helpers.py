@@ -29,3 +29,20 @@ def explain(log: EventLog, explainer: str, question: str) -> tuple[Task, Explana
     registry = Registry.load()
     task = log.task()
     return task, registry.get(explainer).explain(question, Context.for_task(log, task, registry))
+
+
+def derived_start(tmp_path: Path, lines: list[Line]) -> Explanation:
+    """The lines alone (no /task_info, no goal): the robot's start is derived from them and failed; what `control`
+    answers about it."""
+    log = write_lines(tmp_path, lines)
+    assert [t.skills[0].skill for t in log.tasks] == ["bring_up_controllers"]
+    task, found = explain(log, "control", "Why didn't that work?")
+    assert task.outcome == "failed"
+    return found
+
+
+def claimed(found: Explanation) -> set[str]:
+    """The causes the answer's text affirms (the claims reader's ids, less the generic claim.* ones)."""
+    from hexar.claims import read_claims
+
+    return {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")}

@@ -9,12 +9,11 @@ from typing import Any
 
 import pytest
 
-from hexar.claims import read_claims
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.base import Explanation
 from hexar.explainers.stack.loader import cpp_name
-from tests.explainers.helpers import T0, explain, write_lines
+from tests.explainers.helpers import T0, claimed, derived_start, explain, write_lines
 
 Line = tuple[float, str, int, str]
 HEAD = [(0.0, "launch", INFO, "All log files can be found below /home/user/.ros/log/2026-05-19-17-59-57-715685"),
@@ -38,15 +37,10 @@ def _on_task(tmp_path: Path, lines: list[Line]) -> Explanation:
 
 def _derived(tmp_path: Path, lines: list[Line]) -> Explanation:
     """The lines alone: the robot's start is derived from them (no /task_info, no goal)."""
-    log = write_lines(tmp_path, [*HEAD, *lines])
-    assert [t.skills[0].skill for t in log.tasks] == ["bring_up_controllers"]
-    task, found = explain(log, "control", "Why didn't that work?")
-    assert task.outcome == "failed"
-    return found
+    return derived_start(tmp_path, [*HEAD, *lines])
 
 
-def _claims(found: Explanation) -> set[str]:
-    return {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")}
+_claims = claimed
 
 
 # ldrobot-lidar-ros2 #5 (Humble): launch could not load the launch file, so it started no node

@@ -9,13 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from hexar.claims import read_claims
 from hexar.events.console import parse_console, stamped
 from hexar.events.records import ERROR, INFO, WARN, LogLine
 from hexar.explainers.base import Explanation
 from hexar.explainers.stack.middleware import middleware_line
 from hexar.explainers.stack.thrown import python_exception
-from tests.explainers.helpers import explain, write_lines
+from tests.explainers.helpers import claimed, derived_start
 
 PORTS = ("2026-11-29 04:40:42.374 [RTPS Error] Calculated port number is too high. Probably the domainId is over 232 "
          "or portBase is too high. -> Function getMulticastPort")
@@ -57,15 +56,10 @@ def _lines(console: str) -> list[tuple[float, str, int, str]]:
 
 
 def _derived(tmp_path: Path, console: str) -> Explanation:
-    log = write_lines(tmp_path, _lines(console))
-    assert [t.skills[0].skill for t in log.tasks] == ["bring_up_controllers"]
-    task, found = explain(log, "control", "Why didn't that work?")
-    assert task.outcome == "failed"
-    return found
+    return derived_start(tmp_path, _lines(console))
 
 
-def _claims(found: Explanation) -> set[str]:
-    return {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")}
+_claims = claimed
 
 
 @pytest.mark.parametrize(("console", "said"), [
