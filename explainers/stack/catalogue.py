@@ -205,7 +205,7 @@ class StackCatalogue:
         except (KeyError, TypeError, ValueError, AttributeError) as err:
             raise StackCatalogueError(f"malformed stack catalogue: {err}") from err
         # An entry is built when a message holds its key (or it is asked for): a question reads a few dozen
-        # lines, and building all two thousand is most of a cold start's catalogue time.
+        # lines, and building all five thousand is most of a cold start's catalogue time.
         self._built: dict[int, StackEntry] = {}
         self._seen: dict[str, StackEntry | None] = {}
 
