@@ -213,7 +213,8 @@ def run_detail(name: str, log: EventLog, task: Task, findings: list[dict[str, An
 
 
 def filtered_lines(log: EventLog, task: Task) -> dict[str, Any]:
-    """The task's /rosout lines through the navigation explainer's filter (its loggers, no noise, no repeats)."""
+    """The task's log lines (/rosout, and launch.log's where the recording has one) through the navigation
+    explainer's filter (its loggers, no noise, no repeats)."""
     from hexar.explainers.navigation.filter import filter_logs
 
     times = log.times("logs", log.logs)

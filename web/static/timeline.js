@@ -102,7 +102,7 @@ export function timelineCard(run) {
     try {
       const lines = await api(`/api/lines?name=${encodeURIComponent(run.recording)}&task=${encodeURIComponent(run.task.task_id)}`);
       lines.lines.forEach((ln) => insertRow({ ...ln, causes: [] }, "filtered"));
-      info.textContent = `${lines.kept} of ${lines.total} /rosout lines kept by the navigation filter${lines.shown < lines.kept ? ` (first ${lines.shown} shown)` : ""}; cited items highlighted`;
+      info.textContent = `${lines.kept} of ${lines.total} log lines (/rosout, launch.log) kept by the navigation filter${lines.shown < lines.kept ? ` (first ${lines.shown} shown)` : ""}; cited items highlighted`;
       btn.textContent = "Show only cited items"; shown = true;
     } catch (e) { info.replaceChildren(errorLine(e.message)); }
     btn.disabled = false;
