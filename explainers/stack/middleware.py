@@ -71,17 +71,18 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 "Name an interface that `ip link` lists in CYCLONEDDS_URI (NetworkInterface), or leave the choice to "
                 "Cyclone DDS by removing it.")
     if "Unable to resolve peer" in words:
-        peer = words.split("Unable to resolve peer", 1)[1].strip().split()[0] if words.split(
-            "Unable to resolve peer", 1)[1].strip() else ""
+        after = words.split("Unable to resolve peer", 1)[1].split()
+        peer = after[0] if after else ""
         return (f"my DDS middleware could not resolve a static peer ROS_STATIC_PEERS names ({peer}), so my node "
                 "could not be created",
                 "Give ROS_STATIC_PEERS addresses or host names this machine resolves (check with `getent hosts`), "
                 "or add the name to /etc/hosts.")
     if "assuming localhost only" in words:
-        value = _quoted(words)
-        return (f"DDS discovery stayed on this computer: ROS_AUTOMATIC_DISCOVERY_RANGE had a value rcl does not know "
-                f"('{value}'), so nodes on the robot's other computers are never seen",
-                "Set ROS_AUTOMATIC_DISCOVERY_RANGE to SUBNET (or LOCALHOST, OFF, SYSTEM_DEFAULT) on every computer.")
+        value, var = _quoted(words), _quoted(words, 1) or "ROS_AUTOMATIC_DISCOVERY_RANGE"
+        return (f"DDS discovery stayed on this computer: {var} had a value rcl does not know ('{value}'), so nodes on "
+                "the robot's other computers are never seen",
+                f"Set {var} to one rcl knows (ROS_AUTOMATIC_DISCOVERY_RANGE: SUBNET, LOCALHOST, OFF or "
+                "SYSTEM_DEFAULT) on every computer.")
     if "failed to create domain" in words:
         return ("my DDS middleware could not start: Cyclone DDS failed to create its domain, so my node could not be "
                 "created",
