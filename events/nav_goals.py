@@ -110,17 +110,12 @@ def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose
     return goals or _activity(logs)
 
 
-def _bringup_error(line: LogLine) -> bool:
-    """An error of a node of the stack that never came up (a params file rcl could not parse, a lifecycle
-    transition that threw, a process that died: the mined stack catalogue), which the navigation explains too,
-    unless the line is about a node that is not Nav2's (a driver whose configure launch_ros saw fail): a line that
-    names no node (launch's own exception, rcl's params file) may still be Nav2's."""
-    return _bringup_node(line) is not None
-
-
 def _bringup_node(line: LogLine) -> str | None:
-    """The Nav2 node a bring-up error is about ("" when it names none); None when the line is no bring-up error
-    that Nav2's could be (see _bringup_error)."""
+    """For an error of a node of the stack that never came up (a params file rcl could not parse, a lifecycle
+    transition that threw, a process that died: the mined stack catalogue), which the navigation explains too: the
+    Nav2 node it is about, "" when it names none (launch's own exception, rcl's params file: may still be Nav2's).
+    None when the line is no such error, or is about a node that is not Nav2's (a driver whose configure launch_ros
+    saw fail)."""
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack import bringup_findings
