@@ -30,6 +30,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from datetime import UTC, datetime
 
+from hexar.events.records import TRACEBACK
+
 LEVELS = {"DEBUG": 10, "INFO": 20, "WARN": 30, "WARNING": 30, "ERROR": 40, "FATAL": 50}
 NS = 1_000_000_000
 # A corpus line with no stamp at all gets stamps from here (2023-11-14), 100 ms apart.
@@ -85,9 +87,8 @@ _ESCAPE = re.compile(r"(?:\x1b|\^\[)\[[0-9;]*m")
 _LOST_ESCAPE = re.compile(rf"^(?P<head>(?:\[{_PROC_NAME}\]\s*)?)(?:\[\d{{1,2}}(?:;\d{{1,2}})*m)+|(?:\[\d{{1,2}}m)+\s*$")
 # the Cyclone DDS core's own log line behind its "{sec}.{usec} " time: "[{domain id}] {thread name, 16 wide}: msg"
 CYCLONE = re.compile(r"^\[(?:\d+|-)\]\s+[^:\[\]]{1,16}:\s+(?P<msg>\S.*)$")
-# CPython's traceback.print_exception: the header, "  File ..." frames with their source lines, then the exception's
-# own line, unindented ("ValueError: ...", "rclpy._rclpy_pybind11.RCLError: ...", or a bare class name)
-TRACEBACK = "Traceback (most recent call last):"
+# CPython's traceback.print_exception: the header (TRACEBACK), "  File ..." frames with their source lines, then the
+# exception's own line, unindented ("ValueError: ...", "rclpy._rclpy_pybind11.RCLError: ...", or a bare class name)
 # CPython's warnings.formatwarning: "{file}:{line}: {category}: {message}" (then the source line, indented)
 PY_WARNING = re.compile(r"^(?P<file>\S+\.py):(?P<line>\d+): (?P<category>\w*Warning): (?P<msg>.*)$")
 _EXCEPTION_LINE = re.compile(r"^[A-Za-z_][\w.]*(?::\s.*)?$")

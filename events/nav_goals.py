@@ -170,13 +170,14 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     active: list[LogLine] = []
     failed: LogLine | None = None
     own = arms = named = False
+    thrown = [python_exception(line) is not None for line in logs]
     # the processes (launch's names for them) that printed a Python traceback
-    python_died = {line.name for line in logs if line.name and python_exception(line) is not None}
-    for line in logs:
+    python_died = {line.name for line, py in zip(logs, thrown, strict=True) if py and line.name}
+    for line, py in zip(logs, thrown, strict=True):
         if _arms_logger(line):
             arms = True
             continue  # ros2_control's or MoveIt's own node: its line is the arm's to explain, not Nav2's activity
-        if python_exception(line) is not None:
+        if py:
             continue  # a Python program's uncaught exception: Nav2's servers are C++ programs
         entry = cat.match(line.msg)
         # the controller server's "Reached the goal!" (controller_server.cpp:411@humble) ends a path it followed

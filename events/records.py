@@ -12,6 +12,9 @@ from dataclasses import dataclass, field
 from datetime import UTC, datetime
 
 DEBUG, INFO, WARN, ERROR, FATAL = 10, 20, 30, 40, 50
+# CPython's traceback header: a log line holding it after its first line is a Python exception its process died of
+# (events/console.py writes such records, explainers/stack/thrown.py reads them)
+TRACEBACK = "Traceback (most recent call last):"
 LEVEL_NAMES = {DEBUG: "DEBUG", INFO: "INFO", WARN: "WARN", ERROR: "ERROR", FATAL: "FATAL"}
 
 

@@ -21,14 +21,16 @@ A line that also reached /rosout (the same text at the same stamp) is read once,
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from hexar.events.console import ConsoleLine, parse_console, stamped
 from hexar.events.contract import LAUNCH_LOG
 from hexar.events.errors import CorruptRecordingError
 from hexar.events.log import EventLog, TopicInfo
 from hexar.events.records import LogLine
 
-NAME = "launch.log"
+if TYPE_CHECKING:
+    from hexar.events.console import ConsoleLine
+
 LOG_FILE_TYPE = "text: ROS 2 launch's log file (lines read)"
 MAX_BYTES = 64 * 1024 * 1024  # a launch that ran for weeks with chatty nodes: read its first 64 MiB only
 
@@ -37,7 +39,7 @@ def launch_logs(folder: Path) -> list[Path]:
     """The launch.log files in `folder` and its subfolders up to two levels down, in name order."""
     if not folder.is_dir():
         return []
-    found = [folder / NAME, *folder.glob(f"*/{NAME}"), *folder.glob(f"*/*/{NAME}")]
+    found = [folder / LAUNCH_LOG, *folder.glob(f"*/{LAUNCH_LOG}"), *folder.glob(f"*/*/{LAUNCH_LOG}")]
     return sorted(p for p in found if p.is_file())
 
 
@@ -49,6 +51,9 @@ def _line(r: ConsoleLine) -> LogLine:
 
 def read_launch_log(path: Path, until: int | None = None) -> list[LogLine]:
     """The lines of one launch.log, oldest first, without those stamped after `until` (ns)."""
+    # imported here: every recording is read through this module, few have a launch.log beside them
+    from hexar.events.console import parse_console, stamped
+
     try:
         with path.open("rb") as f:
             raw = f.read(MAX_BYTES)

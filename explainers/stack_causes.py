@@ -17,7 +17,7 @@ from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 from hexar.explainers.stack.middleware import middleware_line, middleware_words
-from hexar.explainers.stack.thrown import python_exception, thrown_words
+from hexar.explainers.stack.thrown import PyException, exception_quoted, python_exception, thrown_words
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
               "lifecycle_transition": "bringup.lifecycle_transition_failed", "process_died": "bringup.process_died",
@@ -58,14 +58,13 @@ def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | N
                       or python_exception(ln) is not None)), None)
 
 
-def _configuration(line: LogLine) -> bool:
+def _configuration(exc: PyException) -> bool:
     """A Python node's uncaught exception whose text the stack catalogue reads as a configuration error (rclpy's
     InvalidParameterTypeException: a parameter given a value of another type than the node declares). A C++ one is
     left to the module catalogues, which read its what() in their own words."""
     from hexar.explainers.stack.catalogue import stack_catalogue
 
-    exc = python_exception(line)
-    entry = stack_catalogue().match(exc.text) if exc is not None and exc.text else None
+    entry = stack_catalogue().match(exc.text) if exc.text else None
     return entry is not None and entry.cause == "stack.configuration_error"
 
 
@@ -73,9 +72,8 @@ def _uncaught_words(line: LogLine) -> str:
     """"of an uncaught C++ exception (std::invalid_argument), so the software it ran was gone: “[node] invalid argument
     passed”": the what() quoted as the log's words (hexar/claims.py reads none of them as the answer's claim)."""
     if (exc := python_exception(line)) is not None:
-        where = f", raised in {exc.where}" if exc.where else ""
         return (f"of an uncaught Python exception ({exc.name}), so the software it ran was gone: "
-                f"“[{line.name or 'unnamed node'}] {exc.text[:160]}”{where}")
+                f"{exception_quoted(line, exc, 160)}")
     m = _UNCAUGHT.search(line.msg)
     kind = f" ({m['type']})" if m is not None else ""
     what = (m["what"] or "").strip() if m is not None else ""
@@ -130,11 +128,11 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     if missing is not None:
         found.append(Reading(missing, None, "bringup.configuration_error", "stack"))
     thrown = uncaught(lines)
-    if thrown is not None and python_exception(thrown) is not None:
+    if thrown is not None and (exc := python_exception(thrown)) is not None:
         # a Python process that died of an exception (after the readings above: rcl's own error raised as RCLError
         # is theirs); one whose text is a parameter of the wrong type (rclpy's InvalidParameterTypeException) is
         # that configuration error, told with the process's end
-        cause = "bringup.configuration_error" if _configuration(thrown) else "bringup.process_died"
+        cause = "bringup.configuration_error" if _configuration(exc) else "bringup.process_died"
         found.append(Reading(thrown, None, cause, "stack", "thrown"))
     # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)

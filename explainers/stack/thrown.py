@@ -16,8 +16,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from hexar.events.console import TRACEBACK
-from hexar.events.records import LogLine
+from hexar.events.records import TRACEBACK, LogLine
 
 _EXCEPTION = re.compile(r"^(?P<type>[A-Za-z_][\w.]*)(?::\s?(?P<text>.*))?$")
 _FRAME = re.compile(r'^File "(?P<file>[^"]+)", line (?P<line>\d+), in (?P<function>\S+)$')
@@ -52,12 +51,17 @@ def python_exception(line: LogLine) -> PyException | None:
     return PyException(m["type"], text, where)
 
 
+def exception_quoted(line: LogLine, exc: PyException, most: int = 200) -> str:
+    """"“[node] its message”, raised in tick (…, line 12)": the exception's message as the log's words (hexar/claims.py
+    reads no claim in quotes), and where the node's own code raised it."""
+    where = f", raised in {exc.where}" if exc.where else ""
+    return f"“[{line.name or 'unnamed node'}] {exc.text[:most]}”{where}"
+
+
 def thrown_words(line: LogLine) -> str:
-    """"rclpy.exceptions.InvalidParameterTypeException: “[node] Trying to set …”, raised in <module> (…, line 7)":
-    the exception's class and its message quoted as the log's words (hexar/claims.py reads no claim in quotes)."""
+    """"an uncaught Python exception (InvalidParameterTypeException): “[node] Trying to set …”, raised in <module>
+    (…, line 7)"."""
     exc = python_exception(line)
     if exc is None:
         return f"“{line.msg.splitlines()[0][:200]}”" if line.msg else ""
-    who = line.name or "unnamed node"
-    where = f", raised in {exc.where}" if exc.where else ""
-    return f"an uncaught Python exception ({exc.name}): “[{who}] {exc.text[:200]}”{where}"
+    return f"an uncaught Python exception ({exc.name}): {exception_quoted(line, exc)}"
