@@ -208,7 +208,8 @@ HEADER = """\
 def run(fault: Fault, work: Path, launch: Path, launch_python: str) -> tuple[str, int]:
     for name, text in fault.files.items():
         (work / name).write_text(text, encoding="utf-8")
-    script = work / f"{fault.program}.py"
+    # not launch.py: the script's folder comes first on sys.path, and that name would hide the launch package
+    script = work / ("bringup_launch.py" if fault.program == "launch" else f"{fault.program}.py")
     script.write_text(PROGRAMS[fault.program], encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "RMW_", "FASTDDS_", "CYCLONEDDS_"))}
     env.update(fault.env)
@@ -216,9 +217,20 @@ def run(fault: Fault, work: Path, launch: Path, launch_python: str) -> tuple[str
     if fault.program == "launch":
         (work / "child.py").write_text(CHILD, encoding="utf-8")
         env["PYTHONPATH"] = str(launch)
+        env["ROS_HOME"] = str(work / ".ros")  # launch's log folder, kept out of this machine's home
         command = [launch_python, script.name, sys.executable, *fault.args]
     done = subprocess.run(command, cwd=work, env=env, capture_output=True, text=True, timeout=60, check=False)
     return done.stdout + done.stderr, done.returncode
+
+
+def local_names(launch: Path, launch_python: str) -> list[tuple[str, str]]:
+    """This machine's folders that the output prints, longest first, each with the fixed name written instead."""
+    launch_prefix = subprocess.run([launch_python, "-c", "import sys; print(sys.prefix, sys.base_prefix)"],
+                                   capture_output=True, text=True, check=True).stdout.split()
+    names = [(sys.executable, "/opt/venv/bin/python"), (str(Path(sys.executable).parent.parent), "/opt/venv"),
+             (str(launch), "/opt/ros/launch"), (launch_prefix[0], "/opt/launch-venv"), (launch_prefix[1], "/usr"),
+             (sys.base_prefix, "/usr")]
+    return sorted(names, key=lambda pair: -len(pair[0]))
 
 
 def main() -> int:
@@ -233,8 +245,9 @@ def main() -> int:
     for fault in FAULTS:
         with tempfile.TemporaryDirectory() as tmp:
             text, code = run(fault, Path(tmp), args.launch.absolute(), args.launch_python)
-            lines = scrub(text, Path(tmp)).replace(sys.executable, "/opt/venv/bin/python")
-            lines = lines.replace(str(Path(sys.executable).parent.parent), "/opt/venv")
+            lines = scrub(text, Path(tmp))
+            for local, fixed in local_names(args.launch.absolute(), args.launch_python):
+                lines = lines.replace(local, fixed)
         print(f"{fault.id}: exit {code}, {len(lines.splitlines())} lines")
         entries.append({
             "id": f"kilted-{fault.id}", "source": f"scripts/runtime_faults.py on ROS 2 Kilted ({stack})",
