@@ -78,6 +78,15 @@ def files_with_calls(repo: Path, branch: str, packages: Iterable[str], wrappers:
     return sorted(p for p in set(paths) if not _TESTS.search(p))
 
 
+def literal_files(repo: Path, branch: str, extras: list[dict[str, Any]]) -> list[str]:
+    """The files a repository's `literals` globs name at `branch`."""
+    if not extras:
+        return []
+    out = git(repo, "ls-tree", "-r", "--name-only", branch)
+    names = out.decode(errors="replace").splitlines()
+    return [n for n in names if any(Path(n).match(x["glob"]) for x in extras) and not _TESTS.search(n)]
+
+
 def read_blobs(repo: Path, branch: str, paths: list[str]) -> dict[str, str]:
     """The files' text at `branch`, through one `git cat-file --batch`."""
     if not paths:
@@ -124,6 +133,8 @@ def mine_repo(repo: Path, spec: dict[str, Any], min_literal: int, rules: list[di
             log.append(f"{spec['name']}: no branch {branch}")
             continue
         paths = files_with_calls(repo, branch, list(packages), spec.get("wrappers") or {}, spec.get("exclude") or ())
+        # a file of messages built away from any call (validate_topic_name.c's reasons) is read for its literals
+        paths = sorted({*paths, *literal_files(repo, branch, spec.get("literals") or [])})
         texts = read_blobs(repo, branch, paths)
         for path, src in texts.items():
             package, layer = package_of(path, packages)

@@ -192,10 +192,36 @@ def cpp_calls(src: str, wrappers: dict[str, str] | None = None) -> Iterator[Call
         if form == "log" and macro.startswith(("RCLCPP_", "RCUTILS_")):
             args = args[_skip(macro, m["s1"] or m["s2"] or ""):]
         arg = next((a for a in args if any(k == "str" for k, _ in a)), None)
+        if arg is None and form == "throw":
+            arg, stream = _streamed(src, m.start(), args), True
         if arg is None:
             continue
         text = _message(arg, _PRINTF if not stream else re.compile(r"(?!)"))
         yield Call(src.count("\n", 0, m.start()) + 1, level, form, text)
+
+
+_STR = re.compile(r"^(?P<name>\w+)\s*\.\s*str\s*\(\s*\)$")
+
+
+def _streamed(src: str, at: int, args: list[list[tuple[str, str]]]) -> list[tuple[str, str]] | None:
+    """A thrown message built in a string stream just before the throw (Fast DDS's ServerAttributes.cpp:
+    `ss << "Wrong ipv4 address passed into the server's list " << address; throw std::invalid_argument(ss.str());`):
+    the tokens streamed into it, read from its last `<<` statement in the 20 lines before; None for any other
+    throw."""
+    only = args[0] if len(args) == 1 and len(args[0]) == 1 else []
+    m = _STR.match(only[0][1]) if only and only[0][0] == "other" else None
+    if m is None:
+        return None
+    start = at
+    for _ in range(20):
+        start = max(0, src.rfind("\n", 0, start))
+    last = None
+    for found in re.finditer(rf"\b{re.escape(m['name'])}\s*<<", src[start:at]):
+        last = found
+    if last is None:
+        return None
+    toks, _ = _tokens(src, start + last.end() - 2, stop_at_semicolon=True)
+    return toks if any(k == "str" for k, _ in toks) else None
 
 
 def py_calls(src: str) -> Iterator[Call]:

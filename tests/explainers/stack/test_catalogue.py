@@ -74,6 +74,18 @@ def test_every_layer_the_issue_names_was_mined() -> None:
      "symptom", None, "nav2"),
     ("[follow_path] [ActionServer] Aborting handle.", "symptom", None, "nav2"),
     ("Failed to make progress", "symptom", None, "nav2"),
+    # printed by ROS 2 Kilted here (scripts/runtime_faults.py): a message Fast DDS streams and throws, then logs
+    ("[SERVER_CLIENT_DISCOVERY Error] Wrong ipv4 address passed into the server's list 192.168.1.300 -> Function "
+     "load_environment_server_info", "cause", "stack.network", "fastdds"),
+    # rcl's reason a topic name is not valid, returned as text (validate_topic_name.c) and raised by rclpy
+    ("Invalid topic name: topic name must not contain characters other than alphanumerics, '_', '~', '{', or '}':",
+     "cause", "stack.configuration_error", "rcl"),
+    # rcl_logging_spdlog (a repository of its own), raised by rclpy as it starts a node's logging
+    ("failed to initialize logging: Failed to create log directory 'settings.yaml/log': 20, at /project/src/"
+     "rcl_logging_spdlog.cpp:153", "cause", "stack.configuration_error", "rcl"),
+    # rclpy's lifecycle node (rolling branch: the repository's master stopped when rolling became its default)
+    ("Unable to start transition 3 from current state (1, 'unconfigured')", "cause", "stack.bringup_failure",
+     "rclpy"),
 ])
 def test_real_lines_read_as_their_role(msg: str, role: str, cause: str | None, layer: str) -> None:
     e = stack_catalogue().match(msg)

@@ -22,6 +22,15 @@ def test_printf_macro_across_lines_skips_the_logger() -> None:
     assert re.search(to_pattern(call.text), "Transform data too old when converting from odom to map")
 
 
+def test_a_message_streamed_then_thrown_is_read_from_its_stream() -> None:
+    # Fast DDS src/cpp/rtps/attributes/ServerAttributes.cpp:197-199@3.2.x
+    src = ('  std::stringstream ss;\n  ss << "Wrong ipv4 address passed into the server\'s list " << address;\n'
+           '  throw std::invalid_argument(ss.str());\n  throw std::runtime_error(err.what());\n')
+    [call] = list(cpp_calls(src))
+    assert (call.line, call.level, call.form) == (3, "ERROR", "throw")
+    assert to_display(call.text) == "Wrong ipv4 address passed into the server's list …"
+
+
 def test_throttled_stream_and_adjacent_literals() -> None:
     src = ('RCLCPP_WARN_THROTTLE(logger_, *clock_, 1000, "Robot is out of bounds " "of the costmap!");\n'
            'RCLCPP_ERROR_STREAM(logger_, "Failed to create controller. Exception: " << ex.what());\n')
