@@ -9,10 +9,15 @@ poses (`/goal_pose`). A new begin line while a goal runs is Nav2's goal preempti
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from hexar.events.records import ERROR, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
+
+if TYPE_CHECKING:
+    from hexar.explainers.navigation.catalogue import Catalogue as NavCatalogue
 
 SOURCE = "nav2"
 SKILL = "navigate_to_pose"
@@ -155,6 +160,21 @@ def _arms_logger(line: LogLine) -> bool:
     return bool(line.name) and any(cat.role(line.name) is not None for cat in (moveit(), control()))
 
 
+_STARTED = "process started with pid ["
+_PROCESS = re.compile(r"^(?P<name>.+?)-\d+$")  # launch's process name: the executable's, then "-<n>"
+
+
+def _nav2_process(line: LogLine, cat: NavCatalogue) -> bool:
+    """Whether launch's line is about a Nav2 process: its name has a Nav2 role (controller_server-3), or its words
+    (the command it ran) name Nav2's packages, servers or plugins; a container's or a bare python3's name says
+    nothing alone, so its command decides."""
+    from hexar.explainers.navigation.chain import NAVIGATION
+
+    m = _PROCESS.match(line.name or "")
+    name = m["name"] if m else (line.name or "")
+    return not name or cat.role(name) is not None or NAVIGATION.search(f"{name} {line.msg}") is not None
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
@@ -173,6 +193,10 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     thrown = [python_exception(line) is not None for line in logs]
     # the processes (launch's names for them) that printed a Python traceback
     python_died = {line.name for line, py in zip(logs, thrown, strict=True) if py and line.name}
+    # launch's "process started with pid [N]" for each process it started (launch/actions/execute_local.py): a
+    # launch whose started processes show none of Nav2's is another module's; with no such line, nothing says so
+    started = [line for line in logs if line.msg.startswith(_STARTED)]
+    nav2_launch = not started or any(_nav2_process(line, cat) for line in started)
     for line, py in zip(logs, thrown, strict=True):
         if _arms_logger(line):
             arms = True
@@ -189,6 +213,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None and not any_robots(line.name))
         if nav2 and entry is not None and entry.id.startswith("launch.") and line.name in python_died:
             continue  # launch's word that a Python program died (its traceback above): Nav2's servers are C++
+        if nav2 and entry is not None and entry.id.startswith("launch.") and not nav2_launch \
+                and not _nav2_process(line, cat):
+            continue  # launch's word about a process of a launch that started nothing of Nav2's
         own = own or nav2 or "[ActionServer] Aborting handle" in line.msg
         node = _bringup_node(line) if not nav2 and "[ActionServer] Aborting handle" not in line.msg else ""
         if node is None:

@@ -11,17 +11,20 @@ catalogues to read with (its own first), its cause prefix, and `words(cause, ...
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import ERROR, LogLine
+from hexar.events.records import ERROR, WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.bringup_answer import derived_start, driver_candidates, start_answer
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
+from hexar.explainers.stack.bringup import PROCESS_SUFFIX
+from hexar.explainers.stack.signals import ended_by
 from hexar.explainers.stack_causes import (
     killed_by_signal,
     mixed_clocks,
@@ -128,11 +131,12 @@ class ModuleExplainer:
                 # a process that died after an error no catalogue explains: the death is that error's consequence
                 d.symptoms = [stack, *d.symptoms][:2]
             elif stack is not None and stack.cause == "bringup.process_died" and d.decisive is None \
-                    and killed_by_signal(stack.line.msg):
+                    and killed_by_signal(stack.line.msg) and not _crash_alone(stack.line, d, context.log.logs):
                 # a crash (SIGSEGV, SIGABRT): what made the program crash is not in its death line, so the death
                 # is quoted as the first error, never told as the cause
                 d.unknown = stack.line
             elif stack is not None and (d.decisive is None or stack.line.t < d.decisive.line.t):
+                # a cause, or a crash or kill with no warning or error before it: the death is all the lines show
                 d.cause, d.decisive, d.support = stack.cause, stack, []
                 d.symptoms = [r for r in d.symptoms if r.line.t >= stack.line.t][:2]
             # a driver's own error line whose why is a strerror text or a set-up wording: ranked with the rest
@@ -335,3 +339,18 @@ def _nav2_logger(line: LogLine) -> bool:
     from hexar.explainers.navigation.catalogue import catalogue as nav2
 
     return nav2().role(line.name) is not None
+
+
+# ros2_control_node runs the hardware interfaces' drivers in its own process: its crash is most often a driver's (a
+# device that is not there, a plugin given wrong parameters), which its death line does not show
+_RUNS_DRIVERS = ("ros2_control_node", "controller_manager")
+
+
+def _crash_alone(died: LogLine, d: Diagnosis, lines: Sequence[LogLine]) -> bool:
+    """A process a signal ended (a kill, a segfault: explainers/stack/signals.py) with no warning or error before it
+    but launch's, and not the process that runs the drivers: nothing else the lines show can be what went wrong."""
+    if PROCESS_SUFFIX.sub("", died.name or "") in _RUNS_DRIVERS:
+        return False
+    return ended_by(died.msg) is not None and d.unknown is None and not d.symptoms and not any(
+        ln.level >= WARN and ln.t <= died.t and ln is not died and not PROCESS_SUFFIX.search(ln.name or "")
+        for ln in lines)

@@ -16,7 +16,11 @@ from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
+from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 from hexar.explainers.stack.middleware import middleware_line, middleware_words
+from hexar.explainers.stack.qos import qos_line, qos_words
+from hexar.explainers.stack.refused import refused_words
+from hexar.explainers.stack.signals import ended_by
 from hexar.explainers.stack.thrown import PyException, exception_quoted, python_exception, thrown_words
 
 KIND_CAUSE = {"params_file": "bringup.configuration_error", "launch_failed": "bringup.configuration_error",
@@ -66,6 +70,11 @@ def _configuration(exc: PyException) -> bool:
 
     entry = stack_catalogue().match(exc.text) if exc.text else None
     return entry is not None and entry.cause == "stack.configuration_error"
+
+
+# rclpy's InvalidParameterTypeException (exceptions.py): "Trying to set parameter '…' to '…' of type '…', expecting
+# type '…'"; rclcpp's InvalidParameterTypeException: "parameter '…' has invalid type: …"
+_PARAMETER_TYPE = re.compile(r"Trying to set parameter|has invalid type|expecting type")
 
 
 def _uncaught_words(line: LogLine) -> str:
@@ -138,6 +147,9 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
         found.append(Reading(denied, None, PERMISSION, "system"))
+    if not found and (qos := qos_line(lines)) is not None:
+        # last: a mismatch may be any pair's (a viewer's subscription), so it is told only when nothing else is
+        found.append(Reading(qos, None, "bringup.configuration_error", "stack", "qos"))
     return min(found, key=lambda r: r.line.t) if found else None
 
 
@@ -186,11 +198,19 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
     if d.decisive is not None and d.decisive.note == "middleware":
         happened, fix = middleware_words(d.decisive.line)
         return f"{head} {happened}.", fix, line
+    if d.decisive is not None and d.decisive.note == "qos":
+        happened, fix = qos_words(d.decisive.line)
+        return f"{head} {happened}.", fix, line
     if cause == "bringup.process_died" and d.decisive is not None and (
             _UNCAUGHT.search(d.decisive.line.msg) or python_exception(d.decisive.line) is not None):
         return (f"{head} one of my processes died {_uncaught_words(d.decisive.line)}.",
                 "Read what the exception says and the lines just before it: the call that threw it (a parameter, "
                 "a plugin or an interface that does not fit) is what to fix.", line)
+    if cause == "bringup.process_died" and d.decisive is not None and (signal := ended_by(d.decisive.line.msg)):
+        name = PROCESS_SUFFIX.sub("", d.decisive.line.name or "")  # launch's process name: scan_filter-1
+        who = f"the process of {name}" if name else "it"
+        return (f"{head} one of my processes died: {who} {signal.happened} (signal {signal.number}, {signal.name}).",
+                signal.fix, line)
     if cause == "bringup.process_died" and d.decisive is not None and (loader := loader_words(d.decisive.line)):
         return f"{head} one of my processes died as it started: {loader[0]}.", loader[1], line
     if cause == "bringup.process_died":
@@ -218,6 +238,12 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
         return (f"{head} a node's lifecycle transition (configure or activate) failed, so it never became active.",
                 "Read the node's error around the transition and bring it up in order (configure, then activate).",
                 line)
+    thrown = d.decisive.line if d.decisive is not None and d.decisive.note == "thrown" else None
+    exc = python_exception(thrown) if thrown is not None else None
+    if cause == "bringup.configuration_error" and thrown and exc and not _PARAMETER_TYPE.search(exc.text):
+        setting, fix = refused_words(exc.text)
+        return (f"{head} my settings never reached my node: {setting}, and its process ended there "
+                f"({thrown_words(thrown)}).", fix, line)
     if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.note == "thrown":
         return (f"{head} a parameter never reached one of my nodes as it should: its value was not of the type the "
                 f"node declares, and its process ended there ({thrown_words(d.decisive.line)}).",
@@ -230,9 +256,9 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                     "node without it and the parameters in it never reached the node.",
                     "Point the launch file at the parameter file the package installs (check its name and the "
                     "package's install rules), or install the file under that name.", line)
-        if d.decisive.note.startswith("'ros2 run "):
-            return (f"{head} a command my launch ran never started: {d.decisive.note}, so it exited with an error "
-                    "before any node of it ran.",
+        if d.decisive.note.startswith("'"):  # bringup's no_program: what ros2run or launch could not run
+            return (f"{head} a command my launch ran never started: {d.decisive.note}, so no node of it "
+                    "ever ran.",
                     "Fix the command in the launch file: the program's and package's names, and the spaces between "
                     "the program and its arguments (launch_ros' Node(package=..., executable=...) builds it for you); "
                     "or build and source the package that installs the program.", line)

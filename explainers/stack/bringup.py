@@ -43,6 +43,7 @@ from dataclasses import dataclass
 
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.stack.catalogue import StackCatalogue, StackEntry, stack_catalogue
+from hexar.explainers.stack.launched import exec_failed
 from hexar.explainers.stack.loader import loader_said, needed
 
 BRINGUP = "stack.bringup_failure"
@@ -367,6 +368,7 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         if kind == "process_died" and client_gave_up(line, ordered[:i]):
             continue
         missing = ros2_run_failed(line, ordered[max(0, i - 8):i]) if kind == "process_died" else None
+        missing = missing or exec_failed(line, ordered[i + 1:i + 3])
         if missing is not None:
             node = PROCESS_SUFFIX.sub("", line.name) or _node(line, kind)
             if ("no_program", node) not in seen:

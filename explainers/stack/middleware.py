@@ -77,6 +77,19 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 "could not be created",
                 "Give ROS_STATIC_PEERS addresses or host names this machine resolves (check with `getent hosts`), "
                 "or add the name to /etc/hosts.")
+    if "passed into the server's list" in words:
+        # ServerAttributes.cpp (Fast DDS): each entry of ROS_DISCOVERY_SERVER is an IPv4/IPv6 address or a host name
+        # it resolves, with an optional port; one it cannot read drops the whole list
+        what, _, value = words.partition(" passed into the server's list")
+        kind = {"Wrong domain name": "a host name that does not resolve", "Wrong ipv4 address": "an IPv4 address "
+                "that is not valid", "Wrong ipv6 address": "an IPv6 address that is not valid"}.get(
+                    what.strip(), what.strip().removeprefix("Wrong ").lower() + " that is not valid")
+        return (f"my DDS middleware (Fast DDS) could not use the discovery server ROS_DISCOVERY_SERVER names: it "
+                f"holds {kind} ({value.strip()}), so my node ran without the server and never sees the nodes that "
+                "find each other through it",
+                "Set ROS_DISCOVERY_SERVER to the server's address as ADDRESS:PORT (a host name must resolve on "
+                "this computer: check with `getent hosts`; the default port is 11811), the same on every computer "
+                "that should use it.")
     if "assuming localhost only" in words:
         value, var = _quoted(words), _quoted(words, 1) or "ROS_AUTOMATIC_DISCOVERY_RANGE"
         return (f"DDS discovery stayed on this computer: {var} had a value rcl does not know ('{value}'), so nodes on "

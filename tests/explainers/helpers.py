@@ -46,3 +46,13 @@ def claimed(found: Explanation) -> set[str]:
     from hexar.claims import read_claims
 
     return {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")}
+
+
+def console_lines(console: str) -> list[Line]:
+    """A pasted console's records (events/console.py), timed from its first stamp plus half a second; a record
+    without a stamp at that first time."""
+    from hexar.events.console import parse_console, stamped
+
+    records = stamped(parse_console(console))
+    first = min(r.stamp_ns or 0 for r in records)
+    return [(((r.stamp_ns or first) - first) / 1e9 + 0.5, r.name or r.process, r.level, r.msg) for r in records]

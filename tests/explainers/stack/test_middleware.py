@@ -9,12 +9,12 @@ from pathlib import Path
 
 import pytest
 
-from hexar.events.console import parse_console, stamped
+from hexar.events.console import parse_console
 from hexar.events.records import ERROR, INFO, WARN, LogLine
 from hexar.explainers.base import Explanation
 from hexar.explainers.stack.middleware import middleware_line
 from hexar.explainers.stack.thrown import python_exception
-from tests.explainers.helpers import claimed, derived_start
+from tests.explainers.helpers import claimed, console_lines, derived_start
 
 PORTS = ("2026-11-29 04:40:42.374 [RTPS Error] Calculated port number is too high. Probably the domainId is over 232 "
          "or portBase is too high. -> Function getMulticastPort")
@@ -49,14 +49,8 @@ Traceback (most recent call last):
 ValueError: min() arg is an empty sequence"""
 
 
-def _lines(console: str) -> list[tuple[float, str, int, str]]:
-    records = stamped(parse_console(console))
-    first = min(r.stamp_ns or 0 for r in records)
-    return [(((r.stamp_ns or first) - first) / 1e9 + 0.5, r.name or r.process, r.level, r.msg) for r in records]
-
-
 def _derived(tmp_path: Path, console: str) -> Explanation:
-    return derived_start(tmp_path, _lines(console))
+    return derived_start(tmp_path, console_lines(console))
 
 
 _claims = claimed

@@ -1,0 +1,56 @@
+"""A node's settings that ROS 2 refused as it made the node, read from the error rcl, rmw or rclpy raised (stable API).
+
+    refused_words(text) -> tuple[str, str]
+
+The texts are the stack catalogue's entries of these settings (explainers/stack/sources.yaml): rcl's security.c
+("SECURITY ERROR: directory '%s' does not exist.", "SECURITY ERROR: unable to find a folder matching the name '%s' in
+'%s'."), rcl_logging_spdlog ("Failed to create log directory '%s': %d"), the name checks of rcl and rmw ("topic name
+must not contain characters other than …", raised by rclpy as "Invalid topic name: …"), and rmw_fastrtps'
+"create_subscription() called for existing topic name %s with incompatible type %s". Each is said with what the
+line shows and the setting to change; what the line does not show (which file or variable gave the value) is not
+claimed.
+"""
+
+from __future__ import annotations
+
+import re
+
+_KEYSTORE = re.compile(r"SECURITY ERROR: directory '(?P<dir>[^']*)' does not exist")
+_ENCLAVE = re.compile(r"SECURITY ERROR: unable to find a folder matching the name '(?P<name>[^']*)' in "
+                      r"'(?P<dir>[^']*)'")
+_LOG_DIR = re.compile(r"Failed to create log directory(?: '(?P<dir>[^']*)')?")
+_NAME = re.compile(r"Invalid (?P<kind>topic|node|namespace)(?: name)?: (?P<why>[^:]+)")
+_TYPES = re.compile(r"called for existing topic name (?:rt)?(?P<topic>/?[^ ]+) with incompatible type "
+                    r"(?P<pkg>\w+)::msg::dds_::(?P<type>\w+?)_?(?:,|$)")
+
+
+def refused_words(text: str) -> tuple[str, str]:
+    """(what was refused, the fix), for a person, from an error's text the stack catalogue reads as a node's settings
+    that ROS 2 refused."""
+    if (m := _KEYSTORE.search(text)) is not None:
+        return (f"security is enabled, and the keystore it names has no such folder ({m['dir']}), so rcl could not "
+                "start my node",
+                "Create the keystore and this node's enclave (ros2 security create_keystore, then create_enclave) and "
+                "point ROS_SECURITY_KEYSTORE at it, or turn security off for this node (ROS_SECURITY_ENABLE=false).")
+    if (m := _ENCLAVE.search(text)) is not None:
+        return (f"security is enabled, and the keystore ({m['dir']}) holds no enclave named {m['name']}, so rcl could "
+                "not start my node",
+                "Create that enclave in the keystore (ros2 security create_enclave), or give the node the enclave it "
+                "has keys for (--ros-args --enclave, or ROS_SECURITY_ENCLAVE_OVERRIDE).")
+    if (m := _LOG_DIR.search(text)) is not None:
+        where = f" ({m['dir']})" if m["dir"] else ""
+        return (f"rcl could not create the folder for its log files{where}, so my node did not start",
+                "Point ROS_LOG_DIR (or ROS_HOME) at a folder this user can create and write, or unset it (the "
+                "default is ~/.ros/log).")
+    if (m := _TYPES.search(text)) is not None:
+        topic = m["topic"].lstrip("/")
+        return (f"two parts of one process use the topic '{topic}' with different message types (one of them "
+                f"{m['pkg']}/msg/{m['type']}), which the middleware refuses, so the second could not be made",
+                "Use one message type per topic: remap one of the two to a topic of its own, or make both use the "
+                "same type.")
+    if (m := _NAME.search(text)) is not None:
+        return (f"a {m['kind']} name my node was given is not a valid ROS name ({m['why'].strip()})",
+                f"Give a valid {m['kind']} name where it is set (a parameter, a remap or the launch file): letters, "
+                "digits and underscores, with / between a topic's parts.")
+    return (f"ROS 2 refused a setting of my node (“{text[:160]}”)",
+            "Fix the setting the quoted error names, where the launch file, parameters or environment give it.")
