@@ -21,6 +21,7 @@ import re
 from collections.abc import Iterable
 from dataclasses import replace
 
+from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
@@ -32,6 +33,7 @@ from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 from hexar.explainers.stack.loader import loader_failure
+from hexar.explainers.stack.thrown import python_exception
 
 BRINGUP = "navigation.bringup_failure"
 CONFIGURATION = "navigation.configuration_error"
@@ -130,10 +132,15 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
         who = "it" if CONTAINER.search(first.node) is None else last.name.strip("/").split("/")[-1]
         finding.notes[0] += f" right after {who} logged '{last.msg.strip().splitlines()[0]}'"
         finding.evidence.insert(0, Evidence.of_log(cause, last))
-    if first.kind == "process_died" and not loader_failure(first.line) and not [
+    # its last words an uncaught exception (libstdc++'s "terminate called after throwing …", or a Python traceback):
+    # that is why it died, quoted above
+    thrown = last is not None and (ABORT in last.msg or python_exception(last) is not None)
+    if first.kind == "process_died" and not loader_failure(first.line) and not thrown and not [
             ln for ln in decisive_errors(logs_list, first.line.t) if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
         finding.notes[0] += "; nothing in my logs says why it died"
+    elif first.kind == "process_died" and thrown:
+        finding.notes[0] += ", an exception nothing caught, which ends a program"
     finding.facts[NEVER_CAME_UP] = 1.0
     return finding
 

@@ -128,6 +128,20 @@ def test_a_process_that_died_with_no_error_before_says_the_logs_do_not_show_why(
     assert "nothing in my logs says why it died" not in answer.text
 
 
+def test_a_process_whose_last_words_are_an_uncaught_exception_is_not_told_as_dying_for_no_reason(
+        tmp_path: Path) -> None:
+    # ros-navigation/navigation2#904 (blind set 3): bt_navigator's libstdc++ terminate handler, then launch's death
+    thrown = [("bt_navigator", INFO, "terminate called after throwing an instance of "
+               "'rclcpp_action::exceptions::UnknownGoalHandleError'"),
+              ("bt_navigator-13", ERROR, "process has died [pid 664, exit code -6, cmd '/opt/ros/humble/lib/"
+               "nav2_bt_navigator/bt_navigator --ros-args']."),
+              ]
+    answer = _explain(tmp_path, thrown, UNAVAILABLE)
+    assert answer.causes[0] == g.BRINGUP
+    assert "UnknownGoalHandleError'', an exception nothing caught, which ends a program" in answer.text
+    assert "nothing in my logs says why it died" not in answer.text
+
+
 def test_a_program_the_loader_could_not_start_is_a_process_that_died_with_the_loaders_reason(tmp_path: Path) -> None:
     # turtlebot/turtlebot4_simulator#14: glibc's "symbol lookup error" (elf/dl-lookup.c:808) on amcl's stderr
     lost = ("/opt/ros/galactic/lib/nav2_amcl/amcl: symbol lookup error: /opt/ros/galactic/lib/libamcl_core.so: "
