@@ -2,6 +2,7 @@
 
     launch_logs(folder) -> list[Path]
     read_launch_log(path, until=None) -> list[LogLine]
+    launch_log_lines(text) -> list[LogLine]
     merge_launch_logs(log) -> None
 
 `ros2 launch` writes `launch.log` into its own folder under ~/.ros/log (launch/logging/__init__.py@jazzy). It holds
@@ -51,16 +52,22 @@ def _line(r: ConsoleLine) -> LogLine:
 
 def read_launch_log(path: Path, until: int | None = None) -> list[LogLine]:
     """The lines of one launch.log, oldest first, without those stamped after `until` (ns)."""
-    # imported here: every recording is read through this module, few have a launch.log beside them
-    from hexar.events.console import parse_console, stamped
-
     try:
         with path.open("rb") as f:
             raw = f.read(MAX_BYTES)
     except OSError as err:
         raise CorruptRecordingError(f"cannot read {path}: {err.strerror or err}") from err
-    lines = [_line(r) for r in stamped(parse_console(raw.decode("utf-8", errors="replace")))]
-    return sorted((ln for ln in lines if until is None or ln.t <= until), key=lambda ln: ln.t)
+    lines = launch_log_lines(raw.decode("utf-8", errors="replace"))
+    return [ln for ln in lines if until is None or ln.t <= until]
+
+
+def launch_log_lines(text: str) -> list[LogLine]:
+    """The lines of launch.log text (whole lines), oldest first, with origin LAUNCH_LOG; live/launch_log.py reads a
+    launch's file as it grows with this too."""
+    # imported here: every recording is read through this module, few have a launch.log beside them
+    from hexar.events.console import parse_console, stamped
+
+    return sorted((_line(r) for r in stamped(parse_console(text))), key=lambda ln: ln.t)
 
 
 def merge_launch_logs(log: EventLog) -> None:

@@ -312,6 +312,11 @@ def serve(
     horizon: Annotated[float, typer.Option(help="keep this many seconds of robot traffic")] = 900.0,
     quiet: Annotated[bool, typer.Option("--quiet", help="do not print the answers")] = False,
     record: Annotated[Path | None, typer.Option(help="keep a rolling rosbag2 recording of the traffic here")] = None,
+    launch_log: Annotated[Path | None, typer.Option(help="follow the newest launch.log in this folder of launch's log "
+                                                    "folders [default: ROS_LOG_DIR, else ROS_HOME/log, else "
+                                                    "~/.ros/log, when it exists]")] = None,
+    follow_launch_log: Annotated[bool, typer.Option(help="read launch's log on this computer (process deaths, "
+                                                    "stderr)")] = True,
 ) -> None:
     """Listen to a running robot: explain failures as they happen, answer questions on /hexar/question."""
 
@@ -322,7 +327,8 @@ def serve(
         return run_serve(ServeOptions(
             transport=transport, domain=domain, llm=llm, proactive=proactive, tts_topic=tts_topic, voice=voice,
             mic=mic, wavs=list(wav or []), out_dir=out_dir, duration_s=duration, keep_tasks=keep_tasks,
-            horizon_s=horizon, quiet=quiet, record=record))
+            horizon_s=horizon, quiet=quiet, record=record, launch_log=launch_log,
+            follow_launch_log=follow_launch_log))
 
     raise typer.Exit(guarded(body))
 

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 from hexar.live.errors import BadOptionError
 from hexar.live.node import NodeOptions, Proactive, Transport
@@ -20,6 +20,9 @@ from hexar.safe_text import json_dumps, safe
 TRANSPORTS = ("auto", "dds", "rclpy")
 PROACTIVE = ("off", "publish", "speak")
 VOICES = ("auto", "robot", "piper", "espeak", "none")
+
+if TYPE_CHECKING:
+    from hexar.live.launch_log import LaunchLogFollower
 
 
 def domain_id(value: int | None) -> int:
@@ -79,6 +82,9 @@ class ServeOptions:
     horizon_s: float = 900.0
     quiet: bool = False
     record: Path | None = None
+    # launch's log folders on this computer (live/launch_log.py); None: where launch writes them, if it exists
+    launch_log: Path | None = None
+    follow_launch_log: bool = True
 
 
 def serve(opts: ServeOptions) -> int:
@@ -132,10 +138,13 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
         ears.start()
     print(f"hexar serve: listening over {transport.name}; answers on /hexar/answer; writes only "
           f"{', '.join(transport.writer_topics())}", file=sys.stderr, flush=True)
+    follower = _launch_follower(opts)
     try:
         deadline = None if opts.duration_s is None else time.monotonic() + opts.duration_s
         while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
             stop.wait(0.2)
+            if follower is not None:
+                log.extend(follower.poll())
     except KeyboardInterrupt:
         pass
     finally:
@@ -145,6 +154,24 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
               f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers, "
               f"{node.errors} errors", file=sys.stderr, flush=True)
     return 0
+
+
+def _launch_follower(opts: ServeOptions) -> LaunchLogFollower | None:
+    """The follower of launch's log on this computer, announced on stderr; None when it is off or there is none."""
+    from hexar.live.launch_log import LaunchLogFollower, log_root
+
+    if not opts.follow_launch_log:
+        return None
+    root = opts.launch_log or log_root()
+    if not root.is_dir():
+        if opts.launch_log is not None:
+            print(f"hexar serve: no launch log folder at {root} yet; following it once launch makes it",
+                  file=sys.stderr, flush=True)
+        else:
+            return None
+    print(f"hexar serve: following launch's log under {root}", file=sys.stderr, flush=True)
+    # a launch of yesterday is not what the robot did now: only its lines within the horizon are kept
+    return LaunchLogFollower(root, oldest_ns=time.time_ns() - int(opts.horizon_s * 1e9))
 
 
 @contextmanager

@@ -31,6 +31,7 @@ from hexar.events.records import (
     TaskUpdate,
     TwistSample,
 )
+from hexar.events.roslog import LOG_FILE_TYPE
 
 NS = 1_000_000_000
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
@@ -146,8 +147,9 @@ class LiveLog:
         if isinstance(r, LogLine):
             if len(r.msg) > self.limits.max_chars:
                 self.truncated += 1
-                r = LogLine(r.t, r.level, r.name, _truncate(r.msg, self.limits.max_chars))
-            self._insert(self._logs, r, c.ROSOUT)
+                r = replace(r, msg=_truncate(r.msg, self.limits.max_chars))
+            # counted under where it came from: /rosout, or launch's log file followed beside it (live/launch_log.py)
+            self._insert(self._logs, r, r.origin)
         elif isinstance(r, TaskUpdate):
             updates = self._tasks.pop(r.task_id, [])
             updates.append(r)
@@ -289,7 +291,8 @@ class LiveLog:
         stamps = [*(r.t for r in logs[:1] + logs[-1:]), *(r.t for r in poses[:1] + poses[-1:]),
                   *(u.t for u in updates),
                   *(r.t for seq in (twists, odom, goals, goal_statuses) for r in seq[:1] + seq[-1:])]
-        topics = {t: TopicInfo(t, c.TYPE_OF.get(t, ""), n) for t, n in sorted(counts.items())}
+        topics = {t: TopicInfo(t, LOG_FILE_TYPE if t == c.LAUNCH_LOG else c.TYPE_OF.get(t, ""), n)
+                  for t, n in sorted(counts.items())}
         log = EventLog(path=Path(self.name), storage="live", start=min(stamps, default=0),
                        end=max(stamps, default=0), topics=topics, warnings=warnings, logs=logs,
                        task_updates=updates, poses=poses, flags=flags, statuses=statuses, twists=twists,
