@@ -22,3 +22,10 @@ def suite(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("suite")
     simulate_suite(out)
     return out
+
+
+@pytest.fixture(autouse=True)
+def no_launch_of_this_machine(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch) -> None:
+    """`hexar serve` and `hexar web --live` follow launch's log under ROS_LOG_DIR (live/launch_log.py): an empty
+    folder of the test's own, so no launch this machine ran is read into a test's answers."""
+    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))

@@ -10,12 +10,15 @@ import sys
 import threading
 import time
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.live.log import Limits, LiveLog
 from hexar.web.pagedata import Findings
+
+if TYPE_CHECKING:
+    from hexar.live.launch_log import LaunchLogFollower
 
 LIVE = "live"  # the live run's name in the runs list and the page's address
 REBUILD_S = 0.5  # a snapshot copies every kept record: at most one rebuild per this long, however many polls
@@ -81,9 +84,11 @@ class LiveSource:
     """The live run as the page reads it: the latest snapshot, rebuilt only when records arrived (and not more
     often than REBUILD_S), so page polls between arrivals cost nothing."""
 
-    def __init__(self, log: LiveLog, watcher: DdsWatcher | None = None) -> None:
+    def __init__(self, log: LiveLog, watcher: DdsWatcher | None = None,
+                 follower: LaunchLogFollower | None = None) -> None:
         self.log = log
         self.watcher = watcher
+        self.follower = follower  # launch's log on this computer, read at each snapshot (live/launch_log.py)
         self._lock = threading.Lock()
         self._snap: Snapshot | None = None
         self._built = 0.0
@@ -91,10 +96,16 @@ class LiveSource:
 
     @classmethod
     def over_dds(cls, domain_id: int, limits: Limits | None = None) -> LiveSource:
+        from hexar.live.launch_log import LaunchLogFollower, log_root
+
         watcher = DdsWatcher(domain_id)
         log = LiveLog(limits, name=f"live (DDS domain {domain_id})")
         watcher.start(log)
-        return cls(log, watcher)
+        root = log_root()
+        horizon_ns = int(log.limits.horizon_s * 1e9)
+        # as `hexar serve` does: the newest launch's log, when launch writes on this computer
+        follower = LaunchLogFollower(root, oldest_ns=time.time_ns() - horizon_ns) if root.is_dir() else None
+        return cls(log, watcher, follower)
 
     def _kept(self) -> int:
         # read under the log's lock, so a record counted is a record a snapshot taken after this holds; counts
@@ -106,6 +117,8 @@ class LiveSource:
         """The latest snapshot; its version changes whenever the kept records changed. `fresh`: whatever
         arrived until now, however recently the last one was built (a chat answer must see it)."""
         with self._lock:
+            if self.follower is not None:
+                self.log.extend(self.follower.poll())
             kept = self._kept()
             snap = self._snap
             if snap is None or (kept != snap.version and (fresh or time.monotonic() - self._built >= REBUILD_S)):

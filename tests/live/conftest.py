@@ -34,9 +34,3 @@ def transport(request: pytest.FixtureRequest) -> str:
     so each run also crosses DDS vendors."""
     return str(request.param)
 
-
-@pytest.fixture(autouse=True)
-def no_launch_of_this_machine(tmp_path_factory: pytest.TempPathFactory, monkeypatch: pytest.MonkeyPatch) -> None:
-    """`hexar serve` follows launch's log under ROS_LOG_DIR (live/launch_log.py): an empty folder of the test's own,
-    so no launch this machine ran before is read into a test's answers."""
-    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path_factory.mktemp("ros_log")))

@@ -238,3 +238,15 @@ def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
             assert driver.find_element(By.ID, "chat-input").get_attribute("value") == "and then"
     finally:
         robot.close()
+
+
+def test_the_live_page_reads_launchs_log_of_this_computer(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from tests.live.test_launch_log import _launch, _now_lines
+
+    _launch(tmp_path / "ros_log", "2026-11-29-07-00-00-000000-robot-1", _now_lines())
+    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path / "ros_log"))
+    with live_page(fresh_domain(), tmp_path / "t.sqlite") as (url, _):
+        status, run = wait_for(lambda: get(url + "api/run?name=live"),
+                               lambda r: r[1].get("task", {}).get("outcome") == "failed")
+    assert status == 200 and run["findings"][0]["causes"] == ["bringup.process_died"]
+    assert "min() arg is an empty sequence" in run["findings"][0]["text"]
