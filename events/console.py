@@ -262,6 +262,9 @@ def _parse_line(line: str, previous: str, records: list[ConsoleLine]) -> None:
         records.append(_record(None, None, None, rest.strip(), proc))
 
 
+_RCL_AT = re.compile(r", at \S+:\d+$")  # rcutils' error state: the message, then where it was set
+
+
 def _in_traceback(line: str, records: list[ConsoleLine]) -> bool:
     """Whether `line` went into the traceback its process's last record holds (see _traceback_line): behind launch's
     prefix, other processes' lines may come between; without one, only the last record can be it."""
@@ -284,7 +287,11 @@ def _traceback_line(line: str, tb: ConsoleLine) -> bool:
     if proc != tb.process or not rest.strip():
         return False
     if "exception" in tb.synthesised:  # the exception's message goes on ("\n, at /project/src/rcl/node.c:249")
-        if not rest[:1].isspace() and not rest.startswith(","):
+        said = tb.msg.partition(f"\n{TRACEBACK}")[0]
+        # rcl words an error "<message>, at <file>:<line>": until that place is printed, the message goes on
+        # (rmw_fastrtps' "…security libraries\nPlease compile Fast DDS …, at …/participant.cpp:406, at …")
+        unfinished = _RCL_AT.search(said) is None and _RCL_AT.search(rest) is not None
+        if not rest[:1].isspace() and not rest.startswith(",") and not unfinished:
             return False
         said, _, frames = tb.msg.partition(f"\n{TRACEBACK}")
         tb.msg = f"{said}\n{rest.rstrip()}\n{TRACEBACK}{frames}"

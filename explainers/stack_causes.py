@@ -14,7 +14,7 @@ from collections.abc import Sequence
 
 from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
-from hexar.events.records import ERROR, WARN, LogLine
+from hexar.events.records import ERROR, TRACEBACK, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
 from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 from hexar.explainers.stack.middleware import middleware_line, middleware_words
@@ -62,13 +62,15 @@ def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | N
                       or python_exception(ln) is not None)), None)
 
 
-def _configuration(exc: PyException) -> bool:
+def _configuration(line: LogLine, exc: PyException) -> bool:
     """A Python node's uncaught exception whose text the stack catalogue reads as a configuration error (rclpy's
-    InvalidParameterTypeException: a parameter given a value of another type than the node declares). A C++ one is
-    left to the module catalogues, which read its what() in their own words."""
+    InvalidParameterTypeException: a parameter given a value of another type than the node declares; a setting rcl
+    refused). Read as printed, line breaks kept: a message of the catalogue may hold one (rmw_fastrtps' "…security
+    libraries\nPlease compile…"). A C++ one is left to the module catalogues, which read its what() in their words."""
     from hexar.explainers.stack.catalogue import stack_catalogue
 
-    entry = stack_catalogue().match(exc.text) if exc.text else None
+    printed = line.msg.partition(f"\n{TRACEBACK}")[0]
+    entry = stack_catalogue().match(printed) if exc.text else None
     return entry is not None and entry.cause == "stack.configuration_error"
 
 
@@ -141,7 +143,7 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
         # a Python process that died of an exception (after the readings above: rcl's own error raised as RCLError
         # is theirs); one whose text is a parameter of the wrong type (rclpy's InvalidParameterTypeException) is
         # that configuration error, told with the process's end
-        cause = "bringup.configuration_error" if _configuration(exc) else "bringup.process_died"
+        cause = "bringup.configuration_error" if _configuration(thrown, exc) else "bringup.process_died"
         found.append(Reading(thrown, None, cause, "stack", "thrown"))
     # an INFO line that mentions it reports nothing wrong (explainers/stated_causes.py reads the rest of such lines)
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)

@@ -24,6 +24,10 @@ CONFIGURATION = "stack.middleware_configuration"
 CAUSES = {NETWORK: "system.network", CONFIGURATION: "bringup.configuration_error"}
 
 _QUOTED = re.compile(r"'([^']*)'")
+# Cyclone DDS's configuration errors (ddsi_config.c cfg_error: "config: <element path>: <what> (<source> line N)"),
+# whose message is formatted from pieces too short to mine ("%s: unknown %s")
+_NO_FILE = "can't open configuration file"  # ddsi_config.c:2252@releases/0.10.x
+_CYCLONE_CONFIG = re.compile(r"^config: (?P<path>//CycloneDDS\S*?): (?P<what>.+?)(?: \((?P<where>[^()]*)\))?$")
 # Fast DDS's console decoration: "[RTPS Error] text -> Function getMulticastPort"
 _FASTDDS = re.compile(r"^\[(?P<category>[A-Z][A-Z0-9_]*) (?:Error|Warning|Info)\] (?P<text>.*?)(?: -> Function \w+)?$",
                       re.S)
@@ -36,6 +40,8 @@ def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tupl
     for line in lines:
         if line.level < WARN or (before is not None and line.t > before):
             continue
+        if _CYCLONE_CONFIG.match(text(line)):
+            return line, CAUSES[CONFIGURATION]
         entry = cat.match(line.msg)
         if entry is not None and entry.cause in CAUSES:
             return line, CAUSES[entry.cause]
@@ -122,6 +128,22 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 f"{f' ({value})' if value else ''} and kept its defaults",
                 f"Set {var or 'the variable'} to a value Fast DDS documents (for FASTDDS_BUILTIN_TRANSPORTS: DEFAULT, "
                 "UDPv4, UDPv6, SHM, LARGE_DATA, DEFAULTv6, ...), or unset it.")
+    if (m := _CYCLONE_CONFIG.match(words)) is not None:
+        return (f"the middleware's settings never reached my node: Cyclone DDS did not take its configuration "
+                f"({m['path']}: {m['what']}), so it did not start",
+                "Fix that element of the Cyclone DDS configuration (CYCLONEDDS_URI or the file it names: element "
+                "names are case-sensitive, see Cyclone DDS's configuration reference), or unset it to try the "
+                "defaults.")
+    if words.startswith(_NO_FILE):
+        return (f"the middleware's settings never reached my node: Cyclone DDS could not open the configuration "
+                f"file CYCLONEDDS_URI names ({words.removeprefix(_NO_FILE).strip()}), so it did not start",
+                "Point CYCLONEDDS_URI at the file that exists (file:// and an absolute path), or put the XML "
+                "itself in the variable.")
+    if words.startswith("realpath failed"):
+        return ("the middleware's settings never reached my node: Fast DDS found no XML profiles file where "
+                f"FASTDDS_DEFAULT_PROFILES_FILE points ({words}), so it ran on its default settings",
+                "Point FASTDDS_DEFAULT_PROFILES_FILE at the XML file (an absolute path that exists on this "
+                "computer), or unset it.")
     if words.startswith(("Error opening '", "Error parsing '")):
         return (f"the middleware's settings never reached my node: Fast DDS could not load its XML profiles file "
                 f"({_quoted(words)}), so it ran on its default settings instead of that file's",

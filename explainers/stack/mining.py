@@ -241,7 +241,9 @@ def py_calls(src: str) -> Iterator[Call]:
 def literals(src: str, regex: str) -> Iterator[tuple[int, str]]:
     """(line, text) of each string constant `regex` (one group) finds: messages built away from their log call."""
     for m in re.finditer(regex, src):
-        yield src.count("\n", 0, m.start()) + 1, _PYFIELD.sub(WILD, m.group(1))
+        # a C string's escapes ("…file %s\\n") decoded as the compiler does, and its printf fields wildcards
+        text = re.sub(r"\\(.)", lambda e: _ESCAPES.get(e[1], e[1] if not e[1].isalnum() else WILD), m.group(1))
+        yield src.count("\n", 0, m.start()) + 1, _PYFIELD.sub(WILD, _PRINTF.sub(WILD, text))
 
 
 def literal_length(text: str) -> int:

@@ -6,7 +6,9 @@ The texts are the stack catalogue's entries of these settings (explainers/stack/
 ("SECURITY ERROR: directory '%s' does not exist.", "SECURITY ERROR: unable to find a folder matching the name '%s' in
 '%s'."), rcl_logging_spdlog ("Failed to create log directory '%s': %d"), the name checks of rcl and rmw ("topic name
 must not contain characters other than …", raised by rclpy as "Invalid topic name: …"), and rmw_fastrtps'
-"create_subscription() called for existing topic name %s with incompatible type %s". Each is said with what the
+"create_subscription() called for existing topic name %s with incompatible type %s", and the environment's
+settings rcl and rmw refuse (a ROS_DOMAIN_ID that is not a number; security on a Fast DDS built without it). Each is
+said with what the
 line shows and the setting to change; what the line does not show (which file or variable gave the value) is not
 claimed.
 """
@@ -37,6 +39,15 @@ def refused_words(text: str) -> tuple[str, str]:
                 "not start my node",
                 "Create that enclave in the keystore (ros2 security create_enclave), or give the node the enclave it "
                 "has keys for (--ros-args --enclave, or ROS_SECURITY_ENCLAVE_OVERRIDE).")
+    if "doesn't have the security libraries" in text:
+        return ("security is enabled, but this Fast DDS was built without its security libraries, so rcl could not "
+                "make my node",
+                "Use a Fast DDS built with security (-DSECURITY=ON; the ROS 2 binary packages are), or turn security "
+                "off for this node (ROS_SECURITY_ENABLE=false).")
+    if "ROS_DOMAIN_ID is not an integral number" in text:
+        return ("ROS_DOMAIN_ID is not a whole number, so rcl could not start my node",
+                "Set ROS_DOMAIN_ID to a whole number from 0 to 101, the same on every computer of the robot, or "
+                "unset it (domain 0).")
     if (m := _LOG_DIR.search(text)) is not None:
         where = f" ({m['dir']})" if m["dir"] else ""
         return (f"rcl could not create the folder for its log files{where}, so my node did not start",
