@@ -22,12 +22,10 @@ import os
 import re
 import subprocess
 import sys
-import tempfile
 from importlib.metadata import version
 from pathlib import Path
 
-import yaml
-from stack_faults import CONFIG, NODE, Fault, scrub
+from stack_faults import CONFIG, NODE, Fault, scrub, write_set
 
 QOS = """\
 import sys
@@ -241,22 +239,16 @@ def main() -> int:
     args = parser.parse_args()
     launched = re.search(r"<version>(.+?)</version>", (args.launch / "package.xml").read_text(encoding="utf-8"))
     stack = f"rclpy {version('ros-kilted-rclpy')}, ros2/launch {launched.group(1) if launched else 'checkout'}"
-    entries = []
-    for fault in FAULTS:
-        with tempfile.TemporaryDirectory() as tmp:
-            text, code = run(fault, Path(tmp), args.launch.absolute(), args.launch_python)
-            lines = scrub(text, Path(tmp))
-            for local, fixed in local_names(args.launch.absolute(), args.launch_python):
-                lines = lines.replace(local, fixed)
-        print(f"{fault.id}: exit {code}, {len(lines.splitlines())} lines")
-        entries.append({
-            "id": f"kilted-{fault.id}", "source": f"scripts/runtime_faults.py on ROS 2 Kilted ({stack})",
-            "url": f"scripts/runtime_faults.py#{fault.id}", "distro": "kilted", "module": fault.module,
-            "outcome": fault.outcome, "cause": fault.cause,
-            "cause_quote": fault.cause_quote, "logs_show_cause": True,
-            "notes": " ".join(filter(None, [f"Exit code {code}.", fault.notes])), "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(f"{HEADER}\n{body}", encoding="utf-8")
+    names = local_names(args.launch.absolute(), args.launch_python)
+
+    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
+        text, code = run(fault, work, args.launch.absolute(), args.launch_python)
+        lines = scrub(text, work)
+        for local, fixed in names:
+            lines = lines.replace(local, fixed)
+        return lines, code
+
+    write_set(args.out, HEADER, "runtime_faults.py", stack, FAULTS, run_one)
     return 0
 
 

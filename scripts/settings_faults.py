@@ -18,12 +18,9 @@ import argparse
 import os
 import subprocess
 import sys
-import tempfile
-from importlib.metadata import version
 from pathlib import Path
 
-import yaml
-from stack_faults import CONFIG, CYCLONE, NODE, Fault, scrub
+from stack_faults import CONFIG, CYCLONE, NODE, Fault, scrub, versions, write_set
 
 LIVELINESS = """\
 import time
@@ -146,23 +143,12 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args()
-    stack = f"rclpy {version('ros-kilted-rclpy')}, cyclonedds {version('cyclonedds')}"
-    entries = []
-    for fault in FAULTS:
-        with tempfile.TemporaryDirectory() as tmp:
-            text, code = run(fault, Path(tmp))
-            lines = scrub(text, Path(tmp)).replace(sys.executable, "/opt/venv/bin/python")
-        print(f"{fault.id}: exit {code}, {len(lines.splitlines())} lines")
-        entries.append({
-            "id": f"kilted-{fault.id}", "source": f"scripts/settings_faults.py on ROS 2 Kilted ({stack})",
-            "url": f"scripts/settings_faults.py#{fault.id}", "distro": "kilted", "module": fault.module,
-            "outcome": fault.outcome, "cause": fault.cause,
-            "cause_quote": fault.cause_quote, "logs_show_cause": fault.id not in SILENT,
-            "notes": " ".join(filter(None, [f"Exit code {code}.", fault.notes, SILENT.get(fault.id, ""),
-                                            CORRECTED.get(fault.id, "")])),
-            "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(f"{HEADER}\n{body}", encoding="utf-8")
+
+    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
+        text, code = run(fault, work)
+        return scrub(text, work).replace(sys.executable, "/opt/venv/bin/python"), code
+
+    write_set(args.out, HEADER, "settings_faults.py", versions(), FAULTS, run_one, SILENT, CORRECTED)
     return 0
 
 

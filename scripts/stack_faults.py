@@ -21,6 +21,7 @@ import subprocess
 import sys
 import sysconfig
 import tempfile
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from importlib.metadata import version
 from pathlib import Path
@@ -159,25 +160,43 @@ def scrub(text: str, work: Path) -> str:
     return "\n".join(line.rstrip() for line in out.strip().splitlines()) + "\n"
 
 
+def write_set(out: Path, header: str, script: str, stack: str, faults: Iterable[Fault],
+              run_one: Callable[[Fault, Path], tuple[str, int]], silent: Mapping[str, str] | None = None,
+              notes: Mapping[str, str] | None = None) -> None:
+    """Run each fault in a folder of its own (`run_one`: its scrubbed output and exit code) and write the excerpts in
+    the real_modules format, `silent` ones (id -> why) with logs_show_cause false, to `out` under `header`."""
+    silent, notes = silent or {}, notes or {}
+    entries = []
+    for fault in faults:
+        with tempfile.TemporaryDirectory() as tmp:
+            lines, code = run_one(fault, Path(tmp))
+        print(f"{fault.id}: exit {code}, {len(lines.splitlines())} lines")
+        said = [f"Exit code {code}.", fault.notes, silent.get(fault.id, ""), notes.get(fault.id, "")]
+        entries.append({
+            "id": f"kilted-{fault.id}", "source": f"scripts/{script} on ROS 2 Kilted ({stack})",
+            "url": f"scripts/{script}#{fault.id}", "distro": "kilted", "module": fault.module,
+            "outcome": fault.outcome, "cause": fault.cause,
+            "cause_quote": fault.cause_quote, "logs_show_cause": fault.id not in silent,
+            "notes": " ".join(filter(None, said)), "lines": lines})
+    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
+    out.write_text(f"{header}\n{body}", encoding="utf-8")
+
+
+def versions() -> str:
+    """The stack's versions as an excerpt's source names them."""
+    return f"rclpy {version('ros-kilted-rclpy')}, cyclonedds {version('cyclonedds')}"
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args()
-    stack = f"rclpy {version('ros-kilted-rclpy')}, cyclonedds {version('cyclonedds')}"
-    entries = []
-    for fault in FAULTS:
-        with tempfile.TemporaryDirectory() as tmp:
-            text, code = run(fault, Path(tmp))
-            lines = scrub(text, Path(tmp))
-        print(f"{fault.id}: exit {code}, {len(lines.splitlines())} lines")
-        entries.append({
-            "id": f"kilted-{fault.id}", "source": f"scripts/stack_faults.py on ROS 2 Kilted ({stack})",
-            "url": f"scripts/stack_faults.py#{fault.id}", "distro": "kilted", "module": fault.module,
-            "outcome": fault.outcome, "cause": fault.cause,
-            "cause_quote": fault.cause_quote, "logs_show_cause": True,
-            "notes": " ".join(filter(None, [f"Exit code {code}.", fault.notes])), "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(f"{HEADER}\n{body}", encoding="utf-8")
+
+    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
+        text, code = run(fault, work)
+        return scrub(text, work), code
+
+    write_set(args.out, HEADER, "stack_faults.py", versions(), FAULTS, run_one)
     return 0
 
 

@@ -56,3 +56,10 @@ def console_lines(console: str) -> list[Line]:
     records = stamped(parse_console(console))
     first = min(r.stamp_ns or 0 for r in records)
     return [(((r.stamp_ns or first) - first) / 1e9 + 0.5, r.name or r.process, r.level, r.msg) for r in records]
+
+
+def printed(suite: str, ident: str) -> str:
+    """What the real stack printed for one excerpt of a real_modules suite (its `lines`), as the set froze it."""
+    from hexar.evals.real_modules import load_excerpts
+
+    return next(e.lines for e in load_excerpts(suite) if e.id == ident)

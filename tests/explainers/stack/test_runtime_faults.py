@@ -10,149 +10,20 @@ import pytest
 
 from hexar.events.records import ERROR
 from hexar.explainers.base import Explanation
-from tests.explainers.helpers import claimed, console_lines, derived_start, write_lines
+from tests.explainers.helpers import claimed, console_lines, derived_start, printed, write_lines
 
-QOS_ODOM = """\
-[WARN] [1795935568.599864660] [ekf_filter]: New publisher discovered on topic 'odom', offering incompatible QoS.\
- No messages will be received from it. Last incompatible policy: RELIABILITY
-[WARN] [1795935568.601425416] [base_driver]: New subscription discovered on topic 'odom', requesting incompatible\
- QoS. No messages will be sent to it. Last incompatible policy: RELIABILITY
-"""
-
-QOS_DEADLINE = """\
-[WARN] [1795935573.023613849] [teleop]: New subscription discovered on topic 'cmd_vel', requesting incompatible\
- QoS. No messages will be sent to it. Last incompatible policy: DEADLINE
-[WARN] [1795935573.025127445] [base_controller]: New publisher discovered on topic 'cmd_vel', offering\
- incompatible QoS. No messages will be received from it. Last incompatible policy: DEADLINE
-"""
-
-TYPES = """\
-Traceback (most recent call last):
-  File "/home/robot/ws/types.py", line 9, in <module>
-    ekf.create_subscription(Odometry, 'odom', lambda msg: None, 10)
-  File "/opt/venv/lib/python3/site-packages/rclpy/node.py", line 1744, in create_subscription
-    subscription_object = _rclpy.Subscription(
-                          ^^^^^^^^^^^^^^^^^^^^
-rclpy._rclpy_pybind11.RCLError: Failed to create subscription: create_subscription() called for existing topic\
- name rt/odom with incompatible type nav_msgs::msg::dds_::Odometry_, at /project/src/subscription.cpp:526, at\
- /project/src/rcl/subscription.c:116
-"""
-
-TOPIC_NAME = """\
-Traceback (most recent call last):
-  File "/home/robot/ws/topic.py", line 8, in <module>
-    node.create_subscription(Odometry, node.get_parameter('odom_topic').value, lambda msg: None, 10)
-  File "/opt/venv/lib/python3/site-packages/rclpy/node.py", line 1730, in create_subscription
-    raise ex from None
-  File "/opt/venv/lib/python3/site-packages/rclpy/node.py", line 1728, in create_subscription
-    self._validate_topic_or_service_name(topic)
-  File "/opt/venv/lib/python3/site-packages/rclpy/node.py", line 1555, in _validate_topic_or_service_name
-    validate_topic_name(topic_or_service_name, is_service=is_service)
-  File "/opt/venv/lib/python3/site-packages/rclpy/validate_topic_name.py", line 45, in validate_topic_name
-    raise InvalidTopicNameException(name, error_msg, invalid_index)
-rclpy.exceptions.InvalidTopicNameException: Invalid topic name: topic name must not contain characters other than\
- alphanumerics, '_', '~', '{', or '}':
-  'wheel odom'
-        ^
-"""
-
-ACTIVATE_FIRST = """\
-[WARN] [1795935576.415309294] [rcl_lifecycle]: No transition matching 3 found for current state unconfigured
-[ERROR] [1795935576.434988699] [lidar_driver]: Unable to start transition 3 from current state (1, 'unconfigured')
-"""
-
-KEYSTORE = """\
-Traceback (most recent call last):
-  File "/home/robot/ws/node.py", line 5, in <module>
-    rclpy.init(args=sys.argv)
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 137, in init
-    return InitContextManager(args, context, domain_id, signal_handler_options)
-           ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 95, in __init__
-    self.context.init(args, domain_id=domain_id)
-  File "/opt/venv/lib/python3/site-packages/rclpy/context.py", line 95, in init
-    self.__context = _rclpy.Context(
-                     ^^^^^^^^^^^^^^^
-rclpy._rclpy_pybind11.RCLError: failed to initialize rcl: SECURITY ERROR: directory\
- '/home/robot/keystore/enclaves' does not exist., at /project/src/rcl/security.c:202
-"""
-
-LOG_DIR = """\
-Traceback (most recent call last):
-  File "/home/robot/ws/node.py", line 5, in <module>
-    rclpy.init(args=sys.argv)
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 137, in init
-    return InitContextManager(args, context, domain_id, signal_handler_options)
-           ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 95, in __init__
-    self.context.init(args, domain_id=domain_id)
-  File "/opt/venv/lib/python3/site-packages/rclpy/context.py", line 102, in init
-    _rclpy.rclpy_logging_configure(self.__context)
-rclpy._rclpy_pybind11.RCLError: failed to initialize logging: Failed to create log directory 'settings.yaml/log':\
- 20, at /project/src/rcl_logging_spdlog.cpp:153
-"""
-
-SERVER_NAME = """\
-2026-11-29 06:59:38.518 [SERVER_CLIENT_DISCOVERY Error] Wrong domain name passed into the server's list\
- robot-base.local:11811 -> Function load_environment_server_info
-[INFO] [1795935578.609752102] [scan_filter]: filtering scans at 10 Hz
-"""
-
-SERVER_IPV4 = """\
-2026-11-29 06:59:39.372 [SERVER_CLIENT_DISCOVERY Error] Wrong ipv4 address passed into the server's list\
- 192.168.1.300 -> Function load_environment_server_info
-[INFO] [1795935579.546639707] [scan_filter]: filtering scans at 10 Hz
-"""
-
-KILLED = """\
-[INFO] [launch]: All log files can be found below /home/robot/ws/.ros/log/2026-11-29-06-59-40-271465-vm-13400
-[INFO] [launch]: Default logging verbosity is set to INFO
-[INFO] [scan_filter-1]: process started with pid [13401]
-[scan_filter-1] [INFO] [1795935580.710916696] [scan_filter]: filtering scans at 10 Hz
-[ERROR] [scan_filter-1]: process has died [pid 13401, exit code -9, cmd '/opt/venv/bin/python child.py killed'].
-"""
-
-SEGFAULT = """\
-[INFO] [launch]: All log files can be found below /home/robot/ws/.ros/log/2026-11-29-06-59-41-432674-vm-13422
-[INFO] [launch]: Default logging verbosity is set to INFO
-[INFO] [scan_filter-1]: process started with pid [13423]
-[scan_filter-1] [INFO] [1795935581.829564150] [scan_filter]: filtering scans at 10 Hz
-[ERROR] [scan_filter-1]: process has died [pid 13423, exit code -11, cmd '/opt/venv/bin/python child.py segfault'].
-"""
-
-NOT_INSTALLED = """\
-[INFO] [launch]: All log files can be found below /home/robot/ws/.ros/log/2026-11-29-06-59-42-608220-vm-13444
-[INFO] [launch]: Default logging verbosity is set to INFO
-[ERROR] [scan_filter-1]: exception occurred while executing process:
-Traceback (most recent call last):
-  File "/opt/ros/launch/launch/actions/execute_local.py", line 569, in __execute_process
-    transport, self._subprocess_protocol = await async_execute_process(
-                                           ^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/opt/launch-venv/lib/python3.11/site-packages/osrf_pycommon/process_utils/async_execute_process_asyncio/imp\
-l.py", line 139, in async_execute_process
-    transport, protocol = await _async_execute_process_nopty(
-                          ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/opt/launch-venv/lib/python3.11/site-packages/osrf_pycommon/process_utils/async_execute_process_asyncio/imp\
-l.py", line 45, in _async_execute_process_nopty
-    transport, protocol = await loop.subprocess_exec(
-                          ^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/usr/lib/python3.11/asyncio/base_events.py", line 1694, in subprocess_exec
-    transport = await self._make_subprocess_transport(
-                ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/usr/lib/python3.11/asyncio/unix_events.py", line 207, in _make_subprocess_transport
-    transp = _UnixSubprocessTransport(self, protocol, args, shell,
-             ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/usr/lib/python3.11/asyncio/base_subprocess.py", line 36, in __init__
-    self._start(args=args, shell=shell, stdin=stdin, stdout=stdout,
-  File "/usr/lib/python3.11/asyncio/unix_events.py", line 818, in _start
-    self._proc = subprocess.Popen(
-                 ^^^^^^^^^^^^^^^^^
-  File "/usr/lib/python3.11/subprocess.py", line 1026, in __init__
-    self._execute_child(args, executable, preexec_fn, close_fds,
-  File "/usr/lib/python3.11/subprocess.py", line 1950, in _execute_child
-    raise child_exception_type(errno_num, err_msg, err_filename)
-FileNotFoundError: [Errno 2] No such file or directory: 'scan_filter_node'
-"""
+QOS_ODOM = printed("real-modules-heldout23", "kilted-qos-odom-reliability")
+QOS_DEADLINE = printed("real-modules-heldout23", "kilted-qos-cmd-vel-deadline")
+TYPES = printed("real-modules-heldout23", "kilted-two-types-one-topic")
+TOPIC_NAME = printed("real-modules-heldout23", "kilted-topic-parameter-with-space")
+ACTIVATE_FIRST = printed("real-modules-heldout23", "kilted-lifecycle-activate-before-configure")
+KEYSTORE = printed("real-modules-heldout23", "kilted-security-keystore-without-enclaves")
+LOG_DIR = printed("real-modules-heldout23", "kilted-log-dir-under-a-file")
+SERVER_NAME = printed("real-modules-heldout23", "kilted-discovery-server-host-unresolvable")
+SERVER_IPV4 = printed("real-modules-heldout23", "kilted-discovery-server-address-invalid")
+KILLED = printed("real-modules-heldout23", "kilted-launch-process-killed")
+SEGFAULT = printed("real-modules-heldout23", "kilted-launch-process-segfault")
+NOT_INSTALLED = printed("real-modules-heldout23", "kilted-launch-executable-missing")
 
 
 def _derived(tmp_path: Path, console: str) -> Explanation:

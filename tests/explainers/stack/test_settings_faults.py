@@ -12,72 +12,13 @@ import pytest
 from hexar.events.console import parse_console
 from hexar.explainers.base import Explanation
 from hexar.explainers.stack.mining import literals, to_display
-from tests.explainers.helpers import claimed, console_lines, derived_start
+from tests.explainers.helpers import claimed, console_lines, derived_start, printed
 
-DOMAIN_NAME = """\
-Traceback (most recent call last):
-  File "/home/robot/ws/scan_filter.py", line 5, in <module>
-    rclpy.init(args=sys.argv)
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 137, in init
-    return InitContextManager(args, context, domain_id, signal_handler_options)
-           ^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^^
-  File "/opt/venv/lib/python3/site-packages/rclpy/__init__.py", line 95, in __init__
-    self.context.init(args, domain_id=domain_id)
-  File "/opt/venv/lib/python3/site-packages/rclpy/context.py", line 95, in init
-    self.__context = _rclpy.Context(
-                     ^^^^^^^^^^^^^^^
-rclpy._rclpy_pybind11.RCLError: failed to initialize rcl: ROS_DOMAIN_ID is not an integral number, at\
- /project/src/rcl/domain_id.c:49
-"""
-
-CYCLONE_MISSPELT = """\
-1795937989.931316 [0]     python: config: //CycloneDDS/Domain/General: NetworkInterfaceAddres: unknown element\
- (CYCLONEDDS_URI+0 line 1)
-Traceback (most recent call last):
-  File "/home/robot/ws/participant.py", line 2, in <module>
-    DomainParticipant(0)
-  File "/opt/venv/lib/python3/site-packages/cyclonedds/domain.py", line 99, in __init__
-    super().__init__(self._create_participant(domain_id, cqos, listener._ref if listener else None),
-  File "/opt/venv/lib/python3/site-packages/cyclonedds/core.py", line 182, in __init__
-    raise DDSException(
-cyclonedds.core.DDSException: [DDS_RETCODE_ERROR] Non specific error. Occurred upon initialisation of a\
- cyclonedds.domain.DomainParticipant
-"""
-
-CYCLONE_NO_FILE = """\
-1795937990.222824 [0]     python: can't open configuration file file:///home/robot/ws/cyclonedds.xml
-Traceback (most recent call last):
-  File "/home/robot/ws/participant.py", line 2, in <module>
-    DomainParticipant(0)
-  File "/opt/venv/lib/python3/site-packages/cyclonedds/domain.py", line 99, in __init__
-    super().__init__(self._create_participant(domain_id, cqos, listener._ref if listener else None),
-  File "/opt/venv/lib/python3/site-packages/cyclonedds/core.py", line 182, in __init__
-    raise DDSException(
-cyclonedds.core.DDSException: [DDS_RETCODE_ERROR] Non specific error. Occurred upon initialisation of a\
- cyclonedds.domain.DomainParticipant
-"""
-
-FASTDDS_NO_FILE = """\
-2026-11-29 07:39:50.428 [XMLPARSER Error] realpath failed No such file or directory -> Function loadDefaultXMLFile
-[INFO] [1795937990.484465901] [scan_filter]: filtering scans at 10 Hz
-"""
-
-NO_SECURITY = """\
-[INFO] [1795937991.389829293] [rcl]: Found security directory: keystore/enclaves
-/opt/venv/lib/python3/site-packages/rclpy/node.py:221: RuntimeWarning: Failed to fini rosout publisher: rcl node\
- implementation is invalid, at /project/src/rcl/node.c:387
-  self.__node = _rclpy.Node(
-Traceback (most recent call last):
-  File "/home/robot/ws/scan_filter.py", line 6, in <module>
-    node = Node('scan_filter')
-           ^^^^^^^^^^^^^^^^^^^
-  File "/opt/venv/lib/python3/site-packages/rclpy/node.py", line 221, in __init__
-    self.__node = _rclpy.Node(
-                  ^^^^^^^^^^^^
-rclpy._rclpy_pybind11.RCLError: error creating node: This Fast DDS version doesn't have the security libraries
-Please compile Fast DDS using the -DSECURITY=ON CMake option, at /project/src/participant.cpp:406, at\
- /project/src/rcl/node.c:249
-"""
+DOMAIN_NAME = printed("real-modules-heldout24", "kilted-domain-id-not-a-number")
+CYCLONE_MISSPELT = printed("real-modules-heldout24", "kilted-cyclone-config-element-misspelt")
+CYCLONE_NO_FILE = printed("real-modules-heldout24", "kilted-cyclone-config-file-missing")
+FASTDDS_NO_FILE = printed("real-modules-heldout24", "kilted-fastdds-profiles-file-missing")
+NO_SECURITY = printed("real-modules-heldout24", "kilted-keystore-without-this-nodes-enclave")
 
 
 def _derived(tmp_path: Path, console: str) -> Explanation:
