@@ -9,7 +9,6 @@ poses (`/goal_pose`). A new begin line while a goal runs is Nav2's goal preempti
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -161,7 +160,6 @@ def _arms_logger(line: LogLine) -> bool:
 
 
 _STARTED = "process started with pid ["
-_PROCESS = re.compile(r"^(?P<name>.+?)-\d+$")  # launch's process name: the executable's, then "-<n>"
 
 
 def _nav2_process(line: LogLine, cat: NavCatalogue) -> bool:
@@ -169,9 +167,9 @@ def _nav2_process(line: LogLine, cat: NavCatalogue) -> bool:
     (the command it ran) name Nav2's packages, servers or plugins; a container's or a bare python3's name says
     nothing alone, so its command decides."""
     from hexar.explainers.navigation.chain import NAVIGATION
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
-    m = _PROCESS.match(line.name or "")
-    name = m["name"] if m else (line.name or "")
+    name = PROCESS_SUFFIX.sub("", line.name or "")  # launch's process name: the executable's, then "-<n>"
     return not name or cat.role(name) is not None or NAVIGATION.search(f"{name} {line.msg}") is not None
 
 
