@@ -249,6 +249,9 @@ def web(
     live: Annotated[bool, typer.Option("--live", help="also follow the robot over DDS (read-only)")] = False,
     domain: Annotated[int | None, typer.Option(help="DDS domain with --live (default: ROS_DOMAIN_ID, else 0)")
                       ] = None,
+    launch_log: Annotated[Path | None, typer.Option(help="with --live, follow the newest launch.log in this folder of "
+                                                    "launch's log folders [default: ROS_LOG_DIR, else ROS_HOME/log, "
+                                                    "else ~/.ros/log, when it exists]")] = None,
 ) -> None:
     """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
 
@@ -258,7 +261,7 @@ def web(
 
         port_number(port, lowest=0)  # 0: any free port; the page's address line names the one it got
         checkpoints_file(checkpoints)
-        return serve(folder, host, port, llm, checkpoints, live, domain)
+        return serve(folder, host, port, llm, checkpoints, live, domain, launch_log)
 
     raise typer.Exit(guarded(body))
 

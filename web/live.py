@@ -10,6 +10,7 @@ import sys
 import threading
 import time
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from hexar.events.log import EventLog
@@ -95,16 +96,17 @@ class LiveSource:
         self.shared = Findings()  # the page's: explainers run one at a time across every run (Findings says why)
 
     @classmethod
-    def over_dds(cls, domain_id: int, limits: Limits | None = None) -> LiveSource:
+    def over_dds(cls, domain_id: int, limits: Limits | None = None, launch_log: Path | None = None) -> LiveSource:
         from hexar.live.launch_log import LaunchLogFollower, log_root
 
         watcher = DdsWatcher(domain_id)
         log = LiveLog(limits, name=f"live (DDS domain {domain_id})")
         watcher.start(log)
-        root = log_root()
+        root = launch_log or log_root()
         horizon_ns = int(log.limits.horizon_s * 1e9)
-        # as `hexar serve` does: the newest launch's log, when launch writes on this computer
-        follower = LaunchLogFollower(root, oldest_ns=time.time_ns() - horizon_ns) if root.is_dir() else None
+        # as `hexar serve` does: the newest launch's log, when launch writes on this computer (or where it is told)
+        wanted = launch_log is not None or root.is_dir()
+        follower = LaunchLogFollower(root, oldest_ns=time.time_ns() - horizon_ns) if wanted else None
         return cls(log, watcher, follower)
 
     def _kept(self) -> int:

@@ -251,27 +251,30 @@ def make_server(store: Store, host: str = "127.0.0.1", port: int = 8080) -> Thre
     return server
 
 
-def live_source(live: bool, domain: int | None) -> LiveSource | None:
-    """`--live [--domain N]`: the robot's topics, read-only over DDS (the transport `hexar serve --transport dds`
-    uses; no rclpy here, since the page writes nothing and needs no ROS graph presence)."""
+def live_source(live: bool, domain: int | None, launch_log: Path | None = None) -> LiveSource | None:
+    """`--live [--domain N] [--launch-log DIR]`: the robot's topics, read-only over DDS (the transport `hexar serve
+    --transport dds` uses; no rclpy here, since the page writes nothing and needs no ROS graph presence), and the
+    newest launch's log of this computer."""
     from hexar.web.errors import WebError
 
     if not live:
         if domain is not None:
             raise WebError("--domain needs --live (it picks the robot's DDS domain)")
+        if launch_log is not None:
+            raise WebError("--launch-log needs --live (it follows the robot's launch beside its topics)")
         return None
     from hexar.live.commands import domain_id
 
-    return LiveSource.over_dds(domain_id(domain))
+    return LiveSource.over_dds(domain_id(domain), launch_log=launch_log)
 
 
 def serve(root: Path | None, host: str, port: int, llm: str, checkpoints: Path | None, live: bool = False,
-          domain: int | None = None) -> int:
+          domain: int | None = None, launch_log: Path | None = None) -> int:
     from hexar.web.errors import WebError
 
     if root is None and not live:
         root = Path(".")
-    source = live_source(live, domain)
+    source = live_source(live, domain, launch_log)
     try:
         store = Store(root, llm, checkpoints, source)
         store.backend()  # an unreachable model is the command's one-line error, not a broken chat later

@@ -98,12 +98,14 @@ class Robot:
 
 
 @contextmanager
-def live_page(domain: int, checkpoints: Path, root: Path | None = None) -> Iterator[tuple[str, Any]]:
-    """`hexar web [root] --live --domain N` in this process on a free loopback port: its address and store."""
+def live_page(domain: int, checkpoints: Path, root: Path | None = None,
+              launch_log: Path | None = None) -> Iterator[tuple[str, Any]]:
+    """`hexar web [root] --live --domain N [--launch-log DIR]` in this process on a free loopback port: its address
+    and store."""
     from hexar.web.server import live_source, make_server
     from hexar.web.store import Store
 
-    store = Store(root, "none", checkpoints, live_source(True, domain))
+    store = Store(root, "none", checkpoints, live_source(True, domain, launch_log))
     server = make_server(store, "127.0.0.1", 0)
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()

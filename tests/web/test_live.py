@@ -159,6 +159,7 @@ def test_hexar_web_live_command(tmp_path: Path) -> None:
     (["web", "--live", "--domain", "500"], {}, "out of range"),
     (["web", "--live"], {"ROS_DOMAIN_ID": "robot"}, "ROS_DOMAIN_ID='robot' is not a number"),
     (["web", "--domain", "3"], {}, "--domain needs --live"),
+    (["web", "--launch-log", "logs"], {}, "--launch-log needs --live"),
     (["web", "no/such/folder", "--live", "--domain", "231"], {}, "not a folder"),
 ])
 def test_bad_live_options_are_one_line(argv: list[str], env: dict[str, str], message: str,
@@ -240,12 +241,17 @@ def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
         robot.close()
 
 
-def test_the_live_page_reads_launchs_log_of_this_computer(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+@pytest.mark.parametrize("told", [False, True])
+def test_the_live_page_reads_launchs_log_of_this_computer(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                           told: bool) -> None:
+    """From where launch writes (ROS_LOG_DIR), or from the folder --launch-log names."""
     from tests.live.test_launch_log import _launch, _now_lines
 
     _launch(tmp_path / "ros_log", "2026-11-29-07-00-00-000000-robot-1", _now_lines())
-    monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path / "ros_log"))
-    with live_page(fresh_domain(), tmp_path / "t.sqlite") as (url, _):
+    if not told:
+        monkeypatch.setenv("ROS_LOG_DIR", str(tmp_path / "ros_log"))
+    with live_page(fresh_domain(), tmp_path / "t.sqlite", launch_log=tmp_path / "ros_log" if told else None) as (
+            url, _):
         status, run = wait_for(lambda: get(url + "api/run?name=live"),
                                lambda r: r[1].get("task", {}).get("outcome") == "failed")
     assert status == 200 and run["findings"][0]["causes"] == ["bringup.process_died"]
