@@ -24,9 +24,8 @@ from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, d
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
 from hexar.explainers.stack.bringup import PROCESS_SUFFIX
-from hexar.explainers.stack.signals import ended_by
+from hexar.explainers.stack.signals import ended_by, killed_by_signal
 from hexar.explainers.stack_causes import (
-    killed_by_signal,
     mixed_clocks,
     one_shot_failed,
     stack_cause,

@@ -34,15 +34,6 @@ _DENIED = "Permission denied"  # strerror(EACCES)
 # launch_ros/actions/lifecycle_node.py:123@rolling: "Failed to make transition '{}' for LifecycleNode '{}'"
 _LAUNCH_TRANSITION = re.compile(r"Failed to make transition 'TRANSITION_(?P<transition>[A-Z_]+)' for LifecycleNode "
                                 r"'(?P<node>[^']+)'")
-_EXIT = re.compile(r"exit code (-\d+)")  # launch's "process has died [pid N, exit code -11, ...]"
-
-
-def killed_by_signal(msg: str) -> bool:
-    """launch reports a process that a signal ended (a crash: SIGSEGV -11, SIGABRT -6) with a negative exit code."""
-    found = _EXIT.search(msg)
-    return found is not None and int(found[1]) < 0
-
-
 _ONE_SHOT = re.compile(r"exit code [1-9]\d*, cmd '\S*(controller_manager/spawner|/unspawner) ")
 
 

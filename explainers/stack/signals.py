@@ -1,5 +1,6 @@
 """A process that a signal ended, as launch reports it (stable API).
 
+    killed_by_signal(msg) -> bool
     ended_by(msg) -> Signal | None
 
 launch's "process has died [pid N, exit code -11, cmd '…']" (launch/actions/execute_local.py) gives a process that a
@@ -13,7 +14,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-_EXIT = re.compile(r"exit code (-\d+)")
+_EXIT = re.compile(r"exit code (-\d+)")  # a signal's number, negated
 
 
 @dataclass(frozen=True)
@@ -41,6 +42,12 @@ _SIGNALS = {
          "packages built against different versions of a library (a binary install mixed with a source build) "
          "crash this way too."),
 }
+
+
+def killed_by_signal(msg: str) -> bool:
+    """launch reports a process that a signal ended (a crash: SIGSEGV -11, SIGABRT -6) with a negative exit code."""
+    found = _EXIT.search(msg)
+    return found is not None and int(found[1]) < 0
 
 
 def ended_by(msg: str) -> Signal | None:
