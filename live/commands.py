@@ -158,20 +158,16 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
 
 def _launch_follower(opts: ServeOptions) -> LaunchLogFollower | None:
     """The follower of launch's log on this computer, announced on stderr; None when it is off or there is none."""
-    from hexar.live.launch_log import LaunchLogFollower, log_root
+    from hexar.live.launch_log import follower
 
-    if not opts.follow_launch_log:
+    found = follower(opts.launch_log, opts.horizon_s) if opts.follow_launch_log else None
+    if found is None:
         return None
-    root = opts.launch_log or log_root()
-    if not root.is_dir():
-        if opts.launch_log is not None:
-            print(f"hexar serve: no launch log folder at {root} yet; following it once launch makes it",
-                  file=sys.stderr, flush=True)
-        else:
-            return None
-    print(f"hexar serve: following launch's log under {root}", file=sys.stderr, flush=True)
-    # a launch of yesterday is not what the robot did now: only its lines within the horizon are kept
-    return LaunchLogFollower(root, oldest_ns=time.time_ns() - int(opts.horizon_s * 1e9))
+    if not found.root.is_dir():
+        print(f"hexar serve: no launch log folder at {found.root} yet; following it once launch makes it",
+              file=sys.stderr, flush=True)
+    print(f"hexar serve: following launch's log under {found.root}", file=sys.stderr, flush=True)
+    return found
 
 
 @contextmanager

@@ -1,6 +1,7 @@
 """Launch's log file on this computer, followed while the robot runs (stable API).
 
     log_root(environ=None) -> Path
+    follower(given, horizon_s) -> LaunchLogFollower | None
     LaunchLogFollower(root, hold_s=2.0, oldest_ns=0).poll(now=None) -> list[LogLine]
 
 A process that dies is told by launch alone ("process has died [pid N, exit code -11, cmd '…']"), and a node's
@@ -8,7 +9,8 @@ stderr (a Python traceback, rcl's errors before a node exists, the dynamic loade
 both are in `launch.log` (events/roslog.py reads it beside a recording). `ros2 launch` writes that file into a folder
 of its own under $ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log (launch/logging/__init__.py:41-61@jazzy), and from
 Jazzy on points `latest` in that folder at it (`_renew_latest_log_dir`). The follower reads `latest/launch.log`, or,
-without a `latest` (Humble), the launch.log most recently written; a new launch is followed from its first line.
+without a `latest` (Humble), the launch.log most recently written, looked for again when the folder changed or every
+RESCAN_S (a robot keeps hundreds of launch folders: not at every poll); a new launch is followed from its first line.
 
 Lines are handed on when the file has been quiet for one poll, or `hold_s` after they came: launch writes a
 traceback line by line, and the console reader keeps it as one record only when it has all of it. Each line keeps
@@ -28,6 +30,8 @@ from hexar.events.records import LogLine
 from hexar.events.roslog import launch_log_lines
 
 CHUNK = 4 * 1024 * 1024  # read at most this much per poll: a launch started long ago is caught up in steps
+RESCAN_S = 5.0  # a new launch folder's launch.log may come after the folder: looked for again this often
+NS = 1_000_000_000
 
 
 def log_root(environ: Mapping[str, str] | None = None) -> Path:
@@ -37,6 +41,15 @@ def log_root(environ: Mapping[str, str] | None = None) -> Path:
         return Path(env["ROS_LOG_DIR"]).expanduser()
     home = Path(env["ROS_HOME"]).expanduser() if env.get("ROS_HOME") else Path("~/.ros").expanduser()
     return home / "log"
+
+
+def follower(given: Path | None, horizon_s: float) -> LaunchLogFollower | None:
+    """The follower of launch's log under `given`, else under log_root() when that folder exists (None when it does
+    not); a launch of yesterday is not what the robot did now, so lines older than `horizon_s` are left out."""
+    root = given or log_root()
+    if given is None and not root.is_dir():
+        return None
+    return LaunchLogFollower(root, oldest_ns=time.time_ns() - int(horizon_s * NS))
 
 
 class LaunchLogFollower:
@@ -50,6 +63,8 @@ class LaunchLogFollower:
         self._offset = 0
         self._pending: list[str] = []
         self._since = 0.0
+        self._listed: tuple[int, float] | None = None  # the root's mtime and the monotonic time of the last look
+        self._newest: Path | None = None
 
     def current(self) -> Path | None:
         """The launch.log of the newest launch under the root; None when there is none."""
@@ -57,10 +72,18 @@ class LaunchLogFollower:
         if latest.is_file():
             return latest.resolve()
         try:
-            found = [(p.stat().st_mtime, p) for p in self.root.glob(f"*/{LAUNCH_LOG}")]
+            changed = self.root.stat().st_mtime_ns
         except OSError:
             return None
-        return max(found)[1] if found else None
+        now = time.monotonic()
+        if self._listed is None or self._listed[0] != changed or now - self._listed[1] >= RESCAN_S:
+            self._listed = (changed, now)
+            try:
+                found = [(p.stat().st_mtime, p) for p in self.root.glob(f"*/{LAUNCH_LOG}")]
+            except OSError:
+                return None
+            self._newest = max(found)[1] if found else None
+        return self._newest
 
     def poll(self, now: float | None = None) -> list[LogLine]:
         """The lines that are complete and whole since the last poll (see the module's docstring)."""

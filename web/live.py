@@ -97,17 +97,13 @@ class LiveSource:
 
     @classmethod
     def over_dds(cls, domain_id: int, limits: Limits | None = None, launch_log: Path | None = None) -> LiveSource:
-        from hexar.live.launch_log import LaunchLogFollower, log_root
+        from hexar.live.launch_log import follower
 
         watcher = DdsWatcher(domain_id)
         log = LiveLog(limits, name=f"live (DDS domain {domain_id})")
         watcher.start(log)
-        root = launch_log or log_root()
-        horizon_ns = int(log.limits.horizon_s * 1e9)
         # as `hexar serve` does: the newest launch's log, when launch writes on this computer (or where it is told)
-        wanted = launch_log is not None or root.is_dir()
-        follower = LaunchLogFollower(root, oldest_ns=time.time_ns() - horizon_ns) if wanted else None
-        return cls(log, watcher, follower)
+        return cls(log, watcher, follower(launch_log, log.limits.horizon_s))
 
     def _kept(self) -> int:
         # read under the log's lock, so a record counted is a record a snapshot taken after this holds; counts

@@ -88,6 +88,9 @@ def test_a_new_launch_is_followed_from_its_first_line_and_humbles_newest_folder_
     os.utime(old, (past, past))
     humble = LaunchLogFollower(tmp_path / "humble")
     assert humble.current() == tmp_path / "humble" / "new" / LAUNCH_LOG
+    newer = _launch(tmp_path / "humble", "newer", lines[:1], latest=False)  # a new folder: the root changed
+    os.utime(tmp_path / "humble", (time.time() + 60, time.time() + 60))
+    assert humble.current() == newer
 
 
 def test_lines_of_a_launch_before_the_horizon_are_left_out(tmp_path: Path) -> None:
