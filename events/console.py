@@ -287,13 +287,12 @@ def _traceback_line(line: str, tb: ConsoleLine) -> bool:
     if proc != tb.process or not rest.strip():
         return False
     if "exception" in tb.synthesised:  # the exception's message goes on ("\n, at /project/src/rcl/node.c:249")
-        said = tb.msg.partition(f"\n{TRACEBACK}")[0]
+        said, _, frames = tb.msg.partition(f"\n{TRACEBACK}")
         # rcl words an error "<message>, at <file>:<line>": until that place is printed, the message goes on
         # (rmw_fastrtps' "…security libraries\nPlease compile Fast DDS …, at …/participant.cpp:406, at …")
         unfinished = _RCL_AT.search(said) is None and _RCL_AT.search(rest) is not None
         if not rest[:1].isspace() and not rest.startswith(",") and not unfinished:
             return False
-        said, _, frames = tb.msg.partition(f"\n{TRACEBACK}")
         tb.msg = f"{said}\n{rest.rstrip()}\n{TRACEBACK}{frames}"
         return True
     if rest[:1].isspace():

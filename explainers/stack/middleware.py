@@ -27,6 +27,7 @@ _QUOTED = re.compile(r"'([^']*)'")
 # Cyclone DDS's configuration errors (ddsi_config.c cfg_error: "config: <element path>: <what> (<source> line N)"),
 # whose message is formatted from pieces too short to mine ("%s: unknown %s")
 _NO_FILE = "can't open configuration file"  # ddsi_config.c:2252@releases/0.10.x
+_CYCLONE_CONFIG_AT = "config: //CycloneDDS"  # the path every such error names: a cheap look before the match
 _CYCLONE_CONFIG = re.compile(r"^config: (?P<path>//CycloneDDS\S*?): (?P<what>.+?)(?: \((?P<where>[^()]*)\))?$")
 # Fast DDS's console decoration: "[RTPS Error] text -> Function getMulticastPort"
 _FASTDDS = re.compile(r"^\[(?P<category>[A-Z][A-Z0-9_]*) (?:Error|Warning|Info)\] (?P<text>.*?)(?: -> Function \w+)?$",
@@ -40,7 +41,7 @@ def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tupl
     for line in lines:
         if line.level < WARN or (before is not None and line.t > before):
             continue
-        if _CYCLONE_CONFIG.match(text(line)):
+        if _CYCLONE_CONFIG_AT in line.msg and _CYCLONE_CONFIG.match(text(line)):
             return line, CAUSES[CONFIGURATION]
         entry = cat.match(line.msg)
         if entry is not None and entry.cause in CAUSES:
