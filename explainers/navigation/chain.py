@@ -22,7 +22,7 @@ from collections.abc import Iterable
 from dataclasses import replace
 
 from hexar.events.bringup import ABORT
-from hexar.events.records import ERROR, WARN, LogLine, clock
+from hexar.events.records import ERROR, TRACEBACK, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import REACHED, TRANSFORM_PLAN, Entry, catalogue
@@ -33,7 +33,6 @@ from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 from hexar.explainers.stack.loader import loader_failure
-from hexar.explainers.stack.thrown import python_exception
 
 BRINGUP = "navigation.bringup_failure"
 CONFIGURATION = "navigation.configuration_error"
@@ -134,7 +133,7 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
         finding.evidence.insert(0, Evidence.of_log(cause, last))
     # its last words an uncaught exception (libstdc++'s "terminate called after throwing …", or a Python traceback):
     # that is why it died, quoted above
-    thrown = last is not None and (ABORT in last.msg or python_exception(last) is not None)
+    thrown = last is not None and (ABORT in last.msg or _python_death(last))
     if first.kind == "process_died" and not loader_failure(first.line) and not thrown and not [
             ln for ln in decisive_errors(logs_list, first.line.t) if ln.t < first.line.t]:
         # launch reports the exit code only: with no error before it, nothing says why the process died
@@ -146,6 +145,16 @@ def bringup(logs: Iterable[LogLine], until: int | None) -> Finding | None:
 
 
 _FRAMES = re.compile(r"transform from (?P<a>\S+) to (?P<b>\S+?)[ .,]")
+
+
+def _python_death(line: LogLine) -> bool:
+    """A Python traceback's record (explainers/stack/thrown.py), looked for only in a line that holds its header: the
+    exception reader is not loaded for every navigation question."""
+    if TRACEBACK not in line.msg:
+        return False
+    from hexar.explainers.stack.thrown import python_exception
+
+    return python_exception(line) is not None
 
 
 def _transform_waits(logs: list[LogLine], first: BringupFinding) -> list[LogLine]:

@@ -14,7 +14,6 @@ import re
 from collections.abc import Sequence
 
 from hexar.events.records import LogLine
-from hexar.explainers.stack.thrown import python_exception
 
 EXEC = "exception occurred while executing process"
 _QUOTED = re.compile(r"'([^']+)'\s*$")
@@ -27,6 +26,9 @@ def exec_failed(line: LogLine, after: Sequence[LogLine]) -> str | None:
     could not execute a process and one of the records `after` it is the error that said why; None otherwise."""
     if EXEC not in line.msg:
         return None
+    # loaded here: every bring-up finding's line is asked, and the exception reader is wanted for few
+    from hexar.explainers.stack.thrown import python_exception
+
     for later in after:
         exc = python_exception(later)
         if exc is not None and exc.name in _WHY:
