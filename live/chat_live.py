@@ -54,7 +54,7 @@ class LiveChat:
             self._stop.wait(0.02)
 
     def _take(self, result: dict[str, Any]) -> None:
-        if result.get("trigger") == "failure":
+        if result.get("trigger") in ("failure", "correction"):
             self.thread = str(result.get("thread") or self.thread)[:64]  # "why?" continues that thread
             self.show(result)
         elif result.get("thread") == self._asked:

@@ -224,7 +224,7 @@ def chat_live_command(domain: int | None, console: Any) -> int:
     from hexar.live.chat_live import PROMPT_HELP, chat_live
 
     def show(result: dict[str, Any]) -> None:
-        tag = "unasked" if result.get("trigger") == "failure" else "HEXAR"
+        tag = {"failure": "unasked", "correction": "correction"}.get(str(result.get("trigger")), "HEXAR")
         console.print(f"[bold cyan]{tag}:[/bold cyan] {safe(result.get('answer') or result.get('error'))}")
 
     def lines() -> Any:

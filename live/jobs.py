@@ -86,10 +86,11 @@ class JobQueue(Generic[J]):
             self._jobs.append(job)
             self._ready.notify()
 
-    def get(self) -> J:
+    def get(self, timeout: float | None = None) -> J | None:
+        """The oldest job; None when `timeout` seconds passed without one."""
         with self._ready:
-            while not self._jobs:
-                self._ready.wait()
+            if not self._ready.wait_for(lambda: bool(self._jobs), timeout=timeout):
+                return None
             return self._jobs.popleft()
 
     def __len__(self) -> int:

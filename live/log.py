@@ -9,6 +9,7 @@ timestamp), which is the robot's clock, like a bag's receive time on the robot.
 from __future__ import annotations
 
 import threading
+import time
 from bisect import insort
 from collections import deque
 from collections.abc import Iterable
@@ -55,6 +56,11 @@ class Limits:
     # A clock that goes back by more than this, on several fresh messages in a row, is a clock jump.
     jump_back_s: float = 30.0
     jump_confirm: int = 3
+    # Records that arrive behind the robot's clock (stamped before the newest one kept) are remembered, this many,
+    # with when they came: a lossy network delivers what it lost late, when DDS resends it.
+    late_kept: int = 4096
+    # What arrives this soon after the first record is a late joiner's transient-local history, not lateness.
+    join_s: float = 5.0
 
 
 def _truncate(text: str, limit: int) -> str:
@@ -89,6 +95,9 @@ class LiveLog:
         self._behind = 0
         self._since_prune = 0
         self.newest = 0
+        self._first_arrival = 0.0
+        # (arrival on this machine's monotonic clock, stamp, how far behind the newest stamp it came)
+        self._late: deque[tuple[float, int, int]] = deque(maxlen=self.limits.late_kept)
         self.warnings: deque[str] = deque(maxlen=50)
         self.received = 0
         self.duplicates = 0
@@ -144,6 +153,7 @@ class LiveLog:
             return True
         if not isinstance(r, BoolSample):  # a latched flag may legitimately be hours old
             self._watch_clock(r.t, fresh=isinstance(r, (LogLine, TaskUpdate)))
+            self._watch_lateness(r.t)
         if isinstance(r, LogLine):
             if len(r.msg) > self.limits.max_chars:
                 self.truncated += 1
@@ -249,6 +259,14 @@ class LiveLog:
         self.newest = max([t, *(r.t for r in self._logs[-1:]), *(r.t for r in self._poses[-1:])])
         self._behind = 0
 
+    def _watch_lateness(self, t: int) -> None:
+        now = time.monotonic()
+        if not self._first_arrival:
+            self._first_arrival = now
+        behind = self.newest - t
+        if 0 < behind <= int(self.limits.jump_back_s * NS) and now - self._first_arrival >= self.limits.join_s:
+            self._late.append((now, t, behind))
+
     def _prune(self) -> None:
         lim = self.limits
         oldest = self.newest - int(lim.horizon_s * NS)
@@ -275,6 +293,19 @@ class LiveLog:
         """Block until an event stamped at or after `t` arrived (the robot's clock passed t), or timeout."""
         with self._lock:
             return self.changed.wait_for(lambda: self.newest >= t, timeout=timeout_s)
+
+    def late_since(self, since: float, stamped_by: int) -> int:
+        """How many records stamped at or before `stamped_by` arrived late after `since` (time.monotonic())."""
+        with self._lock:
+            return sum(1 for arrived, t, _ in reversed(self._late) if arrived > since and t <= stamped_by)
+
+    def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9) -> float:
+        """The `q` quantile of how far behind the robot's clock records arrived in the last `window_s` seconds,
+        counting only those later than `over_s`; 0 when none was."""
+        since = time.monotonic() - window_s
+        with self._lock:
+            behind = sorted(b for arrived, _, b in self._late if arrived > since and b > over_s * NS)
+        return behind[min(len(behind) - 1, int(q * len(behind)))] / NS if behind else 0.0
 
     def snapshot(self) -> EventLog:
         """An EventLog of what is kept now; later additions do not change it."""

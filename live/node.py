@@ -13,7 +13,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, Protocol
 
@@ -23,6 +23,7 @@ from hexar.events.records import GoalStatus, StatusRecord, TaskUpdate
 from hexar.events.task_info import parse_task_info
 from hexar.live.jobs import MAX_FAILURES, MAX_QUESTIONS, JobQueue, RateLimit
 from hexar.live.log import NS, LiveLog
+from hexar.live.recheck import Rechecks
 from hexar.live.topics import ANSWER
 from hexar.safe_text import finite_with_warnings, json_dumps
 
@@ -64,17 +65,25 @@ class NodeOptions:
     # published a moment later but stamped before the failure are in), at most `settle_wall_s` of our time.
     settle_s: float = 0.2
     settle_wall_s: float = 0.3
+    # On a network that has lately delivered records later than that (DDS resending what a lossy link dropped),
+    # wait as long as they were late (their 90th percentile over the last minute), at most this long.
+    max_settle_s: float = 2.0
     phrase: bool | None = None
 
 
 @dataclass
 class Job:
-    kind: Literal["failure", "question", "stop"]
+    kind: Literal["failure", "question", "recheck", "stop"]
     text: str = ""
     task_id: str = ""
     t: int = 0
     thread: str | None = None
     received: float = field(default_factory=time.monotonic)
+    # a recheck's: the causes last published, when that was, when its log was taken, and which look this is
+    causes: tuple[str, ...] = ()
+    answered: float = 0.0
+    since: float = 0.0
+    look: int = 0
 
 
 def failure_key(update: TaskUpdate) -> str | None:
@@ -107,6 +116,8 @@ class LiveNode:
         self.answers = 0
         self.errors = 0
         self._jobs: JobQueue[Job] = JobQueue({"question": MAX_QUESTIONS, "failure": MAX_FAILURES})
+        self._rechecks: Rechecks[Job] = Rechecks()
+        self.corrections = 0
         self._rate = RateLimit()
         self.refused = 0  # questions over a source's rate
         self._last_answer = 0.0
@@ -247,20 +258,35 @@ class LiveNode:
 
     def _work(self) -> None:
         while True:
-            job = self._jobs.get()
+            job = self._jobs.get(timeout=self._rechecks.wait_s())
+            for due in self._rechecks.take_due():
+                self._run(due)
+            if job is None:
+                continue
             if job.kind == "stop":
                 return
-            try:
+            self._run(job)
+
+    def _run(self, job: Job) -> None:
+        try:
+            if job.kind == "recheck":
+                self._recheck(job)
+            else:
                 self._answer(job)
-            except Exception as err:  # the node keeps answering; the error goes out as an answer and a line
-                self.errors += 1
-                print(f"hexar serve: {type(err).__name__}: {err}", file=sys.stderr)
+        except Exception as err:  # the node keeps answering; the error goes out as an answer and a line
+            self.errors += 1
+            print(f"hexar serve: {type(err).__name__}: {err}", file=sys.stderr)
+            if job.kind != "recheck":
                 self._publish({"answer": "", "error": f"{type(err).__name__}: {err}", "trigger": job.kind,
                                "task_id": job.task_id})
 
     def _answer(self, job: Job) -> None:
         if job.kind == "failure":
-            self.log.wait_until(job.t + int(self.options.settle_s * NS), self.options.settle_wall_s)
+            opts = self.options
+            settle = max(opts.settle_s, min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s)))
+            self.log.wait_until(job.t + int(settle * NS), max(opts.settle_wall_s, min(opts.max_settle_s,
+                                                                                     1.5 * settle)))
+        taken = time.monotonic()
         self._session.use_log(self.log.snapshot())
         if job.kind == "failure":
             if not job.task_id:
@@ -290,6 +316,40 @@ class LiveNode:
             job.kind == "question" or self.options.proactive == "speak")
         if speak:
             self._say(result, job)
+        if job.kind == "failure" and not result.get("error"):
+            now = time.monotonic()
+            self._rechecks.add(replace(job, kind="recheck", causes=tuple(result.get("causes") or ()), answered=now,
+                                       since=taken), 0, now)
+
+    def _recheck(self, job: Job) -> None:
+        """Look again at an unasked explanation (live/recheck.py): when records stamped before the failure came
+        in late since the last look, explain it anew, and publish a correction if the causes changed."""
+        look = job.look + 1
+        if not self.log.late_since(job.since, job.t + int(self.options.settle_s * NS)):
+            self._rechecks.add(replace(job, look=look), look, job.answered)
+            return
+        taken = time.monotonic()
+        self._session.use_log(self.log.snapshot())
+        thread = self._session.new_thread()
+        try:
+            result = dict(self._session.ask(job.text, thread=thread, task=job.task_id or None))
+        except EventsError:
+            result = {"error": "no task"}
+        causes = tuple(result.get("causes") or ())
+        if result.get("error") or causes == job.causes:
+            self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
+        else:
+            # the corrected answer's thread becomes the dialogue a "why?" continues
+            self._remember(thread)
+            self.thread, self._last_answer, self.corrections = thread, time.monotonic(), self.corrections + 1
+            result.update(trigger="correction", corrects=list(job.causes), recording=self.log.name, event_t=job.t,
+                          sentence=short_sentence(str(result.get("answer", ""))),
+                          latency_ms=round((time.monotonic() - job.received) * 1000, 1))
+            self._publish(result)
+            if self.speakers and self.options.proactive == "speak":
+                self._say(result, job)
+            job = replace(job, causes=causes)
+        self._rechecks.add(replace(job, look=look, since=taken), look, job.answered)
 
     def _remember(self, thread: str) -> None:
         """Keep the checkpoints of the last KEEP_THREADS dialogues only: a node that runs for weeks must not
@@ -304,7 +364,10 @@ class LiveNode:
     def _say(self, result: dict[str, Any], job: Job) -> None:
         from hexar.voice.loop import say_answer
 
-        utterances = [str(result["sentence"])] if job.kind == "failure" else say_answer(result)
+        if job.kind == "recheck":
+            utterances = [f"Correction: {result['sentence']}"]
+        else:
+            utterances = [str(result["sentence"])] if job.kind == "failure" else say_answer(result)
         turn = f"answer_{self.answers:03d}"
         for speaker in self.speakers:
             try:

@@ -1,6 +1,8 @@
 """Acceptance run of `hexar serve` on each transport against stand-in robots on both DDS vendors and clocks.
 
-    .venv/bin/python scripts/bench_live_robots.py [--suite DIR] [--rate 10] [--runs bagfile_5_1 ...]
+    .venv/bin/python scripts/bench_live_robots.py [--suite DIR] [--rate 10] [--runs bagfile_5_1 ... | all]
+        [--nodes rclpy dds] [--robots rclpy dds] [--clocks live ...] [--loss PERMILLE]
+        [--python PYTHON] [--baseline PYTHON]
 
 For each node transport (rclpy/Fast DDS, dds/Cyclone) x robot vendor (rclpy, Cyclone) x robot clock, one
 `hexar serve` process hears a stand-in robot replaying failing simulated recordings at `--rate`:
@@ -11,19 +13,27 @@ Each failure must be explained unasked with the cause `hexar ask` gives on the r
 it must get `hexar ask`'s answer. Latency is failing /task_info -> /hexar/answer as a Cyclone listener sees both;
 medians and p95 per node transport. The stand-in robots publish through HEXAR's replayer writers (rclpy raw CDR,
 or the Cyclone IDL types), restamping the messages themselves.
+
+A lossy network: `--loss 200` makes every Cyclone DDS participant of this run (the Cyclone robot, the listener,
+and a node on the dds transport) drop 200 of every 1,000 packets it sends, Cyclone's own fault injection
+(Internal/Test/XmitLossiness). Reliable topics are resent, late. "explained" counts the node's first unasked
+answers that give `hexar ask`'s causes, "final" the same after the node's corrections (live/recheck.py), waited
+for 6 s after each recording. `--baseline PYTHON` runs another install's `hexar serve` on each configuration too.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import signal
 import statistics
+import sys
 import tempfile
 import time
 from pathlib import Path
 from typing import Any
 
-from live_common import Listener, percentile, start_serve
+from live_common import Listener, lossy, percentile, start_serve
 
 from hexar.events import contract as c
 from hexar.live.replay import QOS_OF, replay, to_dds
@@ -79,24 +89,34 @@ def _restamp(msg: Any, now: int) -> None:
 
 
 def one_case(suite: Path, runs: list[str], node: str, vendor: str, clock: str,
-             rate: float) -> tuple[int, int, list[float]]:
-    """(failures explained right, failures in all, proactive latencies in s) for one serve process."""
+             rate: float, wait_corrections: float = 0.0, python: str = sys.executable
+             ) -> tuple[int, int, int, list[float]]:
+    """(failures explained right at once, failures right after the node's corrections, failures in all,
+    proactive latencies in s) for one serve process; corrections are waited for `wait_corrections` s per run."""
     domain = fresh_domain()
-    serve = start_serve(domain, transport=node)
+    serve = start_serve(domain, transport=node, python=python)
     listener = Listener(domain)
-    good = total = 0
+    # one robot for all the runs, as a robot keeps its writers: a writer deleted right after its last message
+    # can take unacknowledged messages with it on a lossy network
+    robot = StandIn(vendor, domain, clock)
+    good = final = total = 0
     latencies: list[float] = []
     try:
         for name in runs:
             failures, asked = expected(suite / name)
             total += len(failures)
             before = len(listener.answers("failure"))
-            robot = StandIn(vendor, domain, clock)
-            try:
-                replay(suite / name, robot, rate=rate, clock_hz=40.0 if clock.endswith("clock") else 0.0)
-            finally:
-                robot.close()
+            replay(suite / name, robot, rate=rate, clock_hz=40.0 if clock.endswith("clock") else 0.0)
             got = listener.wait_answers(before + len(failures), "failure", timeout=10.0)[before:]
+            fixed = len(listener.answers("correction"))
+            time.sleep(wait_corrections)
+            corrected = {a.get("task_id", ""): a.get("causes") for _, a in listener.answers("correction")[fixed:]}
+            for a in got:
+                task = a.get("task_id", "")
+                final += int(failures.get(task) == corrected.get(task, a.get("causes")))
+                if task in corrected:
+                    print(f"  {name}: corrected {a.get('causes')} -> {corrected[task]} (want {failures.get(task)})",
+                          flush=True)
             n_q = len(listener.answers("question"))
             listener.ask(QUESTION)
             answer = listener.wait_answers(n_q + 1, "question", timeout=15.0)[n_q:]
@@ -113,38 +133,58 @@ def one_case(suite: Path, runs: list[str], node: str, vendor: str, clock: str,
                 if key is not None:
                     latencies.append(received - listener.heard.failures[key])
     finally:
+        robot.close()
         listener.close()
         serve.send_signal(signal.SIGTERM)
         _, err = serve.communicate(timeout=60)
         if serve.returncode != 0 or "terminate called" in err:
             print(f"  serve exited {serve.returncode}: {err.strip()[-300:]}", flush=True)
-    return good, total, latencies
+    return good, final, total, latencies
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--suite", type=Path, default=None, help="folder of `hexar simulate` recordings")
     ap.add_argument("--rate", type=float, default=10.0)
-    ap.add_argument("--runs", nargs="*", default=list(RUNS))
+    ap.add_argument("--runs", nargs="*", default=list(RUNS), help="recordings of the suite, or `all` with failures")
+    ap.add_argument("--nodes", nargs="*", default=["rclpy", "dds"], choices=["rclpy", "dds"])
+    ap.add_argument("--robots", nargs="*", default=["rclpy", "dds"], choices=["rclpy", "dds"])
+    ap.add_argument("--clocks", nargs="*", default=list(CLOCKS), choices=list(CLOCKS))
+    ap.add_argument("--loss", type=int, default=0, metavar="PERMILLE",
+                    help="Cyclone DDS drops this many of every 1,000 packets it sends (XmitLossiness)")
+    ap.add_argument("--python", default=sys.executable, help="the python whose `hexar serve` is measured")
+    ap.add_argument("--baseline", metavar="PYTHON", help="also run `hexar serve` of another install (its python), "
+                    "each configuration after the code's own")
     args = ap.parse_args()
+    if args.loss:
+        os.environ["CYCLONEDDS_URI"] = lossy(os.environ.get("CYCLONEDDS_URI", ""), args.loss)
     suite = args.suite
     if suite is None:
         from hexar.evals.scenarios.suite import simulate_suite
 
         suite = Path(tempfile.mkdtemp()) / "suite"
         simulate_suite(suite)
-    per_node: dict[str, list[float]] = {"rclpy": [], "dds": []}
-    print(f"{'node':6} {'robot':6} {'clock':15} explained  median   p95", flush=True)
-    for node in ("rclpy", "dds"):
-        for vendor in ("rclpy", "dds"):
-            for clock in CLOCKS:
-                good, total, lat = one_case(suite, args.runs, node, vendor, clock, args.rate)
-                per_node[node] += lat
-                med = statistics.median(lat) * 1000 if lat else float("nan")
-                p95 = percentile(lat, 0.95) * 1000
-                print(f"{node:6} {vendor:6} {clock:15} {good:3}/{total:<3}  {med:6.0f} ms {p95:5.0f} ms", flush=True)
+    runs = args.runs
+    if runs == ["all"]:
+        runs = sorted(p.name for p in suite.iterdir() if p.is_dir() and expected(p)[0])
+    versions = {"head": args.python, **({"base": args.baseline} if args.baseline else {})}
+    per_node: dict[str, list[float]] = {}
+    wait = 6.0 if args.loss else 0.0  # the node's looks again come 1 s and 4 s after an answer (live/recheck.py)
+    print(f"{'code':5} {'node':6} {'robot':6} {'clock':15} explained  final    median   p95", flush=True)
+    for node in args.nodes:
+        for vendor in args.robots:
+            for clock in args.clocks:
+                for code, python in versions.items():
+                    good, final, total, lat = one_case(suite, runs, node, vendor, clock, args.rate, wait, python)
+                    per_node.setdefault(f"{code} {node}", []).extend(lat)
+                    med = statistics.median(lat) * 1000 if lat else float("nan")
+                    p95 = percentile(lat, 0.95) * 1000 if lat else float("nan")
+                    print(f"{code:5} {node:6} {vendor:6} {clock:15} {good:3}/{total:<3}  {final:3}/{total:<3}  "
+                          f"{med:6.0f} ms {p95:5.0f} ms", flush=True)
     for node, lat in per_node.items():
-        print(f"node on {node}: failure -> /hexar/answer median {statistics.median(lat) * 1000:.0f} ms, "
+        if not lat:
+            continue
+        print(f"{node}: failure -> /hexar/answer median {statistics.median(lat) * 1000:.0f} ms, "
               f"p95 {percentile(lat, 0.95) * 1000:.0f} ms over {len(lat)} failures")
 
 

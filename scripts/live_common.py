@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from pathlib import Path
@@ -14,15 +15,25 @@ sys.path.insert(0, str(ROOT))
 from tests.live.dds_helpers import Listener  # noqa: E402  -- the same listener the tests use
 
 
-def start_serve(domain: int, *extra: str, transport: str = "dds") -> subprocess.Popen[str]:
-    proc = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", transport, "--domain", str(domain),
+def start_serve(domain: int, *extra: str, transport: str = "dds",
+                python: str = sys.executable) -> subprocess.Popen[str]:
+    # run outside the checkout, whose hexar/ folder would shadow the package of another install's python
+    proc = subprocess.Popen([python, "-m", "hexar", "serve", "--transport", transport, "--domain", str(domain),
                              "--quiet", *extra], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True)
+                            text=True, cwd=tempfile.gettempdir())
     assert proc.stderr is not None
     line = proc.stderr.readline()
     if "listening" not in line:
         raise SystemExit(f"hexar serve did not start: {line}{proc.stderr.read()}")
     return proc
+
+
+def lossy(cyclone_uri: str, permille: int) -> str:
+    """`cyclone_uri` plus Cyclone DDS's own fault injection: each participant of a process started with it drops
+    `permille` of every 1,000 packets it sends (data, heartbeats, acknowledgements and discovery alike), as a lossy
+    Wi-Fi link would. Set before a process creates its first participant; child processes inherit it."""
+    drop = f"<Internal><Test><XmitLossiness>{permille}</XmitLossiness></Test></Internal>"
+    return f"{cyclone_uri},{drop}" if cyclone_uri.strip() else drop
 
 
 def rss_mb(pid: int) -> float:

@@ -4,6 +4,7 @@ with duplicates, bounded, and sane across a clock jump."""
 from __future__ import annotations
 
 import random
+import time
 from pathlib import Path
 
 from hexar.events import contract as c
@@ -115,3 +116,22 @@ def test_a_task_id_repeated_after_a_restart_is_a_new_task() -> None:
     assert [(t.task_id, t.outcome) for t in snap.tasks] == [("1", "failed"), ("1#2", "succeeded")]
     assert live.duplicates == 1
     assert any("started again" in w for w in snap.warnings)
+
+
+def test_lateness_counts_records_that_arrive_behind_the_robots_clock() -> None:
+    live = LiveLog(Limits(join_s=0.0))
+    before = time.monotonic()
+    live.extend([_line(10.0), _line(10.1), _line(12.0)])
+    assert live.late_since(before, int(20 * NS)) == 0 and live.lateness_s() == 0.0  # in order: nothing late
+    live.add(_line(11.0, "resent"))  # 1 s behind the newest stamp, as a resent message comes
+    live.add(_line(11.5, "resent too"))
+    assert live.late_since(before, int(11.2 * NS)) == 1  # only those stamped by then
+    assert live.late_since(time.monotonic(), int(20 * NS)) == 0  # and only those arrived since
+    assert live.lateness_s() == 1.0 and live.lateness_s(q=0.0) == 0.5
+    assert live.lateness_s(over_s=0.8) == 1.0 and live.lateness_s(over_s=2.0) == 0.0
+
+
+def test_a_late_joiners_history_is_no_lateness() -> None:
+    live = LiveLog()  # join_s 5: what comes in the first seconds is transient-local history, in any order
+    live.extend([_line(12.0), _line(10.0), _line(11.0)])
+    assert live.lateness_s() == 0.0 and live.late_since(0.0, int(20 * NS)) == 0
