@@ -110,3 +110,33 @@ def test_a_robot_that_drops_a_fifth_of_its_packets_gets_hexar_asks_causes(suite:
     finally:
         listener.close()
     assert last == failures, listener.heard.answers
+
+
+def test_hexar_chat_live_shows_a_correction_and_continues_its_thread() -> None:
+    import json
+
+    from hexar.live import msgs
+    from hexar.live.chat_live import LiveChat
+    from hexar.live.dds import DdsEndpoint
+    from hexar.live.topics import ANSWER, ANSWER_QOS
+
+    domain = fresh_domain()
+    shown: list[dict[str, Any]] = []
+    chat = LiveChat(domain, shown.append)
+    node = DdsEndpoint(domain)  # stands in for the node's answer writer
+    writer = node.writer(ANSWER, c.STRING_TYPE, ANSWER_QOS)
+    try:
+        time.sleep(1.0)
+        for trigger, thread, causes in (("failure", "t1", ["ask_human.in_progress"]),
+                                        ("correction", "t2", ["ask_human.nobody_detected"])):
+            writer.write(msgs.String(data=json.dumps({"trigger": trigger, "thread": thread, "causes": causes,
+                                                      "answer": f"{trigger} answer"})))
+            time.sleep(0.3)
+        deadline = time.monotonic() + 5.0
+        while len(shown) < 2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+    finally:
+        chat.close()
+        node.close()
+    assert [a["trigger"] for a in shown] == ["failure", "correction"]
+    assert chat.thread == "t2"  # a "why?" now continues the corrected explanation
