@@ -123,6 +123,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     one `bring_up_controllers` goal (events/bringup.py), unless the recording is a Nav2 robot's (navigation explains
     those)."""
     from hexar.events.bringup import ABORT, bring_up
+    from hexar.events.nav_goals import python_death_alone
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -146,7 +147,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         active = [(line, skill) for line in logs if line.level >= ERROR and not _stack_bringup(line)
                   for skill, cat in _readers(line) if cat.match(line.msg) is not None][:1]
     if not active:
-        if any(_nav2_own(ln) for ln in logs):
+        if any(_nav2_own(ln) for ln in logs) and not python_death_alone(logs):
             return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
         start = bring_up(logs)
         if start is None:

@@ -17,6 +17,7 @@ from hexar.events.tasks import SkillRun, StatusChange, Task
 
 if TYPE_CHECKING:
     from hexar.explainers.navigation.catalogue import Catalogue as NavCatalogue
+    from hexar.explainers.navigation.catalogue import Entry as NavEntry
 
 SOURCE = "nav2"
 SKILL = "navigate_to_pose"
@@ -173,17 +174,42 @@ def _nav2_process(line: LogLine, cat: NavCatalogue) -> bool:
     return not name or cat.role(name) is not None or NAVIGATION.search(f"{name} {line.msg}") is not None
 
 
+def _worded(entry: NavEntry | None) -> bool:
+    """A line in Nav2's own words: a catalogued cause, the progress checker's, a failure's, or "Reached the goal!"."""
+    from hexar.explainers.navigation.catalogue import REACHED
+
+    return entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"}
+                                  or entry.id == REACHED)
+
+
+def python_death_alone(logs: list[LogLine]) -> bool:
+    """A Python program died of an exception, and nothing else of the recording is Nav2's words or an error: loggers
+    named like Nav2's nodes (a program's own "map_server") do not make that death a navigation's, since Nav2's servers
+    are C++ programs. The death is what the recording tells (events/bringup.py)."""
+    from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.stack.thrown import python_exception
+
+    thrown = [python_exception(line) is not None for line in logs]
+    if not any(thrown):
+        return False
+    cat = catalogue()
+    return not any(not py and (line.level >= ERROR or _worded(cat.match(line.msg)))
+                   for line, py in zip(logs, thrown, strict=True))
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
     a cause or to the progress checker, the lines of Nav2's own nodes, and the bring-up errors of the stack
     catalogue (at any level: consoles pasted without levels are read as INFO); failed when Nav2 logged an error or
     an abort, else still running as far as the recording shows."""
-    from hexar.explainers.navigation.catalogue import REACHED, catalogue
+    from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.chain import NAVIGATION
     from hexar.explainers.stack.loader import loader_failure
     from hexar.explainers.stack.thrown import python_exception
 
+    if python_death_alone(logs):
+        return []
     cat = catalogue()
     active: list[LogLine] = []
     failed: LogLine | None = None
@@ -203,8 +229,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
             continue  # a Python program's uncaught exception: Nav2's servers are C++ programs
         entry = cat.match(line.msg)
         # the controller server's "Reached the goal!" (controller_server.cpp:411@humble) ends a path it followed
-        nav2 = entry is not None and (entry.cause is not None or entry.kind in {"progress", "failed"}
-                                      or entry.id == REACHED)
+        nav2 = _worded(entry)
         # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no
         # catalogued line: a stack that came up and ran normally has a navigation to tell about too; a TF
         # publisher's own line (robot_state_publisher's "Robot initialized") is not: every robot runs one

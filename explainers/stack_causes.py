@@ -65,6 +65,8 @@ def _configuration(line: LogLine, exc: PyException) -> bool:
     return entry is not None and entry.cause == "stack.configuration_error"
 
 
+# rcl's rosout publisher of a node name it already has (logging_rosout.c:229@rolling; "for provided node name" before)
+_SAME_NAME = re.compile(r"Publisher already registered for (?:provided node name|node name: '(?P<name>[^']*)')")
 # rclpy's InvalidParameterTypeException (exceptions.py): "Trying to set parameter '…' to '…' of type '…', expecting
 # type '…'"; rclcpp's InvalidParameterTypeException: "parameter '…' has invalid type: …"
 _PARAMETER_TYPE = re.compile(r"Trying to set parameter|has invalid type|expecting type")
@@ -94,9 +96,9 @@ def mixed_clocks(line: LogLine) -> str | None:
     for any other line. The process died of it, but the exception, not the death, says what went wrong."""
     if _MIXED_CLOCKS.search(line.msg) is None:
         return None
-    return ("two times from different clocks met, which rclcpp refuses (the process that threw it ended there, on "
-            "that uncaught exception): ROS time (a node's clock) against a time built on the system or steady clock. "
-            "Some code mixes the two, often only where simulated time is in use "
+    return ("two times from different clocks met, which rclcpp does not allow (the process that threw it ended "
+            "there, on that uncaught exception): ROS time (a node's clock) against a time built on the system or "
+            "steady clock. Some code mixes the two, often only where simulated time is in use "
             "(use_sim_time set, or Gazebo's /clock bridged or not), so check which node's update threw it and how "
             "its times are made")
 
@@ -143,6 +145,9 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     if not found and (qos := qos_line(lines)) is not None:
         # last: a mismatch may be any pair's (a viewer's subscription), so it is told only when nothing else is
         found.append(Reading(qos, None, "bringup.configuration_error", "stack", "qos"))
+    if not found and (same := next((ln for ln in lines if _SAME_NAME.search(ln.msg)), None)) is not None:
+        # two nodes of one name: rcl only warns and both run, so it is told only when nothing else is either
+        found.append(Reading(same, None, "bringup.configuration_error", "stack"))
     return min(found, key=lambda r: r.line.t) if found else None
 
 
@@ -243,6 +248,12 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                 "Give the parameter a value of the type the node declares (in its params file, launch file or "
                 "overrides: quote a string, write 1.0 for a double), or declare it with the type you set.", line)
     if cause == "bringup.configuration_error" and d.decisive is not None and d.decisive.catalogue == "stack":
+        if (same := _SAME_NAME.search(d.decisive.line.msg)) is not None:
+            name = f" ('{same['name']}')" if same["name"] else ""
+            return (f"{head} two of my nodes were started with the same name{name}, so ROS 2 cannot tell them apart: "
+                    "parameters given for that name reach both, and their services and logs are mixed up.",
+                    "Give each node a name of its own (name= in the launch file's Node action, or --ros-args -r "
+                    "__node:=...), or a namespace of its own.", line)
         if _params_missing(d.decisive.line):
             path = d.decisive.line.msg.split(": ", 1)[-1].strip()
             return (f"{head} my launch was given a parameter file that does not exist ({path}), so it started the "
