@@ -151,8 +151,8 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
         node.stop()
         stats = log.stats()
         print(f"hexar serve: received {stats['received']} records ({stats['duplicates']} duplicates, "
-              f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers, "
-              f"{node.errors} errors", file=sys.stderr, flush=True)
+              f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers "
+              f"({node.corrections} corrections), {node.errors} errors", file=sys.stderr, flush=True)
     return 0
 
 
