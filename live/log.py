@@ -299,13 +299,13 @@ class LiveLog:
         with self._lock:
             return sum(1 for arrived, t, _ in reversed(self._late) if arrived > since and t <= stamped_by)
 
-    def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9) -> float:
+    def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9, least: int = 1) -> float:
         """The `q` quantile of how far behind the robot's clock records arrived in the last `window_s` seconds,
-        counting only those later than `over_s`; 0 when none was."""
+        counting only those later than `over_s`; 0 when fewer than `least` were."""
         since = time.monotonic() - window_s
         with self._lock:
             behind = sorted(b for arrived, _, b in self._late if arrived > since and b > over_s * NS)
-        return behind[min(len(behind) - 1, int(q * len(behind)))] / NS if behind else 0.0
+        return behind[min(len(behind) - 1, int(q * len(behind)))] / NS if len(behind) >= max(1, least) else 0.0
 
     def snapshot(self) -> EventLog:
         """An EventLog of what is kept now; later additions do not change it."""

@@ -283,7 +283,8 @@ class LiveNode:
     def _answer(self, job: Job) -> None:
         if job.kind == "failure":
             opts = self.options
-            settle = max(opts.settle_s, min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s)))
+            # a few records, not one stray line, make a network late
+            settle = max(opts.settle_s, min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s, least=3)))
             self.log.wait_until(job.t + int(settle * NS), max(opts.settle_wall_s, min(opts.max_settle_s,
                                                                                      1.5 * settle)))
         taken = time.monotonic()

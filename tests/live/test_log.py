@@ -129,6 +129,7 @@ def test_lateness_counts_records_that_arrive_behind_the_robots_clock() -> None:
     assert live.late_since(time.monotonic(), int(20 * NS)) == 0  # and only those arrived since
     assert live.lateness_s() == 1.0 and live.lateness_s(q=0.0) == 0.5
     assert live.lateness_s(over_s=0.8) == 1.0 and live.lateness_s(over_s=2.0) == 0.0
+    assert live.lateness_s(least=3) == 0.0  # two late records are not yet a late network
 
 
 def test_a_late_joiners_history_is_no_lateness() -> None:
