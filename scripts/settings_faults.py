@@ -14,13 +14,7 @@ replaced by fixed names, and each excerpt's cause is the fault injected, written
 
 from __future__ import annotations
 
-import argparse
-import os
-import subprocess
-import sys
-from pathlib import Path
-
-from stack_faults import CONFIG, CYCLONE, NODE, Fault, scrub, versions, write_set
+from stack_faults import CONFIG, CYCLONE, NODE, Fault, generate
 
 LIVELINESS = """\
 import time
@@ -125,31 +119,8 @@ HEADER = """\
 """
 
 
-def run(fault: Fault, work: Path) -> tuple[str, int]:
-    for name, text in fault.files.items():
-        (work / name).parent.mkdir(parents=True, exist_ok=True)
-        (work / name).write_text(text, encoding="utf-8")
-    script = work / SCRIPTS.get(fault.program, f"{fault.program}.py")
-    script.write_text(PROGRAMS[fault.program], encoding="utf-8")
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "RMW_", "FASTDDS_", "CYCLONEDDS_"))}
-    env.update(fault.env)
-    env["ROS_HOME"] = str(work / ".ros")  # rcl's log files, kept out of this machine's home
-    done = subprocess.run([sys.executable, script.name, *fault.args], cwd=work, env=env, capture_output=True,
-                          text=True, timeout=60, check=False)
-    return done.stdout + done.stderr, done.returncode
-
-
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, required=True)
-    args = parser.parse_args()
-
-    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
-        text, code = run(fault, work)
-        return scrub(text, work).replace(sys.executable, "/opt/venv/bin/python"), code
-
-    write_set(args.out, HEADER, "settings_faults.py", versions(), FAULTS, run_one, SILENT, CORRECTED)
-    return 0
+    return generate(__doc__, HEADER, "settings_faults.py", FAULTS, PROGRAMS, SCRIPTS, SILENT, CORRECTED)
 
 
 if __name__ == "__main__":

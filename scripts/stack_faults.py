@@ -182,6 +182,40 @@ def write_set(out: Path, header: str, script: str, stack: str, faults: Iterable[
     out.write_text(f"{header}\n{body}", encoding="utf-8")
 
 
+def run_written(fault: Fault, work: Path, programs: Mapping[str, str], scripts: Mapping[str, str]) -> tuple[str, int]:
+    """Write the fault's files and its program (`programs[fault.program]`, as `scripts` names it, else
+    `<program>.py`) into `work` and run it there with the fault's arguments and environment (none of this machine's
+    ROS_, RMW_ or DDS variables; rcl's log files in `work`): its output and exit code."""
+    for name, text in fault.files.items():
+        (work / name).parent.mkdir(parents=True, exist_ok=True)
+        (work / name).write_text(text, encoding="utf-8")
+    script = work / scripts.get(fault.program, f"{fault.program}.py")
+    script.write_text(programs[fault.program], encoding="utf-8")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "RMW_", "FASTDDS_", "CYCLONEDDS_"))}
+    env.update(fault.env)
+    env["ROS_HOME"] = str(work / ".ros")  # rcl's log files, kept out of this machine's home
+    done = subprocess.run([sys.executable, script.name, *fault.args], cwd=work, env=env, capture_output=True,
+                          text=True, timeout=60, check=False)
+    return done.stdout + done.stderr, done.returncode
+
+
+def generate(doc: str, header: str, script: str, faults: Iterable[Fault], programs: Mapping[str, str],
+             scripts: Mapping[str, str], silent: Mapping[str, str] | None = None,
+             notes: Mapping[str, str] | None = None) -> int:
+    """A generator's command line (`--out FILE.yaml`): each fault run by run_written, its output scrubbed (this
+    machine's folders and Python replaced by fixed names), written by write_set."""
+    parser = argparse.ArgumentParser(description=doc.splitlines()[0])
+    parser.add_argument("--out", type=Path, required=True)
+    args = parser.parse_args()
+
+    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
+        text, code = run_written(fault, work, programs, scripts)
+        return scrub(text, work).replace(sys.executable, "/opt/venv/bin/python"), code
+
+    write_set(args.out, header, script, versions(), faults, run_one, silent, notes)
+    return 0
+
+
 def versions() -> str:
     """The stack's versions as an excerpt's source names them."""
     return f"rclpy {version('ros-kilted-rclpy')}, cyclonedds {version('cyclonedds')}"
