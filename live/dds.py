@@ -57,6 +57,11 @@ IDL: dict[str, type[Any]] = {
 # matches their endpoints by type name: eProsima Fast DDS (1.15, rmw_fastrtps) and RTI Connext (1.1,
 # rmw_connextdds). The user's CYCLONEDDS_URI still applies; this fragment is added after it.
 ROS_COMPATIBILITY = "<Compatibility><IgnoreTypeInformation>1.1,1.15</IgnoreTypeInformation></Compatibility>"
+# Cyclone announces a participant to its peers every 30 s by default, and answers a new peer's announcement once: on
+# a lossy link, one lost packet leaves two participants strangers for half a minute (measured here: a robot whose
+# Cyclone drops a fifth of its packets was not matched within 30 s on 3 runs of 8). Announced every 2 s, as a small
+# packet, unless the user's CYCLONEDDS_URI, read after this, sets another interval.
+DISCOVERY = "<Discovery><SPDPInterval>2 s</SPDPInterval></Discovery>"
 _DOMAINS: dict[int, Any] = {}  # a Domain deletes its participants when collected: kept for the process
 _DOMAINS_LOCK = threading.Lock()
 MAX_BLOCKING_NS = 100_000_000  # rmw_cyclonedds' default for reliable writers
@@ -113,11 +118,11 @@ def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.
 
 
 def _configure(domain_id: int) -> None:
-    """Create the process's Domain for `domain_id` once, with the user's configuration plus ROS_COMPATIBILITY."""
+    """Create the process's Domain for `domain_id` once: DISCOVERY, the user's configuration, ROS_COMPATIBILITY."""
     with _DOMAINS_LOCK:
         if domain_id not in _DOMAINS:
             user = os.environ.get("CYCLONEDDS_URI", "").strip()
-            _DOMAINS[domain_id] = Domain(domain_id, f"{user},{ROS_COMPATIBILITY}" if user else ROS_COMPATIBILITY)
+            _DOMAINS[domain_id] = Domain(domain_id, ",".join(filter(None, (DISCOVERY, user, ROS_COMPATIBILITY))))
 
 
 class DdsEndpoint:

@@ -17,6 +17,10 @@ from typing import Generic, Protocol, TypeVar
 
 MAX_QUESTIONS = 4  # waiting questions; a fifth drops the oldest
 MAX_FAILURES = 32  # waiting proactive explanations (each failure is explained once, see LiveNode._explained)
+# Unasked explanations spoken: two at once, then one every 10 s, and none that waited longer than 10 s; the rest
+# are published only. A robot that fails over and over (or a publisher that floods /task_info) must not talk on
+# and on about it, and a stale failure is no news to say out loud.
+SPEAK_BURST, SPEAK_EVERY_S, SPEAK_STALE_S = 2, 10.0, 10.0
 BURST = 3  # questions a source may ask at once
 PER_SECOND = 1.0  # and then one a second
 MAX_SOURCES = 1024  # sources remembered (the least recent are forgotten, and start afresh)
@@ -68,10 +72,12 @@ class RateLimit:
 
 
 class JobQueue(Generic[J]):
-    """FIFO of jobs with a limit per kind: over it, the oldest job of that kind is dropped (and counted)."""
+    """FIFO of jobs with a limit per kind: over it, the oldest job of that kind is dropped (and counted). Jobs of
+    the `first` kinds go before the others (a person's question before a backlog of unasked explanations)."""
 
-    def __init__(self, limits: dict[str, int]) -> None:
+    def __init__(self, limits: dict[str, int], first: tuple[str, ...] = ()) -> None:
         self.limits = limits
+        self.first = first
         self.dropped = 0
         self._jobs: deque[J] = deque()
         self._ready = threading.Condition()
@@ -91,7 +97,11 @@ class JobQueue(Generic[J]):
         with self._ready:
             if not self._ready.wait_for(lambda: bool(self._jobs), timeout=timeout):
                 return None
-            return self._jobs.popleft()
+            urgent = next((j for j in self._jobs if j.kind in self.first), None) if self.first else None
+            if urgent is None:
+                return self._jobs.popleft()
+            self._jobs.remove(urgent)
+            return urgent
 
     def __len__(self) -> int:
         with self._ready:

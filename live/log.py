@@ -59,7 +59,8 @@ class Limits:
     # Records that arrive behind the robot's clock (stamped before the newest one kept) are remembered, this many,
     # with when they came: a lossy network delivers what it lost late, when DDS resends it.
     late_kept: int = 4096
-    # What arrives this soon after the first record is a late joiner's transient-local history, not lateness.
+    # What arrives this soon after the first record may be a late joiner's transient-local history: it counts as
+    # arriving late (a second look at an explanation reads it), but not as a network's lateness.
     join_s: float = 5.0
 
 
@@ -96,8 +97,9 @@ class LiveLog:
         self._since_prune = 0
         self.newest = 0
         self._first_arrival = 0.0
-        # (arrival on this machine's monotonic clock, stamp, how far behind the newest stamp it came)
-        self._late: deque[tuple[float, int, int]] = deque(maxlen=self.limits.late_kept)
+        # (arrival on this machine's monotonic clock, stamp, how far behind the newest stamp it came, whether it
+        # came while joining)
+        self._late: deque[tuple[float, int, int, bool]] = deque(maxlen=self.limits.late_kept)
         self.warnings: deque[str] = deque(maxlen=50)
         self.received = 0
         self.duplicates = 0
@@ -264,8 +266,8 @@ class LiveLog:
         if not self._first_arrival:
             self._first_arrival = now
         behind = self.newest - t
-        if 0 < behind <= int(self.limits.jump_back_s * NS) and now - self._first_arrival >= self.limits.join_s:
-            self._late.append((now, t, behind))
+        if 0 < behind <= int(self.limits.jump_back_s * NS):
+            self._late.append((now, t, behind, now - self._first_arrival < self.limits.join_s))
 
     def _prune(self) -> None:
         lim = self.limits
@@ -297,14 +299,16 @@ class LiveLog:
     def late_since(self, since: float, stamped_by: int) -> int:
         """How many records stamped at or before `stamped_by` arrived late after `since` (time.monotonic())."""
         with self._lock:
-            return sum(1 for arrived, t, _ in reversed(self._late) if arrived > since and t <= stamped_by)
+            return sum(1 for arrived, t, _, _ in reversed(self._late) if arrived > since and t <= stamped_by)
 
     def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9, least: int = 1) -> float:
         """The `q` quantile of how far behind the robot's clock records arrived in the last `window_s` seconds,
-        counting only those later than `over_s`; 0 when fewer than `least` were."""
+        counting only those later than `over_s` and none of a late joiner's history; 0 when fewer than `least`
+        were."""
         since = time.monotonic() - window_s
         with self._lock:
-            behind = sorted(b for arrived, _, b in self._late if arrived > since and b > over_s * NS)
+            behind = sorted(b for arrived, _, b, joining in self._late
+                            if arrived > since and b > over_s * NS and not joining)
         return behind[min(len(behind) - 1, int(q * len(behind)))] / NS if len(behind) >= max(1, least) else 0.0
 
     def snapshot(self) -> EventLog:

@@ -8,7 +8,6 @@ memory nor the next real question's answer.
 
 from __future__ import annotations
 
-import json
 import sys
 import threading
 import time
@@ -17,11 +16,18 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal, Protocol
 
-from hexar.events import contract as c
 from hexar.events.errors import EventsError
-from hexar.events.records import GoalStatus, StatusRecord, TaskUpdate
-from hexar.events.task_info import parse_task_info
-from hexar.live.jobs import MAX_FAILURES, MAX_QUESTIONS, JobQueue, RateLimit
+from hexar.events.records import GoalStatus, TaskUpdate
+from hexar.live.jobs import (
+    MAX_FAILURES,
+    MAX_QUESTIONS,
+    SPEAK_BURST,
+    SPEAK_EVERY_S,
+    SPEAK_STALE_S,
+    Bucket,
+    JobQueue,
+    RateLimit,
+)
 from hexar.live.log import NS, LiveLog
 from hexar.live.recheck import Rechecks
 from hexar.live.topics import ANSWER
@@ -33,6 +39,7 @@ INVALID_QUESTION = "Why couldn't you do the task?"
 KEEP_THREADS = 20
 FOLLOW_UP_S = 120.0  # a question without a thread continues the current dialogue only this long after its answer
 MAX_QUESTION_JSON = 8 * 1024  # `{"question": ..., "thread": ...}`: a question of MAX_QUESTION characters fits
+RECHECK = "recheck-"  # the thread of a second look at an unasked explanation (live/recheck.py)
 GOAL_ABORTED = 6  # action_msgs/GoalStatus STATUS_ABORTED: Nav2's "Goal failed"
 GOAL_ACTIVE = frozenset({1, 2, 3})  # accepted, executing, canceling
 
@@ -84,6 +91,7 @@ class Job:
     answered: float = 0.0
     since: float = 0.0
     look: int = 0
+    spoken: bool = False  # the unasked explanation was said, so its correction is said too
 
 
 def failure_key(update: TaskUpdate) -> str | None:
@@ -115,7 +123,10 @@ class LiveNode:
         self.thread: str | None = None  # the current dialogue: a follow-up "why?" continues it
         self.answers = 0
         self.errors = 0
-        self._jobs: JobQueue[Job] = JobQueue({"question": MAX_QUESTIONS, "failure": MAX_FAILURES})
+        self._jobs: JobQueue[Job] = JobQueue({"question": MAX_QUESTIONS, "failure": MAX_FAILURES},
+                                             first=("stop", "question"))
+        self._speech = Bucket(SPEAK_BURST, 1.0 / SPEAK_EVERY_S, time.monotonic())
+        self.unspoken = 0  # unasked explanations published but not said (over the rate, or stale)
         self._rechecks: Rechecks[Job] = Rechecks()
         self.corrections = 0
         self._rate = RateLimit()
@@ -144,31 +155,11 @@ class LiveNode:
         return Session(settings, log=self.log.snapshot())
 
     def warm_up(self) -> None:
-        """Pay the first-answer costs now (pgmpy's causal model, the pizza tree, each explainer's first call)
-        so the first live failure is explained within the second: one question per module on a made-up log
-        of failed tasks, answered and thrown away."""
-        from hexar.explainers.ask_human.explainer import shipped_model
-        from hexar.explainers.pizza.recommender import default_recommender
+        """Pay the first-answer costs now (live/warmup.py), so the first live failure is explained within the
+        second."""
+        from hexar.live.warmup import warm_up
 
-        shipped_model().p_success({})  # imports pgmpy's inference and builds its engine
-        default_recommender()
-        warm = LiveLog(name="warm-up")
-        for i, skill in enumerate(("navigate_to_zone", "ask_human_for_help", "say", "recommend_pizza")):
-            step = {"skill": skill, "params": {}, "status": "failed", "error_msg": "The skill has been aborted"}
-            raw = json.dumps({"instruction": "warm up", "task_id": f"warm{i}", "task_status": "valid",
-                              "task_error_msg": "", "skill_sequence": [step]})
-            update = parse_task_info((i + 3) * NS, raw)
-            if skill == "ask_human_for_help":  # a detection failure makes the causal search run once
-                for j, (key, value) in enumerate((("InitialState", "True"), ("DetectState", "True"),
-                                                  ("person_detected", "True"), ("person_std_rms", "0.9"),
-                                                  ("detection_stable", "False"), ("SkillFailed", "True"))):
-                    warm.add(StatusRecord((i + 2) * NS + j, c.EPISODIC_MEMORY, 0, c.ASK_HUMAN_STATUS_NAME, key, "",
-                                          (("Module name", "skill_ask_human_for_help"), (key, value))))
-            if update is not None:
-                warm.add(update)
-                self._session.use_log(warm.snapshot())
-                thread = self._session.ask(FAILURE_QUESTION, task=update.task_id)["thread"]
-                self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
+        warm_up(self._session, FAILURE_QUESTION)
 
     def stop(self) -> None:
         self._jobs.put(Job("stop"))
@@ -313,14 +304,22 @@ class LiveNode:
             result["sentence"] = short_sentence(str(result.get("answer", "")))
             result["event_t"] = job.t  # the failing update, on the robot's clock
         self._publish(result)
-        speak = self.speakers and not result.get("error") and (
-            job.kind == "question" or self.options.proactive == "speak")
+        speak = bool(self.speakers) and not result.get("error") and (
+            job.kind == "question" or (self.options.proactive == "speak" and self._may_speak(job)))
         if speak:
             self._say(result, job)
         if job.kind == "failure" and not result.get("error"):
             now = time.monotonic()
             self._rechecks.add(replace(job, kind="recheck", causes=tuple(result.get("causes") or ()), answered=now,
-                                       since=taken), 0, now)
+                                       since=taken, spoken=speak), 0, now)
+
+    def _may_speak(self, job: Job) -> bool:
+        """Whether an unasked explanation is said aloud (live/jobs.py SPEAK_*); it is published either way."""
+        now = time.monotonic()
+        if now - job.received > SPEAK_STALE_S or not self._speech.take(now):
+            self.unspoken += 1
+            return False
+        return True
 
     def _recheck(self, job: Job) -> None:
         """Look again at an unasked explanation (live/recheck.py): when records stamped before the failure came
@@ -331,7 +330,7 @@ class LiveNode:
             return
         taken = time.monotonic()
         self._session.use_log(self.log.snapshot())
-        thread = self._session.new_thread()
+        thread = f"{RECHECK}{self._session.new_thread()}"  # thrown away unless it becomes the correction's
         try:
             result = dict(self._session.ask(job.text, thread=thread, task=job.task_id or None))
         except EventsError:
@@ -347,7 +346,7 @@ class LiveNode:
                           sentence=short_sentence(str(result.get("answer", ""))),
                           latency_ms=round((time.monotonic() - job.received) * 1000, 1))
             self._publish(result)
-            if self.speakers and self.options.proactive == "speak":
+            if job.spoken:
                 self._say(result, job)
             job = replace(job, causes=causes)
         self._rechecks.add(replace(job, look=look, since=taken), look, job.answered)

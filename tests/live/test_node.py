@@ -141,7 +141,7 @@ def test_rolling_recording_replays_with_hexar_ask(suite: Path, tmp_path: Path, t
 def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path, transport: str) -> None:
     import json
 
-    from hexar.live.node import KEEP_THREADS
+    from hexar.live.node import KEEP_THREADS, RECHECK
 
     domain = fresh_domain()
     listener = Listener(domain)
@@ -152,7 +152,8 @@ def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path, transp
                 listener.ask(json.dumps({"question": "Why didn't you bring me the coffee?", "thread": f"t{i}"}))
                 answers = listener.wait_answers(i + 1, "question", timeout=60)
             saver = node._session.graph.checkpointer
-            kept = {thread for thread, checkpoints in saver.storage.items() if checkpoints}
+            # a second look at the unasked explanation (live/recheck.py) may hold a thread of its own for a moment
+            kept = {thread for thread, checkpoints in saver.storage.items() if checkpoints and RECHECK not in thread}
     finally:
         listener.close()
     assert len(answers) == KEEP_THREADS + 5

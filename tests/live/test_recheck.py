@@ -38,3 +38,13 @@ def test_the_queue_wait_ends_with_a_job_or_the_timeout() -> None:
     threading.Timer(0.05, jobs.put, (Job("question", text="why?"),)).start()
     got = jobs.get(timeout=5.0)
     assert got is not None and got.text == "why?"
+
+
+def test_a_question_goes_before_waiting_unasked_explanations() -> None:
+    jobs: JobQueue[Job] = JobQueue({}, first=("stop", "question"))
+    for i in range(5):
+        jobs.put(Job("failure", task_id=f"t{i}"))
+    jobs.put(Job("question", text="why?"))
+    got = [jobs.get(timeout=0.1) for _ in range(6)]
+    assert [j.kind if j else None for j in got] == ["question"] + ["failure"] * 5
+    assert [j.task_id for j in got[1:] if j] == [f"t{i}" for i in range(5)]  # the rest in the order they came
