@@ -127,6 +127,7 @@ class LiveNode:
                                              first=("stop", "question"))
         self._speech = Bucket(SPEAK_BURST, 1.0 / SPEAK_EVERY_S, time.monotonic())
         self.unspoken = 0  # unasked explanations published but not said (over the rate, or stale)
+        self.untold = 0  # failures not explained: their task was gone from the live log by their turn
         self._rechecks: Rechecks[Job] = Rechecks()
         self.corrections = 0
         self._rate = RateLimit()
@@ -278,7 +279,7 @@ class LiveNode:
             settle = max(opts.settle_s, min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s, least=3)))
             self.log.wait_until(job.t + int(settle * NS), max(opts.settle_wall_s, min(opts.max_settle_s,
                                                                                      1.5 * settle)))
-        taken = time.monotonic()
+        taken, previous = time.monotonic(), self.thread
         self._session.use_log(self.log.snapshot())
         if job.kind == "failure":
             if not job.task_id:
@@ -295,6 +296,10 @@ class LiveNode:
         try:
             result = dict(self._session.ask(job.text, thread=thread, task=task))
         except EventsError as err:  # no task yet: say so instead of guessing
+            if job.kind == "failure":
+                # its task is no longer kept (a burst of failures pushed it out of the live log): nothing to tell
+                self.untold, self.thread = self.untold + 1, previous
+                return
             result = {"answer": str(err), "error": str(err), "thread": thread}
         self._last_answer = time.monotonic()
         result["trigger"] = job.kind

@@ -101,15 +101,15 @@ def failure_flood(args: argparse.Namespace) -> int:
     the node explains failures unasked and, with --proactive speak, says them on the robot's TTS topic."""
     import json
 
-    from hexar.live.topics import TTS_QOS
+    from hexar.live.topics import TopicQos
 
     serve = start_serve(args.domain, "--proactive", "speak", "--tts-topic", TTS, python=args.python)
     sampler = RssSampler(serve.pid)
     listener = Listener(args.domain)
     endpoint = DdsEndpoint(args.domain)
     writer = endpoint.writer(c.TASK_INFO, c.STRING_TYPE, QOS_OF[c.TASK_INFO])
-    spoken = listener.endpoint.reader(TTS, c.STRING_TYPE, TTS_QOS)
-    said: list[float] = []
+    spoken = listener.endpoint.reader(TTS, c.STRING_TYPE, TopicQos(depth=10_000))  # reliable: every utterance
+    said: list[tuple[float, str]] = []
     time.sleep(1.5)
     before = [ask_as(listener, f"before{i}") for i in range(5)]
     rss_before = rss_mb(serve.pid)
@@ -131,27 +131,29 @@ def failure_flood(args: argparse.Namespace) -> int:
             thread = f"during{len(during)}-{sent}"
             threading.Thread(target=lambda t=thread: during.append(ask_as(listener, t)), daemon=True).start()
             next_q += 3.0
-        said += [time.monotonic() for s in spoken.take(256) if s.sample_info.valid_data]
+        said += [(time.monotonic(), str(s.data)) for s in spoken.take(256) if s.sample_info.valid_data]
         time.sleep(0.001)
     elapsed = time.monotonic() - started
     rss_flood = max(mb for _, mb in sampler.samples)
     end = time.monotonic() + 10.0  # what the node still says after the flood ended
     while time.monotonic() < end:
-        said += [time.monotonic() for s in spoken.take(256) if s.sample_info.valid_data]
+        said += [(time.monotonic(), str(s.data)) for s in spoken.take(256) if s.sample_info.valid_data]
         time.sleep(0.05)
     after = [ask_as(listener, f"person{i}") for i in range(5)]
     rss_after = rss_mb(serve.pid)
     sampler.stop()
     unasked = len(listener.answers("failure"))
+    replies = sum(1 for _, a in listener.answers("question"))
     listener.close()
     endpoint.close()
     serve.send_signal(signal.SIGTERM)
     _, err = serve.communicate(timeout=60)
     ok = [x for x in during + after if x != float("inf")]
-    late = sum(1 for t in said if t > started + elapsed)
+    late = sum(1 for t, _ in said if t > started + elapsed)
     print(f"sent {sent} failing tasks in {elapsed:.1f} s = {sent / elapsed:.0f}/s (asked for {args.rate:.0f}); "
           f"unasked answers published {unasked}; utterances on the TTS topic {len(said)} ({late} after the flood "
-          f"ended)")
+          f"ended), with the answers to the person's {replies} questions (the node's line below counts the unasked "
+          "ones it did not say)")
     print(f"node: {err.strip().splitlines()[-1] if err.strip() else '(no summary)'}")
     print(f"RSS MB: before {rss_before:.0f}, peak during {rss_flood:.0f}, after {rss_after:.0f}")
     base = percentile(before, 0.5)
