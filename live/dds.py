@@ -57,10 +57,10 @@ IDL: dict[str, type[Any]] = {
 # matches their endpoints by type name: eProsima Fast DDS (1.15, rmw_fastrtps) and RTI Connext (1.1,
 # rmw_connextdds). The user's CYCLONEDDS_URI still applies; this fragment is added after it.
 ROS_COMPATIBILITY = "<Compatibility><IgnoreTypeInformation>1.1,1.15</IgnoreTypeInformation></Compatibility>"
-# Cyclone announces a participant to its peers every 30 s by default, and answers a new peer's announcement once: on
-# a lossy link, one lost packet leaves two participants strangers for half a minute (measured here: a robot whose
-# Cyclone drops a fifth of its packets was not matched within 30 s on 3 runs of 8). Announced every 2 s, as a small
-# packet, unless the user's CYCLONEDDS_URI, read after this, sets another interval.
+# Cyclone announces a participant to its peers every 30 s by default: on a lossy link, a lost announcement leaves two
+# participants strangers for up to half a minute (measured here: a robot whose Cyclone drops a fifth of its packets
+# was not matched within 30 s on 3 runs of 8). Announced every 2 s, as a small packet, unless the user's
+# CYCLONEDDS_URI, read after this, sets another interval.
 DISCOVERY = "<Discovery><SPDPInterval>2 s</SPDPInterval></Discovery>"
 _DOMAINS: dict[int, Any] = {}  # a Domain deletes its participants when collected: kept for the process
 _DOMAINS_LOCK = threading.Lock()
