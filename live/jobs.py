@@ -93,7 +93,7 @@ class JobQueue(Generic[J]):
             self._ready.notify()
 
     def get(self, timeout: float | None = None) -> J | None:
-        """The oldest job; None when `timeout` seconds passed without one."""
+        """The oldest job of a `first` kind, else the oldest job; None when `timeout` seconds passed without one."""
         with self._ready:
             if not self._ready.wait_for(lambda: bool(self._jobs), timeout=timeout):
                 return None
