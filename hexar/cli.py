@@ -303,7 +303,8 @@ def listen(
 def serve(
     transport: Annotated[str, typer.Option(help="auto (rclpy if importable), rclpy or dds")] = "auto",
     domain: Annotated[int | None, typer.Option(help="DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
-    proactive: Annotated[str, typer.Option(help="on a failure: off, publish (on /hexar/answer) or speak")] = "publish",
+    proactive: Annotated[str, typer.Option(help="on a failure: off, publish (on /hexar/answer) or speak (said aloud "
+                                           "two at once, then one every 10 s; all published)")] = "publish",
     mic: Annotated[bool, typer.Option("--mic", help="also take spoken questions from the microphone")] = False,
     wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
     tts_topic: Annotated[str | None, typer.Option(help="speak on this std_msgs/String topic (robot TTS)")] = None,
