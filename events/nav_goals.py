@@ -182,14 +182,16 @@ def _worded(entry: NavEntry | None) -> bool:
                                   or entry.id == REACHED)
 
 
-def python_death_alone(logs: list[LogLine]) -> bool:
+def python_death_alone(logs: list[LogLine], thrown: list[bool] | None = None) -> bool:
     """A Python program died of an exception, and nothing else of the recording is Nav2's words or an error: loggers
     named like Nav2's nodes (a program's own "map_server") do not make that death a navigation's, since Nav2's servers
-    are C++ programs. The death is what the recording tells (events/bringup.py)."""
+    are C++ programs. The death is what the recording tells (events/bringup.py). `thrown`: for each line, whether it
+    is a Python exception, when the caller has read that already."""
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.stack.thrown import python_exception
 
-    thrown = [python_exception(line) is not None for line in logs]
+    if thrown is None:
+        thrown = [python_exception(line) is not None for line in logs]
     if not any(thrown):
         return False
     cat = catalogue()
@@ -208,13 +210,13 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     from hexar.explainers.stack.loader import loader_failure
     from hexar.explainers.stack.thrown import python_exception
 
-    if python_death_alone(logs):
+    thrown = [python_exception(line) is not None for line in logs]
+    if python_death_alone(logs, thrown):
         return []
     cat = catalogue()
     active: list[LogLine] = []
     failed: LogLine | None = None
     own = arms = named = False
-    thrown = [python_exception(line) is not None for line in logs]
     # the processes (launch's names for them) that printed a Python traceback
     python_died = {line.name for line, py in zip(logs, thrown, strict=True) if py and line.name}
     # launch's "process started with pid [N]" for each process it started (launch/actions/execute_local.py): a

@@ -14,6 +14,7 @@ from bisect import insort
 from collections import deque
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
+from itertools import takewhile
 from pathlib import Path
 from typing import TypeVar
 
@@ -262,11 +263,11 @@ class LiveLog:
         self._behind = 0
 
     def _watch_lateness(self, t: int) -> None:
-        now = time.monotonic()
         if not self._first_arrival:
-            self._first_arrival = now
+            self._first_arrival = time.monotonic()
         behind = self.newest - t
-        if 0 < behind <= int(self.limits.jump_back_s * NS):
+        if 0 < behind <= int(self.limits.jump_back_s * NS):  # the clock is read only for a late record
+            now = time.monotonic()
             self._late.append((now, t, behind, now - self._first_arrival < self.limits.join_s))
 
     def _prune(self) -> None:
@@ -299,7 +300,9 @@ class LiveLog:
     def late_since(self, since: float, stamped_by: int) -> int:
         """How many records stamped at or before `stamped_by` arrived late after `since` (time.monotonic())."""
         with self._lock:
-            return sum(1 for arrived, t, _, _ in reversed(self._late) if arrived > since and t <= stamped_by)
+            # kept in the order they arrived: the newest first, up to the first that came before `since`
+            return sum(1 for arrived, t, _, _ in takewhile(lambda late: late[0] > since, reversed(self._late))
+                       if t <= stamped_by)
 
     def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9, least: int = 1) -> float:
         """The `q` quantile of how far behind the robot's clock records arrived in the last `window_s` seconds,

@@ -80,18 +80,26 @@ class NodeOptions:
 
 @dataclass
 class Job:
-    kind: Literal["failure", "question", "recheck", "stop"]
+    kind: Literal["failure", "question", "stop"]
     text: str = ""
     task_id: str = ""
     t: int = 0
     thread: str | None = None
     received: float = field(default_factory=time.monotonic)
-    # a recheck's: the causes last published, when that was, when its log was taken, and which look this is
-    causes: tuple[str, ...] = ()
-    answered: float = 0.0
-    since: float = 0.0
-    look: int = 0
-    spoken: bool = False  # the unasked explanation was said, so its correction is said too
+
+
+@dataclass(frozen=True)
+class Look:
+    """A second look at an unasked explanation (live/recheck.py): its failure's job, the causes last published and
+    when the first answer went out, when the log last read was taken, which look this is, and whether the first
+    answer was said aloud (so that its correction is said too)."""
+
+    job: Job
+    causes: tuple[str, ...]
+    answered: float
+    since: float
+    n: int = 0
+    spoken: bool = False
 
 
 def failure_key(update: TaskUpdate) -> str | None:
@@ -128,7 +136,7 @@ class LiveNode:
         self._speech = Bucket(SPEAK_BURST, 1.0 / SPEAK_EVERY_S, time.monotonic())
         self.unspoken = 0  # unasked explanations published but not said (over the rate, or stale)
         self.untold = 0  # failures not explained: their task was gone from the live log by their turn
-        self._rechecks: Rechecks[Job] = Rechecks()
+        self._rechecks: Rechecks[Look] = Rechecks()
         self.corrections = 0
         self._rate = RateLimit()
         self.refused = 0  # questions over a source's rate
@@ -259,18 +267,18 @@ class LiveNode:
                 return
             self._run(job)
 
-    def _run(self, job: Job) -> None:
+    def _run(self, work: Job | Look) -> None:
         try:
-            if job.kind == "recheck":
-                self._recheck(job)
+            if isinstance(work, Look):
+                self._recheck(work)
             else:
-                self._answer(job)
+                self._answer(work)
         except Exception as err:  # the node keeps answering; the error goes out as an answer and a line
             self.errors += 1
             print(f"hexar serve: {type(err).__name__}: {err}", file=sys.stderr)
-            if job.kind != "recheck":
-                self._publish({"answer": "", "error": f"{type(err).__name__}: {err}", "trigger": job.kind,
-                               "task_id": job.task_id})
+            if isinstance(work, Job):
+                self._publish({"answer": "", "error": f"{type(err).__name__}: {err}", "trigger": work.kind,
+                               "task_id": work.task_id})
 
     def _answer(self, job: Job) -> None:
         if job.kind == "failure":
@@ -312,11 +320,10 @@ class LiveNode:
         speak = bool(self.speakers) and not result.get("error") and (
             job.kind == "question" or (self.options.proactive == "speak" and self._may_speak(job)))
         if speak:
-            self._say(result, job)
+            self._say(result, "question" if job.kind == "question" else "failure")
         if job.kind == "failure" and not result.get("error"):
             now = time.monotonic()
-            self._rechecks.add(replace(job, kind="recheck", causes=tuple(result.get("causes") or ()), answered=now,
-                                       since=taken, spoken=speak), 0, now)
+            self._rechecks.add(Look(job, tuple(result.get("causes") or ()), now, taken, spoken=speak), 0, now)
 
     def _may_speak(self, job: Job) -> bool:
         """Whether an unasked explanation is said aloud (live/jobs.py SPEAK_*); it is published either way."""
@@ -326,12 +333,12 @@ class LiveNode:
             return False
         return True
 
-    def _recheck(self, job: Job) -> None:
+    def _recheck(self, look: Look) -> None:
         """Look again at an unasked explanation (live/recheck.py): when records stamped before the failure came
         in late since the last look, explain it anew, and publish a correction if the causes changed."""
-        look = job.look + 1
-        if not self.log.late_since(job.since, job.t + int(self.options.settle_s * NS)):
-            self._rechecks.add(replace(job, look=look), look, job.answered)
+        job, n = look.job, look.n + 1
+        if not self.log.late_since(look.since, job.t + int(self.options.settle_s * NS)):
+            self._rechecks.add(replace(look, n=n), n, look.answered)
             return
         taken = time.monotonic()
         self._session.use_log(self.log.snapshot())
@@ -341,20 +348,20 @@ class LiveNode:
         except EventsError:
             result = {"error": "no task"}
         causes = tuple(result.get("causes") or ())
-        if result.get("error") or causes == job.causes:
+        if result.get("error") or causes == look.causes:
             self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
         else:
             # the corrected answer's thread becomes the dialogue a "why?" continues
             self._remember(thread)
             self.thread, self._last_answer, self.corrections = thread, time.monotonic(), self.corrections + 1
-            result.update(trigger="correction", corrects=list(job.causes), recording=self.log.name, event_t=job.t,
+            result.update(trigger="correction", corrects=list(look.causes), recording=self.log.name, event_t=job.t,
                           sentence=short_sentence(str(result.get("answer", ""))),
                           latency_ms=round((time.monotonic() - job.received) * 1000, 1))
             self._publish(result)
-            if job.spoken:
-                self._say(result, job)
-            job = replace(job, causes=causes)
-        self._rechecks.add(replace(job, look=look, since=taken), look, job.answered)
+            if look.spoken:
+                self._say(result, "correction")
+            look = replace(look, causes=causes)
+        self._rechecks.add(replace(look, n=n, since=taken), n, look.answered)
 
     def _remember(self, thread: str) -> None:
         """Keep the checkpoints of the last KEEP_THREADS dialogues only: a node that runs for weeks must not
@@ -366,13 +373,13 @@ class LiveNode:
             old = self._threads.pop(0)
             self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{old}")
 
-    def _say(self, result: dict[str, Any], job: Job) -> None:
+    def _say(self, result: dict[str, Any], kind: Literal["failure", "question", "correction"]) -> None:
         from hexar.voice.loop import say_answer
 
-        if job.kind == "recheck":
-            utterances = [f"Correction: {result['sentence']}"]
-        else:
-            utterances = [str(result["sentence"])] if job.kind == "failure" else say_answer(result)
+        if kind == "question":
+            utterances = say_answer(result)
+        else:  # unasked: its first sentence
+            utterances = [f"Correction: {result['sentence']}" if kind == "correction" else str(result["sentence"])]
         turn = f"answer_{self.answers:03d}"
         for speaker in self.speakers:
             try:
