@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import threading
 import time
-from bisect import insort
+from bisect import bisect_left, insort
 from collections import deque
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
 from itertools import takewhile
 from pathlib import Path
@@ -58,7 +58,8 @@ class Limits:
     jump_back_s: float = 30.0
     jump_confirm: int = 3
     # Records that arrive behind the robot's clock (stamped before the newest one kept) are remembered, this many,
-    # with when they came: a lossy network delivers what it lost late, when DDS resends it.
+    # with when they came: a lossy network delivers what it lost late, when DDS resends it. As many moments of the
+    # robot's clock moving on are remembered (one a millisecond at most), to tell how late in our seconds.
     late_kept: int = 4096
     # What arrives this soon after the first record may be a late joiner's transient-local history: it counts as
     # arriving late (a second look at an explanation reads it), but not as a network's lateness.
@@ -74,9 +75,11 @@ def _truncate(text: str, limit: int) -> str:
 class LiveLog:
     """Thread-safe: transports add from their threads, the node snapshots from its own."""
 
-    def __init__(self, limits: Limits | None = None, name: str = "live") -> None:
+    def __init__(self, limits: Limits | None = None, name: str = "live",
+                 clock: Callable[[], float] = time.monotonic) -> None:
         self.limits = limits or Limits()
         self.name = name
+        self._clock = clock  # this machine's seconds, for how late records come
         self._lock = threading.Lock()
         self.changed = threading.Condition(self._lock)
         self._logs: list[LogLine] = []
@@ -98,9 +101,13 @@ class LiveLog:
         self._since_prune = 0
         self.newest = 0
         self._first_arrival = 0.0
-        # (arrival on this machine's monotonic clock, stamp, how far behind the newest stamp it came, whether it
-        # came while joining)
-        self._late: deque[tuple[float, int, int, bool]] = deque(maxlen=self.limits.late_kept)
+        # When the robot's clock passed each stamp, on this machine's clock (sampled every millisecond at most): a
+        # late record's lateness is how long after that it came, in our seconds, however fast a recording plays.
+        self._front_t: deque[int] = deque(maxlen=self.limits.late_kept)
+        self._front_at: deque[float] = deque(maxlen=self.limits.late_kept)
+        # (arrival on this machine's clock, stamp, how many of our seconds late it came, whether it came while
+        # joining)
+        self._late: deque[tuple[float, int, float, bool]] = deque(maxlen=self.limits.late_kept)
         self.warnings: deque[str] = deque(maxlen=50)
         self.received = 0
         self.duplicates = 0
@@ -261,14 +268,25 @@ class LiveLog:
         self._tasks = {k: v for k, v in self._tasks.items() if v[-1].t <= cut}
         self.newest = max([t, *(r.t for r in self._logs[-1:]), *(r.t for r in self._poses[-1:])])
         self._behind = 0
+        self._front_t.clear()  # stamps from the abandoned future
+        self._front_at.clear()
 
     def _watch_lateness(self, t: int) -> None:
+        now = self._clock()
         if not self._first_arrival:
-            self._first_arrival = time.monotonic()
+            self._first_arrival = now
         behind = self.newest - t
-        if 0 < behind <= int(self.limits.jump_back_s * NS):  # the clock is read only for a late record
-            now = time.monotonic()
-            self._late.append((now, t, behind, now - self._first_arrival < self.limits.join_s))
+        if behind < 0:
+            if self._front_at and now - self._front_at[-1] < 0.001:
+                self._front_t[-1] = t  # within a millisecond: passed no later than that entry says
+            else:
+                self._front_t.append(t)
+                self._front_at.append(now)
+        elif 0 < behind <= int(self.limits.jump_back_s * NS):
+            # older than what is remembered: at least as late as the oldest remembered
+            front = self._front_t
+            passed = self._front_at[min(bisect_left(front, t), len(front) - 1)] if front else now
+            self._late.append((now, t, now - passed, now - self._first_arrival < self.limits.join_s))
 
     def _prune(self) -> None:
         lim = self.limits
@@ -298,21 +316,21 @@ class LiveLog:
             return self.changed.wait_for(lambda: self.newest >= t, timeout=timeout_s)
 
     def late_since(self, since: float, stamped_by: int) -> int:
-        """How many records stamped at or before `stamped_by` arrived late after `since` (time.monotonic())."""
+        """How many records stamped at or before `stamped_by` arrived late after `since` (on the log's clock,
+        time.monotonic() unless given)."""
         with self._lock:
             # kept in the order they arrived: the newest first, up to the first that came before `since`
             return sum(1 for arrived, t, _, _ in takewhile(lambda late: late[0] > since, reversed(self._late))
                        if t <= stamped_by)
 
     def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9, least: int = 1) -> float:
-        """The `q` quantile of how far behind the robot's clock records arrived in the last `window_s` seconds,
-        counting only those later than `over_s` and none of a late joiner's history; 0 when fewer than `least`
-        were."""
-        since = time.monotonic() - window_s
+        """The `q` quantile of how late records came in the last `window_s` seconds: how many of this machine's
+        seconds after the robot's clock had passed their stamp, counting only those later than `over_s` and none of
+        a late joiner's history; 0 when fewer than `least` were."""
+        since = self._clock() - window_s
         with self._lock:
-            behind = sorted(b for arrived, _, b, joining in self._late
-                            if arrived > since and b > over_s * NS and not joining)
-        return behind[min(len(behind) - 1, int(q * len(behind)))] / NS if len(behind) >= max(1, least) else 0.0
+            late = sorted(s for arrived, _, s, joining in self._late if arrived > since and s > over_s and not joining)
+        return late[min(len(late) - 1, int(q * len(late)))] if len(late) >= max(1, least) else 0.0
 
     def snapshot(self) -> EventLog:
         """An EventLog of what is kept now; later additions do not change it."""

@@ -73,7 +73,8 @@ class NodeOptions:
     settle_s: float = 0.2
     settle_wall_s: float = 0.3
     # On a network that has lately delivered records later than that (DDS resending what a lossy link dropped),
-    # wait as long as they were late (their 90th percentile over the last minute), at most this long.
+    # wait as long after the failure came as they were late (their 90th percentile over the last minute, in this
+    # machine's seconds), at most this long.
     max_settle_s: float = 2.0
     phrase: bool | None = None
 
@@ -283,10 +284,11 @@ class LiveNode:
     def _answer(self, job: Job) -> None:
         if job.kind == "failure":
             opts = self.options
-            # a few records, not one stray line, make a network late
-            settle = max(opts.settle_s, min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s, least=3)))
-            self.log.wait_until(job.t + int(settle * NS), max(opts.settle_wall_s, min(opts.max_settle_s,
-                                                                                     1.5 * settle)))
+            self.log.wait_until(job.t + int(opts.settle_s * NS), opts.settle_wall_s)
+            # a few records, not one stray line, make a network late; how late is in our seconds, so a recording
+            # played ten times faster does not wait ten times longer
+            late = min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s, least=3))
+            time.sleep(max(0.0, job.received + late - time.monotonic()))
         taken, previous = time.monotonic(), self.thread
         self._session.use_log(self.log.snapshot())
         if job.kind == "failure":

@@ -118,18 +118,46 @@ def test_a_task_id_repeated_after_a_restart_is_a_new_task() -> None:
     assert any("started again" in w for w in snap.warnings)
 
 
+class _Clock:
+    """This machine's seconds, moved on by the test."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
 def test_lateness_counts_records_that_arrive_behind_the_robots_clock() -> None:
-    live = LiveLog(Limits(join_s=0.0))
-    before = time.monotonic()
-    live.extend([_line(10.0), _line(10.1), _line(12.0)])
+    clock = _Clock()
+    live = LiveLog(Limits(join_s=0.0), clock=clock)
+    before = clock.now
+    for t_s in (10.0, 10.1, 12.0):  # the robot's clock moves as ours does
+        clock.now = before + t_s - 10.0
+        live.add(_line(t_s))
     assert live.late_since(before, int(20 * NS)) == 0 and live.lateness_s() == 0.0  # in order: nothing late
-    live.add(_line(11.0, "resent"))  # 1 s behind the newest stamp, as a resent message comes
+    clock.now += 1.0
+    live.add(_line(11.0, "resent"))  # the clock passed 11.0 at 12.0: a resent message, 1 s late
     live.add(_line(11.5, "resent too"))
     assert live.late_since(before, int(11.2 * NS)) == 1  # only those stamped by then
-    assert live.late_since(time.monotonic(), int(20 * NS)) == 0  # and only those arrived since
-    assert live.lateness_s() == 1.0 and live.lateness_s(q=0.0) == 0.5
+    assert live.late_since(clock.now, int(20 * NS)) == 0  # and only those arrived since
+    assert live.lateness_s() == 1.0 and live.lateness_s(q=0.0) == 1.0
     assert live.lateness_s(over_s=0.8) == 1.0 and live.lateness_s(over_s=2.0) == 0.0
     assert live.lateness_s(least=3) == 0.0  # two late records are not yet a late network
+
+
+def test_lateness_is_in_our_seconds_however_fast_the_robots_clock_runs() -> None:
+    clock = _Clock()
+    live = LiveLog(Limits(join_s=0.0), clock=clock)
+    start = clock.now
+    for i in range(60):  # a recording played ten times faster: 10 robot seconds in one of ours
+        clock.now = start + i / 60
+        live.add(_line(10.0 + i / 6))
+    clock.now += 0.05
+    for t_s in (19.0, 19.1, 19.2):  # 0.6-0.8 s behind on the robot's clock, but 0.12-0.13 s of ours
+        live.add(_line(t_s, f"jittered {t_s}"))
+    assert 0.11 <= live.lateness_s() <= 0.14
+    assert live.lateness_s(over_s=0.2, least=3) == 0.0  # jitter, not a late network
 
 
 def test_a_late_joiners_history_is_no_lateness() -> None:
