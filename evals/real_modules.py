@@ -66,6 +66,8 @@ HELDOUT22_SUITE = "real-modules-heldout22"  # round 27: printed by the real ROS 
 HELDOUT23_SUITE = "real-modules-heldout23"  # round 28: the same, runtime and launch faults
 HELDOUT24_SUITE = "real-modules-heldout24"  # and a third, settings of the environment or code
 HELDOUT25_SUITE = "real-modules-heldout25"  # round 29: a running graph's parameters, services, names and time
+HELDOUT26_SUITE = "real-modules-heldout26"  # round 30: bring-ups run by the real ros2/launch and launch_ros
+HELDOUT27_SUITE = "real-modules-heldout27"  # and rclpy actions' goals, feedback and results
 FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
          HELDOUT3_SUITE: "heldout3.yaml", HELDOUT4_SUITE: "heldout4.yaml",
          HELDOUT5_SUITE: "heldout5.yaml", HELDOUT6_SUITE: "heldout6.yaml",
@@ -78,7 +80,8 @@ FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "h
          HELDOUT19_SUITE: "heldout19.yaml", HELDOUT20_SUITE: "heldout20.yaml",
          HELDOUT21_SUITE: "heldout21.yaml", HELDOUT22_SUITE: "heldout22.yaml",
          HELDOUT23_SUITE: "heldout23.yaml",
-         HELDOUT24_SUITE: "heldout24.yaml", HELDOUT25_SUITE: "heldout25.yaml"}
+         HELDOUT24_SUITE: "heldout24.yaml", HELDOUT25_SUITE: "heldout25.yaml",
+         HELDOUT26_SUITE: "heldout26.yaml", HELDOUT27_SUITE: "heldout27.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}
