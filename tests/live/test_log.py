@@ -4,7 +4,6 @@ with duplicates, bounded, and sane across a clock jump."""
 from __future__ import annotations
 
 import random
-import time
 from pathlib import Path
 
 from hexar.events import contract as c
