@@ -38,17 +38,24 @@ class _Goal:
 
 
 def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]]:
-    """(t, kind, details) of bt_navigator's begin/end lines (any distro, any namespace, unknown loggers too)."""
+    """(t, kind, details) of bt_navigator's begin/end lines (any distro, any namespace, unknown loggers too, where
+    some line of the recording is Nav2's: "Goal was canceled" is also what a program's own action client says)."""
     from hexar.explainers.navigation.catalogue import GOAL_KINDS, catalogue
 
     cat = catalogue()
     out: list[tuple[int, str, dict[str, object]]] = []
+    nav2: bool | None = None
     for line in logs:
         if not line.msg.startswith(("Begin navigating", "Goal ", "Navigation ")):
             continue  # cheap: every goal line starts with one of these
         entry = cat.match(line.msg)
-        if entry is None or entry.kind not in GOAL_KINDS or cat.role(line.name) not in {"bt_navigator", None}:
+        role = cat.role(line.name)
+        if entry is None or entry.kind not in GOAL_KINDS or role not in {"bt_navigator", None}:
             continue
+        if role is None and line.name:
+            nav2 = any(cat.role(ln.name) is not None for ln in logs) if nav2 is None else nav2
+            if not nav2:
+                continue
         m = entry.search(line.msg)
         details: dict[str, object] = {"msg": line.msg}
         if m is not None:

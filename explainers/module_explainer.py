@@ -23,6 +23,7 @@ from hexar.explainers.bringup_answer import derived_start, driver_candidates, st
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
+from hexar.explainers.stack.actions import action_finding
 from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 from hexar.explainers.stack.signals import ended_by, killed_by_signal
 from hexar.explainers.stack_causes import (
@@ -76,6 +77,8 @@ class ModuleExplainer:
     ambiguous: ClassVar[dict[str, str]] = {}
     # the candidates told when no line says why (module words only: no cause pattern reads them as a claim)
     candidates: ClassVar[str] = ""
+    # what rclpy's action layer tells of a goal (explainers/stack/actions.py), by kind, as this module's cause
+    action_causes: ClassVar[dict[str, str]] = {}
 
     def __init__(self, model: TextModel | None = None, registry: Registry | None = None) -> None:
         self.model = model
@@ -143,6 +146,11 @@ class ModuleExplainer:
             # launch's lines ("process started", which Nav2's catalogue knows too) carry a process's exception
             own = [ln for ln in lines if not _nav2_logger(ln)]
             adopt(d, stated_cause(own, self.prefix, before))
+            action = action_finding(own) if d.cause is None else None
+            if action is not None and (cause := self.action_causes.get(action.kind)) is not None:
+                # the server refused or ended the goal itself: its own error, if any, is kept as the support
+                d.cause, d.decisive = cause, Reading(action.line, None, cause, "stack", "action")
+                d.support = [Reading(action.reason, None, cause, None)] if action.reason is not None else []
             if d.cause is None and d.unknown is None:
                 d.unknown = first_thrown(own, before)
             died = uncaught(own, before) if d.cause is None else None

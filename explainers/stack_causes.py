@@ -16,6 +16,7 @@ from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
 from hexar.events.records import ERROR, TRACEBACK, WARN, LogLine
 from hexar.explainers.logcause import Diagnosis, Reading, said
+from hexar.explainers.stack.actions import action_finding, action_words
 from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 from hexar.explainers.stack.middleware import middleware_line, middleware_words
 from hexar.explainers.stack.qos import qos_line, qos_words
@@ -148,6 +149,9 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     if not found and (same := next((ln for ln in lines if _SAME_NAME.search(ln.msg)), None)) is not None:
         # two nodes of one name: rcl only warns and both run, so it is told only when nothing else is either
         found.append(Reading(same, None, "bringup.configuration_error", "stack"))
+    if not found and (action := action_finding(lines)) is not None and action.kind == "two_servers":
+        # two servers of one action name: the same, told only when nothing else is
+        found.append(Reading(action.line, None, "bringup.configuration_error", "stack", "action"))
     return min(found, key=lambda r: r.line.t) if found else None
 
 
@@ -158,15 +162,19 @@ def _unexplained_request(line: LogLine, lines: Sequence[LogLine]) -> bool:
 
 
 def transition_reason(line: LogLine, lines: Sequence[LogLine]) -> LogLine | None:
-    """For launch_ros' "Failed to make transition", the first earlier line of the lifecycle layer at WARN or above
-    that says why (rcl_lifecycle's "No transition matching … for current state …"); None for any other line."""
-    if _LAUNCH_TRANSITION.search(line.msg) is None:
+    """For launch_ros' "Failed to make transition", the first earlier line that says why: the lifecycle layer's at
+    WARN or above (rcl_lifecycle's "No transition matching … for current state …"), or the node's own error (its
+    callback returned FAILURE or ERROR after saying why); None for any other line."""
+    if (asked := _LAUNCH_TRANSITION.search(line.msg)) is None:
         return None
     from hexar.explainers.stack.catalogue import stack_catalogue
 
     catalogue = stack_catalogue()
+    node = asked["node"].strip("/")
     return next((ln for ln in lines if ln.t <= line.t and ln.level >= WARN and ln is not line
-                 and (e := catalogue.match(ln.msg)) is not None and e.layer == "lifecycle"), None)
+                 and (((e := catalogue.match(ln.msg)) is not None and e.layer == "lifecycle")
+                      # a namespaced node's logger is robot1.lidar_driver for /robot1/lidar_driver
+                      or (ln.level >= ERROR and ln.name.replace(".", "/").strip("/") == node))), None)
 
 
 def _params_missing(line: LogLine) -> bool:
@@ -196,6 +204,11 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
     if d.decisive is not None and d.decisive.note == "middleware":
         happened, fix = middleware_words(d.decisive.line)
         return f"{head} {happened}.", fix, line
+    if d.decisive is not None and d.decisive.note == "action" and (
+            told := action_finding([*(r.line for r in d.support), d.decisive.line])) is not None:
+        words = action_words(told, head)
+        if words is not None:
+            return words[0], words[1], line
     if d.decisive is not None and d.decisive.note == "qos":
         happened, fix = qos_words(d.decisive.line)
         return f"{head} {happened}.", fix, line

@@ -64,6 +64,9 @@ class ManipulationExplainer(ModuleExplainer):
         "picking, placing, reaching or moving the arm."
     )
 
+    # a trajectory controller's action server that refused the goal or ended it itself (rclpy's own lines)
+    action_causes: ClassVar[dict[str, str]] = {"not_ended": "manipulation.execution_failed",
+                                               "refused": "manipulation.execution_failed"}
     candidates: ClassVar[str] = ("It may be MoveIt's settings (its parameters, plugins or robot description), the "
                                  "request itself, or the controllers that run my arm.")
 

@@ -63,3 +63,19 @@ def printed(suite: str, ident: str) -> str:
     from hexar.evals.real_modules import load_excerpts
 
     return next(e.lines for e in load_excerpts(suite) if e.id == ident)
+
+
+def one_step_task(tmp_path: Path, lines: list[Line], explainer: str, skill: str) -> Explanation:
+    """The lines under a /task_info task of one `skill` step that runs from before them and fails after the last:
+    what `explainer` answers about it."""
+    def update(status: str) -> dict[str, object]:
+        return {"instruction": "move the arm", "task_id": "0000000000000031", "task_status": "valid",
+                "task_error_msg": "", "skill_sequence": [{"skill": skill, "params": {}, "status": status,
+                                                          "error_msg": "The skill has been aborted"
+                                                          if status == "failed" else ""}]}
+
+    b = BagBuilder()
+    b.task_info(T0 - 1_000_000_000, update("waiting"))
+    b.task_info(T0 - 500_000_000, update("Running"))
+    b.task_info(T0 + sec_ns(max(s for s, *_ in lines) + 0.5), update("failed"))
+    return explain(write_lines(tmp_path, lines, b), explainer, "Why didn't that work?")[1]
