@@ -50,7 +50,7 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, grids, held, mapsave, states
+from hexar.explainers.navigation import chain, grids, held, mapsave, reached, states
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -215,8 +215,8 @@ class NavigationExplainer:
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:
-            problem = chain.reached_without_pose(run) or d.poor_localisation(run) or held.by_collision_monitor(run) \
-                or d.moving_obstacles(run) or chain.slow_retries(run)
+            problem = reached.reached_without_pose(run) or d.poor_localisation(run) or held.by_collision_monitor(run) \
+                or d.moving_obstacles(run) or reached.slow_retries(run)
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":

@@ -98,7 +98,7 @@ PLAN_CHECKS = ("What tells them apart: a planner line naming the start or the go
 
 def _slow(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     """A goal reached late after failures and recoveries: what went wrong on the way, and that the logs do not say
-    what held the robot up (chain.slow_retries)."""
+    what held the robot up (reached.slow_retries)."""
     stuck, plans = int(f.facts.get("progress_failures", 0)), int(f.facts.get("plan_failures", 0))
     what = []
     if stuck:
@@ -106,7 +106,7 @@ def _slow(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
                     + (f" {stuck} times" if stuck > 1 else ""))
     if plans:
         what.append(f"my planner could not compute a route {plans} time{'s' if plans > 1 else ''}")
-    done = f.notes[0] if f.notes else "I retried"  # chain.slow_retries: "I cleared my costmaps and ran my ..."
+    done = f.notes[0] if f.notes else "I retried"  # reached.slow_retries: "I cleared my costmaps and ran my ..."
     head = (f"I reached {place}, but it took longer because I got stuck on the way: {' and '.join(what)}"
             if what else f"I reached {place}, but it took longer")
     return (f"{head}; {done} before it worked. I can't tell what was in the way from my logs alone.",
