@@ -304,7 +304,10 @@ def serve(
     transport: Annotated[str, typer.Option(help="auto (rclpy if importable), rclpy or dds")] = "auto",
     domain: Annotated[int | None, typer.Option(help="DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
     proactive: Annotated[str, typer.Option(help="on a failure: off, publish (on /hexar/answer) or speak (said aloud "
-                                           "two at once, then one every 10 s; all published)")] = "publish",
+                                           "two at once, then one every --speak-every seconds; all published)"
+                                           )] = "publish",
+    speak_every: Annotated[float, typer.Option(help="with --proactive speak: say at most one unasked explanation "
+                                               "every this many seconds after the first two; 0 says each")] = 10.0,
     mic: Annotated[bool, typer.Option("--mic", help="also take spoken questions from the microphone")] = False,
     wav: Annotated[list[Path] | None, typer.Option("--wav", help="spoken questions from WAV files, in order")] = None,
     tts_topic: Annotated[str | None, typer.Option(help="speak on this std_msgs/String topic (robot TTS)")] = None,
@@ -332,7 +335,7 @@ def serve(
             transport=transport, domain=domain, llm=llm, proactive=proactive, tts_topic=tts_topic, voice=voice,
             mic=mic, wavs=list(wav or []), out_dir=out_dir, duration_s=duration, keep_tasks=keep_tasks,
             horizon_s=horizon, quiet=quiet, record=record, launch_log=launch_log,
-            follow_launch_log=follow_launch_log))
+            follow_launch_log=follow_launch_log, speak_every_s=speak_every))
 
     raise typer.Exit(guarded(body))
 

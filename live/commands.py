@@ -85,6 +85,8 @@ class ServeOptions:
     # launch's log folders on this computer (live/launch_log.py); None: where launch writes them, if it exists
     launch_log: Path | None = None
     follow_launch_log: bool = True
+    # with proactive speak: one unasked explanation said every this many seconds at most, after two at once; 0: each
+    speak_every_s: float = 10.0
 
 
 def serve(opts: ServeOptions) -> int:
@@ -99,6 +101,8 @@ def serve(opts: ServeOptions) -> int:
         raise BadOptionError("--keep-tasks must be at least 1 and --horizon above 0")
     if opts.duration_s is not None and not opts.duration_s > 0:
         raise BadOptionError(f"--duration must be above 0 seconds, not {opts.duration_s}")
+    if not 0 <= opts.speak_every_s < float("inf"):  # also nan
+        raise BadOptionError(f"--speak-every must be 0 (say each) or more seconds, not {opts.speak_every_s}")
     ears_wanted = opts.mic or bool(opts.wavs)
     # handlers before the node exists: a signal during start-up still ends it through node.stop()
     with _stop_on_signals() as stop:
@@ -124,8 +128,8 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
                     print(json_dumps(result), flush=True)
 
         proactive = cast(Proactive, opts.proactive)
-        node = LiveNode(transport, log, NodeOptions(llm=opts.llm, proactive=proactive), speakers=speakers,
-                        on_answer=show)
+        options = NodeOptions(llm=opts.llm, proactive=proactive, speak_every_s=opts.speak_every_s)
+        node = LiveNode(transport, log, options, speakers=speakers, on_answer=show)
         ears = Ears(node.ask, opts.wavs, opts.mic, opts.vosk_model) if ears_wanted else None
         node.start()
     except BaseException:

@@ -76,6 +76,9 @@ class NodeOptions:
     # wait as long after the failure came as they were late (their 90th percentile over the last minute, in this
     # machine's seconds), at most this long.
     max_settle_s: float = 2.0
+    # With proactive "speak": SPEAK_BURST unasked explanations said at once, then one every this many seconds at
+    # most (the others published only); 0 says each one. One waiting longer than SPEAK_STALE_S is never said.
+    speak_every_s: float = SPEAK_EVERY_S
     phrase: bool | None = None
 
 
@@ -134,7 +137,8 @@ class LiveNode:
         self.errors = 0
         self._jobs: JobQueue[Job] = JobQueue({"question": MAX_QUESTIONS, "failure": MAX_FAILURES},
                                              first=("stop", "question"))
-        self._speech = Bucket(SPEAK_BURST, 1.0 / SPEAK_EVERY_S, time.monotonic())
+        every = self.options.speak_every_s
+        self._speech = Bucket(SPEAK_BURST, 1.0 / every, time.monotonic()) if every > 0 else None
         self.unspoken = 0  # unasked explanations published but not said (over the rate, or stale)
         self.untold = 0  # failures not explained: their task was gone from the live log by their turn
         self._rechecks: Rechecks[Look] = Rechecks()
@@ -328,9 +332,10 @@ class LiveNode:
             self._rechecks.add(Look(job, tuple(result.get("causes") or ()), now, taken, spoken=speak), 0, now)
 
     def _may_speak(self, job: Job) -> bool:
-        """Whether an unasked explanation is said aloud (live/jobs.py SPEAK_*); it is published either way."""
+        """Whether an unasked explanation is said aloud (NodeOptions.speak_every_s, live/jobs.py SPEAK_*); it is
+        published either way."""
         now = time.monotonic()
-        if now - job.received > SPEAK_STALE_S or not self._speech.take(now):
+        if now - job.received > SPEAK_STALE_S or (self._speech is not None and not self._speech.take(now)):
             self.unspoken += 1
             return False
         return True

@@ -126,6 +126,8 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> Non
     (["replay", "RUN", "--clock", "nan"], "--clock must be 0"),
     (["serve", "--transport", "dds", "--horizon", "nan"], "--horizon above 0"),
     (["serve", "--transport", "dds", "--duration", "-1"], "--duration must be above 0"),
+    (["serve", "--transport", "dds", "--speak-every", "-5"], "--speak-every must be 0 (say each) or more"),
+    (["serve", "--transport", "dds", "--speak-every", "nan"], "--speak-every must be 0 (say each) or more"),
 ])
 def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsys: pytest.CaptureFixture[str],
                                monkeypatch: pytest.MonkeyPatch) -> None:

@@ -59,3 +59,28 @@ def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
     # two unasked ones said, and the question's answer; the other unasked ones are published only
     question = next(a for a in answers if a["trigger"] == "question")
     assert len(spoken) == SPEAK_BURST + len(say_answer(question)) and unspoken == explained - SPEAK_BURST
+
+
+def test_a_household_that_wants_every_failure_said_gets_each() -> None:
+    domain = fresh_domain()
+    listener = Listener(domain)
+    said = listener.endpoint.reader(TTS, c.STRING_TYPE, TTS_QOS)
+    answers: list[dict[str, Any]] = []
+    try:
+        with live_node(domain, tts_topic=TTS, proactive="speak", speak_every_s=0.0) as node:
+            node.speakers.append(TopicSpeaker(node.transport, TTS))
+            node.on_answer = answers.append
+            for i in range(4):  # within the live log's five kept tasks: each is told
+                update = _failing(i)
+                if node.log.add(update):
+                    node.on_record(update)
+            deadline = time.monotonic() + 30.0
+            while len(answers) < 4 and time.monotonic() < deadline:
+                time.sleep(0.05)
+            time.sleep(0.5)
+            spoken = [str(s.data) for s in said.take(100) if s.sample_info.valid_data]
+            unspoken = node.unspoken
+    finally:
+        listener.close()
+    assert [a["trigger"] for a in answers] == ["failure"] * 4
+    assert unspoken == 0 and len(spoken) == 4 > SPEAK_BURST  # one utterance each, none held back
