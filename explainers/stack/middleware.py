@@ -29,6 +29,10 @@ _QUOTED = re.compile(r"'([^']*)'")
 _NO_FILE = "can't open configuration file"  # ddsi_config.c:2252@releases/0.10.x
 _CYCLONE_CONFIG_AT = "config: //CycloneDDS"  # the path every such error names: a cheap look before the match
 _CYCLONE_CONFIG = re.compile(r"^config: (?P<path>//CycloneDDS\S*?): (?P<what>.+?)(?: \((?P<where>[^()]*)\))?$")
+_PORTS = re.compile(r"failed to create unicast sockets for domain \S+ participant index \S+ \(ports (?P<ports>[^)]*)\)")
+_BUFFER = re.compile(r"failed to increase socket (?P<which>\w+) buffer size to at least (?P<want>\d+) bytes, "
+                     r"current is (?P<got>\d+) bytes")
+_OVERSIZE = re.compile(r"dropping oversize \((?P<size>\d+) > (?P<limit>\d+)\) sample from local writer")
 # Fast DDS's console decoration: "[RTPS Error] text -> Function getMulticastPort"
 _FASTDDS = re.compile(r"^\[(?P<category>[A-Z][A-Z0-9_]*) (?:Error|Warning|Info)\] (?P<text>.*?)(?: -> Function \w+)?$",
                       re.S)
@@ -113,6 +117,38 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 "so my node could not join the others",
                 "Run fewer ROS processes per computer, or raise Cyclone DDS's ParticipantIndex/MaxAutoParticipantIndex "
                 "in CYCLONEDDS_URI.")
+    if words.startswith("failed to find interfaces for"):
+        # ddsi_nwinterfaces.c:325@releases/11.0.x: no interface is up for the transport (the network is not up yet)
+        return (f"my DDS middleware (Cyclone DDS) found no network interface up for its transport "
+                f"({words.rsplit(' ', 1)[-1]}), so it could not start and my node could not join the others",
+                "Start the nodes once the network is up (in systemd: After=network-online.target), or name an "
+                "interface that is always there in CYCLONEDDS_URI (lo for one computer).")
+    if (m := _PORTS.search(words)) is not None:
+        # ddsi_init.c:1421-1425@releases/11.0.x: the participant's unicast ports could not be bound
+        return (f"my DDS middleware (Cyclone DDS) could not open its unicast ports ({m['ports']}), so it could not "
+                "start and my node could not join the others: another program holds them, or another participant "
+                "was given the same participant index",
+                "Find what holds the ports (ss -ulpn), and leave Cyclone DDS's ParticipantIndex on auto or give "
+                "each process its own.")
+    if (m := _BUFFER.search(words)) is not None:
+        # ddsi_udp.c:505@releases/11.0.x: the configuration's minimum, which the kernel caps lower
+        return (f"my DDS middleware (Cyclone DDS) could not start: its configuration requires a socket "
+                f"{m['which']} buffer of at least {m['want']} bytes and the operating system gives {m['got']}, so my "
+                "node could not join the others",
+                "Raise the kernel's limit (sysctl net.core.rmem_max, or wmem_max for the send buffer) to at least "
+                "that size, or lower the minimum in CYCLONEDDS_URI (SocketReceiveBufferSize min).")
+    if words.startswith("ddsi_udp_conn_write to"):
+        # ddsi_udp.c:330@releases/11.0.x: a send on a socket whose interface or route is gone
+        to = words.split()[2] if len(words.split()) > 2 else "a peer"
+        return (f"my DDS middleware (Cyclone DDS) could not send to {to}: the network link or interface it sends on "
+                "went away while it ran, so the other computer stopped hearing my node",
+                "Check the link (cable, Wi-Fi, ip link) of the computer that logged it; DDS resumes once it is up.")
+    if (m := _OVERSIZE.search(words)) is not None:
+        # ddsi_transmit.c:825@releases/11.0.x: a sample over the configured maximum is dropped by its own writer
+        return (f"my DDS middleware (Cyclone DDS) could not send a message: at {m['size']} bytes it was larger than "
+                f"the most it is set to carry ({m['limit']} bytes), so it dropped it and the others never got it",
+                "Raise Cyclone DDS's MaxMessageSize / MaxSampleSize in CYCLONEDDS_URI, or send smaller messages "
+                "(fewer points per message).")
     if "Expected RMW implementation identifier" in words:
         wanted, found = _quoted(words), _quoted(words, 1)
         return (f"the middleware's settings never reached my node: RMW_IMPLEMENTATION names {wanted}, but the program "

@@ -141,6 +141,9 @@ def _message(arg: list[tuple[str, str]], fields: re.Pattern[str]) -> str:
             if parts and parts[-1].endswith("%"):  # "%" PRIu64 style: the field's rest is a macro
                 parts[-1] = parts[-1][:-1] + WILD
             parts.append(fields.sub(WILD, text.replace("%%", "\x01")).replace("\x01", "%"))
+        elif parts and parts[-1].endswith("%") and text.strip():
+            # "%" PRIu32 "…": the conversion's rest is the macro, so the field is where the "%" stands
+            parts[-1] = parts[-1][:-1] + WILD
         elif parts and not text.startswith(".") and text.strip("<+ \n\t"):
             # a variable streamed (<<) or added (+) into the message; `.format(...)` adds none, nor does the bare
             # operator between two literals ("… over 232 or " << "portBase …")
@@ -243,6 +246,8 @@ def literals(src: str, regex: str) -> Iterator[tuple[int, str]]:
     for m in re.finditer(regex, src):
         # a C string's escapes ("…file %s\\n") decoded as the compiler does, and its printf fields wildcards
         text = re.sub(r"\\(.)", lambda e: _ESCAPES.get(e[1], e[1] if not e[1].isalnum() else WILD), m.group(1))
+        if text.endswith("%") and not text.endswith("%%"):
+            text = text[:-1] + WILD  # "… at least %" PRIu32 "…": the field's rest is a macro, the message goes on
         yield src.count("\n", 0, m.start()) + 1, _PYFIELD.sub(WILD, _PRINTF.sub(WILD, text))
 
 

@@ -80,3 +80,25 @@ def test_patterns_escape_regex_characters_and_keep_spaces() -> None:
     pattern = to_pattern("Sensor origin at (" + WILD + ") is out of map bounds [" + WILD + "]. ")
     assert pattern == r"Sensor origin at \(.*?\) is out of map bounds \[.*?\]\."
     assert re.search(pattern, "Sensor origin at (1.0, 2.0) is out of map bounds [x]. The costmap")
+
+
+def test_a_field_written_with_an_inttypes_macro_is_a_wildcard() -> None:
+    # Cyclone DDS src/core/ddsi/src/ddsi_init.c:1425@releases/11.0.x: "%"PRIu32 between two literals
+    src = ('    GVERROR ("rtps_init: failed to create unicast sockets for domain %"PRIu32" participant index %d '
+           '(ports %"PRIu32", %"PRIu32")\\n", gv->config.extDomainId.value, idx, port_data_uc, port_disc_uc);\n')
+    [call] = list(cpp_calls(src, {"GVERROR": "ERROR"}))
+    assert to_display(call.text) == "rtps_init: failed to create unicast sockets for domain … participant index … " \
+                                    "(ports …, …)"
+    assert re.search(to_pattern(call.text), "rtps_init: failed to create unicast sockets for domain 42 participant "
+                                            "index 0 (ports 17910, 17911)")
+
+
+def test_a_string_constant_cut_by_an_inttypes_macro_ends_in_a_wildcard() -> None:
+    # Cyclone DDS src/core/ddsi/src/ddsi_udp.c:505-507@releases/11.0.x: GVLOG with an error category
+    src = ('      GVLOG (DDS_LC_CONFIG | DDS_LC_ERROR,\n             "failed to increase socket %s buffer size to at '
+           'least %"PRIu32" bytes, current is %"PRIu32" bytes\\n",\n'
+           '             name, socket_min_buf_size, actsize);\n')
+    [(line, text)] = list(literals(src, r'GVLOG\s*\(\s*[^,"]*DDS_LC_ERROR[^,"]*,\s*"([^"]{10,})"'))
+    assert line == 1 and to_display(text) == "failed to increase socket … buffer size to at least …"
+    assert re.search(to_pattern(text), "failed to increase socket receive buffer size to at least 67108864 bytes, "
+                                       "current is 8388608 bytes")
