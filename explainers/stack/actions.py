@@ -44,10 +44,17 @@ class ActionFinding:
     reason: LogLine | None = None  # the server node's own error before a goal it did not keep (refused)
 
 
+# A refusal answers the goal request, and a client that goes on asks for the result as soon as it has the answer: an
+# error of the server's node older than this is about something else.
+_REFUSAL_S = 2.0
+
+
 def _server_error(lines: Sequence[LogLine], server: str, before: LogLine) -> LogLine | None:
-    """The server node's own last error before `before` (its child loggers are rclpy's, not the node's code)."""
-    return next((ln for ln in reversed(lines) if ln.t <= before.t and ln is not before and ln.level >= ERROR
-                 and ln.name.strip("/") == server), None)
+    """The server node's own last error shortly before `before` (its child loggers are rclpy's, not the node's
+    code)."""
+    since = before.t - int(_REFUSAL_S * 1e9)
+    return next((ln for ln in reversed(lines) if since <= ln.t <= before.t and ln is not before
+                 and ln.level >= ERROR and ln.name.strip("/") == server), None)
 
 
 def action_finding(lines: Sequence[LogLine]) -> ActionFinding | None:

@@ -62,3 +62,11 @@ def test_a_lifecycle_transition_whose_node_said_why_is_told(tmp_path: Path) -> N
     assert claimed(found) == {"bringup.lifecycle_transition_failed"}
     assert "launch asked /lidar_driver to configure" in found.text
 
+
+
+def test_an_old_error_of_the_server_is_no_reason_for_a_goal_it_did_not_keep(tmp_path: Path) -> None:
+    # the same run with the controller's error a minute before the goal: it is about something else
+    lines = [(s - 60.0 if msg.startswith("Trajectory has") else s, name, level, msg)
+             for s, name, level, msg in _action("kilted-action-goal-rejected-client-goes-on")]
+    told = action_finding(sorted(write_lines(tmp_path, lines).logs, key=lambda ln: ln.t))
+    assert told is not None and told.kind == "unknown_goal" and told.reason is None
