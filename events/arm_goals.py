@@ -147,7 +147,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         active = [(line, skill) for line in logs if line.level >= ERROR and not _stack_bringup(line)
                   for skill, cat in _readers(line) if cat.match(line.msg) is not None][:1]
     if not active:
-        if any(_nav2_own(ln) for ln in logs) and not python_death_alone(logs):
+        if _nav2_robot(logs) and not python_death_alone(logs):
             return []  # a Nav2 robot's errors are navigation's to explain (events/nav_goals.py)
         start = bring_up(logs)
         if start is None:
@@ -267,20 +267,30 @@ def _stack_bringup(line: LogLine) -> bool:
     return entry is not None and entry.layer in {"launch", "rcl"}
 
 
-def _nav2_own(line: LogLine) -> bool:
+def _nav2_own(line: LogLine, nav2_logged: bool) -> bool:
     """A line of Nav2 itself: its logger (or launch's process name) has a Nav2 role, or its text is a Nav2 message
     logged by no logger of the arm's software (launch's generic "process has died" is anybody's)."""
+    from hexar.events.nav_goals import own_manager
     from hexar.explainers.navigation.catalogue import catalogue as nav2
     from hexar.explainers.stack.thrown import python_exception
 
     if _nav2_logger(line.name):
-        return True
+        # a robot's own lifecycle manager of its drivers is named as Nav2's is (events/nav_goals.own_manager)
+        return not own_manager(line, nav2_logged)
     if _arms_logger(line.name):
         return False  # e.g. the resource manager's pluginlib error: a text Nav2 shares, logged by ros2_control
     if python_exception(line) is not None:
         return False  # a Python program's uncaught exception: Nav2's servers are C++ programs
     entry = nav2().match(line.msg)
     return entry is not None and not entry.id.startswith("launch.")
+
+
+def _nav2_robot(logs: list[LogLine]) -> bool:
+    """Whether any line of `logs` is Nav2's own (_nav2_own)."""
+    from hexar.events.nav_goals import nav2_nodes
+
+    nav2_logged = nav2_nodes(logs)
+    return any(_nav2_own(ln, nav2_logged) for ln in logs)
 
 
 def _nav2_logger(name: str) -> bool:
@@ -325,7 +335,7 @@ def _others_lifecycle(task: Task, logs: list[LogLine] | None) -> bool:
     if not findings or findings[0].kind != "lifecycle_transition" or not findings[0].node:
         return False
     node = findings[0].node.strip("/").rsplit("/", 1)[-1]
-    return nav2().role(node) is None and not any(_nav2_own(ln) for ln in logs)
+    return nav2().role(node) is None and not _nav2_robot(logs)
 
 
 def merge_tasks(nav: list[Task], arm: list[Task], logs: list[LogLine] | None = None) -> list[Task]:

@@ -9,6 +9,7 @@ poses (`/goal_pose`). A new begin line while a goal runs is Nav2's goal preempti
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -206,6 +207,37 @@ def python_death_alone(logs: list[LogLine], thrown: list[bool] | None = None) ->
                    for line, py in zip(logs, thrown, strict=True))
 
 
+# Roles whose node names any lifecycle system uses too (a robot's own manager of its drivers is a
+# "lifecycle_manager"): where no other Nav2 node logged, such a logger's line is Nav2's only in Nav2's words (a
+# catalogued line) or naming Nav2 (its servers, "nav2" or "navigation" in its name or words)
+_GENERIC_ROLES = frozenset({"lifecycle_manager"})
+_NAV2_NAMED = re.compile(r"nav2|navigation", re.IGNORECASE)
+_WORD = re.compile(r"[A-Za-z_]\w{3,}")
+
+
+def nav2_nodes(logs: list[LogLine]) -> bool:
+    """Whether a logger (or launch's process) with a Nav2 role other than a generic one logged (a TF publisher every
+    robot runs aside)."""
+    from hexar.explainers.navigation.catalogue import catalogue
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
+
+    cat = catalogue()
+    names = {PROCESS_SUFFIX.sub("", ln.name) for ln in logs if ln.name}
+    return any(cat.role(n) not in {None, *_GENERIC_ROLES} and not any_robots(n) for n in names)
+
+
+def own_manager(line: LogLine, nav2_logged: bool) -> bool:
+    """A line of a robot's own lifecycle manager, named as Nav2's is, when `nav2_logged` (nav2_nodes) is False."""
+    from hexar.explainers.navigation.catalogue import catalogue
+
+    cat = catalogue()
+    if nav2_logged or cat.role(line.name) not in _GENERIC_ROLES or cat.match(line.msg) is not None:
+        return False
+    if _NAV2_NAMED.search(f"{line.name} {line.msg}") is not None:
+        return False
+    return not any(cat.role(word) not in {None, *_GENERIC_ROLES} for word in _WORD.findall(line.msg))
+
+
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
@@ -224,6 +256,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     active: list[LogLine] = []
     failed: LogLine | None = None
     own = arms = named = False
+    nav2_logged = nav2_nodes(logs)
     # the processes (launch's names for them) that printed a Python traceback
     python_died = {line.name for line, py in zip(logs, thrown, strict=True) if py and line.name}
     # launch's "process started with pid [N]" for each process it started (launch/actions/execute_local.py): a
@@ -242,7 +275,8 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         # a Nav2 node at work (its logger's role: planner_server, controller_server, amcl, ...), even with no
         # catalogued line: a stack that came up and ran normally has a navigation to tell about too; a TF
         # publisher's own line (robot_state_publisher's "Robot initialized") is not: every robot runs one
-        nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None and not any_robots(line.name))
+        nav2 = nav2 or (bool(line.name) and cat.role(line.name) is not None and not any_robots(line.name)
+                        and not own_manager(line, nav2_logged))
         if nav2 and entry is not None and entry.id.startswith("launch.") and line.name in python_died:
             continue  # launch's word that a Python program died (its traceback above): Nav2's servers are C++
         if nav2 and entry is not None and entry.id.startswith("launch.") and not nav2_launch \

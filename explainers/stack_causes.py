@@ -35,6 +35,9 @@ _DENIED = "Permission denied"  # strerror(EACCES)
 # launch_ros/actions/lifecycle_node.py:123@rolling: "Failed to make transition '{}' for LifecycleNode '{}'"
 _LAUNCH_TRANSITION = re.compile(r"Failed to make transition 'TRANSITION_(?P<transition>[A-Z_]+)' for LifecycleNode "
                                 r"'(?P<node>[^']+)'")
+# rcl_lifecycle's rcl_lifecycle_get_transition_by_label and _by_id (rcl_lifecycle.c:321 and 342@rolling):
+# "No transition matching %s found for current state %s"
+_NO_TRANSITION = re.compile(r"No transition matching (?P<label>\S+) found for current state (?P<state>\S+)")
 _ONE_SHOT = re.compile(r"exit code [1-9]\d*, cmd '\S*(controller_manager/spawner|/unspawner) ")
 
 
@@ -149,6 +152,11 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     if not found and (same := next((ln for ln in lines if _SAME_NAME.search(ln.msg)), None)) is not None:
         # two nodes of one name: rcl only warns and both run, so it is told only when nothing else is either
         found.append(Reading(same, None, "bringup.configuration_error", "stack"))
+    if not found and (asked := next((ln for ln in lines if ln.level >= WARN and _NO_TRANSITION.search(ln.msg)),
+                                    None)) is not None:
+        # rcl_lifecycle refused a transition the node's state does not have: a warning, and the node stays where it
+        # was, so it is told only when nothing else is
+        found.append(Reading(asked, None, "bringup.lifecycle_transition_failed", "stack", "no_transition"))
     if not found and (action := action_finding(lines)) is not None and action.kind == "two_servers":
         # two servers of one action name: the same, told only when nothing else is
         found.append(Reading(action.line, None, "bringup.configuration_error", "stack", "action"))
@@ -236,6 +244,13 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                     "transition failed, so the node never became active.",
                     f"Read {node}'s own lines just before: why its {transition} failed (a device it could not open, "
                     "a parameter it rejected), or a transition asked in the wrong state.", line)
+    if cause == "bringup.lifecycle_transition_failed" and d.decisive is not None and (
+            no := _NO_TRANSITION.search(d.decisive.line.msg)) is not None:
+        return (f"{head} a node's lifecycle transition failed: it was asked for the transition '{no['label']}', which "
+                f"its current state ({no['state']}) does not have, so it stayed {no['state']}.",
+                "Ask for a transition by its own label from the state the node is in (configure from unconfigured, "
+                "activate from inactive: 'active' is a state, not a transition); `ros2 lifecycle list <node>` shows "
+                "the ones its state has.", line)
     cli = lifecycle_cli(d.decisive.line) if d.decisive is not None else None
     if cause == "bringup.lifecycle_transition_failed" and cli is not None:
         node, transition = cli
