@@ -40,7 +40,8 @@ class _Goal:
 
 def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]]:
     """(t, kind, details) of bt_navigator's begin/end lines (any distro, any namespace, unknown loggers too, where
-    some line of the recording is Nav2's: "Goal was canceled" is also what a program's own action client says)."""
+    a Nav2 node logged in the recording (nav2_nodes): "Goal was canceled" is also what a program's own action client
+    says)."""
     from hexar.explainers.navigation.catalogue import GOAL_KINDS, catalogue
 
     cat = catalogue()
@@ -54,7 +55,7 @@ def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]
         if entry is None or entry.kind not in GOAL_KINDS or role not in {"bt_navigator", None}:
             continue
         if role is None and line.name:
-            nav2 = any(cat.role(ln.name) is not None for ln in logs) if nav2 is None else nav2
+            nav2 = nav2_nodes(logs) if nav2 is None else nav2  # a robot's own lifecycle manager is no sign of Nav2
             if not nav2:
                 continue
         m = entry.search(line.msg)
