@@ -293,7 +293,7 @@ def main() -> int:
         text, code = run_written(replace(fault, env={**fault.env, **env}), work, {"actions": PROGRAM},
                                  {"actions": "arm_actions.py"})
         text = text.replace(str(site), "/opt/venv/lib/python3/site-packages").replace(str(deps), "/opt/venv")
-        return scrub(text, work).replace(sys.executable, "/opt/venv/bin/python"), code
+        return scrub(text, work), code
 
     found = {"rclpy": version("ros-kilted-rclpy"), "rcl_action": version("ros-rcl-action"),
              "fastdds": version("ros-fastdds"),

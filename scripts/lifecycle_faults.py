@@ -13,12 +13,7 @@ each excerpt's cause is the fault injected, written here before the set was run;
 
 from __future__ import annotations
 
-import argparse
-import sys
-import sysconfig
-from pathlib import Path
-
-from stack_faults import CONFIG, Fault, run_written, scrub, versions, write_set
+from stack_faults import CONFIG, Fault, generate
 
 BRINGUP = """\
 import sys
@@ -341,17 +336,7 @@ HEADER = """\
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--out", type=Path, required=True)
-    args = parser.parse_args()
-
-    def run_one(fault: Fault, work: Path) -> tuple[str, int]:
-        text, code = run_written(fault, work, PROGRAMS, SCRIPTS)
-        text = scrub(text, work).replace(sys.executable, "/opt/venv/bin/python")
-        return text.replace(sysconfig.get_paths()["stdlib"], "/usr/lib/python3.11"), code  # a thread's traceback
-
-    write_set(args.out, HEADER, "lifecycle_faults.py", versions(), FAULTS, run_one, SILENT)
-    return 0
+    return generate(__doc__ or "", HEADER, "lifecycle_faults.py", FAULTS, PROGRAMS, SCRIPTS, SILENT)
 
 
 if __name__ == "__main__":

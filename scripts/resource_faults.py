@@ -281,7 +281,7 @@ def run_one(fault: Fault, work: Path, notes: dict[str, str]) -> tuple[str, int]:
     env.update(fault.env, ROS_DOMAIN_ID="42", ROS_HOME=str(work / ".ros"))
     done = subprocess.run(["bash", "-c", command.format(py=sys.executable, prog=name)], cwd=work, env=env,
                           capture_output=True, text=True, timeout=90, check=False)
-    out = scrub(done.stdout + done.stderr, work).replace(sys.executable, "/opt/venv/bin/python")
+    out = scrub(done.stdout + done.stderr, work)
     for ip in lan_addresses():
         out = re.sub(rf"\b{re.escape(ip)}\b", "192.168.1.10", out)
     if fault.id == "cyclone-lossy-link" and "missed" not in out:  # the losses are drawn at random, run by run

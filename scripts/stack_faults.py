@@ -154,8 +154,12 @@ def run(fault: Fault, work: Path) -> tuple[str, int]:
 
 
 def scrub(text: str, work: Path) -> str:
+    """`text` less ANSI colours and trailing blanks, with this machine's folders (the venv's packages, the Python
+    running this, its standard library in a thread's traceback, the fault's work folder) replaced by fixed names."""
     out = ANSI.sub("", text)
     out = out.replace(sysconfig.get_paths()["purelib"], "/opt/venv/lib/python3/site-packages")
+    out = out.replace(sys.executable, "/opt/venv/bin/python")
+    out = out.replace(sysconfig.get_paths()["stdlib"], "/usr/lib/python3.11")
     out = out.replace(str(work.resolve()), "/home/robot/ws").replace(str(work), "/home/robot/ws")
     return "\n".join(line.rstrip() for line in out.strip().splitlines()) + "\n"
 
@@ -202,15 +206,15 @@ def run_written(fault: Fault, work: Path, programs: Mapping[str, str], scripts: 
 def generate(doc: str, header: str, script: str, faults: Iterable[Fault], programs: Mapping[str, str],
              scripts: Mapping[str, str], silent: Mapping[str, str] | None = None,
              notes: Mapping[str, str] | None = None) -> int:
-    """A generator's command line (`--out FILE.yaml`): each fault run by run_written, its output scrubbed (this
-    machine's folders and Python replaced by fixed names), written by write_set."""
+    """A generator's command line (`--out FILE.yaml`): each fault run by run_written, its output scrubbed, written
+    by write_set."""
     parser = argparse.ArgumentParser(description=doc.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     args = parser.parse_args()
 
     def run_one(fault: Fault, work: Path) -> tuple[str, int]:
         text, code = run_written(fault, work, programs, scripts)
-        return scrub(text, work).replace(sys.executable, "/opt/venv/bin/python"), code
+        return scrub(text, work), code
 
     write_set(args.out, header, script, versions(), faults, run_one, silent, notes)
     return 0
