@@ -10,7 +10,7 @@ line of their own in the logs, so none is claimed from them.
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 
 from hexar.claims import read_claims
 from hexar.events.bringup import ABORT
@@ -146,21 +146,27 @@ def stack_cause(lines: Sequence[LogLine]) -> Reading | None:
     denied = next((ln for ln in lines if ln.level >= WARN and _DENIED in ln.msg and "/dev/" in ln.msg), None)
     if denied is not None:
         found.append(Reading(denied, None, PERMISSION, "system"))
-    if not found and (qos := qos_line(lines)) is not None:
-        # last: a mismatch may be any pair's (a viewer's subscription), so it is told only when nothing else is
-        found.append(Reading(qos, None, "bringup.configuration_error", "stack", "qos"))
-    if not found and (same := next((ln for ln in lines if _SAME_NAME.search(ln.msg)), None)) is not None:
-        # two nodes of one name: rcl only warns and both run, so it is told only when nothing else is either
-        found.append(Reading(same, None, "bringup.configuration_error", "stack"))
-    if not found and (asked := next((ln for ln in lines if ln.level >= WARN and _NO_TRANSITION.search(ln.msg)),
-                                    None)) is not None:
-        # rcl_lifecycle refused a transition the node's state does not have: a warning, and the node stays where it
-        # was, so it is told only when nothing else is
-        found.append(Reading(asked, None, "bringup.lifecycle_transition_failed", "stack", "no_transition"))
-    if not found and (action := action_finding(lines)) is not None and action.kind == "two_servers":
-        # two servers of one action name: the same, told only when nothing else is
-        found.append(Reading(action.line, None, "bringup.configuration_error", "stack", "action"))
-    return min(found, key=lambda r: r.line.t) if found else None
+    if not found:
+        return next((r for r in _told_last(lines) if r is not None), None)
+    return min(found, key=lambda r: r.line.t)
+
+
+def _told_last(lines: Sequence[LogLine]) -> Iterator[Reading | None]:
+    """Readings told only when no other is, in this order, each found only if the ones before were not: each is a
+    warning whose nodes go on running."""
+    # a QoS mismatch may be any pair's (a viewer's subscription)
+    qos = qos_line(lines)
+    yield Reading(qos, None, "bringup.configuration_error", "stack", "qos") if qos is not None else None
+    # two nodes of one name: rcl only warns and both run
+    same = next((ln for ln in lines if _SAME_NAME.search(ln.msg)), None)
+    yield Reading(same, None, "bringup.configuration_error", "stack") if same is not None else None
+    # rcl_lifecycle refused a transition the node's state does not have, and the node stays where it was
+    asked = next((ln for ln in lines if ln.level >= WARN and _NO_TRANSITION.search(ln.msg)), None)
+    yield Reading(asked, None, "bringup.lifecycle_transition_failed", "stack") if asked is not None else None
+    # two servers of one action name: both may execute a goal, and the client ignores the second's answers
+    action = action_finding(lines)
+    yield Reading(action.line, None, "bringup.configuration_error", "stack", "action") \
+        if action is not None and action.kind == "two_servers" else None
 
 
 def _unexplained_request(line: LogLine, lines: Sequence[LogLine]) -> bool:
