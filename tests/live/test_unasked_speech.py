@@ -28,28 +28,36 @@ def _failing(i: int) -> Any:
     return parse_task_info(int(time.time_ns()) + i * NS // 100, raw)
 
 
-def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
+def _failures_told(n: int, question: str | None = None, **options: Any
+                   ) -> tuple[list[dict[str, Any]], list[str], int, int]:
+    """`n` failing tasks (then `question`, if any) into a live node that speaks unasked explanations on TTS with
+    `options`: its answers, what it said, and how many unasked ones it did not say and did not tell."""
     domain = fresh_domain()
     listener = Listener(domain)
     said = listener.endpoint.reader(TTS, c.STRING_TYPE, TTS_QOS)
     answers: list[dict[str, Any]] = []
     try:
-        with live_node(domain, tts_topic=TTS, proactive="speak") as node:
+        with live_node(domain, tts_topic=TTS, proactive="speak", **options) as node:
             node.speakers.append(TopicSpeaker(node.transport, TTS))
             node.on_answer = answers.append
-            for i in range(8):
+            for i in range(n):
                 update = _failing(i)
                 if node.log.add(update):
                     node.on_record(update)
-            node.ask("What happened?")
+            if question is not None:
+                node.ask(question)
             deadline = time.monotonic() + 30.0
-            while len(answers) + node.untold < 9 and time.monotonic() < deadline:
+            while len(answers) + node.untold < n + (question is not None) and time.monotonic() < deadline:
                 time.sleep(0.05)
             time.sleep(0.5)
             spoken = [str(s.data) for s in said.take(100) if s.sample_info.valid_data]
-            unspoken, untold = node.unspoken, node.untold
+            return answers, spoken, node.unspoken, node.untold
     finally:
         listener.close()
+
+
+def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
+    answers, spoken, unspoken, untold = _failures_told(8, "What happened?")
     triggers = [a["trigger"] for a in answers]
     # a failure whose task the live log no longer keeps (past its last five) by its turn is not told at all
     explained = triggers.count("failure")
@@ -62,25 +70,6 @@ def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
 
 
 def test_a_household_that_wants_every_failure_said_gets_each() -> None:
-    domain = fresh_domain()
-    listener = Listener(domain)
-    said = listener.endpoint.reader(TTS, c.STRING_TYPE, TTS_QOS)
-    answers: list[dict[str, Any]] = []
-    try:
-        with live_node(domain, tts_topic=TTS, proactive="speak", speak_every_s=0.0) as node:
-            node.speakers.append(TopicSpeaker(node.transport, TTS))
-            node.on_answer = answers.append
-            for i in range(4):  # within the live log's five kept tasks: each is told
-                update = _failing(i)
-                if node.log.add(update):
-                    node.on_record(update)
-            deadline = time.monotonic() + 30.0
-            while len(answers) < 4 and time.monotonic() < deadline:
-                time.sleep(0.05)
-            time.sleep(0.5)
-            spoken = [str(s.data) for s in said.take(100) if s.sample_info.valid_data]
-            unspoken = node.unspoken
-    finally:
-        listener.close()
+    answers, spoken, unspoken, _ = _failures_told(4, speak_every_s=0.0)  # within the live log's five kept tasks
     assert [a["trigger"] for a in answers] == ["failure"] * 4
     assert unspoken == 0 and len(spoken) == 4 > SPEAK_BURST  # one utterance each, none held back
