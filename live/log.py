@@ -283,7 +283,8 @@ class LiveLog:
                 self._front_t.append(t)
                 self._front_at.append(now)
         elif 0 < behind <= int(self.limits.jump_back_s * NS):
-            # older than what is remembered: at least as late as the oldest remembered
+            # when the robot's clock first reached t; for a stamp older than any remembered, the oldest remembered
+            # moment (so at least that late)
             front = self._front_t
             passed = self._front_at[min(bisect_left(front, t), len(front) - 1)] if front else now
             self._late.append((now, t, now - passed, now - self._first_arrival < self.limits.join_s))

@@ -139,7 +139,7 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 "that size, or lower the minimum in CYCLONEDDS_URI (SocketReceiveBufferSize min).")
     if words.startswith("ddsi_udp_conn_write to"):
         # ddsi_udp.c:330@releases/11.0.x: a send on a socket whose interface or route is gone
-        to = words.split()[2] if len(words.split()) > 2 else "a peer"
+        to = (words.split()[2:3] or ["a peer"])[0]
         return (f"my DDS middleware (Cyclone DDS) could not send to {to}: the network link or interface it sends on "
                 "went away while it ran, so the other computer stopped hearing my node",
                 "Check the link (cable, Wi-Fi, ip link) of the computer that logged it; DDS resumes once it is up.")
