@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -34,6 +36,52 @@ def lossy(cyclone_uri: str, permille: int) -> str:
     Wi-Fi link would. Set before a process creates its first participant; child processes inherit it."""
     drop = f"<Internal><Test><XmitLossiness>{permille}</XmitLossiness></Test></Internal>"
     return f"{cyclone_uri},{drop}" if cyclone_uri.strip() else drop
+
+
+NETNS_MARK = "HEXAR_BENCH_NETNS_LOSS"
+# one loopback link of its own: multicast on (DDS discovery) and a route for it, then nftables drops `permille` of
+# every 1,000 UDP datagrams any process sends on it, as the kernel would drop them on a bad link
+_NETNS_SETUP = """set -e
+ip link set lo up
+ip link set lo multicast on
+ip route add 224.0.0.0/4 dev lo
+nft -f - <<RULES
+table inet hexar_loss {
+  chain out {
+    type filter hook output priority 0;
+    meta l4proto udp numgen random mod 1000 < $HEXAR_BENCH_NETNS_LOSS counter drop
+  }
+}
+RULES
+exec "$@"
+"""
+
+
+def in_lossy_netns(permille: int) -> None:
+    """Run this script again in a network namespace of its own whose loopback link loses `permille` of every 1,000
+    UDP datagrams (nftables, in the kernel), for every process and both DDS vendors alike; returns once inside.
+    Fast DDS is kept to UDP, as between two computers: its shared-memory transport would pass the link by. Needs
+    root (or CAP_NET_ADMIN in a user namespace), `unshare`, `ip` and `nft`."""
+    if os.environ.get(NETNS_MARK) == str(permille):
+        return
+    missing = [tool for tool in ("unshare", "ip", "nft") if shutil.which(tool) is None]
+    if missing:
+        raise SystemExit(f"ERROR: --netloss needs {', '.join(missing)} (Debian: util-linux, iproute2, nftables)")
+    env = {**os.environ, NETNS_MARK: str(permille), "FASTDDS_BUILTIN_TRANSPORTS": "UDPv4"}
+    try:
+        os.execvpe("unshare", ["unshare", "-n", "sh", "-c", _NETNS_SETUP, "sh", sys.executable, *sys.argv], env)
+    except OSError as err:
+        raise SystemExit(f"ERROR: cannot make a network namespace: {err}") from err
+
+
+def netns_dropped() -> str:
+    """The datagrams the namespace's link dropped so far, as nftables counted them ("" outside one)."""
+    if NETNS_MARK not in os.environ:
+        return ""
+    out = subprocess.run(["nft", "list", "table", "inet", "hexar_loss"], capture_output=True, text=True).stdout
+    counter = next((line.split("counter", 1)[1].split("drop")[0].strip() for line in out.splitlines()
+                    if "counter" in line), "")
+    return counter
 
 
 def rss_mb(pid: int) -> float:
@@ -73,4 +121,5 @@ def percentile(values: list[float], q: float) -> float:
     return ordered[min(len(ordered) - 1, round(q * (len(ordered) - 1)))]
 
 
-__all__ = ["Listener", "RssSampler", "percentile", "rss_mb", "start_serve"]
+__all__ = ["Listener", "RssSampler", "in_lossy_netns", "lossy", "netns_dropped", "percentile", "rss_mb",
+           "start_serve"]
