@@ -144,11 +144,17 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
           f"{', '.join(transport.writer_topics())}", file=sys.stderr, flush=True)
     follower = _launch_follower(opts)
     try:
-        deadline = None if opts.duration_s is None else time.monotonic() + opts.duration_s
+        started = time.monotonic()
+        deadline = None if opts.duration_s is None else started + opts.duration_s
+        hinted = False
         while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
             stop.wait(0.2)
             if follower is not None:
                 log.extend(follower.poll())
+            if not hinted and time.monotonic() - started >= SILENT_HINT_S and not log.stats()["received"]:
+                hinted = True
+                print(silent_hint(transport.name, getattr(transport, "domain_id", opts.domain)), file=sys.stderr,
+                      flush=True)
     except KeyboardInterrupt:
         pass
     finally:
@@ -159,6 +165,17 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
               f"({node.corrections} corrections, {node.unspoken} unasked not said aloud), {node.untold} failures "
               f"whose task was gone by their turn, {node.errors} errors", file=sys.stderr, flush=True)
     return 0
+
+
+SILENT_HINT_S = 10.0  # DDS discovery on a working network takes well under a second (2 s announcements at most)
+
+
+def silent_hint(transport: str, domain: int | None) -> str:
+    """What to check when nothing at all came from the robot: the settings that keep two ROS 2 computers apart."""
+    return (f"hexar serve: nothing heard from a robot in {SILENT_HINT_S:.0f} s (over {transport}, domain {domain}). "
+            "Check that the robot uses the same ROS_DOMAIN_ID, that its ROS_AUTOMATIC_DISCOVERY_RANGE is not "
+            "LOCALHOST or OFF, and, where multicast does not reach this computer (many Wi-Fi networks), set "
+            "ROS_STATIC_PEERS to the robot's address here.")
 
 
 def _launch_follower(opts: ServeOptions) -> LaunchLogFollower | None:

@@ -11,6 +11,7 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
+from hexar.live.discovery import ros_discovery
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
 from hexar.live.topics import (
@@ -118,11 +119,16 @@ def take_loop(participant: Any, readers: list[tuple[str, Any]], stop: threading.
 
 
 def _configure(domain_id: int) -> None:
-    """Create the process's Domain for `domain_id` once: DISCOVERY, the user's configuration, ROS_COMPATIBILITY."""
+    """Create the process's Domain for `domain_id` once: DISCOVERY, what ROS 2's discovery variables ask of it (as
+    rmw_cyclonedds applies them, live/discovery.py), the user's configuration, ROS_COMPATIBILITY."""
     with _DOMAINS_LOCK:
         if domain_id not in _DOMAINS:
+            ros = ros_discovery()
+            for note in ros.notes:
+                print(f"hexar: {note}", file=sys.stderr, flush=True)
             user = os.environ.get("CYCLONEDDS_URI", "").strip()
-            _DOMAINS[domain_id] = Domain(domain_id, ",".join(filter(None, (DISCOVERY, user, ROS_COMPATIBILITY))))
+            config = (DISCOVERY, ros.cyclone_fragment(), user, ROS_COMPATIBILITY)
+            _DOMAINS[domain_id] = Domain(domain_id, ",".join(filter(None, config)))
 
 
 class DdsEndpoint:
