@@ -168,6 +168,10 @@ class ModuleExplainer:
             if asked is not None:
                 return asked
         grounded = self._compose(context, d, readings, run)
+        if grounded.causes == [f"{self.prefix}nominal"] and (seen := warned_on_the_way(lines, context.task.created)):
+            # it went well, and what it warned of on the way is told as the log's words (a control loop that missed
+            # its rate says why a motion was slow), never as a cause
+            grounded = grounded.model_copy(update={"text": f"{grounded.text} {seen}"})
         return phrase(self.model, self.name, question, self._facts(lines, grounded), grounded)
 
     def _ask_owner(self, question: str, context: Context, d: Diagnosis) -> Explanation | None:
@@ -324,6 +328,24 @@ def verbatim(line: LogLine) -> str:
     hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
     line is no text-to-speech timeout)."""
     return f"“[{line.name or 'unnamed node'}] {quoted_part(line)[:200]}”"
+
+
+def warned_on_the_way(lines: Sequence[LogLine], start: int) -> str:
+    """'My logs show a warning on the way, which did not stop it: “[node] …” at 3.0 s (3 like it).' for the last
+    warning or error of the module's own lines (not Nav2's), quoted; "" when there is none."""
+    warned = [ln for ln in lines if ln.level >= WARN and not _nav2_logger(ln)]
+    if not warned:
+        return ""
+    last = warned[-1]
+    alike = sum(1 for ln in warned if ln.name == last.name and _shape(ln.msg) == _shape(last.msg))
+    kind = "an error" if last.level >= ERROR else "a warning"
+    return (f"My logs show {kind} on the way, which did not stop it: {verbatim(last)} at {at(last, start)}"
+            + (f" ({alike} like it)." if alike > 1 else "."))
+
+
+def _shape(msg: str) -> str:
+    """A line with its numbers left out: a warning repeated with new figures is the same warning."""
+    return "".join("#" if ch.isdigit() else ch for ch in msg.strip())
 
 
 def _upper(text: str) -> str:

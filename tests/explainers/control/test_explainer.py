@@ -414,3 +414,29 @@ def test_a_value_the_hardware_could_not_convert_is_its_description_and_other_exc
     found = _explain(tmp_path / "b", [(0, "controller_manager", ERROR, "Exception of type : St13runtime_error "
                                        "occurred while initializing hardware 'RobotSystem': Failed to open port")])
     assert found.causes == ["control.hardware_failure"]
+
+
+def test_a_completed_slow_motion_quotes_what_the_controller_warned_on_the_way(tmp_path: Path) -> None:
+    # scripts/lifecycle_faults.py's control loop that kept 37-38 of its 100 updates a second (held-out set 29),
+    # under a task whose trajectory step completed: asked why it took so long, the answer quotes the warning
+    from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
+    from hexar.events import read_recording
+
+    excerpt = next(e for e in load_excerpts("real-modules-heldout29")
+                   if e.id == "kilted-control-loop-slower-than-update-rate")
+    log = read_recording(write_recording(excerpt, tmp_path / "run", task=True))
+    task, found = explain(log, "control", QUESTIONS["slow"])
+    assert task.outcome == "succeeded" and found.causes == ["control.nominal"]
+    assert ("My logs show a warning on the way, which did not stop it: “[base_controller] control loop missed its "
+            "rate: 38 updates in 1.0 s, update_rate 100 Hz”") in found.text
+    assert "(3 like it)" in found.text
+    # the warning's words are quoted, not claimed: the answer affirms the motion's success and nothing else
+    assert {c for c in read_claims(found.text).affirmed if not c.startswith("claim.")} == {"control.nominal"}
+
+
+def test_a_completed_motion_without_warnings_says_nothing_more(tmp_path: Path) -> None:
+    _, found = explain(write_lines(tmp_path, [
+        (0, "joint_trajectory_controller", INFO, "Received new action goal"),
+        (0.1, "joint_trajectory_controller", INFO, "Accepted new action goal"),
+        (2.0, "joint_trajectory_controller", INFO, "Goal reached, success!")]), "control", "How did it go?")
+    assert found.causes == ["control.nominal"] and "on the way" not in found.text
