@@ -76,8 +76,8 @@ class NodeOptions:
     # wait as long after the failure came as they were late (their 90th percentile over the last minute, in this
     # machine's seconds), at most this long. A Fast DDS writer (a ROS 2 robot's default middleware) tells its readers
     # what they missed once every 3 s (WriterTimes::heartbeat_period), so its resends come up to 3 s late; waiting
-    # 3.5 s for them was measured (scripts/bench_live_robots.py --netloss 100) to put one first answer of 39 right
-    # for 1.5 s more on every answer over that link: the second looks (live/recheck.py) correct the others.
+    # 3.5 s for them was measured (scripts/bench_live_robots.py --netloss 100) to put one or two more first answers
+    # of 39 right for 1.5 s more on every answer over that link: the second looks (live/recheck.py) correct them.
     max_settle_s: float = 2.0
     # With proactive "speak": SPEAK_BURST unasked explanations said at once, then one every this many seconds at
     # most (the others published only); 0 says each one. One waiting longer than SPEAK_STALE_S is never said.

@@ -198,6 +198,8 @@ def main() -> None:
         for vendor in args.robots:
             for clock in args.clocks:
                 for code, python in versions.items():
+                    if wait:  # what one_case prints of a wrong answer comes before its row: say whose it is
+                        print(f"-- {code} {node} {vendor} {clock}", flush=True)
                     good, final, total, lat = one_case(suite, runs, node, vendor, clock, args.rate, wait, python)
                     per_node.setdefault(f"{code} {node}", []).extend(lat)
                     med = statistics.median(lat) * 1000 if lat else float("nan")
