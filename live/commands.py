@@ -146,15 +146,16 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
     try:
         started = time.monotonic()
         deadline = None if opts.duration_s is None else started + opts.duration_s
-        hinted = False
+        heard_checked = False
         while not stop.is_set() and (deadline is None or time.monotonic() < deadline):
             stop.wait(0.2)
             if follower is not None:
                 log.extend(follower.poll())
-            if not hinted and time.monotonic() - started >= SILENT_HINT_S and not log.stats()["received"]:
-                hinted = True
-                print(silent_hint(transport.name, getattr(transport, "domain_id", opts.domain)), file=sys.stderr,
-                      flush=True)
+            if not heard_checked and time.monotonic() - started >= SILENT_HINT_S:
+                heard_checked = True  # once: a robot heard by then needs no hint, and the loop no more checks
+                if not log.stats()["received"]:
+                    print(silent_hint(transport.name, getattr(transport, "domain_id", opts.domain)),
+                          file=sys.stderr, flush=True)
     except KeyboardInterrupt:
         pass
     finally:
