@@ -164,7 +164,8 @@ def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
         print(f"hexar serve: received {stats['received']} records ({stats['duplicates']} duplicates, "
               f"{stats['truncated']} cut long lines, {stats['clock_jumps']} clock jumps); {node.answers} answers "
               f"({node.corrections} corrections, {node.unspoken} unasked not said aloud), {node.untold} failures "
-              f"whose task was gone by their turn, {node.errors} errors", file=sys.stderr, flush=True)
+              f"whose task was gone by their turn, {node.errors} errors; lost contact {log.contact.stats()['gaps']} "
+              "times", file=sys.stderr, flush=True)
     return 0
 
 

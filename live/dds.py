@@ -11,6 +11,7 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
+from hexar.live.contact import participant_of
 from hexar.live.discovery import ros_discovery
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
@@ -165,6 +166,32 @@ class DdsEndpoint:
         self.participant = None  # type: ignore[assignment]  # the binding deletes entities when collected
 
 
+class Writers:
+    """Which participant wrote a sample, and which write the robot's topics now, from the readers' matched
+    writers (their GUID prefixes; the node's own participant left out)."""
+
+    def __init__(self, participant: Any, readers: dict[str, Any]) -> None:
+        self._own = participant_of(participant.guid.bytes)
+        self._readers = readers
+        self._of: dict[int, bytes] = {}  # writer instance handle -> its participant
+
+    def of(self, topic: str, handle: int) -> bytes:
+        if handle not in self._of:
+            try:
+                self._of[handle] = participant_of(self._readers[topic].get_matched_publication_data(handle)
+                                                  .participant_key.bytes)
+            except Exception:  # the writer is already gone (its last samples come after): nobody to name
+                return b""
+        return self._of[handle]
+
+    def present(self) -> dict[bytes, str]:
+        handles = {h: topic for topic, reader in self._readers.items() for h in reader.get_matched_publications()}
+        for gone in self._of.keys() - handles.keys():
+            del self._of[gone]
+        found = {self.of(topic, h) for h, topic in handles.items()}
+        return {p: "" for p in found if p and p != self._own}
+
+
 class DdsTransport:
     """Feeds a LiveLog from the robot's topics and carries the node's questions and answers."""
 
@@ -196,14 +223,21 @@ class DdsTransport:
 
     def _loop(self, readers: list[tuple[str, Any]], log: LiveLog, on_record: Callable[[Any], None],
               on_question: Callable[[str], None]) -> None:
+        robot = {topic: reader for topic, reader in readers if topic in self._types}
+        who = Writers(self.endpoint.participant, robot)
+
         def handle(topic: str, sample: Any, t: int) -> None:
             if topic == QUESTION:
                 on_question(str(sample.data))
                 return
             add_all(self.timeline.records(topic, sample, t), log.add, on_record)
+            if topic in robot and (participant := who.of(topic, sample.sample_info.publication_handle)):
+                log.contact.heard(participant)
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
+            if log.contact.due():
+                log.contact.seen(who.present())
 
         take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
         if self.recorder is not None:

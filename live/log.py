@@ -34,6 +34,7 @@ from hexar.events.records import (
     TwistSample,
 )
 from hexar.events.roslog import LOG_FILE_TYPE
+from hexar.live.contact import Contact
 
 NS = 1_000_000_000
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
@@ -113,6 +114,7 @@ class LiveLog:
         self.duplicates = 0
         self.truncated = 0
         self.clock_jumps = 0
+        self.contact = Contact(lambda: self.newest)  # whom the transport hears, and the holes a lost link left
 
     # -- adding ---------------------------------------------------------------------------------------------
 

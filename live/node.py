@@ -18,6 +18,7 @@ from typing import Any, Literal, Protocol
 
 from hexar.events.errors import EventsError
 from hexar.events.records import GoalStatus, TaskUpdate
+from hexar.live.contact import annotate
 from hexar.live.jobs import (
     MAX_FAILURES,
     MAX_QUESTIONS,
@@ -319,6 +320,7 @@ class LiveNode:
                 return
             result = {"answer": str(err), "error": str(err), "thread": thread}
         self._last_answer = time.monotonic()
+        annotate(result, self._session.context.log.tasks, self.log.contact)
         result["trigger"] = job.kind
         result["recording"] = self.log.name
         result["latency_ms"] = round((time.monotonic() - job.received) * 1000, 1)
@@ -358,6 +360,7 @@ class LiveNode:
         except EventsError:
             result = {"error": "no task"}
         causes = tuple(result.get("causes") or ())
+        annotate(result, self._session.context.log.tasks, self.log.contact)
         if result.get("error") or causes == look.causes:
             self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
         else:

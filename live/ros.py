@@ -20,6 +20,7 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
+from hexar.live.contact import participant_of
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
 from hexar.live.topics import (
@@ -30,6 +31,7 @@ from hexar.live.topics import (
     QUESTION,
     QUESTION_QOS,
     READ_ORDER,
+    SUBSCRIBED,
     TTS_QOS,
     TopicQos,
 )
@@ -42,6 +44,7 @@ ROS_TYPES = {
     c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"), CLOCK_TYPE: ("rosgraph_msgs.msg", "Clock"),
     c.GRID_TYPE: ("nav_msgs.msg", "OccupancyGrid"),
 }
+BARE_DDS = "_CREATED_BY_BARE_DDS_APP_"  # the name rmw gives a writer of a plain DDS program (no ROS node)
 TAKE_BATCH = 256  # at most this many more messages of one topic per callback
 NO_ROS = ("--transport rclpy needs rclpy: on Linux x86_64 pip install 'hexar[ros]' (the ROS 2 Kilted wheels); "
           "elsewhere source a ROS 2 install (source /opt/ros/<distro>/setup.bash), or use --transport dds")
@@ -169,6 +172,7 @@ class RclpyTransport:
         self.timeline = Timeline(on_dated=self._record)
         self.errors = 0
         self._humble: Any = None
+        self._own: bytes | None = None  # this node's participant (GUID prefix), found once the graph shows it
         self._string = _msg_class(c.STRING_TYPE)
         self._pubs: dict[str, Any] = {ANSWER: self.node.create_publisher(self._string, ANSWER, _profile(ANSWER_QOS))}
         if tts_topic:
@@ -198,6 +202,8 @@ class RclpyTransport:
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
+            if log.contact.due() and (writers := self._writers()) is not None:
+                log.contact.seen(writers)
 
         def done() -> None:
             if self.recorder is not None:
@@ -214,6 +220,9 @@ class RclpyTransport:
                 add_all(self.timeline.records(topic, msg, source), log.add, on_record)
             except Exception as err:  # one bad message is reported and skipped; the node keeps listening
                 self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
+                return
+            if topic != CLOCK and (gid := (info.get("publisher_gid") or {}).get("data")):
+                log.contact.heard(participant_of(gid))
 
         def handle(raw: bytes, info: Any) -> None:
             one(raw, info)
@@ -228,6 +237,24 @@ class RclpyTransport:
                 one(*taken)
 
         return handle
+
+    def _writers(self) -> dict[bytes, str] | None:
+        """The participants that write the robot's topics now, as the ROS graph knows them, with their nodes' names;
+        this node's own participant left out (None until the graph shows which that is)."""
+        node, found = self.node, dict[bytes, set[str]]()
+        if self._own is None:
+            mine = [i for i in node.get_publishers_info_by_topic(ANSWER)
+                    if i.node_name == node.get_name() and i.node_namespace == node.get_namespace()]
+            if not mine:
+                return None
+            self._own = participant_of(bytes(mine[0].endpoint_gid))
+        for spec in SUBSCRIBED:
+            for info in node.get_publishers_info_by_topic(spec.topic):
+                participant = participant_of(bytes(info.endpoint_gid))
+                if participant != self._own:
+                    named = info.node_name not in ("", BARE_DDS)
+                    found.setdefault(participant, set()).update({info.node_name} if named else ())
+        return {p: ", ".join(sorted(names)) for p, names in found.items()}
 
     def _record(self, topic: str, msg: Any, t: int) -> None:
         """Into the rolling recording, on the robot's clock, as `ros2 bag record` on the robot stamps it."""

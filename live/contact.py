@@ -1,0 +1,189 @@
+"""Contact with the robot: which of its DDS participants the node hears, and the times a link lost one.
+
+DDS drops a remote participant that stops announcing itself once its lease runs out (Cyclone DDS's default 10 s,
+Fast DDS's 20 s), with every writer it had, and finds it again, under the same GUID, when its announcements come
+through once more. What the robot published in between on a volatile topic (/task_info, /diagnostics, the skills'
+events) is never resent to a reader it had dropped, so after a Wi-Fi dropout of that length the node has a hole
+in what it heard: an answer about that time says so instead of reading the hole as "nothing happened".
+
+The transports tell this module who wrote each record (`heard`, the writer's GUID prefix) and, every half second,
+which participants write the robot's topics (`seen`, from the middleware's matched writers). A participant that
+was heard and is gone opens a gap at the last record heard from it; its next record closes it. One that left for
+good (a process that ended) keeps its gap open: the answer says when it was last heard.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+import time
+from collections import deque
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from hexar.events.tasks import Task
+
+GUID_PREFIX = 12  # bytes of an RTPS GUID that name its participant (the last 4 name the entity)
+POLL_S = 0.5
+KEEP_GAPS = 50
+ENDED = frozenset({"failed", "succeeded", "canceled", "invalid"})  # a task's outcome once its last update came
+
+
+def participant_of(guid: bytes) -> bytes:
+    """The participant part of a writer's GUID (rmw's 16-byte gid or a DDS endpoint key)."""
+    return bytes(guid[:GUID_PREFIX])
+
+
+@dataclass
+class Gap:
+    """A participant not heard from `since` (our wall clock, time.time()) until `until` (None: not yet heard
+    again); `since_t` and `until_t` are the robot's clock then, as the live log's newest stamp."""
+
+    who: str
+    since: float
+    since_t: int
+    lost: float  # when discovery dropped it (its lease ran out, or it left)
+    alone: bool = True  # nothing else of the robot was heard after `since` when it was dropped
+    until: float | None = None
+    until_t: int | None = None
+
+    def overlaps(self, start_t: int, end_t: int | None) -> bool:
+        if self.until_t is None:  # not heard again: it matters to a task it left while the task ran
+            return start_t <= self.since_t and (end_t is None or self.since_t <= end_t)
+        return (end_t is None or self.since_t <= end_t) and self.until_t >= start_t
+
+    def as_dict(self) -> dict[str, object]:
+        return {"who": self.who, "last_heard": _clock(self.since), "heard_again": _clock(self.until)
+                if self.until is not None else None, "seconds": round((self.until or time.time()) - self.since, 1)}
+
+
+def _clock(wall: float | None) -> str:
+    return time.strftime("%H:%M:%S", time.localtime(wall)) if wall is not None else ""
+
+
+class Contact:
+    """Thread-safe: a transport's thread tells who it heard and who is there; the node's worker reads the gaps."""
+
+    def __init__(self, newest: Callable[[], int], wall: Callable[[], float] = time.time,
+                 clock: Callable[[], float] = time.monotonic, report: Callable[[str], None] | None = None) -> None:
+        self._newest = newest  # the robot's clock: the live log's newest stamp
+        self._wall, self._clock = wall, clock
+        self._report = report or (lambda line: print(f"hexar serve: {line}", file=sys.stderr, flush=True))
+        self._lock = threading.Lock()
+        self._last: dict[bytes, tuple[float, int]] = {}  # participant -> (wall, robot clock) of its last record
+        self._names: dict[bytes, str] = {}
+        self._present: set[bytes] = set()
+        self._open: dict[bytes, Gap] = {}
+        self._closed: deque[Gap] = deque(maxlen=KEEP_GAPS)
+        self._next_poll = 0.0
+
+    def heard(self, participant: bytes) -> None:
+        """A record came from `participant` (its GUID prefix)."""
+        now = self._wall()
+        with self._lock:
+            self._last[participant] = (now, self._newest())
+            gap = self._open.pop(participant, None)
+            if gap is None:
+                return
+            gap.until, gap.until_t = now, self._newest()
+            self._closed.append(gap)
+        self._report(f"heard {gap.who} again, {now - gap.since:.0f} s after its last record "
+                     f"({_clock(gap.since)} to {_clock(now)}); what it published on volatile topics in between "
+                     "was not resent")
+
+    def due(self) -> bool:
+        """Whether it is time to look at who is there (at most every POLL_S)."""
+        now = self._clock()
+        if now < self._next_poll:
+            return False
+        self._next_poll = now + POLL_S
+        return True
+
+    def seen(self, present: Mapping[bytes, str]) -> None:
+        """The participants that write the robot's topics now (GUID prefix -> their nodes' names, or "")."""
+        now = self._wall()
+        lost: list[Gap] = []
+        with self._lock:
+            for participant, names in present.items():
+                if names:
+                    self._names[participant] = names
+            for participant in self._present - present.keys():
+                last = self._last.get(participant)
+                if last is None or participant in self._open:
+                    continue  # never heard from it: nothing was missed
+                gap = Gap(self._names.get(participant) or f"participant {participant.hex()[:8]}", last[0], last[1],
+                          now, alone=not self._others_since(participant, last[0]))
+                self._open[participant] = gap
+                lost.append(gap)
+            self._present = set(present)
+            if len(self._last) > 4 * KEEP_GAPS:  # participants come and go with every process: forget old ones
+                for participant in sorted(self._last, key=lambda p: self._last[p][0])[:KEEP_GAPS]:
+                    if participant not in self._present and participant not in self._open:
+                        del self._last[participant]
+        for gap in lost:
+            self._report(f"lost contact with {gap.who}: its lease ran out, last record {now - gap.since:.0f} s ago "
+                         f"({_clock(gap.since)})")
+
+    def _others_since(self, participant: bytes, since: float) -> bool:
+        """Whether another participant was heard after `since` (a second later: the same loss drops them all)."""
+        return any(when > since + 1.0 for p, (when, _) in self._last.items() if p != participant)
+
+    def gaps(self, start_t: int, end_t: int | None) -> list[Gap]:
+        """The gaps that overlap the robot's time from `start_t` to `end_t` (None: to now), oldest first."""
+        with self._lock:
+            for participant, gap in self._open.items():  # another of the robot's processes may have spoken since
+                gap.alone = gap.alone and not self._others_since(participant, gap.since)
+            gaps = [*self._closed, *self._open.values()]
+        return sorted((g for g in gaps if g.overlaps(start_t, end_t)), key=lambda g: g.since)
+
+    def stats(self) -> dict[str, int]:
+        with self._lock:
+            return {"gaps": len(self._closed) + len(self._open), "not_back": len(self._open)}
+
+
+def note(gaps: list[Gap], now: float | None = None) -> str:
+    """What an answer adds about the holes in what the node heard while the task ran ("" when there were none):
+    gaps that overlap are one hole; "the robot" when nothing else of it was heard meanwhile, else whom."""
+    if not gaps:
+        return ""
+    now = time.time() if now is None else now
+    holes: list[tuple[float, float | None, list[Gap]]] = []
+    for g in sorted(gaps, key=lambda g: g.since):
+        if holes and (holes[-1][1] is None or g.since <= holes[-1][1]):
+            since, until, members = holes[-1]
+            ends = None if until is None or g.until is None else max(until, g.until)
+            holes[-1] = (since, ends, [*members, g])
+        else:
+            holes.append((g.since, g.until, [g]))
+    parts = []
+    for since, until, members in holes:
+        who = "the robot" if all(g.alone for g in members) else _names(members)
+        if until is None:
+            parts.append(f"I have not heard from {who} since {_clock(since)} ({now - since:.0f} s)")
+        else:
+            parts.append(f"I heard nothing from {who} from {_clock(since)} to {_clock(until)} ({until - since:.0f} s)")
+    return "; ".join(parts) + ", so what happened then is missing from what I heard."
+
+
+def annotate(result: dict[str, Any], tasks: Iterable[Task], contact: Contact) -> None:
+    """Add to an answer about a task the holes in what the node heard while it ran (`contact` in the result, and
+    the answer's last sentence), so a lost /task_info update is not taken for a task still running."""
+    task = next((t for t in tasks if t.task_id == result.get("task_id")), None)
+    if task is None or not result.get("answer"):
+        return
+    gaps = contact.gaps(task.created, task.last_update if task.outcome in ENDED else None)
+    if gaps:
+        # an answer that could not tell what happened starts with why: the node did not hear it
+        told = (result["answer"], note(gaps)) if result.get("causes") else (note(gaps), result["answer"])
+        result["answer"] = " ".join(told)
+        result["contact"] = [g.as_dict() for g in gaps]
+
+
+def _names(gaps: list[Gap]) -> str:
+    names = sorted({name for g in gaps for name in g.who.split(", ")})
+    return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+
+
+__all__ = ["Contact", "Gap", "annotate", "note", "participant_of"]
