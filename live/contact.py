@@ -10,6 +10,12 @@ The transports tell this module who wrote each record (`heard`, the writer's GUI
 which participants write the robot's topics (`seen`, from the middleware's matched writers). A participant that
 was heard and is gone opens a gap at the last record heard from it; its next record closes it. One that left for
 good (a process that ended) keeps its gap open: the answer says when it was last heard.
+
+A dropped participant is not the whole story: a robot that drops the node first (a Fast DDS robot's 20 s lease
+against a Cyclone node's 10 s) forgets its readers and sends nothing of the hole, while the node never drops it,
+and a publisher that keeps its last 10 messages loses older ones on a link that stalls for less than a lease.
+Where the transport sees each message's sequence number (rclpy), a jump in a writer's numbers is such a loss
+(`sequence`); the DDS transport has no such number.
 """
 
 from __future__ import annotations
@@ -22,12 +28,18 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from hexar.live.topics import PUBLISHED_BY_ROBOT
+
 if TYPE_CHECKING:
     from hexar.events.tasks import Task
 
 GUID_PREFIX = 12  # bytes of an RTPS GUID that name its participant (the last 4 name the entity)
 POLL_S = 0.5
 KEEP_GAPS = 50
+# Streams at 20-50 Hz whose reader keeps the newest 100 (a busy node loses some of them without any link problem),
+# and topics whose publisher keeps only its latest message (a pose, a flag, a goal's status, a map): what is
+# skipped there is by design. What is missing from them says nothing a person asked about.
+SKIPPED_BY_DESIGN = frozenset({"/odom", "/cmd_vel", *(t for t, q in PUBLISHED_BY_ROBOT.items() if q.depth == 1)})
 ENDED = frozenset({"failed", "succeeded", "canceled", "invalid"})  # a task's outcome once its last update came
 
 
@@ -48,6 +60,7 @@ class Gap:
     alone: bool = True  # nothing else of the robot was heard after `since` when it was dropped
     until: float | None = None
     until_t: int | None = None
+    missed: int = 0  # messages known never to have come (a writer's sequence numbers jumped); `who` is the topic
 
     def overlaps(self, start_t: int, end_t: int | None) -> bool:
         if self.until_t is None:  # not heard again: it matters to a task it left while the task ran
@@ -56,7 +69,8 @@ class Gap:
 
     def as_dict(self) -> dict[str, object]:
         return {"who": self.who, "last_heard": _clock(self.since), "heard_again": _clock(self.until)
-                if self.until is not None else None, "seconds": round((self.until or time.time()) - self.since, 1)}
+                if self.until is not None else None, "seconds": round((self.until or time.time()) - self.since, 1),
+                "missed": self.missed}
 
 
 def _clock(wall: float | None) -> str:
@@ -78,6 +92,29 @@ class Contact:
         self._open: dict[bytes, Gap] = {}
         self._closed: deque[Gap] = deque(maxlen=KEEP_GAPS)
         self._next_poll = 0.0
+        # writer GUID -> (its last sequence number, wall and robot clock then); set by a transport that sees them
+        self._seqs: dict[bytes, tuple[int, float, int]] = {}
+        self._losses: deque[Gap] = deque(maxlen=KEEP_GAPS)
+
+    def sequence(self, writer: bytes, topic: str, seq: int) -> None:
+        """A record's sequence number from its writer (`writer`: its whole GUID). A writer numbers what it sends
+        one by one, so a jump is that many messages that never reached this node (a link that dropped them, or a
+        writer that no longer kept them for it); a lower number is a resend of one already had."""
+        now = self._wall()
+        with self._lock:
+            prev = self._seqs.get(writer)
+            if prev is not None and seq <= prev[0]:
+                return
+            self._seqs[writer] = (seq, now, self._newest())
+            if prev is None or seq == prev[0] + 1 or topic in SKIPPED_BY_DESIGN:
+                return
+            loss = Gap(topic, prev[1], prev[2], now, until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
+            self._losses.append(loss)
+            if len(self._seqs) > 20 * KEEP_GAPS:  # writers come and go with the robot's processes
+                for old in sorted(self._seqs, key=lambda w: self._seqs[w][1])[:KEEP_GAPS]:
+                    del self._seqs[old]
+        self._report(f"{loss.missed} message{'s' if loss.missed > 1 else ''} on {topic} never reached this node "
+                     f"(sent between {_clock(loss.since)} and {_clock(now)})")
 
     def heard(self, participant: bytes) -> None:
         """A record came from `participant` (its GUID prefix)."""
@@ -135,12 +172,13 @@ class Contact:
         with self._lock:
             for participant, gap in self._open.items():  # another of the robot's processes may have spoken since
                 gap.alone = gap.alone and not self._others_since(participant, gap.since)
-            gaps = [*self._closed, *self._open.values()]
+            gaps = [*self._closed, *self._open.values(), *self._losses]
         return sorted((g for g in gaps if g.overlaps(start_t, end_t)), key=lambda g: g.since)
 
     def stats(self) -> dict[str, int]:
         with self._lock:
-            return {"gaps": len(self._closed) + len(self._open), "not_back": len(self._open)}
+            return {"gaps": len(self._closed) + len(self._open), "not_back": len(self._open),
+                "missed": sum(g.missed for g in self._losses)}
 
 
 def note(gaps: list[Gap], now: float | None = None) -> str:
@@ -159,12 +197,18 @@ def note(gaps: list[Gap], now: float | None = None) -> str:
             holes.append((g.since, g.until, [g]))
     parts = []
     for since, until, members in holes:
-        who = "the robot" if all(g.alone for g in members) else _names(members)
-        if until is None:
-            parts.append(f"I have not heard from {who} since {_clock(since)} ({now - since:.0f} s)")
-        else:
-            parts.append(f"I heard nothing from {who} from {_clock(since)} to {_clock(until)} ({until - since:.0f} s)")
-    return "; ".join(parts) + ", so what happened then is missing from what I heard."
+        dropped = [g for g in members if not g.missed]
+        missed, topics = sum(g.missed for g in members), sorted({g.who for g in members if g.missed})
+        lost = f"{missed} message{'s' if missed > 1 else ''}"
+        if not dropped:
+            parts.append(f"{lost} the robot sent on {', '.join(topics)} from {_clock(since)} to {_clock(until)} "
+                         "never reached me")
+            continue
+        who = "the robot" if all(g.alone for g in dropped) else _names(dropped)
+        part = (f"I have not heard from {who} since {_clock(since)} ({now - since:.0f} s)" if until is None else
+                f"I heard nothing from {who} from {_clock(since)} to {_clock(until)} ({until - since:.0f} s)")
+        parts.append(part + (f", and {lost} it sent on {', '.join(topics)} never reached me" if missed else ""))
+    return "; ".join(parts) + ", so I may have missed what happened then."
 
 
 def annotate(result: dict[str, Any], tasks: Iterable[Task], contact: Contact) -> None:

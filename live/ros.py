@@ -223,6 +223,8 @@ class RclpyTransport:
                 return
             if topic != CLOCK and (gid := (info.get("publisher_gid") or {}).get("data")):
                 log.contact.heard(participant_of(gid))
+                if (seq := info.get("publication_sequence_number")) is not None:
+                    log.contact.sequence(bytes(gid), topic, int(seq))
 
         def handle(raw: bytes, info: Any) -> None:
             one(raw, info)

@@ -3,6 +3,7 @@ Wi-Fi dropout) is told in the answers about what it did then, with when the node
 
 from __future__ import annotations
 
+import json
 import os
 import signal
 import subprocess
@@ -10,9 +11,14 @@ import sys
 import time
 from pathlib import Path
 
+from hexar.events import contract as c
+from hexar.events.reader import read_recording
+from hexar.live import msgs
 from hexar.live.contact import Contact, annotate, note
+from hexar.live.dds import DdsEndpoint
 from hexar.live.node import FAILURE_QUESTION
-from tests.live.conftest import LOOPBACK_CYCLONE
+from hexar.live.topics import TopicQos
+from tests.live.conftest import LOOPBACK_CYCLONE, NO_RCLPY
 from tests.live.dds_helpers import Listener, fresh_domain, live_node
 from tests.live.test_replay_explains import expected
 
@@ -43,18 +49,19 @@ def test_a_participant_dropped_and_heard_again_is_one_gap_with_its_times() -> No
     contact.heard(ROBOT)  # its last record before the link dropped
     clock.now += 20.0
     contact.seen({})  # its lease ran out
-    assert contact.stats() == {"gaps": 1, "not_back": 1}
+    assert contact.stats() == {"gaps": 1, "not_back": 1, "missed": 0}
     assert "lost contact with bt_navigator, controller_server" in lines[0] and "20 s ago" in lines[0]
     clock.now += 20.0
     newest[0] = 50
     contact.heard(ROBOT)
-    assert contact.stats() == {"gaps": 1, "not_back": 0} and "again, 40 s after its last record" in lines[1]
+    assert contact.stats() == {"gaps": 1, "not_back": 0, "missed": 0}
+    assert "again, 40 s after its last record" in lines[1]
     gap, = contact.gaps(0, None)
     assert (gap.since_t, gap.until_t, gap.alone) == (10, 50, True)
     assert contact.gaps(0, 9) == [] and contact.gaps(51, None) == []  # a task that ended before, or began after
     said = note(contact.gaps(0, None))
     assert said.startswith("I heard nothing from the robot from ") and "(40 s)" in said
-    assert said.endswith("so what happened then is missing from what I heard.")
+    assert said.endswith("(40 s), so I may have missed what happened then.")
 
 
 def test_a_participant_never_heard_leaves_no_gap_and_one_that_left_is_not_back() -> None:
@@ -86,6 +93,35 @@ def test_a_process_lost_while_the_rest_of_the_robot_spoke_is_named() -> None:
     assert said.startswith("I have not heard from amcl since ") and "the robot" not in said
 
 
+def test_a_jump_in_a_writers_sequence_numbers_is_told_as_messages_that_never_came() -> None:
+    contact, clock, lines, newest = _contact()
+    writer, odom = ROBOT + b"\x00\x00\x01\x03", ROBOT + b"\x00\x00\x02\x03"
+    for seq in (1, 2, 3):
+        contact.sequence(writer, "/task_info", seq)
+    newest[0] = 10
+    contact.sequence(writer, "/task_info", 4)
+    contact.sequence(odom, "/odom", 1)
+    clock.now += 16.0
+    newest[0] = 30
+    contact.sequence(odom, "/odom", 40)  # a busy reader of a 50 Hz stream: not the link
+    contact.sequence(odom[:-1] + b"\x04", "/amcl_pose", 1)
+    contact.sequence(odom[:-1] + b"\x04", "/amcl_pose", 9)  # its publisher keeps only the latest pose
+    contact.sequence(writer, "/task_info", 9)
+    contact.sequence(writer, "/task_info", 5)  # a resend of one already had
+    assert contact.stats()["missed"] == 4 and len(lines) == 1 and "4 messages on /task_info" in lines[0]
+    gap, = contact.gaps(0, None)
+    assert (gap.since_t, gap.until_t, gap.missed) == (10, 30, 4)
+    said = note([gap])
+    assert said.startswith("4 messages the robot sent on /task_info from ") and "never reached me, so" in said
+    contact.heard(ROBOT)
+    contact.seen({ROBOT: ""})
+    clock.now += 20.0
+    contact.seen({})  # dropped right after: one hole, told with both
+    said = note(contact.gaps(0, None), now=clock.now)
+    assert said.startswith("I have not heard from the robot since ")
+    assert ", and 4 messages it sent on /task_info never reached me, so I may have missed" in said
+
+
 def test_an_answer_without_a_cause_starts_with_the_gap_and_one_with_a_cause_ends_with_it(suite: Path) -> None:
     from hexar.agent.context import RunSettings
     from hexar.agent.session import Session
@@ -102,7 +138,7 @@ def test_an_answer_without_a_cause_starts_with_the_gap_and_one_with_a_cause_ends
     contact.heard(ROBOT)
     told = dict(session.ask(FAILURE_QUESTION, task=task.task_id))
     annotate(told, session.context.log.tasks, contact)
-    assert told["causes"] and told["answer"].endswith("missing from what I heard.")
+    assert told["causes"] and told["answer"].endswith("(15 s), so I may have missed what happened then.")
     assert told["contact"][0]["seconds"] == 15.0
     unknown = {"task_id": task.task_id, "answer": "I don't have enough information to say.", "causes": []}
     annotate(unknown, session.context.log.tasks, contact)
@@ -147,8 +183,55 @@ def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path
             back = node.log.contact.stats()
     finally:
         listener.close()
-    assert lost == {"gaps": 1, "not_back": 1} and back == {"gaps": 1, "not_back": 0}
+    assert (lost["gaps"], lost["not_back"], back["gaps"], back["not_back"]) == (1, 1, 1, 0)
     assert {a["task_id"]: a["causes"] for a in got} == failures  # the cause is still read from what came
     answer = got[0]["answer"]
-    assert "I heard nothing from the robot from " in answer and answer.endswith("missing from what I heard.")
-    assert got[0]["contact"][0]["seconds"] >= 3 * LEASE_S
+    assert "I heard nothing from the robot from " in answer and answer.endswith("I may have missed what happened then.")
+    assert min(g["seconds"] for g in got[0]["contact"] if not g["missed"]) >= 3 * LEASE_S
+
+
+@NO_RCLPY
+def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Path) -> None:
+    """`hexar serve` on rclpy stalls for 2 s (well inside every lease) while a robot's /diagnostics publisher that
+    keeps its last 5 messages sends 30 of 64 KB, more than the node's socket buffers hold (212 KB by default on
+    Linux): what the kernel dropped and the publisher no longer keeps never comes, as on a Wi-Fi link that stalls.
+    The node counts them from the writer's sequence numbers and tells them in the failure it explains."""
+    run, domain = suite / "bagfile_5_1", fresh_domain()
+    serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "rclpy", "--domain", str(domain),
+                              "--no-follow-launch-log"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    endpoint = DdsEndpoint(domain)
+    tasks = endpoint.reader(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100))
+    diagnostics = endpoint.writer(c.DIAGNOSTICS, c.DIAG_TYPE, TopicQos(depth=5))
+    try:
+        assert serve.stderr is not None and "listening" in serve.stderr.readline()
+        robot = subprocess.Popen([sys.executable, "-m", "hexar", "replay", str(run), "--rate", "4", "--transport",
+                                  "dds", "--domain", str(domain)], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                                 text=True)
+        deadline = time.monotonic() + 60
+        while not tasks.take(1) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        # stamped on the robot's clock, which replays the recording's day: just after the task began
+        stamp = msgs.Header(stamp=msgs.time_of(read_recording(run).tasks[0].created + 2 * 10**9))
+        diagnostics.write(msgs.DiagnosticArray(header=stamp))  # the node has this writer's first number
+        time.sleep(0.5)
+        serve.send_signal(signal.SIGSTOP)
+        big = msgs.DiagnosticArray(header=stamp, status=[msgs.DiagnosticStatus(name="camera", message="x" * 64_000)])
+        for _ in range(30):
+            diagnostics.write(big)
+        time.sleep(2.0)
+        serve.send_signal(signal.SIGCONT)
+        diagnostics.write(msgs.DiagnosticArray(header=stamp))
+        assert robot.wait(timeout=120) == 0
+        time.sleep(3.0)
+    finally:
+        serve.send_signal(signal.SIGCONT)
+        serve.send_signal(signal.SIGTERM)
+        out, err = serve.communicate(timeout=60)
+    told = [json.loads(line) for line in out.splitlines() if line.startswith("{")]
+    failure = next((a for a in told if a.get("trigger") == "failure"), None)
+    assert failure is not None, (err, told)
+    assert "contact" in failure, (err, failure)
+    missed = [g["missed"] for g in failure["contact"]]
+    assert len(missed) == 1 and 1 <= missed[0] <= 25  # the publisher kept its last 5 for a resend
+    assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on /diagnostics never reached this node" in err
+    assert " the robot sent on /diagnostics from " in failure["answer"]
