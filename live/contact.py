@@ -28,7 +28,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from hexar.live.topics import PUBLISHED_BY_ROBOT
+from hexar.events import contract as c
 
 if TYPE_CHECKING:
     from hexar.events.tasks import Task
@@ -36,10 +36,11 @@ if TYPE_CHECKING:
 GUID_PREFIX = 12  # bytes of an RTPS GUID that name its participant (the last 4 name the entity)
 POLL_S = 0.5
 KEEP_GAPS = 50
-# Streams at 20-50 Hz whose reader keeps the newest 100 (a busy node loses some of them without any link problem),
-# and topics whose publisher keeps only its latest message (a pose, a flag, a goal's status, a map): what is
-# skipped there is by design. What is missing from them says nothing a person asked about.
-SKIPPED_BY_DESIGN = frozenset({"/odom", "/cmd_vel", *(t for t, q in PUBLISHED_BY_ROBOT.items() if q.depth == 1)})
+# The topics that carry events, whose loss can hide what happened: the task's updates, the log, the skills' events,
+# a goal sent. The others hold a state published again and again (the battery flag, diagnostics, poses, 20-50 Hz
+# odometry and commands, a goal's latest status, a map), a stalled link loses a few of them with nothing hidden,
+# and some publishers keep only their latest by design.
+EVENT_TOPICS = frozenset({c.TASK_INFO, c.ROSOUT, c.EPISODIC_MEMORY, c.SAY_EVENTS, c.PIZZA_EVENTS, c.GOAL_POSE})
 ENDED = frozenset({"failed", "succeeded", "canceled", "invalid"})  # a task's outcome once its last update came
 
 
@@ -106,7 +107,7 @@ class Contact:
             if prev is not None and seq <= prev[0]:
                 return
             self._seqs[writer] = (seq, now, self._newest())
-            if prev is None or seq == prev[0] + 1 or topic in SKIPPED_BY_DESIGN:
+            if prev is None or seq == prev[0] + 1 or topic not in EVENT_TOPICS:
                 return
             loss = Gap(topic, prev[1], prev[2], now, until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
             self._losses.append(loss)

@@ -103,9 +103,9 @@ def test_a_jump_in_a_writers_sequence_numbers_is_told_as_messages_that_never_cam
     contact.sequence(odom, "/odom", 1)
     clock.now += 16.0
     newest[0] = 30
-    contact.sequence(odom, "/odom", 40)  # a busy reader of a 50 Hz stream: not the link
-    contact.sequence(odom[:-1] + b"\x04", "/amcl_pose", 1)
-    contact.sequence(odom[:-1] + b"\x04", "/amcl_pose", 9)  # its publisher keeps only the latest pose
+    contact.sequence(odom, "/odom", 40)  # a busy reader of a 50 Hz stream: nothing hidden
+    contact.sequence(odom[:-1] + b"\x04", "/power/is_charging", 1)
+    contact.sequence(odom[:-1] + b"\x04", "/power/is_charging", 9)  # a state published again and again
     contact.sequence(writer, "/task_info", 9)
     contact.sequence(writer, "/task_info", 5)  # a resend of one already had
     assert contact.stats()["missed"] == 4 and len(lines) == 1 and "4 messages on /task_info" in lines[0]
@@ -180,19 +180,23 @@ def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path
             _, err = proc.communicate(timeout=120)
             assert proc.returncode == 0, err
             got = listener.wait_answers(len(failures), "failure", timeout=10.0)
-            back = node.log.contact.stats()
+            # resends of what the robot sent as it came back can reach the node after its first answer: its looks
+            # again 1, 4 and 8 s later correct that (live/recheck.py)
+            time.sleep(9.0)
+            corrected = {a["task_id"]: a["causes"] for _, a in listener.answers("correction")}
     finally:
         listener.close()
-    assert (lost["gaps"], lost["not_back"], back["gaps"], back["not_back"]) == (1, 1, 1, 0)
-    assert {a["task_id"]: a["causes"] for a in got} == failures  # the cause is still read from what came
+    assert (lost["gaps"], lost["not_back"]) == (1, 1)
+    assert {a["task_id"]: corrected.get(a["task_id"], a["causes"]) for a in got} == failures
     answer = got[0]["answer"]
     assert "I heard nothing from the robot from " in answer and answer.endswith("I may have missed what happened then.")
-    assert min(g["seconds"] for g in got[0]["contact"] if not g["missed"]) >= 3 * LEASE_S
+    dropped = [g for g in got[0]["contact"] if not g["missed"]]
+    assert len(dropped) == 1 and dropped[0]["heard_again"] and dropped[0]["seconds"] >= 3 * LEASE_S
 
 
 @NO_RCLPY
 def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Path) -> None:
-    """`hexar serve` on rclpy stalls for 2 s (well inside every lease) while a robot's /diagnostics publisher that
+    """`hexar serve` on rclpy stalls for 2 s (well inside every lease) while a robot's skill-event publisher that
     keeps its last 5 messages sends 30 of 64 KB, more than the node's socket buffers hold (212 KB by default on
     Linux): what the kernel dropped and the publisher no longer keeps never comes, as on a Wi-Fi link that stalls.
     The node counts them from the writer's sequence numbers and tells them in the failure it explains."""
@@ -201,7 +205,7 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
                               "--no-follow-launch-log"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     endpoint = DdsEndpoint(domain)
     tasks = endpoint.reader(c.TASK_INFO, c.STRING_TYPE, TopicQos(depth=100))
-    diagnostics = endpoint.writer(c.DIAGNOSTICS, c.DIAG_TYPE, TopicQos(depth=5))
+    events = endpoint.writer(c.PIZZA_EVENTS, c.DIAG_TYPE, TopicQos(depth=5))
     try:
         assert serve.stderr is not None and "listening" in serve.stderr.readline()
         robot = subprocess.Popen([sys.executable, "-m", "hexar", "replay", str(run), "--rate", "4", "--transport",
@@ -212,15 +216,15 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
             time.sleep(0.05)
         # stamped on the robot's clock, which replays the recording's day: just after the task began
         stamp = msgs.Header(stamp=msgs.time_of(read_recording(run).tasks[0].created + 2 * 10**9))
-        diagnostics.write(msgs.DiagnosticArray(header=stamp))  # the node has this writer's first number
+        events.write(msgs.DiagnosticArray(header=stamp))  # the node has this writer's first number
         time.sleep(0.5)
         serve.send_signal(signal.SIGSTOP)
-        big = msgs.DiagnosticArray(header=stamp, status=[msgs.DiagnosticStatus(name="camera", message="x" * 64_000)])
+        big = msgs.DiagnosticArray(header=stamp, status=[msgs.DiagnosticStatus(name="recipe", message="x" * 64_000)])
         for _ in range(30):
-            diagnostics.write(big)
+            events.write(big)
         time.sleep(2.0)
         serve.send_signal(signal.SIGCONT)
-        diagnostics.write(msgs.DiagnosticArray(header=stamp))
+        events.write(msgs.DiagnosticArray(header=stamp))
         assert robot.wait(timeout=120) == 0
         time.sleep(3.0)
     finally:
@@ -233,5 +237,5 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
     assert "contact" in failure, (err, failure)
     missed = [g["missed"] for g in failure["contact"]]
     assert len(missed) == 1 and 1 <= missed[0] <= 25  # the publisher kept its last 5 for a resend
-    assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on /diagnostics never reached this node" in err
-    assert " the robot sent on /diagnostics from " in failure["answer"]
+    assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on {c.PIZZA_EVENTS} never reached this node" in err
+    assert f" the robot sent on {c.PIZZA_EVENTS} from " in failure["answer"]
