@@ -15,7 +15,9 @@ A dropped participant is not the whole story: a robot that drops the node first 
 against a Cyclone node's 10 s) forgets its readers and sends nothing of the hole, while the node never drops it,
 and a publisher that keeps its last 10 messages loses older ones on a link that stalls for less than a lease.
 Where the transport sees each message's sequence number (rclpy), a jump in a writer's numbers is such a loss
-(`sequence`); the DDS transport has no such number.
+(`sequence`). The DDS transport has no such number (the Python binding of Cyclone does not hand it over), and
+Cyclone drops what a writer hands over again below what it had: a Fast DDS robot that dropped a Cyclone node while
+the node kept it (a cut of 10-20 s with the vendors' defaults) goes untold there (scripts/bench_live_outage.py).
 """
 
 from __future__ import annotations
@@ -220,8 +222,14 @@ def annotate(result: dict[str, Any], tasks: Iterable[Task], contact: Contact) ->
         return
     gaps = contact.gaps(task.created, task.last_update if task.outcome in ENDED else None)
     if gaps:
+        said = note(gaps)
+        running = next((r for r in task.skills if r.state == "running"), None)
+        if running is not None and task.outcome not in ENDED:
+            from hexar.explainers.recorded import step_ref
+
+            said += f" The last I heard, I was still at {step_ref(running)}."
         # an answer that could not tell what happened starts with why: the node did not hear it
-        told = (result["answer"], note(gaps)) if result.get("causes") else (note(gaps), result["answer"])
+        told = (result["answer"], said) if result.get("causes") else (said, result["answer"])
         result["answer"] = " ".join(told)
         result["contact"] = [g.as_dict() for g in gaps]
 

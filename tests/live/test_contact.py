@@ -13,6 +13,7 @@ from pathlib import Path
 
 from hexar.events import contract as c
 from hexar.events.reader import read_recording
+from hexar.events.tasks import build_tasks
 from hexar.live import msgs
 from hexar.live.contact import Contact, annotate, note
 from hexar.live.dds import DdsEndpoint
@@ -143,6 +144,10 @@ def test_an_answer_without_a_cause_starts_with_the_gap_and_one_with_a_cause_ends
     unknown = {"task_id": task.task_id, "answer": "I don't have enough information to say.", "causes": []}
     annotate(unknown, session.context.log.tasks, contact)
     assert unknown["answer"].startswith("I heard nothing from the robot from ")
+    assert "The last I heard" not in unknown["answer"]  # the task ended: its end came
+    running = build_tasks([u for u in session.context.log.task_updates if u.task_id == task.task_id][:-1])
+    annotate(unknown, running, contact)  # its failing update never came: the task is still running as heard
+    assert "The last I heard, I was still at step 1 (to go to the kitchen)." in unknown["answer"]
     other_task = {"task_id": "not-a-task", "answer": "Something.", "causes": []}
     annotate(other_task, session.context.log.tasks, contact)
     assert other_task == {"task_id": "not-a-task", "answer": "Something.", "causes": []}
@@ -239,3 +244,4 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
     assert len(missed) == 1 and 1 <= missed[0] <= 25  # the publisher kept its last 5 for a resend
     assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on {c.PIZZA_EVENTS} never reached this node" in err
     assert f" the robot sent on {c.PIZZA_EVENTS} from " in failure["answer"]
+
