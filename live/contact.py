@@ -108,14 +108,14 @@ class Contact:
             prev = self._seqs.get(writer)
             if prev is not None and seq <= prev[0]:
                 return
+            if prev is None and len(self._seqs) >= 20 * KEEP_GAPS:  # writers come and go with the robot's processes
+                for old in sorted(self._seqs, key=lambda w: self._seqs[w][1])[:KEEP_GAPS]:
+                    del self._seqs[old]
             self._seqs[writer] = (seq, now, self._newest())
             if prev is None or seq == prev[0] + 1 or topic not in EVENT_TOPICS:
                 return
             loss = Gap(topic, prev[1], prev[2], now, until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
             self._losses.append(loss)
-            if len(self._seqs) > 20 * KEEP_GAPS:  # writers come and go with the robot's processes
-                for old in sorted(self._seqs, key=lambda w: self._seqs[w][1])[:KEEP_GAPS]:
-                    del self._seqs[old]
         self._report(f"{loss.missed} message{'s' if loss.missed > 1 else ''} on {topic} never reached this node "
                      f"(sent between {_clock(loss.since)} and {_clock(now)})")
 
@@ -130,8 +130,7 @@ class Contact:
             gap.until, gap.until_t = now, self._newest()
             self._closed.append(gap)
         self._report(f"heard {gap.who} again, {now - gap.since:.0f} s after its last record "
-                     f"({_clock(gap.since)} to {_clock(now)}); what it published on volatile topics in between "
-                     "was not resent")
+                     f"({_clock(gap.since)} to {_clock(now)})")
 
     def due(self) -> bool:
         """Whether it is time to look at who is there (at most every POLL_S)."""
@@ -163,8 +162,8 @@ class Contact:
                     if participant not in self._present and participant not in self._open:
                         del self._last[participant]
         for gap in lost:
-            self._report(f"lost contact with {gap.who}: its lease ran out, last record {now - gap.since:.0f} s ago "
-                         f"({_clock(gap.since)})")
+            self._report(f"lost contact with {gap.who} (its lease ran out, or it ended), last record "
+                         f"{now - gap.since:.0f} s ago ({_clock(gap.since)})")
 
     def _others_since(self, participant: bytes, since: float) -> bool:
         """Whether another participant was heard after `since` (a second later: the same loss drops them all)."""
