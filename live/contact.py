@@ -59,7 +59,6 @@ class Gap:
     who: str
     since: float
     since_t: int
-    lost: float  # when discovery dropped it (its lease ran out, or it left)
     alone: bool = True  # nothing else of the robot was heard after `since` when it was dropped
     until: float | None = None
     until_t: int | None = None
@@ -114,7 +113,7 @@ class Contact:
             self._seqs[writer] = (seq, now, self._newest())
             if prev is None or seq == prev[0] + 1 or topic not in EVENT_TOPICS:
                 return
-            loss = Gap(topic, prev[1], prev[2], now, until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
+            loss = Gap(topic, prev[1], prev[2], until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
             self._losses.append(loss)
         self._report(f"{loss.missed} message{'s' if loss.missed > 1 else ''} on {topic} never reached this node "
                      f"(sent between {_clock(loss.since)} and {_clock(now)})")
@@ -153,7 +152,7 @@ class Contact:
                 if last is None or participant in self._open:
                     continue  # never heard from it: nothing was missed
                 gap = Gap(self._names.get(participant) or f"participant {participant.hex()[:8]}", last[0], last[1],
-                          now, alone=not self._others_since(participant, last[0]))
+                          alone=not self._others_since(participant, last[0]))
                 self._open[participant] = gap
                 lost.append(gap)
             self._present = set(present)
