@@ -184,8 +184,12 @@ class Writers:
                 return b""
         return self._of[handle]
 
-    def present(self) -> dict[bytes, str]:
-        handles = {h: topic for topic, reader in self._readers.items() for h in reader.get_matched_publications()}
+    def present(self) -> dict[bytes, str] | None:
+        """None when the binding could not list them this time (a writer matched or left while it counted)."""
+        try:
+            handles = {h: topic for topic, reader in self._readers.items() for h in reader.get_matched_publications()}
+        except Exception:  # cyclonedds raises IndexError when the count changes between its two calls
+            return None
         for gone in self._of.keys() - handles.keys():
             del self._of[gone]
         found = {self.of(topic, h) for h, topic in handles.items()}
@@ -236,8 +240,8 @@ class DdsTransport:
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
-            if log.contact.due():
-                log.contact.seen(who.present())
+            if log.contact.due() and (present := who.present()) is not None:
+                log.contact.seen(present)
 
         take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
         if self.recorder is not None:

@@ -250,8 +250,12 @@ class RclpyTransport:
             if not mine:
                 return None
             self._own = participant_of(bytes(mine[0].endpoint_gid))
-        for spec in SUBSCRIBED:
-            for info in node.get_publishers_info_by_topic(spec.topic):
+        try:
+            infos = [node.get_publishers_info_by_topic(spec.topic) for spec in SUBSCRIBED]
+        except Exception:  # the graph changed under the query: look again at the next poll, drop nobody now
+            return None
+        for found_on in infos:
+            for info in found_on:
                 participant = participant_of(bytes(info.endpoint_gid))
                 if participant != self._own:
                     named = info.node_name not in ("", BARE_DDS)
