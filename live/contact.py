@@ -110,10 +110,11 @@ class Contact:
             if prev is None and len(self._seqs) >= 20 * KEEP_GAPS:  # writers come and go with the robot's processes
                 for old in sorted(self._seqs, key=lambda w: self._seqs[w][1])[:KEEP_GAPS]:
                     del self._seqs[old]
-            self._seqs[writer] = (seq, now, self._newest())
+            newest = self._newest()
+            self._seqs[writer] = (seq, now, newest)
             if prev is None or seq == prev[0] + 1 or topic not in EVENT_TOPICS:
                 return
-            loss = Gap(topic, prev[1], prev[2], until=now, until_t=self._newest(), missed=seq - prev[0] - 1)
+            loss = Gap(topic, prev[1], prev[2], until=now, until_t=newest, missed=seq - prev[0] - 1)
             self._losses.append(loss)
         self._report(f"{loss.missed} message{'s' if loss.missed > 1 else ''} on {topic} never reached this node "
                      f"(sent between {_clock(loss.since)} and {_clock(now)})")
@@ -122,11 +123,12 @@ class Contact:
         """A record came from `participant` (its GUID prefix)."""
         now = self._wall()
         with self._lock:
-            self._last[participant] = (now, self._newest())
+            newest = self._newest()
+            self._last[participant] = (now, newest)
             gap = self._open.pop(participant, None)
             if gap is None:
                 return
-            gap.until, gap.until_t = now, self._newest()
+            gap.until, gap.until_t = now, newest
             self._closed.append(gap)
         self._report(f"heard {gap.who} again, {now - gap.since:.0f} s after its last record "
                      f"({_clock(gap.since)} to {_clock(now)})")

@@ -244,13 +244,13 @@ class RclpyTransport:
         """The participants that write the robot's topics now, as the ROS graph knows them, with their nodes' names;
         this node's own participant left out (None until the graph shows which that is)."""
         node, found = self.node, dict[bytes, set[str]]()
-        if self._own is None:
-            mine = [i for i in node.get_publishers_info_by_topic(ANSWER)
-                    if i.node_name == node.get_name() and i.node_namespace == node.get_namespace()]
-            if not mine:
-                return None
-            self._own = participant_of(bytes(mine[0].endpoint_gid))
         try:
+            if self._own is None:
+                mine = [i for i in node.get_publishers_info_by_topic(ANSWER)
+                        if i.node_name == node.get_name() and i.node_namespace == node.get_namespace()]
+                if not mine:
+                    return None
+                self._own = participant_of(bytes(mine[0].endpoint_gid))
             infos = [node.get_publishers_info_by_topic(spec.topic) for spec in SUBSCRIBED]
         except Exception:  # the graph changed under the query: look again at the next poll, drop nobody now
             return None
