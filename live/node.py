@@ -18,7 +18,6 @@ from typing import Any, Literal, Protocol
 
 from hexar.events.errors import EventsError
 from hexar.events.records import GoalStatus, TaskUpdate
-from hexar.live.contact import annotate
 from hexar.live.jobs import (
     MAX_FAILURES,
     MAX_QUESTIONS,
@@ -30,6 +29,7 @@ from hexar.live.jobs import (
     RateLimit,
 )
 from hexar.live.log import NS, LiveLog
+from hexar.live.present import no_task_yet, shape
 from hexar.live.recheck import Rechecks
 from hexar.live.topics import ANSWER
 from hexar.safe_text import finite_with_warnings, json_dumps
@@ -318,9 +318,11 @@ class LiveNode:
                 # its task is no longer kept (a burst of failures pushed it out of the live log): nothing to tell
                 self.untold, self.thread = self.untold + 1, previous
                 return
-            result = {"answer": str(err), "error": str(err), "thread": thread}
+            # a person asked: they hear why there is nothing to explain; the developer's reason stays in "error"
+            result = {"answer": no_task_yet(self._session.context.log.logs), "error": str(err), "no_task": True,
+                      "thread": thread}
         self._last_answer = time.monotonic()
-        annotate(result, self._session.context.log.tasks, self.log.contact)
+        shape(result, self._session.context.log.tasks, self.log.contact, self.log.newest)
         result["trigger"] = job.kind
         result["recording"] = self.log.name
         result["latency_ms"] = round((time.monotonic() - job.received) * 1000, 1)
@@ -328,7 +330,7 @@ class LiveNode:
             result["sentence"] = short_sentence(str(result.get("answer", "")))
             result["event_t"] = job.t  # the failing update, on the robot's clock
         self._publish(result)
-        speak = bool(self.speakers) and not result.get("error") and (
+        speak = bool(self.speakers) and (not result.get("error") or bool(result.get("no_task"))) and (
             job.kind == "question" or (self.options.proactive == "speak" and self._may_speak(job)))
         if speak:
             self._say(result, "question" if job.kind == "question" else "failure")
@@ -360,7 +362,7 @@ class LiveNode:
         except EventsError:
             result = {"error": "no task"}
         causes = tuple(result.get("causes") or ())
-        annotate(result, self._session.context.log.tasks, self.log.contact)
+        shape(result, self._session.context.log.tasks, self.log.contact, self.log.newest)
         if result.get("error") or causes == look.causes:
             self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
         else:

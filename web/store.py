@@ -251,9 +251,15 @@ class Store:
     def ask(self, name: str, question: str, thread: str | None, task: str | None) -> dict[str, Any]:
         session, lock = self.session(name)
         with lock:
-            if self.live is not None and name == LIVE:
-                session.use_log(self.live.snapshot(fresh=True).log)  # as the live node does: the newest data
+            live = self.live if name == LIVE else None
+            if live is not None:
+                session.use_log(live.snapshot(fresh=True).log)  # as the live node does: the newest data
             result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
+            if live is not None:
+                from hexar.live.present import shape
+
+                # worded as `hexar serve` words it: the robot is still at it, and there is no recording
+                shape(result, session.context.log.tasks, live.log.contact, live.log.newest)
         if "recording" in result and name != LIVE:
             result["recording"] = shown(Path(result["recording"]))
         for ev in result["evidence"]:

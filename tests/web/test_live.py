@@ -104,6 +104,27 @@ def test_live_chat_answers_why_from_the_newest_data(tmp_path: Path) -> None:
         robot.close()
 
 
+def test_live_chat_while_the_robot_drives_says_where_it_is(tmp_path: Path) -> None:
+    """Asked while the trip is still going on, the page's chat answers as `hexar serve` does: the step the robot
+    is at, not "the recording does not show whether I reached the goal"."""
+    domain = fresh_domain()
+    robot = Robot(domain)
+    try:
+        with live_page(domain, tmp_path / "t.sqlite") as (url, store):
+            robot.task("nav1", "Go to the kitchen", "waiting")
+            robot.task("nav1", "Go to the kitchen", "Running")
+            robot.log("skill_navigate_to_zone", 20, "Navigating to kitchen at (4.20, 2.10)")
+            for i in range(5):
+                robot.pose(-1.8 + 0.2 * i, 0.6 + 0.05 * i)
+            robot.heard_by(store)
+            status, answer = post(url + "api/chat", {"name": "live", "question": "Why did you stop?"})
+    finally:
+        robot.close()
+    assert status == 200 and answer["causes"] == [] and answer["task_id"] == "nav1"
+    assert answer["answer"].startswith("I'm not done yet: I'm at step 1 (to go to the kitchen), for 1 s so far.")
+    assert "recording" not in answer["answer"]
+
+
 def test_the_live_page_writes_nothing_on_the_robots_network(tmp_path: Path) -> None:
     from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication, BuiltinTopicDcpsSubscription
 
