@@ -62,25 +62,30 @@ def _rank(run: SkillRun) -> int:
     return 0 if run.state == "succeeded" else 1 if _started(run) else 2
 
 
-def trips_words(task: Task) -> str:
+def trips_words(task: Task, capital: bool = False) -> str:
     """Where the task's plan took me, as it happened: reached, set off for but not reached, or never started.
     A step that only ever waited is no trip, whatever its status history holds."""
     reached: list[str] = []
     tried: list[str] = []
+    going: list[str] = []
     never: list[str] = []
     for run in task.skills:
         loc = run.params.get("location")
         if run.skill in NAV_SKILLS and isinstance(loc, str):
             place = place_name(loc)
-            (reached if run.state == "succeeded" else tried if _started(run) else never).append(place)
+            (reached if run.state == "succeeded" else going if run.state == "running" else
+             tried if _started(run) else never).append(place)
     parts = [f"I went to {join_words(reached)}"] if reached else []
+    if going:  # no end yet: cut off on disk, or still under way when a live node is asked
+        parts.append(f"the recording ends while I was still on my way to {join_words(going)}")
     if tried:
         parts.append(f"I tried to go to {join_words(tried)} but didn't get there")
     if never:
         parts.append(f"I never set off for {join_words(never)}")
     if not parts:
         return "I didn't drive anywhere"
-    return parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + ", and " + parts[-1]
+    said = parts[0] if len(parts) == 1 else ", ".join(parts[:-1]) + ", and " + parts[-1]
+    return said[0].upper() + said[1:] if capital else said
 
 
 _ASKED_PLACE = re.compile(r"\b(?:to|into|towards?)\s+(?:the\s+)?([a-z][a-z _]*?)\W*$")
@@ -98,6 +103,9 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
         # min() keeps the first of equal rank, so the task being discussed wins a tie
         candidate, run = min(matches, key=lambda m: _rank(m[1]))
         return _went_step(log, candidate, run, current=candidate is task)
+    under_way = next((run for run in task.skills if run.skill in NAV_SKILLS and run.state == "running"), None)
+    if under_way is not None and _ASKED_PLACE.search(q) is None and not any(w in q for w in ("person", "someone")):
+        return _went_step(log, task, under_way, current=True)  # "where are you going?": the trip not over yet
     if "person" in q or "someone" in q or "them" in q:
         for run in task.skills:
             if run.skill == "ask_human_for_help" and _started(run):
@@ -112,11 +120,11 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
     if not any(run.skill in NAV_SKILLS and _started(run) for run in task.skills):
         return Explanation(explainer="planner", text=f"I didn't drive anywhere for {task_name(task, log)}. {plan}",
                            causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
-    if any(word in q for word in ("why did you", "why have you")):
+    if any(word in q for word in ("why did you", "why have you", "why are you")):
         asked = _ASKED_PLACE.search(q)
         there = f"to the {asked.group(1)}" if asked else "there"
         text = (f"I did not go {there} for {task_name(task, log)}: no step of my plan went there. "
-                f"{trips_words(task)}. {plan}")
+                f"{trips_words(task, capital=True)}. {plan}")
     else:
         text = f"For {task_name(task, log)}, {trips_words(task)}. {plan}"
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],

@@ -32,7 +32,10 @@ _ORDINALS = {"first": "first", "second": "2", "third": "3", "last": "latest", "p
 
 # Questions about what the robot did, not about a problem: answered from the recording's content.
 _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( back| over)? (to|into|towards?)\b|"
-                   r"^where did you (go|drive)\b|^where have you been\b")
+                   r"^where did you (go|drive)\b|^where have you been\b|"
+                   # asked of a robot on its way (a live node): the trip under way and why
+                   r"^(and |so |but )?why are you (going|driving|coming|heading|walking)( back| over)? "
+                   r"(to|into|towards?)\b|^(and |so |but )?where are you (going|heading|driving|off to)\b")
 # A request to act, phrased as a question ("can you try again?"): the agent is read-only and says so.
 _ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|could|would|will|won't|wont) you "
                   r"(please |just )?(try|retry|go|bring|fetch|get me|do it|do that|drive|move|come|start|restart|turn|"
@@ -50,8 +53,8 @@ _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna 
 # "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
 _TALKED = re.compile(r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
                      r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
-_WHERE = re.compile(r"where are you\b|where did you (end up|stop)\b|where('s| is) the robot\b|"
-                    r"where did you finish\b")
+_WHERE = re.compile(r"where are you\b(?! (going|heading|driving|off to)\b)|where did you (end up|stop)\b|"
+                    r"where('s| is) the robot\b|where did you finish\b")
 
 
 # A question that names a module of the robot by what it does: of a task whose plan never ran that module, the

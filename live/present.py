@@ -12,6 +12,7 @@ import re
 from collections.abc import Iterable
 from typing import Any
 
+from hexar.causes import BENIGN
 from hexar.events.log import last_error
 from hexar.events.records import LogLine
 from hexar.events.tasks import Task
@@ -23,6 +24,10 @@ NS = 1_000_000_000
 _HEARD = tuple((re.compile(pattern, re.IGNORECASE), words) for pattern, words in (
     (r"\bas far as (?:the|this|my) recording shows\b", "as far as I heard"),
     (r"\bthat (?:the|this|my) recording shows\b", "that I heard of"),
+    # a goal or a trip with no end yet, on a link that held (contact's note tells one that did not): under way
+    (r"\bmy last goal was ([^;.]+); (?:the|this|my) recording does not show whether I got there\b",
+     r"I'm on my way to \1; I have not heard that I got there yet"),
+    (r"\b(?:the|this|my) recording ends while I was still on my way\b", "I'm still on my way"),
     (r"\b(?:the|this|my) recording ends while\b", "the last I heard,"),
     (r"\bwhen (?:the|this|my) recording ends\b", "when I last heard of it"),
     (r"\b(?:the|this|my) recording ends\b", "what I have heard so far ends"),
@@ -39,7 +44,7 @@ def heard_words(text: str) -> str:
     parts = _QUOTED.split(text)
     for i in range(0, len(parts), 2):  # even parts lie outside quotes
         for pattern, words in _HEARD:
-            parts[i] = pattern.sub(lambda m, w=words: _case(m.group(0), w), parts[i])
+            parts[i] = pattern.sub(lambda m, w=words: _case(m.group(0), m.expand(w)), parts[i])
     return "".join(parts)
 
 
@@ -48,23 +53,30 @@ def _case(found: str, words: str) -> str:
 
 
 def present(result: dict[str, Any], tasks: Iterable[Task], newest: int) -> None:
-    """An answer about a task that has not ended, with no cause and no hole in what the node heard (contact's
-    note covers those): the robot is still at it, so it says where it is instead of "I don't have enough
-    information", which for a run on disk means the recording stopped too early. `newest`: the robot's clock
-    at the node's latest record."""
+    """An answer about a task that has not ended, with no problem found and no hole in what the node heard
+    (contact's note covers those): the robot is still at it, so it says where it is instead of "I don't have
+    enough information", which for a run on disk means the recording stopped too early. An answer that already
+    tells what the robot is doing (a benign cause: where it is going, its plan) is left as it is. `newest`: the
+    robot's clock at the node's latest record."""
     task = next((t for t in tasks if t.task_id == result.get("task_id")), None)
-    if task is None or task.outcome in ENDED or result.get("causes") or result.get("contact") or result.get("error"):
+    causes = list(result.get("causes") or ())
+    if (task is None or task.outcome in ENDED or result.get("contact") or result.get("error")
+            or any(cause not in BENIGN for cause in causes)):
         return
+    if causes and result.get("enough_information") is not False:
+        result["running"] = True
+        return
+    what = f'your request "{task.instruction}"' if task.instruction.strip() else "my task"
     running = next((r for r in task.skills if r.state == "running"), None)
     if running is None:
-        lead = "I'm not done with it yet: I haven't started its first step as far as I heard."
+        lead = f"I'm still working on {what}: I haven't heard its first step start yet."
     else:
         from hexar.explainers.recorded import step_ref
 
         since = running.time_of("running") or running.last_change
         steps = f" of {len(task.skills)}" if len(task.skills) > 1 else ""
         ref = step_ref(running).replace(" (to", f"{steps} (to", 1)
-        lead = f"I'm not done yet: I'm at {ref}, for {max(0, newest - since) / NS:.0f} s so far."
+        lead = f"I'm still working on {what}: I'm at {ref}, for {max(0, newest - since) / NS:.0f} s so far."
     if result.get("enough_information") is False:
         result["answer"] = f"{lead} Nothing I heard so far says anything went wrong."
     else:

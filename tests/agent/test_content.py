@@ -284,3 +284,52 @@ def test_which_questions_ask_whom_i_talked_to() -> None:
                            ("Why did you talk to Maria?", None), ("Did anyone help you?", None),
                            ("What did you say?", "said")):
         assert content_kind(question) == kind, question
+
+
+def _cut(out: Path, scenario_no: int, after_s: float) -> Path:
+    """Scenario `scenario_no` recorded with rosbags and stopped `after_s` seconds after its start, as a recording
+    stopped while the robot was still driving (or a live node asked then)."""
+    from rosbags.rosbag2 import Writer
+
+    from hexar.evals.cases import scenario
+    from hexar.evals.scenarios.bag import TYPESTORE
+    from hexar.evals.scenarios.suite import record
+
+    messages = sorted(record(scenario(scenario_no), 1).messages, key=lambda m: m[0])
+    end = messages[0][0] + int(after_s * 1e9)
+    with Writer(out, version=9) as writer:
+        conns: dict[tuple[str, str], object] = {}
+        for t, topic, typ, m in messages:
+            if t > end:
+                break
+            if (topic, typ) not in conns:
+                conns[(topic, typ)] = writer.add_connection(topic, typ, typestore=TYPESTORE)
+            writer.write(conns[(topic, typ)], t, TYPESTORE.serialize_cdr(m, typ))  # type: ignore[arg-type]
+    return out
+
+
+def test_where_are_you_going_is_the_trip_not_over_yet(tmp_path: Path) -> None:
+    """Asked as a robot is asked on its way, in the present tense: the trip under way and the plan step behind it,
+    not the robot's position; a place no step went to is still told as such."""
+    run = _cut(tmp_path / "on_the_way", 5, 10.0)
+    going, why, where, garage = _ask(run, "Where are you going?", "Why are you going to the kitchen?",
+                                     "Where are you?", "Why are you going to the garage?")
+    for answer in (going, why):
+        assert str(answer["answer"]).startswith('I set off for the kitchen because step 1 of my plan for your request '
+                                                '"Bring me a coffee from the kitchen" was to go there, and the '
+                                                "recording ends while I was still on my way.")
+    assert str(where["answer"]).startswith("My last goal was the kitchen; the recording does not show whether I got "
+                                           "there.")
+    assert str(garage["answer"]).startswith('I did not go to the garage for your request "Bring me a coffee from the '
+                                            'kitchen": no step of my plan went there. The recording ends while I was '
+                                            "still on my way to the kitchen, and I never set off for the living room.")
+
+
+def test_present_tense_trips_are_went_and_where_are_you_is_where() -> None:
+    from hexar.agent.followups import content_kind
+
+    for question, kind in (("Where are you going?", "went"), ("so where are you heading", "went"),
+                           ("Why are you going to the kitchen?", "went"), ("why are you driving to the door", "went"),
+                           ("Where are you?", "where"), ("where are you now", "where"),
+                           ("Why are you going so slowly?", None), ("Why are you stopped?", None)):
+        assert content_kind(question) == kind, question

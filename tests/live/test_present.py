@@ -46,7 +46,10 @@ def test_heard_words_keep_sentences_and_quotes() -> None:
     assert heard_words("As far as my recording shows, my navigation went normally") == \
         "As far as I heard, my navigation went normally"
     assert heard_words("I set off for the kitchen, and the recording ends while I was still on my way.") == \
-        "I set off for the kitchen, and the last I heard, I was still on my way."
+        "I set off for the kitchen, and I'm still on my way."
+    assert heard_words("My last goal was the kitchen; the recording does not show whether I got there. My last") == \
+        "I'm on my way to the kitchen; I have not heard that I got there yet. My last"
+    assert heard_words("Task 2, and the recording ends while it waited.") == "Task 2, and the last I heard, it waited."
     assert heard_words("Step 2 was still running when the recording ends.") == \
         "Step 2 was still running when I last heard of it."
     # a log line quoted in an answer is the robot's own words
@@ -69,13 +72,18 @@ def test_a_task_going_on_is_told_where_it_is_and_one_that_ended_is_left_alone(su
                "answer": "I don't have enough information to say. The recording does not show whether I reached "
                          "the goal."}
     present(unknown, running, started + 12 * 10**9)
-    assert unknown["answer"] == ("I'm not done yet: I'm at step 1 of 4 (to go to the kitchen), for 12 s so far. "
-                                 "Nothing I heard so far says anything went wrong.")
+    assert unknown["answer"] == ('I\'m still working on your request "Bring me a coffee from the kitchen": I\'m at '
+                                 "step 1 of 4 (to go to the kitchen), for 12 s so far. Nothing I heard so far says "
+                                 "anything went wrong.")
     assert unknown["running"] is True
     said = {"task_id": task.task_id, "causes": [], "enough_information": True, "answer": "I saw a person."}
     present(said, running, started)
-    assert said["answer"] == ("I'm not done yet: I'm at step 1 of 4 (to go to the kitchen), for 0 s so far. "
-                              "I saw a person.")
+    assert said["answer"].endswith("(to go to the kitchen), for 0 s so far. I saw a person.")
+    # an answer that already tells what the robot is doing (where it is going) is left as it is
+    going = {"task_id": task.task_id, "causes": ["planner.plan_ok"], "enough_information": True, "answer": "On it."}
+    present(going, running, started)
+    assert going == {"task_id": task.task_id, "causes": ["planner.plan_ok"], "enough_information": True,
+                     "answer": "On it.", "running": True}
     for result in ({"task_id": task.task_id, "causes": ["navigation.blocked"], "answer": "A cause."},
                    {"task_id": task.task_id, "causes": [], "contact": [{}], "answer": "A hole."}):
         kept = dict(result)
@@ -130,8 +138,9 @@ def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, tran
         listener.close()
     assert before["answer"].startswith("I haven't had a task since I started listening")
     assert before["error"].startswith("no task to explain") and before["no_task"] is True
-    assert during["answer"].startswith("I'm not done yet: I'm at step 1 of 4 (to go to the kitchen), for ")
+    assert during["answer"].startswith('I\'m still working on your request "Bring me a coffee from the kitchen": '
+                                       "I'm at step 1 of 4 (to go to the kitchen), for ")
     assert during["causes"] == [] and during["running"] is True
     assert not RECORDING.search(during["answer"]) and not RECORDING.search(before["answer"])
     assert any(s.startswith("I haven't had a task") for s in spoken)
-    assert any(s.startswith("I'm not done yet") for s in spoken)
+    assert any(s.startswith("I'm still working on your request") for s in spoken)

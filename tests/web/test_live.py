@@ -121,7 +121,8 @@ def test_live_chat_while_the_robot_drives_says_where_it_is(tmp_path: Path) -> No
     finally:
         robot.close()
     assert status == 200 and answer["causes"] == [] and answer["task_id"] == "nav1"
-    assert answer["answer"].startswith("I'm not done yet: I'm at step 1 (to go to the kitchen), for 1 s so far.")
+    assert answer["answer"].startswith('I\'m still working on your request "Go to the kitchen": I\'m at step 1 (to go '
+                                       "to the kitchen), for 1 s so far.")
     assert "recording" not in answer["answer"]
 
 
