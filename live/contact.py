@@ -63,6 +63,7 @@ class Gap:
     until: float | None = None
     until_t: int | None = None
     missed: int = 0  # messages known never to have come (a writer's sequence numbers jumped); `who` is the topic
+    named: bool = True  # `who` names its nodes; else it is the participant's GUID, which no answer says aloud
 
     def overlaps(self, start_t: int, end_t: int | None) -> bool:
         if self.until_t is None:  # not heard again: it matters to a task it left while the task ran
@@ -153,8 +154,9 @@ class Contact:
                 last = self._last.get(participant)
                 if last is None or participant in self._open:
                     continue  # never heard from it: nothing was missed
-                gap = Gap(self._names.get(participant) or f"participant {participant.hex()[:8]}", last[0], last[1],
-                          alone=not self._others_since(participant, last[0]))
+                names = self._names.get(participant, "")
+                gap = Gap(names or f"participant {participant.hex()[:8]}", last[0], last[1],
+                          alone=not self._others_since(participant, last[0]), named=bool(names))
                 self._open[participant] = gap
                 lost.append(gap)
             self._present = set(present)
@@ -235,8 +237,15 @@ def annotate(result: dict[str, Any], tasks: Iterable[Task], contact: Contact) ->
 
 
 def _names(gaps: list[Gap]) -> str:
-    names = sorted({name for g in gaps for name in g.who.split(", ")})
-    return ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    """The nodes of the processes that went quiet, or how many of the robot's processes where a transport could
+    not name them (a GUID is for the log, not for a person)."""
+    names = sorted({name for g in gaps if g.named for name in g.who.split(", ")})
+    said = ", ".join(names[:3]) + (f" and {len(names) - 3} more" if len(names) > 3 else "")
+    unnamed = sum(not g.named for g in gaps)
+    if not unnamed:
+        return said
+    others = f"{'one' if unnamed == 1 else unnamed}{' other' if said else ''} of the robot's processes"
+    return f"{said} and {others}" if said else others
 
 
 __all__ = ["Contact", "Gap", "annotate", "note", "participant_of"]

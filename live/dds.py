@@ -37,6 +37,7 @@ try:
     from cyclonedds.topic import Topic
 
     from hexar.live import msgs
+    from hexar.live.graph_info import DISCOVERY_TOPIC, ParticipantEntitiesInfo, participant_nodes
 except ImportError as err:  # pragma: no cover -- cyclonedds is in the `live` extra that setup.sh installs
     raise TransportUnavailableError(
         "the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'") from err
@@ -155,6 +156,12 @@ class DdsEndpoint:
     def reader(self, ros_topic: str, ros_type: str, qos: TopicQos) -> Any:
         return DataReader(self.participant, self.topic(ros_topic, ros_type), dds_qos(qos))
 
+    def graph_reader(self) -> Any:
+        """A reader of ROS 2's graph topic, which names each participant's nodes (live/graph_info.py): reliable
+        and transient-local like its writers, deep enough for every process of a robot."""
+        topic = Topic(self.participant, DISCOVERY_TOPIC, ParticipantEntitiesInfo)
+        return DataReader(self.participant, topic, dds_qos(TopicQos(durability="transient_local", depth=1000)))
+
     def writer(self, ros_topic: str, ros_type: str, qos: TopicQos) -> Any:
         if ros_topic not in self.writers:
             self.writers[ros_topic] = DataWriter(self.participant, self.topic(ros_topic, ros_type), dds_qos(qos))
@@ -174,6 +181,7 @@ class Writers:
         self._own = participant_of(participant.guid.bytes)
         self._readers = readers
         self._of: dict[int, bytes] = {}  # writer instance handle -> its participant
+        self._nodes: dict[bytes, str] = {}  # participant -> its nodes' names, from ros_discovery_info
 
     def of(self, topic: str, handle: int) -> bytes:
         if handle not in self._of:
@@ -193,7 +201,13 @@ class Writers:
         for gone in self._of.keys() - handles.keys():
             del self._of[gone]
         found = {self.of(topic, h) for h, topic in handles.items()}
-        return {p: "" for p in found if p and p != self._own}
+        return {p: self._nodes.get(p, "") for p in found if p and p != self._own}
+
+    def named(self, participant: bytes, nodes: str) -> None:
+        """What a participant's `ros_discovery_info` says it holds now (live/graph_info.py)."""
+        if len(self._nodes) >= 1000 and participant not in self._nodes:  # processes come and go for weeks
+            self._nodes.pop(next(iter(self._nodes)))
+        self._nodes[participant] = nodes
 
 
 class DdsTransport:
@@ -221,6 +235,7 @@ class DdsTransport:
         readers: list[tuple[str, Any]] = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in READ_ORDER]
         readers.append((CLOCK, self.endpoint.reader(CLOCK, CLOCK_TYPE, CLOCK_QOS)))
         readers.append((QUESTION, self.endpoint.reader(QUESTION, c.STRING_TYPE, QUESTION_QOS)))
+        readers.append((DISCOVERY_TOPIC, self.endpoint.graph_reader()))
         self._thread = threading.Thread(target=self._loop, args=(readers, log, on_record, on_question),
                                         name="hexar-dds", daemon=True)
         self._thread.start()
@@ -233,6 +248,9 @@ class DdsTransport:
         def handle(topic: str, sample: Any, t: int) -> None:
             if topic == QUESTION:
                 on_question(str(sample.data))
+                return
+            if topic == DISCOVERY_TOPIC:
+                who.named(*participant_nodes(sample))
                 return
             add_all(self.timeline.records(topic, sample, t), log.add, on_record)
             if topic in robot and (participant := who.of(topic, sample.sample_info.publication_handle)):
