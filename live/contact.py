@@ -16,8 +16,12 @@ against a Cyclone node's 10 s) forgets its readers and sends nothing of the hole
 and a publisher that keeps its last 10 messages loses older ones on a link that stalls for less than a lease.
 Where the transport sees each message's sequence number (rclpy), a jump in a writer's numbers is such a loss
 (`sequence`). The DDS transport has no such number (the Python binding of Cyclone does not hand it over), and
-Cyclone drops what a writer hands over again below what it had: a Fast DDS robot that dropped a Cyclone node while
-the node kept it (a cut of 10-20 s with the vendors' defaults) goes untold there (scripts/bench_live_outage.py).
+Cyclone drops what a writer hands over again below what it had. There, a participant that publishes a state
+again and again (diagnostics, the battery flag, odometry: every second or faster) and then says nothing for as long
+as the node's own lease (`quiet_after`) was cut off from the node long enough for the robot to drop it, whatever the
+node's side of DDS made of it: a Fast DDS robot that dropped a Cyclone node while the node kept it (a cut of 10-20
+s with the vendors' defaults) is told from that silence (scripts/bench_live_outage.py). A shorter silence is a link
+both sides kept, which resends what the robot's publishers still hold.
 """
 
 from __future__ import annotations
@@ -43,6 +47,10 @@ KEEP_GAPS = 50
 # odometry and commands, a goal's latest status, a map), a stalled link loses a few of them with nothing hidden,
 # and some publishers keep only their latest by design.
 EVENT_TOPICS = frozenset({c.TASK_INFO, c.ROSOUT, c.EPISODIC_MEMORY, c.SAY_EVENTS, c.PIZZA_EVENTS, c.GOAL_POSE})
+# States a robot publishes on and on, however idle (the diagnostic aggregator at 1 Hz, the battery flag, the base's
+# odometry): a participant that sends them and then says nothing at all is not idle but out of reach.
+STEADY_TOPICS = frozenset({c.DIAGNOSTICS, c.IS_CHARGING, c.ODOM})
+STEADY_LEAST = 5  # records of a steady topic in a row, each at most a quarter of the silence that counts apart
 ENDED = frozenset({"failed", "succeeded", "canceled", "invalid"})  # a task's outcome once its last update came
 
 
@@ -64,6 +72,7 @@ class Gap:
     until_t: int | None = None
     missed: int = 0  # messages known never to have come (a writer's sequence numbers jumped); `who` is the topic
     named: bool = True  # `who` names its nodes; else it is the participant's GUID, which no answer says aloud
+    quiet: bool = False  # told from a steady participant's silence, not from DDS dropping it
 
     def overlaps(self, start_t: int, end_t: int | None) -> bool:
         if self.until_t is None:  # not heard again: it matters to a task it left while the task ran
@@ -98,6 +107,14 @@ class Contact:
         # writer GUID -> (its last sequence number, wall and robot clock then); set by a transport that sees them
         self._seqs: dict[bytes, tuple[int, float, int]] = {}
         self._losses: deque[Gap] = deque(maxlen=KEEP_GAPS)
+        self._quiet_s: float | None = None
+        self._steady: dict[bytes, deque[float]] = {}  # participant -> when its latest steady records came
+        self._spoke: deque[tuple[float, bytes]] = deque(maxlen=4096)  # (when, who), at most twice a second each
+
+    def quiet_after(self, seconds: float) -> None:
+        """Tell a silence this long of a participant that publishes steadily as a hole (the DDS transport, with
+        its own lease: a robot drops the node after that long and resends nothing of it)."""
+        self._quiet_s = seconds
 
     def sequence(self, writer: bytes, topic: str, seq: int) -> None:
         """A record's sequence number from its writer (`writer`: its whole GUID). A writer numbers what it sends
@@ -120,19 +137,44 @@ class Contact:
         self._report(f"{loss.missed} message{'s' if loss.missed > 1 else ''} on {topic} never reached this node "
                      f"(sent between {_clock(loss.since)} and {_clock(now)})")
 
-    def heard(self, participant: bytes) -> None:
-        """A record came from `participant` (its GUID prefix)."""
+    def heard(self, participant: bytes, topic: str = "") -> None:
+        """A record came from `participant` (its GUID prefix), on `topic`."""
         now = self._wall()
         with self._lock:
             newest = self._newest()
+            last = self._last.get(participant)
             self._last[participant] = (now, newest)
+            if last is None or now - last[0] >= POLL_S or not self._spoke or self._spoke[-1][1] != participant:
+                self._spoke.append((now, participant))
             gap = self._open.pop(participant, None)
             if gap is None:
-                return
+                gap = self._silence(participant, last, now, newest)
+                if topic in STEADY_TOPICS:
+                    self._steady.setdefault(participant, deque(maxlen=STEADY_LEAST)).append(now)
+                if gap is None:
+                    return
             gap.until, gap.until_t = now, newest
             self._closed.append(gap)
         self._report(f"heard {gap.who} again, {now - gap.since:.0f} s after its last record "
-                     f"({_clock(gap.since)} to {_clock(now)})")
+                     f"({_clock(gap.since)} to {_clock(now)})" + (", though its DDS participant was never dropped"
+                                                                   if gap.quiet else ""))
+
+    def _silence(self, participant: bytes, last: tuple[float, int] | None, now: float, newest: int) -> Gap | None:
+        """A gap for a steady participant that said nothing for `quiet_after` seconds (None: no such silence)."""
+        if self._quiet_s is None or last is None or now - last[0] < self._quiet_s:
+            return None
+        steady = self._steady.get(participant)
+        if steady is None or len(steady) < STEADY_LEAST or last[0] - steady[-1] > self._quiet_s / 4:
+            return None  # not one that speaks on and on, or it had stopped its steady topics before: idle
+        if any(b - a > self._quiet_s / 4 for a, b in zip(steady, list(steady)[1:], strict=False)):
+            return None
+        steady.clear()  # its steady rhythm must be seen again before another silence counts
+        names = self._names.get(participant, "")
+        # a silence ends when the link is back, when the robot's other processes speak again too: whether they
+        # spoke while it lasted tells this process from the robot
+        others = any(last[0] + 1.0 < when < now - 1.0 for when, who in self._spoke if who != participant)
+        return Gap(names or f"participant {participant.hex()[:8]}", last[0], last[1], quiet=True, alone=not others,
+                   named=bool(names))
 
     def due(self) -> bool:
         """Whether it is time to look at who is there (at most every POLL_S)."""

@@ -4,9 +4,11 @@ robot's network without a ROS install (and the tests drive it with real DDS traf
 from __future__ import annotations
 
 import os
+import re
 import sys
 import threading
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 from hexar.events import contract as c
@@ -43,6 +45,32 @@ except ImportError as err:  # pragma: no cover -- cyclonedds is in the `live` ex
         "the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'") from err
 
 TakeBatch = 256
+# This participant's lease unless CYCLONEDDS_URI sets one: Cyclone DDS's default (docs/manual/options.md,
+# Discovery/LeaseDuration). A robot that hears nothing from the node for this long drops it, and then resends
+# nothing of what it published meanwhile.
+LEASE_S = 10.0
+_LEASE = re.compile(r"<LeaseDuration>\s*([0-9.]+)\s*(ns|us|ms|s|min|hr|day)?\s*</LeaseDuration>", re.IGNORECASE)
+_UNIT_S = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0, "min": 60.0, "hr": 3600.0, "day": 86400.0}
+
+
+def own_lease_s(uri: str | None = None) -> float:
+    """The lease this participant announces: the last LeaseDuration in CYCLONEDDS_URI (inline XML, or the files
+    it names, read as Cyclone merges them: later over earlier), else Cyclone's default."""
+    uri = os.environ.get("CYCLONEDDS_URI", "") if uri is None else uri
+    lease = LEASE_S
+    for part in uri.split(","):
+        text = part.strip()
+        if text.startswith("file://"):
+            try:
+                text = Path(text.removeprefix("file://")).read_text(errors="replace")
+            except OSError:
+                continue  # Cyclone itself refuses a file it cannot read, before this runs
+        for value, unit in _LEASE.findall(text):
+            try:
+                lease = float(value) * _UNIT_S[(unit or "s").lower()]
+            except ValueError:
+                continue
+    return lease
 IDL: dict[str, type[Any]] = {
     c.LOG_TYPE: msgs.Log, c.STRING_TYPE: msgs.String, c.BOOL_TYPE: msgs.Bool,
     c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
@@ -244,6 +272,7 @@ class DdsTransport:
               on_question: Callable[[str], None]) -> None:
         robot = {topic: reader for topic, reader in readers if topic in self._types}
         who = Writers(self.endpoint.participant, robot)
+        log.contact.quiet_after(own_lease_s())
 
         def handle(topic: str, sample: Any, t: int) -> None:
             if topic == QUESTION:
@@ -254,7 +283,7 @@ class DdsTransport:
                 return
             add_all(self.timeline.records(topic, sample, t), log.add, on_record)
             if topic in robot and (participant := who.of(topic, sample.sample_info.publication_handle)):
-                log.contact.heard(participant)
+                log.contact.heard(participant, topic)
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)

@@ -222,7 +222,7 @@ class RclpyTransport:
                 self._report(f"skipped a message on {topic}: {type(err).__name__}: {err}")
                 return
             if topic != CLOCK and (gid := (info.get("publisher_gid") or {}).get("data")):
-                log.contact.heard(participant_of(gid))
+                log.contact.heard(participant_of(gid), topic)
                 if (seq := info.get("publication_sequence_number")) is not None:
                     log.contact.sequence(bytes(gid), topic, int(seq))
 

@@ -20,7 +20,7 @@ from hexar.live.dds import DdsEndpoint
 from hexar.live.node import FAILURE_QUESTION
 from hexar.live.topics import TopicQos
 from tests.live.conftest import LOOPBACK_CYCLONE, NO_RCLPY
-from tests.live.dds_helpers import Listener, fresh_domain, live_node
+from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay_process
 from tests.live.test_replay_explains import expected
 
 LEASE_S = 2
@@ -121,6 +121,69 @@ def test_a_jump_in_a_writers_sequence_numbers_is_told_as_messages_that_never_cam
     said = note(contact.gaps(0, None), now=clock.now)
     assert said.startswith("I have not heard from the robot since ")
     assert ", and 4 messages it sent on /task_info never reached me, so I may have missed" in said
+
+
+def _steady(contact: Contact, clock: Clock, newest: list[int], who: bytes, n: int = 6, every: float = 1.0) -> None:
+    for _ in range(n):
+        clock.now += every
+        newest[0] += int(every * 1e9)
+        contact.heard(who, c.DIAGNOSTICS)
+
+
+def test_a_steady_participant_silent_for_a_lease_is_a_hole_though_dds_never_dropped_it() -> None:
+    """A robot that dropped the node (a Fast DDS robot's longer lease against a Cyclone node's) stays known to the
+    node's DDS: its silence, for as long as the node's own lease, is the only sign."""
+    contact, clock, lines, newest = _contact()
+    contact.quiet_after(10.0)
+    _steady(contact, clock, newest, ROBOT)
+    last = (clock.now, newest[0])
+    clock.now += 12.0
+    newest[0] += 12 * 10**9
+    contact.heard(ROBOT, c.ROSOUT)  # the link is back: a line of the log comes first
+    gap, = contact.gaps(0, None)
+    assert (gap.since, gap.since_t, gap.until, gap.quiet, gap.alone) == (last[0], last[1], clock.now, True, True)
+    assert "12 s after its last record" in lines[-1] and "its DDS participant was never dropped" in lines[-1]
+    assert note([gap]).startswith("I heard nothing from the robot from ")
+    # the steady rhythm must come back before another silence counts
+    clock.now += 15.0
+    contact.heard(ROBOT, c.DIAGNOSTICS)
+    assert len(contact.gaps(0, None)) == 1
+
+
+def test_short_silences_idle_participants_and_the_rclpy_transport_make_no_hole() -> None:
+    for quiet, records, silence in ((10.0, (c.DIAGNOSTICS,), 8.0),  # a link both sides kept: resent
+                                    (10.0, (c.ROSOUT,), 30.0),  # speaks only when there is something to say
+                                    (None, (c.DIAGNOSTICS,), 30.0)):  # rclpy counts lost messages instead
+        contact, clock, _, newest = _contact()
+        if quiet is not None:
+            contact.quiet_after(quiet)
+        for topic in records:
+            for _ in range(6):
+                clock.now += 1.0
+                contact.heard(ROBOT, topic)
+        clock.now += silence
+        contact.heard(ROBOT, c.DIAGNOSTICS)
+        assert contact.gaps(0, None) == [], (quiet, records, silence)
+    contact, clock, _, newest = _contact()
+    contact.quiet_after(10.0)
+    _steady(contact, clock, newest, ROBOT)
+    clock.now += 8.0
+    contact.heard(ROBOT, c.ROSOUT)  # its diagnostics had stopped before it went quiet: an idle robot, not a link
+    clock.now += 20.0
+    contact.heard(ROBOT, c.ROSOUT)
+    assert contact.gaps(0, None) == []
+
+
+def test_a_silent_process_while_the_rest_of_the_robot_spoke_is_not_the_robot() -> None:
+    contact, clock, _, newest = _contact()
+    contact.quiet_after(10.0)
+    _steady(contact, clock, newest, ROBOT)
+    for _ in range(12):  # another process of the robot goes on: not the robot's link
+        clock.now += 1.0
+        contact.heard(LAPTOP, c.ROSOUT)
+    contact.heard(ROBOT, c.DIAGNOSTICS)
+    gap, = contact.gaps(0, None)
+    assert not gap.alone and note([gap]).startswith("I heard nothing from one of the robot's processes from ")
 
 
 def test_an_answer_without_a_cause_starts_with_the_gap_and_one_with_a_cause_ends_with_it(suite: Path) -> None:
@@ -245,3 +308,60 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
     assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on {c.PIZZA_EVENTS} never reached this node" in err
     assert f" the robot sent on {c.PIZZA_EVENTS} from " in failure["answer"]
 
+
+
+@NO_RCLPY
+def test_a_fast_dds_robot_that_dropped_the_node_is_told_from_its_silence(suite: Path) -> None:
+    """`hexar serve --transport dds` announcing a 2 s lease is stopped for 6 s in the middle of a Fast DDS
+    robot's navigation (`hexar replay --transport rclpy`, Fast DDS's 20 s lease): the robot drops the node and
+    resends nothing of what it published meanwhile, while the node's DDS never drops the robot. The robot's
+    steady diagnostics went silent for longer than the node's lease: the failure explained afterwards tells the
+    hole (round 32's code said nothing of it)."""
+    run = suite / "bagfile_5_1"
+    failures, _ = expected(run)
+    domain = fresh_domain()
+    listener = Listener(domain)
+    serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "dds", "--domain", str(domain),
+                              "--llm", "none"], env={**os.environ, "CYCLONEDDS_URI": SHORT_LEASE},
+                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    robot = None
+    try:
+        time.sleep(3.0)
+        robot = replay_process(run, domain, 2.0, transport="rclpy")
+        time.sleep(5.0)  # the task has started (its first update comes 2.3 s into the replay)
+        serve.send_signal(signal.SIGSTOP)
+        time.sleep(3 * LEASE_S)
+        serve.send_signal(signal.SIGCONT)
+        _, err = robot.communicate(timeout=120)
+        assert robot.returncode == 0, err
+        got = listener.wait_answers(len(failures), "failure", timeout=15.0)
+        time.sleep(9.0)
+        corrected = {a["task_id"]: a["causes"] for _, a in listener.answers("correction")}
+    finally:
+        for proc in (robot, serve):
+            if proc is not None and proc.poll() is None:
+                proc.send_signal(signal.SIGCONT)
+                proc.terminate()
+        _, said = serve.communicate(timeout=30)
+        listener.close()
+    assert "though its DDS participant was never dropped" in said, said
+    assert {a["task_id"]: corrected.get(a["task_id"], a["causes"]) for a in got} == failures
+    answer = got[0]["answer"]
+    assert "I heard nothing from the robot from " in answer and answer.endswith("I may have missed what happened then.")
+    quiet, = got[0]["contact"]
+    assert quiet["heard_again"] and quiet["seconds"] >= 3 * LEASE_S - 1
+
+
+def test_the_nodes_own_lease_is_read_from_cyclonedds_uri(tmp_path: Path) -> None:
+    from hexar.live.dds import own_lease_s
+
+    config = tmp_path / "cyclone.xml"
+    config.write_text("<CycloneDDS><Domain><Discovery><LeaseDuration>45 s</LeaseDuration></Discovery></Domain>"
+                      "</CycloneDDS>")
+    assert own_lease_s("") == 10.0  # Cyclone DDS's default
+    assert own_lease_s(SHORT_LEASE) == LEASE_S
+    assert own_lease_s("<Discovery><LeaseDuration>500ms</LeaseDuration></Discovery>") == 0.5
+    assert own_lease_s(f"file://{config}") == 45.0
+    # later over earlier, as Cyclone merges them; a file it cannot read is Cyclone's own error
+    assert own_lease_s(f"file://{config},<Discovery><LeaseDuration>1min</LeaseDuration></Discovery>") == 60.0
+    assert own_lease_s(f"file://{tmp_path / 'missing.xml'}") == 10.0
