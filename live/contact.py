@@ -96,7 +96,8 @@ class Contact:
                  clock: Callable[[], float] = time.monotonic, report: Callable[[str], None] | None = None) -> None:
         self._newest = newest  # the robot's clock: the live log's newest stamp
         self._wall, self._clock = wall, clock
-        self._report = report or (lambda line: print(f"hexar serve: {line}", file=sys.stderr, flush=True))
+        self.speaker = "hexar serve"  # who says the stderr lines (the web page's live run: "hexar web")
+        self._report = report or (lambda line: print(f"{self.speaker}: {line}", file=sys.stderr, flush=True))
         self._lock = threading.Lock()
         self._last: dict[bytes, tuple[float, int]] = {}  # participant -> (wall, robot clock) of its last record
         self._names: dict[bytes, str] = {}

@@ -42,20 +42,38 @@ class DdsWatcher:
         return sorted(self.endpoint.writers)
 
     def start(self, log: LiveLog) -> None:
+        from hexar.live.graph_info import DISCOVERY_TOPIC
         from hexar.live.topics import SUBSCRIBED
 
         readers = [(t.topic, self.endpoint.reader(t.topic, t.type, t.qos)) for t in SUBSCRIBED]
+        readers.append((DISCOVERY_TOPIC, self.endpoint.graph_reader()))
         self._thread = threading.Thread(target=self._loop, args=(readers, log), name="hexar-web-dds", daemon=True)
         self._thread.start()
 
     def _loop(self, readers: list[tuple[str, Any]], log: LiveLog) -> None:
+        """As `hexar serve`'s DDS transport reads the robot, with who wrote what (live/contact.py): the page's chat
+        tells the holes a lost link left in what it heard."""
         from hexar.live.convert import to_records
-        from hexar.live.dds import take_loop
+        from hexar.live.dds import Writers, own_lease_s, take_loop
+        from hexar.live.graph_info import DISCOVERY_TOPIC, participant_nodes
+
+        who = Writers(self.endpoint.participant, {topic: r for topic, r in readers if topic != DISCOVERY_TOPIC})
+        log.contact.speaker = "hexar web"
+        log.contact.quiet_after(own_lease_s())
 
         def handle(topic: str, sample: Any, t: int) -> None:
+            if topic == DISCOVERY_TOPIC:
+                who.named(*participant_nodes(sample))
+                return
             log.extend(to_records(topic, sample, t))
+            if participant := who.of(topic, sample.sample_info.publication_handle):
+                log.contact.heard(participant, topic)
 
-        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report)
+        def idle() -> None:
+            if log.contact.due() and (present := who.present()) is not None:
+                log.contact.seen(present)
+
+        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
 
     def _report(self, line: str) -> None:
         self.errors += 1

@@ -126,6 +126,28 @@ def test_live_chat_while_the_robot_drives_says_where_it_is(tmp_path: Path) -> No
     assert "recording" not in answer["answer"]
 
 
+def test_live_chat_tells_a_robot_it_no_longer_hears(tmp_path: Path) -> None:
+    """The robot's participant ends in the middle of a trip: the page's chat says when it last heard the robot
+    and where it was then, as `hexar serve` does, rather than "I'm still working on it"."""
+    domain = fresh_domain()
+    robot = Robot(domain)
+    with live_page(domain, tmp_path / "t.sqlite") as (url, store):
+        try:
+            robot.task("nav1", "Go to the kitchen", "waiting")
+            robot.task("nav1", "Go to the kitchen", "Running")
+            for i in range(5):
+                robot.pose(-1.8 + 0.2 * i, 0.6 + 0.05 * i)
+            robot.heard_by(store)
+        finally:
+            robot.close()
+        wait_for(lambda: store.live.log.contact.stats(), lambda s: s["not_back"] == 1)
+        status, answer = post(url + "api/chat", {"name": "live", "question": "Why did you stop?"})
+    assert status == 200 and answer["task_id"] == "nav1" and "running" not in answer
+    assert answer["answer"].startswith("I have not heard from the robot since ")
+    assert "The last I heard, I was still at step 1 (to go to the kitchen)." in answer["answer"]
+    assert answer["contact"][0]["heard_again"] is None
+
+
 def test_the_live_page_writes_nothing_on_the_robots_network(tmp_path: Path) -> None:
     from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication, BuiltinTopicDcpsSubscription
 
