@@ -111,6 +111,7 @@ class Contact:
         self._quiet_s: float | None = None
         self._steady: dict[bytes, deque[float]] = {}  # participant -> when its latest steady records came
         self._spoke: deque[tuple[float, bytes]] = deque(maxlen=4096)  # (when, who), at most twice a second each
+        self._logged: dict[bytes, float] = {}  # participant -> when it last went into _spoke
 
     def quiet_after(self, seconds: float) -> None:
         """Tell a silence this long of a participant that publishes steadily as a hole (the DDS transport, with
@@ -145,11 +146,12 @@ class Contact:
             newest = self._newest()
             last = self._last.get(participant)
             self._last[participant] = (now, newest)
-            if last is None or now - last[0] >= POLL_S or not self._spoke or self._spoke[-1][1] != participant:
+            if now - self._logged.get(participant, float("-inf")) >= POLL_S:
+                self._logged[participant] = now
                 self._spoke.append((now, participant))
             gap = self._open.pop(participant, None)
             if gap is None:
-                gap = self._silence(participant, last, now, newest)
+                gap = self._silence(participant, last, now)
                 if topic in STEADY_TOPICS:
                     self._steady.setdefault(participant, deque(maxlen=STEADY_LEAST)).append(now)
                 if gap is None:
@@ -160,7 +162,7 @@ class Contact:
                      f"({_clock(gap.since)} to {_clock(now)})" + (", though its DDS participant was never dropped"
                                                                    if gap.quiet else ""))
 
-    def _silence(self, participant: bytes, last: tuple[float, int] | None, now: float, newest: int) -> Gap | None:
+    def _silence(self, participant: bytes, last: tuple[float, int] | None, now: float) -> Gap | None:
         """A gap for a steady participant that said nothing for `quiet_after` seconds (None: no such silence)."""
         if self._quiet_s is None or last is None or now - last[0] < self._quiet_s:
             return None
@@ -207,6 +209,8 @@ class Contact:
                 for participant in sorted(self._last, key=lambda p: self._last[p][0])[:KEEP_GAPS]:
                     if participant not in self._present and participant not in self._open:
                         del self._last[participant]
+                        self._logged.pop(participant, None)
+                        self._steady.pop(participant, None)
         for gap in lost:
             self._report(f"lost contact with {gap.who} (its lease ran out, or it ended), last record "
                          f"{now - gap.since:.0f} s ago ({_clock(gap.since)})")

@@ -13,89 +13,46 @@ own length.
 """
 
 # No `from __future__ import annotations` (live/msgs.py says why).
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from cyclonedds.idl import IdlStruct
+from cyclonedds.idl import IdlStruct, make_idl_struct
 from cyclonedds.idl.types import array, sequence, uint8
 
 DISCOVERY_TOPIC = "ros_discovery_info"
-TYPENAME = "rmw_dds_common::msg::dds_::ParticipantEntitiesInfo_"
-
-if TYPE_CHECKING:
-    Bytes16 = list[int]
-    Bytes24 = list[int]
-else:
-    Bytes16 = array[uint8, 16]
-    Bytes24 = array[uint8, 24]
+_NS = "rmw_dds_common::msg::dds_::"
+# the binding's type constructors, indexed at run time (mypy sees no generics in them)
+_array: Any = array
+_sequence: Any = sequence
 
 
-@dataclass
-class Gid(IdlStruct, typename="rmw_dds_common::msg::dds_::Gid_"):
-    data: Bytes16 = field(default_factory=lambda: [0] * 16)
-
-
-@dataclass
-class HumbleGid(IdlStruct, typename="rmw_dds_common::msg::dds_::HumbleGid_"):
-    data: Bytes24 = field(default_factory=lambda: [0] * 24)
-
-
-if TYPE_CHECKING:
-    Gids = list[Gid]
-    HumbleGids = list[HumbleGid]
-else:
-    Gids = sequence[Gid]
-    HumbleGids = sequence[HumbleGid]
-
-
-@dataclass
-class NodeEntitiesInfo(IdlStruct, typename="rmw_dds_common::msg::dds_::NodeEntitiesInfo_"):
-    node_namespace: str = ""
-    node_name: str = ""
-    reader_gid_seq: Gids = field(default_factory=list)
-    writer_gid_seq: Gids = field(default_factory=list)
-
-
-@dataclass
-class HumbleNodeEntitiesInfo(IdlStruct, typename="rmw_dds_common::msg::dds_::HumbleNodeEntitiesInfo_"):
-    node_namespace: str = ""
-    node_name: str = ""
-    reader_gid_seq: HumbleGids = field(default_factory=list)
-    writer_gid_seq: HumbleGids = field(default_factory=list)
-
-
-if TYPE_CHECKING:
-    Nodes = list[NodeEntitiesInfo]
-    HumbleNodes = list[HumbleNodeEntitiesInfo]
-else:
-    Nodes = sequence[NodeEntitiesInfo]
-    HumbleNodes = sequence[HumbleNodeEntitiesInfo]
-
-
-@dataclass
-class HumbleParticipantEntitiesInfo(IdlStruct, typename="rmw_dds_common::msg::dds_::HumbleParticipantEntitiesInfo_"):
-    gid: HumbleGid = field(default_factory=HumbleGid)
-    node_entities_info_seq: HumbleNodes = field(default_factory=list)
-
-
-@dataclass
-class ParticipantEntitiesInfo(IdlStruct, typename=TYPENAME):
-    gid: Gid = field(default_factory=Gid)
-    node_entities_info_seq: Nodes = field(default_factory=list)
-
-    @classmethod
-    def deserialize(cls, data: bytes, has_header: bool = True, use_version_2: bool | None = None) -> Any:
-        """The Iron-and-later layout, or Humble's where that is the one that re-encodes to as many bytes (a
-        Humble sample read with the newer layout takes 8 bytes of its GID for the node count, and seems empty)."""
-        kinds: tuple[type[IdlStruct], ...] = (cls, HumbleParticipantEntitiesInfo)
-        for kind in kinds:
-            try:
-                sample: Any = kind.__idl__.deserialize(data, has_header, use_version_2)  # type: ignore[arg-type]
-            except Exception:  # a layout that does not fit: try the other one
-                continue
+def _either_layout(cls: type, data: bytes, has_header: bool = True, use_version_2: bool | None = None) -> Any:
+    """The Iron-and-later layout, or Humble's where that is the one that re-encodes to as many bytes (a Humble
+    sample read with the newer layout takes 8 bytes of its GID for the node count, and seems empty)."""
+    for kind in (ParticipantEntitiesInfo, HumbleParticipantEntitiesInfo):
+        try:  # the binding reads short data leniently (a short GID) and then cannot encode what it read
+            sample: Any = kind.__idl__.deserialize(data, has_header, use_version_2)  # type: ignore[arg-type]
             if _same(sample.serialize(), data):
                 return sample
-        raise ValueError(f"a {DISCOVERY_TOPIC} sample of neither layout ({len(data)} bytes)")
+        except Exception:  # a layout that does not fit: try the other one
+            continue
+    raise ValueError(f"a {DISCOVERY_TOPIC} sample of neither layout ({len(data)} bytes)")
+
+
+def _layout(gid_bytes: int, tag: str = "") -> tuple[type[IdlStruct], ...]:
+    """rmw_dds_common's Gid, NodeEntitiesInfo and ParticipantEntitiesInfo with a Gid of `gid_bytes`; `tag` names
+    a layout that is only ever decoded by hand, never offered on the wire under its own type name."""
+    gid = make_idl_struct(f"{tag}Gid", f"{_NS}{tag}Gid_", {"data": _array[uint8, gid_bytes]})
+    node = make_idl_struct(f"{tag}NodeEntitiesInfo", f"{_NS}{tag}NodeEntitiesInfo_", {
+        "node_namespace": str, "node_name": str, "reader_gid_seq": _sequence[gid], "writer_gid_seq": _sequence[gid]})
+    info = make_idl_struct(f"{tag}ParticipantEntitiesInfo", f"{_NS}{tag}ParticipantEntitiesInfo_",
+                           {"gid": gid, "node_entities_info_seq": _sequence[node]})
+    return gid, node, info
+
+
+Gid, NodeEntitiesInfo, ParticipantEntitiesInfo = _layout(16)
+HumbleGid, HumbleNodeEntitiesInfo, HumbleParticipantEntitiesInfo = _layout(24, "Humble")
+# the reader decodes each sample with its type's `deserialize`: this one tries both layouts
+setattr(ParticipantEntitiesInfo, "deserialize", classmethod(_either_layout))  # noqa: B010
 
 
 def _same(encoded: bytes, data: bytes) -> bool:

@@ -25,7 +25,7 @@ _HEARD = tuple((re.compile(pattern, re.IGNORECASE), words) for pattern, words in
     (r"\bas far as (?:the|this|my) recording shows\b", "as far as I heard"),
     (r"\bthat (?:the|this|my) recording shows\b", "that I heard of"),
     # a goal or a trip with no end yet, on a link that held (contact's note tells one that did not): under way
-    (r"\bmy last goal was ([^;.]+); (?:the|this|my) recording does not show whether I got there\b",
+    (r"\bmy last goal was ([^;]+); (?:the|this|my) recording does not show whether I got there\b",
      r"I'm on my way to \1; I have not heard that I got there yet"),
     (r"\b(?:the|this|my) recording ends while I was still on my way\b", "I'm still on my way"),
     (r"\b(?:the|this|my) recording ends while\b", "the last I heard,"),
@@ -66,7 +66,8 @@ def present(result: dict[str, Any], tasks: Iterable[Task], newest: int) -> None:
     if causes and result.get("enough_information") is not False:
         result["running"] = True
         return
-    what = f'your request "{task.instruction}"' if task.instruction.strip() else "my task"
+    # a task derived from a Nav2 or MoveIt goal has no request of a person's, only the goal's own words
+    what = f'your request "{task.instruction}"' if task.instruction.strip() and not task.derived else "it"
     running = next((r for r in task.skills if r.state == "running"), None)
     if running is None:
         lead = f"I'm still working on {what}: I haven't heard its first step start yet."

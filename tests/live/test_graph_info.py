@@ -8,6 +8,7 @@ import subprocess
 import sys
 import textwrap
 import time
+from typing import Any
 
 import pytest
 
@@ -27,13 +28,18 @@ from tests.live.dds_helpers import fresh_domain, live_node
 GUID = bytes(range(1, 13)) + b"\x00\x00\x01\xc1"
 
 
+def _info(kind: type, gid: type, node: type, size: int, *nodes: tuple[str, str]) -> Any:
+    """A ParticipantEntitiesInfo of one layout; each node writes one topic (its gid: the participant's)."""
+    def me() -> Any:
+        return gid(data=list(GUID) + [0] * (size - 16))
+
+    return kind(gid=me(), node_entities_info_seq=[node(node_namespace=ns, node_name=name, reader_gid_seq=[],
+                                                       writer_gid_seq=[me()]) for ns, name in nodes])
+
+
 def test_both_gid_layouts_decode_to_the_participant_and_its_nodes() -> None:
-    newer = ParticipantEntitiesInfo(gid=Gid(data=list(GUID)), node_entities_info_seq=[
-        NodeEntitiesInfo(node_namespace="/", node_name="bt_navigator", writer_gid_seq=[Gid(data=list(GUID))]),
-        NodeEntitiesInfo(node_namespace="/robot1", node_name="amcl")])
-    humble = HumbleParticipantEntitiesInfo(gid=HumbleGid(data=list(GUID) + [0] * 8), node_entities_info_seq=[
-        HumbleNodeEntitiesInfo(node_namespace="/", node_name="controller_server",
-                               reader_gid_seq=[HumbleGid(data=list(GUID) + [0] * 8)])])
+    newer = _info(ParticipantEntitiesInfo, Gid, NodeEntitiesInfo, 16, ("/", "bt_navigator"), ("/robot1", "amcl"))
+    humble = _info(HumbleParticipantEntitiesInfo, HumbleGid, HumbleNodeEntitiesInfo, 24, ("/", "controller_server"))
     for sample, nodes in ((newer, "amcl, bt_navigator"), (humble, "controller_server")):
         decoded = ParticipantEntitiesInfo.deserialize(sample.serialize())
         assert type(decoded) is type(sample)

@@ -6,6 +6,7 @@ from __future__ import annotations
 import ast
 import re
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from hexar.events import contract as c
@@ -49,6 +50,8 @@ def test_heard_words_keep_sentences_and_quotes() -> None:
         "I set off for the kitchen, and I'm still on my way."
     assert heard_words("My last goal was the kitchen; the recording does not show whether I got there. My last") == \
         "I'm on my way to the kitchen; I have not heard that I got there yet. My last"
+    assert heard_words("My last goal was (1.50, -2.00) on my map; the recording does not show whether I got there.") \
+        == "I'm on my way to (1.50, -2.00) on my map; I have not heard that I got there yet."
     assert heard_words("Task 2, and the recording ends while it waited.") == "Task 2, and the last I heard, it waited."
     assert heard_words("Step 2 was still running when the recording ends.") == \
         "Step 2 was still running when I last heard of it."
@@ -89,6 +92,9 @@ def test_a_task_going_on_is_told_where_it_is_and_one_that_ended_is_left_alone(su
         kept = dict(result)
         present(result, running, started)  # a cause, or contact's note, already says what happened
         assert result == kept
+    derived = {"task_id": task.task_id, "causes": [], "enough_information": False, "answer": "?"}
+    present(derived, [replace(running[0], derived=True)], started)  # a Nav2 goal's: nobody's request
+    assert derived["answer"].startswith("I'm still working on it: I'm at step 1 of 4 (to go to the kitchen)")
     ended = dict(unknown, answer="Told.")
     present(ended, session.context.log.tasks, started)
     assert ended["answer"] == "Told."
