@@ -138,6 +138,9 @@ def one(node: str, vendor: str, seconds: float, run: Path, rate: float, python: 
     unasked = [a for a in answers if a.get("trigger") in {"failure", "correction"}]
     asked = [a for a in answers if a.get("trigger") == "question"]
     told = {a.get("task_id"): a.get("causes") for a in unasked}  # a correction replaces the first answer
+    if not asked:  # the question went unanswered: what the node said is the only clue
+        print(f"{node}/{vendor} {seconds:.0f}s: no answer to the question; hexar serve's stderr:\n{err}",
+              file=sys.stderr, flush=True)
     return {"explained": told == failures, "asked": asked[-1] if asked else None,
             "lost": err.count("lost contact with"), "back": err.count(" again, ")}
 
