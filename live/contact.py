@@ -179,6 +179,23 @@ class Contact:
         return Gap(names or f"participant {participant.hex()[:8]}", last[0], last[1], quiet=True, alone=not others,
                    named=bool(names))
 
+    def named(self, participant: bytes, names: str) -> None:
+        """What a participant's nodes are called, as soon as the transport reads it (ROS 2's graph topic comes with
+        Fast DDS's next heartbeat, up to 3 s after its other topics); a gap already open for it takes the names."""
+        if not names:
+            return
+        with self._lock:
+            self._name(participant, names)
+            gap = self._open.get(participant)
+            if gap is not None and not gap.named:
+                gap.who, gap.named = self._names[participant], True
+
+    def _name(self, participant: bytes, names: str) -> None:
+        """Every node a participant was seen to hold: a process destroys its nodes one by one as it ends, and is
+        still known by what it held."""
+        held = set(self._names.get(participant, "").split(", ")) | set(names.split(", "))
+        self._names[participant] = ", ".join(sorted(held - {""}))
+
     def due(self) -> bool:
         """Whether it is time to look at who is there (at most every POLL_S)."""
         now = self._clock()
@@ -194,7 +211,7 @@ class Contact:
         with self._lock:
             for participant, names in present.items():
                 if names:
-                    self._names[participant] = names
+                    self._name(participant, names)
             for participant in self._present - present.keys():
                 last = self._last.get(participant)
                 if last is None or participant in self._open:

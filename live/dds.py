@@ -232,7 +232,10 @@ class Writers:
         return {p: self._nodes.get(p, "") for p in found if p and p != self._own}
 
     def named(self, participant: bytes, nodes: str) -> None:
-        """What a participant's `ros_discovery_info` says it holds now (live/graph_info.py)."""
+        """What a participant's `ros_discovery_info` says it holds now (live/graph_info.py); a process that
+        destroys its nodes as it ends keeps the names it had."""
+        if not nodes:
+            return
         if len(self._nodes) >= 1000 and participant not in self._nodes:  # processes come and go for weeks
             self._nodes.pop(next(iter(self._nodes)))
         self._nodes[participant] = nodes
@@ -279,7 +282,8 @@ class DdsTransport:
                 on_question(str(sample.data))
                 return
             if topic == DISCOVERY_TOPIC:
-                who.named(*participant_nodes(sample))
+                who.named(*(named := participant_nodes(sample)))
+                log.contact.named(*named)
                 return
             add_all(self.timeline.records(topic, sample, t), log.add, on_record)
             if topic in robot and (participant := who.of(topic, sample.sample_info.publication_handle)):

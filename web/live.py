@@ -63,7 +63,8 @@ class DdsWatcher:
 
         def handle(topic: str, sample: Any, t: int) -> None:
             if topic == DISCOVERY_TOPIC:
-                who.named(*participant_nodes(sample))
+                who.named(*(named := participant_nodes(sample)))
+                log.contact.named(*named)
                 return
             log.extend(to_records(topic, sample, t))
             if participant := who.of(topic, sample.sample_info.publication_handle):

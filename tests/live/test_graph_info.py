@@ -65,6 +65,12 @@ def test_a_process_nobody_named_is_not_said_by_its_guid() -> None:
     said = note([gap])
     assert said.startswith("I have not heard from one of the robot's processes since ")
     assert "0101" not in said and "participant" not in said
+    # names that come after the gap opened name it; a process that destroyed its nodes as it ended keeps them
+    contact.named(quiet, "")
+    assert not contact.gaps(0, None)[0].named
+    contact.named(quiet, "amcl")
+    contact.named(quiet, "")
+    assert [(g.who, g.named) for g in contact.gaps(0, None)] == [("amcl", True)]
     now = time.time()
     amcl = Gap("amcl", now - 5, 0, alone=False)
     others = [Gap(f"participant {i:08x}", now - 5, 0, alone=False, named=False) for i in (1, 2)]
@@ -95,8 +101,9 @@ def test_the_dds_transport_names_a_real_rclpy_process_that_ended_by_its_nodes() 
     domain = fresh_domain()
     with live_node(domain, transport="dds") as node:
         cmd = [sys.executable, "-c", ROBOT, str(domain)]
-        localisation = subprocess.Popen([*cmd, "3", "amcl,bt_navigator"], stderr=subprocess.PIPE, text=True)
-        skills = subprocess.Popen([*cmd, "12", "skill_navigate_to_zone"], stderr=subprocess.PIPE, text=True)
+        # longer than Fast DDS's 3 s heartbeat, which brings the graph topic's history to a new reader
+        localisation = subprocess.Popen([*cmd, "5", "amcl,bt_navigator"], stderr=subprocess.PIPE, text=True)
+        skills = subprocess.Popen([*cmd, "14", "skill_navigate_to_zone"], stderr=subprocess.PIPE, text=True)
         try:
             deadline = time.monotonic() + 30
             gaps = []
