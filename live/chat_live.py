@@ -68,8 +68,9 @@ class LiveChat:
         """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery
         matched it is lost, and discovery across DDS vendors (a node on rclpy) takes a second or more."""
         deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline and not (self._questions.get_matched_subscriptions()
-                                                   and self._answers.get_matched_publications()):
+        # status counts, not lists (live/replay.py says why)
+        while time.monotonic() < deadline and not (self._questions.get_publication_matched_status().current_count
+                                                   and self._answers.get_subscription_matched_status().current_count):
             time.sleep(0.05)
         # the node's last answers come as transient-local history once matched: an unasked explanation among
         # them sets the thread a "why?" continues, so it must be read before the first question goes out

@@ -172,7 +172,9 @@ class DdsReplayer:
         self.endpoint.writer(topic, ros_type, QOS_OF[topic]).write(msg, timestamp=t)
 
     def matched(self, topic: str) -> int:
-        return len(self.endpoint.writers[topic].get_matched_subscriptions())
+        # the status count, not the list: cyclonedds' get_matched_subscriptions asks for the count and then fills
+        # a list of that size, and raises IndexError when a reader matches between its two calls
+        return int(self.endpoint.writers[topic].get_publication_matched_status().current_count)
 
     def clock(self, t: int) -> None:
         from hexar.live import msgs
