@@ -17,8 +17,7 @@ from hexar.events.log import last_error
 from hexar.events.records import LogLine
 from hexar.events.tasks import Task
 from hexar.live.contact import ENDED, Contact, annotate
-
-NS = 1_000_000_000
+from hexar.live.log import NS
 
 # Longest phrases first: each later one would also match inside an earlier one's text.
 _HEARD = tuple((re.compile(pattern, re.IGNORECASE), words) for pattern, words in (
