@@ -122,6 +122,10 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
                            causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
     if any(word in q for word in ("why did you", "why have you", "why are you")):
         asked = _ASKED_PLACE.search(q)
+        if asked is None and re.search(r"\bthere\b", q):
+            # "why did you go there?" names no place: the last trip the robot set off on
+            last = [run for run in task.skills if run.skill in NAV_SKILLS and _started(run)][-1]
+            return _went_step(log, task, last, current=True)
         there = f"to the {asked.group(1)}" if asked else "there"
         text = (f"I did not go {there} for {task_name(task, log)}: no step of my plan went there. "
                 f"{trips_words(task, capital=True)}. {plan}")

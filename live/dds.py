@@ -13,7 +13,7 @@ from typing import Any
 
 from hexar.events import contract as c
 from hexar.live.clock import CLOCK, CLOCK_TYPE, Timeline, add_all
-from hexar.live.contact import participant_of
+from hexar.live.contact import Contact, participant_of
 from hexar.live.discovery import ros_discovery
 from hexar.live.errors import BadOptionError, TransportUnavailableError
 from hexar.live.log import LiveLog
@@ -241,6 +241,34 @@ class Writers:
         self._nodes[participant] = nodes
 
 
+class RobotContact:
+    """Contact with the robot as the DDS readers show it (live/contact.py): who wrote each sample, the names
+    `ros_discovery_info` gives the robot's processes, and at each due time who is there; the silence that makes a
+    hole is the node's own lease. Shared by `hexar serve --transport dds` and the web page's live run."""
+
+    def __init__(self, participant: Any, robot: dict[str, Any], contact: Contact) -> None:
+        self.who = Writers(participant, robot)
+        self.contact = contact
+        self._robot = robot
+        contact.quiet_after(own_lease_s())
+
+    def graph(self, topic: str, sample: Any) -> bool:
+        """Whether the sample was the graph topic's (taken here: it names a participant's nodes)."""
+        if topic != DISCOVERY_TOPIC:
+            return False
+        self.who.named(*(named := participant_nodes(sample)))
+        self.contact.named(*named)
+        return True
+
+    def heard(self, topic: str, sample: Any) -> None:
+        if topic in self._robot and (participant := self.who.of(topic, sample.sample_info.publication_handle)):
+            self.contact.heard(participant, topic)
+
+    def idle(self) -> None:
+        if self.contact.due() and (present := self.who.present()) is not None:
+            self.contact.seen(present)
+
+
 class DdsTransport:
     """Feeds a LiveLog from the robot's topics and carries the node's questions and answers."""
 
@@ -273,26 +301,19 @@ class DdsTransport:
 
     def _loop(self, readers: list[tuple[str, Any]], log: LiveLog, on_record: Callable[[Any], None],
               on_question: Callable[[str], None]) -> None:
-        robot = {topic: reader for topic, reader in readers if topic in self._types}
-        who = Writers(self.endpoint.participant, robot)
-        log.contact.quiet_after(own_lease_s())
+        robot = RobotContact(self.endpoint.participant,
+                             {topic: reader for topic, reader in readers if topic in self._types}, log.contact)
 
         def handle(topic: str, sample: Any, t: int) -> None:
             if topic == QUESTION:
                 on_question(str(sample.data))
-                return
-            if topic == DISCOVERY_TOPIC:
-                who.named(*(named := participant_nodes(sample)))
-                log.contact.named(*named)
-                return
-            add_all(self.timeline.records(topic, sample, t), log.add, on_record)
-            if topic in robot and (participant := who.of(topic, sample.sample_info.publication_handle)):
-                log.contact.heard(participant, topic)
+            elif not robot.graph(topic, sample):
+                add_all(self.timeline.records(topic, sample, t), log.add, on_record)
+                robot.heard(topic, sample)
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
-            if log.contact.due() and (present := who.present()) is not None:
-                log.contact.seen(present)
+            robot.idle()
 
         take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
         if self.recorder is not None:

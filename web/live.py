@@ -54,27 +54,19 @@ class DdsWatcher:
         """As `hexar serve`'s DDS transport reads the robot, with who wrote what (live/contact.py): the page's chat
         tells the holes a lost link left in what it heard."""
         from hexar.live.convert import to_records
-        from hexar.live.dds import Writers, own_lease_s, take_loop
-        from hexar.live.graph_info import DISCOVERY_TOPIC, participant_nodes
+        from hexar.live.dds import RobotContact, take_loop
+        from hexar.live.graph_info import DISCOVERY_TOPIC
 
-        who = Writers(self.endpoint.participant, {topic: r for topic, r in readers if topic != DISCOVERY_TOPIC})
         log.contact.speaker = "hexar web"
-        log.contact.quiet_after(own_lease_s())
+        robot = RobotContact(self.endpoint.participant,
+                             {topic: r for topic, r in readers if topic != DISCOVERY_TOPIC}, log.contact)
 
         def handle(topic: str, sample: Any, t: int) -> None:
-            if topic == DISCOVERY_TOPIC:
-                who.named(*(named := participant_nodes(sample)))
-                log.contact.named(*named)
-                return
-            log.extend(to_records(topic, sample, t))
-            if participant := who.of(topic, sample.sample_info.publication_handle):
-                log.contact.heard(participant, topic)
+            if not robot.graph(topic, sample):
+                log.extend(to_records(topic, sample, t))
+                robot.heard(topic, sample)
 
-        def idle() -> None:
-            if log.contact.due() and (present := who.present()) is not None:
-                log.contact.seen(present)
-
-        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, idle)
+        take_loop(self.endpoint.participant, readers, self._stop, handle, self._report, robot.idle)
 
     def _report(self, line: str) -> None:
         self.errors += 1

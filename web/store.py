@@ -254,7 +254,16 @@ class Store:
             live = self.live if name == LIVE else None
             if live is not None:
                 session.use_log(live.snapshot(fresh=True).log)  # as the live node does: the newest data
-            result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
+            try:
+                result: dict[str, Any] = session.ask(question, thread=thread or None, task=task or None)
+            except NoTaskError as err:
+                if live is None or session.context.log.tasks:  # a task asked for that is gone: the error says so
+                    raise
+                from hexar.live.present import no_task_yet
+
+                # as `hexar serve` answers it: the person hears why there is nothing to explain yet
+                result = {"answer": no_task_yet(session.context.log.logs), "error": str(err), "no_task": True,
+                          "thread": thread, "evidence": []}
             if live is not None:
                 from hexar.live.present import shape
 

@@ -312,9 +312,10 @@ def test_where_are_you_going_is_the_trip_not_over_yet(tmp_path: Path) -> None:
     """Asked as a robot is asked on its way, in the present tense: the trip under way and the plan step behind it,
     not the robot's position; a place no step went to is still told as such."""
     run = _cut(tmp_path / "on_the_way", 5, 10.0)
-    going, why, where, garage = _ask(run, "Where are you going?", "Why are you going to the kitchen?",
-                                     "Where are you?", "Why are you going to the garage?")
-    for answer in (going, why):
+    going, why, where, garage, there = _ask(run, "Where are you going?", "Why are you going to the kitchen?",
+                                            "Where are you?", "Why are you going to the garage?",
+                                            "Why are you going there?")
+    for answer in (going, why, there):
         assert str(answer["answer"]).startswith('I set off for the kitchen because step 1 of my plan for your request '
                                                 '"Bring me a coffee from the kitchen" was to go there, and the '
                                                 "recording ends while I was still on my way.")
@@ -331,5 +332,16 @@ def test_present_tense_trips_are_went_and_where_are_you_is_where() -> None:
     for question, kind in (("Where are you going?", "went"), ("so where are you heading", "went"),
                            ("Why are you going to the kitchen?", "went"), ("why are you driving to the door", "went"),
                            ("Where are you?", "where"), ("where are you now", "where"),
+                           ("Why are you going there?", "went"), ("why did you go there", "went"),
                            ("Why are you going so slowly?", None), ("Why are you stopped?", None)):
         assert content_kind(question) == kind, question
+
+
+def test_why_did_you_go_there_is_the_last_trip_not_a_place_called_there(suite: Path) -> None:
+    """"There" names no place: the answer is the last trip the robot set off on and the step behind it, not "I did
+    not go there"."""
+    (there,) = _ask(suite / "bagfile_5_1", "Why did you go there?")
+    assert str(there["answer"]).startswith('I tried to go to the kitchen because step 1 of my plan for your request '
+                                           '"Bring me a coffee from the kitchen" was to go there, but I didn\'t get '
+                                           "there.")
+    assert "did not go there" not in str(there["answer"])

@@ -263,7 +263,7 @@ def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path
     finally:
         listener.close()
     assert (lost["gaps"], lost["not_back"]) == (1, 1)
-    assert told == failures
+    assert told == failures, [(a["answer"], [(e["t"], e["item"]) for e in a["evidence"]]) for a in got]
     answer = got[0]["answer"]
     assert "I heard nothing from the robot from " in answer and answer.endswith("I may have missed what happened then.")
     dropped = [g for g in got[0]["contact"] if not g["missed"]]

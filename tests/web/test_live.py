@@ -90,8 +90,11 @@ def test_live_chat_answers_why_from_the_newest_data(tmp_path: Path) -> None:
     robot = Robot(domain)
     try:
         with live_page(domain, tmp_path / "t.sqlite") as (url, store):
+            # before any task: a spoken answer, as `hexar serve` gives it; the developer's reason kept apart
             status, early = post(url + "api/chat", {"name": "live", "question": "why?"})
-            assert status == 400 and early["error"].startswith("ERROR: no task to explain")
+            assert status == 200 and early["no_task"] is True and early["evidence"] == []
+            assert early["answer"].startswith("I haven't had a task since I started listening")
+            assert early["error"].startswith("no task to explain")
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
             robot.heard_by(store)  # the chat reads a fresh snapshot: no page poll is needed before asking
             status, answer = post(url + "api/chat", {"name": "live", "question": "why?"})
