@@ -1,0 +1,206 @@
+"""The world of scripts/nav2_faults.py: a small two-room map, a differential base that drives on it and a goal sender.
+
+The base is a ROS 2 program (rclpy) that does what a robot's driver and a laser do for Nav2: it integrates the
+velocity commands it receives, publishes odometry and the odom -> base_link transform at 20 Hz, a 360-beam laser
+scan at 10 Hz ray-cast on the map (and on boxes that appear once the robot has driven past a given x, seen by the
+laser only, as an object put in its way), and, as a localisation that is always right, map -> odom as a static
+transform. It prints one line when it is up, as a driver does. The goal sender is a separate program, as RViz's
+"Nav2 Goal" is: its output is not part of the console, only its result (written as JSON) is read.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+RESOLUTION = 0.05  # m per cell
+WIDTH_M, HEIGHT_M = 12.0, 8.0
+WALL_X = 6.0  # the wall between the two rooms, x from WALL_X to WALL_X + WALL_T
+WALL_T = 0.2
+DOOR = (3.5, 4.5)  # the doorway's y span in that wall: the only way between the rooms
+
+
+def write_map(folder: Path) -> Path:
+    """The map as map_server reads it (a PGM and its YAML): outer walls, and one inner wall with a 1 m doorway."""
+    cols, rows = round(WIDTH_M / RESOLUTION), round(HEIGHT_M / RESOLUTION)
+    grid = [[254] * cols for _ in range(rows)]  # free
+    wall = round(WALL_T / RESOLUTION)
+    for r in range(rows):
+        for c in range(cols):
+            x, y = (c + 0.5) * RESOLUTION, (r + 0.5) * RESOLUTION
+            outer = c < wall or c >= cols - wall or r < wall or r >= rows - wall
+            inner = WALL_X <= x < WALL_X + WALL_T and not DOOR[0] <= y < DOOR[1]
+            if outer or inner:
+                grid[r][c] = 0
+    folder.mkdir(parents=True, exist_ok=True)
+    pgm = folder / "two_rooms.pgm"
+    # PGM rows run from the top of the image, which is the map's largest y
+    pgm.write_bytes(f"P5\n{cols} {rows}\n255\n".encode() + bytes(v for row in reversed(grid) for v in row))
+    yaml = folder / "two_rooms.yaml"
+    yaml.write_text(f"image: two_rooms.pgm\nmode: trinary\nresolution: {RESOLUTION}\norigin: [0.0, 0.0, 0.0]\n"
+                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n", encoding="utf-8")
+    return yaml
+
+
+BASE = """\
+import math
+import sys
+import numpy as np
+import rclpy
+from geometry_msgs.msg import TransformStamped, Twist, TwistStamped
+from nav_msgs.msg import Odometry
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from sensor_msgs.msg import LaserScan
+from tf2_msgs.msg import TFMessage
+
+BEAMS, RANGE_MIN, RANGE_MAX, STEP = 360, 0.12, 8.0, 0.025
+
+
+def load_pgm(path):
+    data = open(path, 'rb').read()
+    parts = data.split(maxsplit=4)
+    cols, rows = int(parts[1]), int(parts[2])
+    pixels = np.frombuffer(parts[4][-cols * rows:], dtype=np.uint8).reshape(rows, cols)
+    return pixels[::-1] < 128  # occupied, row 0 at y = 0
+
+
+class Base(Node):
+    def __init__(self):
+        super().__init__('base_driver')
+        value = lambda name, default: self.declare_parameter(name, default).value
+        self.x, self.y, self.yaw = value('x', 2.0), value('y', 4.0), value('yaw', 0.0)
+        self.scale = value('speed_scale', 1.0)
+        self.occupied = load_pgm(value('map_image', 'two_rooms.pgm'))
+        self.resolution = value('resolution', 0.05)
+        self.boxes = [tuple(b) for b in np.reshape(value('boxes', [0.0] * 5), (-1, 5)) if b[1] != b[3]]
+        self.put = set()
+        self.v = self.w = 0.0
+        self.last_cmd = self.get_clock().now()
+        topic, stamped = value('cmd_vel_topic', 'cmd_vel'), value('stamped', True)
+        self.create_subscription(TwistStamped if stamped else Twist, topic, self.on_cmd, 10)
+        self.odom = self.create_publisher(Odometry, 'odom', 10)
+        self.scan = self.create_publisher(LaserScan, 'scan', 10)
+        self.tf = self.create_publisher(TFMessage, '/tf', 100)
+        static = self.create_publisher(TFMessage, '/tf_static',
+                                       QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        now = self.get_clock().now().to_msg()
+        fixed = [self.transform(now, 'base_link', 'base_scan', 0.0, 0.0, 0.0)]
+        if value('publish_map_odom', True):
+            fixed.append(self.transform(now, 'map', 'odom', 0.0, 0.0, 0.0))
+        static.publish(TFMessage(transforms=fixed))
+        self.create_timer(0.05, self.step)
+        self.create_timer(0.1, self.publish_scan)
+        self.get_logger().info(f'base up at ({self.x:.2f}, {self.y:.2f}), listening on {topic}')
+
+    def transform(self, stamp, parent, child, x, y, yaw):
+        t = TransformStamped()
+        t.header.stamp, t.header.frame_id, t.child_frame_id = stamp, parent, child
+        t.transform.translation.x, t.transform.translation.y = x, y
+        t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+        return t
+
+    def on_cmd(self, msg):
+        twist = msg.twist if hasattr(msg, 'twist') else msg
+        self.v, self.w = twist.linear.x * self.scale, twist.angular.z * self.scale
+        self.last_cmd = self.get_clock().now()
+
+    def step(self):
+        now = self.get_clock().now()
+        if (now - self.last_cmd).nanoseconds > 500_000_000:
+            self.v = self.w = 0.0
+        self.yaw += self.w * 0.05
+        self.x += self.v * math.cos(self.yaw) * 0.05
+        self.y += self.v * math.sin(self.yaw) * 0.05
+        stamp = now.to_msg()
+        odom = Odometry()
+        odom.header.stamp, odom.header.frame_id, odom.child_frame_id = stamp, 'odom', 'base_link'
+        odom.pose.pose.position.x, odom.pose.pose.position.y = self.x, self.y
+        odom.pose.pose.orientation.z, odom.pose.pose.orientation.w = math.sin(self.yaw / 2), math.cos(self.yaw / 2)
+        odom.twist.twist.linear.x, odom.twist.twist.angular.z = self.v, self.w
+        self.odom.publish(odom)
+        self.tf.publish(TFMessage(transforms=[self.transform(stamp, 'odom', 'base_link', self.x, self.y, self.yaw)]))
+
+    def publish_scan(self):
+        now = self.get_clock().now()
+        angles = self.yaw - math.pi + np.arange(BEAMS) * (2 * math.pi / BEAMS)
+        dist = np.arange(RANGE_MIN, RANGE_MAX, STEP)
+        px = self.x + np.outer(np.cos(angles), dist)
+        py = self.y + np.outer(np.sin(angles), dist)
+        rows, cols = self.occupied.shape
+        c = np.clip((px / self.resolution).astype(int), 0, cols - 1)
+        r = np.clip((py / self.resolution).astype(int), 0, rows - 1)
+        outside = (px < 0) | (py < 0) | (px >= cols * self.resolution) | (py >= rows * self.resolution)
+        hit = self.occupied[r, c] & ~outside
+        for box in self.boxes:
+            if self.x >= box[0]:  # once the robot got this far the box is there, and stays
+                self.put.add(box)
+        for _, x0, y0, x1, y1 in self.put:
+            hit |= (px >= x0) & (px <= x1) & (py >= y0) & (py <= y1)
+        first = np.where(hit.any(axis=1), hit.argmax(axis=1), -1)
+        ranges = np.where(first >= 0, dist[np.maximum(first, 0)], math.inf)
+        scan = LaserScan()
+        scan.header.stamp, scan.header.frame_id = now.to_msg(), 'base_scan'
+        scan.angle_min, scan.angle_max = -math.pi, math.pi - 2 * math.pi / BEAMS
+        scan.angle_increment = 2 * math.pi / BEAMS
+        scan.scan_time, scan.range_min, scan.range_max = 0.1, RANGE_MIN, RANGE_MAX
+        scan.ranges = [float(v) for v in ranges]
+        self.scan.publish(scan)
+
+
+rclpy.init(args=sys.argv)
+node = Base()
+try:
+    rclpy.spin(node)
+except (KeyboardInterrupt, ExternalShutdownException):
+    pass
+"""
+
+GOAL = """\
+import json
+import sys
+import time
+import rclpy
+from nav2_msgs.action import NavigateToPose
+from rclpy.action import ActionClient
+from rclpy.node import Node
+from std_srvs.srv import Trigger
+
+x, y, wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+rclpy.init()
+node = Node('goal_sender')
+result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
+deadline = time.monotonic() + wait_s
+client = ActionClient(node, NavigateToPose, 'navigate_to_pose')
+result['server'] = client.wait_for_server(timeout_sec=wait_s)
+active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
+while time.monotonic() < deadline and not result['active']:
+    # as a person waits for Nav2 to come up before clicking a goal in RViz
+    if active.wait_for_service(timeout_sec=1.0):
+        future = active.call_async(Trigger.Request())
+        rclpy.spin_until_future_complete(node, future, timeout_sec=2.0)
+        result['active'] = bool(future.result() and future.result().success)
+    if not result['active']:
+        time.sleep(1.0)
+if result['server']:
+    goal = NavigateToPose.Goal()
+    goal.pose.header.frame_id = 'map'
+    goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
+    goal.pose.pose.orientation.w = 1.0
+    sent = client.send_goal_async(goal)
+    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
+    handle = sent.result()
+    if handle is not None and handle.accepted:
+        result['accepted'] = True
+        began = time.monotonic()
+        done = handle.get_result_async()
+        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
+        if done.done():
+            result['status'] = done.result().status
+            result['seconds'] = round(time.monotonic() - began, 1)
+        else:  # as the person gives up on it
+            cancelled = handle.cancel_goal_async()
+            rclpy.spin_until_future_complete(node, cancelled, timeout_sec=5.0)
+            result['seconds'] = round(time.monotonic() - began, 1)
+json.dump(result, open(out, 'w'))
+"""
