@@ -28,6 +28,7 @@ import copy
 import json
 import os
 import signal
+import socket
 import subprocess
 import sys
 import tempfile
@@ -181,7 +182,8 @@ def params(fault: Fault, work: Path, map_yaml: Path) -> dict[str, Any]:
                             "simulate_ahead_time": 2.0, "max_rotational_vel": 1.0, "min_rotational_vel": 0.4,
                             "rotational_acc_lim": 3.2},
         "bt_navigator": {"global_frame": "map", "robot_base_frame": "base_link", "odom_topic": "odom",
-                         "bt_loop_duration": 10, "default_server_timeout": 20, "navigators": ["navigate_to_pose"],
+                         "bt_loop_duration": 10, "default_server_timeout": 100, "wait_for_service_timeout": 1000,
+                         "navigators": ["navigate_to_pose"],
                          "navigate_to_pose": {"plugin": "nav2_bt_navigator::NavigateToPoseNavigator"}},
     }
     for node, extra in fault.params.items():
@@ -299,6 +301,7 @@ def scrub(text: str, work: Path, names: list[tuple[str, str]]) -> str:
     out = re.sub(r"\x1b\[[0-9;]*m", "", text)
     for local, fixed in [(str(work.resolve()), "/home/robot/ws"), (str(work), "/home/robot/ws"), *names]:
         out = out.replace(local, fixed)
+    out = re.sub(r"(\d{4}(?:-\d+){6})-" + re.escape(socket.gethostname()) + r"-(\d+)", r"\1-robot-\2", out)
     return "\n".join(line.rstrip() for line in out.strip().splitlines()) + "\n"
 
 
