@@ -50,7 +50,7 @@ def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]
     for line in logs:
         if not line.msg.startswith(("Begin navigating", "Goal ", "Navigation ")):
             continue  # cheap: every goal line starts with one of these
-        entry = cat.match(line.msg)
+        entry = cat.goal(line.msg)
         role = cat.role(line.name)
         if entry is None or entry.kind not in GOAL_KINDS or role not in {"bt_navigator", None}:
             continue

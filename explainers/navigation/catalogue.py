@@ -187,6 +187,15 @@ class Catalogue:
         self._seen[msg] = found
         return found
 
+    def goal(self, msg: str) -> Entry | None:
+        """The entry of bt_navigator's goal begin or end line, when the message is one. match() prefers a cause's
+        entry, and Kilted's end line quotes the error ("Goal failed error_code:203 error_msg:'... Start Coordinates
+        of(...) was outside bounds'"): that is still the goal's end."""
+        text = clean(msg)
+        hits = {i for k, i in self._literals if k in text}
+        return next((e for i, e in enumerate(self.entries)
+                     if (i in hits or not e.keys) and e.kind in GOAL_KINDS and e.search(text)), None)
+
     def _find(self, text: str) -> Entry | None:
         hits = {i for k, i in self._literals if k in text}
         candidates = [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
