@@ -54,7 +54,7 @@ from hexar.explainers.navigation import chain, grids, held, mapsave, reached, st
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
-from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
+from hexar.explainers.navigation.filter import before_shutdown, routine_drops, tag_logs, weak_noise
 from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
 
@@ -152,7 +152,7 @@ class NavigationExplainer:
     def _explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)
         window = view.window or (context.log.start, context.log.end)
-        raw = view.logs()
+        raw = before_shutdown(view.logs())
         poses = view.poses()
         if not raw and not poses:
             return Explanation.not_enough(
@@ -184,7 +184,7 @@ class NavigationExplainer:
                 return Explanation.not_enough(self.name, _unread(raw))
             findings = [quoted]
         until = run.end.t if run.end is not None else window[1]
-        before = [ln for ln in context.log.logs if ln.t <= until]
+        before = before_shutdown([ln for ln in context.log.logs if ln.t <= until])
         findings = findings or flags + self._others(question, view, run, bool(flags), before, raw,
                                                     _inferred(context))
         for f in findings:

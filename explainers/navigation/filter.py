@@ -117,10 +117,30 @@ MANY_DROPS = 10
 
 def routine_drops(noise: list[tuple[LogLine, Entry]], run: Run) -> list[tuple[LogLine, Entry]]:
     """The noise lines that are evidence for this run: INFO message-filter drops only on a goal that failed or
-    never ended (a stalled one), or in numbers; a goal that succeeded or that the window does not show is not
-    explained by a few routine drops."""
+    never ended (a stalled one), from the goal's begin line on where the window shows it (the start-up's drops,
+    before the transform cache filled, are routine), or in numbers; a goal that succeeded or that the window does
+    not show is not explained by a few routine drops."""
     drops = [ln for ln, _ in noise if _DROP in ln.msg and ln.level < WARN]
-    stalled = run.outcome == "unknown" and run.begin is not None
-    if run.outcome == "failed" or stalled or len(drops) >= MANY_DROPS:
+    if len(drops) >= MANY_DROPS:
         return noise
+    stalled = run.outcome == "unknown" and run.begin is not None
+    if run.outcome == "failed" or stalled:
+        since = run.begin.t if run.begin is not None else None
+        return [(ln, e) for ln, e in noise
+                if since is None or ln.t >= since or not (_DROP in ln.msg and ln.level < WARN)]
     return [(ln, e) for ln, e in noise if not (_DROP in ln.msg and ln.level < WARN)]
+
+
+# A stack being stopped prints its own warnings and errors on the way down (a message filter dropping what came in
+# as the transforms went away, launch escalating to SIGKILL and "process has died [..., exit code -9]"): none of it
+# explains what happened before. Launch's own line when Ctrl-C reaches it (launch_service.py, "user interrupted
+# with ctrl-c (SIGINT)"), and rclcpp's when a node gets SIGINT or SIGTERM (signal_handler.cpp,
+# "signal_handler(signum=%d)" from Galactic on, "signal_handler(signal_value=%d)" in Foxy), begin it.
+_SHUTDOWN = re.compile(r"^(?:user interrupted with ctrl-c \(SIGINT\)"
+                       r"|signal_handler\((?:signum|signal_value)=(?:2|15)\))")
+
+
+def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
+    """The lines before the stack began to shut down (all of them when it did not)."""
+    stop = next((i for i, ln in enumerate(lines) if _SHUTDOWN.match(ln.msg)), None)
+    return lines if stop is None else lines[:stop]
