@@ -52,11 +52,24 @@ def _table(title: str, rows: dict[str, dict[str, Any]], first: str, kind: str = 
     return [f"### {title}", "", HEADER[0].format(first), HEADER[1], *(_row(k, v, kind) for k, v in rows.items()), ""]
 
 
+def _sources(report: dict[str, Any]) -> str:
+    """Where the excerpts come from: public threads, or runs of the real stack by one of the project's scripts."""
+    from hexar.evals.real_nav2 import load_excerpts
+
+    try:
+        scripts = {e.source.split(" on ")[0] for e in load_excerpts(str(report.get("data", "")))}
+    except (OSError, ValueError):  # a user's own --cases file: no script of ours wrote it
+        scripts = set()
+    if len(scripts) == 1 and next(iter(scripts)).startswith("scripts/"):
+        return f"runs of the real stack by {next(iter(scripts))}"
+    return f"{report['sources']} public threads"
+
+
 def render(report: dict[str, Any]) -> str:
     s = report["summary"]
     lines = [
         f"# hexar eval --suite {report['suite']} ({report['backend']})", "",
-        f"{report['n']} real Nav2 console excerpts from {report['sources']} public threads "
+        f"{report['n']} real Nav2 console excerpts from {_sources(report)} "
         f"({data_path(report, 'real_nav2')}), each written as a rosbag2 recording; half with a navigation task on "
         "/task_info, half with none. Cause named is counted over the excerpts whose pasted lines show the "
         "diagnosed cause; honest not-enough (\"the logs do not show why\") is counted apart from wrong.", "",
