@@ -56,10 +56,9 @@ def _sources(report: dict[str, Any]) -> str:
     """Where the excerpts come from: public threads, or runs of the real stack by one of the project's scripts."""
     from hexar.evals.real_nav2 import load_excerpts
 
-    try:
-        scripts = {e.source.split(" on ")[0] for e in load_excerpts(str(report.get("data", "")))}
-    except (OSError, ValueError):  # a user's own --cases file: no script of ours wrote it
-        scripts = set()
+    if report.get("cases"):  # a user's own --cases file: no script of ours wrote it
+        return f"{report['sources']} sources"
+    scripts = {e.source.split(" on ")[0] for e in load_excerpts(str(report["data"]))}
     if len(scripts) == 1 and next(iter(scripts)).startswith("scripts/"):
         return f"runs of the real stack by {next(iter(scripts))}"
     return f"{report['sources']} public threads"
