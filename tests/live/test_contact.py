@@ -312,8 +312,11 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
     assert failure is not None, (err, told)
     assert "contact" in failure, (err, failure)
     missed = [g["missed"] for g in failure["contact"]]
-    assert len(missed) == 1 and 1 <= missed[0] <= 25  # the publisher kept its last 5 for a resend
-    assert f"{missed[0]} message{'s' if missed[0] > 1 else ''} on {c.PIZZA_EVENTS} never reached this node" in err
+    # the publisher kept its last 5 for a resend; the kernel may drop them in more than one run of numbers (a fresh
+    # clone's run saw 7 and 10), each told as its own hole
+    assert missed and all(missed) and 1 <= sum(missed) <= 25, failure["contact"]
+    for n in missed:
+        assert f"{n} message{'s' if n > 1 else ''} on {c.PIZZA_EVENTS} never reached this node" in err
     assert f" the robot sent on {c.PIZZA_EVENTS} from " in failure["answer"]
 
 
