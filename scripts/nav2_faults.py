@@ -44,7 +44,7 @@ START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
 NAV2 = ("map_server", "planner_server", "controller_server", "behavior_server", "bt_navigator")
 PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "controller_server": "nav2_controller",
-            "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator"}
+            "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl"}
 WAIT_S = 40.0  # how long a person waits for the stack to come up before sending the goal anyway
 RUN_S = 90.0  # how long they wait for the robot to get there
 
@@ -61,6 +61,9 @@ class Fault:
     missing: tuple[str, ...] = ()  # nodes the lifecycle manager waits for that are never started
     files: dict[str, str] = field(default_factory=dict)
     manager: dict[str, Any] = field(default_factory=dict)  # the lifecycle manager's parameters beyond the node list
+    amcl: bool = False  # AMCL localises the robot (map -> odom) instead of the base's perfect static transform
+    initial: tuple[float, float, float] | None = (*START, 0.0)  # AMCL's initial pose; None: none is given
+    hit: tuple[str, str, float] | None = None  # (node, signal, s): sent to a node's process that long into the goal
     silent: bool = False  # logs_show_cause false: nothing in any process's console could show it
     slow: bool = False  # a goal reached slowly on purpose: outcome "slow"
 
@@ -186,6 +189,16 @@ def params(fault: Fault, work: Path, map_yaml: Path) -> dict[str, Any]:
                          "navigators": ["navigate_to_pose"],
                          "navigate_to_pose": {"plugin": "nav2_bt_navigator::NavigateToPoseNavigator"}},
     }
+    if fault.amcl:
+        nodes["amcl"] = {"base_frame_id": "base_link", "global_frame_id": "map", "odom_frame_id": "odom",
+                         "scan_topic": "scan", "robot_model_type": "nav2_amcl::DifferentialMotionModel",
+                         "laser_model_type": "likelihood_field", "laser_max_range": 8.0, "laser_min_range": -1.0,
+                         "max_particles": 2000, "min_particles": 500, "tf_broadcast": True,
+                         "transform_tolerance": 1.0, "update_min_d": 0.25, "update_min_a": 0.2,
+                         "set_initial_pose": fault.initial is not None}
+        if fault.initial is not None:
+            x, y, yaw = fault.initial
+            nodes["amcl"]["initial_pose"] = {"x": x, "y": y, "z": 0.0, "yaw": yaw}
     for node, extra in fault.params.items():
         _merge(nodes.setdefault(node, {}), extra)
     tree: dict[str, Any] = {}
@@ -258,10 +271,13 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     base = {"x": START[0], "y": START[1], "map_image": str(map_yaml.with_suffix(".pgm")), **fault.base}
     if "boxes" in base:
         base["boxes"] = [float(v) for v in base["boxes"]]
-    manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*NAV2, *fault.missing], **fault.manager}
+    stack = (NAV2[0], "amcl", *NAV2[1:]) if fault.amcl else NAV2
+    if fault.amcl:
+        base["publish_map_odom"] = False
+    manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*stack, *fault.missing], **fault.manager}
     launch = work / "navigation.launch.py"
     launch.write_text(LAUNCH.format(params=str(params_file), base=base, manager=manager,
-                                    nodes=[(n, PACKAGES[n]) for n in NAV2]), encoding="utf-8")
+                                    nodes=[(n, PACKAGES[n]) for n in stack]), encoding="utf-8")
     (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
     return launch, prefix
 
@@ -281,7 +297,8 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True) as proc:
         sender = subprocess.run([sys.executable, "goal.py", *map(str, fault.goal), str(WAIT_S),
-                                 str(RUN_S * (2 if fault.slow else 1)), str(result_file)], cwd=work, env=env,
+                                 str(RUN_S * (2 if fault.slow else 1)), str(result_file),
+                                 *map(str, fault.hit or ())], cwd=work, env=env,
                                 capture_output=True, text=True, timeout=WAIT_S + 3 * RUN_S, check=False)
         time.sleep(2.0)
         proc.send_signal(signal.SIGINT)
@@ -318,6 +335,8 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
+    parser.add_argument("--set", type=int, choices=(20, 21), default=20,
+                        help="20: bring-up, goals and starts; 21: localisation (AMCL), transforms, processes, the base")
     parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
                         help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
@@ -325,7 +344,12 @@ def main() -> int:
     args = parser.parse_args()
     names = sorted((tuple(n.split("=", 1)) for n in args.names), key=lambda pair: -len(pair[0]))
     entries = []
-    for fault in FAULTS:
+    faults, header = FAULTS, HEADER
+    if args.set == 21:
+        from nav2_faults21 import FAULTS21, HEADER21
+
+        faults, header = FAULTS21, HEADER21
+    for fault in faults:
         if args.only and fault.id not in args.only:
             continue
         with tempfile.TemporaryDirectory() as tmp:
@@ -342,7 +366,7 @@ def main() -> int:
             "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
             "notes": f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g}): {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(HEADER.format(nav2=args.nav2_version) + "\n" + body, encoding="utf-8")
+    args.out.write_text(header.format(nav2=args.nav2_version) + "\n" + body, encoding="utf-8")
     return 0
 
 

@@ -71,6 +71,9 @@ class Base(Node):
         value = lambda name, default: self.declare_parameter(name, default).value
         self.x, self.y, self.yaw = value('x', 2.0), value('y', 4.0), value('yaw', 0.0)
         self.scale = value('speed_scale', 1.0)
+        self.scan_frame = value('scan_frame', 'base_scan')  # the frame the laser stamps its scans with
+        self.tf_until_m = value('tf_stop_after_m', 0.0)  # odom -> base_link stops once it drove this far (0: never)
+        self.start_xy = (self.x, self.y)
         self.occupied = load_pgm(value('map_image', 'two_rooms.pgm'))
         self.resolution = value('resolution', 0.05)
         self.boxes = [tuple(b) for b in np.reshape(value('boxes', [0.0] * 5), (-1, 5)) if b[1] != b[3]]
@@ -119,7 +122,9 @@ class Base(Node):
         odom.pose.pose.orientation.z, odom.pose.pose.orientation.w = math.sin(self.yaw / 2), math.cos(self.yaw / 2)
         odom.twist.twist.linear.x, odom.twist.twist.angular.z = self.v, self.w
         self.odom.publish(odom)
-        self.tf.publish(TFMessage(transforms=[self.transform(stamp, 'odom', 'base_link', self.x, self.y, self.yaw)]))
+        if not self.tf_until_m or math.dist(self.start_xy, (self.x, self.y)) < self.tf_until_m:
+            self.tf.publish(TFMessage(transforms=[self.transform(stamp, 'odom', 'base_link', self.x, self.y,
+                                                                 self.yaw)]))
 
     def publish_scan(self):
         now = self.get_clock().now()
@@ -140,7 +145,7 @@ class Base(Node):
         first = np.where(hit.any(axis=1), hit.argmax(axis=1), -1)
         ranges = np.where(first >= 0, dist[np.maximum(first, 0)], math.inf)
         scan = LaserScan()
-        scan.header.stamp, scan.header.frame_id = now.to_msg(), 'base_scan'
+        scan.header.stamp, scan.header.frame_id = now.to_msg(), self.scan_frame
         scan.angle_min, scan.angle_max = -math.pi, math.pi - 2 * math.pi / BEAMS
         scan.angle_increment = 2 * math.pi / BEAMS
         scan.scan_time, scan.range_min, scan.range_max = 0.1, RANGE_MIN, RANGE_MAX
@@ -158,6 +163,7 @@ except (KeyboardInterrupt, ExternalShutdownException):
 
 GOAL = """\
 import json
+import os
 import sys
 import time
 import rclpy
@@ -167,6 +173,7 @@ from rclpy.node import Node
 from std_srvs.srv import Trigger
 
 x, y, wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+hit = sys.argv[6:9]  # NODE SIGNAL SECONDS: something outside the stack does that to a node's process on the way
 rclpy.init()
 node = Node('goal_sender')
 result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
@@ -194,6 +201,15 @@ if result['server']:
         result['accepted'] = True
         began = time.monotonic()
         done = handle.get_result_async()
+        if hit:
+            rclpy.spin_until_future_complete(node, done, timeout_sec=float(hit[2]))
+            if not done.done():
+                import signal
+                import subprocess
+                pids = subprocess.run(['pgrep', '-f', f'__node:={hit[0]} '], capture_output=True, text=True).stdout
+                for pid in pids.split():
+                    os.kill(int(pid), getattr(signal, hit[1]))
+                result['hit'] = f'{hit[1]} to {hit[0]} after {hit[2]} s'
         rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
         if done.done():
             result['status'] = done.result().status
