@@ -291,7 +291,7 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     env["PYTHONPATH"] = os.pathsep.join([*map(str, launch_path), os.environ.get("PYTHONPATH", "")])
     env["ROS_HOME"] = str(work / ".ros")
     env["RCUTILS_COLORIZED_OUTPUT"] = "0"
-    env["ROS_DOMAIN_ID"] = str(40 + os.getpid() % 60)  # away from other ROS traffic on this computer
+    env["ROS_DOMAIN_ID"] = str(220 + os.getpid() % 12)  # away from other ROS traffic (and tests) on this computer
     (work / "goal.py").write_text(GOAL, encoding="utf-8")
     result_file = work / "goal.json"
     with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
