@@ -226,6 +226,7 @@ class Contact:
                 for participant in sorted(self._last, key=lambda p: self._last[p][0])[:KEEP_GAPS]:
                     if participant not in self._present and participant not in self._open:
                         del self._last[participant]
+                        self._names.pop(participant, None)
                         self._logged.pop(participant, None)
                         self._steady.pop(participant, None)
         for gap in lost:

@@ -209,7 +209,6 @@ class Writers:
         self._own = participant_of(participant.guid.bytes)
         self._readers = readers
         self._of: dict[int, bytes] = {}  # writer instance handle -> its participant
-        self._nodes: dict[bytes, str] = {}  # participant -> its nodes' names, from ros_discovery_info
 
     def of(self, topic: str, handle: int) -> bytes:
         if handle not in self._of:
@@ -229,16 +228,8 @@ class Writers:
         for gone in self._of.keys() - handles.keys():
             del self._of[gone]
         found = {self.of(topic, h) for h, topic in handles.items()}
-        return {p: self._nodes.get(p, "") for p in found if p and p != self._own}
-
-    def named(self, participant: bytes, nodes: str) -> None:
-        """What a participant's `ros_discovery_info` says it holds now (live/graph_info.py); a process that
-        destroys its nodes as it ends keeps the names it had."""
-        if not nodes:
-            return
-        if len(self._nodes) >= 1000 and participant not in self._nodes:  # processes come and go for weeks
-            self._nodes.pop(next(iter(self._nodes)))
-        self._nodes[participant] = nodes
+        # their names come to contact as the graph topic is read (RobotContact.graph), not with this list
+        return dict.fromkeys((p for p in found if p and p != self._own), "")
 
 
 class RobotContact:
@@ -256,8 +247,7 @@ class RobotContact:
         """Whether the sample was the graph topic's (taken here: it names a participant's nodes)."""
         if topic != DISCOVERY_TOPIC:
             return False
-        self.who.named(*(named := participant_nodes(sample)))
-        self.contact.named(*named)
+        self.contact.named(*participant_nodes(sample))
         return True
 
     def heard(self, topic: str, sample: Any) -> None:
