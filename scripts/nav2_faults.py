@@ -27,6 +27,7 @@ import argparse
 import copy
 import json
 import os
+import re
 import signal
 import socket
 import subprocess
@@ -39,6 +40,7 @@ from typing import Any
 
 import yaml
 from nav2_world import BASE, GOAL, write_map
+from stack_faults import scrub as stack_scrub
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
@@ -312,14 +314,12 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
 
 
 def scrub(text: str, work: Path, names: list[tuple[str, str]]) -> str:
-    """The console less ANSI colours and trailing blanks, with this machine's folders replaced by fixed names."""
-    import re
-
-    out = re.sub(r"\x1b\[[0-9;]*m", "", text)
-    for local, fixed in [(str(work.resolve()), "/home/robot/ws"), (str(work), "/home/robot/ws"), *names]:
+    """The console as stack_faults.scrub leaves it (no ANSI colours or trailing blanks, the work folder and this
+    Python's folders fixed), with the other folders `names` gives and launch's log folder's host name fixed too."""
+    out = stack_scrub(text, work)
+    for local, fixed in names:
         out = out.replace(local, fixed)
-    out = re.sub(r"(\d{4}(?:-\d+){6})-" + re.escape(socket.gethostname()) + r"-(\d+)", r"\1-robot-\2", out)
-    return "\n".join(line.rstrip() for line in out.strip().splitlines()) + "\n"
+    return re.sub(r"(\d{4}(?:-\d+){6})-" + re.escape(socket.gethostname()) + r"-(\d+)", r"\1-robot-\2", out)
 
 
 HEADER = """\
