@@ -53,15 +53,11 @@ def _table(title: str, rows: dict[str, dict[str, Any]], first: str, kind: str = 
 
 
 def _sources(report: dict[str, Any]) -> str:
-    """Where the excerpts come from: public threads, or runs of the real stack by one of the project's scripts."""
-    from hexar.evals.real_nav2 import load_excerpts
-
-    if report.get("cases"):  # a user's own --cases file: no script of ours wrote it
-        return f"{report['sources']} sources"
-    scripts = {e.source.split(" on ")[0] for e in load_excerpts(str(report["data"]))}
-    if len(scripts) == 1 and next(iter(scripts)).startswith("scripts/"):
-        return f"runs of the real stack by {next(iter(scripts))}"
-    return f"{report['sources']} public threads"
+    """Where the excerpts come from: public threads, runs of the real stack by one of the project's scripts, or a
+    user's own --cases file."""
+    if report.get("made_by"):
+        return f"runs of the real stack by {report['made_by']}"
+    return f"{report['sources']} {'sources' if report.get('cases') else 'public threads'}"
 
 
 def render(report: dict[str, Any]) -> str:

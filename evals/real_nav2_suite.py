@@ -204,7 +204,10 @@ def by_distro(results: Sequence[Result]) -> dict[str, dict[str, Any]]:
 def build_report(results: Sequence[Result], backend: str, excerpts: Sequence[Excerpt], suite: str = SUITE,
                  cases: Path | None = None) -> dict[str, Any]:
     sources = sorted({e.source for e in excerpts})
-    data = {"data": str(cases), "cases": True} if cases is not None else {"data": SUITES[suite][0]}
+    data: dict[str, Any] = {"data": str(cases), "cases": True} if cases is not None else {"data": SUITES[suite][0]}
+    scripts = {source.split(" on ")[0] for source in sources}
+    if cases is None and len(scripts) == 1 and next(iter(scripts)).startswith("scripts/"):
+        data["made_by"] = scripts.pop()  # a set the project's own script ran on the real stack, not pasted threads
     return {
         "suite": suite, **data, "backend": backend, "n": len(results), "sources": len(sources),
         "summary": summarise(results)["all"], "by_distro": by_distro(results),
