@@ -29,7 +29,7 @@ from hexar.live.jobs import (
     RateLimit,
 )
 from hexar.live.log import NS, LiveLog
-from hexar.live.present import no_task_yet, shape
+from hexar.live.present import no_task_answer, shape
 from hexar.live.recheck import Rechecks
 from hexar.live.topics import ANSWER
 from hexar.safe_text import finite_with_warnings, json_dumps
@@ -319,8 +319,7 @@ class LiveNode:
                 self.untold, self.thread = self.untold + 1, previous
                 return
             # a person asked: they hear why there is nothing to explain; the developer's reason stays in "error"
-            result = {"answer": no_task_yet(self._session.context.log.logs), "error": str(err), "no_task": True,
-                      "thread": thread}
+            result = no_task_answer(self._session.context.log.logs, err, thread)
         self._last_answer = time.monotonic()
         shape(result, self._session.context.log.tasks, self.log.contact, self.log.newest)
         result["trigger"] = job.kind

@@ -104,4 +104,10 @@ def no_task_yet(logs: Iterable[LogLine]) -> str:
     return said
 
 
-__all__ = ["heard_words", "no_task_yet", "present", "shape"]
+def no_task_answer(logs: Iterable[LogLine], error: Exception, thread: str | None) -> dict[str, Any]:
+    """The whole answer to a question asked before any task: no_task_yet's words for the person, the developer's
+    reason kept in "error", and no evidence."""
+    return {"answer": no_task_yet(logs), "error": str(error), "no_task": True, "thread": thread, "evidence": []}
+
+
+__all__ = ["heard_words", "no_task_answer", "no_task_yet", "present", "shape"]

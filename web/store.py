@@ -259,11 +259,10 @@ class Store:
             except NoTaskError as err:
                 if live is None or session.context.log.tasks:  # a task asked for that is gone: the error says so
                     raise
-                from hexar.live.present import no_task_yet
+                from hexar.live.present import no_task_answer
 
                 # as `hexar serve` answers it: the person hears why there is nothing to explain yet
-                result = {"answer": no_task_yet(session.context.log.logs), "error": str(err), "no_task": True,
-                          "thread": thread, "evidence": []}
+                result = no_task_answer(session.context.log.logs, err, thread)
             if live is not None:
                 from hexar.live.present import shape
 
