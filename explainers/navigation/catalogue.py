@@ -192,14 +192,15 @@ class Catalogue:
         entry, and Kilted's end line quotes the error ("Goal failed error_code:203 error_msg:'... Start Coordinates
         of(...) was outside bounds'"): that is still the goal's end."""
         text = clean(msg)
+        return next((e for e in self._candidates(text) if e.kind in GOAL_KINDS and e.search(text)), None)
+
+    def _candidates(self, text: str) -> list[Entry]:
+        """The entries the text can match, in file order: those whose literals it holds, and those without any."""
         hits = {i for k, i in self._literals if k in text}
-        return next((e for i, e in enumerate(self.entries)
-                     if (i in hits or not e.keys) and e.kind in GOAL_KINDS and e.search(text)), None)
+        return [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
 
     def _find(self, text: str) -> Entry | None:
-        hits = {i for k, i in self._literals if k in text}
-        candidates = [e for i, e in enumerate(self.entries) if i in hits or not e.keys] if hits else self._keyless
-        return self._scan(text, candidates)
+        return self._scan(text, self._candidates(text))
 
     @staticmethod
     def _scan(text: str, entries: Iterable[Entry]) -> Entry | None:
