@@ -358,14 +358,30 @@ def _clock_doubt(run: Run, early: LogLine, critic: list[LogLine]) -> Finding:
     return found
 
 
+# A controller at 10-20 Hz warns on every cycle while one thing stands in its way: warnings less than a second
+# apart are one obstacle event, not many.
+ONE_EVENT_S = 1.0
+
+
+def events(lines: list[LogLine]) -> int:
+    """How many obstacle events the disturbance `lines` (oldest first) come from."""
+    return sum(1 for i, ln in enumerate(lines) if i == 0 or ln.t - lines[i - 1].t >= ONE_EVENT_S * 1e9)
+
+
+def disturbances(run: Run) -> list[LogLine]:
+    """The controller's obstacle warnings (trajectories hitting obstacles, a collision check stopping it), oldest
+    first."""
+    return sorted(run.matching(_DISTURBANCE), key=lambda ln: ln.t)
+
+
 def moving_obstacles(run: Run) -> Finding | None:
     if run.outcome != "reached":
         return None
-    events = run.matching(_DISTURBANCE)
-    if len(events) < 2:
+    warned = disturbances(run)
+    if events(warned) < 2:
         return None
-    events = sorted([*events, *run.matching(_RETRIES)], key=lambda ln: ln.t)
-    found = Finding(MOVING_OBSTACLES, [Evidence.of_log(MOVING_OBSTACLES, ln) for ln in events[:8]])
+    picks = sorted([*warned, *run.matching(_RETRIES)], key=lambda ln: ln.t)
+    found = Finding(MOVING_OBSTACLES, [Evidence.of_log(MOVING_OBSTACLES, ln) for ln in picks[:8]])
     if run.end is not None:
         found.evidence.append(Evidence.of_log(MOVING_OBSTACLES, run.end))
     found.facts = {"disturbances": float(len(run.matching(_DISTURBANCE))),

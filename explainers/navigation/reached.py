@@ -8,27 +8,42 @@ from __future__ import annotations
 from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.catalogue import REACHED, TRANSFORM_PLAN, catalogue
-from hexar.explainers.navigation.detectors import REACH_DOUBT, UNEXPLAINED, Finding, Run, attempts, plan_failures
+from hexar.explainers.navigation.detectors import (
+    REACH_DOUBT,
+    UNEXPLAINED,
+    Finding,
+    Run,
+    attempts,
+    disturbances,
+    plan_failures,
+)
 from hexar.explainers.navigation.diagnose import TRANSFORM
 
 
 def slow_retries(run: Run) -> Finding | None:
-    """A goal reached after the controller stopped making progress or the planner failed, and recoveries ran,
-    with nothing that shows what was in the way: said as a goal reached late after getting stuck, never as a
-    trip where nothing went wrong."""
+    """A goal reached after the controller stopped making progress, stopped for one obstacle event, or the planner
+    failed, and recoveries ran, with nothing that shows what was in the way: said as a goal reached late after
+    getting stuck, never as a trip where nothing went wrong (nor as people moving about, which one event is not)."""
     plans = plan_failures(run)
     stuck = run.matching(("Failed to make progress",))
     cat = catalogue()
     behaviours = [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "recovery"]
     clears = [ln for ln in run.lines if (e := cat.match(ln.msg)) is not None and e.kind == "clear"]
-    if not plans and not stuck and len(behaviours) + len(clears) < 2:
+    # one obstacle event (moving_obstacles needs two): the controller's own line says it stopped for something
+    warned = disturbances(run)
+    gave_up = [ln for ln in run.matching(("Controller patience exceeded",))
+               if warned and ln.msg.startswith("Controller patience exceeded")]  # not the action server's echo
+    if not plans and not stuck and not gave_up and len(behaviours) + len(clears) < 2:
         return None
-    picks = stuck[:1] + plans[:2] + behaviours[:2] + clears[:1]
+    picks = warned[:1] + gave_up[:1] + stuck[:1] + plans[:2] + behaviours[:2] + clears[:1]
     found = Finding(UNEXPLAINED, [Evidence.of_log(UNEXPLAINED, ln) for ln in sorted(picks, key=lambda x: x.t)])
     if run.end is not None:
         found.evidence.append(Evidence.of_log(UNEXPLAINED, run.end))
     found.facts = {"plan_failures": float(attempts(plans)), "progress_failures": float(len(stuck)),
-                   "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0}
+                   "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0,
+                   "controller_gave_up": float(len(gave_up))}
+    if warned:
+        found.notes.append(f"'{warned[0].msg.strip()}'")
     found.notes.append(_recovered(behaviours, bool(clears)))
     return found
 

@@ -104,10 +104,14 @@ def _slow(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     if stuck:
         what.append("my controller made no progress for a while ('Failed to make progress')"
                     + (f" {stuck} times" if stuck > 1 else ""))
+    gave_up = int(f.facts.get("controller_gave_up", 0))
+    if len(f.notes) > 1:  # reached.slow_retries: the controller's collision warning, quoted
+        what.append(f"my controller's collision check stopped me ({f.notes[0]})"
+                    + (f" and it gave up {gave_up} time{'s' if gave_up > 1 else ''}" if gave_up else ""))
     if plans:
         what.append(f"my planner could not compute a route {plans} time{'s' if plans > 1 else ''}")
-    done = f.notes[0] if f.notes else "I retried"  # reached.slow_retries: "I cleared my costmaps and ran my ..."
-    head = (f"I reached {place}, but it took longer because I got stuck on the way: {' and '.join(what)}"
+    done = f.notes[-1] if f.notes else "I retried"  # reached.slow_retries: "I cleared my costmaps and ran my ..."
+    head = (f"I reached {place}, but it took longer because I got stuck on the way: {', and '.join(what)}"
             if what else f"I reached {place}, but it took longer")
     return (f"{head}; {done} before it worked. I can't tell what was in the way from my logs alone.",
             None, ["Failures and recoveries alone do not show what held me up."])
