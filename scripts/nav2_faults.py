@@ -46,7 +46,13 @@ START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
 NAV2 = ("map_server", "planner_server", "controller_server", "behavior_server", "bt_navigator")
 PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "controller_server": "nav2_controller",
-            "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl"}
+            "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl",
+            "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor"}
+# Nav2's own bring-up (nav2_bringup navigation_launch.py@kilted) when the velocity smoother is in the chain: the
+# controller and the behaviours publish cmd_vel_nav, the smoother turns it into cmd_vel_smoothed, and the collision
+# monitor (or, without one, the smoother's output remapped) gives the base its cmd_vel
+CHAIN_REMAPS = {"controller_server": [("cmd_vel", "cmd_vel_nav")], "behavior_server": [("cmd_vel", "cmd_vel_nav")],
+                "velocity_smoother": [("cmd_vel", "cmd_vel_nav")]}
 WAIT_S = 40.0  # how long a person waits for the stack to come up before sending the goal anyway
 RUN_S = 90.0  # how long they wait for the robot to get there
 
@@ -68,6 +74,8 @@ class Fault:
     hit: tuple[str, str, float] | None = None  # (node, signal, s): sent to a node's process that long into the goal
     silent: bool = False  # logs_show_cause false: nothing in any process's console could show it
     slow: bool = False  # a goal reached slowly on purpose: outcome "slow"
+    chain: tuple[str, ...] = ()  # nodes between the controller and the base: velocity_smoother, collision_monitor
+    unmapped: tuple[str, ...] = ()  # nodes of the chain started without their remapping (a launch file's slip)
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -216,10 +224,20 @@ def params(fault: Fault, work: Path, map_yaml: Path) -> dict[str, Any]:
 
 def _merge(into: dict[str, Any], extra: dict[str, Any]) -> None:
     for key, value in extra.items():
-        if isinstance(value, dict) and isinstance(into.get(key), dict):
+        if isinstance(value, dict) and isinstance(into.get(key), dict) and not _other_plugin(into[key], value):
             _merge(into[key], value)
         else:
             into[key] = value
+
+
+def _plugin_package(values: dict[str, Any]) -> str:
+    return str(values.get("plugin", "")).split("::")[0]
+
+
+def _other_plugin(old: dict[str, Any], new: dict[str, Any]) -> bool:
+    """A plugin of another package (DWB for Regulated Pure Pursuit) replaces its predecessor's parameters; a
+    misspelt class of the same package keeps them."""
+    return "plugin" in new and _plugin_package(new) != _plugin_package(old)
 
 
 LAUNCH = """\
@@ -235,8 +253,9 @@ MANAGER = {manager!r}
 def generate_launch_description():
     actions = [Node(package='robot_base', executable='base_driver', name='base_driver', output='screen',
                     parameters=[BASE])]
-    for name, package in NODES:
-        actions.append(Node(package=package, executable=name, name=name, output='screen', parameters=[PARAMS]))
+    for name, package, remaps in NODES:
+        actions.append(Node(package=package, executable=name, name=name, output='screen', parameters=[PARAMS],
+                            remappings=remaps))
     actions.append(Node(package='nav2_lifecycle_manager', executable='lifecycle_manager',
                         name='lifecycle_manager_navigation', output='screen', parameters=[MANAGER]))
     return LaunchDescription(actions)
@@ -273,15 +292,23 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     base = {"x": START[0], "y": START[1], "map_image": str(map_yaml.with_suffix(".pgm")), **fault.base}
     if "boxes" in base:
         base["boxes"] = [float(v) for v in base["boxes"]]
-    stack = (NAV2[0], "amcl", *NAV2[1:]) if fault.amcl else NAV2
+    stack = (*((NAV2[0], "amcl", *NAV2[1:]) if fault.amcl else NAV2), *fault.chain)
     if fault.amcl:
         base["publish_map_odom"] = False
     manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*stack, *fault.missing], **fault.manager}
     launch = work / "navigation.launch.py"
     launch.write_text(LAUNCH.format(params=str(params_file), base=base, manager=manager,
-                                    nodes=[(n, PACKAGES[n]) for n in stack]), encoding="utf-8")
+                                    nodes=[(n, PACKAGES[n], _remaps(fault, n)) for n in stack]), encoding="utf-8")
     (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
     return launch, prefix
+
+
+def _remaps(fault: Fault, node: str) -> list[tuple[str, str]]:
+    if "velocity_smoother" not in fault.chain or node in fault.unmapped:
+        return []
+    if node == "velocity_smoother" and "collision_monitor" not in fault.chain:
+        return [*CHAIN_REMAPS[node], ("cmd_vel_smoothed", "cmd_vel")]
+    return CHAIN_REMAPS.get(node, [])
 
 
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:
@@ -335,8 +362,9 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
-    parser.add_argument("--set", type=int, choices=(20, 21), default=20,
-                        help="20: bring-up, goals and starts; 21: localisation (AMCL), transforms, processes, the base")
+    parser.add_argument("--set", type=int, choices=(20, 21, 22), default=20,
+                        help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
+                             "velocity smoother and collision monitor, DWB, the controller's checkers")
     parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
                         help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
@@ -349,6 +377,10 @@ def main() -> int:
         from nav2_faults21 import FAULTS21, HEADER21
 
         faults, header = FAULTS21, HEADER21
+    elif args.set == 22:
+        from nav2_faults22 import FAULTS22, HEADER22
+
+        faults, header = FAULTS22, HEADER22
     for fault in faults:
         if args.only and fault.id not in args.only:
             continue
