@@ -48,6 +48,19 @@ def serve_process(transport: str, domain: int) -> subprocess.Popen[str]:
                             text=True)
 
 
+def _ended(serve: subprocess.Popen[str], timeout_s: float = 30.0) -> tuple[str, str]:
+    """The process's output once it ended; one that did not end in time is failed with every thread's stack, which
+    `hexar serve` prints on SIGUSR1, so a hang says where it hangs."""
+    try:
+        return serve.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        serve.send_signal(signal.SIGUSR1)
+        time.sleep(2.0)
+        serve.kill()
+        _, err = serve.communicate()
+        pytest.fail(f"serve did not end {timeout_s:.0f} s after the signal; its threads:\n{err[-6000:]}")
+
+
 def node_names(domain: int) -> list[str]:
     from hexar.live.ros import RosNode
 
@@ -99,7 +112,7 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> Non
     assert serve.stderr is not None
     assert "listening" in serve.stderr.readline()
     serve.send_signal(sig)
-    _, err = serve.communicate(timeout=30)
+    _, err = _ended(serve)
     assert serve.returncode == 0, err
     assert "hexar serve: received 0 records" in err
     assert "Traceback" not in err and "terminate called" not in err
@@ -191,3 +204,17 @@ def test_rclpy_serve_works_when_python_starts_without_the_wheels_reexecution(use
                           timeout=120)
     assert done.returncode == 0, done.stderr
     assert "listening over rclpy" in done.stderr and "Traceback" not in done.stderr
+
+
+def test_sigusr1_prints_every_threads_stack_and_serve_goes_on(transport: str) -> None:
+    """A serve that seems stuck on a robot: `kill -USR1 PID` shows where each thread is, and it keeps serving."""
+    serve = serve_process(transport, fresh_domain())
+    assert serve.stderr is not None
+    assert "listening" in serve.stderr.readline()
+    serve.send_signal(signal.SIGUSR1)
+    time.sleep(1.0)
+    assert serve.poll() is None
+    serve.send_signal(signal.SIGTERM)
+    _, err = _ended(serve)
+    assert serve.returncode == 0, err
+    assert "most recent call first" in err and "Thread 0x" in err and "hexar serve: received 0 records" in err
