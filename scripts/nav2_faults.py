@@ -373,6 +373,7 @@ def main() -> int:
     names = sorted((tuple(n.split("=", 1)) for n in args.names), key=lambda pair: -len(pair[0]))
     entries = []
     faults, header = FAULTS, HEADER
+    faults_file = "nav2_faults.py" if args.set == 20 else f"nav2_faults{args.set}.py"  # where each fault is written
     if args.set == 21:
         from nav2_faults21 import FAULTS21, HEADER21
 
@@ -394,7 +395,7 @@ def main() -> int:
               f"{time.monotonic() - began:.0f} s", flush=True)
         entries.append({
             "id": f"kilted-nav2-{fault.id}", "source": f"scripts/nav2_faults.py on Nav2 {args.nav2_version}",
-            "url": f"scripts/nav2_faults.py#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
+            "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
             "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
             "notes": f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g}): {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
