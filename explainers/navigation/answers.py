@@ -18,6 +18,11 @@ def _speed_sentence(f: d.Finding) -> str:
     parts = []
     if "distance_m" in f.facts and "duration_s" in f.facts:
         parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {f.facts['duration_s']:.0f} s")
+    elif "straight_m" in f.facts and "duration_s" in f.facts:
+        # the begin line's start and goal: the path was at least that long, so the average at least that fast
+        parts.append(f"I took {f.facts['duration_s']:.0f} s to get there, {f.facts['straight_m']:.1f} m in a "
+                     "straight line from where I started")
+        parts.append(f"at least {f.facts['least_speed']:.2f} m/s on average")
     if "average_speed" in f.facts:
         parts.append(f"about {f.facts['average_speed']:.2f} m/s on average")
     if "max_vel_x" in f.facts:
@@ -85,8 +90,12 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
         figures = _speed_sentence(f)
         # without odometry or a speed limit in the recording there is no figure to give, and a bare "Nothing
         # went wrong" would leave the question unanswered
-        said = (f"Nothing went wrong on the way to {place}: {figures}" if figures else
+        said = (f"Nothing went wrong on the way to {place}: {figures}" if "distance_m" in f.facts else
+                f"I reached {place} without any problem: {figures}" if figures else
                 f"I reached {place} without any problem; my recording has no figures of how fast I went.")
+        if "slowed_s" in f.facts:  # held.slowed: the collision monitor's slowdown is what the time question is owed
+            said = (f"I reached {place}, but my collision monitor slowed me down for {f.facts['slowed_s']:.0f} s "
+                    f"of the way ({f.notes[0]}), which made it take longer." + (f" {figures}" if figures else ""))
         return (said, None,
                 ["I accelerate, turn along the path and slow down near the goal, so my average speed is "
                  "below my speed limit."] if figures else [])

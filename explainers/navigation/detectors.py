@@ -397,6 +397,11 @@ def _limit(r: StatusRecord) -> float | None:
     return value if math.isfinite(value) and value > 0 else None
 
 
+# bt_navigator's begin line from Iron on (navigate_to_pose.cpp): "Begin navigating from current location (%.2f, %.2f)
+# to (%.2f, %.2f)"; Humble's has no start.
+_FROM_TO = re.compile(r"from current location \((-?[\d.]+), (-?[\d.]+)\) to \((-?[\d.]+), (-?[\d.]+)\)")
+
+
 def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
     """The normal run's figures: configured limit, distance and average speed."""
     found = Finding(cause)
@@ -416,8 +421,14 @@ def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
     distance, duration = run.distance(), run.duration_s()
     if run.poses:
         found.facts["distance_m"] = distance
+    elif run.begin is not None and (m := _FROM_TO.search(run.begin.msg)):
+        # no poses recorded: the goal's begin line still says where I started and where I went
+        x0, y0, x1, y1 = map(float, m.groups())
+        found.facts["straight_m"] = math.dist((x0, y0), (x1, y1))
     if duration is not None:
         found.facts["duration_s"] = duration
         if run.poses:
             found.facts["average_speed"] = distance / duration
+        elif "straight_m" in found.facts:
+            found.facts["least_speed"] = found.facts["straight_m"] / duration
     return found

@@ -233,7 +233,8 @@ class NavigationExplainer:
             if found.notes:
                 return [found]
         cause = d.NOMINAL_SPEED if d.asks_about_speed(question) else d.NOMINAL
-        return [d.speed(run, view.statuses(c.DIAGNOSTICS), cause)]
+        figures = d.speed(run, view.statuses(c.DIAGNOSTICS), cause)
+        return [held.slowed(run, figures) if cause == d.NOMINAL_SPEED else figures]
 
     @staticmethod
     def _failure(view: View, run: d.Run, before: list[LogLine]) -> d.Finding | None:

@@ -36,6 +36,24 @@ def by_collision_monitor(run: d.Run) -> d.Finding | None:
     return found
 
 
+def slowed(run: d.Run, found: d.Finding) -> d.Finding:
+    """A normal run's figures (d.speed) with the time the collision monitor slowed the robot on the way, from each
+    slowing line to the next "Robot to continue normal operation" (or the goal's end): what a question about the
+    time it took is owed, though a slowdown the monitor released is no failure (by_collision_monitor)."""
+    held_ns, first = 0, None
+    for i, ln in enumerate(run.lines):
+        if not SLOWED.match(ln.msg) or (i and SLOWED.match(run.lines[i - 1].msg)):
+            continue  # the monitor logs a change of action once; a repeat before "continue" is the same slowdown
+        first = first or ln
+        resumed = next((x for x in run.lines[i + 1:] if "Robot to continue normal operation" in x.msg), run.end)
+        held_ns += (resumed.t if resumed is not None and resumed.t > ln.t else ln.t) - ln.t
+    if first is not None:
+        found.evidence.insert(1, Evidence.of_log(found.cause, first))
+        found.facts["slowed_s"] = held_ns / 1e9
+        found.notes.append(f"'{first.msg.strip()}'")
+    return found
+
+
 def stall(view: View, run: d.Run) -> d.Finding | None:
     """Commands on /cmd_vel that /odom never followed: the only evidence for commands_not_reaching_base."""
     if c.CMD_VEL not in view.log.topics or c.ODOM not in view.log.topics:

@@ -28,7 +28,7 @@ SUCCEEDED: Line = ("bt_navigator", INFO, "Goal succeeded")
 
 
 def _explain(tmp_path: Path, before: list[Line], during: list[Line], end: Line | None = FAILED,
-             question: str = "Why didn't you get there?") -> Explanation:
+             question: str = "Why didn't you get there?", begin: Line = BEGIN) -> Explanation:
     """Bring-up lines, then a task whose goal runs `during` and ends with `end` (None: no end, no task)."""
     b = BagBuilder()
     for i, (name, level, msg) in enumerate(before):
@@ -37,7 +37,7 @@ def _explain(tmp_path: Path, before: list[Line], during: list[Line], end: Line |
     task = [("navigate_to_pose", {"x": 1.0, "y": 2.0}, "Running", "")]
     if end is not None:
         b.task_info(t, task_msg("t1", "go to the door", task))
-    for i, (name, level, msg) in enumerate([BEGIN, *during, *([end] if end else [])]):
+    for i, (name, level, msg) in enumerate([begin, *during, *([end] if end else [])]):
         b.log(t + sec_ns(0.1 + i), name, level, msg)
     done = t + sec_ns(2 + len(during))
     state = "succeeded" if end is SUCCEEDED else "failed"
@@ -602,12 +602,14 @@ def test_lines_the_filter_does_not_read_are_quoted_not_denied(tmp_path: Path) ->
 
 def test_a_slow_trip_with_no_speed_figures_is_still_answered_in_a_sentence(tmp_path: Path) -> None:
     # NachtaktiverHalbaffe/Autonomous-Ape's troubleshooting page (blind9.yaml): the local costmap waiting for odom
-    # at start-up, which the page calls normal; the recording has no odometry, so there is no speed to give
+    # at start-up, which the page calls normal; the recording has no odometry, and Humble's begin line no start, so
+    # there is no speed to give
     waited = ("Timed out waiting for transform from base_link to odom to become available, tf error: Invalid frame "
               "ID \"odom\" passed to canTransform argument target_frame - frame does not exist")
     found = _explain(tmp_path, [("turtle1.local_costmap.local_costmap", INFO, waited),
                                 ("lifecycle_manager_navigation", INFO, "Managed nodes are active")],
-                     [], SUCCEEDED, "Why did it take so long to get there?")
+                     [], SUCCEEDED, "Why did it take so long to get there?",
+                     ("bt_navigator", INFO, "Begin navigating from current location to (1.00, 2.00)"))
     assert found.text == "I reached my goal without any problem; my recording has no figures of how fast I went."
     assert "navigation.nominal" in stated_causes(found.text)
 

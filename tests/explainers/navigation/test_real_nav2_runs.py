@@ -1,10 +1,11 @@
 """Whole consoles of the real Nav2 (its kilted branch, built here) that scripts/nav2_faults.py ran with one fault
-each (the spent blind set 20), written as recordings with rosbags, with and without a /task_info task: Kilted's
+each (blind sets 20 to 22, spent), written as recordings with rosbags, with and without a /task_info task: Kilted's
 goal-end line, which quotes the error, ends the goal derived from the log; what the stack prints as it is stopped
 with Ctrl-C (a message filter's drops, launch killing a node that would not end) is never the cause of what
 happened before; a message filter's routine drops at start-up, before the goal began, are no transform fault; one
 burst of a controller's collision warnings (set 20's box, set 21's wrong initial pose) is one thing in the way, not
-people moving about."""
+people moving about; a console without poses still gives the time a trip took and the straight line to its goal;
+the collision monitor's slowdown is why a trip took long, not a failure."""
 
 from __future__ import annotations
 
@@ -90,3 +91,31 @@ def test_collision_warnings_seconds_apart_are_things_moving_into_the_way(tmp_pat
     moved = replace(excerpt, lines=excerpt.lines[:at] + again + "\n" + excerpt.lines[at:])
     answer = _reached_late(tmp_path, moved, False)
     assert answer["causes"] == ["navigation.moving_obstacles"], answer["answer"]
+
+
+def _ask22(tmp_path: Path, ident: str, question: str, task: bool) -> dict[str, object]:
+    excerpt = next(e for e in blind_set(22) if e.id == f"kilted-nav2-{ident}")
+    bag = write_recording(excerpt, tmp_path / f"b22{int(task)}", task=task)
+    return dict(Session(RunSettings(recording=bag, llm="none")).ask(question))
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_console_without_poses_still_gives_the_time_and_the_straight_line_to_the_goal(
+        tmp_path: Path, task: bool) -> None:
+    # set 22's smoother in closed loop on odometry nobody published: 62 s for a goal 8 m away; the recording holds
+    # only the console, whose begin line is "Begin navigating from current location (2.00, 4.00) to (10.00, 4.00)"
+    answer = _ask22(tmp_path, "smoother-closed-loop-no-odom", "Why did it take so long to get there?", task)
+    text = str(answer["answer"])
+    assert answer["causes"] == ["navigation.nominal_speed"]
+    assert "I took 62 s to get there, 8.0 m in a straight line from where I started" in text
+    assert "at least 0.13 m/s on average" in text and "no figures" not in text
+
+
+def test_the_collision_monitors_slowdown_answers_why_it_took_long_but_is_no_failure(tmp_path: Path) -> None:
+    # "Robot to slowdown for 30.000000 percents due to Guard polygon", then "Robot to continue normal operation"
+    # 12.9 s later: the reason the trip took longer, and no cause of a failure when asked how it went
+    slow = _ask22(tmp_path / "slow", "monitor-slowdown-circle", "Why did it take so long to get there?", False)
+    assert "collision monitor slowed me down for 13 s" in str(slow["answer"])
+    assert "Robot to slowdown for 30.000000 percents due to Guard polygon" in str(slow["evidence"])
+    went = _ask22(tmp_path / "went", "monitor-slowdown-circle", "How did the navigation go?", False)
+    assert went["causes"] == ["navigation.nominal"] and "without any problem" in str(went["answer"])
