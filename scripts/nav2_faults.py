@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import argparse
 import copy
+import importlib
 import json
 import os
 import re
@@ -362,9 +363,10 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, required=True)
     parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
-    parser.add_argument("--set", type=int, choices=(20, 21, 22), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
-                             "velocity smoother and collision monitor, DWB, the controller's checkers")
+                             "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
+                             "rotation shim, the graceful controller, Theta*")
     parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
                         help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
@@ -374,14 +376,9 @@ def main() -> int:
     entries = []
     faults, header = FAULTS, HEADER
     faults_file = "nav2_faults.py" if args.set == 20 else f"nav2_faults{args.set}.py"  # where each fault is written
-    if args.set == 21:
-        from nav2_faults21 import FAULTS21, HEADER21
-
-        faults, header = FAULTS21, HEADER21
-    elif args.set == 22:
-        from nav2_faults22 import FAULTS22, HEADER22
-
-        faults, header = FAULTS22, HEADER22
+    if args.set != 20:  # nav2_faults21.py's FAULTS21 and HEADER21, ...
+        module = importlib.import_module(f"nav2_faults{args.set}")
+        faults, header = getattr(module, f"FAULTS{args.set}"), getattr(module, f"HEADER{args.set}")
     for fault in faults:
         if args.only and fault.id not in args.only:
             continue
