@@ -38,15 +38,18 @@ def by_collision_monitor(run: d.Run) -> d.Finding | None:
 
 def slowed(run: d.Run, found: d.Finding) -> d.Finding:
     """A normal run's figures (d.speed) with the time the collision monitor slowed the robot on the way, from each
-    slowing line to the next "Robot to continue normal operation" (or the goal's end): what a question about the
-    time it took is owed, though a slowdown the monitor released is no failure (by_collision_monitor)."""
-    held_ns, first = 0, None
-    for i, ln in enumerate(run.lines):
-        if not SLOWED.match(ln.msg) or (i and SLOWED.match(run.lines[i - 1].msg)):
-            continue  # the monitor logs a change of action once; a repeat before "continue" is the same slowdown
-        first = first or ln
-        resumed = next((x for x in run.lines[i + 1:] if "Robot to continue normal operation" in x.msg), run.end)
-        held_ns += (resumed.t if resumed is not None and resumed.t > ln.t else ln.t) - ln.t
+    slowing line to the monitor's next other action ("Robot to continue normal operation", a stop) or the goal's end:
+    what a question about the time it took is owed, though a slowdown the monitor released is no failure
+    (by_collision_monitor)."""
+    held_ns, first, since = 0, None, None
+    for ln in run.lines:
+        if SLOWED.match(ln.msg):
+            first = first or ln
+            since = ln.t if since is None else since  # a change of slowing action before "continue": one slowdown
+        elif since is not None and (ln.msg.startswith("Robot to ") or ln is run.end):
+            held_ns, since = held_ns + ln.t - since, None
+    if since is not None and run.end is not None and run.end.t > since:
+        held_ns += run.end.t - since
     if first is not None:
         found.evidence.insert(1, Evidence.of_log(found.cause, first))
         found.facts["slowed_s"] = held_ns / 1e9

@@ -43,6 +43,7 @@ def slow_retries(run: Run) -> Finding | None:
                    "recoveries": float(len(behaviours) + len(clears)), "reached": 1.0,
                    "controller_gave_up": float(len(gave_up))}
     if warned:
+        found.facts["collision_warned"] = 1.0
         found.notes.append(f"'{warned[0].msg.strip()}'")
     found.notes.append(_recovered(behaviours, bool(clears)))
     return found

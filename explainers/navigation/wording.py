@@ -105,7 +105,7 @@ def _slow(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
         what.append("my controller made no progress for a while ('Failed to make progress')"
                     + (f" {stuck} times" if stuck > 1 else ""))
     gave_up = int(f.facts.get("controller_gave_up", 0))
-    if len(f.notes) > 1:  # reached.slow_retries: the controller's collision warning, quoted
+    if f.facts.get("collision_warned"):  # reached.slow_retries: its first note quotes the controller's warning
         what.append(f"my controller's collision check stopped me ({f.notes[0]})"
                     + (f" and it gave up {gave_up} time{'s' if gave_up > 1 else ''}" if gave_up else ""))
     if plans:
