@@ -11,8 +11,11 @@ off its costmap); alone, the
 answer names what was reported, the candidates and what tells them apart, and claims none of them. A line of
 another cause (TF, configuration, localisation) is claimed before these anyway (diagnose.ORDER).
 
-Kept apart on purpose: a goal outside the costmap's bounds ("Goal Coordinates ... was outside bounds") names the
-goal that was sent, which is what goal_unreachable means whatever made it so; the controller's "No valid
+Kept apart on purpose: a goal outside the costmap's bounds ("Goal Coordinates ... was outside bounds") or on
+lethal cells ("Goal Coordinates of(...) was in lethal cost", Smac's "Goal is occupied") names the goal that was
+sent, which is what goal_unreachable means whatever made it so (what occupies the goal is left open in the answer:
+wording.GOAL_OCCUPIED); Theta*'s "Either of the start or goal pose are an obstacle" does not say which, so it
+stays a state. The controller's "No valid
 trajectories" is what controller_failure means. The planner's own "no valid path" lines are symptoms already
 (catalogue kind plan_failed, wording.PLAN_CANDIDATES).
 """
@@ -75,10 +78,8 @@ _IDS = {
     "planner.start_lethal": START, "smac.start_lethal": START,
     "navfn.start_off_costmap": OUTSIDE, "navfn.start_outside": OUTSIDE, "cm.robot_out_of_bounds": OUTSIDE,
     "cm.sensor_out_of_bounds": OUTSIDE, "dwb.critic_offgrid": OUTSIDE, "nav2.not_localized": OUTSIDE,
-    "navfn.goal_lethal": GOAL, "smac.goal_occupied": GOAL, "theta.start_or_goal_obstacle": GOAL,
+    "theta.start_or_goal_obstacle": GOAL,
 }
-# smac.goal_occupied's pattern holds both "goal is occupied" and "Goal pose is out of costmap": only the first is
-# a state; a goal outside the costmap is the goal that was sent.
 _OCCUPIED_WORDS = ("occupied", "lethal", "obstacle")
 # smac.start_lethal also holds "Start pose is out of costmap" (a start outside it, not on occupied cells).
 _OUTSIDE_WORDS = ("out of costmap", "outside", "OUTSIDE", "off the global costmap", "out of bounds")

@@ -8,6 +8,7 @@ cause that was found.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable
 
 from hexar.claims import read_claims
@@ -86,6 +87,11 @@ def _progress_seconds(run: Run) -> str:
 
 def _held(seconds: float) -> str:
     return " for less than a second" if seconds < 1 else f" for {seconds:.0f} s"
+
+
+# The planner's lines that put the goal on lethal cells (NavFn's and Theta*'s GoalOccupied, Smac's "Goal is occupied")
+GOAL_OCCUPIED = re.compile(r"Goal Coordinates of ?\(.*\) was in lethal cost|Goal was in lethal cost|"
+                           r"[Gg]oal is occupied|[Gg]oal is in lethal space")
 
 
 # What tells apart the causes of a planner that found no path (each needs its own line to be claimed).
@@ -201,6 +207,12 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     symptom = _symptom(f, place, run)
     if symptom is not None:
         return symptom
+    if f.cause == g.GOAL_UNREACHABLE and any(GOAL_OCCUPIED.search(e.item) for e in f.evidence):
+        return (f"I couldn't reach {place} because my planner found the goal itself on occupied cells (lethal cost), "
+                "so no plan could end there. My logs do not show what occupies it: a wall or an obstacle at the goal, "
+                "an obstacle seen earlier and still marked there, or the inflation around obstacles.",
+                "Pick a goal on free space of the map, or check the global costmap around it (clear it if what "
+                "was marked there has gone).", seen)
     if f.cause == g.GOAL_UNREACHABLE:
         return (f"I couldn't reach {place} because the goal itself cannot be reached: it lies outside my map or "
                 "inside an obstacle, so planning to it always fails.",

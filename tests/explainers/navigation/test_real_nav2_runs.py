@@ -1,5 +1,5 @@
 """Whole consoles of the real Nav2 (its kilted branch, built here) that scripts/nav2_faults.py ran with one fault
-each (blind sets 20 to 22, spent), written as recordings with rosbags, with and without a /task_info task: Kilted's
+each (blind sets 20 to 23, spent), written as recordings with rosbags, with and without a /task_info task: Kilted's
 goal-end line, which quotes the error, ends the goal derived from the log; what the stack prints as it is stopped
 with Ctrl-C (a message filter's drops, launch killing a node that would not end) is never the cause of what
 happened before; a message filter's routine drops at start-up, before the goal began, are no transform fault; one
@@ -119,3 +119,14 @@ def test_the_collision_monitors_slowdown_answers_why_it_took_long_but_is_no_fail
     assert "Robot to slowdown for 30.000000 percents due to Guard polygon" in str(slow["evidence"])
     went = _ask22(tmp_path / "went", "monitor-slowdown-circle", "How did the navigation go?", False)
     assert went["causes"] == ["navigation.nominal"] and "without any problem" in str(went["answer"])
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_thetas_goal_in_lethal_cost_is_a_goal_that_cannot_be_reached(tmp_path: Path, task: bool) -> None:
+    # set 23: Theta* and a goal inside the wall between the rooms; planner_server printed "GridBasedplugin failed to
+    # plan from (2.00, 4.00) to (6.10, 2.00): "Goal Coordinates of(6.100000, 2.000000) was in lethal cost""
+    excerpt = next(e for e in blind_set(23) if e.id == "kilted-nav2-theta-goal-in-wall")
+    bag = write_recording(excerpt, tmp_path / "bag", task=task)
+    answer = Session(RunSettings(recording=bag, llm="none")).ask("Why didn't you get there?")
+    assert answer["causes"] == ["navigation.goal_unreachable"]
+    assert "goal itself on occupied cells (lethal cost)" in str(answer["answer"])
