@@ -1,0 +1,331 @@
+"""Real console output of ros2_control (controller_manager, joint_state_broadcaster, joint_trajectory_controller on
+mock_components/GenericSystem hardware), each run with one fault of a robot arm's controller bring-up: a controller
+type misspelt or never given, a trajectory controller whose joints or interfaces the robot does not have, joints
+left empty, a hardware plugin misspelt, hardware whose state lags its commands or that ignores them, a spawner that
+asks the wrong controller manager, no robot description, the controller manager killed mid-trajectory; and a run
+that went well.
+
+A run is what `ros2 launch` of an arm's control bring-up prints: a robot_description publisher (as
+robot_state_publisher publishes it), ros2_control_node, the spawners of joint_state_broadcaster and arm_controller,
+started by ros2launch; one FollowJointTrajectory goal sent from outside the console, as MoveIt or a script sends
+it; Ctrl-C two seconds after its result (or after the time a person would wait). The cause of each run is the fault
+injected, written here before any run was made, by the rule of `label()`. Output is kept as printed, less ANSI
+colours, with this machine's folders replaced by fixed names. Writes real_modules-format excerpts
+(evals/data/real_modules/README.md).
+
+Run inside a ROS 2 environment with ros2_control and ros2_controllers (e.g. `source /opt/ros/kilted/setup.bash`):
+
+    python3 scripts/control_faults.py --out FILE.yaml [--only ID ...]
+
+Where ros2launch is not importable, `--launch-path` names folders holding launch, launch_ros, ros2launch and
+osrf_pycommon.
+"""
+
+from __future__ import annotations
+
+import argparse
+import copy
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+from nav2_faults import scrub
+
+NOMINAL, LOAD, CONFIG = "control.nominal", "control.controller_load_failed", "control.configuration_error"
+HARDWARE, TOLERANCE = "control.hardware_failure", "control.tolerance_violated"
+LAUNCH_ARG, DIED = "bringup.configuration_error", "bringup.process_died"
+JOINTS = ("shoulder_joint", "elbow_joint")
+WAIT_S = 30.0  # how long the sender waits for the trajectory controller's action server
+RUN_S = 20.0  # how long it waits for the trajectory's result
+
+
+@dataclass(frozen=True)
+class Fault:
+    id: str
+    cause: str  # the cause when the trajectory fails; label() says what a run that succeeded is
+    quote: str  # what was wrong, as the cause_quote
+    controller: dict[str, Any] = field(default_factory=dict)  # merged into arm_controller's parameters
+    controller_type: str | None = "joint_trajectory_controller/JointTrajectoryController"  # None: no 'type'
+    hardware: dict[str, str] = field(default_factory=dict)  # the mock hardware's <param>s
+    plugin: str = "mock_components/GenericSystem"
+    manager_arg: str | None = None  # the spawners' --controller-manager, when not the default
+    description: bool = True  # something publishes /robot_description
+    hit: tuple[str, str, float] | None = None  # (process, signal, s): sent to a process that long into the goal
+    silent: bool = False  # logs_show_cause false: nothing in any process's console could show it
+
+
+FAULTS = (
+    Fault("control-nominal", NOMINAL, "Nothing was wrong: the arm's trajectory controller followed the trajectory "
+          "on the mock hardware."),
+    Fault("controller-type-misspelt", LOAD, "arm_controller's type was joint_trajectory_controller/"
+          "JointTrajectoryControler (misspelt), a class no installed plugin provides.",
+          controller_type="joint_trajectory_controller/JointTrajectoryControler"),
+    Fault("controller-type-missing", LOAD, "arm_controller had no 'type' parameter in the controller manager's "
+          "parameters, so the controller manager could not load it.", controller_type=None),
+    Fault("jtc-unknown-joint", CONFIG, "arm_controller's joints named wrist_joint, which the robot description does "
+          "not have, so its command interface did not exist.",
+          controller={"joints": [*JOINTS, "wrist_joint"]}),
+    Fault("jtc-velocity-command", CONFIG, "arm_controller asked for velocity command interfaces, while the robot "
+          "description gives its joints position commands only.",
+          controller={"command_interfaces": ["velocity"]}),
+    Fault("jtc-no-joints", CONFIG, "arm_controller's joints parameter was an empty list.",
+          controller={"joints": []}),
+    Fault("hardware-plugin-misspelt", HARDWARE, "The robot description's hardware plugin was "
+          "mock_components/GenericSystm (misspelt), so the controller manager could not load the arm's hardware "
+          "interface.", plugin="mock_components/GenericSystm"),
+    Fault("hardware-state-offset", TOLERANCE, "The hardware reported each joint 0.3 rad from where it was "
+          "commanded (position_state_following_offset), beyond the controller's 0.05 rad goal tolerance.",
+          hardware={"position_state_following_offset": "0.3"}),
+    Fault("hardware-ignores-commands", HARDWARE, "The hardware ignored every command (disable_commands), as a "
+          "driver whose motors are not enabled does, so the joints never moved.",
+          hardware={"disable_commands": "true"}, silent=True),
+    Fault("spawner-wrong-manager", LAUNCH_ARG, "The spawners were started with --controller-manager "
+          "/arm/controller_manager, while the controller manager ran as /controller_manager.",
+          manager_arg="/arm/controller_manager"),
+    Fault("no-robot-description", LAUNCH_ARG, "Nothing published /robot_description (robot_state_publisher left "
+          "out of the launch file), so the controller manager never got the robot's description.",
+          description=False),
+    Fault("manager-killed", DIED, "ros2_control_node was killed (SIGKILL, as the kernel's out-of-memory killer "
+          "does) 0.5 s into the trajectory.", hit=("ros2_control_node", "SIGKILL", 0.5)),
+)
+
+
+def label(fault: Fault, succeeded: bool) -> tuple[str, str]:
+    """The rule written before any run: a trajectory that succeeded is 'succeeded' with cause control.nominal,
+    whatever the fault; one that did not is 'failed' with the fault's cause."""
+    return ("succeeded", NOMINAL) if succeeded else ("failed", fault.cause)
+
+
+def urdf(fault: Fault) -> str:
+    params = "".join(f'<param name="{k}">{v}</param>' for k, v in fault.hardware.items())
+    joints = "".join(
+        f'<joint name="{j}"><command_interface name="position"/>'
+        f'<state_interface name="position"><param name="initial_value">0.0</param></state_interface>'
+        f'<state_interface name="velocity"/></joint>' for j in JOINTS)
+    links = '<link name="base_link"/><link name="upper_arm"/><link name="forearm"/>'
+    chain = "".join(
+        f'<joint name="{j}" type="revolute"><parent link="{p}"/><child link="{c}"/><axis xyz="0 0 1"/>'
+        f'<limit lower="-3.1" upper="3.1" effort="10" velocity="2"/></joint>'
+        for j, p, c in ((JOINTS[0], "base_link", "upper_arm"), (JOINTS[1], "upper_arm", "forearm")))
+    return (f'<?xml version="1.0"?><robot name="arm">{links}{chain}<ros2_control name="ArmSystem" type="system">'
+            f'<hardware><plugin>{fault.plugin}</plugin>{params}</hardware>{joints}</ros2_control></robot>')
+
+
+def params(fault: Fault) -> dict[str, Any]:
+    arm: dict[str, Any] = {
+        "joints": list(JOINTS), "command_interfaces": ["position"], "state_interfaces": ["position", "velocity"],
+        "constraints": {"goal_time": 1.0, "stopped_velocity_tolerance": 0.05,
+                        **{j: {"goal": 0.05, "trajectory": 0.0} for j in JOINTS}}}
+    arm.update(copy.deepcopy(fault.controller))
+    manager: dict[str, Any] = {"update_rate": 100,
+                               "joint_state_broadcaster": {"type": "joint_state_broadcaster/JointStateBroadcaster"}}
+    if fault.controller_type is not None:
+        manager["arm_controller"] = {"type": fault.controller_type}
+    return {"controller_manager": {"ros__parameters": manager}, "arm_controller": {"ros__parameters": arm}}
+
+
+DESCRIBE = """\
+import sys
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.qos import DurabilityPolicy, QoSProfile
+from std_msgs.msg import String
+
+rclpy.init()
+node = rclpy.create_node('robot_description_publisher')
+latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+pub = node.create_publisher(String, 'robot_description', latched)
+pub.publish(String(data=open(sys.argv[1]).read()))
+node.get_logger().info('published the robot description')
+try:
+    rclpy.spin(node)
+except (KeyboardInterrupt, ExternalShutdownException):
+    pass
+"""
+
+SEND = """\
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+import rclpy
+from builtin_interfaces.msg import Duration
+from control_msgs.action import FollowJointTrajectory
+from rclpy.action import ActionClient
+from trajectory_msgs.msg import JointTrajectoryPoint
+
+wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
+hit = [a for a in sys.argv[4:7] if a]  # PROCESS SIGNAL SECONDS: done to a process on the way (empty: nothing)
+rclpy.init()
+node = rclpy.create_node('trajectory_sender')
+client = ActionClient(node, FollowJointTrajectory, 'arm_controller/follow_joint_trajectory')
+result = {'server': client.wait_for_server(timeout_sec=wait_s), 'accepted': False, 'status': None,
+          'error_code': None, 'error_string': None, 'seconds': None}
+if result['server']:
+    time.sleep(1.0)  # as a script waits for the controller to be active, not only its server to exist
+    goal = FollowJointTrajectory.Goal()
+    goal.trajectory.joint_names = sys.argv[7].split(',')
+    for t, (a, b) in ((1, (0.5, -0.5)), (2, (1.0, -1.0))):
+        goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b], time_from_start=Duration(sec=t)))
+    sent = client.send_goal_async(goal)
+    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
+    handle = sent.result()
+    if handle is not None and handle.accepted:
+        result['accepted'] = True
+        began = time.monotonic()
+        done = handle.get_result_async()
+        if hit:
+            rclpy.spin_until_future_complete(node, done, timeout_sec=float(hit[2]))
+            if not done.done():
+                pids = subprocess.run(['pgrep', '-f', hit[0]], capture_output=True, text=True).stdout
+                for pid in pids.split():
+                    os.kill(int(pid), getattr(signal, hit[1]))
+                result['hit'] = f'{hit[1]} to {hit[0]} after {hit[2]} s'
+        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
+        result['seconds'] = round(time.monotonic() - began, 1)
+        if done.done():
+            res = done.result()
+            result['status'], result['error_code'] = res.status, res.result.error_code
+            result['error_string'] = res.result.error_string
+json.dump(result, open(out, 'w'))
+"""
+
+LAUNCH = """\
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+PARAMS = {params!r}
+URDF = {urdf!r}
+DESCRIBE = {describe!r}
+MANAGER = {manager!r}
+
+
+def generate_launch_description():
+    actions = []
+    if DESCRIBE:
+        actions.append(Node(package='arm_description', executable='describe', name='robot_description_publisher',
+                            output='screen', arguments=[URDF]))
+    actions.append(Node(package='controller_manager', executable='ros2_control_node', output='screen',
+                        parameters=[PARAMS]))
+    for name in ('joint_state_broadcaster', 'arm_controller'):
+        args = [name] + (['--controller-manager', MANAGER] if MANAGER else [])
+        actions.append(Node(package='controller_manager', executable='spawner', output='screen', arguments=args))
+    return LaunchDescription(actions)
+"""
+RUNNER = """\
+import sys
+from ros2launch.api import launch_a_launch_file
+
+sys.stdout.reconfigure(line_buffering=True)
+sys.exit(launch_a_launch_file(launch_file_path=sys.argv[1], launch_file_arguments=[], noninteractive=True))
+"""
+
+
+def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
+    """The fault's work folder: the description, the params file, the description publisher as an installed
+    program, the launch file."""
+    (work / "arm.urdf").write_text(urdf(fault), encoding="utf-8")
+    (work / "arm_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
+    prefix = work / "install"
+    program = prefix / "lib/arm_description/describe"
+    program.parent.mkdir(parents=True)
+    program.write_text(f"#!{sys.executable}\n{DESCRIBE}", encoding="utf-8")
+    program.chmod(0o755)
+    index = prefix / "share/ament_index/resource_index/packages/arm_description"
+    index.parent.mkdir(parents=True)
+    index.write_text("", encoding="utf-8")
+    launch = work / "arm_control.launch.py"
+    launch.write_text(LAUNCH.format(params=str(work / "arm_controllers.yaml"), urdf=str(work / "arm.urdf"),
+                                    describe=fault.description, manager=fault.manager_arg), encoding="utf-8")
+    (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
+    return launch, prefix
+
+
+def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:
+    """Launch the bring-up, send the trajectory from outside it, Ctrl-C two seconds after the result: the console
+    and the trajectory's result."""
+    launch, prefix = setup(fault, work)
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_DOMAIN_ID", "PYTHONPATH"))}
+    env["AMENT_PREFIX_PATH"] = os.pathsep.join((str(prefix), env.get("AMENT_PREFIX_PATH", "")))
+    env["PYTHONPATH"] = os.pathsep.join([*map(str, launch_path), os.environ.get("PYTHONPATH", "")])
+    env["ROS_HOME"] = str(work / ".ros")
+    env["RCUTILS_COLORIZED_OUTPUT"] = "0"
+    env["ROS_DOMAIN_ID"] = str(220 + os.getpid() % 12)  # away from other ROS traffic (and tests) on this computer
+    (work / "send.py").write_text(SEND, encoding="utf-8")
+    result_file = work / "result.json"
+    with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True) as proc:
+        hit = [str(v) for v in fault.hit] if fault.hit else ["", "", ""]
+        sender = subprocess.run([sys.executable, "send.py", str(WAIT_S), str(RUN_S), str(result_file), *hit,
+                                 ",".join(JOINTS)], cwd=work, env=env, capture_output=True, text=True,
+                                timeout=WAIT_S + 3 * RUN_S, check=False)
+        time.sleep(2.0)
+        proc.send_signal(signal.SIGINT)
+        try:
+            out, _ = proc.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            out, _ = proc.communicate()
+    result = json.loads(result_file.read_text()) if result_file.exists() else {"error": sender.stderr[-500:]}
+    return out, result
+
+
+HEADER = """\
+# Held-out set 30 of real console excerpts (issue 23's format): printed by ros2_control {version} (controller_manager,
+# joint_state_broadcaster, joint_trajectory_controller, mock_components/GenericSystem), built from source on ROS 2
+# Kilted's rclpy, rcl and Fast DDS from PyPI, each run with one fault of an arm's control bring-up and started by the
+# real ros2launch: written by scripts/control_faults.py, whose faults and labelling rule were committed before any of
+# them was run. Output is kept as printed, less ANSI colours, with this machine's folders replaced by fixed names.
+# Frozen and measured once before anything was tuned on it.
+# Regenerate inside a ROS 2 environment with ros2_control: python3 scripts/control_faults.py --out FILE
+"""
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--out", type=Path, required=True)
+    parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
+    parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
+                        help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
+    parser.add_argument("--version", default="kilted", help="as the header names it")
+    parser.add_argument("--names", nargs="*", default=[], help="LOCAL=FIXED folder names to replace in the output")
+    args = parser.parse_args()
+    names = sorted((tuple(n.split("=", 1)) for n in args.names), key=lambda pair: -len(pair[0]))
+    entries = []
+    for fault in FAULTS:
+        if args.only and fault.id not in args.only:
+            continue
+        with tempfile.TemporaryDirectory() as tmp:
+            began = time.monotonic()
+            text, result = run(fault, Path(tmp), [p.absolute() for p in args.launch_path])
+            lines = scrub(text, Path(tmp), names)  # type: ignore[arg-type]
+        succeeded = result.get("status") == 4 and result.get("error_code") == 0  # SUCCEEDED, SUCCESSFUL
+        outcome, cause = label(fault, succeeded)
+        print(f"{fault.id}: {outcome} {cause} {result} {len(lines.splitlines())} lines "
+              f"{time.monotonic() - began:.0f} s", flush=True)
+        if outcome == "failed" and cause == NOMINAL:
+            print(f"{fault.id}: a run with no fault failed, so no cause is known: left out", flush=True)
+            continue
+        entries.append({
+            "id": f"kilted-control-{fault.id}", "source": f"scripts/control_faults.py on ros2_control {args.version}",
+            "url": f"scripts/control_faults.py#{fault.id}", "distro": "kilted", "module": "control",
+            "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
+            "logs_show_cause": not fault.silent or succeeded,
+            "notes": f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}.", "lines": lines})
+    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
+    args.out.write_text(HEADER.format(version=args.version) + "\n" + body, encoding="utf-8")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
