@@ -70,6 +70,7 @@ HELDOUT26_SUITE = "real-modules-heldout26"  # round 30: bring-ups run by the rea
 HELDOUT27_SUITE = "real-modules-heldout27"  # and rclpy actions' goals, feedback and results
 HELDOUT28_SUITE = "real-modules-heldout28"  # and a machine or network short of something
 HELDOUT29_SUITE = "real-modules-heldout29"  # and managed nodes, executors and timers
+HELDOUT30_SUITE = "real-modules-heldout30"  # round 35: the real ros2_control run here, one fault each
 FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
          HELDOUT3_SUITE: "heldout3.yaml", HELDOUT4_SUITE: "heldout4.yaml",
          HELDOUT5_SUITE: "heldout5.yaml", HELDOUT6_SUITE: "heldout6.yaml",
@@ -84,7 +85,8 @@ FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "h
          HELDOUT23_SUITE: "heldout23.yaml",
          HELDOUT24_SUITE: "heldout24.yaml", HELDOUT25_SUITE: "heldout25.yaml",
          HELDOUT26_SUITE: "heldout26.yaml", HELDOUT27_SUITE: "heldout27.yaml",
-         HELDOUT28_SUITE: "heldout28.yaml", HELDOUT29_SUITE: "heldout29.yaml"}
+         HELDOUT28_SUITE: "heldout28.yaml", HELDOUT29_SUITE: "heldout29.yaml",
+         HELDOUT30_SUITE: "heldout30.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}

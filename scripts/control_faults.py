@@ -188,8 +188,8 @@ if result['server']:
             rclpy.spin_until_future_complete(node, done, timeout_sec=float(hit[2]))
             if not done.done():
                 pids = subprocess.run(['pgrep', '-f', hit[0]], capture_output=True, text=True).stdout
-                for pid in pids.split():
-                    os.kill(int(pid), getattr(signal, hit[1]))
+                for pid in (int(p) for p in pids.split() if int(p) != os.getpid()):  # its own command line names it
+                    os.kill(pid, getattr(signal, hit[1]))
                 result['hit'] = f'{hit[1]} to {hit[0]} after {hit[2]} s'
         rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
         result['seconds'] = round(time.monotonic() - began, 1)
