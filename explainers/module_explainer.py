@@ -23,6 +23,7 @@ from hexar.explainers.bringup_answer import derived_start, driver_candidates, st
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
+from hexar.explainers.shutdown import before_shutdown
 from hexar.explainers.stack.actions import action_finding
 from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 from hexar.explainers.stack.signals import ended_by, killed_by_signal
@@ -108,7 +109,7 @@ class ModuleExplainer:
 
     def explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)
-        lines = view.logs()
+        lines = before_shutdown(view.logs())  # what a stack prints as it is stopped explains nothing before
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
         run = focus(context, self.skills)
@@ -377,9 +378,12 @@ _RUNS_DRIVERS = ("ros2_control_node", "controller_manager")
 
 def _crash_alone(died: LogLine, d: Diagnosis, lines: Sequence[LogLine]) -> bool:
     """A process a signal ended (a kill, a segfault: explainers/stack/signals.py) with no warning or error before it
-    but launch's, and not the process that runs the drivers: nothing else the lines show can be what went wrong."""
-    if PROCESS_SUFFIX.sub("", died.name or "") in _RUNS_DRIVERS:
-        return False
-    return ended_by(died.msg) is not None and d.unknown is None and not d.symptoms and not any(
+    but launch's, and not a crash of the process that runs the drivers: nothing else the lines show can be what went
+    wrong."""
+    signal = ended_by(died.msg)
+    if PROCESS_SUFFIX.sub("", died.name or "") in _RUNS_DRIVERS and (signal is None or signal.name != "SIGKILL"):
+        return False  # a driver's crash has its cause in the driver; a kill comes from outside the process
+    # what followed the death (spawners that could no longer reach the controller manager) is its consequence
+    return signal is not None and d.unknown is None and not any(r.line.t < died.t for r in d.symptoms) and not any(
         ln.level >= WARN and ln.t <= died.t and ln is not died and not PROCESS_SUFFIX.search(ln.name or "")
         for ln in lines)

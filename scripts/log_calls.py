@@ -1,7 +1,8 @@
 """The log calls of a C++ or Python source, as (level, line, pieces) for scripts/mine_modules.py: RCLCPP_/RCUTILS_
 log macros (also _STREAM/_THROTTLE/_ONCE/_EXPRESSION) and the UR client library's URCL_LOG_*, `throw X("...")`
-texts, Python `logger.error/warn/info(...)` and `raise X(...)`, and the literals a function returns for its caller
-to log. A piece is a literal run of text, or None for an expression the format does not fix (printf conversions,
+texts, fmt::format messages logged or thrown just after, Python `logger.error/warn/info(...)` and `raise X(...)`,
+and the literals a function returns for its caller to log. A piece is a literal run of text, or None for an
+expression the format does not fix (printf conversions,
 streamed and `+`-joined expressions, f-string and str.format fields)."""
 
 from __future__ import annotations
@@ -126,6 +127,37 @@ def cpp_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
             continue
         line = text.count("\n", 0, m.start()) + 1
         yield "THROW", line, _cpp_pieces(body, printf="%" in body and "format" in body)
+
+
+# fmt::format messages (ros2_control 5.x builds most of its messages so, then logs them with RCLCPP_X(logger, "%s",
+# message.c_str()) or throws them): the literal with {} fields as values, at the level of the log call that follows
+# within a few lines (THROW for a throw), since the "%s" of that call holds nothing to recognise a line by
+CPP_FMT = re.compile(r"\bfmt::format\s*\(")
+FMT_FIELD = re.compile(r"\{[^{}]*\}")
+FMT_REACH = 8  # lines from the format to the call that logs or throws it
+
+
+def fmt_calls(text: str) -> Iterator[tuple[str, int, list[str | None]]]:
+    for m in CPP_FMT.finditer(text):
+        args = _split_args(text[m.end():_close(text, m.end())])
+        first = re.sub(r"^\s*FMT_COMPILE\s*\(([\s\S]*)\)\s*$", r"\1", args[0])
+        if not _CPP_LIT.match(first.strip()):
+            continue
+        line = text.count("\n", 0, m.start()) + 1
+        after = "\n".join(text[m.end():].split("\n")[:FMT_REACH])
+        used = re.search(r"\b(?:RCLCPP|RCUTILS_LOG)_(DEBUG|INFO|WARN|ERROR|FATAL)\w*\s*\(|\bthrow\b", after)
+        if used is None:
+            continue
+        pieces: list[str | None] = []
+        for piece in _cpp_pieces(first, printf=False):
+            if piece is None:
+                pieces.append(None)
+                continue
+            for k, part in enumerate(FMT_FIELD.split(piece.replace("{{", "\x00").replace("}}", "\x01"))):
+                if k:
+                    pieces.append(None)
+                pieces.append(part.replace("\x00", "{").replace("\x01", "}"))
+        yield used[1] or "THROW", line, pieces
 
 
 _PY_LIT = re.compile(r'(f?)("""|"|\')((?:(?!\2)[^\\]|\\.)*)\2', re.S)

@@ -33,7 +33,7 @@ import yaml
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from driver_functions import CALLBACKS, callbacks_by_line, role_of
-from log_calls import cpp_calls, py_calls, returned
+from log_calls import cpp_calls, fmt_calls, py_calls, returned
 
 ROOT = Path(__file__).resolve().parents[1]
 CONFIG = ROOT / "scripts" / "modules_mining.yaml"
@@ -135,7 +135,7 @@ def mine_repo(repo: Path, branch: str, cfg: dict[str, Any]) -> Iterator[Found]:
     texts = {f: git(repo, "show", f"{branch}:{f}") for f in files}
     placed = callbacks_by_line({f: t for f, t in texts.items() if not f.endswith(".py")})
     for f, text in texts.items():
-        calls = py_calls(text) if f.endswith(".py") else cpp_calls(text)
+        calls = py_calls(text) if f.endswith(".py") else (*cpp_calls(text), *fmt_calls(text))
         if return_files.search(f):
             calls = (*calls, *returned(text))
         for level, line, pieces in calls:

@@ -28,13 +28,17 @@ from typing import ClassVar
 from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
+from hexar.explainers.control import spawners
 from hexar.explainers.control.catalogue import catalogue
 from hexar.explainers.control.description import description_reading, waited, waiting_answer
 from hexar.explainers.control.driver_roles import RoleReading, by_role
+from hexar.explainers.control.spawners import other_manager
 from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer, verbatim
+from hexar.explainers.phrasing import phrase
+from hexar.explainers.shutdown import before_shutdown
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
@@ -76,6 +80,16 @@ class ControlExplainer(ModuleExplainer):
                     "plugin such as gz_ros2_control) was not started or is missing, died as it started, or runs "
                     "under another name or namespace than the spawners looked for.")
         return self.candidates
+
+    def explain(self, question: str, context: Context) -> Explanation:
+        # spawners that asked for a controller manager that is not there loaded nothing, whatever else came up
+        # (a start derived from the log would otherwise read the hardware's start as a bring-up that went fine)
+        lines = before_shutdown(context.view(self.topics).logs())
+        found = other_manager(lines)
+        if found is not None:
+            told = spawners.answer(self.name, found)
+            return phrase(self.model, self.name, question, self._facts(lines, told), told)
+        return super().explain(question, context)
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]

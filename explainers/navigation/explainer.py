@@ -55,9 +55,10 @@ from hexar.explainers.navigation import chain, grids, held, mapsave, reached, st
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
-from hexar.explainers.navigation.filter import before_shutdown, routine_drops, tag_logs, weak_noise
+from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
 from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
+from hexar.explainers.shutdown import before_shutdown
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry

@@ -131,16 +131,3 @@ def routine_drops(noise: list[tuple[LogLine, Entry]], run: Run) -> list[tuple[Lo
     return [(ln, e) for ln, e in noise if not (_DROP in ln.msg and ln.level < WARN)]
 
 
-# A stack being stopped prints its own warnings and errors on the way down (a message filter dropping what came in
-# as the transforms went away, launch escalating to SIGKILL and "process has died [..., exit code -9]"): none of it
-# explains what happened before. Launch's own line when Ctrl-C reaches it (launch_service.py, "user interrupted
-# with ctrl-c (SIGINT)"), and rclcpp's when a node gets SIGINT or SIGTERM (signal_handler.cpp,
-# "signal_handler(signum=%d)" from Galactic on, "signal_handler(signal_value=%d)" in Foxy), begin it.
-_SHUTDOWN = re.compile(r"^(?:user interrupted with ctrl-c \(SIGINT\)"
-                       r"|signal_handler\((?:signum|signal_value)=(?:2|15)\))")
-
-
-def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
-    """The lines before the stack began to shut down (all of them when it did not)."""
-    stop = next((i for i, ln in enumerate(lines) if _SHUTDOWN.match(ln.msg)), None)
-    return lines if stop is None else lines[:stop]

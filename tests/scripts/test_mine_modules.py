@@ -144,3 +144,24 @@ def test_an_unknown_module_is_a_one_line_error(tmp_path: Path, capsys: pytest.Ca
     err = capsys.readouterr().err.strip()
     assert err.startswith("ERROR: no module navigation in modules_mining.yaml; use manipulation, control")
     assert "\n" not in err
+
+
+def test_fmt_format_messages_logged_through_a_percent_s_are_mined_at_that_calls_level(tmp_path: Path) -> None:
+    # ros2_control 5.x (controller_manager.cpp@kilted) builds a message with fmt::format(FMT_COMPILE(...)) and logs
+    # it with RCLCPP_WARN(get_logger(), "%s", message.c_str()): the "%s" alone holds nothing to recognise a line by
+    commit_files(new_repo(tmp_path / "me+cm" / "repo", "main"), {
+        "src/cm.cpp":
+        'void f() {\n  message = fmt::format(\n    FMT_COMPILE(\n'
+        '      "Unable to activate controller \'{}\' since the "\n'
+        '      "command interface \'{}\' is not available."),\n    name, itf);\n'
+        '  RCLCPP_WARN(get_logger(), "%s", message.c_str());\n'
+        '  auto unused = fmt::format("Never logged {} here", x);\n}\n'})
+    mod = load_script("mine_modules")
+    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
+        {"name": "cm", "mirror": "me+cm", "branches": ["main"], "skip_paths": "^$"}]}}}
+    rows = {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
+    row = rows["Unable to activate controller '…' since the command interface '…' is not available."]
+    assert row["level"] == "WARN"
+    assert re.search(row["pattern"], "Unable to activate controller 'arm_controller' since the command interface "
+                                     "'wrist_joint/position' is not available.")
+    assert not any(t.startswith("Never logged") for t in rows)

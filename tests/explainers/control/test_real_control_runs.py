@@ -1,0 +1,74 @@
+"""Whole consoles of the real ros2_control (its kilted branch, built here) that scripts/control_faults.py ran with
+one fault each (held-out set 30, spent), written as recordings with rosbags, with and without a /task_info task:
+ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not type are read with their causes; the
+controller manager killed by SIGKILL is told as the death it was; spawners that asked for another controller
+manager are told with both names; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
+its pipe held back past launch's Ctrl-C line is still read."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.claims import read_claims
+from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
+from hexar.events import read_recording
+from tests.explainers.helpers import explain
+
+
+def _ask(tmp_path: Path, ident: str, task: bool) -> tuple[list[str], str, str]:
+    excerpt = next(e for e in load_excerpts("real-modules-heldout30") if e.id == f"kilted-control-{ident}")
+    log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
+    _, found = explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])
+    return found.causes, found.text, " ".join(e.item for e in found.evidence)
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_trajectory_followed_before_ctrl_c_quotes_no_shutdown_line(tmp_path: Path, task: bool) -> None:
+    causes, text, _ = _ask(tmp_path, "control-nominal", task)
+    assert causes == ["control.nominal"] and "ctrl-c" not in text.lower() and "did not stop it" not in text
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_kilteds_unable_to_activate_line_is_an_activation_failure(tmp_path: Path, task: bool) -> None:
+    # "Unable to activate controller 'arm_controller' since the command interface 'wrist_joint/position' is not
+    # available." (fmt::format in controller_manager.cpp@kilted, logged through "%s")
+    causes, _, evidence = _ask(tmp_path, "jtc-unknown-joint", task)
+    assert causes == ["control.controller_activation_failed"]
+    if task:  # a trajectory goal derived from the log opens its window after the spawner's activation
+        assert "since the command interface 'wrist_joint/position' is not available" in evidence
+
+
+def test_a_parameter_rclcpp_could_not_type_is_a_configuration_error(tmp_path: Path) -> None:
+    # joints: [] -> "Caught exception of type : ...InvalidParameterValueExceptionE while initializing controller
+    # 'arm_controller': No parameter value set" (rclcpp parameter_map.cpp)
+    causes, _, evidence = _ask(tmp_path, "jtc-no-joints", True)
+    assert causes == ["control.configuration_error"] and "No parameter value set" in evidence
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_the_controller_manager_killed_mid_trajectory_is_the_death(tmp_path: Path, task: bool) -> None:
+    causes, text, _ = _ask(tmp_path, "manager-killed", task)
+    assert causes == ["bringup.process_died"]
+    assert "ros2_control_node was killed" in text and "SIGKILL" in text
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_spawners_that_asked_for_another_controller_manager_are_told_with_both_names(
+        tmp_path: Path, task: bool) -> None:
+    causes, text, evidence = _ask(tmp_path, "spawner-wrong-manager", task)
+    assert causes == ["bringup.configuration_error"]
+    assert "/arm/controller_manager" in text and "ran as /controller_manager" in text
+    assert "bringup.configuration_error" in read_claims(text).affirmed
+    assert "Could not contact service /arm/controller_manager/list_controllers" in evidence
+
+
+def test_a_tolerance_abort_the_pipe_printed_after_launchs_ctrl_c_line_is_still_read(tmp_path: Path) -> None:
+    # the hardware ignored commands and flooded its console with warnings, so ros2_control_node's pipe flushed the
+    # tolerance abort (stamped 3 s after the goal) after launch's unstamped "user interrupted with ctrl-c (SIGINT)"
+    excerpt = next(e for e in load_excerpts("real-modules-heldout30")
+                   if e.id == "kilted-control-hardware-ignores-commands")
+    assert excerpt.lines.index("user interrupted with ctrl-c") < excerpt.lines.index("Aborted due to goal_time")
+    causes, _, _ = _ask(tmp_path, "hardware-ignores-commands", False)
+    assert causes == ["control.tolerance_violated"]
