@@ -23,21 +23,14 @@ osrf_pycommon.
 
 from __future__ import annotations
 
-import argparse
 import copy
 import json
-import os
-import signal
-import subprocess
-import sys
-import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import yaml
-from nav2_faults import scrub
+from launch_runs import HIT, arguments, install, kept, run_launch, runs
 
 NOMINAL, LOAD, CONFIG = "control.nominal", "control.controller_load_failed", "control.configuration_error"
 HARDWARE, TOLERANCE = "control.hardware_failure", "control.tolerance_violated"
@@ -151,11 +144,8 @@ except (KeyboardInterrupt, ExternalShutdownException):
     pass
 """
 
-SEND = """\
+SEND = HIT + """\
 import json
-import os
-import signal
-import subprocess
 import sys
 import time
 import rclpy
@@ -177,26 +167,11 @@ if result['server']:
     goal.trajectory.joint_names = sys.argv[7].split(',')
     for t, (a, b) in ((1, (0.5, -0.5)), (2, (1.0, -1.0))):
         goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b], time_from_start=Duration(sec=t)))
-    sent = client.send_goal_async(goal)
-    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
-    handle = sent.result()
-    if handle is not None and handle.accepted:
-        result['accepted'] = True
-        began = time.monotonic()
-        done = handle.get_result_async()
-        if hit:
-            rclpy.spin_until_future_complete(node, done, timeout_sec=float(hit[2]))
-            if not done.done():
-                pids = subprocess.run(['pgrep', '-f', hit[0]], capture_output=True, text=True).stdout
-                for pid in (int(p) for p in pids.split() if int(p) != os.getpid()):  # its own command line names it
-                    os.kill(pid, getattr(signal, hit[1]))
-                result['hit'] = f'{hit[1]} to {hit[0]} after {hit[2]} s'
-        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
-        result['seconds'] = round(time.monotonic() - began, 1)
-        if done.done():
-            res = done.result()
-            result['status'], result['error_code'] = res.status, res.result.error_code
-            result['error_string'] = res.result.error_string
+    done = send_goal(node, client, goal, hit, hit[0] if hit else '', run_s, result)
+    if done is not None:
+        res = done.result()
+        result['status'], result['error_code'] = res.status, res.result.error_code
+        result['error_string'] = res.result.error_string
 json.dump(result, open(out, 'w'))
 """
 
@@ -222,13 +197,6 @@ def generate_launch_description():
         actions.append(Node(package='controller_manager', executable='spawner', output='screen', arguments=args))
     return LaunchDescription(actions)
 """
-RUNNER = """\
-import sys
-from ros2launch.api import launch_a_launch_file
-
-sys.stdout.reconfigure(line_buffering=True)
-sys.exit(launch_a_launch_file(launch_file_path=sys.argv[1], launch_file_arguments=[], noninteractive=True))
-"""
 
 
 def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
@@ -237,17 +205,10 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     (work / "arm.urdf").write_text(urdf(fault), encoding="utf-8")
     (work / "arm_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
     prefix = work / "install"
-    program = prefix / "lib/arm_description/describe"
-    program.parent.mkdir(parents=True)
-    program.write_text(f"#!{sys.executable}\n{DESCRIBE}", encoding="utf-8")
-    program.chmod(0o755)
-    index = prefix / "share/ament_index/resource_index/packages/arm_description"
-    index.parent.mkdir(parents=True)
-    index.write_text("", encoding="utf-8")
+    install(prefix, "arm_description", "describe", DESCRIBE)
     launch = work / "arm_control.launch.py"
     launch.write_text(LAUNCH.format(params=str(work / "arm_controllers.yaml"), urdf=str(work / "arm.urdf"),
                                     describe=fault.description, manager=fault.manager_arg), encoding="utf-8")
-    (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
     return launch, prefix
 
 
@@ -255,29 +216,10 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     """Launch the bring-up, send the trajectory from outside it, Ctrl-C two seconds after the result: the console
     and the trajectory's result."""
     launch, prefix = setup(fault, work)
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_DOMAIN_ID", "PYTHONPATH"))}
-    env["AMENT_PREFIX_PATH"] = os.pathsep.join((str(prefix), env.get("AMENT_PREFIX_PATH", "")))
-    env["PYTHONPATH"] = os.pathsep.join([*map(str, launch_path), os.environ.get("PYTHONPATH", "")])
-    env["ROS_HOME"] = str(work / ".ros")
-    env["RCUTILS_COLORIZED_OUTPUT"] = "0"
-    env["ROS_DOMAIN_ID"] = str(220 + os.getpid() % 12)  # away from other ROS traffic (and tests) on this computer
-    (work / "send.py").write_text(SEND, encoding="utf-8")
     result_file = work / "result.json"
-    with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True) as proc:
-        hit = [str(v) for v in fault.hit] if fault.hit else ["", "", ""]
-        sender = subprocess.run([sys.executable, "send.py", str(WAIT_S), str(RUN_S), str(result_file), *hit,
-                                 ",".join(JOINTS)], cwd=work, env=env, capture_output=True, text=True,
-                                timeout=WAIT_S + 3 * RUN_S, check=False)
-        time.sleep(2.0)
-        proc.send_signal(signal.SIGINT)
-        try:
-            out, _ = proc.communicate(timeout=60)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            out, _ = proc.communicate()
-    result = json.loads(result_file.read_text()) if result_file.exists() else {"error": sender.stderr[-500:]}
-    return out, result
+    hit = [str(v) for v in fault.hit] if fault.hit else ["", "", ""]
+    argv = [str(WAIT_S), str(RUN_S), str(result_file), *hit, ",".join(JOINTS)]
+    return run_launch(launch, prefix, work, launch_path, (SEND, argv), result_file, WAIT_S + 3 * RUN_S)
 
 
 HEADER = """\
@@ -292,36 +234,21 @@ HEADER = """\
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, required=True)
-    parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
-    parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
-                        help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
+    parser = arguments(__doc__)
     parser.add_argument("--version", default="kilted", help="as the header names it")
-    parser.add_argument("--names", nargs="*", default=[], help="LOCAL=FIXED folder names to replace in the output")
     args = parser.parse_args()
-    names = sorted((tuple(n.split("=", 1)) for n in args.names), key=lambda pair: -len(pair[0]))
     entries = []
-    for fault in FAULTS:
-        if args.only and fault.id not in args.only:
-            continue
-        with tempfile.TemporaryDirectory() as tmp:
-            began = time.monotonic()
-            text, result = run(fault, Path(tmp), [p.absolute() for p in args.launch_path])
-            lines = scrub(text, Path(tmp), names)  # type: ignore[arg-type]
+    for fault, lines, result in runs(FAULTS, args, run):
         succeeded = result.get("status") == 4 and result.get("error_code") == 0  # SUCCEEDED, SUCCESSFUL
         outcome, cause = label(fault, succeeded)
-        print(f"{fault.id}: {outcome} {cause} {result} {len(lines.splitlines())} lines "
-              f"{time.monotonic() - began:.0f} s", flush=True)
-        if outcome == "failed" and cause == NOMINAL:
-            print(f"{fault.id}: a run with no fault failed, so no cause is known: left out", flush=True)
-            continue
-        entries.append({
-            "id": f"kilted-control-{fault.id}", "source": f"scripts/control_faults.py on ros2_control {args.version}",
-            "url": f"scripts/control_faults.py#{fault.id}", "distro": "kilted", "module": "control",
-            "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
-            "logs_show_cause": not fault.silent or succeeded,
-            "notes": f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}.", "lines": lines})
+        if kept(fault.id, outcome, cause, NOMINAL):
+            entries.append({
+                "id": f"kilted-control-{fault.id}",
+                "source": f"scripts/control_faults.py on ros2_control {args.version}",
+                "url": f"scripts/control_faults.py#{fault.id}", "distro": "kilted",
+                "module": "control", "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
+                "logs_show_cause": not fault.silent or succeeded,
+                "notes": f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
     args.out.write_text(HEADER.format(version=args.version) + "\n" + body, encoding="utf-8")
     return 0

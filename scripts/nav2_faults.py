@@ -23,25 +23,16 @@ Where ros2launch is not importable, `--launch-path` names folders holding launch
 
 from __future__ import annotations
 
-import argparse
 import copy
 import importlib
 import json
-import os
-import re
-import signal
-import socket
-import subprocess
-import sys
-import tempfile
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import yaml
+from launch_runs import arguments, install, kept, run_launch, runs
 from nav2_world import BASE, GOAL, write_map
-from stack_faults import scrub as stack_scrub
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
@@ -261,13 +252,6 @@ def generate_launch_description():
                         name='lifecycle_manager_navigation', output='screen', parameters=[MANAGER]))
     return LaunchDescription(actions)
 """
-RUNNER = """\
-import sys
-from ros2launch.api import launch_a_launch_file
-
-sys.stdout.reconfigure(line_buffering=True)
-sys.exit(launch_a_launch_file(launch_file_path=sys.argv[1], launch_file_arguments=[], noninteractive=True))
-"""
 BROKEN = ("planner_server:\n  ros__parameters:\n    planner_plugins: [\"GridBased\"\n"
           "    expected_planner_frequency: 20.0\n")
 
@@ -283,13 +267,7 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     else:
         params_file.write_text(yaml.safe_dump(params(fault, work, map_yaml), sort_keys=False), encoding="utf-8")
     prefix = work / "install"
-    program = prefix / "lib/robot_base/base_driver"
-    program.parent.mkdir(parents=True)
-    program.write_text(f"#!{sys.executable}\n{BASE}", encoding="utf-8")
-    program.chmod(0o755)
-    index = prefix / "share/ament_index/resource_index/packages/robot_base"
-    index.parent.mkdir(parents=True)
-    index.write_text("", encoding="utf-8")
+    install(prefix, "robot_base", "base_driver", BASE)
     base = {"x": START[0], "y": START[1], "map_image": str(map_yaml.with_suffix(".pgm")), **fault.base}
     if "boxes" in base:
         base["boxes"] = [float(v) for v in base["boxes"]]
@@ -300,7 +278,6 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     launch = work / "navigation.launch.py"
     launch.write_text(LAUNCH.format(params=str(params_file), base=base, manager=manager,
                                     nodes=[(n, PACKAGES[n], _remaps(fault, n)) for n in stack]), encoding="utf-8")
-    (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
     return launch, prefix
 
 
@@ -316,38 +293,10 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     """Launch the stack, send the goal from outside it, Ctrl-C two seconds after the result: the console and the
     goal's result."""
     launch, prefix = setup(fault, work)
-    env = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_DOMAIN_ID", "PYTHONPATH"))}
-    env["AMENT_PREFIX_PATH"] = os.pathsep.join((str(prefix), env.get("AMENT_PREFIX_PATH", "")))
-    env["PYTHONPATH"] = os.pathsep.join([*map(str, launch_path), os.environ.get("PYTHONPATH", "")])
-    env["ROS_HOME"] = str(work / ".ros")
-    env["RCUTILS_COLORIZED_OUTPUT"] = "0"
-    env["ROS_DOMAIN_ID"] = str(220 + os.getpid() % 12)  # away from other ROS traffic (and tests) on this computer
-    (work / "goal.py").write_text(GOAL, encoding="utf-8")
     result_file = work / "goal.json"
-    with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True) as proc:
-        sender = subprocess.run([sys.executable, "goal.py", *map(str, fault.goal), str(WAIT_S),
-                                 str(RUN_S * (2 if fault.slow else 1)), str(result_file),
-                                 *map(str, fault.hit or ())], cwd=work, env=env,
-                                capture_output=True, text=True, timeout=WAIT_S + 3 * RUN_S, check=False)
-        time.sleep(2.0)
-        proc.send_signal(signal.SIGINT)
-        try:
-            out, _ = proc.communicate(timeout=60)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            out, _ = proc.communicate()
-    result = json.loads(result_file.read_text()) if result_file.exists() else {"error": sender.stderr[-500:]}
-    return out, result
-
-
-def scrub(text: str, work: Path, names: list[tuple[str, str]]) -> str:
-    """The console as stack_faults.scrub leaves it (no ANSI colours or trailing blanks, the work folder and this
-    Python's folders fixed), with the other folders `names` gives and launch's log folder's host name fixed too."""
-    out = stack_scrub(text, work)
-    for local, fixed in names:
-        out = out.replace(local, fixed)
-    return re.sub(r"(\d{4}(?:-\d+){6})-" + re.escape(socket.gethostname()) + r"-(\d+)", r"\1-robot-\2", out)
+    argv = [*map(str, fault.goal), str(WAIT_S), str(RUN_S * (2 if fault.slow else 1)), str(result_file),
+            *map(str, fault.hit or ())]
+    return run_launch(launch, prefix, work, launch_path, (GOAL, argv), result_file, WAIT_S + 3 * RUN_S)
 
 
 HEADER = """\
@@ -360,44 +309,28 @@ HEADER = """\
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--out", type=Path, required=True)
-    parser.add_argument("--only", nargs="*", default=None, help="only these fault ids")
+    parser = arguments(__doc__)
     parser.add_argument("--set", type=int, choices=(20, 21, 22, 23), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
                              "rotation shim, the graceful controller, Theta*")
-    parser.add_argument("--launch-path", type=Path, nargs="*", default=[],
-                        help="folders holding launch, launch_ros, ros2launch and osrf_pycommon, if not installed")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
-    parser.add_argument("--names", nargs="*", default=[], help="LOCAL=FIXED folder names to replace in the output")
     args = parser.parse_args()
-    names = sorted((tuple(n.split("=", 1)) for n in args.names), key=lambda pair: -len(pair[0]))
-    entries = []
     faults, header = FAULTS, HEADER
     faults_file = "nav2_faults.py" if args.set == 20 else f"nav2_faults{args.set}.py"  # where each fault is written
     if args.set != 20:  # nav2_faults21.py's FAULTS21 and HEADER21, ...
         module = importlib.import_module(f"nav2_faults{args.set}")
         faults, header = getattr(module, f"FAULTS{args.set}"), getattr(module, f"HEADER{args.set}")
-    for fault in faults:
-        if args.only and fault.id not in args.only:
-            continue
-        with tempfile.TemporaryDirectory() as tmp:
-            began = time.monotonic()
-            text, result = run(fault, Path(tmp), [p.absolute() for p in args.launch_path])
-            lines = scrub(text, Path(tmp), names)  # type: ignore[arg-type]
+    entries = []
+    for fault, lines, result in runs(faults, args, run):
         reached = result.get("status") == 4  # action_msgs/GoalStatus SUCCEEDED
         outcome, cause = label(fault, reached)
-        print(f"{fault.id}: {outcome} {cause} {result} {len(lines.splitlines())} lines "
-              f"{time.monotonic() - began:.0f} s", flush=True)
-        if outcome == "failed" and cause == NOMINAL:
-            print(f"{fault.id}: a run with no fault failed, so no cause is known: left out", flush=True)
-            continue
-        entries.append({
-            "id": f"kilted-nav2-{fault.id}", "source": f"scripts/nav2_faults.py on Nav2 {args.nav2_version}",
-            "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
-            "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
-            "notes": f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g}): {json.dumps(result)}.", "lines": lines})
+        if kept(fault.id, outcome, cause, NOMINAL):
+            entries.append({
+                "id": f"kilted-nav2-{fault.id}", "source": f"scripts/nav2_faults.py on Nav2 {args.nav2_version}",
+                "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
+                "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
+                "notes": f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g}): {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
     args.out.write_text(header.format(nav2=args.nav2_version) + "\n" + body, encoding="utf-8")
     return 0

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from launch_runs import HIT
+
 RESOLUTION = 0.05  # m per cell
 WIDTH_M, HEIGHT_M = 12.0, 8.0
 WALL_X = 6.0  # the wall between the two rooms, x from WALL_X to WALL_X + WALL_T
@@ -161,9 +163,8 @@ except (KeyboardInterrupt, ExternalShutdownException):
     pass
 """
 
-GOAL = """\
+GOAL = HIT + """\
 import json
-import os
 import sys
 import time
 import rclpy
@@ -194,29 +195,8 @@ if result['server']:
     goal.pose.header.frame_id = 'map'
     goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
     goal.pose.pose.orientation.w = 1.0
-    sent = client.send_goal_async(goal)
-    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
-    handle = sent.result()
-    if handle is not None and handle.accepted:
-        result['accepted'] = True
-        began = time.monotonic()
-        done = handle.get_result_async()
-        if hit:
-            rclpy.spin_until_future_complete(node, done, timeout_sec=float(hit[2]))
-            if not done.done():
-                import signal
-                import subprocess
-                pids = subprocess.run(['pgrep', '-f', f'__node:={hit[0]} '], capture_output=True, text=True).stdout
-                for pid in pids.split():
-                    os.kill(int(pid), getattr(signal, hit[1]))
-                result['hit'] = f'{hit[1]} to {hit[0]} after {hit[2]} s'
-        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
-        if done.done():
-            result['status'] = done.result().status
-            result['seconds'] = round(time.monotonic() - began, 1)
-        else:  # as the person gives up on it
-            cancelled = handle.cancel_goal_async()
-            rclpy.spin_until_future_complete(node, cancelled, timeout_sec=5.0)
-            result['seconds'] = round(time.monotonic() - began, 1)
+    done = send_goal(node, client, goal, hit, f'__node:={hit[0]} ' if hit else '', run_s, result)
+    if done is not None:
+        result['status'] = done.result().status
 json.dump(result, open(out, 'w'))
 """

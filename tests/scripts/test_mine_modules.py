@@ -92,19 +92,24 @@ def test_the_committed_catalogues_cite_a_file_line_and_branch_for_every_message(
         assert all(re.compile(m["pattern"]) for m in doc["messages"])
 
 
+def _mined(tmp_path: Path, name: str, files: dict[str, str], **repo: str) -> dict[str, dict[str, Any]]:
+    """The control catalogue's rows, by text, mined from one repository of `files` on branch main."""
+    commit_files(new_repo(tmp_path / f"me+{name}" / "repo", "main"), files)
+    mod = load_script("mine_modules")
+    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
+        {"name": name, "mirror": f"me+{name}", "branches": ["main"], "skip_paths": "^$", **repo}]}}}
+    return {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
+
+
 def test_driver_macros_returned_texts_full_stops_and_long_first_sentences(tmp_path: Path) -> None:
-    commit_files(new_repo(tmp_path / "me+drv" / "repo", "main"), {
+    rows = _mined(tmp_path, "drv", {
         "src/driver.cpp":
         'void f() {\n  URCL_LOG_ERROR("Failed to connect to the RTDE server, retrying in %i seconds", t);\n'
         '  RCLCPP_ERROR(l, "The calibration parameters of the connected robot don\'t match the ones from the given "\n'
         '               "kinematics config file. Please be aware that this can lead to critical inaccuracies.");\n'
         '  RCLCPP_ERROR(l, "Loader for controller \'%s\' not found.", n);\n}\n',
-        "src/result.cpp": 'std::string r() {\n  return "No motion plan found. No execution attempted.";\n}\n'})
-    mod = load_script("mine_modules")
-    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
-        {"name": "drv", "mirror": "me+drv", "branches": ["main"], "skip_paths": "^$",
-         "return_files": r"result\.cpp"}]}}}
-    rows = {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
+        "src/result.cpp": 'std::string r() {\n  return "No motion plan found. No execution attempted.";\n}\n'},
+        return_files=r"result\.cpp")
     assert re.search(rows["Failed to connect to the RTDE server, retrying in … seconds"]["pattern"],
                      "Failed to connect to the RTDE server, retrying in 10 seconds")
     calibration = next(r for t, r in rows.items() if t.startswith("The calibration parameters"))
@@ -149,17 +154,13 @@ def test_an_unknown_module_is_a_one_line_error(tmp_path: Path, capsys: pytest.Ca
 def test_fmt_format_messages_logged_through_a_percent_s_are_mined_at_that_calls_level(tmp_path: Path) -> None:
     # ros2_control 5.x (controller_manager.cpp@kilted) builds a message with fmt::format(FMT_COMPILE(...)) and logs
     # it with RCLCPP_WARN(get_logger(), "%s", message.c_str()): the "%s" alone holds nothing to recognise a line by
-    commit_files(new_repo(tmp_path / "me+cm" / "repo", "main"), {
+    rows = _mined(tmp_path, "cm", {
         "src/cm.cpp":
         'void f() {\n  message = fmt::format(\n    FMT_COMPILE(\n'
         '      "Unable to activate controller \'{}\' since the "\n'
         '      "command interface \'{}\' is not available."),\n    name, itf);\n'
         '  RCLCPP_WARN(get_logger(), "%s", message.c_str());\n'
         '  auto unused = fmt::format("Never logged {} here", x);\n}\n'})
-    mod = load_script("mine_modules")
-    cfg = {"distro_of_branch": {"main": "rolling"}, "modules": {"control": {"rules": [], "repos": [
-        {"name": "cm", "mirror": "me+cm", "branches": ["main"], "skip_paths": "^$"}]}}}
-    rows = {r["text"]: r for r in mod.classify(mod.collect(cfg, tmp_path, "control"), cfg, "control")}
     row = rows["Unable to activate controller '…' since the command interface '…' is not available."]
     assert row["level"] == "WARN"
     assert re.search(row["pattern"], "Unable to activate controller 'arm_controller' since the command interface "
