@@ -53,6 +53,14 @@ class Fault:
     description: bool = True  # something publishes /robot_description
     hit: tuple[str, str, float] | None = None  # (process, signal, s): sent to a process that long into the goal
     silent: bool = False  # logs_show_cause false: nothing in any process's console could show it
+    limit: float = 3.1  # the joints' position limit in the robot description (rad, both ways)
+    initial: bool = True  # the position state interfaces carry an initial_value
+    update_rate: int = 100
+    # the spawners, in order, each with its arguments; chained: each starts when the one before it ended, as
+    # ros2_control's demos start them (set 30's two started together)
+    spawns: tuple[tuple[str, tuple[str, ...]], ...] = (("joint_state_broadcaster", ()), ("arm_controller", ()))
+    chained: bool = False
+    blocker: bool = False  # a forward_command_controller on the same joints' positions, declared beside them
 
 
 FAULTS = (
@@ -99,14 +107,15 @@ def label(fault: Fault, succeeded: bool) -> tuple[str, str]:
 
 def urdf(fault: Fault) -> str:
     params = "".join(f'<param name="{k}">{v}</param>' for k, v in fault.hardware.items())
+    initial = '<param name="initial_value">0.0</param>' if fault.initial else ""
     joints = "".join(
         f'<joint name="{j}"><command_interface name="position"/>'
-        f'<state_interface name="position"><param name="initial_value">0.0</param></state_interface>'
+        f'<state_interface name="position">{initial}</state_interface>'
         f'<state_interface name="velocity"/></joint>' for j in JOINTS)
     links = '<link name="base_link"/><link name="upper_arm"/><link name="forearm"/>'
     chain = "".join(
         f'<joint name="{j}" type="revolute"><parent link="{p}"/><child link="{c}"/><axis xyz="0 0 1"/>'
-        f'<limit lower="-3.1" upper="3.1" effort="10" velocity="2"/></joint>'
+        f'<limit lower="{-fault.limit}" upper="{fault.limit}" effort="10" velocity="2"/></joint>'
         for j, p, c in ((JOINTS[0], "base_link", "upper_arm"), (JOINTS[1], "upper_arm", "forearm")))
     return (f'<?xml version="1.0"?><robot name="arm">{links}{chain}<ros2_control name="ArmSystem" type="system">'
             f'<hardware><plugin>{fault.plugin}</plugin>{params}</hardware>{joints}</ros2_control></robot>')
@@ -118,11 +127,15 @@ def params(fault: Fault) -> dict[str, Any]:
         "constraints": {"goal_time": 1.0, "stopped_velocity_tolerance": 0.05,
                         **{j: {"goal": 0.05, "trajectory": 0.0} for j in JOINTS}}}
     arm.update(copy.deepcopy(fault.controller))
-    manager: dict[str, Any] = {"update_rate": 100,
+    manager: dict[str, Any] = {"update_rate": fault.update_rate,
                                "joint_state_broadcaster": {"type": "joint_state_broadcaster/JointStateBroadcaster"}}
     if fault.controller_type is not None:
         manager["arm_controller"] = {"type": fault.controller_type}
-    return {"controller_manager": {"ros__parameters": manager}, "arm_controller": {"ros__parameters": arm}}
+    out = {"controller_manager": {"ros__parameters": manager}, "arm_controller": {"ros__parameters": arm}}
+    if fault.blocker:
+        manager["position_forward"] = {"type": "forward_command_controller/ForwardCommandController"}
+        out["position_forward"] = {"ros__parameters": {"joints": list(JOINTS), "interface_name": "position"}}
+    return out
 
 
 DESCRIBE = """\
@@ -177,12 +190,16 @@ json.dump(result, open(out, 'w'))
 
 LAUNCH = """\
 from launch import LaunchDescription
+from launch.actions import RegisterEventHandler
+from launch.event_handlers import OnProcessExit
 from launch_ros.actions import Node
 
 PARAMS = {params!r}
 URDF = {urdf!r}
 DESCRIBE = {describe!r}
 MANAGER = {manager!r}
+SPAWNS = {spawns!r}
+CHAINED = {chained!r}
 
 
 def generate_launch_description():
@@ -192,9 +209,15 @@ def generate_launch_description():
                             output='screen', arguments=[URDF]))
     actions.append(Node(package='controller_manager', executable='ros2_control_node', output='screen',
                         parameters=[PARAMS]))
-    for name in ('joint_state_broadcaster', 'arm_controller'):
-        args = [name] + (['--controller-manager', MANAGER] if MANAGER else [])
-        actions.append(Node(package='controller_manager', executable='spawner', output='screen', arguments=args))
+    before = None
+    for name, extra in SPAWNS:
+        args = [name, *extra] + (['--controller-manager', MANAGER] if MANAGER else [])
+        spawner = Node(package='controller_manager', executable='spawner', output='screen', arguments=args)
+        if CHAINED and before is not None:
+            actions.append(RegisterEventHandler(OnProcessExit(target_action=before, on_exit=[spawner])))
+        else:
+            actions.append(spawner)
+        before = spawner
     return LaunchDescription(actions)
 """
 
@@ -208,7 +231,9 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     install(prefix, "arm_description", "describe", DESCRIBE)
     launch = work / "arm_control.launch.py"
     launch.write_text(LAUNCH.format(params=str(work / "arm_controllers.yaml"), urdf=str(work / "arm.urdf"),
-                                    describe=fault.description, manager=fault.manager_arg), encoding="utf-8")
+                                    describe=fault.description, manager=fault.manager_arg,
+                                    spawns=[(n, list(a)) for n, a in fault.spawns], chained=fault.chained),
+                 encoding="utf-8")
     return launch, prefix
 
 
@@ -235,22 +260,30 @@ HEADER = """\
 
 def main() -> int:
     parser = arguments(__doc__)
+    parser.add_argument("--set", type=int, choices=(30, 31), default=30,
+                        help="30: controller types, interfaces, hardware, spawners, the description, a death; 31: "
+                             "limits, tolerances, a claimed interface, an inactive controller, the loop's rate")
     parser.add_argument("--version", default="kilted", help="as the header names it")
     args = parser.parse_args()
+    faults, header, faults_file = FAULTS, HEADER, "control_faults.py"
+    if args.set == 31:
+        from control_faults31 import FAULTS31, HEADER31
+
+        faults, header, faults_file = FAULTS31, HEADER31, "control_faults31.py"
     entries = []
-    for fault, lines, result in runs(FAULTS, args, run):
+    for fault, lines, result in runs(faults, args, run):
         succeeded = result.get("status") == 4 and result.get("error_code") == 0  # SUCCEEDED, SUCCESSFUL
         outcome, cause = label(fault, succeeded)
         if kept(fault.id, outcome, cause, NOMINAL):
             entries.append({
                 "id": f"kilted-control-{fault.id}",
                 "source": f"scripts/control_faults.py on ros2_control {args.version}",
-                "url": f"scripts/control_faults.py#{fault.id}", "distro": "kilted",
+                "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted",
                 "module": "control", "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
                 "logs_show_cause": not fault.silent or succeeded,
                 "notes": f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(HEADER.format(version=args.version) + "\n" + body, encoding="utf-8")
+    args.out.write_text(header.format(version=args.version) + "\n" + body, encoding="utf-8")
     return 0
 
 
