@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import faulthandler
 import os
 import signal
@@ -199,8 +200,11 @@ def _launch_follower(opts: ServeOptions) -> LaunchLogFollower | None:
 def _stacks_on_request() -> None:
     """`kill -USR1 PID` prints every thread's stack to stderr: a serve that will not end after SIGTERM (a DDS call
     that blocks) shows where, without a debugger on the robot."""
-    if threading.current_thread() is threading.main_thread() and hasattr(signal, "SIGUSR1"):
-        faulthandler.register(signal.SIGUSR1, all_threads=True, chain=False)
+    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGUSR1"):
+        return
+    # a stderr with no file behind it (the CLI run inside a test's capture) has nowhere to print them
+    with contextlib.suppress(AttributeError, OSError, ValueError):
+        faulthandler.register(signal.SIGUSR1, file=sys.stderr, all_threads=True, chain=False)
 
 
 @contextmanager
