@@ -103,6 +103,11 @@ class ModuleExplainer:
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         raise NotImplementedError
 
+    def decided(self, lines: list[LogLine]) -> Explanation | None:
+        """What a module reads from the whole window before any goal or catalogue line, whatever they say (none by
+        default)."""
+        return None
+
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
         """A module's reading of the lines before the goal that say why its decisive line happened."""
         return d
@@ -112,6 +117,9 @@ class ModuleExplainer:
         lines = before_shutdown(view.logs())  # what a stack prints as it is stopped explains nothing before
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
+        told = self.decided(lines)
+        if told is not None:
+            return phrase(self.model, self.name, question, self._facts(lines, told), told)
         run = focus(context, self.skills)
         step = context.task.skills[0] if len(context.task.skills) == 1 else None
         if derived_start(step) and step is not None:

@@ -12,8 +12,7 @@ from hexar.events.records import LogLine
 # explains what happened before. Launch's own line when Ctrl-C reaches it (launch_service.py, "user interrupted
 # with ctrl-c (SIGINT)"), and rclcpp's when a node gets SIGINT or SIGTERM (signal_handler.cpp,
 # "signal_handler(signum=%d)" from Galactic on, "signal_handler(signal_value=%d)" in Foxy), begin it.
-SHUTDOWN = re.compile(r"^(?:user interrupted with ctrl-c \(SIGINT\)"
-                      r"|signal_handler\((?:signum|signal_value)=(?:2|15)\))")
+CTRL_C = re.compile(r"^user interrupted with ctrl-c \(SIGINT\)")
 SIGNALLED = re.compile(r"^signal_handler\((?:signum|signal_value)=(?:2|15)\)")
 
 
@@ -24,6 +23,6 @@ def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
     decides by its place only when no node printed its own."""
     signalled = next((ln for ln in lines if SIGNALLED.match(ln.msg)), None)
     if signalled is not None:
-        return [ln for ln in lines if ln.t < signalled.t and not SHUTDOWN.match(ln.msg)]
-    stop = next((i for i, ln in enumerate(lines) if SHUTDOWN.match(ln.msg)), None)
+        return [ln for ln in lines if ln.t < signalled.t and not CTRL_C.match(ln.msg)]
+    stop = next((i for i, ln in enumerate(lines) if CTRL_C.match(ln.msg)), None)
     return lines if stop is None else lines[:stop]

@@ -37,8 +37,6 @@ from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer, verbatim
-from hexar.explainers.phrasing import phrase
-from hexar.explainers.shutdown import before_shutdown
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
@@ -81,15 +79,11 @@ class ControlExplainer(ModuleExplainer):
                     "under another name or namespace than the spawners looked for.")
         return self.candidates
 
-    def explain(self, question: str, context: Context) -> Explanation:
+    def decided(self, lines: list[LogLine]) -> Explanation | None:
         # spawners that asked for a controller manager that is not there loaded nothing, whatever else came up
         # (a start derived from the log would otherwise read the hardware's start as a bring-up that went fine)
-        lines = before_shutdown(context.view(self.topics).logs())
         found = other_manager(lines)
-        if found is not None:
-            told = spawners.answer(self.name, found)
-            return phrase(self.model, self.name, question, self._facts(lines, told), told)
-        return super().explain(question, context)
+        return spawners.answer(self.name, found) if found is not None else None
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]

@@ -30,15 +30,14 @@ class OtherManager:
 
 
 def other_manager(lines: list[LogLine]) -> OtherManager | None:
-    asked = next((ln for ln in lines if _ASKED.match(ln.msg)), None)
+    asked = next(((ln, m[1]) for ln in lines if (m := _ASKED.match(ln.msg))), None)
     if asked is None or any(ln.msg.startswith("Configured and activated") for ln in lines):
         return None  # a spawner that got its controllers up after all reached a manager
     started = next((ln for ln in lines if _STARTED.match(ln.msg) and ln.name.endswith("controller_manager")), None)
     if started is None:
         return None
-    wanted = _ASKED.match(asked.msg)[1]  # type: ignore[index]
-    running = "/" + started.name.replace(".", "/")
-    return OtherManager(wanted, running, asked, started) if wanted != running else None
+    (spawner, wanted), running = asked, "/" + started.name.replace(".", "/")
+    return OtherManager(wanted, running, spawner, started) if wanted != running else None
 
 
 def answer(explainer: str, found: OtherManager) -> Explanation:

@@ -231,9 +231,14 @@ def plan_failures(run: Run) -> list[LogLine]:
 ONE_ATTEMPT_S = 0.5
 
 
+def bursts(lines: list[LogLine], gap_s: float) -> int:
+    """How many bursts `lines` (oldest first) come in: a line more than `gap_s` after the one before starts one."""
+    return sum(1 for i, ln in enumerate(lines) if i == 0 or ln.t - lines[i - 1].t > gap_s * 1e9)
+
+
 def attempts(lines: list[LogLine]) -> int:
     """How many planning attempts `lines` (plan_failures, oldest first) come from."""
-    return sum(1 for i, ln in enumerate(lines) if i == 0 or ln.t - lines[i - 1].t > ONE_ATTEMPT_S * 1e9)
+    return bursts(lines, ONE_ATTEMPT_S)
 
 
 # tf2_ros's message-filter drop reasons that say a message was stamped before the transforms it needs (geometry2
@@ -358,14 +363,9 @@ def _clock_doubt(run: Run, early: LogLine, critic: list[LogLine]) -> Finding:
     return found
 
 
-# A controller at 10-20 Hz warns on every cycle while one thing stands in its way: warnings less than a second
-# apart are one obstacle event, not many.
+# A controller at 10-20 Hz warns on every cycle while one thing stands in its way: warnings up to a second apart
+# are one obstacle event, not many.
 ONE_EVENT_S = 1.0
-
-
-def events(lines: list[LogLine]) -> int:
-    """How many obstacle events the disturbance `lines` (oldest first) come from."""
-    return sum(1 for i, ln in enumerate(lines) if i == 0 or ln.t - lines[i - 1].t >= ONE_EVENT_S * 1e9)
 
 
 def disturbances(run: Run) -> list[LogLine]:
@@ -378,7 +378,7 @@ def moving_obstacles(run: Run) -> Finding | None:
     if run.outcome != "reached":
         return None
     warned = disturbances(run)
-    if events(warned) < 2:
+    if bursts(warned, ONE_EVENT_S) < 2:
         return None
     picks = sorted([*warned, *run.matching(_RETRIES)], key=lambda ln: ln.t)
     found = Finding(MOVING_OBSTACLES, [Evidence.of_log(MOVING_OBSTACLES, ln) for ln in picks[:8]])

@@ -32,7 +32,7 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
   `/amcl_pose` samples, or AMCL warnings.
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
 - navigation.moving_obstacles: the goal was reached after at least two transient obstacle events of the
-  controller (trajectories hitting obstacles, a collision check stopping it; warnings less than a second apart are
+  controller (trajectories hitting obstacles, a collision check stopping it; warnings up to a second apart are
   one event); one event, planner retries and recoveries alone are a slow run whose logs do not show what was in
   the way (reached.slow_retries).
 - navigation.nominal_speed: a clean successful run asked about speed or time: configured limit (from

@@ -32,7 +32,7 @@ def slow_retries(run: Run) -> Finding | None:
     # one obstacle event (moving_obstacles needs two): the controller's own line says it stopped for something
     warned = disturbances(run)
     gave_up = [ln for ln in run.matching(("Controller patience exceeded",))
-               if warned and ln.msg.startswith("Controller patience exceeded")]  # not the action server's echo
+               if ln.msg.startswith("Controller patience exceeded")] if warned else []  # not the server's echo
     if not plans and not stuck and not gave_up and len(behaviours) + len(clears) < 2:
         return None
     picks = warned[:1] + gave_up[:1] + stuck[:1] + plans[:2] + behaviours[:2] + clears[:1]
