@@ -32,14 +32,15 @@ from typing import Any
 
 import yaml
 from launch_runs import arguments, install, kept, run_launch, runs
-from nav2_world import BASE, GOAL, write_map
+from nav2_world import BASE, GOAL, WAYPOINTS, write_map
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
 NAV2 = ("map_server", "planner_server", "controller_server", "behavior_server", "bt_navigator")
 PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "controller_server": "nav2_controller",
             "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl",
-            "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor"}
+            "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor",
+            "waypoint_follower": "nav2_waypoint_follower"}
 # Nav2's own bring-up (nav2_bringup navigation_launch.py@kilted) when the velocity smoother is in the chain: the
 # controller and the behaviours publish cmd_vel_nav, the smoother turns it into cmd_vel_smoothed, and the collision
 # monitor (or, without one, the smoother's output remapped) gives the base its cmd_vel
@@ -68,6 +69,10 @@ class Fault:
     slow: bool = False  # a goal reached slowly on purpose: outcome "slow"
     chain: tuple[str, ...] = ()  # nodes between the controller and the base: velocity_smoother, collision_monitor
     unmapped: tuple[str, ...] = ()  # nodes of the chain started without their remapping (a launch file's slip)
+    servers: tuple[str, ...] = ()  # more Nav2 servers the launch starts (waypoint_follower)
+    unmanaged: tuple[str, ...] = ()  # of those, the ones left out of the lifecycle manager's node list
+    waypoints: tuple[tuple[float, float], ...] = ()  # sent to the waypoint follower instead of one goal
+    frame: str = "map"  # the frame the waypoints are given in
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -133,7 +138,8 @@ FAULTS = (
 
 def label(fault: Fault, reached: bool) -> tuple[str, str]:
     """The rule written before any run: a goal reached is 'succeeded' (or 'slow' for the run slowed on purpose)
-    with cause navigation.nominal, whatever the fault; a goal not reached is 'failed' with the fault's cause."""
+    with cause navigation.nominal, whatever the fault; a goal not reached is 'failed' with the fault's cause. A list
+    of waypoints (set 24) is reached when the follower succeeded and missed none of them."""
     if reached:
         return ("slow" if fault.slow else "succeeded"), NOMINAL
     return "failed", fault.cause
@@ -271,10 +277,11 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     base = {"x": START[0], "y": START[1], "map_image": str(map_yaml.with_suffix(".pgm")), **fault.base}
     if "boxes" in base:
         base["boxes"] = [float(v) for v in base["boxes"]]
-    stack = (*((NAV2[0], "amcl", *NAV2[1:]) if fault.amcl else NAV2), *fault.chain)
+    stack = (*((NAV2[0], "amcl", *NAV2[1:]) if fault.amcl else NAV2), *fault.chain, *fault.servers)
     if fault.amcl:
         base["publish_map_odom"] = False
-    manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*stack, *fault.missing], **fault.manager}
+    managed = [n for n in stack if n not in fault.unmanaged]
+    manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*managed, *fault.missing], **fault.manager}
     launch = work / "navigation.launch.py"
     launch.write_text(LAUNCH.format(params=str(params_file), base=base, manager=manager,
                                     nodes=[(n, PACKAGES[n], _remaps(fault, n)) for n in stack]), encoding="utf-8")
@@ -294,9 +301,13 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     goal's result."""
     launch, prefix = setup(fault, work)
     result_file = work / "goal.json"
-    argv = [*map(str, fault.goal), str(WAIT_S), str(RUN_S * (2 if fault.slow else 1)), str(result_file),
-            *map(str, fault.hit or ())]
-    return run_launch(launch, prefix, work, launch_path, (GOAL, argv), result_file, WAIT_S + 3 * RUN_S)
+    run_s = str(RUN_S * (2 if fault.slow else 1))
+    if fault.waypoints:
+        points = ";".join(f"{x},{y}" for x, y in fault.waypoints)
+        client = (WAYPOINTS, [points, fault.frame, str(WAIT_S), run_s, str(result_file)])
+    else:
+        client = (GOAL, [*map(str, fault.goal), str(WAIT_S), run_s, str(result_file), *map(str, fault.hit or ())])
+    return run_launch(launch, prefix, work, launch_path, client, result_file, WAIT_S + 3 * RUN_S)
 
 
 HEADER = """\
@@ -308,12 +319,18 @@ HEADER = """\
 """
 
 
+def _sent(fault: Fault) -> str:
+    if fault.waypoints:
+        return "Waypoints " + ", ".join(f"({x:g}, {y:g})" for x, y in fault.waypoints) + f" in frame {fault.frame}"
+    return f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g})"
+
+
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
-                             "rotation shim, the graceful controller, Theta*")
+                             "rotation shim, the graceful controller, Theta*; 24: the waypoint follower")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER
@@ -323,14 +340,15 @@ def main() -> int:
         faults, header = getattr(module, f"FAULTS{args.set}"), getattr(module, f"HEADER{args.set}")
     entries = []
     for fault, lines, result in runs(faults, args, run):
-        reached = result.get("status") == 4  # action_msgs/GoalStatus SUCCEEDED
+        # action_msgs/GoalStatus SUCCEEDED; a waypoint follower's success may still have missed waypoints
+        reached = result.get("status") == 4 and not result.get("missed")
         outcome, cause = label(fault, reached)
         if kept(fault.id, outcome, cause, NOMINAL):
             entries.append({
                 "id": f"kilted-nav2-{fault.id}", "source": f"scripts/nav2_faults.py on Nav2 {args.nav2_version}",
                 "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
                 "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
-                "notes": f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g}): {json.dumps(result)}.", "lines": lines})
+                "notes": f"{_sent(fault)}: {json.dumps(result)}.", "lines": lines})
     body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
     args.out.write_text(header.format(nav2=args.nav2_version) + "\n" + body, encoding="utf-8")
     return 0

@@ -200,3 +200,62 @@ if result['server']:
         result['status'] = done.result().status
 json.dump(result, open(out, 'w'))
 """
+
+# as a script of nav2_simple_commander's followWaypoints sends them: the waypoints, each with its orientation toward
+# the next, in one goal of the waypoint follower
+WAYPOINTS = """\
+import json
+import math
+import sys
+import time
+import rclpy
+from geometry_msgs.msg import PoseStamped
+from nav2_msgs.action import FollowWaypoints
+from rclpy.action import ActionClient
+from rclpy.node import Node
+from std_srvs.srv import Trigger
+
+points = [tuple(map(float, p.split(','))) for p in sys.argv[1].split(';')]
+frame, wait_s, run_s, out = sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+rclpy.init()
+node = Node('waypoint_sender')
+result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
+deadline = time.monotonic() + wait_s
+client = ActionClient(node, FollowWaypoints, 'follow_waypoints')
+result['server'] = client.wait_for_server(timeout_sec=wait_s)
+active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
+while time.monotonic() < deadline and not result['active']:
+    if active.wait_for_service(timeout_sec=1.0):
+        future = active.call_async(Trigger.Request())
+        rclpy.spin_until_future_complete(node, future, timeout_sec=2.0)
+        result['active'] = bool(future.result() and future.result().success)
+    if not result['active']:
+        time.sleep(1.0)
+if result['server']:
+    goal = FollowWaypoints.Goal()
+    for i, (x, y) in enumerate(points):
+        pose = PoseStamped()
+        pose.header.frame_id = frame
+        pose.pose.position.x, pose.pose.position.y = x, y
+        nx, ny = points[i + 1] if i + 1 < len(points) else (x + 1.0, y)
+        yaw = math.atan2(ny - y, nx - x)
+        pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+        goal.poses.append(pose)
+    sent = client.send_goal_async(goal)
+    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
+    handle = sent.result()
+    if handle is not None and handle.accepted:
+        result['accepted'] = True
+        began = time.monotonic()
+        done = handle.get_result_async()
+        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
+        result['seconds'] = round(time.monotonic() - began, 1)
+        if done.done():
+            res = done.result()
+            result['status'], result['error_code'] = res.status, res.result.error_code
+            result['error_msg'] = res.result.error_msg
+            result['missed'] = [[w.waypoint_index, w.error_code, w.error_msg] for w in res.result.missed_waypoints]
+        else:
+            rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
+json.dump(result, open(out, 'w'))
+"""
