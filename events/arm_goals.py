@@ -33,6 +33,7 @@ _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "e
 # ExecutionStatus::asString: SUCCEEDED, PREEMPTED, TIMED_OUT, ABORTED, FAILED, UNKNOWN, RUNNING)
 _EXECUTION_END = {"SUCCEEDED": "succeeded", "PREEMPTED": "canceled"}
 _SAME_END_NS = 1_000_000_000
+_REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"  # "Can't accept new action goals. ..."
 
 
 @dataclass
@@ -61,6 +62,8 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
         elif skill == FOLLOW and entry.cause == "control.tolerance_violated" and entry.strength == "strong" \
                 and line.msg.startswith("Aborted"):
             kind = "failed"  # the controller aborts the goal it was following
+        elif skill == FOLLOW and entry.id == _REFUSED:
+            kind = "failed"  # the controller refuses the goal it has just received: it is not active
         if kind in _BEGIN or kind in _END:
             return skill, ("begin" if kind in _BEGIN else kind)
     return None

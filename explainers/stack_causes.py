@@ -57,13 +57,29 @@ def uncaught(lines: Sequence[LogLine], before: int | None = None) -> LogLine | N
                       or python_exception(ln) is not None)), None)
 
 
+# CPython's FileNotFoundError text (strerror(ENOENT) with the path it was asked to open): a file the program was
+# pointed at, by an argument or a parameter, is not there
+_NO_FILE = re.compile(r"\[Errno 2\] No such file or directory: '(?P<path>[^']+)'")
+
+
+def _missing_file(exc: PyException) -> str | None:
+    """The path of a Python process's FileNotFoundError, or None for any other exception and for a device file
+    (/dev/ttyACM0 not there is a device unplugged or named wrong, which a file's path does not tell apart)."""
+    m = _NO_FILE.search(exc.text) if exc.name == "FileNotFoundError" else None
+    return m["path"] if m is not None and not m["path"].startswith("/dev/") else None
+
+
 def _configuration(line: LogLine, exc: PyException) -> bool:
     """A Python node's uncaught exception whose text the stack catalogue reads as a configuration error (rclpy's
     InvalidParameterTypeException: a parameter given a value of another type than the node declares; a setting rcl
-    refused). Read as printed, line breaks kept: a message of the catalogue may hold one (rmw_fastrtps' "…security
-    libraries\nPlease compile…"). A C++ one is left to the module catalogues, which read its what() in their words."""
+    refused), or a file it was given that is not there (its settings never reached it: ros2_control's spawner with
+    a --param-file that does not exist). Read as printed, line breaks kept: a message of the catalogue may hold one
+    (rmw_fastrtps' "…security libraries\nPlease compile…"). A C++ one is left to the module catalogues, which read
+    its what() in their words."""
     from hexar.explainers.stack.catalogue import stack_catalogue
 
+    if _missing_file(exc) is not None:
+        return True
     printed = line.msg.partition(f"\n{TRACEBACK}")[0]
     entry = stack_catalogue().match(printed) if exc.text else None
     return entry is not None and entry.cause == "stack.configuration_error"
@@ -272,6 +288,12 @@ def stack_words(cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, l
                 line)
     thrown = d.decisive.line if d.decisive is not None and d.decisive.note == "thrown" else None
     exc = python_exception(thrown) if thrown is not None else None
+    if cause == "bringup.configuration_error" and thrown and exc and (path := _missing_file(exc)) is not None:
+        return (f"{head} my settings never reached my node: a file one of my programs was given is not there "
+                f"('{path}'), and its process ended there ({thrown_words(thrown)}).",
+                "Give the program the file's right path (a relative path is read from the folder the launch was "
+                "started in: use the installed file's full path, e.g. from get_package_share_directory), or install "
+                "the file under that name.", line)
     if cause == "bringup.configuration_error" and thrown and exc and not _PARAMETER_TYPE.search(exc.text):
         setting, fix = refused_words(exc.text)
         return (f"{head} my settings never reached my node: {setting}, and its process ended there "

@@ -34,11 +34,14 @@ from hexar.explainers.control.description import description_reading, waited, wa
 from hexar.explainers.control.driver_roles import RoleReading, by_role
 from hexar.explainers.control.spawners import other_manager
 from hexar.explainers.control.wording import role_template, template
-from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, read
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer, verbatim
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
+ACTIVATION = "control.controller_activation_failed"
+# the joint trajectory controller's refusal of a goal while it is not active: it says that, never why
+REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
 
 
@@ -87,6 +90,20 @@ class ControlExplainer(ModuleExplainer):
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]
+
+    def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
+        """The trajectory controller refused the goal as not active, and before the goal (at the controllers' start)
+        the controller manager said why it could not activate it: that line is kept as the first support."""
+        if d.cause != ACTIVATION or d.decisive is None or d.decisive.entry is None or d.decisive.entry.id != REFUSED \
+                or context.window[0] <= 0:
+            return d
+        earlier = context.view(self.topics, (0, context.window[0] - 1)).logs()
+        # the controller manager's reason, not the spawner's "Failed to activate" that follows from it
+        why = [r for r in read(earlier, self.catalogues()) if r.cause == ACTIVATION
+               and (r.entry is None or (r.entry.id != REFUSED and r.entry.kind != "symptom"))]
+        if why and all(r.line is not why[0].line for r in d.support):
+            d.support = [why[0], *d.support][:3]
+        return d
 
     def refine(self, readings: list[Reading]) -> list[Reading]:
         return description_reading(readings)

@@ -2,7 +2,8 @@
 one fault each (held-out set 30, spent), written as recordings with rosbags, with and without a /task_info task:
 ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not type are read with their causes; the
 controller manager killed by SIGKILL is told as the death it was; spawners that asked for another controller
-manager are told with both names; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
+manager are told with both names; a spawner given a parameters file that is not there (set 31) is that file, not
+a death; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
 its pipe held back past launch's Ctrl-C line is still read."""
 
 from __future__ import annotations
@@ -17,8 +18,9 @@ from hexar.events import read_recording
 from tests.explainers.helpers import explain
 
 
-def _ask(tmp_path: Path, ident: str, task: bool) -> tuple[list[str], str, str]:
-    excerpt = next(e for e in load_excerpts("real-modules-heldout30") if e.id == f"kilted-control-{ident}")
+def _ask(tmp_path: Path, ident: str, task: bool, suite: str = "real-modules-heldout30"
+         ) -> tuple[list[str], str, str]:
+    excerpt = next(e for e in load_excerpts(suite) if e.id == f"kilted-control-{ident}")
     log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
     _, found = explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])
     return found.causes, found.text, " ".join(e.item for e in found.evidence)
@@ -34,10 +36,12 @@ def test_a_trajectory_followed_before_ctrl_c_quotes_no_shutdown_line(tmp_path: P
 def test_kilteds_unable_to_activate_line_is_an_activation_failure(tmp_path: Path, task: bool) -> None:
     # "Unable to activate controller 'arm_controller' since the command interface 'wrist_joint/position' is not
     # available." (fmt::format in controller_manager.cpp@kilted, logged through "%s")
-    causes, _, evidence = _ask(tmp_path, "jtc-unknown-joint", task)
+    causes, text, evidence = _ask(tmp_path, "jtc-unknown-joint", task)
     assert causes == ["control.controller_activation_failed"]
-    if task:  # a trajectory goal derived from the log opens its window after the spawner's activation
-        assert "since the command interface 'wrist_joint/position' is not available" in evidence
+    # a trajectory goal derived from the log opens its window after the spawner's activation: the controller
+    # manager's reason is read from before it, and the refused goal ends there, not with the recording
+    assert "since the command interface 'wrist_joint/position' is not available" in evidence
+    assert "recording ends" not in text
 
 
 def test_a_parameter_rclcpp_could_not_type_is_a_configuration_error(tmp_path: Path) -> None:
@@ -72,3 +76,14 @@ def test_a_tolerance_abort_the_pipe_printed_after_launchs_ctrl_c_line_is_still_r
     assert excerpt.lines.index("user interrupted with ctrl-c") < excerpt.lines.index("Aborted due to goal_time")
     causes, _, _ = _ask(tmp_path, "hardware-ignores-commands", False)
     assert causes == ["control.tolerance_violated"]
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_spawner_given_a_parameters_file_that_is_not_there_is_that_file_not_a_death(
+        tmp_path: Path, task: bool) -> None:
+    # spawner --param-file config/arm_controllers.yaml: "FileNotFoundError: [Errno 2] No such file or directory:
+    # 'config/arm_controllers.yaml'" from the spawner's own code, and launch's "process has died [... exit code 1"
+    causes, text, evidence = _ask(tmp_path, "spawner-param-file-missing", task, "real-modules-heldout31")
+    assert causes == ["bringup.configuration_error"]
+    assert read_claims(text).affirmed == {"bringup.configuration_error"}
+    assert "'config/arm_controllers.yaml'" in text and "No such file or directory" in evidence
