@@ -91,8 +91,11 @@ def run_launch(launch: Path, prefix: Path, work: Path, launch_path: list[Path], 
     env["ROS_DOMAIN_ID"] = str(220 + os.getpid() % 12)  # away from other ROS traffic (and tests) on this computer
     (work / "ros2_launch.py").write_text(RUNNER, encoding="utf-8")
     (work / "client.py").write_text(client[0], encoding="utf-8")
+    # a shell runs a command started with & with SIGINT ignored, and the launch would inherit that and never hear
+    # its Ctrl-C: its console would end in the SIGKILL a minute later instead of the stack's shutdown
     with subprocess.Popen([sys.executable, "ros2_launch.py", str(launch)], cwd=work, env=env, text=True,
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True) as proc:
+                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, start_new_session=True,
+                          preexec_fn=_default_sigint) as proc:
         sender = subprocess.run([sys.executable, "client.py", *client[1]], cwd=work, env=env, capture_output=True,
                                 text=True, timeout=timeout_s, check=False)
         time.sleep(2.0)
@@ -104,6 +107,10 @@ def run_launch(launch: Path, prefix: Path, work: Path, launch_path: list[Path], 
             out, _ = proc.communicate()
     result = json.loads(result_file.read_text()) if result_file.exists() else {"error": sender.stderr[-500:]}
     return out, result
+
+
+def _default_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
 
 
 Runner = Callable[[Any, Path, list[Path]], tuple[str, dict[str, Any]]]
