@@ -28,6 +28,7 @@ from hexar.explainers.stack.catalogue import clean
 Outcome = Literal["succeeded", "failed", "canceled", "unknown"]
 _SPACED = re.compile(r"[ \t]+([:;,])")
 _CODE = re.compile(r"\b[A-Z][A-Z_]{5,}\b")
+_NUMBER = re.compile(r"\d+(?:\.\d+)?")
 GENERIC = frozenset({"manipulation.planning_failed"})
 
 
@@ -42,6 +43,19 @@ class Refinement:
     source: str
     meaning: str = ""
     also: str = ""  # words the line must hold too: the library's name in a stack trace is no failure to load it
+    # a number the line must give, right after these words, and its least value: diff_drive_controller's command
+    # "older than the current time by 78786503.02 seconds" is another clock's, where 0.6 s may be a late message
+    number_after: str = ""
+    at_least: float = 0.0
+
+    def applies(self, text: str) -> bool:
+        if self.contains not in text or self.also not in text:
+            return False
+        if not self.number_after:
+            return True
+        _, found, rest = text.partition(self.number_after)
+        m = _NUMBER.match(rest) if found else None
+        return m is not None and float(m[0]) >= self.at_least
 
 
 @dataclass(frozen=True)
@@ -65,7 +79,8 @@ class ModuleCatalogue(Catalogue):
             self.name = name
             self.error_codes: dict[str, str] = {str(k): str(v) for k, v in (raw.get("error_codes") or {}).items()}
             self.refinements = tuple(Refinement(str(r["contains"]), str(r["cause"]), str(r["source"]),
-                                                str(r.get("meaning") or ""), str(r.get("also") or ""))
+                                                str(r.get("meaning") or ""), str(r.get("also") or ""),
+                                                str(r.get("number_after") or ""), float(r.get("at_least") or 0.0))
                                      for r in raw.get("refinements") or [])
             # kept from this one parse, so that no reader parses the file again for them
             self.mined: dict[str, Mined] = {
@@ -112,7 +127,7 @@ class ModuleCatalogue(Catalogue):
     def refinement(self, msg: str) -> Refinement | None:
         """The code-built text in the line, if any."""
         text = clean(msg)
-        return next((r for r in self.refinements if r.contains in text and r.also in text), None)
+        return next((r for r in self.refinements if r.applies(text)), None)
 
     def cause_of(self, msg: str, entry: Entry | None) -> str | None:
         """The cause a line states: a code-built text or an error-code name in it first, else its entry's."""
@@ -149,6 +164,7 @@ class Reading:
     cause: str | None
     catalogue: str | None  # the catalogue that recognised it
     note: str = ""  # what a code-built text in it means (a refinement's meaning)
+    refined: bool = False  # a code-built text in it states its cause, whatever its entry's strength
 
     @property
     def kind(self) -> str:
@@ -179,7 +195,8 @@ def read(lines: Iterable[LogLine], catalogues: Sequence[ModuleCatalogue]) -> lis
             cause = cat.cause_of(line.msg, entry)
             if entry is not None or cause is not None:
                 refined = cat.refinement(line.msg)
-                found = Reading(line, entry, cause, cat.name, refined.meaning if refined is not None else "")
+                found = Reading(line, entry, cause, cat.name, refined.meaning if refined is not None else "",
+                                refined is not None)
                 if cause is not None:
                     break
         out.append(found or Reading(line, None, None, None))

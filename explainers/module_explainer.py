@@ -236,7 +236,7 @@ class ModuleExplainer:
                                evidence=[Evidence.of_log(cause, ln) for ln in ends[:1] + ends[-1:]][:2])
         decisive = d.decisive
         assert decisive is not None
-        if d.outcome == "unknown" and not decisive.strong:
+        if d.outcome == "unknown" and not decisive.strong and not decisive.refined:
             return self._unsure(decisive, start)
         if decisive.entry is not None and decisive.entry.id in self.ambiguous and decisive.note == "":
             return self._candidates(decisive, self.ambiguous[decisive.entry.id], start, run)

@@ -101,4 +101,4 @@ def by_role(r: Reading, before: list[Reading]) -> RoleReading | None:
         return None
     if role.also_at_start and not any(b.kind in RUNNING_KINDS for b in before):
         role = _mined().role("start", tuple(f for f in role.functions if f in START))
-    return RoleReading(r.line, r.entry, role.cause, r.catalogue, role.meaning, role)
+    return RoleReading(r.line, r.entry, role.cause, r.catalogue, role.meaning, role=role)

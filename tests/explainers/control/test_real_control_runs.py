@@ -3,11 +3,14 @@ one fault each (held-out set 30, spent), written as recordings with rosbags, wit
 ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not type are read with their causes; the
 controller manager killed by SIGKILL is told as the death it was; spawners that asked for another controller
 manager are told with both names; a spawner given a parameters file that is not there (set 31) is that file, not
-a death; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
+a death; a mobile base's commands stamped by another clock (set 32) are the use_sim_time not set alike, and a
+controller that did not accept its parameters at init is set up wrongly; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
 its pipe held back past launch's Ctrl-C line is still read."""
 
 from __future__ import annotations
 
+import dataclasses
+import re
 from pathlib import Path
 
 import pytest
@@ -87,3 +90,38 @@ def test_a_spawner_given_a_parameters_file_that_is_not_there_is_that_file_not_a_
     assert causes == ["bringup.configuration_error"]
     assert read_claims(text).affirmed == {"bringup.configuration_error"}
     assert "'config/arm_controllers.yaml'" in text and "No such file or directory" in evidence
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_base_commands_stamped_by_another_clock_are_use_sim_time_not_the_same_everywhere(
+        tmp_path: Path, task: bool) -> None:
+    # set 32: a teleop on use_sim_time while an old recording's /clock played; diff_drive_controller: "Ignoring the
+    # received message (timestamp 1717236004.70...) because it is older than the current time by 78786503.02...
+    # seconds, which exceeds the allowed timeout (0.5000)"; and nothing else was wrong
+    causes, text, evidence = _ask(tmp_path, "base-sim-time-teleop", task, "real-modules-heldout32")
+    assert causes == ["bringup.configuration_error"]
+    assert read_claims(text).affirmed == {"bringup.configuration_error"}
+    assert "use_sim_time" in text and "older than the current time by 78786503" in evidence
+
+
+def test_base_commands_a_moment_late_are_no_clock_of_another_kind(tmp_path: Path) -> None:
+    # the same console with each command 0.6 s old, as a message late on a network or a clock a little off would
+    # be: nothing tells which, so no bringup cause is claimed from it
+    excerpt = next(e for e in load_excerpts("real-modules-heldout32") if e.id == "kilted-control-base-sim-time-teleop")
+    lines = re.sub(r"older than the current time by 787865\d\d\.\d+ seconds",
+                   "older than the current time by 0.6000000000 seconds", excerpt.lines)
+    assert lines != excerpt.lines
+    log = read_recording(write_recording(dataclasses.replace(excerpt, lines=lines), tmp_path / "run", task=True))
+    _, found = explain(log, "control", QUESTIONS["failed"])
+    assert "bringup.configuration_error" not in found.causes
+    assert "bringup.configuration_error" not in read_claims(found.text).affirmed
+
+
+def test_a_controller_that_did_not_accept_its_parameters_as_it_started_is_set_up_wrongly(tmp_path: Path) -> None:
+    # set 32: no wheel_radius, so diff_drive_controller's on_init printed to stderr "Exception thrown during init
+    # stage with message: parameter 'wheel_radius' could not be set: Parameter {wheel_radius} doesn't comply with
+    # floating point range."; after it only "Calling shutdown transition ... due to init failure."
+    causes, text, evidence = _ask(tmp_path, "base-radius-missing", True, "real-modules-heldout32")
+    assert causes == ["control.configuration_error"]
+    assert read_claims(text).affirmed == {"control.configuration_error"}
+    assert "wheel_radius" in evidence
