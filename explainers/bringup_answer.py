@@ -66,6 +66,8 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     from hexar.explainers.control.description import waited
     from hexar.explainers.module_explainer import verbatim
 
+    if run.state == "succeeded" and presumes_failure(question):
+        return _started_then(explainer, prefix, lines, t0)
     if run.state == "succeeded":
         warned = [ln for ln in lines if ln.level == WARN][:MAX_WARNED]
         came = [ln for ln in lines if completed(ln)]
@@ -91,6 +93,28 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     if clockless is not None:
         return _no_clock_answer(explainer, clockless, t0)
     return _under_way(explainer, prefix, lines, t0, question)
+
+
+def _started_then(explainer: str, prefix: str, lines: list[LogLine], t0: int) -> Explanation:
+    """Asked why something did not work, where the only task the logs give is a start that completed: the start is
+    told as it went, and what failed after it is said to be beyond what the logs show (a teleop's commands that never
+    matched the controller's topic leave no line), never that nothing went wrong."""
+    from hexar.explainers.module_explainer import verbatim
+
+    came = [ln for ln in lines if completed(ln)]
+    warned = [ln for ln in lines if ln.level == WARN and ln.t > (came[-1].t if came else t0)][:1]
+    cause = f"{prefix}unexplained_failure"
+    seen = (f" After it, the first warning was {verbatim(warned[0])} at {at(warned[0], t0)}, which healthy robots "
+            "print too." if warned else "")
+    return Explanation(
+        explainer=explainer, causes=[cause], confidence=0.3,
+        evidence=[Evidence.of_log(cause, ln) for ln in [*came[-1:], *warned]],
+        text="My drivers and controllers started: " + "; ".join(verbatim(ln) for ln in came[:MAX_QUOTED])
+             + ". My logs do not show what did not work after that: no error names it, and no goal of my "
+             f"controllers is in them.{seen}",
+        fix="Check what was asked of the robot after its start (a command that never reached a controller, on a "
+            "topic or of a message type it does not listen to, leaves no line), and record its goals or commands.",
+        details=[f"{len(came)} line(s) say a part of my start completed, and no error followed."])
 
 
 # controller_manager.cpp:3401-3403@jazzy (3409-3411@master), in update(): a WARN throttled to once a second while the

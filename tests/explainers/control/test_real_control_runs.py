@@ -1,11 +1,12 @@
-"""Whole consoles of the real ros2_control (its kilted branch, built here) that scripts/control_faults.py ran with
-one fault each (held-out set 30, spent), written as recordings with rosbags, with and without a /task_info task:
-ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not type are read with their causes; the
-controller manager killed by SIGKILL is told as the death it was; spawners that asked for another controller
-manager are told with both names; a spawner given a parameters file that is not there (set 31) is that file, not
-a death; a mobile base's commands stamped by another clock (set 32) are the use_sim_time not set alike, and a
-controller that did not accept its parameters at init is set up wrongly; the stack stopped with Ctrl-C is no warning of the motion, and a node's output
-its pipe held back past launch's Ctrl-C line is still read."""
+"""Whole consoles of the real ros2_control (its kilted branch, built here) that scripts/control_faults.py and
+scripts/base_faults.py ran with one fault each (held-out sets 30 to 32, spent), written as recordings with rosbags,
+with and without a /task_info task: ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not
+type are read with their causes; the controller manager killed by SIGKILL is told as the death it was; spawners that
+asked for another controller manager are told with both names; a spawner given a parameters file that is not there
+(set 31) is that file, not a death; a mobile base's commands stamped by another clock (set 32) are use_sim_time not
+set alike, a controller that did not accept its parameters at init is set up wrongly, and asked why it failed, a
+start that went fine is not told as nothing wrong; the stack stopped with Ctrl-C is no warning of the motion, and a
+node's output its pipe held back past launch's Ctrl-C line is still read."""
 
 from __future__ import annotations
 
@@ -125,3 +126,18 @@ def test_a_controller_that_did_not_accept_its_parameters_as_it_started_is_set_up
     assert causes == ["control.configuration_error"]
     assert read_claims(text).affirmed == {"control.configuration_error"}
     assert "wheel_radius" in evidence
+
+
+def test_asked_why_it_failed_a_start_that_went_fine_is_not_told_as_nothing_wrong(tmp_path: Path) -> None:
+    # set 32: the teleop sent geometry_msgs/Twist where diff_drive_controller listens for TwistStamped, so no command
+    # ever arrived, and nothing logs it; with no task the logs give only the start, which completed
+    causes, text, _ = _ask(tmp_path, "base-unstamped", False, "real-modules-heldout32")
+    assert causes == ["control.unexplained_failure"]
+    claims = read_claims(text).affirmed
+    assert "control.nominal" not in claims and "claim.all_fine" not in claims
+    assert "Successful 'activate' of hardware 'BaseSystem'" in text and "My logs do not show what" in text
+    # asked how it went, the same start is told as the start that went fine
+    excerpt = next(e for e in load_excerpts("real-modules-heldout32") if e.id == "kilted-control-base-unstamped")
+    log = read_recording(write_recording(excerpt, tmp_path / "how", task=False))
+    _, found = explain(log, "control", QUESTIONS["succeeded"])
+    assert found.causes == ["control.nominal"]
