@@ -303,10 +303,30 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     return [goal]
 
 
+# nav2_waypoint_follower (waypoint_follower.cpp:355-358@kilted): the task executor's verdict at a waypoint the
+# follower's NavigateToPose goal reached; a failed one leaves the waypoint's job undone, and the follower goes on
+_TASK_FAILED = re.compile(r"^Task execution at waypoint \d+ failed!?$")
+
+
+def _waypoint_tasks(goals: list[_Goal], logs: list[LogLine]) -> None:
+    """A goal that reached its waypoint, and whose waypoint task then failed (before the next goal began), ends
+    there as failed: the goal was one step of a waypoint follower's job, which it did not do."""
+    failures = [ln for ln in logs if _TASK_FAILED.match(ln.msg.strip())]
+    nexts: list[int | None] = [g.start for g in goals[1:]]
+    for goal, after in zip(goals, [*nexts, None][:len(goals)], strict=True):
+        if goal.state != "succeeded" or goal.end is None:
+            continue
+        told = next((ln for ln in failures if goal.end <= ln.t and (after is None or ln.t < after)), None)
+        if told is not None:
+            goal.end, goal.state, goal.error = told.t, "failed", told.msg
+
+
 def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[Task]:
     """One task per navigation goal, in time order; empty when the recording shows no Nav2 goal."""
     tasks = []
-    for order, goal in enumerate(_goals(logs, statuses, poses), start=1):
+    goals = _goals(logs, statuses, poses)
+    _waypoint_tasks(goals, logs)
+    for order, goal in enumerate(goals, start=1):
         params: dict[str, object] = {"source": SOURCE, "derived_from": goal.via}
         where = "an unrecorded goal"
         if goal.x is not None and goal.y is not None:

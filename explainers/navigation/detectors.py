@@ -18,7 +18,7 @@ from hexar.events import contract as c
 from hexar.events.log import View
 from hexar.events.records import ERROR, WARN, BoolSample, LogLine, PoseSample, StatusRecord
 from hexar.explainers.base import Evidence
-from hexar.explainers.navigation.catalogue import END_KINDS, REACHED, Entry, catalogue
+from hexar.explainers.navigation.catalogue import END_KINDS, GOAL_KINDS, REACHED, Entry, catalogue
 from hexar.explainers.navigation.diagnose import START_IN_OBSTACLE, TRANSFORM, Tagged
 from hexar.explainers.recorded import path_length
 
@@ -114,11 +114,16 @@ def summarise(tagged: list[tuple[LogLine, Entry | None]], poses: list[PoseSample
     lines = [ln for ln, _ in tagged]
     cat = catalogue()
 
-    def is_goal_line(line: LogLine, entry: Entry | None, kinds: frozenset[str]) -> bool:
-        return entry is not None and entry.kind in kinds and cat.role(line.name) in {"bt_navigator", None}
+    def goal_entry(line: LogLine, entry: Entry | None) -> Entry | None:
+        # Kilted's end line quotes the error, whose cause entry match() prefers: still the goal's end (a waypoint
+        # follower's goals end one after the other, and the last end is the one that counts)
+        if entry is None or entry.kind not in GOAL_KINDS:
+            entry = cat.goal(line.msg) if line.msg.startswith(("Goal ", "Navigation ", "Begin navigating")) else None
+        return entry if entry is not None and cat.role(line.name) in {"bt_navigator", None} else None
 
-    begins = [ln for ln, e in tagged if is_goal_line(ln, e, frozenset({"begin"}))]
-    ends = [(ln, e) for ln, e in tagged if is_goal_line(ln, e, END_KINDS)]
+    goals = [(ln, g) for ln, e in tagged if (g := goal_entry(ln, e)) is not None]
+    begins = [ln for ln, g in goals if g.kind == "begin"]
+    ends = [(ln, g) for ln, g in goals if g.kind in END_KINDS]
     end = ends[-1][0] if ends else None
     outcome: Outcome = "unknown"
     if ends:

@@ -51,11 +51,12 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, grids, held, mapsave, reached, states
+from hexar.explainers.navigation import chain, grids, held, mapsave, reached, states, waypoints
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
+from hexar.explainers.navigation.unmanaged import unmanaged
 from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.shutdown import before_shutdown
@@ -217,8 +218,8 @@ class NavigationExplainer:
             if found is not None:
                 return [chain.with_last_error(found, raw, run)]
         else:
-            problem = reached.reached_without_pose(run) or d.poor_localisation(run) or held.by_collision_monitor(run) \
-                or d.moving_obstacles(run) or reached.slow_retries(run)
+            problem = waypoints.tasks_failed(raw) or reached.reached_without_pose(run) or d.poor_localisation(run) \
+                or held.by_collision_monitor(run) or d.moving_obstacles(run) or reached.slow_retries(run)
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":
@@ -251,6 +252,8 @@ class NavigationExplainer:
                 if cause == g.BRINGUP:
                     specific = chain.config_specific((n.line, n.entry) for n in run.notes)
                     found = chain.bringup(before, None) if strength == "strong" and not specific else None
+                    if found is None and strength == "strong" and run.begin is None:
+                        found = unmanaged(before)  # no goal reached the navigator, and a server never came up
                 elif cause == g.COLLISION_AHEAD:
                     planned = next(iter(d.plan_failures(run)), None)
                     lines = [ln for ln in g.supporting(run.notes, cause, strength) if (progress is None

@@ -15,7 +15,7 @@ from hexar.claims import read_claims
 from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import grids, mapsave, states
+from hexar.explainers.navigation import grids, mapsave, states, waypoints
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -189,6 +189,24 @@ def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     return None
 
 
+def _waypoint_tasks(f: Finding) -> tuple[str, str | None, list[str]]:
+    """Trips that reached their waypoints, and the task at some of them that failed (explainers/navigation/
+    waypoints.py)."""
+    n = int(f.facts[waypoints.FACT])
+    reached, which = ("my waypoints", f"at {n} of them") if n > 1 else ("my waypoint", "there")
+    said = _said(f)
+    topic = next((x.removeprefix(waypoints.TOPIC_NOTE) for x in f.notes if x.startswith(waypoints.TOPIC_NOTE)), "")
+    if f.cause == g.CONFIGURATION and topic:
+        return (f"I reached {reached}, but the task {which} failed: taking a photo there needs an image from "
+                f"{topic}, and none came, so that task was misconfigured or my camera was not running. My "
+                f"waypoint follower said: {said}",
+                f"Point the photo task's image_topic at a topic the camera publishes (ros2 topic list), or start the "
+                f"camera; ros2 topic hz {topic} shows whether images come.", [])
+    return (f"I reached {reached}, but the task {which} failed, and my logs do not show why. The last error "
+            f"before it: {said}",
+            "Read the waypoint task executor plugin's own lines before the failure, and its parameters.", [])
+
+
 def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     said = _said(f)
     seen = [f"Nav2 said: {said}"] if said else []
@@ -198,6 +216,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return mapped
     if (unsaved := mapsave.template(f)) is not None:
         return unsaved
+    if waypoints.FACT in f.facts:
+        return _waypoint_tasks(f)
     if f.cause == g.START_IN_OBSTACLE:
         return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap, so "
                 "no plan could start from it.",
