@@ -32,7 +32,7 @@ from typing import Any
 
 import yaml
 from launch_runs import arguments, install, kept, run_launch, runs
-from nav2_world import BASE, GOAL, WAYPOINTS, write_map
+from nav2_world import BASE, GOAL, WAYPOINTS, write_map, write_mask
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
@@ -40,7 +40,11 @@ NAV2 = ("map_server", "planner_server", "controller_server", "behavior_server", 
 PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "controller_server": "nav2_controller",
             "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl",
             "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor",
-            "waypoint_follower": "nav2_waypoint_follower"}
+            "waypoint_follower": "nav2_waypoint_follower", "keepout_filter_mask_server": "nav2_map_server",
+            "keepout_costmap_filter_info_server": "nav2_map_server"}
+# nodes whose program has another name (nav2_bringup's keepout_zone_launch.py starts map_server as the mask's server)
+EXECUTABLES = {"keepout_filter_mask_server": "map_server",
+               "keepout_costmap_filter_info_server": "costmap_filter_info_server"}
 # Nav2's own bring-up (nav2_bringup navigation_launch.py@kilted) when the velocity smoother is in the chain: the
 # controller and the behaviours publish cmd_vel_nav, the smoother turns it into cmd_vel_smoothed, and the collision
 # monitor (or, without one, the smoother's output remapped) gives the base its cmd_vel
@@ -73,6 +77,8 @@ class Fault:
     unmanaged: tuple[str, ...] = ()  # of those, the ones left out of the lifecycle manager's node list
     waypoints: tuple[tuple[float, float], ...] = ()  # sent to the waypoint follower instead of one goal
     frame: str = "map"  # the frame the waypoints are given in
+    through: bool = False  # the waypoints go to bt_navigator's NavigateThroughPoses instead of the waypoint follower
+    keepout: tuple[tuple[float, float, float, float], ...] = ()  # keepout zones (x0, y0, x1, y1) of a filter mask
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -251,8 +257,8 @@ MANAGER = {manager!r}
 def generate_launch_description():
     actions = [Node(package='robot_base', executable='base_driver', name='base_driver', output='screen',
                     parameters=[BASE])]
-    for name, package, remaps in NODES:
-        actions.append(Node(package=package, executable=name, name=name, output='screen', parameters=[PARAMS],
+    for name, package, executable, remaps in NODES:
+        actions.append(Node(package=package, executable=executable, name=name, output='screen', parameters=[PARAMS],
                             remappings=remaps))
     actions.append(Node(package='nav2_lifecycle_manager', executable='lifecycle_manager',
                         name='lifecycle_manager_navigation', output='screen', parameters=[MANAGER]))
@@ -265,6 +271,8 @@ BROKEN = ("planner_server:\n  ros__parameters:\n    planner_plugins: [\"GridBase
 def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     """The fault's work folder: the map, the params file, the base as an installed program, the launch file."""
     map_yaml = write_map(work / "maps")
+    if fault.keepout:
+        write_mask(work / "maps", list(fault.keepout))
     for name, text in fault.files.items():
         (work / name).write_text(text, encoding="utf-8")
     params_file = work / "nav2_params.yaml"
@@ -284,7 +292,8 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     manager = {"autostart": True, "bond_timeout": 4.0, "node_names": [*managed, *fault.missing], **fault.manager}
     launch = work / "navigation.launch.py"
     launch.write_text(LAUNCH.format(params=str(params_file), base=base, manager=manager,
-                                    nodes=[(n, PACKAGES[n], _remaps(fault, n)) for n in stack]), encoding="utf-8")
+                                    nodes=[(n, PACKAGES[n], EXECUTABLES.get(n, n), _remaps(fault, n)) for n in stack]),
+                 encoding="utf-8")
     return launch, prefix
 
 
@@ -304,7 +313,8 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     run_s = str(RUN_S * (2 if fault.slow else 1))
     if fault.waypoints:
         points = ";".join(f"{x},{y}" for x, y in fault.waypoints)
-        client = (WAYPOINTS, [points, fault.frame, str(WAIT_S), run_s, str(result_file)])
+        client = (WAYPOINTS, [points, fault.frame, str(WAIT_S), run_s, str(result_file),
+                              *(["through"] if fault.through else [])])
     else:
         client = (GOAL, [*map(str, fault.goal), str(WAIT_S), run_s, str(result_file), *map(str, fault.hit or ())])
     return run_launch(launch, prefix, work, launch_path, client, result_file, WAIT_S + 3 * RUN_S)
@@ -321,16 +331,18 @@ HEADER = """\
 
 def _sent(fault: Fault) -> str:
     if fault.waypoints:
-        return "Waypoints " + ", ".join(f"({x:g}, {y:g})" for x, y in fault.waypoints) + f" in frame {fault.frame}"
+        points = ", ".join(f"({x:g}, {y:g})" for x, y in fault.waypoints)
+        return f"{'Poses through' if fault.through else 'Waypoints'} {points} in frame {fault.frame}"
     return f"Goal ({fault.goal[0]:g}, {fault.goal[1]:g})"
 
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
-                             "rotation shim, the graceful controller, Theta*; 24: the waypoint follower")
+                             "rotation shim, the graceful controller, Theta*; 24: the waypoint follower; 25: "
+                             "NavigateThroughPoses and keepout zones")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER

@@ -201,8 +201,28 @@ if result['server']:
 json.dump(result, open(out, 'w'))
 """
 
-# as a script of nav2_simple_commander's followWaypoints sends them: the waypoints, each with its orientation toward
-# the next, in one goal of the waypoint follower
+def write_mask(folder: Path, zones: list[tuple[float, float, float, float]]) -> Path:
+    """A keepout filter mask as nav2_bringup's keepout zones are drawn (a PGM and its YAML, trinary like the map):
+    each zone (x0, y0, x1, y1) black, the rest free."""
+    cols, rows = round(WIDTH_M / RESOLUTION), round(HEIGHT_M / RESOLUTION)
+    grid = [[254] * cols for _ in range(rows)]
+    for r in range(rows):
+        for c in range(cols):
+            x, y = (c + 0.5) * RESOLUTION, (r + 0.5) * RESOLUTION
+            if any(x0 <= x < x1 and y0 <= y < y1 for x0, y0, x1, y1 in zones):
+                grid[r][c] = 0
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "keepout_mask.pgm").write_bytes(f"P5\n{cols} {rows}\n255\n".encode()
+                                              + bytes(v for row in reversed(grid) for v in row))
+    yaml = folder / "keepout_mask.yaml"
+    yaml.write_text(f"image: keepout_mask.pgm\nmode: trinary\nresolution: {RESOLUTION}\norigin: [0.0, 0.0, 0.0]\n"
+                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n", encoding="utf-8")
+    return yaml
+
+
+# as a script of nav2_simple_commander's followWaypoints (or, with "through" after its arguments, goThroughPoses) sends
+# them: the waypoints, each with its orientation toward the next, in one goal of the waypoint follower (or of
+# bt_navigator's NavigateThroughPoses)
 WAYPOINTS = """\
 import json
 import math
@@ -210,18 +230,20 @@ import sys
 import time
 import rclpy
 from geometry_msgs.msg import PoseStamped
-from nav2_msgs.action import FollowWaypoints
+from nav2_msgs.action import FollowWaypoints, NavigateThroughPoses
 from rclpy.action import ActionClient
 from rclpy.node import Node
 from std_srvs.srv import Trigger
 
 points = [tuple(map(float, p.split(','))) for p in sys.argv[1].split(';')]
 frame, wait_s, run_s, out = sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+through = sys.argv[6:7] == ['through']
 rclpy.init()
 node = Node('waypoint_sender')
 result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
 deadline = time.monotonic() + wait_s
-client = ActionClient(node, FollowWaypoints, 'follow_waypoints')
+Action = NavigateThroughPoses if through else FollowWaypoints
+client = ActionClient(node, Action, 'navigate_through_poses' if through else 'follow_waypoints')
 result['server'] = client.wait_for_server(timeout_sec=wait_s)
 active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
 while time.monotonic() < deadline and not result['active']:
@@ -232,7 +254,7 @@ while time.monotonic() < deadline and not result['active']:
     if not result['active']:
         time.sleep(1.0)
 if result['server']:
-    goal = FollowWaypoints.Goal()
+    goal = Action.Goal()
     for i, (x, y) in enumerate(points):
         pose = PoseStamped()
         pose.header.frame_id = frame
@@ -240,7 +262,7 @@ if result['server']:
         nx, ny = points[i + 1] if i + 1 < len(points) else (x + 1.0, y)
         yaw = math.atan2(ny - y, nx - x)
         pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
-        goal.poses.append(pose)
+        (goal.poses.goals if through else goal.poses).append(pose)
     sent = client.send_goal_async(goal)
     rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
     handle = sent.result()
@@ -254,8 +276,11 @@ if result['server']:
             res = done.result()
             result['status'], result['error_code'] = res.status, res.result.error_code
             result['error_msg'] = res.result.error_msg
-            result['missed'] = [[w.waypoint_index, w.error_code, w.error_msg] for w in res.result.missed_waypoints]
+            statuses = res.result.waypoint_statuses if through else res.result.missed_waypoints
+            result['missed'] = [[w.waypoint_index, w.error_code, w.error_msg] for w in statuses
+                                if w.waypoint_status == w.FAILED]
         else:
             rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
 json.dump(result, open(out, 'w'))
 """
+
