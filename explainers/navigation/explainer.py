@@ -51,7 +51,7 @@ from hexar.events.log import View
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, grids, held, mapsave, reached, states, waypoints
+from hexar.explainers.navigation import chain, grids, held, keepout, mapsave, reached, states, waypoints
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -263,7 +263,9 @@ class NavigationExplainer:
                 elif cause == g.POOR_LOCALISATION:
                     found = d.poor_localisation(run) if strength == "strong" else None
                 elif cause == g.BLOCKED:
-                    found = d.blocked_path(run, strength)
+                    # a keepout mask that arrived between the plan and its failures is no obstacle in the way
+                    found = (keepout.mask_closed_way(run, before) if strength == "strong" else None) \
+                        or d.blocked_path(run, strength)
                 elif cause == g.NOT_REACHING_BASE:
                     found = held.stall(view, run) if strength == "strong" else None
                 else:
@@ -276,6 +278,8 @@ class NavigationExplainer:
                     lines = states.claimable(run.notes, cause, lines, before)
                     if lines:
                         found = d.Finding(cause, g.evidence(cause, lines))
+                    elif cause == g.START_IN_OBSTACLE and strength == "strong":
+                        found = keepout.spin_blocked_start(run)
                 if found is not None and found.cause == g.OFF_COSTMAP:
                     found = d.no_map_finding(found, before)
                 if found is not None:

@@ -15,7 +15,7 @@ from hexar.claims import read_claims
 from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import grids, mapsave, states, waypoints
+from hexar.explainers.navigation import grids, keepout, mapsave, states, waypoints
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -207,6 +207,30 @@ def _waypoint_tasks(f: Finding) -> tuple[str, str | None, list[str]]:
             "Read the waypoint task executor plugin's own lines before the failure, and its parameters.", [])
 
 
+def _keepout(f: Finding, place: str) -> tuple[str, str | None, list[str]] | None:
+    """Keepout zones and a start the robot could not leave (explainers/navigation/keepout.py)."""
+    said = _said(f)
+    if keepout.MASK_FACT in f.facts:
+        return (f"I couldn't reach {place}: my planner had a path, then my keepout filter received its zones and from "
+                "then on it found no way to the goal. That was no obstacle coming into my way: a keepout zone covers "
+                "the goal or closes the way to it, and my logs do not show which.",
+                "Check the keepout filter mask against the goal and the way to it (a goal inside a zone can never be "
+                "reached; leave a gap in the zones where the robot must pass).", [f"Nav2 said: {said}"])
+    if f.cause == g.START_IN_OBSTACLE and any(keepout.IN_ZONE in e.item for e in f.evidence):
+        return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap: I "
+                "stood inside a keepout zone, as my keepout filter said, and could not drive out of it.",
+                "Drive the robot out of the zone by hand, or take the zone off its place in the filter mask; check "
+                "that the mask is drawn on the same map as the robot's.", [f"Nav2 said: {said}"])
+    if keepout.SPIN_FACT in f.facts:
+        return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap: my "
+                "planner could not start a plan from where I stood, and a spin in place there could not even turn. "
+                "My logs do not show what put me there: an obstacle or a keepout zone under me, or a wrong position "
+                "estimate.",
+                "Check where the robot is on the map (its pose estimate) and what the global costmap shows under it "
+                "(an obstacle, a keepout zone of a filter mask, inflation).", [f"Nav2 said: {said}"])
+    return None
+
+
 def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[str]] | None:
     said = _said(f)
     seen = [f"Nav2 said: {said}"] if said else []
@@ -218,6 +242,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return unsaved
     if waypoints.FACT in f.facts:
         return _waypoint_tasks(f)
+    if (zoned := _keepout(f, place)) is not None:
+        return zoned
     if f.cause == g.START_IN_OBSTACLE:
         return (f"I couldn't reach {place} because my own start position was on occupied cells of my costmap, so "
                 "no plan could start from it.",
