@@ -61,6 +61,8 @@ class Fault:
     spawns: tuple[tuple[str, tuple[str, ...]], ...] = (("joint_state_broadcaster", ()), ("arm_controller", ()))
     chained: bool = False
     blocker: bool = False  # a forward_command_controller on the same joints' positions, declared beside them
+    goal_joints: tuple[str, ...] = ()  # the joints the trajectory names, when not the arm's (set 33)
+    describe_delay: float = 0.0  # seconds before the robot description is published (set 33)
 
 
 FAULTS = (
@@ -140,6 +142,7 @@ def params(fault: Fault) -> dict[str, Any]:
 
 DESCRIBE = """\
 import sys
+import time
 import rclpy
 from rclpy.executors import ExternalShutdownException
 from rclpy.qos import DurabilityPolicy, QoSProfile
@@ -149,6 +152,7 @@ rclpy.init()
 node = rclpy.create_node('robot_description_publisher')
 latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 pub = node.create_publisher(String, 'robot_description', latched)
+time.sleep(float(sys.argv[2]) if len(sys.argv) > 2 else 0.0)  # a description that comes late (set 33)
 pub.publish(String(data=open(sys.argv[1]).read()))
 node.get_logger().info('published the robot description')
 try:
@@ -178,8 +182,9 @@ if result['server']:
     time.sleep(1.0)  # as a script waits for the controller to be active, not only its server to exist
     goal = FollowJointTrajectory.Goal()
     goal.trajectory.joint_names = sys.argv[7].split(',')
+    n = len(goal.trajectory.joint_names)  # as many positions as joints named (a partial goal: fewer)
     for t, (a, b) in ((1, (0.5, -0.5)), (2, (1.0, -1.0))):
-        goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b], time_from_start=Duration(sec=t)))
+        goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b][:n], time_from_start=Duration(sec=t)))
     done = send_goal(node, client, goal, hit, hit[0] if hit else '', run_s, result)
     if done is not None:
         res = done.result()
@@ -200,13 +205,14 @@ DESCRIBE = {describe!r}
 MANAGER = {manager!r}
 SPAWNS = {spawns!r}
 CHAINED = {chained!r}
+DELAY = {delay!r}
 
 
 def generate_launch_description():
     actions = []
     if DESCRIBE:
         actions.append(Node(package='arm_description', executable='describe', name='robot_description_publisher',
-                            output='screen', arguments=[URDF]))
+                            output='screen', arguments=[URDF, str(DELAY)]))
     actions.append(Node(package='controller_manager', executable='ros2_control_node', output='screen',
                         parameters=[PARAMS]))
     before = None
@@ -232,7 +238,8 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     launch = work / "arm_control.launch.py"
     launch.write_text(LAUNCH.format(params=str(work / "arm_controllers.yaml"), urdf=str(work / "arm.urdf"),
                                     describe=fault.description, manager=fault.manager_arg,
-                                    spawns=[(n, list(a)) for n, a in fault.spawns], chained=fault.chained),
+                                    spawns=[(n, list(a)) for n, a in fault.spawns], chained=fault.chained,
+                                    delay=fault.describe_delay),
                  encoding="utf-8")
     return launch, prefix
 
@@ -243,7 +250,7 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     launch, prefix = setup(fault, work)
     result_file = work / "result.json"
     hit = [str(v) for v in fault.hit] if fault.hit else ["", "", ""]
-    argv = [str(WAIT_S), str(RUN_S), str(result_file), *hit, ",".join(JOINTS)]
+    argv = [str(WAIT_S), str(RUN_S), str(result_file), *hit, ",".join(fault.goal_joints or JOINTS)]
     return run_launch(launch, prefix, work, launch_path, (SEND, argv), result_file, WAIT_S + 3 * RUN_S)
 
 
@@ -260,9 +267,10 @@ HEADER = """\
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(30, 31), default=30,
+    parser.add_argument("--set", type=int, choices=(30, 31, 33), default=30,
                         help="30: controller types, interfaces, hardware, spawners, the description, a death; 31: "
-                             "limits, tolerances, a claimed interface, an inactive controller, the loop's rate")
+                             "limits, tolerances, a claimed interface, an inactive controller, the loop's rate; 33: "
+                             "the trajectory's joints, the loop's load, spawners twice or short of time")
     parser.add_argument("--version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header, faults_file = FAULTS, HEADER, "control_faults.py"
@@ -270,6 +278,10 @@ def main() -> int:
         from control_faults31 import FAULTS31, HEADER31
 
         faults, header, faults_file = FAULTS31, HEADER31, "control_faults31.py"
+    if args.set == 33:
+        from control_faults33 import FAULTS33, HEADER33
+
+        faults, header, faults_file = FAULTS33, HEADER33, "control_faults33.py"
     entries = []
     for fault, lines, result in runs(faults, args, run):
         succeeded = result.get("status") == 4 and result.get("error_code") == 0  # SUCCEEDED, SUCCESSFUL
