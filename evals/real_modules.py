@@ -73,6 +73,7 @@ HELDOUT29_SUITE = "real-modules-heldout29"  # and managed nodes, executors and t
 HELDOUT30_SUITE = "real-modules-heldout30"  # round 35: the real ros2_control run here, one fault each
 HELDOUT31_SUITE = "real-modules-heldout31"  # and a second, its spawners chained
 HELDOUT32_SUITE = "real-modules-heldout32"  # round 36: a mobile base on diff_drive_controller, and its teleop
+HELDOUT33_SUITE = "real-modules-heldout33"  # and the arm's trajectories, loop and spawners
 FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
          HELDOUT3_SUITE: "heldout3.yaml", HELDOUT4_SUITE: "heldout4.yaml",
          HELDOUT5_SUITE: "heldout5.yaml", HELDOUT6_SUITE: "heldout6.yaml",
@@ -89,7 +90,7 @@ FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "h
          HELDOUT26_SUITE: "heldout26.yaml", HELDOUT27_SUITE: "heldout27.yaml",
          HELDOUT28_SUITE: "heldout28.yaml", HELDOUT29_SUITE: "heldout29.yaml",
          HELDOUT30_SUITE: "heldout30.yaml", HELDOUT31_SUITE: "heldout31.yaml",
-         HELDOUT32_SUITE: "heldout32.yaml"}
+         HELDOUT32_SUITE: "heldout32.yaml", HELDOUT33_SUITE: "heldout33.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}
