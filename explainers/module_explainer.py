@@ -103,9 +103,9 @@ class ModuleExplainer:
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         raise NotImplementedError
 
-    def decided(self, lines: list[LogLine]) -> Explanation | None:
+    def decided(self, lines: list[LogLine], later: list[LogLine]) -> Explanation | None:
         """What a module reads from the whole window before any goal or catalogue line, whatever they say (none by
-        default)."""
+        default); `later` holds the recording's lines after the window, for what only came after it."""
         return None
 
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
@@ -117,7 +117,8 @@ class ModuleExplainer:
         lines = before_shutdown(view.logs())  # what a stack prints as it is stopped explains nothing before
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        told = self.decided(lines)
+        hi = context.window[1]
+        told = self.decided(lines, before_shutdown([ln for ln in context.log.logs if ln.t > hi]))
         if told is not None:
             return phrase(self.model, self.name, question, self._facts(lines, told), told)
         run = focus(context, self.skills)

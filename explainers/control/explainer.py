@@ -82,11 +82,15 @@ class ControlExplainer(ModuleExplainer):
                     "under another name or namespace than the spawners looked for.")
         return self.candidates
 
-    def decided(self, lines: list[LogLine]) -> Explanation | None:
+    def decided(self, lines: list[LogLine], later: list[LogLine]) -> Explanation | None:
         # spawners that asked for a controller manager that is not there loaded nothing, whatever else came up
         # (a start derived from the log would otherwise read the hardware's start as a bring-up that went fine)
         found = other_manager(lines)
-        return spawners.answer(self.name, found) if found is not None else None
+        if found is not None:
+            return spawners.answer(self.name, found)
+        # the robot description that came after the spawners gave up may lie after a window that ends with them
+        early = spawners.gave_up_early([*lines, *later])
+        return spawners.early_answer(self.name, early, lines[0].t) if early is not None else None
 
     def catalogues(self) -> list[ModuleCatalogue]:
         return [catalogue(), moveit_catalogue()]

@@ -1,8 +1,17 @@
-"""Spawners that asked for a controller manager other than the one that runs: the spawner's "Could not contact
-service /<manager>/list_controllers" (controller_manager/spawner.py, its service calls) names the manager it was
-given (`--controller-manager`, or its namespace), while a controller manager under another name logged its start.
-Nothing went wrong with the controllers: no request ever reached their manager, so the finding is a bring-up
-setting, told with both names."""
+"""Spawners that never reached their controller manager, for a bring-up setting.
+
+- Spawners that asked for a controller manager other than the one that runs: the spawner's "Could not contact
+  service /<manager>/list_controllers" (controller_manager/spawner.py, its service calls) names the manager it was
+  given (`--controller-manager`, or its namespace), while a controller manager under another name logged its start.
+  Nothing went wrong with the controllers: no request ever reached their manager, so the finding is a bring-up
+  setting, told with both names.
+- Spawners that gave up before their controller manager had its robot description: since Jazzy the controller
+  manager offers its services only once a description has arrived on its topic ("Waiting for data on
+  'robot_description' topic to finish initialization" until then, "Received robot description from topic." when one
+  does: controller_manager.cpp@kilted). A spawner that stopped waiting ("Could not contact service …") while the
+  manager still waited, with the description arriving after, gave up too early: a `--controller-manager-timeout`
+  shorter than the description's delay, or a description published late.
+"""
 
 from __future__ import annotations
 
@@ -38,6 +47,45 @@ def other_manager(lines: list[LogLine]) -> OtherManager | None:
         return None
     (spawner, wanted), running = asked, "/" + started.name.replace(".", "/")
     return OtherManager(wanted, running, spawner, started) if wanted != running else None
+
+
+_WAITING = re.compile(r"^Waiting for data on 'robot_description' topic to finish initialization")
+_RECEIVED = re.compile(r"^Received robot description (from topic|file)")
+
+
+@dataclass(frozen=True)
+class TooEarly:
+    spawner: LogLine  # the last spawner that gave up
+    waiting: LogLine  # the manager still waiting for its description just before
+    received: LogLine  # the description that came after
+
+
+def gave_up_early(lines: list[LogLine]) -> TooEarly | None:
+    """Every spawner gave up while the controller manager waited for its robot description, which came after."""
+    gave_up = [ln for ln in lines if _ASKED.match(ln.msg)]
+    if not gave_up or any(ln.msg.startswith("Configured and activated") for ln in lines):
+        return None
+    last = gave_up[-1]
+    waiting = next((ln for ln in reversed(lines) if _WAITING.match(ln.msg) and ln.t <= last.t), None)
+    received = next((ln for ln in lines if _RECEIVED.match(ln.msg) and ln.t > last.t), None)
+    if waiting is None or received is None or any(_RECEIVED.match(ln.msg) and ln.t <= last.t for ln in lines):
+        return None
+    return TooEarly(last, waiting, received)
+
+
+def early_answer(explainer: str, found: TooEarly, t0: int) -> Explanation:
+    late = (found.received.t - found.spawner.t) / 1e9
+    return Explanation(
+        explainer=explainer, causes=[CAUSE], confidence=0.8,
+        evidence=[Evidence.of_log(CAUSE, found.waiting), Evidence.of_log(CAUSE, found.spawner),
+                  Evidence.of_log(CAUSE, found.received)],
+        text=("Starting my controllers could not complete because a parameter never reached one of my nodes in "
+              f"time: my robot description came to my controller manager {late:.1f} s after my spawners gave up "
+              "on it, and until then the manager offered no service, so no controller was loaded."),
+        fix=("Publish the robot description before the spawners start (robot_state_publisher first), or give the "
+             "spawners a --controller-manager-timeout longer than the description's delay."),
+        details=[f"The last spawner gave up at {(found.spawner.t - t0) / 1e9:.1f} s; the description came at "
+                 f"{(found.received.t - t0) / 1e9:.1f} s."])
 
 
 def answer(explainer: str, found: OtherManager) -> Explanation:

@@ -1,12 +1,13 @@
 """Whole consoles of the real ros2_control (its kilted branch, built here) that scripts/control_faults.py and
-scripts/base_faults.py ran with one fault each (held-out sets 30 to 32, spent), written as recordings with rosbags,
+scripts/base_faults.py ran with one fault each (held-out sets 30 to 33, spent), written as recordings with rosbags,
 with and without a /task_info task: ros2_control 5.x's fmt-built activation line and a parameter rclcpp could not
 type are read with their causes; the controller manager killed by SIGKILL is told as the death it was; spawners that
 asked for another controller manager are told with both names; a spawner given a parameters file that is not there
-(set 31) is that file, not a death; a mobile base's commands stamped by another clock (set 32) are use_sim_time not
-set alike, a controller that did not accept its parameters at init is set up wrongly, and asked why it failed, a
-start that went fine is not told as nothing wrong; the stack stopped with Ctrl-C is no warning of the motion, and a
-node's output its pipe held back past launch's Ctrl-C line is still read."""
+(set 31) is that file, not a death; spawners that gave up before the description came (set 33) are told with its
+delay; a mobile base's commands stamped by another clock (set 32) are use_sim_time not set alike, a controller that
+did not accept its parameters at init is set up wrongly, and asked why it failed, a start that went fine is not told
+as nothing wrong; the stack stopped with Ctrl-C is no warning of the motion, and a node's output its pipe held back
+past launch's Ctrl-C line is still read."""
 
 from __future__ import annotations
 
@@ -141,3 +142,21 @@ def test_asked_why_it_failed_a_start_that_went_fine_is_not_told_as_nothing_wrong
     log = read_recording(write_recording(excerpt, tmp_path / "how", task=False))
     _, found = explain(log, "control", QUESTIONS["succeeded"])
     assert found.causes == ["control.nominal"]
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_spawners_that_gave_up_before_the_description_came_are_told_with_the_delay(
+        tmp_path: Path, task: bool) -> None:
+    # set 33: spawners with --controller-manager-timeout 2, the description published 8 s late: "Could not contact
+    # service /controller_manager/list_controllers" while the manager logged "Waiting for data on 'robot_description'
+    # topic", and "Received robot description from topic." after the last spawner died (outside a derived window)
+    causes, text, evidence = _ask(tmp_path, "spawner-timeout-short", task, "real-modules-heldout33")
+    assert causes == ["bringup.configuration_error"]
+    assert read_claims(text).affirmed == {"bringup.configuration_error"}
+    assert "after my spawners gave up" in text and "Received robot description from topic" in evidence
+
+
+def test_spawners_that_reached_their_manager_are_not_told_as_giving_up_early(tmp_path: Path) -> None:
+    # set 33's fault-free run: the description came first, the spawners loaded their controllers
+    causes, _, _ = _ask(tmp_path, "goal-nominal", True, "real-modules-heldout33")
+    assert causes == ["control.nominal"]
