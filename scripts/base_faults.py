@@ -27,8 +27,8 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from control_faults import CONFIG, DESCRIBE, NOMINAL
-from launch_runs import arguments, install, kept, run_launch, runs
+from control_faults import CONFIG, DESCRIBE, NOMINAL, entry
+from launch_runs import arguments, install, kept, run_launch, runs, write_set
 
 LAUNCH_ARG = "bringup.configuration_error"
 WHEELS = ("left_wheel_joint", "right_wheel_joint")
@@ -261,15 +261,9 @@ def main() -> int:
         succeeded = result.get("moved_m", 0.0) >= ENOUGH * DRIVE[0] * DRIVE[1]
         outcome, cause = label(fault, succeeded)
         if kept(fault.id, outcome, cause, NOMINAL):
-            entries.append({
-                "id": f"kilted-control-{fault.id}",
-                "source": f"scripts/base_faults.py on ros2_control {args.version}",
-                "url": f"scripts/base_faults.py#{fault.id}", "distro": "kilted",
-                "module": "control", "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
-                "logs_show_cause": not fault.silent or succeeded,
-                "notes": f"Teleop of {DRIVE[0]} m/s for {DRIVE[1]} s: {json.dumps(result)}.", "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(HEADER.format(version=args.version) + "\n" + body, encoding="utf-8")
+            entries.append(entry(fault, "base_faults.py", "base_faults.py", args.version, (outcome, cause), lines,
+                                 f"Teleop of {DRIVE[0]} m/s for {DRIVE[1]} s: {json.dumps(result)}."))
+    write_set(args.out, HEADER.format(version=args.version), entries)
     return 0
 
 

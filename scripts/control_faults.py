@@ -30,7 +30,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from launch_runs import HIT, arguments, install, kept, run_launch, runs
+from launch_runs import HIT, arguments, install, kept, run_launch, runs, write_set
 
 NOMINAL, LOAD, CONFIG = "control.nominal", "control.controller_load_failed", "control.configuration_error"
 HARDWARE, TOLERANCE = "control.hardware_failure", "control.tolerance_violated"
@@ -287,16 +287,20 @@ def main() -> int:
         succeeded = result.get("status") == 4 and result.get("error_code") == 0  # SUCCEEDED, SUCCESSFUL
         outcome, cause = label(fault, succeeded)
         if kept(fault.id, outcome, cause, NOMINAL):
-            entries.append({
-                "id": f"kilted-control-{fault.id}",
-                "source": f"scripts/control_faults.py on ros2_control {args.version}",
-                "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted",
-                "module": "control", "outcome": outcome, "cause": cause, "cause_quote": fault.quote,
-                "logs_show_cause": not fault.silent or succeeded,
-                "notes": f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}.", "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(header.format(version=args.version) + "\n" + body, encoding="utf-8")
+            entries.append(entry(fault, "control_faults.py", faults_file, args.version, (outcome, cause), lines,
+                                 f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}."))
+    write_set(args.out, header.format(version=args.version), entries)
     return 0
+
+
+def entry(fault: Any, script: str, faults_file: str, version: str, labelled: tuple[str, str], lines: str,
+          notes: str) -> dict[str, Any]:
+    """One run as a real_modules excerpt (a control fault's: its id, quote and silence)."""
+    outcome, cause = labelled
+    return {"id": f"kilted-control-{fault.id}", "source": f"scripts/{script} on ros2_control {version}",
+            "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "module": "control", "outcome": outcome,
+            "cause": cause, "cause_quote": fault.quote, "logs_show_cause": not fault.silent or outcome != "failed",
+            "notes": notes, "lines": lines}
 
 
 if __name__ == "__main__":

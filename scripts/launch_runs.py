@@ -19,6 +19,7 @@ from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
+import yaml
 from stack_faults import scrub as stack_scrub
 
 RUNNER = """\
@@ -157,3 +158,9 @@ def kept(fault_id: str, outcome: str, cause: str, nominal: str) -> bool:
         print(f"{fault_id}: a run with no fault failed, so no cause is known: left out", flush=True)
         return False
     return True
+
+
+def write_set(out: Path, header: str, entries: list[dict[str, Any]]) -> None:
+    """The data file: its header, then the kept runs as YAML."""
+    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
+    out.write_text(header + "\n" + body, encoding="utf-8")

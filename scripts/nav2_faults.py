@@ -31,7 +31,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from launch_runs import arguments, install, kept, run_launch, runs
+from launch_runs import arguments, install, kept, run_launch, runs, write_set
 from nav2_world import BASE, GOAL, WAYPOINTS, write_map, write_mask
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
@@ -361,8 +361,7 @@ def main() -> int:
                 "url": f"scripts/{faults_file}#{fault.id}", "distro": "kilted", "outcome": outcome, "cause": cause,
                 "cause_quote": fault.quote, "logs_show_cause": not fault.silent or reached,
                 "notes": f"{_sent(fault)}: {json.dumps(result)}.", "lines": lines})
-    body = yaml.safe_dump(entries, sort_keys=False, allow_unicode=True, width=120)
-    args.out.write_text(header.format(nav2=args.nav2_version) + "\n" + body, encoding="utf-8")
+    write_set(args.out, header.format(nav2=args.nav2_version), entries)
     return 0
 
 

@@ -163,7 +163,26 @@ except (KeyboardInterrupt, ExternalShutdownException):
     pass
 """
 
-GOAL = HIT + """\
+# the goal senders' wait, as a person waits for Nav2 to come up before clicking a goal in RViz: until the lifecycle
+# manager says its nodes are active, or the deadline
+WAIT_ACTIVE = """\
+def wait_active(node, deadline, result):
+    import time
+    import rclpy
+    from std_srvs.srv import Trigger
+    active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
+    while time.monotonic() < deadline and not result['active']:
+        if active.wait_for_service(timeout_sec=1.0):
+            future = active.call_async(Trigger.Request())
+            rclpy.spin_until_future_complete(node, future, timeout_sec=2.0)
+            result['active'] = bool(future.result() and future.result().success)
+        if not result['active']:
+            time.sleep(1.0)
+
+
+"""
+
+GOAL = HIT + WAIT_ACTIVE + """\
 import json
 import sys
 import time
@@ -171,7 +190,6 @@ import rclpy
 from nav2_msgs.action import NavigateToPose
 from rclpy.action import ActionClient
 from rclpy.node import Node
-from std_srvs.srv import Trigger
 
 x, y, wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
 hit = sys.argv[6:9]  # NODE SIGNAL SECONDS: something outside the stack does that to a node's process on the way
@@ -181,15 +199,7 @@ result = {'server': False, 'active': False, 'accepted': False, 'status': None, '
 deadline = time.monotonic() + wait_s
 client = ActionClient(node, NavigateToPose, 'navigate_to_pose')
 result['server'] = client.wait_for_server(timeout_sec=wait_s)
-active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
-while time.monotonic() < deadline and not result['active']:
-    # as a person waits for Nav2 to come up before clicking a goal in RViz
-    if active.wait_for_service(timeout_sec=1.0):
-        future = active.call_async(Trigger.Request())
-        rclpy.spin_until_future_complete(node, future, timeout_sec=2.0)
-        result['active'] = bool(future.result() and future.result().success)
-    if not result['active']:
-        time.sleep(1.0)
+wait_active(node, deadline, result)
 if result['server']:
     goal = NavigateToPose.Goal()
     goal.pose.header.frame_id = 'map'
@@ -223,7 +233,7 @@ def write_mask(folder: Path, zones: list[tuple[float, float, float, float]]) -> 
 # as a script of nav2_simple_commander's followWaypoints (or, with "through" after its arguments, goThroughPoses) sends
 # them: the waypoints, each with its orientation toward the next, in one goal of the waypoint follower (or of
 # bt_navigator's NavigateThroughPoses)
-WAYPOINTS = """\
+WAYPOINTS = WAIT_ACTIVE + """\
 import json
 import math
 import sys
@@ -233,7 +243,6 @@ from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import FollowWaypoints, NavigateThroughPoses
 from rclpy.action import ActionClient
 from rclpy.node import Node
-from std_srvs.srv import Trigger
 
 points = [tuple(map(float, p.split(','))) for p in sys.argv[1].split(';')]
 frame, wait_s, run_s, out = sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
@@ -245,14 +254,7 @@ deadline = time.monotonic() + wait_s
 Action = NavigateThroughPoses if through else FollowWaypoints
 client = ActionClient(node, Action, 'navigate_through_poses' if through else 'follow_waypoints')
 result['server'] = client.wait_for_server(timeout_sec=wait_s)
-active = node.create_client(Trigger, 'lifecycle_manager_navigation/is_active')
-while time.monotonic() < deadline and not result['active']:
-    if active.wait_for_service(timeout_sec=1.0):
-        future = active.call_async(Trigger.Request())
-        rclpy.spin_until_future_complete(node, future, timeout_sec=2.0)
-        result['active'] = bool(future.result() and future.result().success)
-    if not result['active']:
-        time.sleep(1.0)
+wait_active(node, deadline, result)
 if result['server']:
     goal = Action.Goal()
     for i, (x, y) in enumerate(points):
