@@ -13,9 +13,11 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
   parameters, a lifecycle transition that failed), transform_error (TF, clocks; also tf2/tf_help/message-filter
   lines of the mined stack catalogue; tf2_ros's routine INFO drops only on a goal that failed or stalled, or in
   numbers: filter.routine_drops), poor_localisation (AMCL covariance run, AMCL's own warnings), off_costmap
-  (the robot's start off the map), start_in_obstacle (the start on occupied cells), goal_unreachable (goal outside
-  the map or in lethal cost), docking_failure, blocked_path (DWB's obstacle critic before the controller gave up,
-  or a planner that had a path to this goal and lost it even after clearing its maps), collision_ahead (RPP's
+  (the robot's start off the map), start_in_obstacle (the start on occupied cells, a keepout zone's "Pose is in
+  keepout zone", or a spin that could not turn where the planner never planned: keepout.py), goal_unreachable
+  (goal outside the map or in lethal cost), docking_failure, blocked_path (DWB's obstacle critic before the
+  controller gave up, or a planner that had a path to this goal and lost it even after clearing its maps, unless the
+  keepout filter's first mask had just come: then the zones, told as such), collision_ahead (RPP's
   lookahead, the collision monitor, a behaviour's checker - but not a behaviour's "Collision Ahead" during the
   recoveries after no progress), controller_failure, commands_not_reaching_base (/cmd_vel commanding while
   /odom is still; never from logs alone).
@@ -31,6 +33,8 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
 - navigation.poor_localisation: mean(cov[0], cov[7]) or cov[35] above 0.2 for more than 5 consecutive
   `/amcl_pose` samples, or AMCL warnings.
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
+- a waypoint reached whose waypoint follower's task then failed is that task (waypoints.py); a Nav2 server started
+  but never configured is the node that never came up when no goal reached the navigator (unmanaged.py).
 - navigation.moving_obstacles: the goal was reached after at least two transient obstacle events of the
   controller (trajectories hitting obstacles, a collision check stopping it; warnings up to a second apart are
   one event); one event, planner retries and recoveries alone are a slow run whose logs do not show what was in
