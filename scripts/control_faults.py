@@ -146,14 +146,16 @@ import time
 import rclpy
 from rclpy.executors import ExternalShutdownException
 from rclpy.qos import DurabilityPolicy, QoSProfile
+from rclpy.utilities import remove_ros_args
 from std_msgs.msg import String
 
 rclpy.init()
 node = rclpy.create_node('robot_description_publisher')
 latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL)
 pub = node.create_publisher(String, 'robot_description', latched)
-time.sleep(float(sys.argv[2]) if len(sys.argv) > 2 else 0.0)  # a description that comes late (set 33)
-pub.publish(String(data=open(sys.argv[1]).read()))
+args = remove_ros_args(sys.argv)  # launch_ros appends --ros-args ... to a Node's arguments
+time.sleep(float(args[2]) if len(args) > 2 else 0.0)  # a description that comes late (set 33)
+pub.publish(String(data=open(args[1]).read()))
 node.get_logger().info('published the robot description')
 try:
     rclpy.spin(node)
