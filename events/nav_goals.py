@@ -48,8 +48,6 @@ def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]
     out: list[tuple[int, str, dict[str, object]]] = []
     nav2: bool | None = None
     for line in logs:
-        if not line.msg.startswith(("Begin navigating", "Goal ", "Navigation ")):
-            continue  # cheap: every goal line starts with one of these
         entry = cat.goal(line.msg)
         role = cat.role(line.name)
         if entry is None or entry.kind not in GOAL_KINDS or role not in {"bt_navigator", None}:
@@ -303,19 +301,17 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     return [goal]
 
 
-# nav2_waypoint_follower (waypoint_follower.cpp:355-358@kilted): the task executor's verdict at a waypoint the
-# follower's NavigateToPose goal reached; a failed one leaves the waypoint's job undone, and the follower goes on
-_TASK_FAILED = re.compile(r"^Task execution at waypoint \d+ failed!?$")
-
-
 def _waypoint_tasks(goals: list[_Goal], logs: list[LogLine]) -> None:
     """A goal that reached its waypoint, and whose waypoint task then failed (before the next goal began), ends
-    there as failed: the goal was one step of a waypoint follower's job, which it did not do."""
-    failures = [ln for ln in logs if _TASK_FAILED.match(ln.msg.strip())]
-    nexts: list[int | None] = [g.start for g in goals[1:]]
-    for goal, after in zip(goals, [*nexts, None][:len(goals)], strict=True):
+    there as failed: the goal was one step of a waypoint follower's job, which it did not do
+    (explainers/navigation/waypoints.py)."""
+    from hexar.explainers.navigation.waypoints import TASK_FAILED
+
+    failures = [ln for ln in logs if TASK_FAILED.match(ln.msg.strip())]
+    for i, goal in enumerate(goals):
         if goal.state != "succeeded" or goal.end is None:
             continue
+        after = goals[i + 1].start if i + 1 < len(goals) else None
         told = next((ln for ln in failures if goal.end <= ln.t and (after is None or ln.t < after)), None)
         if told is not None:
             goal.end, goal.state, goal.error = told.t, "failed", told.msg

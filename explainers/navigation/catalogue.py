@@ -21,6 +21,8 @@ from hexar.explainers.stack.catalogue import clean, unwrapped
 
 END_KINDS = frozenset({"succeeded", "failed", "canceled"})
 GOAL_KINDS = END_KINDS | {"begin"}
+# every goal line of bt_navigator starts with one of these, in every distro: a cheap test before the catalogue's
+GOAL_PREFIXES = ("Begin navigating", "Goal ", "Navigation ")
 # entries read by id: the controller server's "Reached the goal!" (controller_server.cpp:411@humble), which ends a
 # path it followed, and its "Unable to transform robot pose into global plan's frame" family
 REACHED = "ctrl.reached"
@@ -191,6 +193,8 @@ class Catalogue:
         """The entry of bt_navigator's goal begin or end line, when the message is one. match() prefers a cause's
         entry, and Kilted's end line quotes the error ("Goal failed error_code:203 error_msg:'... Start Coordinates
         of(...) was outside bounds'"): that is still the goal's end."""
+        if not msg.startswith(GOAL_PREFIXES):
+            return None
         text = clean(msg)
         return next((e for e in self._candidates(text) if e.kind in GOAL_KINDS and e.search(text)), None)
 

@@ -118,7 +118,7 @@ def summarise(tagged: list[tuple[LogLine, Entry | None]], poses: list[PoseSample
         # Kilted's end line quotes the error, whose cause entry match() prefers: still the goal's end (a waypoint
         # follower's goals end one after the other, and the last end is the one that counts)
         if entry is None or entry.kind not in GOAL_KINDS:
-            entry = cat.goal(line.msg) if line.msg.startswith(("Goal ", "Navigation ", "Begin navigating")) else None
+            entry = cat.goal(line.msg)
         return entry if entry is not None and cat.role(line.name) in {"bt_navigator", None} else None
 
     goals = [(ln, g) for ln, e in tagged if (g := goal_entry(ln, e)) is not None]
@@ -222,7 +222,7 @@ def poor_localisation(run: Run) -> Finding | None:
     return found
 
 
-_PLANNED = ("Passing new path to controller", "Received a goal, begin computing control effort")
+PLANNED = ("Passing new path to controller", "Received a goal, begin computing control effort")
 
 
 def plan_failures(run: Run) -> list[LogLine]:
@@ -343,7 +343,7 @@ def blocked_path(run: Run, strength: str = "strong") -> Finding | None:
     if planner and strength == "strong" and (early := stamped_early(run, planner[0].t)) is not None:
         return _clock_doubt(run, early, planner)
     failed = plan_failures(run)
-    planned = run.first(_PLANNED)
+    planned = run.first(PLANNED)
     if strength == "strong" and failed and planned is not None and planned.t < failed[0].t:
         planner = sorted({*planner, *failed}, key=lambda ln: ln.t)
     if not planner:

@@ -20,7 +20,7 @@ import re
 
 from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence
-from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run, plan_failures
+from hexar.explainers.navigation.detectors import PLANNED, UNEXPLAINED, Finding, Run, plan_failures
 from hexar.explainers.navigation.diagnose import START_IN_OBSTACLE
 
 # the filter's first mask; "New filter mask arrived … Updating old filter mask" is a zone server publishing again,
@@ -28,7 +28,6 @@ from hexar.explainers.navigation.diagnose import START_IN_OBSTACLE
 MASK = re.compile(r"KeepoutFilter: Received filter mask from")
 IN_ZONE = "KeepoutFilter: Pose is in keepout zone"
 SPIN_BLOCKED = "Collision Ahead - Exiting Spin"
-_PLANNED = ("Passing new path to controller", "Received a goal, begin computing control effort")
 MASK_LAG_NS = 5_000_000_000
 MASK_FACT = "keepout_mask"  # a finding's fact: the mask arrived between the plan and the planner's failures
 SPIN_FACT = "spin_blocked"  # a start_in_obstacle finding read from a spin that could not turn where it stood
@@ -40,7 +39,7 @@ def mask_closed_way(run: Run, before: list[LogLine]) -> Finding | None:
     goal's end: the filter's own lines are no navigation evidence of their own): told as the zones, neither cause
     claimed (the goal inside one, or one across the way)."""
     failed = plan_failures(run)
-    planned = run.first(_PLANNED)
+    planned = run.first(PLANNED)
     if run.outcome == "reached" or not failed or planned is None or planned.t >= failed[0].t:
         return None
     # a mask is in the costmap from its next update (1 Hz for nav2_bringup's global costmap): one received just
@@ -58,7 +57,7 @@ def mask_closed_way(run: Run, before: list[LogLine]) -> Finding | None:
 def spin_blocked_start(run: Run) -> Finding | None:
     """The planner never planned from where the robot stood, and the spin in place that followed hit something."""
     failed = plan_failures(run)
-    planned = run.first(_PLANNED)
+    planned = run.first(PLANNED)
     if not failed or (planned is not None and planned.t < failed[0].t):
         return None
     spin = next((ln for ln in run.lines if ln.msg.startswith(SPIN_BLOCKED) and ln.t > failed[0].t), None)
