@@ -33,7 +33,6 @@ _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "e
 # ExecutionStatus::asString: SUCCEEDED, PREEMPTED, TIMED_OUT, ABORTED, FAILED, UNKNOWN, RUNNING)
 _EXECUTION_END = {"SUCCEEDED": "succeeded", "PREEMPTED": "canceled"}
 _SAME_END_NS = 1_000_000_000
-_REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"  # "Can't accept new action goals. ..."
 
 
 @dataclass
@@ -48,6 +47,7 @@ class _Goal:
 
 def _kind(line: LogLine) -> tuple[str, str] | None:
     """(skill, kind) of a goal line in either catalogue, else None."""
+    from hexar.explainers.control.catalogue import REFUSED
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -62,7 +62,7 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
         elif skill == FOLLOW and entry.cause == "control.tolerance_violated" and entry.strength == "strong" \
                 and line.msg.startswith("Aborted"):
             kind = "failed"  # the controller aborts the goal it was following
-        elif skill == FOLLOW and entry.id == _REFUSED:
+        elif skill == FOLLOW and entry.id == REFUSED:
             kind = "failed"  # the controller refuses the goal it has just received: it is not active
         if kind in _BEGIN or kind in _END:
             return skill, ("begin" if kind in _BEGIN else kind)

@@ -103,22 +103,33 @@ class ModuleExplainer:
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
         raise NotImplementedError
 
-    def decided(self, lines: list[LogLine], later: list[LogLine]) -> Explanation | None:
+    def decided(self, lines: list[LogLine], context: Context) -> Explanation | None:
         """What a module reads from the whole window before any goal or catalogue line, whatever they say (none by
-        default); `later` holds the recording's lines after the window, for what only came after it."""
+        default); `context` gives the lines around the window (`lines_after`, `readings_before`)."""
         return None
 
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
         """A module's reading of the lines before the goal that say why its decisive line happened."""
         return d
 
+    def readings_before(self, context: Context) -> list[Reading]:
+        """The module's catalogues' reading of the recording's lines before the window (none when it starts the
+        recording)."""
+        if context.window[0] <= 0:
+            return []
+        return read(context.view(self.topics, (0, context.window[0] - 1)).logs(), self.catalogues())
+
+    @staticmethod
+    def lines_after(context: Context) -> list[LogLine]:
+        """The recording's lines after the window, up to where the stack began to shut down."""
+        return before_shutdown([ln for ln in context.log.logs if ln.t > context.window[1]])
+
     def explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)
         lines = before_shutdown(view.logs())  # what a stack prints as it is stopped explains nothing before
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
-        hi = context.window[1]
-        told = self.decided(lines, before_shutdown([ln for ln in context.log.logs if ln.t > hi]))
+        told = self.decided(lines, context)
         if told is not None:
             return phrase(self.model, self.name, question, self._facts(lines, told), told)
         run = focus(context, self.skills)

@@ -11,6 +11,10 @@ from functools import cache
 
 from hexar.explainers.logcause import ModuleCatalogue, load
 
+# the joint trajectory controller's refusal of a goal while it is not active ("Can't accept new action goals.
+# Controller is not running."): it ends the goal it refuses, and says that the controller is not active, never why
+REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"
+
 
 @cache
 def catalogue() -> ModuleCatalogue:

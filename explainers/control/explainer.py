@@ -29,19 +29,16 @@ from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control import spawners
-from hexar.explainers.control.catalogue import catalogue
+from hexar.explainers.control.catalogue import REFUSED, catalogue
 from hexar.explainers.control.description import description_reading, waited, waiting_answer
 from hexar.explainers.control.driver_roles import RoleReading, by_role
-from hexar.explainers.control.spawners import other_manager
 from hexar.explainers.control.wording import role_template, template
-from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, read
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
 from hexar.explainers.module_explainer import ModuleExplainer, verbatim
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 ACTIVATION = "control.controller_activation_failed"
-# the joint trajectory controller's refusal of a goal while it is not active: it says that, never why
-REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"
 SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
 
 
@@ -82,14 +79,16 @@ class ControlExplainer(ModuleExplainer):
                     "under another name or namespace than the spawners looked for.")
         return self.candidates
 
-    def decided(self, lines: list[LogLine], later: list[LogLine]) -> Explanation | None:
+    def decided(self, lines: list[LogLine], context: Context) -> Explanation | None:
         # spawners that asked for a controller manager that is not there loaded nothing, whatever else came up
         # (a start derived from the log would otherwise read the hardware's start as a bring-up that went fine)
-        found = other_manager(lines)
+        found = spawners.other_manager(lines)
         if found is not None:
             return spawners.answer(self.name, found)
+        if not spawners.gave_up(lines):
+            return None
         # the robot description that came after the spawners gave up may lie after a window that ends with them
-        early = spawners.gave_up_early([*lines, *later])
+        early = spawners.gave_up_early([*lines, *self.lines_after(context)])
         return spawners.early_answer(self.name, early, lines[0].t) if early is not None else None
 
     def catalogues(self) -> list[ModuleCatalogue]:
@@ -98,12 +97,10 @@ class ControlExplainer(ModuleExplainer):
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
         """The trajectory controller refused the goal as not active, and before the goal (at the controllers' start)
         the controller manager said why it could not activate it: that line is kept as the first support."""
-        if d.cause != ACTIVATION or d.decisive is None or d.decisive.entry is None or d.decisive.entry.id != REFUSED \
-                or context.window[0] <= 0:
+        if d.cause != ACTIVATION or d.decisive is None or d.decisive.entry is None or d.decisive.entry.id != REFUSED:
             return d
-        earlier = context.view(self.topics, (0, context.window[0] - 1)).logs()
         # the controller manager's reason, not the spawner's "Failed to activate" that follows from it
-        why = [r for r in read(earlier, self.catalogues()) if r.cause == ACTIVATION
+        why = [r for r in self.readings_before(context) if r.cause == ACTIVATION
                and (r.entry is None or (r.entry.id != REFUSED and r.entry.kind != "symptom"))]
         if why and all(r.line is not why[0].line for r in d.support):
             d.support = [why[0], *d.support][:3]

@@ -38,9 +38,15 @@ class OtherManager:
     manager: LogLine
 
 
+def gave_up(lines: list[LogLine]) -> bool:
+    """A spawner could not reach its controller manager, and none got its controllers up after all."""
+    return any(_ASKED.match(ln.msg) for ln in lines) and not any(
+        ln.msg.startswith("Configured and activated") for ln in lines)
+
+
 def other_manager(lines: list[LogLine]) -> OtherManager | None:
     asked = next(((ln, m[1]) for ln in lines if (m := _ASKED.match(ln.msg))), None)
-    if asked is None or any(ln.msg.startswith("Configured and activated") for ln in lines):
+    if asked is None or not gave_up(lines):
         return None  # a spawner that got its controllers up after all reached a manager
     started = next((ln for ln in lines if _STARTED.match(ln.msg) and ln.name.endswith("controller_manager")), None)
     if started is None:
@@ -62,10 +68,9 @@ class TooEarly:
 
 def gave_up_early(lines: list[LogLine]) -> TooEarly | None:
     """Every spawner gave up while the controller manager waited for its robot description, which came after."""
-    gave_up = [ln for ln in lines if _ASKED.match(ln.msg)]
-    if not gave_up or any(ln.msg.startswith("Configured and activated") for ln in lines):
+    if not gave_up(lines):
         return None
-    last = gave_up[-1]
+    last = [ln for ln in lines if _ASKED.match(ln.msg)][-1]
     waiting = next((ln for ln in reversed(lines) if _WAITING.match(ln.msg) and ln.t <= last.t), None)
     received = next((ln for ln in lines if _RECEIVED.match(ln.msg) and ln.t > last.t), None)
     if waiting is None or received is None or any(_RECEIVED.match(ln.msg) and ln.t <= last.t for ln in lines):

@@ -23,7 +23,7 @@ from typing import ClassVar
 
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.control.catalogue import catalogue as control_catalogue
-from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, read
+from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
 from hexar.explainers.manipulation.catalogue import catalogue
 from hexar.explainers.manipulation.wording import template
 from hexar.explainers.module_explainer import ModuleExplainer, focus
@@ -95,10 +95,9 @@ class ManipulationExplainer(ModuleExplainer):
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:
         """MoveIt found no controller for the goal's joints, and before the goal (at its start) its controller
         manager left one out for a field its settings lack: that line says why, and is kept as support."""
-        if d.cause != FOUND_NONE or d.decisive is None or d.decisive.note or context.window[0] <= 0:
+        if d.cause != FOUND_NONE or d.decisive is None or d.decisive.note:
             return d
-        earlier = context.view(self.topics, (0, context.window[0] - 1)).logs()
-        why = [r for r in read(earlier, self.catalogues()) if r.cause == FOUND_NONE and r.note]
+        why = [r for r in self.readings_before(context) if r.cause == FOUND_NONE and r.note]
         if not why:
             return d
         first = d.decisive
