@@ -1,7 +1,7 @@
-"""What scripts/nav2_faults.py and scripts/control_faults.py share to run a robot's bring-up with the real ros2launch
-and record its console: the runner program, a program installed as a package's executable (so launch_ros finds it
-through the ament index), the process kill a fault sends from outside, and one run (the launch, a client from
-outside it, Ctrl-C two seconds after the client's result)."""
+"""What scripts/nav2_faults.py, scripts/control_faults.py and scripts/base_faults.py share to run a robot's bring-up
+with the real ros2launch and record its console: the runner program, a program installed as a package's executable
+(so launch_ros finds it through the ament index), the process kill a fault sends from outside, one run (the launch,
+a client from outside it, Ctrl-C two seconds after the client's result), and the data file."""
 
 from __future__ import annotations
 
