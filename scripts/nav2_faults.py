@@ -32,7 +32,7 @@ from typing import Any
 
 import yaml
 from launch_runs import arguments, install, kept, run_launch, runs, write_set
-from nav2_world import BASE, GOAL, WAYPOINTS, write_map, write_mask
+from nav2_world import BASE, DOCK, GOAL, WAYPOINTS, write_map, write_mask
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
@@ -41,10 +41,11 @@ PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "
             "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl",
             "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor",
             "waypoint_follower": "nav2_waypoint_follower", "keepout_filter_mask_server": "nav2_map_server",
-            "keepout_costmap_filter_info_server": "nav2_map_server"}
+            "keepout_costmap_filter_info_server": "nav2_map_server", "docking_server": "opennav_docking"}
 # nodes whose program has another name (nav2_bringup's keepout_zone_launch.py starts map_server as the mask's server)
 EXECUTABLES = {"keepout_filter_mask_server": "map_server",
-               "keepout_costmap_filter_info_server": "costmap_filter_info_server"}
+               "keepout_costmap_filter_info_server": "costmap_filter_info_server",
+               "docking_server": "opennav_docking"}
 # Nav2's own bring-up (nav2_bringup navigation_launch.py@kilted) when the velocity smoother is in the chain: the
 # controller and the behaviours publish cmd_vel_nav, the smoother turns it into cmd_vel_smoothed, and the collision
 # monitor (or, without one, the smoother's output remapped) gives the base its cmd_vel
@@ -79,6 +80,7 @@ class Fault:
     frame: str = "map"  # the frame the waypoints are given in
     through: bool = False  # the waypoints go to bt_navigator's NavigateThroughPoses instead of the waypoint follower
     keepout: tuple[tuple[float, float, float, float], ...] = ()  # keepout zones (x0, y0, x1, y1) of a filter mask
+    dock_id: str = ""  # a DockRobot goal for this dock of the docking server's database instead of a goal
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -145,7 +147,8 @@ FAULTS = (
 def label(fault: Fault, reached: bool) -> tuple[str, str]:
     """The rule written before any run: a goal reached is 'succeeded' (or 'slow' for the run slowed on purpose)
     with cause navigation.nominal, whatever the fault; a goal not reached is 'failed' with the fault's cause. A list
-    of waypoints (set 24) is reached when the follower succeeded and missed none of them."""
+    of waypoints (set 24) is reached when the follower succeeded and missed none of them; a dock (set 26) when the
+    DockRobot goal succeeded."""
     if reached:
         return ("slow" if fault.slow else "succeeded"), NOMINAL
     return "failed", fault.cause
@@ -311,7 +314,9 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     launch, prefix = setup(fault, work)
     result_file = work / "goal.json"
     run_s = str(RUN_S * (2 if fault.slow else 1))
-    if fault.waypoints:
+    if fault.dock_id:
+        client = (DOCK, [fault.dock_id, str(WAIT_S), str(2 * RUN_S), str(result_file)])  # retries take their time
+    elif fault.waypoints:
         points = ";".join(f"{x},{y}" for x, y in fault.waypoints)
         client = (WAYPOINTS, [points, fault.frame, str(WAIT_S), run_s, str(result_file),
                               *(["through"] if fault.through else [])])
@@ -330,6 +335,8 @@ HEADER = """\
 
 
 def _sent(fault: Fault) -> str:
+    if fault.dock_id:
+        return f"DockRobot for dock {fault.dock_id}"
     if fault.waypoints:
         points = ", ".join(f"({x:g}, {y:g})" for x, y in fault.waypoints)
         return f"{'Poses through' if fault.through else 'Waypoints'} {points} in frame {fault.frame}"
@@ -338,11 +345,11 @@ def _sent(fault: Fault) -> str:
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
                              "rotation shim, the graceful controller, Theta*; 24: the waypoint follower; 25: "
-                             "NavigateThroughPoses and keepout zones")
+                             "NavigateThroughPoses and keepout zones; 26: the docking server")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER

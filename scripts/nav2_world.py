@@ -4,8 +4,10 @@ The base is a ROS 2 program (rclpy) that does what a robot's driver and a laser 
 velocity commands it receives, publishes odometry and the odom -> base_link transform at 20 Hz, a 360-beam laser
 scan at 10 Hz ray-cast on the map (and on boxes that appear once the robot has driven past a given x, seen by the
 laser only, as an object put in its way), and, as a localisation that is always right, map -> odom as a static
-transform. It prints one line when it is up, as a driver does. The goal sender is a separate program, as RViz's
-"Nav2 Goal" is: its output is not part of the console, only its result (written as JSON) is read.
+transform. Where a run has a charging dock, it also does what a dock's detector and a battery's driver do: the dock's
+pose as seen from the robot (detected_dock_pose) while the dock is in front of it, and the battery's state, charging
+while the robot stands on the dock. It prints one line when it is up, as a driver does. The goal sender is a separate
+program, as RViz's "Nav2 Goal" is: its output is not part of the console, only its result (written as JSON) is read.
 """
 
 from __future__ import annotations
@@ -48,12 +50,12 @@ import math
 import sys
 import numpy as np
 import rclpy
-from geometry_msgs.msg import TransformStamped, Twist, TwistStamped
+from geometry_msgs.msg import PoseStamped, TransformStamped, Twist, TwistStamped
 from nav_msgs.msg import Odometry
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile
-from sensor_msgs.msg import LaserScan
+from sensor_msgs.msg import BatteryState, LaserScan
 from tf2_msgs.msg import TFMessage
 
 BEAMS, RANGE_MIN, RANGE_MAX, STEP = 360, 0.12, 8.0, 0.025
@@ -96,6 +98,14 @@ class Base(Node):
         static.publish(TFMessage(transforms=fixed))
         self.create_timer(0.05, self.step)
         self.create_timer(0.1, self.publish_scan)
+        self.dock = value('dock', [0.0, 0.0, 0.0])  # the charging dock: x, y, and the robot's yaw on it
+        self.dock_frame = value('dock_frame', 'base_link')  # the frame the detector stamps its poses with
+        if value('detector', False):
+            self.detected = self.create_publisher(PoseStamped, 'detected_dock_pose', 10)
+            self.create_timer(0.1, self.publish_detection)
+        if value('battery', False):
+            self.battery = self.create_publisher(BatteryState, 'battery_state', 10)
+            self.create_timer(0.5, self.publish_battery)
         self.get_logger().info(f'base up at ({self.x:.2f}, {self.y:.2f}), listening on {topic}')
 
     def transform(self, stamp, parent, child, x, y, yaw):
@@ -153,6 +163,29 @@ class Base(Node):
         scan.scan_time, scan.range_min, scan.range_max = 0.1, RANGE_MIN, RANGE_MAX
         scan.ranges = [float(v) for v in ranges]
         self.scan.publish(scan)
+
+    def publish_detection(self):
+        # a camera looking ahead sees the dock within 2.5 m and 60 degrees of its heading, or right at it when docked
+        dx, dy = self.dock[0] - self.x, self.dock[1] - self.y
+        dist = math.hypot(dx, dy)
+        bearing = math.atan2(math.sin(math.atan2(dy, dx) - self.yaw), math.cos(math.atan2(dy, dx) - self.yaw))
+        if dist > 0.3 and (dist > 2.5 or abs(bearing) > math.radians(60)):
+            return
+        pose = PoseStamped()
+        pose.header.stamp, pose.header.frame_id = self.get_clock().now().to_msg(), self.dock_frame
+        c, s = math.cos(self.yaw), math.sin(self.yaw)
+        pose.pose.position.x, pose.pose.position.y = c * dx + s * dy, -s * dx + c * dy
+        rel = self.dock[2] - self.yaw
+        pose.pose.orientation.z, pose.pose.orientation.w = math.sin(rel / 2), math.cos(rel / 2)
+        self.detected.publish(pose)
+
+    def publish_battery(self):
+        state = BatteryState()
+        state.header.stamp = self.get_clock().now().to_msg()
+        docked = math.dist((self.x, self.y), self.dock[:2]) < 0.1
+        state.voltage, state.percentage, state.present = 24.0, 0.4, True
+        state.current = 1.5 if docked else -0.8  # charging on the dock's contacts, draining off them
+        self.battery.publish(state)
 
 
 rclpy.init(args=sys.argv)
@@ -286,3 +319,45 @@ if result['server']:
 json.dump(result, open(out, 'w'))
 """
 
+
+
+# as a script of nav2_simple_commander's dockRobotByID sends it: one DockRobot goal for a dock of the database, the
+# robot first driven to the dock's staging pose
+DOCK = WAIT_ACTIVE + """\
+import json
+import sys
+import time
+import rclpy
+from nav2_msgs.action import DockRobot
+from rclpy.action import ActionClient
+from rclpy.node import Node
+
+dock_id, wait_s, run_s, out = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
+rclpy.init()
+node = Node('dock_sender')
+result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
+deadline = time.monotonic() + wait_s
+client = ActionClient(node, DockRobot, 'dock_robot')
+result['server'] = client.wait_for_server(timeout_sec=wait_s)
+wait_active(node, deadline, result)
+if result['server']:
+    goal = DockRobot.Goal()
+    goal.use_dock_id, goal.dock_id, goal.navigate_to_staging_pose, goal.max_staging_time = True, dock_id, True, 1000.0
+    sent = client.send_goal_async(goal)
+    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
+    handle = sent.result()
+    if handle is not None and handle.accepted:
+        result['accepted'] = True
+        began = time.monotonic()
+        done = handle.get_result_async()
+        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
+        result['seconds'] = round(time.monotonic() - began, 1)
+        if done.done():
+            res = done.result()
+            result['status'], result['success'] = res.status, res.result.success
+            result['error_code'], result['error_msg'] = res.result.error_code, res.result.error_msg
+            result['num_retries'] = res.result.num_retries
+        else:
+            rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
+json.dump(result, open(out, 'w'))
+"""
