@@ -41,11 +41,15 @@ PACKAGES = {"map_server": "nav2_map_server", "planner_server": "nav2_planner", "
             "behavior_server": "nav2_behaviors", "bt_navigator": "nav2_bt_navigator", "amcl": "nav2_amcl",
             "velocity_smoother": "nav2_velocity_smoother", "collision_monitor": "nav2_collision_monitor",
             "waypoint_follower": "nav2_waypoint_follower", "keepout_filter_mask_server": "nav2_map_server",
-            "keepout_costmap_filter_info_server": "nav2_map_server", "docking_server": "opennav_docking"}
+            "keepout_costmap_filter_info_server": "nav2_map_server", "docking_server": "opennav_docking",
+            "ekf_filter_node": "robot_localization", "smoother_server": "nav2_smoother",
+            "speed_filter_mask_server": "nav2_map_server", "speed_costmap_filter_info_server": "nav2_map_server"}
 # nodes whose program has another name (nav2_bringup's keepout_zone_launch.py starts map_server as the mask's server)
 EXECUTABLES = {"keepout_filter_mask_server": "map_server",
                "keepout_costmap_filter_info_server": "costmap_filter_info_server",
-               "docking_server": "opennav_docking"}
+               "docking_server": "opennav_docking", "ekf_filter_node": "ekf_node",
+               "speed_filter_mask_server": "map_server",
+               "speed_costmap_filter_info_server": "costmap_filter_info_server"}
 # Nav2's own bring-up (nav2_bringup navigation_launch.py@kilted) when the velocity smoother is in the chain: the
 # controller and the behaviours publish cmd_vel_nav, the smoother turns it into cmd_vel_smoothed, and the collision
 # monitor (or, without one, the smoother's output remapped) gives the base its cmd_vel
@@ -81,6 +85,8 @@ class Fault:
     through: bool = False  # the waypoints go to bt_navigator's NavigateThroughPoses instead of the waypoint follower
     keepout: tuple[tuple[float, float, float, float], ...] = ()  # keepout zones (x0, y0, x1, y1) of a filter mask
     dock_id: str = ""  # a DockRobot goal for this dock of the docking server's database instead of a goal
+    speed: tuple[tuple[float, float, float, float], ...] = ()  # speed zones (x0, y0, x1, y1) of a speed filter mask
+    speed_percent: int = 100  # the robot's speed in them
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -276,6 +282,8 @@ def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     map_yaml = write_map(work / "maps")
     if fault.keepout:
         write_mask(work / "maps", list(fault.keepout))
+    if fault.speed:
+        write_mask(work / "maps", list(fault.speed), f"speed_mask_{fault.speed_percent}", fault.speed_percent)
     for name, text in fault.files.items():
         (work / name).write_text(text, encoding="utf-8")
     params_file = work / "nav2_params.yaml"
@@ -345,11 +353,12 @@ def _sent(fault: Fault) -> str:
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26, 27), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
                              "rotation shim, the graceful controller, Theta*; 24: the waypoint follower; 25: "
-                             "NavigateThroughPoses and keepout zones; 26: the docking server")
+                             "NavigateThroughPoses and keepout zones; 26: the docking server; 27: "
+                             "robot_localization's EKF, a speed filter, the smoother server")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER

@@ -77,6 +77,7 @@ class Base(Node):
         self.scale = value('speed_scale', 1.0)
         self.scan_frame = value('scan_frame', 'base_scan')  # the frame the laser stamps its scans with
         self.tf_until_m = value('tf_stop_after_m', 0.0)  # odom -> base_link stops once it drove this far (0: never)
+        self.odom_tf = value('publish_odom_tf', True)  # false where a filter (robot_localization) publishes it
         self.start_xy = (self.x, self.y)
         self.occupied = load_pgm(value('map_image', 'two_rooms.pgm'))
         self.resolution = value('resolution', 0.05)
@@ -134,7 +135,8 @@ class Base(Node):
         odom.pose.pose.orientation.z, odom.pose.pose.orientation.w = math.sin(self.yaw / 2), math.cos(self.yaw / 2)
         odom.twist.twist.linear.x, odom.twist.twist.angular.z = self.v, self.w
         self.odom.publish(odom)
-        if not self.tf_until_m or math.dist(self.start_xy, (self.x, self.y)) < self.tf_until_m:
+        far = self.tf_until_m and math.dist(self.start_xy, (self.x, self.y)) >= self.tf_until_m
+        if self.odom_tf and not far:
             self.tf.publish(TFMessage(transforms=[self.transform(stamp, 'odom', 'base_link', self.x, self.y,
                                                                  self.yaw)]))
 
@@ -244,22 +246,29 @@ if result['server']:
 json.dump(result, open(out, 'w'))
 """
 
-def write_mask(folder: Path, zones: list[tuple[float, float, float, float]]) -> Path:
-    """A keepout filter mask as nav2_bringup's keepout zones are drawn (a PGM and its YAML, trinary like the map):
-    each zone (x0, y0, x1, y1) black, the rest free."""
+def write_mask(folder: Path, zones: list[tuple[float, float, float, float]], name: str = "keepout_mask",
+               percent: int | None = None) -> Path:
+    """A costmap filter mask (a PGM and its YAML) as map_server serves it: a keepout mask as nav2_bringup's keepout
+    zones are drawn (trinary like the map), each zone (x0, y0, x1, y1) black and the rest free; or, with `percent`,
+    a speed mask as Nav2's speed-limit tutorial draws it (scale mode), each zone the value that a speed filter info
+    of base 100 and multiplier -1 reads as that percent of the robot's speed."""
     cols, rows = round(WIDTH_M / RESOLUTION), round(HEIGHT_M / RESOLUTION)
-    grid = [[254] * cols for _ in range(rows)]
+    # scale mode: occupancy (255 - pixel) / 255 as 0..100, so 100 - percent is the pixel's occupancy
+    pixel = 0 if percent is None else round(255 - (100 - percent) * 255 / 100)
+    grid = [[254 if percent is None else 255] * cols for _ in range(rows)]
     for r in range(rows):
         for c in range(cols):
             x, y = (c + 0.5) * RESOLUTION, (r + 0.5) * RESOLUTION
             if any(x0 <= x < x1 and y0 <= y < y1 for x0, y0, x1, y1 in zones):
-                grid[r][c] = 0
+                grid[r][c] = pixel
     folder.mkdir(parents=True, exist_ok=True)
-    (folder / "keepout_mask.pgm").write_bytes(f"P5\n{cols} {rows}\n255\n".encode()
-                                              + bytes(v for row in reversed(grid) for v in row))
-    yaml = folder / "keepout_mask.yaml"
-    yaml.write_text(f"image: keepout_mask.pgm\nmode: trinary\nresolution: {RESOLUTION}\norigin: [0.0, 0.0, 0.0]\n"
-                    "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.25\n", encoding="utf-8")
+    (folder / f"{name}.pgm").write_bytes(f"P5\n{cols} {rows}\n255\n".encode()
+                                         + bytes(v for row in reversed(grid) for v in row))
+    yaml = folder / f"{name}.yaml"
+    mode = ("mode: trinary\n", "occupied_thresh: 0.65\nfree_thresh: 0.25\n") if percent is None else (
+        "mode: scale\n", "occupied_thresh: 1.0\nfree_thresh: 0.0\n")
+    yaml.write_text(f"image: {name}.pgm\n{mode[0]}resolution: {RESOLUTION}\norigin: [0.0, 0.0, 0.0]\n"
+                    f"negate: 0\n{mode[1]}", encoding="utf-8")
     return yaml
 
 
