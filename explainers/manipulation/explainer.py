@@ -27,9 +27,9 @@ from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
 from hexar.explainers.manipulation.catalogue import catalogue
 from hexar.explainers.manipulation.wording import template
 from hexar.explainers.module_explainer import ModuleExplainer, focus
+from hexar.explainers.recorded import NAV_SKILLS
 
 SKILLS = ("pick", "place", "move_arm")
-NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
 REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "manipulation.goal_state_invalid"})
 FOUND_NONE = "manipulation.controllers_not_found"
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})

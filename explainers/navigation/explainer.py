@@ -52,10 +52,21 @@ from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
+from hexar.events.nav_goals import DOCK_SKILL, NO_GOAL_LINE
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
-from hexar.explainers.navigation import chain, grids, held, keepout, mapsave, reached, states, waypoints
+from hexar.explainers.navigation import (
+    chain,
+    docking,
+    grids,
+    held,
+    keepout,
+    mapsave,
+    reached,
+    states,
+    waypoints,
+)
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
@@ -63,13 +74,12 @@ from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noi
 from hexar.explainers.navigation.unmanaged import unmanaged
 from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
+from hexar.explainers.recorded import NAV_SKILLS
 from hexar.explainers.shutdown import before_shutdown
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
 
-NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose")
-NO_GOAL_LINE = "Nav2 log (no goal line)"  # events.nav_goals' `derived_from` for a goal inferred from activity
 MAX_FACT_LINES = 60
 
 
@@ -94,6 +104,8 @@ def _place(context: Context, lines: list[LogLine]) -> str:
     location = run.params.get("location") if run is not None else None
     if isinstance(location, str) and location:
         return f"the {location.replace('_', ' ')}"
+    if run is not None and run.skill == DOCK_SKILL:  # the trip a docking sent: to the dock's staging pose
+        return f"the staging pose of {run.params.get('dock') or 'my dock'}"
     if run is not None and run.params.get("source") == "nav2" and "x" in run.params and "y" in run.params:
         return f"the goal at ({run.params['x']:.2f}, {run.params['y']:.2f})"  # a goal derived from Nav2
     # A navigation that is no plan step (e.g. approaching a person) names its goal in the skill's own log.
@@ -213,8 +225,13 @@ class NavigationExplainer:
                 raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
+        docked = docking.dock_failed(raw)  # a docking that failed after (or without) the trip to its staging pose
+        if docked is not None:
+            return [docked]
         if run.outcome != "reached":
             found = self._failure(view, run, before)
+            if found is not None:
+                found = docking.staging(found, raw)
             if found is not None and inferred and run.outcome == "unknown":
                 # no goal, no end, no error: warnings alone do not show that anything failed (many a healthy robot
                 # prints them), so they are quoted, not read as a cause

@@ -15,7 +15,7 @@ from hexar.claims import read_claims
 from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import grids, keepout, mapsave, states, waypoints
+from hexar.explainers.navigation import docking, grids, keepout, mapsave, states, waypoints
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -240,6 +240,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return mapped
     if (unsaved := mapsave.template(f)) is not None:
         return unsaved
+    if (docked := docking.template(f)) is not None:
+        return docked
     if waypoints.FACT in f.facts:
         return _waypoint_tasks(f)
     if (zoned := _keepout(f, place)) is not None:

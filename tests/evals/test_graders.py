@@ -132,3 +132,14 @@ def test_a_log_line_quoted_verbatim_claims_nothing() -> None:
     assert read_claims(quoted).affirmed == frozenset()
     assert "tts.timeout" in read_claims("My sentence was cut off: my speech timed out.").affirmed
     assert "tts.timeout" in read_claims("I said “hello” but my speech timed out.").affirmed
+
+
+@pytest.mark.parametrize("text, charging", [
+    ("I was docked on my charger, so I could not drive.", True),
+    ("I stayed on my dock the whole time.", True),
+    # a docking that failed names the dock without claiming the robot was on it (blind Nav2 set 26's answers)
+    ("I didn't get onto my dock: my docking controller detected a collision ahead on its approach.", False),
+    ("My docking failed: the dock I was asked to go to, kitchen_dock, is not in my list of docks.", False),
+])
+def test_the_dock_of_a_docking_is_no_claim_of_charging(text: str, charging: bool) -> None:
+    assert ("navigation.charging" in read_claims(text).affirmed) is charging
