@@ -29,6 +29,8 @@ NAV_STATUS = "/navigate_to_pose/_action/status"
 # The maps the planner plans on: map_server's static map and the global costmap (Costmap2DPublisher's topic).
 MAP = "/map"
 GLOBAL_COSTMAP = "/global_costmap/costmap"
+# A keepout filter's mask, as nav2_bringup's keepout_zone_launch.py has map_server serve it (100 in a zone)
+KEEPOUT_MASK = "/keepout_filter_mask"
 # MoveIt's and the arm controllers' action statuses: arm tasks are derived from them (events/arm_goals.py).
 MOVE_ACTION_STATUS = "/move_action/_action/status"
 EXECUTE_TRAJECTORY_STATUS = "/execute_trajectory/_action/status"
@@ -96,6 +98,8 @@ CONTRACT: tuple[TopicSpec, ...] = (
     TopicSpec(GLOBAL_COSTMAP, GRID_TYPE, "header.frame_id, info.resolution/width/height/origin, data",
               "the planner's costmap as nav2_costmap_2d's publisher translates it: 100 lethal, 99 inscribed, 1-98 "
               "cost, 0 free, -1 unknown"),
+    TopicSpec(KEEPOUT_MASK, GRID_TYPE, "header.frame_id, info.resolution/width/height/origin, data",
+              "a keepout filter's mask (100 in a zone, 0 outside): whether a goal or the robot lay in a zone"),
     TopicSpec(MOVE_ACTION_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
               "MoveIt's MoveGroup (plan and execute) goals; arm tasks are derived from them"),
     TopicSpec(EXECUTE_TRAJECTORY_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
@@ -124,7 +128,7 @@ ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
 # The ordinary Nav2 topics: optional; another type under one of these names is skipped with a warning.
 NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
 # The grids a planner failure is checked on: optional like the ordinary Nav2 topics.
-GRID_TOPICS: frozenset[str] = frozenset({MAP, GLOBAL_COSTMAP})
+GRID_TOPICS: frozenset[str] = frozenset({MAP, GLOBAL_COSTMAP, KEEPOUT_MASK})
 # What deriving tasks from Nav2 goals reads (recordings without /task_info).
 NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})
 ARM_STATUS_TOPICS: frozenset[str] = frozenset({MOVE_ACTION_STATUS, EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})

@@ -1,16 +1,17 @@
 """The navigation explainer's answers: (sentence, fix, details) for each finding. Causes read from Nav2's own
 words are worded in wording.py; this module words the explainer's own findings (joystick, charging, an obstacle on
-the way, localisation, moving obstacles, a normal run) and the last honest fallback.
+the way, localisation, moving obstacles, a normal run), the last honest fallback, and a cause seen before a
+recording ended (unfinished).
 
 Sentences avoid the phrasings of other causes in hexar/causes.yaml, so the graders read exactly the cause found.
 """
 
 from __future__ import annotations
 
-from hexar.events.records import WARN
+from hexar.events.records import WARN, LogLine
 from hexar.explainers.navigation import detectors as d
+from hexar.explainers.navigation.wording import quotable, symptoms
 from hexar.explainers.navigation.wording import quote as _quote
-from hexar.explainers.navigation.wording import symptoms
 from hexar.explainers.navigation.wording import template as nav2_template
 
 
@@ -117,3 +118,30 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
             "Checks a person can make: that cmd_vel reaches the base (record /cmd_vel and /odom), that TF is fresh, "
             "and the planner's and controller's own logs at debug level." if failed else None,
             [f"The last navigation message was {_quote(run.end)}."] if run.end else [])
+
+
+def unfinished(text: str, place: str) -> str:
+    """A cause seen while the goal was still running when the recording ended (no end line, no task status):
+    what the logs show, without claiming the goal failed ("I couldn't reach … because …" or "…: my planner …")."""
+    for head, joint in ((f"I couldn't reach {place} because ", "my logs show a problem: "),
+                        (f"I couldn't reach {place}: ", "")):
+        if text.startswith(head):
+            what = text.removeprefix(head).removeprefix("of ")
+            return (f"The recording ends before my navigation to {place} finished, so it does not show whether I "
+                    f"got there; on the way {joint}{what}")
+    return text
+
+
+def unread(raw: list[LogLine]) -> str:
+    """Why there is nothing to tell: no line at all, or only lines the filter does not read (a message filter's
+    drops on no failed goal, a costmap filter's chatter), the first of which is quoted when it reads as no cause,
+    so the answer never says that nothing was recorded while a line was."""
+    if not raw:
+        return "Nothing from my navigation system was recorded then."
+    first = next((ln for ln in raw if ln.level >= WARN), raw[0])
+    msg = " ".join(first.msg.split())
+    who = first.speaker
+    head = "My navigation logged only lines I do not read as a goal or a cause then"
+    if not quotable(msg) or len(msg) > 240:
+        return f"{head} (the first from {who})."
+    return f"{head}, such as this one from {who}: '{msg}'."

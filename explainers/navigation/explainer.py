@@ -70,9 +70,9 @@ from hexar.explainers.navigation import (
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
+from hexar.explainers.navigation.answers import unfinished, unread
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
 from hexar.explainers.navigation.unmanaged import unmanaged
-from hexar.explainers.navigation.wording import quotable
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import NAV_SKILLS
 from hexar.explainers.shutdown import before_shutdown
@@ -141,7 +141,8 @@ class NavigationExplainer:
 
     name: ClassVar[str] = "navigation"
     topics: ClassVar[frozenset[str]] = frozenset({c.ROSOUT, c.AMCL_POSE, c.JOY_PRIORITY, c.IS_CHARGING,
-                                                  c.DIAGNOSTICS, c.CMD_VEL, c.ODOM, c.MAP, c.GLOBAL_COSTMAP})
+                                                  c.DIAGNOSTICS, c.CMD_VEL, c.ODOM, c.MAP, c.GLOBAL_COSTMAP,
+                                                  c.KEEPOUT_MASK})
     description: ClassVar[str] = (
         "Explains the robot's movement between places (Nav2 navigation): why it could not reach a location "
         "(path blocked by an obstacle, joystick/manual mode holding the base, plugged into the charger, "
@@ -200,7 +201,7 @@ class NavigationExplainer:
             unsaved = None if came_up else mapsave.map_not_saved(raw)
             quoted = came_up or unsaved or chain.with_last_error(d.Finding(d.UNEXPLAINED), raw, run)
             if not quoted.notes:
-                return Explanation.not_enough(self.name, _unread(raw))
+                return Explanation.not_enough(self.name, unread(raw))
             findings = [quoted]
         until = run.end.t if run.end is not None else window[1]
         before = before_shutdown([ln for ln in context.log.logs if ln.t <= until])
@@ -285,7 +286,7 @@ class NavigationExplainer:
                     found = d.poor_localisation(run) if strength == "strong" else None
                 elif cause == g.BLOCKED:
                     # a keepout mask that arrived between the plan and its failures is no obstacle in the way
-                    found = (keepout.mask_closed_way(run, before) if strength == "strong" else None) \
+                    found = (keepout.mask_closed_way(view, run, before) if strength == "strong" else None) \
                         or d.blocked_path(run, strength)
                 elif cause == g.NOT_REACHING_BASE:
                     found = held.stall(view, run) if strength == "strong" else None
@@ -323,7 +324,8 @@ class NavigationExplainer:
                 found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
             return found
         plans = d.plan_failures(run)
-        mapped = grids.read_grids(view, run, plans[0]) if plans else None
+        # a recorded keepout mask with the goal (or the robot) in a zone, else the recorded costmap and map
+        mapped = (keepout.in_zone(view, run, plans[0]) or grids.read_grids(view, run, plans[0])) if plans else None
         if mapped is not None and grids.FREE_WAY not in mapped.facts:
             return _ended(mapped, run)  # the recorded grids say which of the candidates it was
         if plans:
@@ -353,7 +355,7 @@ class NavigationExplainer:
         details: list[str] = []
         for f in findings:
             text, fix, more = _template(f, place, run)
-            texts.append(_unfinished(text, place) if run.outcome == "unknown" else text)
+            texts.append(unfinished(text, place) if run.outcome == "unknown" else text)
             if fix:
                 fixes.append(fix)
             details += more
@@ -386,30 +388,3 @@ def _ended(found: d.Finding, run: d.Run) -> d.Finding:
     if run.end is not None and run.outcome == "failed" and all(e.t != run.end.t for e in found.evidence):
         found.evidence.append(Evidence.of_log(found.cause, run.end))
     return found
-
-
-def _unfinished(text: str, place: str) -> str:
-    """A cause seen while the goal was still running when the recording ended (no end line, no task status):
-    what the logs show, without claiming the goal failed ("I couldn't reach … because …" or "…: my planner …")."""
-    for head, joint in ((f"I couldn't reach {place} because ", "my logs show a problem: "),
-                        (f"I couldn't reach {place}: ", "")):
-        if text.startswith(head):
-            what = text.removeprefix(head).removeprefix("of ")
-            return (f"The recording ends before my navigation to {place} finished, so it does not show whether I "
-                    f"got there; on the way {joint}{what}")
-    return text
-
-
-def _unread(raw: list[LogLine]) -> str:
-    """Why there is nothing to tell: no line at all, or only lines the filter does not read (a message filter's
-    drops on no failed goal, a costmap filter's chatter), the first of which is quoted when it reads as no cause,
-    so the answer never says that nothing was recorded while a line was."""
-    if not raw:
-        return "Nothing from my navigation system was recorded then."
-    first = next((ln for ln in raw if ln.level >= WARN), raw[0])
-    msg = " ".join(first.msg.split())
-    who = first.speaker
-    head = "My navigation logged only lines I do not read as a goal or a cause then"
-    if not quotable(msg) or len(msg) > 240:
-        return f"{head} (the first from {who})."
-    return f"{head}, such as this one from {who}: '{msg}'."

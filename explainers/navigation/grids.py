@@ -124,7 +124,8 @@ def _evidence(cause: str, grid: Grid, what: str) -> Evidence:
                          f"{grid.frame or 'unnamed'}, {_where(grid)}): {what}")
 
 
-def _found(cause: str, sentence: str, grid: Grid, what: str, failed: LogLine) -> Finding:
+def found(cause: str, sentence: str, grid: Grid, what: str, failed: LogLine) -> Finding:
+    """A finding read from `grid` (FACT): the sentence the answer gives, the line that failed and the grid's cell."""
     return Finding(cause, [Evidence.of_log(cause, failed), _evidence(cause, grid, what)], {FACT: 1.0}, [sentence])
 
 
@@ -154,13 +155,13 @@ def read_grids(view: View, run: Run, failed: LogLine) -> Finding | None:
                if map_cells is not None else "")
         where = ("was on an obstacle" if start_value >= LETHAL else
                  "was inside an obstacle's inflated border, closer to it than my robot's radius,")
-        return _found(g.START_IN_OBSTACLE,
+        return found(g.START_IN_OBSTACLE,
                       f"my own start position {where} in {name} (at {start.text()}), so my planner could not start "
                       f"a plan from there.{why}",
                       grid, f"my position {start.text()} on a cell of value {start_value}", failed)
     goal_value = grid.value(goal.x, goal.y, cells)
     if goal_value is None:
-        return _found(g.GOAL_UNREACHABLE,
+        return found(g.GOAL_UNREACHABLE,
                       f"my goal lies outside {name} (the goal is at {goal.text()}; it covers {_where(grid)}), so no "
                       "plan can reach it.", grid, f"the goal {goal.text()} outside the grid", failed)
     if _blocked(goal_value):
@@ -168,7 +169,7 @@ def read_grids(view: View, run: Run, failed: LogLine) -> Finding | None:
         where = ("lies on an obstacle" if goal_value >= LETHAL else
                  "lies in an obstacle's inflated border, closer to it than my robot's radius,")
         also = " (a wall or obstacle of my map itself)" if wall else ""
-        return _found(g.GOAL_UNREACHABLE, f"my goal {where} in {name}{also}, so no plan can end there.",
+        return found(g.GOAL_UNREACHABLE, f"my goal {where} in {name}{also}, so no plan can end there.",
                       grid, f"the goal {goal.text()} on a cell of value {goal_value}", failed)
     if start is None or start_value is None:
         return None
@@ -176,11 +177,11 @@ def read_grids(view: View, run: Run, failed: LogLine) -> Finding | None:
     if joined is False:
         static_joined = _joined(static, map_cells, start, goal, LETHAL) if static is not None and map_cells else None
         if static_joined is False:
-            return _found(g.GOAL_UNREACHABLE,
+            return found(g.GOAL_UNREACHABLE,
                           f"my goal cannot be reached from where I stood: even my map has no free way from "
                           f"{start.text()} to {goal.text()}, as the goal lies in an area the map closes off.",
                           grid, f"no free cells join {start.text()} and {goal.text()}", failed)
-        return _found(g.BLOCKED,
+        return found(g.BLOCKED,
                       f"both where I stood, {start.text()}, and my goal {goal.text()} were free in {name}, but no "
                       "free way joined them: the way was blocked by obstacles marked on it, or by their inflated "
                       "borders where a passage is narrower than my robot.",

@@ -63,3 +63,44 @@ def test_a_spin_stopped_after_a_plan_was_followed_is_no_start_on_occupied_cells(
     # failure came before it, so the spin says nothing of where the robot started
     answer = _ask(tmp_path, "kilted-nav2-local-costmap-tiny", True, 23)
     assert answer["causes"] != ["navigation.start_in_obstacle"]
+
+
+def _masked(tmp_path: Path, ident: str, zones: list[tuple[float, float, float, float]]) -> Path:
+    """The console as a recording with the keepout mask map_server served (set 25's two-room map: 12 m x 8 m at
+    0.05 m, 100 in each zone), recorded when the stack started, as a latched map reaches a recording."""
+    import numpy as np
+
+    from hexar.evals.scenarios.bag import BagBuilder
+    from hexar.events import contract as c
+    from hexar.events.console import parse_console, stamped
+    from tests.explainers.navigation.maps import grid_msg
+
+    cells = np.zeros((160, 240), dtype=np.int8)
+    for x0, y0, x1, y1 in zones:
+        cells[round(y0 / 0.05):round(y1 / 0.05), round(x0 / 0.05):round(x1 / 0.05)] = 100
+    records = stamped(parse_console(_excerpt(ident).lines))
+    b = BagBuilder()
+    for r in records:
+        assert r.stamp_ns is not None
+        b.log(r.stamp_ns, r.name or r.process, r.level, r.msg)
+    first = min(r.stamp_ns or 0 for r in records)
+    b.raw(first, c.KEEPOUT_MASK, c.GRID_TYPE, grid_msg(first, cells, 0.05, (0.0, 0.0)))
+    return b.write(tmp_path / "bag")
+
+
+def test_a_recorded_keepout_mask_tells_a_goal_inside_a_zone(tmp_path: Path) -> None:
+    # set 25's last pose (9, 4) inside the 2 m zone x 8 to 10, y 3 to 5: the mask says which of the two it was
+    bag = _masked(tmp_path, "kilted-nav2-keepout-goal", [(8.0, 3.0, 10.0, 5.0)])
+    answer = dict(Session(RunSettings(recording=bag, llm="none")).ask("Why did you fail?"))
+    text = str(answer["answer"])
+    assert answer["causes"] == ["navigation.goal_unreachable"]
+    assert "(9.00, 4.00) lies inside a keepout zone" in text and "do not show which" not in text
+    assert any(e["topic"] == "/keepout_filter_mask" for e in answer["evidence"])  # type: ignore[attr-defined]
+
+
+def test_a_recorded_keepout_mask_with_the_goal_outside_its_zones_claims_nothing_more(tmp_path: Path) -> None:
+    # the same console with a mask whose only zone lies in a far corner: the mask does not put the goal in a zone,
+    # so the answer stays the one the lines give
+    bag = _masked(tmp_path, "kilted-nav2-keepout-goal", [(10.5, 6.5, 11.8, 7.8)])
+    answer = dict(Session(RunSettings(recording=bag, llm="none")).ask("Why did you fail?"))
+    assert "do not show which" in str(answer["answer"]) and answer["causes"] != ["navigation.goal_unreachable"]
