@@ -30,7 +30,8 @@ from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.detectors import Finding
 from hexar.explainers.navigation.diagnose import COLLISION_AHEAD, CONFIGURATION, DOCKING, GOAL_UNREACHABLE, TRANSFORM
 
-BEGIN = re.compile(r"^Attempting to dock robot at (?:position \((?P<x>-?[\d.]+), (?P<y>-?[\d.]+)\)|(?P<dock>\S+?))\.$")
+_N = r"-?\d+(?:\.\d+)?"  # a number as "%.2f" prints it
+BEGIN = re.compile(rf"^Attempting to dock robot at (?:position \((?P<x>{_N}), (?P<y>{_N})\)|(?P<dock>\S+?))\.$")
 DOCKED = re.compile(r"^(Docking was successful!|Robot is charging!|Robot is already docked)")
 ABORTED = re.compile(r"^\[dock_robot\] \[ActionServer\] Aborting handle\. error_code:\d+, error_msg:'(?P<msg>.*)'\.?$",
                      re.S)
@@ -40,10 +41,8 @@ _DETECTION = re.compile(r"^Failed (initial )?dock detection")
 _UNSEEN = "Lost detection or did not detect"
 _UNPLACED = "Failed to transform detected dock pose"
 _FRAME = re.compile(r'Invalid frame ID "(?P<frame>[^"]+)" passed to canTransform')
-_COLLISION = re.compile(r"^Collision detected at pose: \((?P<x>-?[\d.]+), (?P<y>-?[\d.]+), -?[\d.]+\) "
-                        r"in frame (?P<f>\S+)")
-_STAGING_AT = re.compile(r"Goal Coordinates of\((?P<x>-?[\d.]+), (?P<y>-?[\d.]+)\)|to \((?P<gx>-?[\d.]+), "
-                         r"(?P<gy>-?[\d.]+)\)")
+_COLLISION = re.compile(rf"^Collision detected at pose: \((?P<x>{_N}), (?P<y>{_N}), {_N}\) in frame (?P<f>\S+)")
+_STAGING_AT = re.compile(rf"Goal Coordinates of\((?P<x>{_N}), (?P<y>{_N})\)|to \((?P<gx>{_N}), (?P<gy>{_N})\)")
 FACT = "docking"  # a finding's fact: its answer and fix are its notes[0] and notes[1]
 _CHECK_DOCK = ("Check the dock's pose in the docking server's database, its yaw too: the staging pose lies "
                "staging_x_offset behind the dock along the dock's heading.")

@@ -64,6 +64,7 @@ from hexar.explainers.navigation import (
     keepout,
     mapsave,
     reached,
+    smoother,
     states,
     waypoints,
 )
@@ -229,10 +230,13 @@ class NavigationExplainer:
         docked = docking.dock_failed(raw)  # a docking that failed after (or without) the trip to its staging pose
         if docked is not None:
             return [docked]
+        unsmoothed = smoother.no_time(raw) if run.outcome != "reached" else None
+        if unsmoothed is not None:
+            return [unsmoothed]
         if run.outcome != "reached":
             found = self._failure(view, run, before)
             if found is not None:
-                found = docking.staging(found, raw)
+                found = held.speed_filtered(docking.staging(found, raw), before)
             if found is not None and inferred and run.outcome == "unknown":
                 # no goal, no end, no error: warnings alone do not show that anything failed (many a healthy robot
                 # prints them), so they are quoted, not read as a cause

@@ -1,5 +1,6 @@
-"""Findings from what held the robot back: the collision monitor's stops on a goal reached late, and velocity
-commands that the base never followed (commands_not_reaching_base, claimed only from /cmd_vel and /odom)."""
+"""Findings from what held the robot back: the collision monitor's stops on a goal reached late, velocity commands
+that the base never followed (commands_not_reaching_base, claimed only from /cmd_vel and /odom), and a speed filter
+in force when the controller made no progress (a candidate, never claimed)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ import re
 
 from hexar.events import contract as c
 from hexar.events.log import View
+from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
@@ -70,4 +72,19 @@ def stall(view: View, run: d.Run) -> d.Finding | None:
         Evidence(cause=g.NOT_REACHING_BASE, topic=c.CMD_VEL, t=stall.first.t, item=item),
         Evidence(cause=g.NOT_REACHING_BASE, topic=c.ODOM, t=stall.odom.t, item=odom)])
     found.facts = {"seconds": stall.commanded_s, "max_cmd": stall.max_cmd, "max_odom": stall.max_odom}
+    return found
+
+
+_SPEED_MASK = "SpeedFilter: Received filter mask from"
+
+
+def speed_filtered(found: d.Finding, before: list[LogLine]) -> d.Finding:
+    """A controller that made no progress while a speed filter's zones were in force (its mask arrived before the
+    goal ended, in `before`): the filter is named among what the logs leave open (wording.SYMPTOMS)."""
+    from hexar.explainers.navigation.wording import SYMPTOMS
+
+    said = SYMPTOMS["costmap.speed_mask"]
+    if found.cause == g.NO_PROGRESS and said not in found.notes and any(
+            ln.msg.startswith(_SPEED_MASK) for ln in before):
+        found.notes.append(said)
     return found

@@ -15,7 +15,7 @@ from hexar.claims import read_claims
 from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
-from hexar.explainers.navigation import docking, grids, keepout, mapsave, states, waypoints
+from hexar.explainers.navigation import docking, grids, keepout, mapsave, smoother, states, waypoints
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -36,6 +36,11 @@ SYMPTOMS = {
     "cmon.invalid_source": (
         "my collision monitor held me still because one of its sensor sources gave no valid data (none published "
         "yet, none recent enough, or none it could bring into my base frame); my logs do not say which"),
+    # speed_filter.cpp@kilted (INFO): the speed filter's zones are in force from its mask on; the limit it sets in a
+    # zone is never logged
+    "costmap.speed_mask": (
+        "a speed filter was in force (its mask of speed zones had arrived), and a zone of it can hold me below the "
+        "progress my controller must make; my logs do not show the limit it set"),
 }
 
 
@@ -242,6 +247,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return unsaved
     if (docked := docking.template(f)) is not None:
         return docked
+    if (smoothed := smoother.template(f, place)) is not None:
+        return smoothed
     if waypoints.FACT in f.facts:
         return _waypoint_tasks(f)
     if (zoned := _keepout(f, place)) is not None:
