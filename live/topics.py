@@ -65,10 +65,11 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
     LiveTopic(c.ODOM, c.ODOM_TYPE, TopicQos(depth=100)),
     LiveTopic(c.GOAL_POSE, c.POSE_STAMPED_TYPE, TopicQos(depth=10)),
     LiveTopic(c.NAV_STATUS, c.GOAL_STATUS_TYPE, TopicQos(durability="transient_local", depth=10)),
-    # The maps the planner plans on: map_server and nav2_costmap_2d's publisher offer them latched
-    # (nav2::qos::LatchedPublisherQoS: reliable, transient-local, keep-last 1), so a node that joins late gets both.
+    # The maps the planner plans on, and a keepout filter's mask: map_server and nav2_costmap_2d's publisher offer
+    # them latched (nav2::qos::LatchedPublisherQoS: reliable, transient-local, keep-last 1), so a node that joins
+    # late gets them.
     *(LiveTopic(topic, c.GRID_TYPE, TopicQos(durability="transient_local", depth=1))
-      for topic in (c.MAP, c.GLOBAL_COSTMAP)),
+      for topic in (c.MAP, c.GLOBAL_COSTMAP, c.KEEPOUT_MASK)),
     # The arm's actions (MoveIt's move_action and execute_trajectory, a joint trajectory controller's
     # follow_joint_trajectory): their status topics, so a robot without /task_info gets arm tasks and an aborted
     # arm goal is explained unasked. A controller's status topic carries its own name, and a DDS reader needs the
@@ -105,5 +106,6 @@ PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.NAV_STATUS: TopicQos(durability="transient_local", depth=1),  # rcl_action_qos_profile_status_default
     c.MAP: TopicQos(durability="transient_local", depth=1),
     c.GLOBAL_COSTMAP: TopicQos(durability="transient_local", depth=1),
+    c.KEEPOUT_MASK: TopicQos(durability="transient_local", depth=1),
     **{topic: TopicQos(durability="transient_local", depth=1) for topic in ARM_STATUS},
 }

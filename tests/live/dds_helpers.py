@@ -74,7 +74,12 @@ class Listener:
                     self.heard.answers.append((now, json.loads(str(s.data))))
             time.sleep(0.002)
 
-    def ask(self, question: str) -> None:
+    def ask(self, question: str, match_s: float = 10.0) -> None:
+        # a question written before the node's reader has matched this writer is lost (volatile, as a ROS
+        # publisher's): wait for the match first, as discovery takes longer the more topics the node reads
+        deadline = time.monotonic() + match_s
+        while not self._question.get_matched_subscriptions() and time.monotonic() < deadline:
+            time.sleep(0.02)
         self._question.write(msgs.String(data=question))
 
     def answers(self, trigger: str | None = None) -> list[tuple[float, dict[str, Any]]]:

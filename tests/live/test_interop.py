@@ -51,7 +51,7 @@ def every_type(out: Path) -> Path:
         b.raw(T0 + sec_ns(1.4 + i * 0.1), topic, c.GOAL_STATUS_TYPE, _status(T0 + sec_ns(1.4 + i * 0.1), 2))
     # the maps: every cell value a costmap publishes (-1 unknown, 0 free, 1-98 cost, 99 inscribed, 100 lethal)
     cells = np.array([[-1, 0, 1], [50, 98, 99], [100, 100, 0], [0, -1, 7]], dtype=np.int8)
-    for i, topic in enumerate((c.MAP, c.GLOBAL_COSTMAP)):
+    for i, topic in enumerate((c.MAP, c.GLOBAL_COSTMAP, c.KEEPOUT_MASK)):
         t = T0 + sec_ns(2.5 + i * 0.1)
         b.raw(t, topic, c.GRID_TYPE, grid_msg(t, cells, 0.05, (-1.5, 2.25)))
     return b.write(out)
@@ -87,7 +87,7 @@ def test_every_subscribed_type_crosses_dds_vendors(tmp_path: Path, robot: str, n
         assert getattr(snap, name) == getattr(rec, name), name
     assert [s.level for s in snap.statuses[c.DIAGNOSTICS]] == [2]  # an octet, not b'\x02'
     assert (snap.poses[0].cov_x, snap.poses[0].cov_yaw) == (0.25, 0.1)
-    assert [g.value(-1.5 + 0.125, 2.25 + 0.075) for g in snap.grids] == [99, 99]  # a signed cell, in its place
+    assert [g.value(-1.5 + 0.125, 2.25 + 0.075) for g in snap.grids] == [99, 99, 99]  # a signed cell, in its place
     assert unstamped(snap.task_updates) == unstamped(rec.task_updates)
     assert {k: unstamped(v) for k, v in snap.flags.items()} == {k: unstamped(v) for k, v in rec.flags.items()}
     assert unstamped(snap.twists) == unstamped(rec.twists)
