@@ -32,6 +32,10 @@ from launch_runs import arguments, install, kept, run_launch, runs, write_set
 ACTIVATION = "control.controller_activation_failed"
 JOINT = "gripper_finger_joint"
 OPEN, CLOSE = 0.04, 0.01  # m: the fingers' opening at the start, and the grasp's goal
+# the joint's upper limit: the mock adds its following offset to every command, the hold at the start too (0.055 m
+# for an object 1.5 cm wide), and ros2_control's joint limiter stops a controller whose joint reads beyond its limit
+# (widened from OPEN after the fault-free grasp on an object tried it)
+WIDEST = 0.08
 WAIT_S = 30.0  # how long the client waits for the gripper's action server
 RUN_S = 10.0  # how long it waits for the grasp's result
 
@@ -83,13 +87,16 @@ def label(fault: Fault, succeeded: bool) -> tuple[str, str]:
 
 
 def urdf(fault: Fault) -> str:
-    params = "".join(f'<param name="{k}">{v}</param>' for k, v in fault.hardware.items())
+    # calculate_dynamics: the mock reports the fingers' velocity, without which the controller never sees them move and
+    # so never sees them stall (added after the fault-free grasp on an object never ended)
+    hardware = {"calculate_dynamics": "true", **fault.hardware}
+    params = "".join(f'<param name="{k}">{v}</param>' for k, v in hardware.items())
     joint = (f'<joint name="{JOINT}"><command_interface name="position"/>'
              f'<state_interface name="position"><param name="initial_value">{OPEN}</param></state_interface>'
              '<state_interface name="velocity"/></joint>')
     links = '<link name="gripper_base"/><link name="gripper_finger"/>'
     chain = (f'<joint name="{JOINT}" type="prismatic"><parent link="gripper_base"/><child link="gripper_finger"/>'
-             f'<axis xyz="0 1 0"/><limit lower="0.0" upper="{OPEN}" effort="20" velocity="0.1"/></joint>')
+             f'<axis xyz="0 1 0"/><limit lower="0.0" upper="{WIDEST}" effort="20" velocity="0.1"/></joint>')
     return (f'<?xml version="1.0"?><robot name="gripper">{links}{chain}<ros2_control name="GripperSystem" '
             f'type="system"><hardware><plugin>mock_components/GenericSystem</plugin>{params}</hardware>{joint}'
             '</ros2_control></robot>')
