@@ -125,7 +125,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     failure, a driver that cannot open its device: explainers/stack_causes.py) and the start of its software make
     one `bring_up_controllers` goal (events/bringup.py), unless the recording is a Nav2 robot's (navigation explains
     those)."""
-    from hexar.events.bringup import ABORT, bring_up
+    from hexar.events.bringup import ABORT, bring_up, notice
     from hexar.events.nav_goals import python_death_alone
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
@@ -147,7 +147,8 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         # a controller left unconfigured) still shows that the arm had something to do: the explainer then quotes it
         # launch's and rcl's own bring-up lines are not the arm's words, whatever short text of MoveIt they contain
         # (conversions.cpp's "Caught %s" matches launch's "Caught exception in launch")
-        active = [(line, skill) for line in logs if line.level >= ERROR and not _stack_bringup(line)
+        active = [(line, skill) for line in logs
+                  if line.level >= ERROR and not _stack_bringup(line) and not notice(line)
                   for skill, cat in _readers(line) if cat.match(line.msg) is not None][:1]
     if not active:
         if _nav2_robot(logs) and not python_death_alone(logs):

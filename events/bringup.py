@@ -120,7 +120,16 @@ def completed(line: LogLine) -> bool:
 
 
 def _error(line: LogLine) -> bool:
-    return line.level >= ERROR or ABORT in line.msg
+    return (line.level >= ERROR and not notice(line)) or ABORT in line.msg
+
+
+def notice(line: LogLine) -> bool:
+    """An ERROR line of ros2_control's that tells a normal event (the joint limiter clamping a command: the control
+    catalogue's kind "notice"), which healthy robots print."""
+    from hexar.explainers.control.catalogue import catalogue as control
+
+    entry = control().match(line.msg)
+    return entry is not None and entry.kind == "notice"
 
 
 def _driver(name: str, logs: list[LogLine]) -> bool:

@@ -86,7 +86,8 @@ class ControlExplainer(ModuleExplainer):
         if found is not None:
             return spawners.answer(self.name, found)
         if not spawners.gave_up(lines):
-            return None
+            inactive = spawners.never_activated(lines)
+            return spawners.inactive_answer(self.name, inactive) if inactive is not None else None
         # the robot description that came after the spawners gave up may lie after a window that ends with them
         early = spawners.gave_up_early([*lines, *self.lines_after(context)])
         return spawners.early_answer(self.name, early, lines[0].t) if early is not None else None

@@ -11,6 +11,9 @@
   does: controller_manager.cpp@kilted). A spawner that stopped waiting ("Could not contact service …") while the
   manager still waited, with the description arriving after, gave up too early: a `--controller-manager-timeout`
   shorter than the description's delay, or a description published late.
+- A controller the controller manager configured ("Configuring controller: '…'") and never activated, while it
+  activated others ("Activating controllers: [ … ]", controller_manager.cpp@kilted) and the start went on with no
+  error: its spawner left it inactive (`--inactive`), or nothing activated it after, so it takes no goal or command.
 """
 
 from __future__ import annotations
@@ -18,7 +21,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from hexar.events.records import LogLine
+from hexar.events.records import ERROR, LogLine
 from hexar.explainers.base import Evidence, Explanation
 
 CAUSE = "bringup.configuration_error"
@@ -104,3 +107,31 @@ def answer(explainer: str, found: OtherManager) -> Explanation:
              "namespace)."),
         details=[f"My controller manager started as {found.running}; the spawners kept calling "
                  f"{found.asked}'s services, which nothing offers."])
+
+
+_CONFIGURING = re.compile(r"^Configuring controller: '(?P<name>[^']+)'")
+_ACTIVATING = re.compile(r"^Activating controllers: \[(?P<names>[^\]]*)\]")
+ACTIVATION = "control.controller_activation_failed"
+SETTLED_NS = 2_000_000_000  # the start went on this long after the configure: an activation would have come
+
+
+def never_activated(lines: list[LogLine]) -> LogLine | None:
+    """The configure line of a controller never activated while others were, in a start with no error."""
+    if any(ln.level >= ERROR for ln in lines):
+        return None
+    activated = {n for ln in lines if (m := _ACTIVATING.match(ln.msg)) for n in m["names"].split()}
+    last = max((ln.t for ln in lines), default=0)
+    return next((ln for ln in lines if (m := _CONFIGURING.match(ln.msg)) and activated
+                 and m["name"] not in activated and last - ln.t >= SETTLED_NS), None)
+
+
+def inactive_answer(explainer: str, configured: LogLine) -> Explanation:
+    name = m["name"] if (m := _CONFIGURING.match(configured.msg)) else "a controller"
+    return Explanation(
+        explainer=explainer, causes=[ACTIVATION], confidence=0.7,
+        evidence=[Evidence.of_log(ACTIVATION, configured)],
+        text=(f"My controller {name} was never activated: my controller manager configured it, then activated my "
+              "other controllers but not it, so it took no goal or command. Its spawner left it inactive (as "
+              "--inactive does), or nothing activated it afterwards."),
+        fix=f"Spawn {name} without --inactive, or activate it (ros2 control switch_controllers --activate {name}).",
+        details=["No error came from my controllers; the controller manager's activations never named it."])
