@@ -63,9 +63,11 @@ def dock_failed(raw: list[LogLine]) -> Finding | None:
     """Why the last docking of `raw` failed, from the server's lines; None when none failed, or when the trip to
     the staging pose failed (the navigation's reading of that trip tells why: `staging`)."""
     found = docking(raw)
-    if found is None or found[1] is None or DOCKED.match(found[1].msg.strip()):
+    if found is None:
         return None
     begin, end = found
+    if end is None or DOCKED.match(end.msg.strip()):
+        return None
     during = [ln for ln in raw if begin.t <= ln.t <= end.t]
     said = (m["msg"] if (m := ABORTED.match(end.msg.strip())) else end.msg).strip()
     if said.startswith(_STAGING):
