@@ -27,7 +27,7 @@ from typing import Any
 
 import yaml
 from control_faults import CONFIG, DESCRIBE, LOAD, NOMINAL, TOLERANCE, entry
-from launch_runs import arguments, install, kept, run_launch, runs, write_set
+from launch_runs import HIT, arguments, install, kept, run_launch, runs, write_set
 
 ACTIVATION = "control.controller_activation_failed"
 JOINT = "gripper_finger_joint"
@@ -109,7 +109,7 @@ def params(fault: Fault) -> dict[str, Any]:
     return {"controller_manager": {"ros__parameters": manager}, "gripper_controller": {"ros__parameters": gripper}}
 
 
-SEND = """\
+SEND = HIT + """\
 import json
 import sys
 import time
@@ -128,22 +128,12 @@ if result['server']:
     goal = ParallelGripperCommand.Goal()
     goal.command.name = [joint] * len(positions)
     goal.command.position = positions
-    sent = client.send_goal_async(goal)
-    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
-    handle = sent.result()
-    if handle is not None and handle.accepted:
-        result['accepted'] = True
-        began = time.monotonic()
-        done = handle.get_result_async()
-        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
-        result['seconds'] = round(time.monotonic() - began, 1)
-        if done.done():
-            res = done.result()
-            result['status'], result['reached_goal'] = res.status, res.result.reached_goal
-            result['stalled'] = res.result.stalled
-            result['position'] = [round(p, 4) for p in res.result.state.position]
-        else:
-            rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
+    done = send_goal(node, client, goal, [], '', run_s, result)
+    if done is not None:
+        res = done.result()
+        result['status'], result['reached_goal'] = res.status, res.result.reached_goal
+        result['stalled'] = res.result.stalled
+        result['position'] = [round(p, 4) for p in res.result.state.position]
 json.dump(result, open(out, 'w'))
 """
 

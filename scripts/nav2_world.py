@@ -275,7 +275,7 @@ def write_mask(folder: Path, zones: list[tuple[float, float, float, float]], nam
 # as a script of nav2_simple_commander's followWaypoints (or, with "through" after its arguments, goThroughPoses) sends
 # them: the waypoints, each with its orientation toward the next, in one goal of the waypoint follower (or of
 # bt_navigator's NavigateThroughPoses)
-WAYPOINTS = WAIT_ACTIVE + """\
+WAYPOINTS = HIT + WAIT_ACTIVE + """\
 import json
 import math
 import sys
@@ -307,24 +307,14 @@ if result['server']:
         yaw = math.atan2(ny - y, nx - x)
         pose.pose.orientation.z, pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
         (goal.poses.goals if through else goal.poses).append(pose)
-    sent = client.send_goal_async(goal)
-    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
-    handle = sent.result()
-    if handle is not None and handle.accepted:
-        result['accepted'] = True
-        began = time.monotonic()
-        done = handle.get_result_async()
-        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
-        result['seconds'] = round(time.monotonic() - began, 1)
-        if done.done():
-            res = done.result()
-            result['status'], result['error_code'] = res.status, res.result.error_code
-            result['error_msg'] = res.result.error_msg
-            statuses = res.result.waypoint_statuses if through else res.result.missed_waypoints
-            result['missed'] = [[w.waypoint_index, w.error_code, w.error_msg] for w in statuses
-                                if w.waypoint_status == w.FAILED]
-        else:
-            rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
+    done = send_goal(node, client, goal, [], '', run_s, result)
+    if done is not None:
+        res = done.result()
+        result['status'], result['error_code'] = res.status, res.result.error_code
+        result['error_msg'] = res.result.error_msg
+        statuses = res.result.waypoint_statuses if through else res.result.missed_waypoints
+        result['missed'] = [[w.waypoint_index, w.error_code, w.error_msg] for w in statuses
+                            if w.waypoint_status == w.FAILED]
 json.dump(result, open(out, 'w'))
 """
 
@@ -332,7 +322,7 @@ json.dump(result, open(out, 'w'))
 
 # as a script of nav2_simple_commander's dockRobotByID sends it: one DockRobot goal for a dock of the database, the
 # robot first driven to the dock's staging pose
-DOCK = WAIT_ACTIVE + """\
+DOCK = HIT + WAIT_ACTIVE + """\
 import json
 import sys
 import time
@@ -352,21 +342,11 @@ wait_active(node, deadline, result)
 if result['server']:
     goal = DockRobot.Goal()
     goal.use_dock_id, goal.dock_id, goal.navigate_to_staging_pose, goal.max_staging_time = True, dock_id, True, 1000.0
-    sent = client.send_goal_async(goal)
-    rclpy.spin_until_future_complete(node, sent, timeout_sec=10.0)
-    handle = sent.result()
-    if handle is not None and handle.accepted:
-        result['accepted'] = True
-        began = time.monotonic()
-        done = handle.get_result_async()
-        rclpy.spin_until_future_complete(node, done, timeout_sec=run_s)
-        result['seconds'] = round(time.monotonic() - began, 1)
-        if done.done():
-            res = done.result()
-            result['status'], result['success'] = res.status, res.result.success
-            result['error_code'], result['error_msg'] = res.result.error_code, res.result.error_msg
-            result['num_retries'] = res.result.num_retries
-        else:
-            rclpy.spin_until_future_complete(node, handle.cancel_goal_async(), timeout_sec=5.0)
+    done = send_goal(node, client, goal, [], '', run_s, result)
+    if done is not None:
+        res = done.result()
+        result['status'], result['success'] = res.status, res.result.success
+        result['error_code'], result['error_msg'] = res.result.error_code, res.result.error_msg
+        result['num_retries'] = res.result.num_retries
 json.dump(result, open(out, 'w'))
 """
