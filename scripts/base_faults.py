@@ -27,8 +27,8 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from control_faults import CONFIG, DESCRIBE, NOMINAL, entry
-from launch_runs import arguments, install, kept, run_launch, runs, write_set
+from control_faults import CONFIG, DESCRIBE, NOMINAL, module_set
+from launch_runs import install, run_launch
 
 LAUNCH_ARG = "bringup.configuration_error"
 WHEELS = ("left_wheel_joint", "right_wheel_joint")
@@ -253,18 +253,9 @@ HEADER = """\
 
 
 def main() -> int:
-    parser = arguments(__doc__)
-    parser.add_argument("--version", default="kilted", help="as the header names it")
-    args = parser.parse_args()
-    entries = []
-    for fault, lines, result in runs(FAULTS, args, run):
-        succeeded = result.get("moved_m", 0.0) >= ENOUGH * DRIVE[0] * DRIVE[1]
-        outcome, cause = label(fault, succeeded)
-        if kept(fault.id, outcome, cause, NOMINAL):
-            entries.append(entry(fault, "base_faults.py", "base_faults.py", args.version, (outcome, cause), lines,
-                                 f"Teleop of {DRIVE[0]} m/s for {DRIVE[1]} s: {json.dumps(result)}."))
-    write_set(args.out, HEADER.format(version=args.version), entries)
-    return 0
+    return module_set(__doc__, FAULTS, run, "base_faults.py", HEADER, label,
+                      lambda result: result.get("moved_m", 0.0) >= ENOUGH * DRIVE[0] * DRIVE[1],
+                      lambda result: f"Teleop of {DRIVE[0]} m/s for {DRIVE[1]} s: {json.dumps(result)}.")
 
 
 if __name__ == "__main__":

@@ -25,12 +25,13 @@ from __future__ import annotations
 
 import copy
 import json
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import yaml
-from launch_runs import HIT, arguments, install, kept, run_launch, runs, write_set
+from launch_runs import HIT, Runner, arguments, install, kept, run_launch, runs, write_set
 
 NOMINAL, LOAD, CONFIG = "control.nominal", "control.controller_load_failed", "control.configuration_error"
 HARDWARE, TOLERANCE = "control.hardware_failure", "control.tolerance_violated"
@@ -291,6 +292,23 @@ def main() -> int:
         if kept(fault.id, outcome, cause, NOMINAL):
             entries.append(entry(fault, "control_faults.py", faults_file, args.version, (outcome, cause), lines,
                                  f"Trajectory of {len(JOINTS)} joints over 2 s: {json.dumps(result)}."))
+    write_set(args.out, header.format(version=args.version), entries)
+    return 0
+
+
+def module_set(doc: str | None, faults: Sequence[Any], run: Runner, script: str, header: str,
+               label: Callable[[Any, bool], tuple[str, str]], succeeded: Callable[[dict[str, Any]], bool],
+               notes: Callable[[dict[str, Any]], str]) -> int:
+    """A stand-alone generator's main (base_faults.py, gripper_faults.py): run each fault, label it by its script's
+    rule (`label`, given whether `succeeded(result)`), and write the kept runs as a real_modules data file."""
+    parser = arguments(doc)
+    parser.add_argument("--version", default="kilted", help="as the header names it")
+    args = parser.parse_args()
+    entries = []
+    for fault, lines, result in runs(faults, args, run):
+        outcome, cause = label(fault, succeeded(result))
+        if kept(fault.id, outcome, cause, NOMINAL):
+            entries.append(entry(fault, script, script, args.version, (outcome, cause), lines, notes(result)))
     write_set(args.out, header.format(version=args.version), entries)
     return 0
 

@@ -26,8 +26,8 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from control_faults import CONFIG, DESCRIBE, LOAD, NOMINAL, TOLERANCE, entry
-from launch_runs import HIT, arguments, install, kept, run_launch, runs, write_set
+from control_faults import CONFIG, DESCRIBE, LOAD, NOMINAL, TOLERANCE, module_set
+from launch_runs import HIT, install, run_launch
 
 ACTIVATION = "control.controller_activation_failed"
 JOINT = "gripper_finger_joint"
@@ -188,17 +188,9 @@ HEADER = """\
 
 
 def main() -> int:
-    parser = arguments(__doc__)
-    parser.add_argument("--version", default="kilted", help="as the header names it")
-    args = parser.parse_args()
-    entries = []
-    for fault, lines, result in runs(FAULTS, args, run):
-        outcome, cause = label(fault, result.get("status") == 4)  # action_msgs/GoalStatus SUCCEEDED
-        if kept(fault.id, outcome, cause, NOMINAL):
-            entries.append(entry(fault, "gripper_faults.py", "gripper_faults.py", args.version, (outcome, cause),
-                                 lines, f"Grasp from {OPEN} m to {CLOSE} m: {json.dumps(result)}."))
-    write_set(args.out, HEADER.format(version=args.version), entries)
-    return 0
+    return module_set(__doc__, FAULTS, run, "gripper_faults.py", HEADER, label,
+                      lambda result: result.get("status") == 4,  # action_msgs/GoalStatus SUCCEEDED
+                      lambda result: f"Grasp from {OPEN} m to {CLOSE} m: {json.dumps(result)}.")
 
 
 if __name__ == "__main__":
