@@ -198,8 +198,8 @@ except (KeyboardInterrupt, ExternalShutdownException):
     pass
 """
 
-# the goal senders' wait, as a person waits for Nav2 to come up before clicking a goal in RViz: until the lifecycle
-# manager says its nodes are active, or the deadline
+# the goal senders' connection to their action and their wait, as a person waits for Nav2 to come up before
+# clicking a goal in RViz: until the lifecycle manager says its nodes are active, or the deadline
 WAIT_ACTIVE = """\
 def wait_active(node, deadline, result):
     import time
@@ -215,26 +215,33 @@ def wait_active(node, deadline, result):
             time.sleep(1.0)
 
 
+def connect(node, action, name, wait_s):
+    # the action's client once its server is there and the stack is active (wait_s at most): the client, and the
+    # result the sender fills in
+    import time
+    from rclpy.action import ActionClient
+    result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
+    deadline = time.monotonic() + wait_s
+    client = ActionClient(node, action, name)
+    result['server'] = client.wait_for_server(timeout_sec=wait_s)
+    wait_active(node, deadline, result)
+    return client, result
+
+
 """
 
 GOAL = HIT + WAIT_ACTIVE + """\
 import json
 import sys
-import time
 import rclpy
 from nav2_msgs.action import NavigateToPose
-from rclpy.action import ActionClient
 from rclpy.node import Node
 
 x, y, wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
 hit = sys.argv[6:9]  # NODE SIGNAL SECONDS: something outside the stack does that to a node's process on the way
 rclpy.init()
 node = Node('goal_sender')
-result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
-deadline = time.monotonic() + wait_s
-client = ActionClient(node, NavigateToPose, 'navigate_to_pose')
-result['server'] = client.wait_for_server(timeout_sec=wait_s)
-wait_active(node, deadline, result)
+client, result = connect(node, NavigateToPose, 'navigate_to_pose', wait_s)
 if result['server']:
     goal = NavigateToPose.Goal()
     goal.pose.header.frame_id = 'map'
@@ -279,11 +286,9 @@ WAYPOINTS = HIT + WAIT_ACTIVE + """\
 import json
 import math
 import sys
-import time
 import rclpy
 from geometry_msgs.msg import PoseStamped
 from nav2_msgs.action import FollowWaypoints, NavigateThroughPoses
-from rclpy.action import ActionClient
 from rclpy.node import Node
 
 points = [tuple(map(float, p.split(','))) for p in sys.argv[1].split(';')]
@@ -291,12 +296,8 @@ frame, wait_s, run_s, out = sys.argv[2], float(sys.argv[3]), float(sys.argv[4]),
 through = sys.argv[6:7] == ['through']
 rclpy.init()
 node = Node('waypoint_sender')
-result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
-deadline = time.monotonic() + wait_s
 Action = NavigateThroughPoses if through else FollowWaypoints
-client = ActionClient(node, Action, 'navigate_through_poses' if through else 'follow_waypoints')
-result['server'] = client.wait_for_server(timeout_sec=wait_s)
-wait_active(node, deadline, result)
+client, result = connect(node, Action, 'navigate_through_poses' if through else 'follow_waypoints', wait_s)
 if result['server']:
     goal = Action.Goal()
     for i, (x, y) in enumerate(points):
@@ -325,20 +326,14 @@ json.dump(result, open(out, 'w'))
 DOCK = HIT + WAIT_ACTIVE + """\
 import json
 import sys
-import time
 import rclpy
 from nav2_msgs.action import DockRobot
-from rclpy.action import ActionClient
 from rclpy.node import Node
 
 dock_id, wait_s, run_s, out = sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
 rclpy.init()
 node = Node('dock_sender')
-result = {'server': False, 'active': False, 'accepted': False, 'status': None, 'seconds': None}
-deadline = time.monotonic() + wait_s
-client = ActionClient(node, DockRobot, 'dock_robot')
-result['server'] = client.wait_for_server(timeout_sec=wait_s)
-wait_active(node, deadline, result)
+client, result = connect(node, DockRobot, 'dock_robot', wait_s)
 if result['server']:
     goal = DockRobot.Goal()
     goal.use_dock_id, goal.dock_id, goal.navigate_to_staging_pose, goal.max_staging_time = True, dock_id, True, 1000.0
