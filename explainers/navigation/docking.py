@@ -59,28 +59,33 @@ def docking(raw: list[LogLine]) -> tuple[LogLine, LogLine | None] | None:
     return begin, end
 
 
-def dock_failed(raw: list[LogLine]) -> Finding | None:
-    """Why the last docking of `raw` failed, from the server's lines; None when none failed, or when the trip to
-    the staging pose failed (the navigation's reading of that trip tells why: `staging`)."""
-    found = docking(raw)
-    if found is None:
+def _said(end: LogLine) -> str:
+    """What ended a docking: the abort's error message, else the line itself."""
+    return (m["msg"] if (m := ABORTED.match(end.msg.strip())) else end.msg).strip()
+
+
+def dock_failed(dock: tuple[LogLine, LogLine | None] | None, raw: list[LogLine]) -> Finding | None:
+    """Why the last docking of `raw` (`dock`, as `docking` reads it) failed, from the server's lines; None when none
+    failed, or when the trip to the staging pose failed (the navigation's reading of that trip tells why:
+    `staging`)."""
+    if dock is None:
         return None
-    begin, end = found
+    begin, end = dock
     if end is None or DOCKED.match(end.msg.strip()):
         return None
     during = [ln for ln in raw if begin.t <= ln.t <= end.t]
-    said = (m["msg"] if (m := ABORTED.match(end.msg.strip())) else end.msg).strip()
+    said = _said(end)
     if said.startswith(_STAGING):
         return None
-    dock = (BEGIN.match(begin.msg.strip()) or {"dock": None})["dock"] or "the pose I was given"
+    asked = (BEGIN.match(begin.msg.strip()) or {"dock": None})["dock"] or "the pose I was given"
     tries = 1 + sum(1 for ln in during if _RETRY.match(ln.msg))
     if said.startswith("Dock ID requested is not in database"):
-        return _finding(DOCKING, [begin, end], f"My docking failed: the dock I was asked to go to, {dock}, is not in "
+        return _finding(DOCKING, [begin, end], f"My docking failed: the dock I was asked to go to, {asked}, is not in "
                         "my list of docks, so I never set off.",
                         "Ask for a dock the docking server knows (its docks parameter or dock_database file), or add "
                         "this one to it.")
     if said.startswith("Dock requested has no valid plugin"):
-        return _finding(CONFIGURATION, [begin, end], f"My docking failed: the type of the dock {dock} names no dock "
+        return _finding(CONFIGURATION, [begin, end], f"My docking failed: the type of the dock {asked} names no dock "
                         "plugin my docking server loaded, so it was misconfigured for this dock.",
                         "Give the dock a type that is one of the docking server's dock_plugins.")
     if _DETECTION.match(said):
@@ -126,15 +131,13 @@ def dock_failed(raw: list[LogLine]) -> Finding | None:
                     "Check the docking server's log around that line.")
 
 
-def staging(found: Finding, raw: list[LogLine]) -> Finding:
-    """A docking whose trip to the staging pose failed because the planner cannot reach that pose at all is the
-    dock's: its pose (or the staging offset) puts the staging pose outside the map or in an obstacle."""
-    run = docking(raw)
-    if run is None or run[1] is None or found.cause != GOAL_UNREACHABLE:
+def staging(found: Finding, dock: tuple[LogLine, LogLine | None] | None, raw: list[LogLine]) -> Finding:
+    """A docking (`dock`) whose trip to the staging pose failed because the planner cannot reach that pose at all is
+    the dock's: its pose (or the staging offset) puts the staging pose outside the map or in an obstacle."""
+    if dock is None or dock[1] is None or found.cause != GOAL_UNREACHABLE:
         return found
-    end = run[1]
-    said = m["msg"] if (m := ABORTED.match(end.msg.strip())) else end.msg
-    if not said.startswith(_STAGING):
+    end = dock[1]
+    if not _said(end).startswith(_STAGING):
         return found
     at = next((m for e in found.evidence if (m := _STAGING_AT.search(e.item))), None)
     where = f" at ({float(at['x'] or at['gx']):.2f}, {float(at['y'] or at['gy']):.2f})" if at else ""

@@ -227,7 +227,8 @@ class NavigationExplainer:
                 raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
-        docked = docking.dock_failed(raw)  # a docking that failed after (or without) the trip to its staging pose
+        dock = docking.docking(raw)
+        docked = docking.dock_failed(dock, raw)  # a docking that failed after (or without) the trip to its staging pose
         if docked is not None:
             return [docked]
         unsmoothed = smoother.no_time(raw) if run.outcome != "reached" else None
@@ -236,7 +237,7 @@ class NavigationExplainer:
         if run.outcome != "reached":
             found = self._failure(view, run, before)
             if found is not None:
-                found = held.speed_filtered(docking.staging(found, raw), before)
+                found = held.speed_filtered(docking.staging(found, dock, raw), before)
             if found is not None and inferred and run.outcome == "unknown":
                 # no goal, no end, no error: warnings alone do not show that anything failed (many a healthy robot
                 # prints them), so they are quoted, not read as a cause

@@ -75,16 +75,20 @@ def stall(view: View, run: d.Run) -> d.Finding | None:
     return found
 
 
-_SPEED_MASK = "SpeedFilter: Received filter mask from"
+SPEED_MASK = "costmap.speed_mask"  # the catalogue's entry for the speed filter's "Received filter mask from …"
 
 
 def speed_filtered(found: d.Finding, before: list[LogLine]) -> d.Finding:
     """A controller that made no progress while a speed filter's zones were in force (its mask arrived before the
-    goal ended, in `before`): the filter is named among what the logs leave open (wording.SYMPTOMS)."""
+    goal ended, in `before`): the filter is named among what the logs leave open (wording.SYMPTOMS), as
+    chain.with_last_error names it when the mask's line lies in the goal's own window."""
+    from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.wording import SYMPTOMS
 
-    said = SYMPTOMS["costmap.speed_mask"]
-    if found.cause == g.NO_PROGRESS and said not in found.notes and any(
-            ln.msg.startswith(_SPEED_MASK) for ln in before):
+    said = SYMPTOMS[SPEED_MASK]
+    if found.cause != g.NO_PROGRESS or said in found.notes:
+        return found
+    cat = catalogue()
+    if any((e := cat.match(ln.msg)) is not None and e.id == SPEED_MASK for ln in before):
         found.notes.append(said)
     return found
