@@ -32,7 +32,7 @@ from typing import Any
 
 import yaml
 from launch_runs import arguments, install, kept, run_launch, runs, write_set
-from nav2_world import BASE, DOCK, GOAL, WAYPOINTS, write_map, write_mask
+from nav2_world import BASE, BEHAVIOR, DOCK, GOAL, WAYPOINTS, write_map, write_mask
 
 START, GOAL_XY = (2.0, 4.0), (10.0, 4.0)
 COSTMAPS = ("local_costmap/local_costmap", "global_costmap/global_costmap")
@@ -87,6 +87,7 @@ class Fault:
     dock_id: str = ""  # a DockRobot goal for this dock of the docking server's database instead of a goal
     speed: tuple[tuple[float, float, float, float], ...] = ()  # speed zones (x0, y0, x1, y1) of a speed filter mask
     speed_percent: int = 100  # the robot's speed in them
+    behavior: tuple[Any, ...] = ()  # (action, values): a behaviour server goal (set 28) instead of a goal
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -154,7 +155,7 @@ def label(fault: Fault, reached: bool) -> tuple[str, str]:
     """The rule written before any run: a goal reached is 'succeeded' (or 'slow' for the run slowed on purpose)
     with cause navigation.nominal, whatever the fault; a goal not reached is 'failed' with the fault's cause. A list
     of waypoints (set 24) is reached when the follower succeeded and missed none of them; a dock (set 26) when the
-    DockRobot goal succeeded."""
+    DockRobot goal succeeded; a behaviour (set 28) when its action succeeded."""
     if reached:
         return ("slow" if fault.slow else "succeeded"), NOMINAL
     return "failed", fault.cause
@@ -322,7 +323,9 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     launch, prefix = setup(fault, work)
     result_file = work / "goal.json"
     run_s = str(RUN_S * (2 if fault.slow else 1))
-    if fault.dock_id:
+    if fault.behavior:
+        client = (BEHAVIOR, [fault.behavior[0], json.dumps(fault.behavior[1]), str(WAIT_S), run_s, str(result_file)])
+    elif fault.dock_id:
         client = (DOCK, [fault.dock_id, str(WAIT_S), str(2 * RUN_S), str(result_file)])  # retries take their time
     elif fault.waypoints:
         points = ";".join(f"{x},{y}" for x, y in fault.waypoints)
@@ -343,6 +346,8 @@ HEADER = """\
 
 
 def _sent(fault: Fault) -> str:
+    if fault.behavior:
+        return f"{fault.behavior[0]} goal {json.dumps(fault.behavior[1])}"
     if fault.dock_id:
         return f"DockRobot for dock {fault.dock_id}"
     if fault.waypoints:
@@ -353,12 +358,13 @@ def _sent(fault: Fault) -> str:
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26, 27), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26, 27, 28), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
                              "rotation shim, the graceful controller, Theta*; 24: the waypoint follower; 25: "
                              "NavigateThroughPoses and keepout zones; 26: the docking server; 27: "
-                             "robot_localization's EKF, a speed filter, the smoother server")
+                             "robot_localization's EKF, a speed filter, the smoother server; 28: the "
+                             "behaviour server's actions")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER

@@ -345,3 +345,38 @@ if result['server']:
         result['num_retries'] = res.result.num_retries
 json.dump(result, open(out, 'w'))
 """
+
+
+# as a script of nav2_simple_commander's spin(), backup(), driveOnHeading() or wait() sends it: one goal of the
+# behaviour server's action of that name, the distance (or angle, or seconds), speed and time allowance as given
+BEHAVIOR = HIT + WAIT_ACTIVE + """\
+import json
+import sys
+import rclpy
+from builtin_interfaces.msg import Duration
+from nav2_msgs.action import BackUp, DriveOnHeading, Spin, Wait
+from rclpy.node import Node
+
+kind, values, out = sys.argv[1], json.loads(sys.argv[2]), sys.argv[5]
+wait_s, run_s = float(sys.argv[3]), float(sys.argv[4])
+rclpy.init()
+node = Node('behavior_sender')
+Action = {'spin': Spin, 'backup': BackUp, 'drive_on_heading': DriveOnHeading, 'wait': Wait}[kind]
+client, result = connect(node, Action, kind, wait_s)
+if result['server']:
+    goal = Action.Goal()
+    if kind == 'spin':
+        goal.target_yaw = values['angle']
+    elif kind == 'wait':
+        goal.time = Duration(sec=int(values['seconds']))
+    else:
+        goal.target.x, goal.speed = values['distance'], values['speed']
+    if kind != 'wait':
+        goal.time_allowance = Duration(sec=int(values['allowance']))
+    done = send_goal(node, client, goal, [], '', run_s, result)
+    if done is not None:
+        res = done.result()
+        result['status'], result['error_code'] = res.status, res.result.error_code
+        result['error_msg'] = res.result.error_msg
+json.dump(result, open(out, 'w'))
+"""
