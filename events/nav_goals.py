@@ -5,17 +5,18 @@ task with one `navigate_to_pose` step whose params hold the goal coordinates, so
 works on an ordinary recording. Sources, best first: bt_navigator's begin/end lines in every distro's wording
 (the Nav2 message catalogue), the NavigateToPose action status (`/navigate_to_pose/_action/status`), and goal
 poses (`/goal_pose`). A new begin line while a goal runs is Nav2's goal preemption: the same goal, a new target.
-A docking server's DockRobot goal ("Attempting to dock robot at …" to its success or abort,
-explainers/navigation/docking.py) is a task of its own, a `dock_robot` step; the trip to the dock's staging pose
-that it sends bt_navigator is part of it, not a task beside it.
+A docking server's DockRobot goal and a behaviour server's goal that no navigation goal ran (events/nav_servers.py)
+are tasks of their own.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
+from hexar.events.nav_servers import BEHAVIOR_SKILL, DOCK_SKILL, NO_GOAL_LINE, with_server_goals
+from hexar.events.nav_servers import Goal as _Goal
+from hexar.events.nav_servers import number as _number
 from hexar.events.records import ERROR, GoalPose, GoalStatus, LogLine, SkillStep, TaskUpdate
 from hexar.events.tasks import SkillRun, StatusChange, Task
 
@@ -25,23 +26,8 @@ if TYPE_CHECKING:
 
 SOURCE = "nav2"
 SKILL = "navigate_to_pose"
-DOCK_SKILL = "dock_robot"
-NO_GOAL_LINE = "Nav2 log (no goal line)"  # `derived_from` of a goal inferred from Nav2's activity alone
 _STATUS_END = {4: "succeeded", 5: "canceled", 6: "failed"}
 _KIND_STATE = {"succeeded": "succeeded", "failed": "failed", "canceled": "canceled"}
-
-
-@dataclass
-class _Goal:
-    start: int
-    x: float | None
-    y: float | None
-    via: str
-    end: int | None = None
-    state: str = "running"
-    error: str = ""
-    lines: list[str] = field(default_factory=list)
-    dock: str | None = None  # a DockRobot goal's dock id ("" for a dock given by its pose); None: a navigation goal
 
 
 def _goal_events(logs: list[LogLine]) -> list[tuple[int, str, dict[str, object]]]:
@@ -83,13 +69,6 @@ def _from_statuses(statuses: list[GoalStatus]) -> list[tuple[int, str, dict[str,
             out.append((s.t, state, {"goal_id": s.goal_id}))
         seen[s.goal_id] = state
     return out
-
-
-def _number(value: object) -> float | None:
-    try:
-        return float(str(value))
-    except ValueError:
-        return None
 
 
 def _goals(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[_Goal]:
@@ -323,48 +302,12 @@ def _waypoint_tasks(goals: list[_Goal], logs: list[LogLine]) -> None:
             goal.end, goal.state, goal.error = told.t, "failed", told.msg
 
 
-def _dockings(logs: list[LogLine]) -> list[_Goal]:
-    """The docking server's DockRobot goals: from "Attempting to dock robot at …" to its success or its abort (a
-    new goal before either ends the one before, as preempted)."""
-    from hexar.explainers.navigation.catalogue import catalogue
-    from hexar.explainers.navigation.docking import ABORTED, BEGIN, DOCKED
-
-    cat = catalogue()
-    goals: list[_Goal] = []
-    for line in logs:
-        msg = line.msg.strip()
-        if line.name and cat.role(line.name) not in {"docking_server", None}:
-            continue
-        if (m := BEGIN.match(msg)) is not None:
-            if goals and goals[-1].end is None:
-                goals[-1].end, goals[-1].state = line.t, "canceled"
-            goals.append(_Goal(line.t, _number(m["x"] or ""), _number(m["y"] or ""), "Nav2 docking log",
-                               dock=m["dock"] or ""))
-        elif goals and goals[-1].end is None and (DOCKED.match(msg) or ABORTED.match(msg)):
-            aborted = ABORTED.match(msg)
-            goals[-1].end, goals[-1].state = line.t, "failed" if aborted else "succeeded"
-            goals[-1].error = aborted["msg"] if aborted else ""
-    return goals
-
-
-def _with_dockings(goals: list[_Goal], logs: list[LogLine]) -> list[_Goal]:
-    """The navigation goals and the dockings, in time order, without the trips a docking sent (those that began
-    inside it) or a goal inferred from Nav2's activity alone."""
-    docks = _dockings(logs)
-    if not docks:
-        return goals
-    last = max((ln.t for ln in logs), default=0)
-    kept = [g for g in goals if g.via != NO_GOAL_LINE
-            and not any(d.start <= g.start <= (d.end if d.end is not None else last) for d in docks)]
-    return sorted(kept + docks, key=lambda g: g.start)
-
-
 def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[GoalPose]) -> list[Task]:
-    """One task per navigation goal or docking, in time order; empty when the recording shows neither."""
+    """One task per navigation goal, docking or behaviour goal, in time order; empty when the recording shows none."""
     tasks = []
     goals = _goals(logs, statuses, poses)
     _waypoint_tasks(goals, logs)
-    goals = _with_dockings(goals, logs)
+    goals = with_server_goals(goals, logs)
     for order, goal in enumerate(goals, start=1):
         params: dict[str, object] = {"source": SOURCE, "derived_from": goal.via}
         where = "an unrecorded goal"
@@ -377,6 +320,9 @@ def derive_tasks(logs: list[LogLine], statuses: list[GoalStatus], poses: list[Go
             skill, instruction = DOCK_SKILL, f"Dock at {goal.dock or where} (derived from Nav2's docking server)"
             if goal.dock:
                 params["dock"] = goal.dock
+        elif goal.behavior is not None:
+            skill, instruction = BEHAVIOR_SKILL, f"Run {goal.behavior} (derived from Nav2's behaviour server)"
+            params = {"source": SOURCE, "derived_from": goal.via, "behavior": goal.behavior}
         history = [StatusChange(goal.start, "running", "")]
         if goal.end is not None:
             history.append(StatusChange(goal.end, goal.state, goal.error))

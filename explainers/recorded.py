@@ -17,7 +17,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import PoseSample, StatusRecord
 from hexar.events.tasks import SkillRun, Task
 
-NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose", "dock_robot")  # the steps that drive the base
+NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose", "dock_robot", "run_behavior")  # the steps that drive the base
 _NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \((-?[\d.]+), (-?[\d.]+)\)")
 
 

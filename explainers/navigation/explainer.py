@@ -52,11 +52,12 @@ from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
-from hexar.events.nav_goals import DOCK_SKILL, NO_GOAL_LINE
+from hexar.events.nav_servers import DOCK_SKILL, NO_GOAL_LINE
 from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import (
+    behaviors,
     chain,
     docking,
     grids,
@@ -227,6 +228,9 @@ class NavigationExplainer:
                 raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
+        behaved = behaviors.explained(behaviors.last_run(raw), raw) if behaviors.standalone(raw) else None
+        if behaved is not None:  # a spin, backup, ... that a program asked for, not a goal's recovery
+            return [behaved]
         dock = docking.docking(raw)
         docked = docking.dock_failed(dock, raw)  # a docking that failed after (or without) the trip to its staging pose
         if docked is not None:

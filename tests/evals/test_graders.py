@@ -143,3 +143,14 @@ def test_a_log_line_quoted_verbatim_claims_nothing() -> None:
 ])
 def test_the_dock_of_a_docking_is_no_claim_of_charging(text: str, charging: bool) -> None:
     assert ("navigation.charging" in read_claims(text).affirmed) is charging
+
+
+@pytest.mark.parametrize("text, nominal", [
+    # a behaviour server goal that succeeded (blind Nav2 set 28's answers) is a claim that nothing went wrong
+    ("I finished my spin of 1.57 rad without any problem, in 1.7 s.", True),
+    ("I finished my drive ahead without any problem, in 2.5 s.", True),
+    # one that ran out of time is none
+    ("My backup ran out of the time allowed for it (10.0 s) before it was done, and my logs do not show why.", False),
+])
+def test_a_behaviour_finished_without_a_problem_is_a_nominal_claim(text: str, nominal: bool) -> None:
+    assert ("navigation.nominal" in read_claims(text).affirmed) is nominal

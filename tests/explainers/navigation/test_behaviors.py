@@ -1,0 +1,106 @@
+"""Whole consoles of the real Nav2 sent one goal of a behaviour server action (blind set 28, spent), written as
+recordings with rosbags, with and without a /task_info task: a spin, backup, drive or wait that a program asked for is
+a task of its own, told by the behaviour server's own lines; the same lines inside a navigation goal stay that goal's
+recovery."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
+from hexar.claims import read_claims
+from hexar.evals.real_nav2 import Excerpt, blind_set, corpus, write_recording
+from hexar.events import read_recording
+from hexar.events.records import LogLine
+from hexar.explainers.navigation.behaviors import end_of, last_run, standalone
+
+
+def _excerpt(ident: str) -> Excerpt:
+    return next(e for e in blind_set(28) if e.id == f"kilted-nav2-{ident}")
+
+
+def _ask(tmp_path: Path, ident: str, task: bool, question: str = "Why did you fail?") -> dict[str, object]:
+    bag = write_recording(_excerpt(ident), tmp_path / f"bag{int(task)}", task=task)
+    return dict(Session(RunSettings(recording=bag, llm="none")).ask(question))
+
+
+@pytest.mark.parametrize("ident, behavior, outcome", [("spin-nominal", "spin", "succeeded"),
+                                                      ("backup-toward-box", "backup", "failed"),
+                                                      ("drive-nominal", "drive_on_heading", "succeeded")])
+def test_a_behaviour_goal_no_navigation_ran_is_one_task_of_its_own(
+        tmp_path: Path, ident: str, behavior: str, outcome: str) -> None:
+    # "Running spin" ... "spin completed successfully" (or "backup failed:Collision Ahead - ..."), and no navigation
+    # goal anywhere in the console
+    log = read_recording(write_recording(_excerpt(ident), tmp_path / "bag", task=False))
+    [task] = log.tasks
+    assert task.outcome == outcome
+    assert [(r.skill, r.params["behavior"]) for r in task.skills] == [("run_behavior", behavior)]
+
+
+@pytest.mark.parametrize("ident, words", [("spin-nominal", "I finished my spin of 1.57 rad without any problem"),
+                                          ("backup-nominal", "I finished my backup without any problem"),
+                                          ("wait-nominal", "I finished my wait without any problem, in 3.0 s")])
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_behaviour_that_succeeded_is_told_as_what_it_was(tmp_path: Path, ident: str, words: str,
+                                                            task: bool) -> None:
+    answer = _ask(tmp_path, ident, task, "How did it go?")
+    assert answer["causes"] == ["navigation.nominal"] and words in str(answer["answer"])
+    assert read_claims(str(answer["answer"])).causes == {"navigation.nominal"}
+
+
+@pytest.mark.parametrize("ident, cause, words", [
+    # "Collision Ahead - Exiting Spin" 0.2 s into a quarter turn of a rectangular robot beside a wall
+    ("spin-beside-wall", "navigation.collision_ahead", "My spin of 1.57 rad stopped at once"),
+    # the collision checker's own "Costmap is not available" before the same "Collision Ahead - Exiting Spin"
+    ("behavior-costmap-topic", "navigation.configuration_error", "could not check at all ('Costmap is not available')"),
+    # "Current robot pose is not available." with robot_base_frame base_footprint
+    ("behavior-base-frame", "navigation.transform_error", "My spin could not start"),
+])
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_behaviour_that_failed_is_told_by_its_own_lines(tmp_path: Path, ident: str, cause: str, words: str,
+                                                          task: bool) -> None:
+    answer = _ask(tmp_path, ident, task)
+    text = str(answer["answer"])
+    assert answer["causes"] == [cause] and words in text
+    assert read_claims(text).causes == {cause}
+
+
+@pytest.mark.parametrize("ident, figures", [("spin-time-allowance", "needs 0.78 rad/s"),
+                                            ("behavior-cmd-vel", "(10.0 s)")])
+def test_a_time_allowance_that_ran_out_names_what_the_console_cannot_tell_apart(
+        tmp_path: Path, ident: str, figures: str) -> None:
+    # "Exceeded time allowance before reaching the Spin goal" (too short an allowance) and the same for a backup
+    # whose commands never reached the base: one line, two causes, neither claimed
+    answer = _ask(tmp_path, ident, False)
+    text = str(answer["answer"])
+    assert answer["causes"] == ["navigation.unexplained_failure"] and figures in text
+    assert "the allowance was too short" in text and "my base did not move as commanded" in text
+    assert read_claims(text).causes <= {"navigation.unexplained_failure"}
+
+
+def test_a_recovery_inside_a_navigation_goal_stays_the_goals() -> None:
+    # corpus excerpts of recoveries whose goal's begin and end are not in the paste: the controller's "Failed to
+    # make progress" and its follow_path action show a navigation at work
+    for ident in ("neo-sim2-19-spin-collision-ahead", "nav2-1050-spins-failed-to-make-progress"):
+        excerpt = next(e for e in corpus() if e.id == ident)
+        raw = [LogLine(t=i, level=20, name="behavior_server", msg=line.split("]: ", 1)[-1])
+               for i, line in enumerate(excerpt.lines.splitlines())]
+        assert last_run(raw) is not None and not standalone(raw)
+
+
+def test_each_distros_begin_and_end_lines_are_read() -> None:
+    # timed_behavior.hpp@kilted's "spin failed:Collision Ahead - Exiting Spin", Humble's bare "spin failed",
+    # recovery.hpp@foxy's "Attempting Spin" ... "Spin completed successfully"
+    def line(msg: str) -> LogLine:
+        return LogLine(t=0, level=20, name="behavior_server", msg=msg)
+
+    assert end_of(line("spin failed:Collision Ahead - Exiting Spin")) == ("spin", "failed",
+                                                                        "Collision Ahead - Exiting Spin")
+    assert end_of(line("backup failed")) == ("backup", "failed", "backup failed")
+    assert end_of(line("Spin completed successfully")) == ("Spin", "succeeded", "")
+    assert end_of(line("Initial checks failed for spin - Current robot pose is not available.")) == (
+        "spin", "failed", "Current robot pose is not available.")
+    assert last_run([line("Attempting Spin"), line("Spin completed successfully")]) is not None
