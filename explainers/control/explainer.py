@@ -28,14 +28,14 @@ from typing import ClassVar
 from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
-from hexar.explainers.control import spawners
+from hexar.explainers.control import clock, limits, spawners
 from hexar.explainers.control.catalogue import REFUSED, catalogue
 from hexar.explainers.control.description import description_reading, waited, waiting_answer
 from hexar.explainers.control.driver_roles import RoleReading, by_role
 from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
-from hexar.explainers.module_explainer import ModuleExplainer, verbatim
+from hexar.explainers.module_explainer import ModuleExplainer, focus, verbatim
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 ACTIVATION = "control.controller_activation_failed"
@@ -82,6 +82,14 @@ class ControlExplainer(ModuleExplainer):
     def decided(self, lines: list[LogLine], context: Context) -> Explanation | None:
         # spawners that asked for a controller manager that is not there loaded nothing, whatever else came up
         # (a start derived from the log would otherwise read the hardware's start as a bring-up that went fine)
+        # the controller manager says which clock it runs on as it starts, before any window of a goal
+        stalled = clock.stalled([ln for ln in context.log.logs if ln.t <= context.window[1]])
+        if stalled is not None:
+            return clock.answer(self.name, stalled)
+        run = focus(context, self.skills)
+        beyond = limits.beyond_limits(lines) if run is not None and run.state == "failed" else None
+        if beyond is not None:
+            return limits.answer(self.name, beyond, self._what(run))
         found = spawners.other_manager(lines)
         if found is not None:
             return spawners.answer(self.name, found)
