@@ -25,7 +25,7 @@ import re
 from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation.detectors import NOMINAL, UNEXPLAINED, Finding
-from hexar.explainers.navigation.diagnose import COLLISION_AHEAD, CONFIGURATION, TRANSFORM
+from hexar.explainers.navigation.diagnose import COLLISION_AHEAD, CONFIGURATION, NOT_REACHING_BASE, TRANSFORM
 
 BEGIN = re.compile(r"^(?:Running|Attempting) (?P<name>\w+)$")
 DONE = re.compile(r"^(?P<name>\w+) completed successfully$")
@@ -96,9 +96,11 @@ def standalone(raw: list[LogLine]) -> bool:
     return any(BEGIN.match(ln.msg.strip()) for ln in raw) and not any(navigating(ln) for ln in raw)
 
 
-def explained(behavior: tuple[LogLine, LogLine | None] | None, raw: list[LogLine]) -> Finding | None:
+def explained(behavior: tuple[LogLine, LogLine | None] | None, raw: list[LogLine],
+              stall: Finding | None = None) -> Finding | None:
     """What the behaviour goal `behavior` (as `last_run` reads it) did, from the behaviour server's lines; None when
-    it ran on past the recording."""
+    it ran on past the recording. `stall`: recorded /cmd_vel that /odom never followed in its window (held.stall),
+    which tells a time allowance that ran out on a base that never moved."""
     if behavior is None:
         return None
     begin, end = behavior
@@ -134,6 +136,14 @@ def explained(behavior: tuple[LogLine, LogLine | None] | None, raw: list[LogLine
                         "Look at what stands around the robot: a turn in place needs the whole footprint's sweep "
                         "clear, and a backup the space behind it.")
     timeout = next((ln for ln in during if _TIMEOUT.match(ln.msg)), None)
+    if timeout is not None and stall is not None:
+        return _finding(NOT_REACHING_BASE, [timeout, end], f"{what.capitalize()}{size} ran out of the time allowed "
+                        f"for it ({seconds:.1f} s) because I never moved: I commanded my base for "
+                        f"{stall.facts['seconds']:.1f} s and my odometry stayed still, so my velocity commands did not "
+                        "reach my base.",
+                        "Check that the behaviour server's cmd_vel reaches the base: the topic the base's driver "
+                        "listens on, its message type (Twist or TwistStamped) and what stands between them.",
+                        stall.evidence)
     if timeout is not None:
         need = (f" A turn{size} in {seconds:.1f} s needs {abs(float(turn['angle'])) / seconds:.2f} rad/s on average; "
                 "if my max_rotational_vel is lower, the allowance was too short." if turn and seconds > 0 else "")
@@ -162,5 +172,7 @@ def template(f: Finding) -> tuple[str, str | None, list[str]] | None:
         [f"The behaviour server said: {e.item}" for e in f.evidence[-1:]]
 
 
-def _finding(cause: str, lines: list[LogLine], text: str, fix: str | None) -> Finding:
-    return Finding(cause, [Evidence.of_log(cause, ln) for ln in lines], {FACT: 1.0}, [text, *([fix] if fix else [])])
+def _finding(cause: str, lines: list[LogLine], text: str, fix: str | None, more: list[Evidence] | None = None
+             ) -> Finding:
+    return Finding(cause, [*(more or []), *(Evidence.of_log(cause, ln) for ln in lines)], {FACT: 1.0},
+                   [text, *([fix] if fix else [])])

@@ -228,7 +228,8 @@ class NavigationExplainer:
                 raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
-        behaved = behaviors.explained(behaviors.last_run(raw), raw) if behaviors.standalone(raw) else None
+        behaved = behaviors.explained(behaviors.last_run(raw), raw, held.stall(view, run)) \
+            if behaviors.standalone(raw) else None
         if behaved is not None:  # a spin, backup, ... that a program asked for, not a goal's recovery
             return [behaved]
         dock = docking.docking(raw)

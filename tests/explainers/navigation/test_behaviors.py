@@ -13,9 +13,11 @@ from hexar.agent.context import RunSettings
 from hexar.agent.session import Session
 from hexar.claims import read_claims
 from hexar.evals.real_nav2 import Excerpt, blind_set, corpus, write_recording
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import read_recording
-from hexar.events.records import LogLine
+from hexar.events.records import INFO, WARN, LogLine
 from hexar.explainers.navigation.behaviors import end_of, last_run, standalone
+from tests.explainers.navigation.test_nav2_causes import T0, _odom, _twist
 
 
 def _excerpt(ident: str) -> Excerpt:
@@ -104,3 +106,33 @@ def test_each_distros_begin_and_end_lines_are_read() -> None:
     assert end_of(line("Initial checks failed for spin - Current robot pose is not available.")) == (
         "spin", "failed", "Current robot pose is not available.")
     assert last_run([line("Attempting Spin"), line("Spin completed successfully")]) is not None
+
+
+def _backup_that_ran_out(odom_vx: float) -> BagBuilder:
+    # blind28 behavior-cmd-vel's behaviour server lines (the base listened on another topic), with /cmd_vel and
+    # /odom recorded as a robot's recorder keeps them
+    b = BagBuilder()
+    b.log(T0, "behavior_server", INFO, "Running backup")
+    for i in range(100):
+        t = T0 + sec_ns(0.1 * i)
+        b.raw(t, "/cmd_vel", "geometry_msgs/msg/Twist", _twist(-0.1))
+        b.raw(t, "/odom", "nav_msgs/msg/Odometry", _odom(t, odom_vx * 0.1 * i, odom_vx))
+    b.log(T0 + sec_ns(10), "behavior_server", WARN, "Exceeded time allowance before reaching the DriveOnHeading "
+          "goal - Exiting DriveOnHeading")
+    b.log(T0 + sec_ns(10), "behavior_server", WARN, "backup failed:Exceeded time allowance before reaching the "
+          "DriveOnHeading goal - Exiting DriveOnHeading")
+    return b
+
+
+def test_a_time_allowance_that_ran_out_on_a_base_that_never_moved_is_told_with_the_recorded_motion(
+        tmp_path: Path) -> None:
+    still = _backup_that_ran_out(0.0).write(tmp_path / "still")
+    answer = dict(Session(RunSettings(recording=still, llm="none")).ask("Why did you fail?"))
+    text = str(answer["answer"])
+    assert answer["causes"] == ["navigation.commands_not_reaching_base"]
+    assert "my velocity commands did not reach my base" in text
+    assert read_claims(text).causes == {"navigation.commands_not_reaching_base"}
+    # the same lines where the odometry shows the base backing up: the console's two readings stay open
+    moving = _backup_that_ran_out(-0.1).write(tmp_path / "moving")
+    answer = dict(Session(RunSettings(recording=moving, llm="none")).ask("Why did you fail?"))
+    assert answer["causes"] == ["navigation.unexplained_failure"]
