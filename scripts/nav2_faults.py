@@ -88,6 +88,7 @@ class Fault:
     speed: tuple[tuple[float, float, float, float], ...] = ()  # speed zones (x0, y0, x1, y1) of a speed filter mask
     speed_percent: int = 100  # the robot's speed in them
     behavior: tuple[Any, ...] = ()  # (action, values): a behaviour server goal (set 28) instead of a goal
+    sent: dict[str, Any] = field(default_factory=dict)  # the goal as a script sends it (set 29's GOAL_SENT)
 
 
 BAD_BT = """<root BTCPP_format="4" main_tree_to_execute="MainTree">
@@ -323,7 +324,10 @@ def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[st
     launch, prefix = setup(fault, work)
     result_file = work / "goal.json"
     run_s = str(RUN_S * (2 if fault.slow else 1))
-    if fault.behavior:
+    if fault.sent:
+        from nav2_faults29 import GOAL_SENT
+        client = (GOAL_SENT, [json.dumps(fault.sent), str(WAIT_S), run_s, str(result_file)])
+    elif fault.behavior:
         client = (BEHAVIOR, [fault.behavior[0], json.dumps(fault.behavior[1]), str(WAIT_S), run_s, str(result_file)])
     elif fault.dock_id:
         client = (DOCK, [fault.dock_id, str(WAIT_S), str(2 * RUN_S), str(result_file)])  # retries take their time
@@ -346,6 +350,8 @@ HEADER = """\
 
 
 def _sent(fault: Fault) -> str:
+    if fault.sent:
+        return f"NavigateToPose as sent {json.dumps(fault.sent)}"
     if fault.behavior:
         return f"{fault.behavior[0]} goal {json.dumps(fault.behavior[1])}"
     if fault.dock_id:
@@ -358,13 +364,13 @@ def _sent(fault: Fault) -> str:
 
 def main() -> int:
     parser = arguments(__doc__)
-    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26, 27, 28), default=20,
+    parser.add_argument("--set", type=int, choices=(20, 21, 22, 23, 24, 25, 26, 27, 28, 29), default=20,
                         help="20: bring-up, goals, starts; 21: AMCL, transforms, processes, the base; 22: the "
                              "velocity smoother and collision monitor, DWB, the controller's checkers; 23: MPPI, the "
                              "rotation shim, the graceful controller, Theta*; 24: the waypoint follower; 25: "
                              "NavigateThroughPoses and keepout zones; 26: the docking server; 27: "
                              "robot_localization's EKF, a speed filter, the smoother server; 28: the "
-                             "behaviour server's actions")
+                             "behaviour server's actions; 29: the goal as a script sends it")
     parser.add_argument("--nav2-version", default="kilted", help="as the header names it")
     args = parser.parse_args()
     faults, header = FAULTS, HEADER
