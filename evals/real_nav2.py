@@ -109,7 +109,7 @@ BLIND_FILES = ("blind.yaml", "blind2.yaml", "blind3.yaml", "blind4.yaml", "blind
                "blind8.yaml", "blind9.yaml", "blind10.yaml", "blind11.yaml", "blind12.yaml",
                "blind13.yaml", "blind14.yaml", "blind15.yaml", "blind16.yaml", "blind17.yaml", "blind18.yaml",
                "blind19.yaml", "blind20.yaml", "blind21.yaml", "blind22.yaml", "blind23.yaml", "blind24.yaml",
-               "blind25.yaml", "blind26.yaml", "blind27.yaml", "blind28.yaml")
+               "blind25.yaml", "blind26.yaml", "blind27.yaml", "blind28.yaml", "blind29.yaml")
 
 
 @cache

@@ -384,7 +384,7 @@ def eval_(
     figures: Annotated[bool, typer.Option(help="draw the PNG figures")] = True,
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
                                        "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind, "
-                                       "real-nav2-blind2 ... -blind28 (blind sets), real-modules, "
+                                       "real-nav2-blind2 ... -blind29 (blind sets), real-modules, "
                                        "real-modules-heldout, -heldout2 ... -heldout35 (MoveIt 2, "
                                        "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "

@@ -35,7 +35,8 @@ BASELINES = Path(__file__).resolve().parents[2] / "evals" / "baselines"
 BLIND_SETS = [(40, True), (30, True), (14, False), (12, True), (25, True), (9, False), (19, True), (4, False),
               (6, True), (15, True), (6, False), (4, True),
               (4, False), (3, True), (1, False), (8, False), (1, False), (1, False), (2, False), (18, True), (11, True),
-              (14, True), (10, True), (10, True), (10, True), (12, False), (10, True), (12, True)]
+              (14, True), (10, True), (10, True), (10, True), (12, False), (10, True), (12, True),
+              (8, True)]
 
 
 def test_every_blind_file_has_its_expectations() -> None:

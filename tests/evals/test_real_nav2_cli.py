@@ -86,7 +86,7 @@ def test_markdown_lists_what_is_still_wrong(run: tuple[Path, int]) -> None:
 @pytest.mark.parametrize("args, message", [
     (["--suite", "real-nav3"], "unknown suite 'real-nav3'"),
     # every suite is named, the module suites too (they were missing from a wrong nav suite's list)
-    (["--suite", "real-nav3"], "real-nav2-blind28, real-modules, real-modules-heldout"),
+    (["--suite", "real-nav3"], "real-nav2-blind29, real-modules, real-modules-heldout"),
     (["--suite", "real-modules-heldout99"], "use paper, real-nav2, "),
     (["--suite", "real-nav2", "--scenario", "3"], "--scenario belong to the paper's suite"),
     (["--suite", "real-nav2", "--tolerance", "2"], "--tolerance is a fraction"),
