@@ -60,6 +60,7 @@ from hexar.explainers.navigation import (
     behaviors,
     chain,
     docking,
+    goal_sent,
     grids,
     held,
     keepout,
@@ -228,10 +229,11 @@ class NavigationExplainer:
                 raw: list[LogLine], inferred: bool = False) -> list[d.Finding]:
         if flagged:
             return []
-        behaved = behaviors.explained(behaviors.last_run(raw), raw, held.stall(view, run)) \
-            if behaviors.standalone(raw) else None
-        if behaved is not None:  # a spin, backup, ... that a program asked for, not a goal's recovery
-            return [behaved]
+        # a spin, backup, ... that a program asked for (not a goal's recovery); the goal as it was sent
+        told = behaviors.explained(behaviors.last_run(raw), raw, held.stall(view, run)) \
+            if behaviors.standalone(raw) else goal_sent.framed(raw) if run.outcome != "reached" else None
+        if told is not None:
+            return [told]
         dock = docking.docking(raw)
         docked = docking.dock_failed(dock, raw)  # a docking that failed after (or without) the trip to its staging pose
         if docked is not None:
@@ -255,8 +257,8 @@ class NavigationExplainer:
             if problem is not None:
                 return [problem]
         if run.outcome == "failed":
-            # nothing else explains the failure: a costmap that refused its map's publisher does
-            refused = mapsave.costmap_refused_map(before)
+            # nothing else explains it: a costmap that refused its map's publisher, a goal sent before the stack was up
+            refused = mapsave.costmap_refused_map(before) or goal_sent.rejected(raw)
             if refused is not None:
                 return [refused]
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, run.end)] if run.end else [])
