@@ -76,6 +76,7 @@ HELDOUT32_SUITE = "real-modules-heldout32"  # round 36: a mobile base on diff_dr
 HELDOUT33_SUITE = "real-modules-heldout33"  # and the arm's trajectories, loop and spawners
 HELDOUT34_SUITE = "real-modules-heldout34"  # and a parallel gripper's
 HELDOUT35_SUITE = "real-modules-heldout35"  # round 38: a pan-tilt head on forward_command_controller
+HELDOUT36_SUITE = "real-modules-heldout36"  # and trajectories as a script sends them
 FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "heldout2.yaml",
          HELDOUT3_SUITE: "heldout3.yaml", HELDOUT4_SUITE: "heldout4.yaml",
          HELDOUT5_SUITE: "heldout5.yaml", HELDOUT6_SUITE: "heldout6.yaml",
@@ -93,7 +94,7 @@ FILES = {SUITE: "corpus.yaml", HELDOUT_SUITE: "heldout.yaml", HELDOUT2_SUITE: "h
          HELDOUT28_SUITE: "heldout28.yaml", HELDOUT29_SUITE: "heldout29.yaml",
          HELDOUT30_SUITE: "heldout30.yaml", HELDOUT31_SUITE: "heldout31.yaml",
          HELDOUT32_SUITE: "heldout32.yaml", HELDOUT33_SUITE: "heldout33.yaml", HELDOUT34_SUITE: "heldout34.yaml",
-         HELDOUT35_SUITE: "heldout35.yaml"}
+         HELDOUT35_SUITE: "heldout35.yaml", HELDOUT36_SUITE: "heldout36.yaml"}
 MODULES = ("manipulation", "control", "bringup", "system")
 SKILL = {"manipulation": "move_arm", "control": "follow_joint_trajectory", "bringup": "bring_up_controllers",
          "system": "bring_up_controllers"}

@@ -385,7 +385,7 @@ def eval_(
     suite: Annotated[str, typer.Option(help="paper (the 180 cases), real-nav2 (real Nav2 logs from public "
                                        "threads), real-nav2-heldout (threads never tuned on), real-nav2-blind, "
                                        "real-nav2-blind2 ... -blind29 (blind sets), real-modules, "
-                                       "real-modules-heldout, -heldout2 ... -heldout35 (MoveIt 2, "
+                                       "real-modules-heldout, -heldout2 ... -heldout36 (MoveIt 2, "
                                        "ros2_control, bring-up); the real-nav2 "
                                        "suites use --out, --runs, --llm, --baseline, --write-baseline, "
                                        "--tolerance")] = "paper",
