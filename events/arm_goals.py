@@ -47,7 +47,7 @@ class _Goal:
 
 def _kind(line: LogLine) -> tuple[str, str] | None:
     """(skill, kind) of a goal line in either catalogue, else None."""
-    from hexar.explainers.control.catalogue import REFUSED
+    from hexar.explainers.control.catalogue import INVALID, REFUSED
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
@@ -62,8 +62,8 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
         elif skill == FOLLOW and entry.cause == "control.tolerance_violated" and entry.strength == "strong" \
                 and line.msg.startswith("Aborted"):
             kind = "failed"  # the controller aborts the goal it was following
-        elif skill == FOLLOW and entry.id == REFUSED:
-            kind = "failed"  # the controller refuses the goal it has just received: it is not active
+        elif skill == FOLLOW and (entry.id == REFUSED or entry.id in INVALID):
+            kind = "failed"  # the controller refuses the goal it has just received: not active, or not a fit
         if kind in _BEGIN or kind in _END:
             return skill, ("begin" if kind in _BEGIN else kind)
     return None

@@ -14,6 +14,12 @@ from hexar.explainers.logcause import ModuleCatalogue, load
 # the joint trajectory controller's refusal of a goal while it is not active ("Can't accept new action goals.
 # Controller is not running."): it ends the goal it refuses, and says that the controller is not active, never why
 REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"
+# its checks of a goal's trajectory (validate_trajectory_msg@kilted, from goal_received_callback): one of these lines
+# rejects the goal it has just received, and says why (scripts/modules_mining.yaml gives each its cause)
+INVALID = frozenset(f"joint_trajectory_controller.{key}" for key in (
+    "time_between_points_and_is_not", "mismatch_between_joint_names_and_at", "mismatch_between_joint_names_size_and",
+    "empty_trajectory_received", "velocity_of_last_trajectory_point_of", "received_trajectory_with_non_zero_start",
+    "the_given_trajectory_has_no_position"))
 
 
 @cache
