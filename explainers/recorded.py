@@ -18,6 +18,8 @@ from hexar.events.records import PoseSample, StatusRecord
 from hexar.events.tasks import SkillRun, Task
 
 NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose", "dock_robot", "run_behavior")  # the steps that drive the base
+_BEHAVIORS = {"spin": "turn in place", "backup": "back up", "back_up": "back up",
+              "drive_on_heading": "drive straight ahead", "wait": "wait", "assisted_teleop": "drive by assisted teleop"}
 _NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \((-?[\d.]+), (-?[\d.]+)\)")
 
 
@@ -132,6 +134,8 @@ def step_words(run: SkillRun, short: bool = False) -> str:
         return "say the pizza I recommend" if text.startswith("?") else f'say "{_clip(text, 60)}"'
     if run.skill == "recommend_pizza":
         return "choose a pizza from the ingredients available"
+    if run.skill == "run_behavior" and isinstance(name := p.get("behavior"), str):  # Nav2's behaviour server's
+        return _BEHAVIORS.get(name.lower(), name.replace("_", " "))
     obj = p.get("object")
     if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
         return f"{'pick up' if run.skill == 'pick' else 'put down'} the {obj.replace('_', ' ')}"

@@ -17,6 +17,7 @@ from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import read_recording
 from hexar.events.records import INFO, WARN, LogLine
 from hexar.explainers.navigation.behaviors import end_of, last_run, standalone
+from hexar.explainers.recorded import step_words
 from tests.explainers.navigation.test_nav2_causes import T0, _odom, _twist
 
 
@@ -40,6 +41,8 @@ def test_a_behaviour_goal_no_navigation_ran_is_one_task_of_its_own(
     [task] = log.tasks
     assert task.outcome == outcome
     assert [(r.skill, r.params["behavior"]) for r in task.skills] == [("run_behavior", behavior)]
+    assert step_words(task.skills[0]) == {"spin": "turn in place", "backup": "back up",
+                                          "drive_on_heading": "drive straight ahead"}[behavior]
 
 
 @pytest.mark.parametrize("ident, words", [("spin-nominal", "I finished my spin of 1.57 rad without any problem"),
