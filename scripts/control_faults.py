@@ -164,7 +164,10 @@ except (KeyboardInterrupt, ExternalShutdownException):
     pass
 """
 
-SEND = HIT + """\
+# a trajectory sender's start (its arguments begin WAIT_S RUN_S OUT): the action's client once its server is there,
+# and the result it fills in; what follows builds `goal` under `if result['server']:` and sends it, and
+# TRAJECTORY_RESULT ends it (set 36's sender too)
+TRAJECTORY_CLIENT = HIT + """\
 import json
 import sys
 import time
@@ -175,7 +178,6 @@ from rclpy.action import ActionClient
 from trajectory_msgs.msg import JointTrajectoryPoint
 
 wait_s, run_s, out = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
-hit = [a for a in sys.argv[4:7] if a]  # PROCESS SIGNAL SECONDS: done to a process on the way (empty: nothing)
 rclpy.init()
 node = rclpy.create_node('trajectory_sender')
 client = ActionClient(node, FollowJointTrajectory, 'arm_controller/follow_joint_trajectory')
@@ -184,17 +186,24 @@ result = {'server': client.wait_for_server(timeout_sec=wait_s), 'accepted': Fals
 if result['server']:
     time.sleep(1.0)  # as a script waits for the controller to be active, not only its server to exist
     goal = FollowJointTrajectory.Goal()
-    goal.trajectory.joint_names = sys.argv[7].split(',')
-    n = len(goal.trajectory.joint_names)  # as many positions as joints named (a partial goal: fewer)
-    for t, (a, b) in ((1, (0.5, -0.5)), (2, (1.0, -1.0))):
-        goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b][:n], time_from_start=Duration(sec=t)))
-    done = send_goal(node, client, goal, hit, hit[0] if hit else '', run_s, result)
+"""
+
+TRAJECTORY_RESULT = """\
     if done is not None:
         res = done.result()
         result['status'], result['error_code'] = res.status, res.result.error_code
         result['error_string'] = res.result.error_string
 json.dump(result, open(out, 'w'))
 """
+
+SEND = TRAJECTORY_CLIENT + """\
+    hit = [a for a in sys.argv[4:7] if a]  # PROCESS SIGNAL SECONDS: done to a process on the way (empty: nothing)
+    goal.trajectory.joint_names = sys.argv[7].split(',')
+    n = len(goal.trajectory.joint_names)  # as many positions as joints named (a partial goal: fewer)
+    for t, (a, b) in ((1, (0.5, -0.5)), (2, (1.0, -1.0))):
+        goal.trajectory.points.append(JointTrajectoryPoint(positions=[a, b][:n], time_from_start=Duration(sec=t)))
+    done = send_goal(node, client, goal, hit, hit[0] if hit else '', run_s, result)
+""" + TRAJECTORY_RESULT
 
 LAUNCH = """\
 from launch import LaunchDescription

@@ -25,9 +25,21 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from control_faults import CONFIG, JOINTS, NOMINAL, RUN_S, TOLERANCE, WAIT_S, label, module_set, setup
+from control_faults import (
+    CONFIG,
+    JOINTS,
+    NOMINAL,
+    RUN_S,
+    TOLERANCE,
+    TRAJECTORY_CLIENT,
+    TRAJECTORY_RESULT,
+    WAIT_S,
+    label,
+    module_set,
+    setup,
+)
 from control_faults import Fault as Bringup
-from launch_runs import HIT, run_launch
+from launch_runs import run_launch
 
 # (seconds from start, positions, velocities or None): set 30's trajectory, half way and all the way in 2 s
 GOOD = ((1.0, (0.5, -0.5), None), (2.0, (1.0, -1.0), None))
@@ -69,27 +81,9 @@ FAULTS = (
 )
 
 
-SEND = HIT + """\
-import json
-import sys
-import time
-import rclpy
-from builtin_interfaces.msg import Duration
-from control_msgs.action import FollowJointTrajectory
-from rclpy.action import ActionClient
-from rclpy.duration import Duration as Span
-from trajectory_msgs.msg import JointTrajectoryPoint
-
-wait_s, run_s, out, joints = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3], sys.argv[4].split(',')
-points, stamp_s = json.loads(sys.argv[5]), json.loads(sys.argv[6])
-rclpy.init()
-node = rclpy.create_node('trajectory_sender')
-client = ActionClient(node, FollowJointTrajectory, 'arm_controller/follow_joint_trajectory')
-result = {'server': client.wait_for_server(timeout_sec=wait_s), 'accepted': False, 'status': None,
-          'error_code': None, 'error_string': None, 'seconds': None}
-if result['server']:
-    time.sleep(1.0)  # as a script waits for the controller to be active, not only its server to exist
-    goal = FollowJointTrajectory.Goal()
+SEND = TRAJECTORY_CLIENT + """\
+    from rclpy.duration import Duration as Span
+    joints, points, stamp_s = sys.argv[4].split(','), json.loads(sys.argv[5]), json.loads(sys.argv[6])
     goal.trajectory.joint_names = joints
     if stamp_s is not None:
         goal.trajectory.header.stamp = (node.get_clock().now() + Span(seconds=stamp_s)).to_msg()
@@ -100,12 +94,7 @@ if result['server']:
             point.velocities = velocities
         goal.trajectory.points.append(point)
     done = send_goal(node, client, goal, [], '', run_s, result)
-    if done is not None:
-        res = done.result()
-        result['status'], result['error_code'] = res.status, res.result.error_code
-        result['error_string'] = res.result.error_string
-json.dump(result, open(out, 'w'))
-"""
+""" + TRAJECTORY_RESULT
 
 
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:

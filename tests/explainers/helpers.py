@@ -79,3 +79,13 @@ def one_step_task(tmp_path: Path, lines: list[Line], explainer: str, skill: str)
     b.task_info(T0 - 500_000_000, update("Running"))
     b.task_info(T0 + sec_ns(max(s for s, *_ in lines) + 0.5), update("failed"))
     return explain(write_lines(tmp_path, lines, b), explainer, "Why didn't that work?")[1]
+
+
+def ask_run(tmp_path: Path, suite: str, ident: str, task: bool) -> Explanation:
+    """A real_modules run of `suite` (its id without the kilted-control- prefix), written as a recording with or
+    without a /task_info task; what `control` answers to the suite's question about it."""
+    from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
+
+    excerpt = next(e for e in load_excerpts(suite) if e.id == f"kilted-control-{ident}")
+    log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
+    return explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])[1]

@@ -13,7 +13,7 @@ from hexar.claims import read_claims
 from hexar.evals.real_modules import QUESTIONS, Excerpt, load_excerpts, write_recording
 from hexar.events import read_recording
 from hexar.explainers.control.spawners import never_activated
-from tests.explainers.helpers import explain
+from tests.explainers.helpers import ask_run, explain
 
 
 def _excerpt(ident: str) -> Excerpt:
@@ -21,9 +21,7 @@ def _excerpt(ident: str) -> Excerpt:
 
 
 def _ask(tmp_path: Path, ident: str, task: bool) -> tuple[list[str], str]:
-    excerpt = _excerpt(ident)
-    log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
-    _, found = explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])
+    found = ask_run(tmp_path, "real-modules-heldout34", ident, task)
     return found.causes, found.text
 
 

@@ -11,12 +11,12 @@ from pathlib import Path
 import pytest
 
 from hexar.claims import read_claims
-from hexar.evals.real_modules import QUESTIONS, Excerpt, load_excerpts, write_recording
+from hexar.evals.real_modules import Excerpt, load_excerpts, write_recording
 from hexar.events import read_recording
 from hexar.events.records import LogLine
 from hexar.explainers.control.clock import stalled
 from hexar.explainers.control.limits import beyond_limits
-from tests.explainers.helpers import explain
+from tests.explainers.helpers import ask_run
 
 
 def _excerpt(ident: str) -> Excerpt:
@@ -28,9 +28,7 @@ def _logs(tmp_path: Path, ident: str) -> list[LogLine]:
 
 
 def _ask(tmp_path: Path, ident: str, task: bool) -> tuple[list[str], str]:
-    excerpt = _excerpt(ident)
-    log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
-    _, found = explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])
+    found = ask_run(tmp_path, "real-modules-heldout35", ident, task)
     return found.causes, found.text
 
 

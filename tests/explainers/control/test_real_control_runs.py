@@ -20,14 +20,12 @@ import pytest
 from hexar.claims import read_claims
 from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
 from hexar.events import read_recording
-from tests.explainers.helpers import explain
+from tests.explainers.helpers import ask_run, explain
 
 
 def _ask(tmp_path: Path, ident: str, task: bool, suite: str = "real-modules-heldout30"
          ) -> tuple[list[str], str, str]:
-    excerpt = next(e for e in load_excerpts(suite) if e.id == f"kilted-control-{ident}")
-    log = read_recording(write_recording(excerpt, tmp_path / f"run{int(task)}", task=task))
-    _, found = explain(log, "control", QUESTIONS["succeeded" if excerpt.outcome == "succeeded" else "failed"])
+    found = ask_run(tmp_path, suite, ident, task)
     return found.causes, found.text, " ".join(e.item for e in found.evidence)
 
 
