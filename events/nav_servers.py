@@ -10,7 +10,8 @@ navigation goal is that goal's recovery, which its own reading explains.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 from hexar.events.records import LogLine
 
@@ -40,48 +41,65 @@ def number(value: object) -> float | None:
         return None
 
 
-def _dockings(logs: list[LogLine]) -> list[Goal]:
-    """The docking server's DockRobot goals: from "Attempting to dock robot at …" to its success or its abort (a
-    new goal before either ends the one before, as preempted)."""
+@dataclass(frozen=True)
+class Span:
+    """One goal of a Nav2 server, read from its lines: the line that began it, the line that ended it (None while it
+    ran on), and how it ended."""
+
+    begin: LogLine
+    end: LogLine | None = None
+    state: str = "running"
+    error: str = ""
+
+
+Begins = Callable[[LogLine], bool]
+Ends = Callable[[LogLine, LogLine], tuple[str, str] | None]  # (begin, line): (state, error) if `line` ends it
+
+
+def spans(logs: list[LogLine], role: str, begins: Begins, ends: Ends) -> list[Span]:
+    """A server's goals in `logs`, from a line `begins` reads to one `ends` reads for it (the server's lines, or an
+    unknown logger's); a new goal before that ends the one before, as preempted."""
     from hexar.explainers.navigation.catalogue import catalogue
-    from hexar.explainers.navigation.docking import ABORTED, BEGIN, DOCKED
 
     cat = catalogue()
-    goals: list[Goal] = []
+    out: list[Span] = []
     for line in logs:
-        msg = line.msg.strip()
-        if line.name and cat.role(line.name) not in {"docking_server", None}:
+        if line.name and cat.role(line.name) not in {role, None}:
             continue
-        if (m := BEGIN.match(msg)) is not None:
-            if goals and goals[-1].end is None:
-                goals[-1].end, goals[-1].state = line.t, "canceled"
-            goals.append(Goal(line.t, number(m["x"] or ""), number(m["y"] or ""), "Nav2 docking log",
-                              dock=m["dock"] or ""))
-        elif goals and goals[-1].end is None and (DOCKED.match(msg) or ABORTED.match(msg)):
-            aborted = ABORTED.match(msg)
-            goals[-1].end, goals[-1].state = line.t, "failed" if aborted else "succeeded"
-            goals[-1].error = aborted["msg"] if aborted else ""
+        if begins(line):
+            if out and out[-1].end is None:
+                out[-1] = replace(out[-1], end=line, state="canceled")
+            out.append(Span(line))
+        elif out and out[-1].end is None and (ended := ends(out[-1].begin, line)) is not None:
+            out[-1] = replace(out[-1], end=line, state=ended[0], error=ended[1])
+    return out
+
+
+def _goal(span: Span, via: str, xy: tuple[float | None, float | None] = (None, None), dock: str | None = None,
+          behavior: str | None = None) -> Goal:
+    return Goal(span.begin.t, *xy, via, span.end.t if span.end is not None else None, span.state, span.error,
+                dock=dock, behavior=behavior)
+
+
+def _dockings(logs: list[LogLine]) -> list[Goal]:
+    """The docking server's DockRobot goals: from "Attempting to dock robot at …" to its success or its abort."""
+    from hexar.explainers.navigation import docking
+
+    goals = []
+    for span in spans(logs, "docking_server", docking.begins, docking.ends):
+        m = docking.BEGIN.match(span.begin.msg.strip())
+        assert m is not None
+        xy = number(m["x"] or ""), number(m["y"] or "")
+        goals.append(_goal(span, "Nav2 docking log", xy, dock=m["dock"] or ""))
     return goals
 
 
 def _behaviors(logs: list[LogLine]) -> list[Goal]:
-    """The behaviour server's goals: from "Running <name>" to the line that ends it (a new goal before that ends
-    the one before, as preempted)."""
-    from hexar.explainers.navigation.behaviors import BEGIN, end_of
-    from hexar.explainers.navigation.catalogue import catalogue
+    """The behaviour server's goals: from "Running <name>" to the line that ends it."""
+    from hexar.explainers.navigation import behaviors
 
-    cat = catalogue()
-    goals: list[Goal] = []
-    for line in logs:
-        if line.name and cat.role(line.name) not in {"behavior_server", None}:
-            continue
-        if (m := BEGIN.match(line.msg.strip())) is not None:
-            if goals and goals[-1].end is None:
-                goals[-1].end, goals[-1].state = line.t, "canceled"
-            goals.append(Goal(line.t, None, None, "Nav2 behaviour server log", behavior=m["name"]))
-        elif goals and goals[-1].end is None and (end := end_of(line)) is not None and end[0] == goals[-1].behavior:
-            goals[-1].end, goals[-1].state, goals[-1].error = line.t, end[1], end[2]
-    return goals
+    return [_goal(span, "Nav2 behaviour server log", behavior=behaviors.name_of(span.begin))
+            for span in spans(logs, "behavior_server", behaviors.begins, behaviors.ends)]
 
 
 def _inside(goal: Goal, others: list[Goal], last: int) -> bool:

@@ -26,8 +26,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-from control_faults import CONFIG, DESCRIBE, NOMINAL, module_set
+from control_faults import CONFIG, NOMINAL, module_set, write_bringup
 from launch_runs import install, run_launch
 
 LAUNCH_ARG = "bringup.configuration_error"
@@ -228,14 +227,8 @@ def generate_launch_description():
 
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:
     """Launch the base's bring-up, drive it from outside, Ctrl-C two seconds later: the console and the drive."""
-    (work / "base.urdf").write_text(urdf(fault), encoding="utf-8")
-    (work / "base_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
-    prefix = work / "install"
-    install(prefix, "base_description", "describe", DESCRIBE)
+    launch, prefix = write_bringup(work, "base", urdf(fault), params(fault), LAUNCH, clock=fault.stamp == "sim")
     install(prefix, "rosbag2_player", "play", CLOCK)
-    launch = work / "base_control.launch.py"
-    launch.write_text(LAUNCH.format(params=str(work / "base_controllers.yaml"), urdf=str(work / "base.urdf"),
-                                    clock=fault.stamp == "sim"), encoding="utf-8")
     result_file = work / "result.json"
     argv = [str(WAIT_S), str(result_file), fault.stamp, fault.message, str(fault.rate_hz), *map(str, DRIVE)]
     return run_launch(launch, prefix, work, launch_path, (SEND, argv), result_file, WAIT_S + 30.0)

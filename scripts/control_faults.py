@@ -240,20 +240,28 @@ def generate_launch_description():
 """
 
 
+def write_bringup(work: Path, robot: str, description: str, controllers: dict[str, Any], launch: str,
+                  **fields: Any) -> tuple[Path, Path]:
+    """A control bring-up in `work` (this script's and base_faults.py's, gripper_faults.py's, head_faults.py's): the
+    robot's description and controllers' parameters as `<robot>.urdf` and `<robot>_controllers.yaml`, its description
+    publisher installed as `<robot>_description`, and the launch file `launch` filled with their paths and `fields`:
+    the launch file's path and the install prefix."""
+    (work / f"{robot}.urdf").write_text(description, encoding="utf-8")
+    (work / f"{robot}_controllers.yaml").write_text(yaml.safe_dump(controllers, sort_keys=False), encoding="utf-8")
+    prefix = work / "install"
+    install(prefix, f"{robot}_description", "describe", DESCRIBE)
+    path = work / f"{robot}_control.launch.py"
+    path.write_text(launch.format(params=str(work / f"{robot}_controllers.yaml"), urdf=str(work / f"{robot}.urdf"),
+                                  **fields), encoding="utf-8")
+    return path, prefix
+
+
 def setup(fault: Fault, work: Path) -> tuple[Path, Path]:
     """The fault's work folder: the description, the params file, the description publisher as an installed
     program, the launch file."""
-    (work / "arm.urdf").write_text(urdf(fault), encoding="utf-8")
-    (work / "arm_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
-    prefix = work / "install"
-    install(prefix, "arm_description", "describe", DESCRIBE)
-    launch = work / "arm_control.launch.py"
-    launch.write_text(LAUNCH.format(params=str(work / "arm_controllers.yaml"), urdf=str(work / "arm.urdf"),
-                                    describe=fault.description, manager=fault.manager_arg,
-                                    spawns=[(n, list(a)) for n, a in fault.spawns], chained=fault.chained,
-                                    delay=fault.describe_delay),
-                 encoding="utf-8")
-    return launch, prefix
+    return write_bringup(work, "arm", urdf(fault), params(fault), LAUNCH, describe=fault.description,
+                         manager=fault.manager_arg, spawns=[(n, list(a)) for n, a in fault.spawns],
+                         chained=fault.chained, delay=fault.describe_delay)
 
 
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:

@@ -25,9 +25,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-from control_faults import CONFIG, DESCRIBE, LOAD, NOMINAL, TOLERANCE, module_set
-from launch_runs import HIT, install, run_launch
+from control_faults import CONFIG, LOAD, NOMINAL, TOLERANCE, module_set, write_bringup
+from launch_runs import HIT, run_launch
 
 ACTIVATION = "control.controller_activation_failed"
 JOINT = "gripper_finger_joint"
@@ -164,13 +163,7 @@ def generate_launch_description():
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:
     """Launch the gripper's bring-up, send the grasp from outside it, Ctrl-C two seconds after the result: the
     console and the grasp's result."""
-    (work / "gripper.urdf").write_text(urdf(fault), encoding="utf-8")
-    (work / "gripper_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
-    prefix = work / "install"
-    install(prefix, "gripper_description", "describe", DESCRIBE)
-    launch = work / "gripper_control.launch.py"
-    launch.write_text(LAUNCH.format(params=str(work / "gripper_controllers.yaml"), urdf=str(work / "gripper.urdf"),
-                                    inactive=fault.inactive), encoding="utf-8")
+    launch, prefix = write_bringup(work, "gripper", urdf(fault), params(fault), LAUNCH, inactive=fault.inactive)
     result_file = work / "result.json"
     argv = [str(WAIT_S), str(RUN_S), str(result_file), ",".join(map(str, fault.positions)), JOINT]
     return run_launch(launch, prefix, work, launch_path, (SEND, argv), result_file, WAIT_S + 3 * RUN_S)

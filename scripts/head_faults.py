@@ -27,9 +27,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-from control_faults import CONFIG, DESCRIBE, LOAD, NOMINAL, module_set
-from launch_runs import install, run_launch
+from control_faults import CONFIG, LOAD, NOMINAL, module_set, write_bringup
+from launch_runs import run_launch
 
 HARDWARE, LAUNCH_ARG = "control.hardware_failure", "bringup.configuration_error"
 JOINTS = ("head_pan_joint", "head_tilt_joint")
@@ -189,13 +188,7 @@ def generate_launch_description():
 
 def run(fault: Fault, work: Path, launch_path: list[Path]) -> tuple[str, dict[str, Any]]:
     """Launch the head's bring-up, point it from outside, Ctrl-C two seconds later: the console and the look."""
-    (work / "head.urdf").write_text(urdf(fault), encoding="utf-8")
-    (work / "head_controllers.yaml").write_text(yaml.safe_dump(params(fault), sort_keys=False), encoding="utf-8")
-    prefix = work / "install"
-    install(prefix, "head_description", "describe", DESCRIBE)
-    launch = work / "head_control.launch.py"
-    launch.write_text(LAUNCH.format(params=str(work / "head_controllers.yaml"), urdf=str(work / "head.urdf")),
-                      encoding="utf-8")
+    launch, prefix = write_bringup(work, "head", urdf(fault), params(fault), LAUNCH)
     result_file = work / "result.json"
     argv = [str(WAIT_S), str(result_file), fault.topic, ",".join(map(str, fault.command)), ",".join(JOINTS),
             str(fault.nan_first_s), str(fault.best_effort).lower()]

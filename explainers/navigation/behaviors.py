@@ -21,11 +21,15 @@ for %s, however feature is currently not implemented. Aborting and stopping." (:
 from __future__ import annotations
 
 import re
+from functools import partial
 
+from hexar.events.nav_servers import spans
 from hexar.events.records import LogLine
-from hexar.explainers.base import Evidence
+from hexar.explainers.navigation import worded
+from hexar.explainers.navigation.catalogue import GOAL_KINDS, catalogue
 from hexar.explainers.navigation.detectors import NOMINAL, UNEXPLAINED, Finding
 from hexar.explainers.navigation.diagnose import COLLISION_AHEAD, CONFIGURATION, NOT_REACHING_BASE, TRANSFORM
+from hexar.explainers.navigation.docking import BEGIN as DOCKING
 
 BEGIN = re.compile(r"^(?:Running|Attempting) (?P<name>\w+)$")
 DONE = re.compile(r"^(?P<name>\w+) completed successfully$")
@@ -39,7 +43,7 @@ _CHECKER = re.compile(r"^(Costmap is not available|Current footprint not availab
 _COLLISION = re.compile(r"^Collision Ahead - Exiting (?P<what>\w+)")
 _TIMEOUT = re.compile(r"^Exceeded time allowance before reaching the (?P<what>\w+) goal")
 _POSE = re.compile(r"^(Initial|Current) robot pose is not available")
-FACT = "behavior"  # a finding's fact: its answer and fix are its notes[0] and notes[1]
+_finding = partial(worded.finding, speaker="The behaviour server")
 _WORDS = {"spin": "my spin", "backup": "my backup", "back_up": "my backup", "drive_on_heading": "my drive ahead",
           "wait": "my wait", "assisted_teleop": "my assisted teleop"}
 
@@ -59,15 +63,26 @@ def end_of(line: LogLine) -> tuple[str, str, str] | None:
     return None
 
 
+def begins(line: LogLine) -> bool:
+    """`line` begins a behaviour's goal."""
+    return BEGIN.match(line.msg.strip()) is not None
+
+
+def name_of(begin: LogLine) -> str:
+    """The behaviour a begin line names ("Running spin": spin)."""
+    return begin.msg.strip().split()[-1]
+
+
+def ends(begin: LogLine, line: LogLine) -> tuple[str, str] | None:
+    """(state, error) when `line` ends the goal of the behaviour `begin` began."""
+    ended = end_of(line)
+    return ended[1:] if ended is not None and ended[0] == name_of(begin) else None
+
+
 def last_run(raw: list[LogLine]) -> tuple[LogLine, LogLine | None] | None:
     """The last behaviour goal of `raw`: its begin line and the line that ended it (None while it ran on)."""
-    begins = [i for i, ln in enumerate(raw) if BEGIN.match(ln.msg.strip())]
-    if not begins:
-        return None
-    begin = raw[begins[-1]]
-    name = begin.msg.strip().split()[-1]
-    end = next((ln for ln in raw[begins[-1] + 1:] if (e := end_of(ln)) is not None and e[0] == name), None)
-    return begin, end
+    found = spans(raw, "behavior_server", begins, ends)
+    return (found[-1].begin, found[-1].end) if found else None
 
 
 # lines that show a navigation goal at work (a controller following a path, a planner's action, a navigator's goal):
@@ -79,9 +94,6 @@ _WORK = re.compile(r"^(Received a goal, begin|Passing new path to controller|Fai
 
 def navigating(line: LogLine) -> bool:
     """`line` shows a navigation goal or a docking at work."""
-    from hexar.explainers.navigation.catalogue import GOAL_KINDS, catalogue
-    from hexar.explainers.navigation.docking import BEGIN as DOCKING
-
     msg = line.msg.strip()
     if _WORK.match(msg) or DOCKING.match(msg):
         return True
@@ -143,7 +155,7 @@ def explained(behavior: tuple[LogLine, LogLine | None] | None, raw: list[LogLine
                         "reach my base.",
                         "Check that the behaviour server's cmd_vel reaches the base: the topic the base's driver "
                         "listens on, its message type (Twist or TwistStamped) and what stands between them.",
-                        stall.evidence)
+                        more=stall.evidence)
     if timeout is not None:
         need = (f" A turn{size} in {seconds:.1f} s needs {abs(float(turn['angle'])) / seconds:.2f} rad/s on average; "
                 "if my max_rotational_vel is lower, the allowance was too short." if turn and seconds > 0 else "")
@@ -162,17 +174,3 @@ def explained(behavior: tuple[LogLine, LogLine | None] | None, raw: list[LogLine
                         "(base_link or base_footprint).")
     return _finding(UNEXPLAINED, [end], f"{what.capitalize()} failed: my behaviour server said "
                     f"'{error}'; my logs do not show why.", "Check the behaviour server's log around that line.")
-
-
-def template(f: Finding) -> tuple[str, str | None, list[str]] | None:
-    """The answer of a behaviour finding (FACT), or None for any other finding."""
-    if FACT not in f.facts or not f.notes:
-        return None
-    return f.notes[0], f.notes[1] if len(f.notes) > 1 else None, \
-        [f"The behaviour server said: {e.item}" for e in f.evidence[-1:]]
-
-
-def _finding(cause: str, lines: list[LogLine], text: str, fix: str | None, more: list[Evidence] | None = None
-             ) -> Finding:
-    return Finding(cause, [*(more or []), *(Evidence.of_log(cause, ln) for ln in lines)], {FACT: 1.0},
-                   [text, *([fix] if fix else [])])

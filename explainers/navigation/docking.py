@@ -24,9 +24,11 @@ warnings before it say why:
 from __future__ import annotations
 
 import re
+from functools import partial
 
+from hexar.events.nav_servers import spans
 from hexar.events.records import ERROR, LogLine
-from hexar.explainers.base import Evidence
+from hexar.explainers.navigation import worded
 from hexar.explainers.navigation.detectors import Finding
 from hexar.explainers.navigation.diagnose import COLLISION_AHEAD, CONFIGURATION, DOCKING, GOAL_UNREACHABLE, TRANSFORM
 
@@ -43,20 +45,29 @@ _UNPLACED = "Failed to transform detected dock pose"
 _FRAME = re.compile(r'Invalid frame ID "(?P<frame>[^"]+)" passed to canTransform')
 _COLLISION = re.compile(rf"^Collision detected at pose: \((?P<x>{_N}), (?P<y>{_N}), {_N}\) in frame (?P<f>\S+)")
 _STAGING_AT = re.compile(rf"Goal Coordinates of\((?P<x>{_N}), (?P<y>{_N})\)|to \((?P<gx>{_N}), (?P<gy>{_N})\)")
-FACT = "docking"  # a finding's fact: its answer and fix are its notes[0] and notes[1]
 _CHECK_DOCK = ("Check the dock's pose in the docking server's database, its yaw too: the staging pose lies "
                "staging_x_offset behind the dock along the dock's heading.")
+
+_finding = partial(worded.finding, speaker="The docking server")
+
+
+def begins(line: LogLine) -> bool:
+    """`line` begins a DockRobot goal."""
+    return BEGIN.match(line.msg.strip()) is not None
+
+
+def ends(begin: LogLine, line: LogLine) -> tuple[str, str] | None:
+    """(state, error) when `line` ends the docking `begin` began: its success, or its abort and the abort's error."""
+    msg = line.msg.strip()
+    if (aborted := ABORTED.match(msg)) is not None:
+        return "failed", aborted["msg"]
+    return ("succeeded", "") if DOCKED.match(msg) else None
 
 
 def docking(raw: list[LogLine]) -> tuple[LogLine, LogLine | None] | None:
     """The last DockRobot goal of `raw`: its begin line and the line that ended it (None while it ran on)."""
-    begins = [i for i, ln in enumerate(raw) if BEGIN.match(ln.msg.strip())]
-    if not begins:
-        return None
-    begin = raw[begins[-1]]
-    end = next((ln for ln in raw[begins[-1] + 1:]
-                if DOCKED.match(ln.msg.strip()) or ABORTED.match(ln.msg.strip())), None)
-    return begin, end
+    found = spans(raw, "docking_server", begins, ends)
+    return (found[-1].begin, found[-1].end) if found else None
 
 
 def _said(end: LogLine) -> str:
@@ -147,14 +158,3 @@ def staging(found: Finding, dock: tuple[LogLine, LogLine | None] | None, raw: li
                       _CHECK_DOCK)
     docked.evidence = found.evidence + docked.evidence
     return docked
-
-
-def template(f: Finding) -> tuple[str, str | None, list[str]] | None:
-    """The answer of a docking finding (FACT), or None for any other finding."""
-    if FACT not in f.facts or len(f.notes) < 2:
-        return None
-    return f.notes[0], f.notes[1], [f"The docking server said: {e.item}" for e in f.evidence[-1:]]
-
-
-def _finding(cause: str, lines: list[LogLine], text: str, fix: str) -> Finding:
-    return Finding(cause, [Evidence.of_log(cause, ln) for ln in lines], {FACT: 1.0}, [text, fix])

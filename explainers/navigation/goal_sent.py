@@ -15,9 +15,10 @@
 from __future__ import annotations
 
 import re
+from functools import partial
 
 from hexar.events.records import LogLine
-from hexar.explainers.base import Evidence
+from hexar.explainers.navigation import worded
 from hexar.explainers.navigation.detectors import Finding
 from hexar.explainers.navigation.diagnose import CONFIGURATION, TRANSFORM
 
@@ -31,7 +32,8 @@ _FUTURE = re.compile(r"extrapolation into the future")
 _REJECTED = re.compile(r"^Action server is inactive\. Rejecting the goal")
 _BEGUN = re.compile(r"^Begin navigating")
 _ACTIVE = re.compile(r"^Managed nodes are active")  # lifecycle_manager.cpp@humble on
-FACT = "goal_sent"  # a finding's fact: its answer and fix are its notes[0] and notes[1]
+
+_finding = partial(worded.finding, speaker="Nav2")
 
 
 def framed(raw: list[LogLine]) -> Finding | None:
@@ -85,14 +87,3 @@ def _framed(framed: LogLine, raw: list[LogLine]) -> Finding:
     return _finding(TRANSFORM, lines, f"I couldn't reach my goal because of a transform (TF) error: I could not put "
                     f"the goal, given in the frame '{frame}', in my global frame '{global_frame}'"
                     + (f" (tf2 said: '{why.msg.strip()[:160]}')." if why is not None else "."), fix)
-
-
-def template(f: Finding) -> tuple[str, str | None, list[str]] | None:
-    """The answer of a goal-as-sent finding (FACT), or None for any other finding."""
-    if FACT not in f.facts or len(f.notes) < 2:
-        return None
-    return f.notes[0], f.notes[1], [f"Nav2 said: {e.item}" for e in f.evidence[-1:]]
-
-
-def _finding(cause: str, lines: list[LogLine], text: str, fix: str) -> Finding:
-    return Finding(cause, [Evidence.of_log(cause, ln) for ln in lines], {FACT: 1.0}, [text, fix])

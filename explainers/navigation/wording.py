@@ -14,18 +14,8 @@ from collections.abc import Iterable
 from hexar.claims import read_claims
 from hexar.events import contract as c
 from hexar.events.records import LogLine
-from hexar.explainers.navigation import (
-    behaviors,
-    docking,
-    goal_sent,
-    grids,
-    keepout,
-    mapsave,
-    smoother,
-    states,
-    waypoints,
-)
 from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation import grids, keepout, mapsave, smoother, states, waypoints, worded
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, NO_MAP, NO_MAP_FACT, REACH_DOUBT, Finding, Run
 from hexar.explainers.stack.bringup import LAUNCH_ANY
 
@@ -255,8 +245,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
         return mapped
     if (unsaved := mapsave.template(f)) is not None:
         return unsaved
-    if (docked := docking.template(f) or behaviors.template(f) or goal_sent.template(f)) is not None:
-        return docked
+    if (told := worded.answer(f)) is not None:  # a docking's, a behaviour's, a goal as sent: their own words
+        return told
     if (smoothed := smoother.template(f, place)) is not None:
         return smoothed
     if waypoints.FACT in f.facts:
