@@ -47,16 +47,14 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
 
 from __future__ import annotations
 
-import re
 from typing import TYPE_CHECKING, ClassVar
 
 from hexar.events import contract as c
 from hexar.events.log import View
-from hexar.events.nav_servers import DOCK_SKILL, NO_GOAL_LINE
 from hexar.events.records import WARN, LogLine
-from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.navigation import (
+    afterwards,
     behaviors,
     chain,
     docking,
@@ -75,6 +73,7 @@ from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.answers import unfinished, unread
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
+from hexar.explainers.navigation.focus import inferred, place_of, skill_state, status_evidence
 from hexar.explainers.navigation.unmanaged import unmanaged
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import NAV_SKILLS
@@ -84,59 +83,6 @@ if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
 
 MAX_FACT_LINES = 60
-
-
-def _focus(context: Context) -> SkillRun | None:
-    """The plan's navigation step this window is about: the failed one, else the last one inside the window."""
-    failed = context.task.failed_skill
-    if failed is not None and failed.skill in NAV_SKILLS:
-        return failed
-    lo, hi = context.window
-    # Strict overlap: a step that merely ends where the window starts (the trip before an approach to a
-    # person) is not the trip this window is about.
-    inside = [r for r in context.task.skills if r.skill in NAV_SKILLS and r.history
-              and context.task.skill_window(r)[0] < hi and context.task.skill_window(r)[1] > lo]
-    return inside[-1] if inside else None
-
-
-_NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \(")
-
-
-def _place(context: Context, lines: list[LogLine]) -> str:
-    run = _focus(context)
-    location = run.params.get("location") if run is not None else None
-    if isinstance(location, str) and location:
-        return f"the {location.replace('_', ' ')}"
-    if run is not None and run.skill == DOCK_SKILL:  # the trip a docking sent: to the dock's staging pose
-        return f"the staging pose of {run.params.get('dock') or 'my dock'}"
-    if run is not None and run.params.get("source") == "nav2" and "x" in run.params and "y" in run.params:
-        return f"the goal at ({run.params['x']:.2f}, {run.params['y']:.2f})"  # a goal derived from Nav2
-    # A navigation that is no plan step (e.g. approaching a person) names its goal in the skill's own log.
-    for line in lines:
-        m = _NAVIGATING_TO.match(line.msg)
-        if m:
-            return m.group(1)
-    return "my goal"
-
-
-def _inferred(context: Context) -> bool:
-    """A goal that no goal line, action status or /task_info shows: inferred from Nav2's activity (events.nav_goals),
-    failed only because some node logged an error, or still running as far as the recording shows."""
-    return any(r.skill in NAV_SKILLS and r.params.get("derived_from") == NO_GOAL_LINE for r in context.task.skills)
-
-
-def _skill_state(context: Context) -> str | None:
-    run = _focus(context)
-    return run.state if run is not None else None
-
-
-def _status_evidence(context: Context, cause: str) -> list[Evidence]:
-    """The /task_info update where the navigation skill failed: the record of a failure no log line explains."""
-    run = _focus(context)
-    change = next((h for h in reversed(run.history) if h.status.strip().lower() == "failed"), None) if run else None
-    if change is None:
-        return []
-    return [Evidence(cause=cause, topic=c.TASK_INFO, t=change.t, item=change.error_msg or change.status)]
 
 
 class NavigationExplainer:
@@ -182,7 +128,7 @@ class NavigationExplainer:
                 self.name, "The recording has no log lines and no localisation data for that time.")
         tagged = tag_logs(raw)
         lines = [ln for ln, _ in tagged]
-        state = _skill_state(context)
+        state = skill_state(context)
         noise = routine_drops(weak_noise(raw), d.summarise(tagged, poses, state))
         run = d.summarise(tagged, poses, state, noise + chain.stack_notes(tagged, raw))
         flags = [f for f in (d.joystick(view, window, run, context.log.logs), d.charging(view, window, run))
@@ -190,7 +136,7 @@ class NavigationExplainer:
         # Lines of the stack under Nav2 (tf2's drops on a failed goal, a rejected parameter) are navigation evidence
         # too, for a goal the recording shows (not one inferred from an error line alone); and a step that
         # /task_info reports succeeded with no node warning in its window is a normal trip.
-        stack = bool(run.notes) and not (_inferred(context) and state == "failed")
+        stack = bool(run.notes) and not (inferred(context) and state == "failed")
         quiet_success = state == "succeeded" and not any(ln.level >= WARN for ln in raw)
         findings: list[d.Finding] = []
         if not lines and not poses and not flags and not stack and not quiet_success:
@@ -198,7 +144,7 @@ class NavigationExplainer:
             # catalogues knows is still the log's own words on what went wrong: quoted with its node and time,
             # never "nothing I read" while it is there (issue 20).
             came_up = chain.bringup(context.log.logs, None)
-            if came_up is None and _inferred(context):
+            if came_up is None and inferred(context):
                 run.outcome = "unknown"  # a goal inferred from this error alone: no goal is shown, none failed
             # no navigation line at all: a map saver that got no map is what went wrong (a SLAM session's save)
             unsaved = None if came_up else mapsave.map_not_saved(raw)
@@ -209,10 +155,18 @@ class NavigationExplainer:
         until = run.end.t if run.end is not None else window[1]
         before = before_shutdown([ln for ln in context.log.logs if ln.t <= until])
         findings = findings or flags + self._others(question, view, run, bool(flags), before, raw,
-                                                    _inferred(context))
+                                                    inferred(context))
+        if run.outcome == "reached" and findings and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
+            # a goal reached is not a task done: a server with no reading here that failed after it, or a task
+            # record that says the step failed, is told instead of "without any problem"
+            where = place_of(context, lines)
+            later = afterwards.aborted(run, before_shutdown(context.log.logs), where)
+            if later is None and state == "failed":
+                later = afterwards.task_disagrees(run, where, status_evidence(context, d.UNEXPLAINED))
+            findings = [later] if later is not None else findings
         for f in findings:
             if f.cause == d.UNEXPLAINED and not f.evidence:
-                f.evidence += _status_evidence(context, d.UNEXPLAINED)
+                f.evidence += status_evidence(context, d.UNEXPLAINED)
         if run.outcome == "unknown" and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
             # neither a navigator line nor the skill's status says how the trip ended: "I reached it" would be a
             # claim without evidence; a stack whose nodes ran without a warning is told as just that
@@ -361,7 +315,7 @@ class NavigationExplainer:
 
     def _compose(self, question: str, context: Context, run: d.Run, findings: list[d.Finding],
                  lines: list[LogLine]) -> Explanation:
-        place = _place(context, lines)
+        place = place_of(context, lines)
         texts: list[str] = []
         fixes: list[str] = []
         details: list[str] = []
