@@ -306,23 +306,57 @@ def _traceback_line(line: str, tb: ConsoleLine) -> bool:
     return True
 
 
+def _outer(line: str) -> str:
+    """`line` without its outer prefixes, stacked as tools stack them (`docker compose logs | grep -n`: "nav2-1  |
+    115:[controller_server-2] ...")."""
+    for _ in range(3):
+        inner = _OUTER.sub("", line, count=1)
+        if inner == line:
+            break
+        line = inner
+    return line
+
+
+def _on_nodes_clock(records: list[ConsoleLine], journal: dict[int, int], printed: dict[int, int]) -> None:
+    """Records stamped by journald's prefix alone (`journal`: index -> the prefix's time) moved onto the clock of the
+    stamps the nodes printed (`printed`: the records behind a prefix that print their own). journald prints local
+    wall time, to the second, on no stated day; a node prints seconds since the epoch. So the prefix's time is shifted
+    by the median difference of the lines that show both, and kept between its printed neighbours: the order printed
+    is the order logged."""
+    both = sorted((records[i].stamp_ns or 0) - at for i, at in printed.items())
+    if not both or not journal:
+        return
+    shift = both[len(both) // 2]
+    own = [i for i, r in enumerate(records) if i not in journal and r.stamp_ns is not None]
+    for i, at in journal.items():
+        lo = max((records[k].stamp_ns or 0 for k in own if k < i), default=None)
+        hi = min((records[k].stamp_ns or 0 for k in own if k > i), default=None)
+        t = at + shift if lo is None else max(at + shift, lo)
+        records[i].stamp_ns = t if hi is None else min(t, hi)
+
+
 def parse_console(text: str) -> list[ConsoleLine]:
     """The log records of a pasted console excerpt, in the order printed (stamps may be missing: see `stamped`)."""
     records: list[ConsoleLine] = []
     previous = ""
+    journal: dict[int, int] = {}  # records stamped by journald's prefix alone: index -> the prefix's time
+    printed: dict[int, int] = {}  # records behind a journald prefix that print their own stamp: index -> the prefix's
     for raw in text.splitlines():
         line = _ESCAPE.sub("", raw)
         j = JOURNAL_PREFIX.match(line)
         at = _clock_ns(j["clock"], None) if j else None
         if j:
             line = j["rest"]
-        line = _LOST_ESCAPE.sub(lambda m: m["head"] or "", _OUTER.sub("", line, count=1))
+        line = _LOST_ESCAPE.sub(lambda m: m["head"] or "", _outer(line))
         if line.strip():
             n = len(records)
             _parse_line(line, previous, records)
             if at is not None:  # not through _behind_prefix: a journal's wrapped line still continues the one before
+                for i in range(n, len(records)):
+                    (printed if records[i].stamp_ns is not None else journal)[i] = at
                 _stamp_all(records[n:], at, keep_own=True)
         previous = line
+    _on_nodes_clock(records, journal, printed)
     for r in records:
         r.msg = r.msg.rstrip()
         if w := _WHERE.search(r.msg):

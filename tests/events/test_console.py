@@ -69,6 +69,33 @@ def test_journald_lines_of_a_robot_started_by_systemd() -> None:
     assert "stamp" not in caught.synthesised
 
 
+def test_journald_times_go_onto_the_clock_the_nodes_print() -> None:
+    # blind set 20's fault-free console as `journalctl -u` shows it on a robot whose local time is UTC+1: launch's own
+    # lines print no stamp, the nodes' lines print seconds since the epoch; launch's line that planner_server died
+    # (after Ctrl-C) must stay after the node's last line, not move to the journal's day and hour
+    text = ("Nov 30 09:50:57 robot start.sh[918]: [INFO] [launch]: Default logging verbosity is set to INFO\n"
+            "Nov 30 09:50:58 robot start.sh[918]: [planner_server-3] [INFO] [1796002258.632251743] "
+            "[planner_server]: Creating\n"
+            "Nov 30 09:50:59 robot start.sh[918]: [bt_navigator-6] [INFO] [1796002259.402502036] [bt_navigator]: "
+            "Goal succeeded\n"
+            "Nov 30 09:51:01 robot start.sh[918]: [ERROR] [planner_server-3]: process has died [pid 18285, exit code "
+            "-6, cmd '/home/robot/ws/install/nav2_planner/lib/nav2_planner/planner_server']\n")
+    verbosity, creating, succeeded, died = parse_console(text)
+    assert creating.stamp_ns == 1796002258632251743 and succeeded.stamp_ns == 1796002259402502036
+    assert verbosity.stamp_ns is not None and died.stamp_ns is not None
+    assert verbosity.stamp_ns <= creating.stamp_ns and died.stamp_ns > succeeded.stamp_ns
+    # two seconds after the line before it on the journal's clock, as on the nodes'
+    assert abs(died.stamp_ns - succeeded.stamp_ns - 2 * NS) < NS
+
+
+def test_stacked_outer_prefixes_leave_the_record() -> None:
+    # `docker compose logs nav2 | grep -n` (blind set 5's forklift notes keep grep's numbers)
+    [r] = parse_console("nav2-1  | 115:[controller_server-2] [INFO] [1785837119.338957612] [controller_server]: "
+                        "Received a goal, begin computing control effort.")
+    assert (r.process, r.name, r.stamp_ns) == ("controller_server-2", "controller_server", 1785837119338957612)
+    assert r.msg == "Received a goal, begin computing control effort."
+
+
 def test_function_file_and_line_of_the_logging_guides_format_leave_the_message() -> None:
     failed, started = parse_console(FANUC)
     assert failed.msg == "State tolerances failed for joint 4:"
