@@ -321,18 +321,22 @@ def _on_nodes_clock(records: list[ConsoleLine], journal: dict[int, int], printed
     """Records stamped by journald's prefix alone (`journal`: index -> the prefix's time) moved onto the clock of the
     stamps the nodes printed (`printed`: the records behind a prefix that print their own). journald prints local
     wall time, to the second, on no stated day; a node prints seconds since the epoch. So the prefix's time is shifted
-    by the median difference of the lines that show both, and kept between its printed neighbours: the order printed
-    is the order logged."""
-    both = sorted((records[i].stamp_ns or 0) - at for i, at in printed.items())
-    if not both or not journal:
+    by the median difference of the lines that show both, and kept after the record printed before it (a microsecond
+    later at least: lines of one second stay in the order printed, which is the order logged) and not after the
+    next stamp a node printed."""
+    if not journal:
         return
-    shift = both[len(both) // 2]
-    own = [i for i, r in enumerate(records) if i not in journal and r.stamp_ns is not None]
-    for i, at in journal.items():
-        lo = max((records[k].stamp_ns or 0 for k in own if k < i), default=None)
-        hi = min((records[k].stamp_ns or 0 for k in own if k > i), default=None)
-        t = at + shift if lo is None else max(at + shift, lo)
-        records[i].stamp_ns = t if hi is None else min(t, hi)
+    both = sorted((records[i].stamp_ns or 0) - at for i, at in printed.items())
+    shift = both[len(both) // 2] if both else 0
+    after: list[int | None] = [None] * len(records)  # the next stamp a node printed after each record
+    for k in range(len(records) - 2, -1, -1):
+        nxt = records[k + 1]
+        after[k] = nxt.stamp_ns if k + 1 not in journal and nxt.stamp_ns is not None else after[k + 1]
+    for i, at in sorted(journal.items()):
+        t = at + shift
+        before = records[i - 1].stamp_ns if i > 0 else None
+        t = t if before is None else max(t, before + 1000)
+        records[i].stamp_ns = t if after[i] is None else min(t, after[i] or t)
 
 
 def parse_console(text: str) -> list[ConsoleLine]:
