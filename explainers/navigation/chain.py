@@ -167,8 +167,15 @@ def _transform_waits(logs: list[LogLine], first: BringupFinding) -> list[LogLine
     if first.kind not in ("lifecycle_transition", "node_failed"):
         return []
     cat = catalogue()
-    return unresolved([ln for ln in logs if ln.t <= first.t and (e := cat.match(ln.msg)) is not None
-                       and e.cause == TRANSFORM and e.strength == "strong"], logs)
+    # the costmap's own failed activation names the transform too, where a paste holds no wait before it
+    return unresolved([ln for ln in logs if ln.t <= first.t and (_NO_TRANSFORM_IN_TIME.match(ln.msg.strip()) or (
+        (e := cat.match(ln.msg)) is not None and e.cause == TRANSFORM and e.strength == "strong"))], logs)
+
+
+# costmap_2d_ros.cpp:306@jazzy (on_activate): "Failed to activate %s because transform from %s to %s did not become
+# available before timeout"
+_NO_TRANSFORM_IN_TIME = re.compile(r"^Failed to activate \S+ because transform from \S+ to \S+ did not become "
+                                   r"available before timeout")
 
 
 def _transform_first(first: BringupFinding, waited: list[LogLine]) -> Finding:

@@ -652,3 +652,21 @@ def test_a_pose_lost_and_found_again_before_the_reach_is_a_clean_reach(tmp_path:
     found = _explain(tmp_path, [], [RECEIVED, LOST, ("controller_server", INFO, "Passing new path to controller."),
                                     REACHED], SUCCEEDED)
     assert found.causes == [NOMINAL]
+
+
+# blind set 5's nav2-guide-fork-run3 (Jazzy), its three error lines alone: the global costmap's activation gave up on
+# its transform (costmap_2d_ros.cpp:306@jazzy) and the lifecycle manager aborted the bring-up; no "Timed out waiting
+# for transform" line before them
+NO_TRANSFORM_IN_TIME: list[Line] = [
+    ("global_costmap.global_costmap", ERROR, "Failed to activate global_costmap because transform from base_link to "
+                                             "map did not become available before timeout"),
+    ("lifecycle_manager_nav2", ERROR, "Failed to change state for node: planner_server"),
+    ("lifecycle_manager_nav2", ERROR, "Failed to bring up all requested nodes. Aborting bringup."),
+]
+
+
+def test_a_costmap_whose_activation_names_the_transform_it_lacked_is_a_transform_error(tmp_path: Path) -> None:
+    answer = _explain(tmp_path, NO_TRANSFORM_IN_TIME, UNAVAILABLE)
+    assert answer.causes == [g.TRANSFORM]
+    assert "waited for the transform from base_link to map until its time ran out" in answer.text
+    assert stated_causes(answer.text) == {g.TRANSFORM}
