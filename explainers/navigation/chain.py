@@ -365,12 +365,19 @@ def last_warning(lines: list[LogLine]) -> str:
     return f" {said[0].upper()}{said[1:]}."
 
 
+# A Nav2 server's own words as it is taken down (nav2_util lifecycle_node.cpp: "Destroying bond (%s) to lifecycle
+# manager.", "Running Nav2 LifecycleNode rcl preshutdown (%s)"; each server's on_deactivate, on_cleanup and
+# destructor: "Deactivating", "Cleaning up", "Destroying", "Shutting down"): lines that show no work done
+TEARDOWN = re.compile(r"^(?:Destroying|Cleaning up|Deactivating|Shutting down|Running Nav2 LifecycleNode rcl "
+                      r"preshutdown)\b")
+
+
 def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     """A stack that came up and ran with no goal's end recorded: which Nav2 nodes logged their work, when none of
     them logged a warning or an error (None otherwise, or when no Nav2 node logged at all)."""
     cat = catalogue()
     own = [ln for ln in lines if ln.name and cat.role(ln.name) is not None]
-    if not own or any(ln.level >= WARN or _warns(ln) for ln in own):
+    if not own or any(ln.level >= WARN or _warns(ln) for ln in own) or all(TEARDOWN.match(ln.msg) for ln in own):
         return None
     nodes = list(dict.fromkeys(cat.role(ln.name) or ln.name for ln in own))
     said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"

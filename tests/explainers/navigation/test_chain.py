@@ -670,3 +670,18 @@ def test_a_costmap_whose_activation_names_the_transform_it_lacked_is_a_transform
     assert answer.causes == [g.TRANSFORM]
     assert "waited for the transform from base_link to map until its time ran out" in answer.text
     assert stated_causes(answer.text) == {g.TRANSFORM}
+
+
+def test_a_stack_seen_only_as_it_is_taken_down_is_not_told_as_having_run_normally() -> None:
+    # the last lines of blind set 20's map-missing console before rclcpp's signal_handler: Nav2's own teardown words
+    from hexar.events.records import LogLine
+    from hexar.explainers.navigation.chain import ran_quietly
+
+    down = [LogLine(T0, INFO, "planner_server", "Destroying bond (planner_server) to lifecycle manager."),
+            LogLine(T0 + 1, INFO, "map_server", "Running Nav2 LifecycleNode rcl preshutdown (map_server)"),
+            LogLine(T0 + 2, INFO, "global_costmap.global_costmap", "Destroying")]
+    assert ran_quietly(down) is None
+    # the same stack seen at work says so
+    worked = [LogLine(T0, INFO, "planner_server", "Configuring"), *down]
+    told = ran_quietly(worked)
+    assert told is not None and told[0].startswith("As far as my recording shows, my navigation went normally")
