@@ -367,9 +367,10 @@ def last_warning(lines: list[LogLine]) -> str:
 
 # A Nav2 server's own words as it is taken down (nav2_util lifecycle_node.cpp: "Destroying bond (%s) to lifecycle
 # manager.", "Running Nav2 LifecycleNode rcl preshutdown (%s)"; each server's on_deactivate, on_cleanup and
-# destructor: "Deactivating", "Cleaning up", "Destroying", "Shutting down"): lines that show no work done
+# destructor: "Deactivating", "Cleaning up", "Destroying", "Shutting down"), and launch's word that a process ended
+# (execute_local.py, "process has finished cleanly [pid %d]"): lines that show no work done
 TEARDOWN = re.compile(r"^(?:Destroying|Cleaning up|Deactivating|Shutting down|Running Nav2 LifecycleNode rcl "
-                      r"preshutdown)\b")
+                      r"preshutdown|process has finished cleanly)\b")
 
 
 def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:

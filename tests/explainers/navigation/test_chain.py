@@ -679,7 +679,8 @@ def test_a_stack_seen_only_as_it_is_taken_down_is_not_told_as_having_run_normall
 
     down = [LogLine(T0, INFO, "planner_server", "Destroying bond (planner_server) to lifecycle manager."),
             LogLine(T0 + 1, INFO, "map_server", "Running Nav2 LifecycleNode rcl preshutdown (map_server)"),
-            LogLine(T0 + 2, INFO, "global_costmap.global_costmap", "Destroying")]
+            LogLine(T0 + 2, INFO, "global_costmap.global_costmap", "Destroying"),
+            LogLine(T0 + 3, INFO, "bt_navigator-6", "process has finished cleanly [pid 796]")]
     assert ran_quietly(down) is None
     # the same stack seen at work says so
     worked = [LogLine(T0, INFO, "planner_server", "Configuring"), *down]
