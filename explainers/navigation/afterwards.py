@@ -18,6 +18,7 @@ import re
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import worded
+from hexar.explainers.navigation.catalogue import catalogue
 from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run
 from hexar.explainers.navigation.wording import quote
 
@@ -41,11 +42,15 @@ def _action(line: LogLine) -> str | None:
 
 
 def aborted(run: Run, logs: list[LogLine], place: str) -> Finding | None:
-    """The first goal of a server this package has no reading of that was aborted after `run`'s goal was reached,
-    with that server's last error before it."""
+    """The first goal of a server this package has no reading of that was aborted after `run`'s goal was reached
+    (and before the navigator began another), with that server's last error before it."""
     if run.outcome != "reached" or run.end is None:
         return None
+    cat = catalogue()
     after = [ln for ln in logs if ln.t > run.end.t]
+    # up to the next goal the navigator began: what failed after it is that goal's to tell
+    after = after[:next((i for i, ln in enumerate(after) if (e := cat.goal(ln.msg)) is not None and e.kind == "begin"),
+                        len(after))]
     end = next((ln for ln in after if _action(ln) is not None), None)
     if end is None:
         return None

@@ -35,6 +35,9 @@ Causes, each with its evidence from the recording (a cause is claimed only when 
 - navigation.collision_ahead on a goal reached late: the collision monitor held the robot.
 - a waypoint reached whose waypoint follower's task then failed is that task (waypoints.py); a Nav2 server started
   but never configured is the node that never came up when no goal reached the navigator (unmanaged.py).
+- a goal reached, then an abort of a server no reading here covers (SimpleActionServer's "Aborting handle"), or a
+  step /task_info reports failed: told in that server's words, or as both records (afterwards.py), never "without
+  any problem".
 - navigation.moving_obstacles: the goal was reached after at least two transient obstacle events of the
   controller (trajectories hitting obstacles, a collision check stopping it; warnings up to a second apart are
   one event); one event, planner retries and recoveries alone are a slow run whose logs do not show what was in

@@ -88,3 +88,18 @@ def _line(msg: str) -> LogLine:
 ])
 def test_the_abort_line_is_read_in_every_distros_form_for_servers_with_no_reading(msg: str, action: str | None) -> None:
     assert _action(_line(msg)) == action
+
+
+def test_an_abort_after_the_navigator_began_another_goal_is_that_goals_to_tell() -> None:
+    from hexar.explainers.navigation.afterwards import aborted
+    from hexar.explainers.navigation.detectors import Run
+
+    reached = LogLine(t=10, level=20, name="bt_navigator", msg="Goal succeeded")
+    error = LogLine(t=30, level=40, name="following_server", msg="Failed object detection")
+    abort = LogLine(t=31, level=30, name="following_server", msg=HUMBLE_ABORT)
+    run = Run(lines=[reached], poses=[], outcome="reached", begin=None, end=reached)
+    told = aborted(run, [reached, error, abort], "my goal")
+    assert told is not None and "my follow object goal failed" in told.notes[0]
+    began = LogLine(t=20, level=20, name="bt_navigator",
+                    msg="Begin navigating from current location (10.00, 4.00) to (2.00, 4.00)")
+    assert aborted(run, [reached, began, error, abort], "my goal") is None
