@@ -51,13 +51,11 @@ def aborted(run: Run, logs: list[LogLine], place: str) -> Finding | None:
     # up to the next goal the navigator began: what failed after it is that goal's to tell
     after = after[:next((i for i, ln in enumerate(after) if (e := cat.goal(ln.msg)) is not None and e.kind == "begin"),
                         len(after))]
-    end = next((ln for ln in after if _action(ln) is not None), None)
-    if end is None:
+    found = next(((ln, m) for ln in after if (m := ABORT.match(ln.msg.strip())) is not None and _action(ln)), None)
+    if found is None:
         return None
-    action = _action(end)
-    assert action is not None
-    m = ABORT.match(end.msg.strip())
-    assert m is not None
+    end, m = found
+    action = m["action"].rsplit("/", 1)[-1]
     said = next((ln for ln in reversed(after) if ln.t < end.t and ln.level >= ERROR and ln.name == end.name), None)
     why = f" with '{m['msg'].strip()}'" if m["msg"] else ""
     code = f" (error code {m['code']})" if m["code"] not in (None, "0") else ""
