@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import bisect
+import functools
+import itertools
 from pathlib import Path
 
 import pytest
@@ -146,46 +149,103 @@ def _real_lines() -> list[str]:
     root = Path(__file__).resolve().parents[3] / "evals" / "data"
     lines: list[str] = []
     for path in sorted([*root.glob("real_nav2/*.yaml"), *root.glob("real_modules/*.yaml")]):
-        for excerpt in yaml.safe_load(path.read_text("utf-8")) or []:
+        for excerpt in yaml.load(path.read_text("utf-8"), Loader=yaml.CSafeLoader) or []:
             lines += str(excerpt.get("lines", "")).splitlines()
     return lines
+
+
+def _keys_in(keys: list[str], texts: list[str]) -> list[list[int]]:
+    """For each text, the indices (ascending) of the keys that occur in it: a plain scan of every key, done with
+    str.find over all texts joined by a character neither holds (no occurrence spans two texts) rather than
+    `key in text` per pair, which took a minute on the suites' lines."""
+    sep = "\x00"
+    assert not any(sep in t for t in texts) and not any(sep in k for k in keys)
+    joined = sep.join(texts)
+    starts = list(itertools.accumulate((len(t) + 1 for t in texts), initial=0))
+    found: list[list[int]] = [[] for _ in texts]
+    for n, key in enumerate(keys):
+        if not key:
+            for f in found:
+                f.append(n)
+            continue
+        pos = joined.find(key)
+        while pos != -1:
+            i = bisect.bisect_right(starts, pos) - 1
+            found[i].append(n)
+            pos = joined.find(key, starts[i + 1])
+    return found
+
+
+@functools.cache
+def _real_keys() -> tuple[list[str], list[list[int]]]:
+    """The real lines and, per line, the catalogue keys in it (shared: the scan takes seconds)."""
+    lines = _real_lines()
+    return lines, _keys_in(list(stack_catalogue()._by_key), lines)
+
+
+def _keys_starting(keys: list[str], prefixes: list[str]) -> list[list[int]]:
+    """Per prefix, the indices of the keys that start with it: where the separator before a key is followed by it."""
+    sep = "\x00"
+    joined = sep + sep.join(keys)
+    starts = list(itertools.accumulate((len(k) + 1 for k in keys), initial=0))
+    found: list[list[int]] = []
+    for prefix in prefixes:
+        found.append([])
+        pos = joined.find(sep + prefix)
+        while pos != -1:
+            found[-1].append(bisect.bisect_left(starts, pos))
+            pos = joined.find(sep + prefix, pos + 1)
+    return found
+
+
+def test_the_plain_scans_find_what_in_and_startswith_find() -> None:
+    keys = ["", "a", "ab", "b a", "ERROR", "[ERROR] [", "rror", "x" * 3]
+    texts = ["", "a", "ab", "bab a", "[ERROR] [amcl]: rror", "xx", "xxx", "ERROR", "abab"]
+    assert _keys_in(keys, texts) == [[n for n, k in enumerate(keys) if k in t] for t in texts]
+    prefixes = ["", "a", "ab", "b", "x", "xxxx", "ERROR", "[", "c"]
+    assert _keys_starting(keys, prefixes) == [[n for n, k in enumerate(keys) if k.startswith(p)] for p in prefixes]
 
 
 def test_the_key_index_finds_exactly_the_keys_a_plain_scan_finds() -> None:
     cat = stack_catalogue()
     needles = Needles(cat._by_key)
-    texts = _real_lines()
-    texts += [e.text for e in cat.entries[::7]] + ["", "a", "abc", "[ERROR]", "x" * 500]
-    assert len(texts) > 2000
-    for text in texts:
-        assert needles.found_in(text) == [n for n, key in enumerate(needles.needles) if key in text], text
+    real, real_keys = _real_keys()
+    extra = [e.text for e in cat.entries[::7]] + ["", "a", "abc", "[ERROR]", "x" * 500]
+    texts = real + extra
+    assert len(texts) > 2000 and needles.needles == list(cat._by_key)
+    for text, keys in zip(texts, real_keys + _keys_in(needles.needles, extra), strict=True):
+        assert needles.found_in(text) == keys, text
     short = Needles(["", "a", "Er", "ERR", "ERROR", "[ERROR] [", "costmap", "rror"])
     for text in texts[::5]:
         assert short.found_in(text) == [n for n, key in enumerate(short.needles) if key in text], text
-    for text in texts[::10]:
-        prefix = text[:40]
-        assert needles.starting_with(prefix) == [n for n, key in enumerate(needles.needles) if key.startswith(prefix)]
+    prefixes = [text[:40] for text in texts[::10]]
+    for prefix, keys in zip(prefixes, _keys_starting(needles.needles, prefixes), strict=True):
+        assert needles.starting_with(prefix) == keys, prefix
 
 
 def test_every_real_line_reads_as_a_plain_scan_of_every_key_reads_it() -> None:
     cat = stack_catalogue()
+    by_key = list(cat._by_key.items())
 
-    def plain_best(text: str) -> StackEntry | None:
+    def plain_best(text: str, present: list[int]) -> StackEntry | None:
         best = None
-        for key, indices in cat._by_key.items():
-            for i in indices if key in text else ():
+        for key in present:
+            for i in by_key[key][1]:
                 e = cat._at(i)
                 if (best is None or (e.cause is not None, e.specificity) > (best.cause is not None, best.specificity)
                         ) and e.regex.search(text):
                     best = e
         return best
 
-    lines = _real_lines()
+    lines, keys = _real_keys()
     named = 0
-    for line in lines:
+    for line, present in zip(lines, keys, strict=True):
         text = clean(line)
-        assert cat._best(text) is plain_best(text), line
-        named += cat._best(text) is not None
+        if text != line:
+            present = _keys_in([k for k, _ in by_key], [text])[0]
+        best = cat._best(text)
+        assert best is plain_best(text, present), line
+        named += best is not None
     assert named > 300
 
 
