@@ -15,12 +15,19 @@ from hexar.events.records import LogLine
 #   their contexts shut down (nav2_util lifecycle_node.cpp, "Running Nav2 LifecycleNode rcl preshutdown (%s)") from
 #   the second server on: one server alone says it when it ends itself over an error of its own, which the others'
 #   lines after it still tell about;
+# - by their stamps too, a node's destructor, which runs only as its process ends in order (rclcpp shut down, by a
+#   signal or by the program itself), after whatever the node logged of an error of its own: rclcpp_lifecycle's
+#   "LifecycleNode is not shut down: Node still in state(%u) in destructor" (lifecycle_node.cpp:159@rolling), Nav2's
+#   "Destroying" (nav2_util lifecycle_node.cpp) and its lifecycle manager's "Destroying %s" (lifecycle_manager.cpp);
+#   not "Destroying plugin ..." nor "Destroying bond ...", which a cleanup or deactivation at run time prints too;
 # - by their place, launch's (it prints no stamp): Ctrl-C reaching it (launch_service.py, "user interrupted with
 #   ctrl-c (SIGINT)") and its signal to a process it stops (execute_local.py, "sending signal '%s' to process[%s]"),
 #   which a paste of a console's last lines may hold without the Ctrl-C above them.
 CTRL_C = re.compile(r"^user interrupted with ctrl-c \(SIGINT\)")
 SIGNALLED = re.compile(r"^signal_handler\((?:signum|signal_value)=(?:2|15)\)")
 PRESHUTDOWN = re.compile(r"^Running Nav2 LifecycleNode rcl preshutdown \(")
+DESTRUCTOR = re.compile(r"^(?:LifecycleNode is not shut down: Node still in state\(\d+\) in destructor|"
+                        r"Destroying(?: [\w/]+)?)\s*$")
 _BY_PLACE = re.compile(rf"{CTRL_C.pattern}|^sending signal '(?:SIGINT|SIGTERM|SIGKILL)' to process\[")
 
 
@@ -29,7 +36,9 @@ def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
     stamp, so it decides by time; launch's have none, and a node's output that its pipe held back (a console is
     written as the buffers flush) can come after them though it was logged before, so launch's lines decide by their
     place only when no node printed its own."""
-    marks = [ln.t for ln in lines if SIGNALLED.match(ln.msg)]
+    # a destructor's own stamp is kept: what the node logged in the same instant came before it (map_saver's
+    # "Failed to save the map: timeout", then its "Destroying", as it ends itself)
+    marks = [ln.t for ln in lines if SIGNALLED.match(ln.msg)] + [ln.t + 1 for ln in lines if DESTRUCTOR.match(ln.msg)]
     servers: dict[str, int] = {}
     for ln in lines:
         if PRESHUTDOWN.match(ln.msg):

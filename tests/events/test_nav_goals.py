@@ -11,7 +11,7 @@ import pytest
 from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder, sec_ns
 from hexar.events.errors import NoTaskError
 from hexar.events.reader import read_recording
-from hexar.events.records import ERROR, INFO
+from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.base import Context
 from hexar.explainers.navigation import NavigationExplainer
 from tests.events.helpers import T0, two_skill_task
@@ -135,3 +135,35 @@ def test_a_bring_up_error_about_a_node_that_is_not_nav2s_makes_no_navigation_goa
           "Failed to make transition 'TRANSITION_CONFIGURE' for LifecycleNode '/tof_imager'")
     tasks = read_recording(b.write(tmp_path / "bag")).tasks
     assert all(t.skills[0].skill == "bring_up_controllers" for t in tasks)
+
+
+# blind set 21's amcl-base-frame-wrong (the real kilted Nav2 run here): the global costmap waits for a transform that
+# never comes, a goal is refused while the stack is not up, and Ctrl-C takes the stack down with errors of its own
+WAITING = ("Timed out waiting for transform from base_footprint to map to become available, tf error: Invalid frame ID "
+           "\"base_footprint\" passed to canTransform argument target_frame - frame does not exist")
+DOWN = [("global_costmap.global_costmap", ERROR, "Caught exception in callback for transition 13"),
+        ("rclcpp_lifecycle", WARN, "LifecycleNode is not shut down: Node still in state(1) in destructor"),
+        ("planner_server-4", ERROR, "process has died [pid 28735, exit code -6, cmd '/opt/ros/kilted/lib/nav2_planner/"
+                                    "planner_server --ros-args -r __node:=planner_server']."),
+        ("lifecycle_manager_navigation", ERROR, "Failed to bring up all requested nodes. Aborting bringup.")]
+
+
+@pytest.mark.parametrize("refused", [False, True])
+def test_errors_a_stack_prints_as_it_is_stopped_end_no_goal(tmp_path: Path, refused: bool) -> None:
+    b = BagBuilder()
+    for k in range(4):
+        b.log(T0 + sec_ns(k * 0.5), "global_costmap.global_costmap", INFO, WAITING)
+    if refused:  # simple_action_server.hpp:155@kilted, at INFO: the goal ended there
+        b.log(T0 + sec_ns(2.2), "bt_navigator", INFO, "Action server is inactive. Rejecting the goal.")
+    b.log(T0 + sec_ns(2.5), "rclcpp", INFO, "signal_handler(signum=2)")
+    for k, (name, level, msg) in enumerate(DOWN):
+        b.log(T0 + sec_ns(3 + k * 0.1), name, level, msg)
+    task = read_recording(b.write(tmp_path / "bag")).task()
+    assert task.derived and task.outcome == ("failed" if refused else "running")
+    # the same lines without the signal handler's: the first destructor begins the way down, by its stamp
+    b = BagBuilder()
+    for k in range(4):
+        b.log(T0 + sec_ns(k * 0.5), "global_costmap.global_costmap", INFO, WAITING)
+    for k, (name, level, msg) in enumerate(DOWN[1:]):
+        b.log(T0 + sec_ns(3 + k * 0.1), name, level, msg)
+    assert read_recording(b.write(tmp_path / "bag2")).task().outcome == "running"

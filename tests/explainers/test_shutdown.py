@@ -37,3 +37,22 @@ def test_nav2_servers_preshutdown_begins_it_from_the_second_server_on() -> None:
     late = LogLine(T0 + 2 * NS + 1, WARN, "controller_server", "Control loop missed its desired rate of 20.0000 Hz. "
                                                                "Current loop rate is 4.6 Hz.")
     assert before_shutdown([CAUSE, alone, second, late, DROP]) == [CAUSE, alone]
+
+
+def test_a_nodes_destructor_begins_it_by_its_stamp() -> None:
+    # the last lines of kilted consoles (blind set 25): rclcpp_lifecycle's destructor warning and Nav2's "Destroying"
+    # are printed only as a process ends in order; a message filter's drop after them is the way down
+    destructor = LogLine(T0 + NS, WARN, "rclcpp_lifecycle",
+                         "LifecycleNode is not shut down: Node still in state(1) in destructor")
+    assert before_shutdown([CAUSE, destructor, DROP]) == [CAUSE, destructor]
+    manager = LogLine(T0 + 2 * NS, INFO, "lifecycle_manager_navigation", "Destroying lifecycle_manager_navigation")
+    assert before_shutdown([CAUSE, manager, DROP]) == [CAUSE, manager]
+    server = LogLine(T0 + NS, INFO, "planner_server", "Destroying")
+    assert before_shutdown([CAUSE, server, DROP]) == [CAUSE, server]
+    # map_saver ends itself: its error and its "Destroying" in the same instant, the error first
+    error = LogLine(T0 + NS, ERROR, "map_saver", "Failed to save the map: timeout")
+    assert before_shutdown([error, LogLine(T0 + NS, INFO, "map_saver", "Destroying")])[0] is error
+    # a cleanup or deactivation at run time prints these too: they begin nothing
+    for msg in ("Destroying plugin GridBased of type NavfnPlanner", "Destroying bond (planner_server) to lifecycle "
+                "manager.", "Deactivating", "Cleaning up"):
+        assert before_shutdown([CAUSE, LogLine(T0 + NS, INFO, "planner_server", msg), DROP])[-1] is DROP, msg
