@@ -36,6 +36,14 @@ NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
 _TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
                     r"(?P<last>\d+(?:\.\d+)?)")
 WALL_CLOCK_S = 1e9  # an epoch in seconds (2001 onwards): a wall-clock time, not a simulation's
+NO_STATES = "manipulation.no_joint_states"
+STATE_CAUSES = frozenset({NO_STATES, "manipulation.stale_robot_state"})
+# move_group_interface's ERROR and the planning scene monitor's WARN (move_group_interface.cpp:551@2.1.0,
+# planning_scene_monitor.cpp:1008@2.1.0): MoveIt had no current state, for either reason; only the state
+# monitor's own line before it ("Didn't receive robot state ...", with or without its times) tells which
+FETCH = re.compile(r"Failed to fetch current robot state")
+MONITOR = re.compile(r"Didn't received? robot state|latest received state has time")
+UNTOLD = "no state monitor line says which"
 
 
 def state_monitor_cause(msg: str) -> str | None:
@@ -74,6 +82,11 @@ class ManipulationExplainer(ModuleExplainer):
         return [catalogue(), control_catalogue()]
 
     def refine(self, readings: list[Reading]) -> list[Reading]:
+        monitor = [r for r in readings if MONITOR.search(r.line.msg)]
+        told = bool(monitor) or any(r.cause in STATE_CAUSES and not FETCH.search(r.line.msg) for r in readings)
+        # the monitor's times where its line is worded as no mined entry reads it (no comma before "but")
+        by_times = next((c for r in reversed(monitor) if r.cause is None
+                         and (c := state_monitor_cause(r.line.msg)) is not None), None)
         out = []
         # the last line in which MoveIt itself says it found no controller (a left-out one carries a note)
         found_none = max((i for i, r in enumerate(readings) if r.cause == FOUND_NONE and not r.note), default=-1)
@@ -86,10 +99,20 @@ class ManipulationExplainer(ModuleExplainer):
                 cause = r.entry.cause
                 out.append(Reading(r.line, r.entry, cause, r.catalogue))
                 continue
+            if r.cause == NO_STATES and FETCH.search(r.line.msg) and (not told or by_times):
+                out.append(Reading(r.line, r.entry, by_times or r.cause, r.catalogue, "" if told else UNTOLD))
+                continue
             out.append(Reading(r.line, r.entry, cause, r.catalogue) if cause is not None else r)
         return out
 
     def words(self, cause: str, d: Diagnosis, what: str) -> tuple[str, str | None, list[str]]:
+        if cause == NO_STATES and d.decisive is not None and d.decisive.note == UNTOLD:
+            _, fix, seen = template(cause, d, what)
+            return (f"I couldn't finish {what} because MoveIt had no current state of my arm: the joint states it "
+                    "asked for did not reach it in time. My logs do not show which way: none may have come at all "
+                    "(nothing published them where move_group listens), or they came stamped older than it asked "
+                    "for (simulated and wall-clock time mixed).",
+                    f"{fix} If they are published, give every node the same use_sim_time.", seen[:1])
         return template(cause, d, what)
 
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:

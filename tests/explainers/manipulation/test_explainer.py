@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pytest
 
+from hexar.claims import read_claims
 from hexar.events.records import ERROR, INFO, WARN
 from hexar.explainers.manipulation.explainer import state_monitor_cause
 from tests.explainers.helpers import explain, write_lines
@@ -47,6 +48,32 @@ def test_no_joint_states_and_a_time_mix_are_told_apart_by_the_state_monitor_numb
         (1.1, MGI, ERROR, "Failed to fetch current robot state"), *_aborted(2)])
     assert found.causes == ["manipulation.stale_robot_state"]
     assert "wall-clock time were mixed" in found.text
+
+
+# lbr-fri-ros2-stack#275 (real-modules corpus): the state monitor's line as that MoveIt printed it, no comma before
+# "but", which no mined entry reads whole
+LBR_MONITOR = ("Didn't receive robot state (joint angles) with recent timestamp within 1.000000 seconds Requested time "
+               "{0} but latest received state has time {1}.")
+
+
+@pytest.mark.parametrize(("monitor", "cause"), [
+    (None, None),  # "Failed to fetch current robot state" pasted alone: either cause, and the answer says so
+    (LBR_MONITOR.format("63.529000", "0.000000"), "manipulation.no_joint_states"),
+    (LBR_MONITOR.format("1739369238.330760", "0.000000"), "manipulation.stale_robot_state"),
+])
+def test_failed_to_fetch_the_state_is_told_by_the_monitors_line_or_as_either_cause(
+        tmp_path: Path, monitor: str | None, cause: str | None) -> None:
+    lines = [(0, MGI, INFO, "Plan and Execute request accepted")]
+    if monitor is not None:
+        lines.append((1, "moveit_ros.current_state_monitor", INFO, monitor))
+    _, found = _explain(tmp_path, [*lines, (1.1, MGI, ERROR, "Failed to fetch current robot state"), *_aborted(2)])
+    claims = read_claims(found.text)
+    if cause is None:
+        assert found.causes == ["manipulation.no_joint_states"]
+        assert "My logs do not show which way" in found.text and "never received" not in found.text
+        assert not claims.causes and found.fix is not None and "use_sim_time" in found.fix
+    else:
+        assert found.causes == [cause] and claims.causes == {cause}
 
 
 def test_an_error_no_catalogue_knows_is_quoted_with_its_node_and_time_not_guessed(tmp_path: Path) -> None:
