@@ -15,8 +15,9 @@ from hexar.events.records import LogLine
 #   their contexts shut down (nav2_util lifecycle_node.cpp, "Running Nav2 LifecycleNode rcl preshutdown (%s)") from
 #   the second server on: one server alone says it when it ends itself over an error of its own, which the others'
 #   lines after it still tell about;
-# - by their stamps too, a node's destructor, which runs only as its process ends in order (rclcpp shut down, by a
-#   signal or by the program itself), after whatever the node logged of an error of its own: rclcpp_lifecycle's
+# - by their stamps too, where none of the others is there, a node's destructor, which runs only as its process ends
+#   in order (rclcpp shut down, by a signal or by the program itself), after whatever the node logged of an error of
+#   its own, and after the signal (so it is the last of these marks to come): rclcpp_lifecycle's
 #   "LifecycleNode is not shut down: Node still in state(%u) in destructor" (lifecycle_node.cpp:159@rolling), Nav2's
 #   "Destroying" (nav2_util lifecycle_node.cpp) and its lifecycle manager's "Destroying %s" (lifecycle_manager.cpp);
 #   not "Destroying plugin ..." nor "Destroying bond ...", which a cleanup or deactivation at run time prints too;
@@ -36,9 +37,7 @@ def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
     stamp, so it decides by time; launch's have none, and a node's output that its pipe held back (a console is
     written as the buffers flush) can come after them though it was logged before, so launch's lines decide by their
     place only when no node printed its own."""
-    # a destructor's own stamp is kept: what the node logged in the same instant came before it (map_saver's
-    # "Failed to save the map: timeout", then its "Destroying", as it ends itself)
-    marks = [ln.t for ln in lines if SIGNALLED.match(ln.msg)] + [ln.t + 1 for ln in lines if DESTRUCTOR.match(ln.msg)]
+    marks = [ln.t for ln in lines if SIGNALLED.match(ln.msg)]
     servers: dict[str, int] = {}
     for ln in lines:
         if PRESHUTDOWN.match(ln.msg):
@@ -48,4 +47,10 @@ def before_shutdown(lines: list[LogLine]) -> list[LogLine]:
     if marks:
         return [ln for ln in lines if ln.t < min(marks) and not _BY_PLACE.match(ln.msg)]
     stop = next((i for i, ln in enumerate(lines) if _BY_PLACE.match(ln.msg)), None)
-    return lines if stop is None else lines[:stop]
+    if stop is not None:
+        return lines[:stop]
+    # a destructor runs after the signal, as the node's process ends: the latest of these marks, used where none
+    # of the others is there; its own stamp is kept, for what the node logged in the same instant came before it
+    # (map_saver's "Failed to save the map: timeout", then its "Destroying", as it ends itself)
+    ends = [ln.t for ln in lines if DESTRUCTOR.match(ln.msg)]
+    return [ln for ln in lines if ln.t <= min(ends)] if ends else lines

@@ -109,7 +109,7 @@ class ManipulationExplainer(ModuleExplainer):
         if cause == NO_STATES and d.decisive is not None and d.decisive.note == UNTOLD:
             _, fix, seen = template(cause, d, what)
             return (f"I couldn't finish {what} because MoveIt had no current state of my arm: the joint states it "
-                    "asked for did not reach it in time. My logs do not show which way: none may have come at all "
+                    "asked for did not reach it in time. My logs do not show what it was: none may have come at all "
                     "(nothing published them where move_group listens), or they came stamped older than it asked "
                     "for (simulated and wall-clock time mixed).",
                     f"{fix} If they are published, give every node the same use_sim_time.", seen[:1])

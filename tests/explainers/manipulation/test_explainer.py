@@ -70,7 +70,7 @@ def test_failed_to_fetch_the_state_is_told_by_the_monitors_line_or_as_either_cau
     claims = read_claims(found.text)
     if cause is None:
         assert found.causes == ["manipulation.no_joint_states"]
-        assert "My logs do not show which way" in found.text and "never received" not in found.text
+        assert "My logs do not show what it was" in found.text and "never received" not in found.text
         assert not claims.causes and found.fix is not None and "use_sim_time" in found.fix
     else:
         assert found.causes == [cause] and claims.causes == {cause}
