@@ -62,7 +62,8 @@ def test_a_destructor_comes_last_and_begins_it_only_where_nothing_else_does() ->
     # blind set 21's amcl-base-frame-wrong pasted with its warnings and errors only: Ctrl-C (launch's, by its place),
     # then a costmap's transition failing as its context goes away, then the destructors' warnings
     ctrl_c = LogLine(T0 + NS, WARN, "launch", "user interrupted with ctrl-c (SIGINT)")
-    down = LogLine(T0 + 2 * NS, ERROR, "global_costmap.global_costmap", "Caught exception in callback for transition 13")
+    down = LogLine(T0 + 2 * NS, ERROR, "global_costmap.global_costmap",
+                   "Caught exception in callback for transition 13")
     destructor = LogLine(T0 + 3 * NS, WARN, "rclcpp_lifecycle",
                          "LifecycleNode is not shut down: Node still in state(1) in destructor")
     assert before_shutdown([CAUSE, ctrl_c, down, destructor]) == [CAUSE]
