@@ -34,11 +34,15 @@ READ = frozenset({"navigate_to_pose", "navigate_through_poses", "follow_path", "
                   "undock_robot"})
 
 
+def _unread(m: re.Match[str]) -> str | None:
+    """The aborted action's name, where no reading of this package covers its server."""
+    action = m["action"].rsplit("/", 1)[-1]
+    return None if action in READ else action
+
+
 def _action(line: LogLine) -> str | None:
     m = ABORT.match(line.msg.strip())
-    if m is None or m["action"].rsplit("/", 1)[-1] in READ:
-        return None
-    return m["action"].rsplit("/", 1)[-1]
+    return None if m is None else _unread(m)
 
 
 def aborted(run: Run, logs: list[LogLine], place: str) -> Finding | None:
@@ -51,11 +55,11 @@ def aborted(run: Run, logs: list[LogLine], place: str) -> Finding | None:
     # up to the next goal the navigator began: what failed after it is that goal's to tell
     after = after[:next((i for i, ln in enumerate(after) if (e := cat.goal(ln.msg)) is not None and e.kind == "begin"),
                         len(after))]
-    found = next(((ln, m) for ln in after if (m := ABORT.match(ln.msg.strip())) is not None and _action(ln)), None)
+    found = next(((ln, m, a) for ln in after
+                  if (m := ABORT.match(ln.msg.strip())) is not None and (a := _unread(m)) is not None), None)
     if found is None:
         return None
-    end, m = found
-    action = m["action"].rsplit("/", 1)[-1]
+    end, m, action = found
     said = next((ln for ln in reversed(after) if ln.t < end.t and ln.level >= ERROR and ln.name == end.name), None)
     why = f" with '{m['msg'].strip()}'" if m["msg"] else ""
     code = f" (error code {m['code']})" if m["code"] not in (None, "0") else ""

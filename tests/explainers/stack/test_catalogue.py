@@ -154,14 +154,21 @@ def _real_lines() -> list[str]:
     return lines
 
 
+SEP = "\x00"  # in no key and no line: a match in the strings joined by it lies within one of them
+
+
+def _joined(parts: list[str]) -> tuple[str, list[int]]:
+    """The parts joined by SEP, and where each begins (then one past the end)."""
+    assert not any(SEP in p for p in parts)
+    return SEP.join(parts), list(itertools.accumulate((len(p) + 1 for p in parts), initial=0))
+
+
 def _keys_in(keys: list[str], texts: list[str]) -> list[list[int]]:
     """For each text, the indices (ascending) of the keys that occur in it: a plain scan of every key, done with
-    str.find over all texts joined by a character neither holds (no occurrence spans two texts) rather than
-    `key in text` per pair, which took a minute on the suites' lines."""
-    sep = "\x00"
-    assert not any(sep in t for t in texts) and not any(sep in k for k in keys)
-    joined = sep.join(texts)
-    starts = list(itertools.accumulate((len(t) + 1 for t in texts), initial=0))
+    str.find over all texts joined (no occurrence spans two texts) rather than `key in text` per pair, which took
+    a minute on the suites' lines."""
+    assert not any(SEP in k for k in keys)
+    joined, starts = _joined(texts)
     found: list[list[int]] = [[] for _ in texts]
     for n, key in enumerate(keys):
         if not key:
@@ -184,17 +191,18 @@ def _real_keys() -> tuple[list[str], list[list[int]]]:
 
 
 def _keys_starting(keys: list[str], prefixes: list[str]) -> list[list[int]]:
-    """Per prefix, the indices of the keys that start with it: where the separator before a key is followed by it."""
-    sep = "\x00"
-    joined = sep + sep.join(keys)
-    starts = list(itertools.accumulate((len(k) + 1 for k in keys), initial=0))
+    """Per prefix, the indices of the keys that start with it: where the separator before a key is followed by it
+    (one more in front of the first key, so that key n's is at its start offset)."""
+    assert not any(SEP in p for p in prefixes)
+    joined, starts = _joined(keys)
+    joined = SEP + joined
     found: list[list[int]] = []
     for prefix in prefixes:
         found.append([])
-        pos = joined.find(sep + prefix)
+        pos = joined.find(SEP + prefix)
         while pos != -1:
             found[-1].append(bisect.bisect_left(starts, pos))
-            pos = joined.find(sep + prefix, pos + 1)
+            pos = joined.find(SEP + prefix, pos + 1)
     return found
 
 
