@@ -222,11 +222,6 @@ def own_manager(line: LogLine, nav2_logged: bool) -> bool:
     return not any(cat.role(word) not in {None, *_GENERIC_ROLES} for word in _WORD.findall(line.msg))
 
 
-# a Nav2 server's SimpleActionServer refusing a goal while it is not active (simple_action_server.hpp:155@kilted,
-# INFO): the goal ended there, though no error was logged
-_REJECTED = re.compile(r"^(?:\[[\w/]+\] \[ActionServer\] )?Action server is inactive\. Rejecting the goal")
-
-
 def _activity(logs: list[LogLine]) -> list[_Goal]:
     """Nav2 at work without any goal line (the recording began after the goal was sent, a node never came up so
     no goal could start, or only the stack's bring-up was recorded): one goal over the lines the catalogue ties to
@@ -235,6 +230,7 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
     an abort, else still running as far as the recording shows."""
     from hexar.explainers.navigation.catalogue import catalogue
     from hexar.explainers.navigation.chain import NAVIGATION
+    from hexar.explainers.navigation.goal_sent import REJECTED
     from hexar.explainers.shutdown import before_shutdown
     from hexar.explainers.stack.loader import loader_failure
     from hexar.explainers.stack.thrown import python_exception
@@ -283,8 +279,9 @@ def _activity(logs: list[LogLine]) -> list[_Goal]:
         # (rcl's params file error quoting ".../planner_server.yaml")
         named = named or bool(node) or NAVIGATION.search(line.msg) is not None
         active.append(line)
+        # a Nav2 server refusing a goal while it is not active (goal_sent.REJECTED, at INFO) ends the goal there too
         if failed is None and id(line) in running and (line.level >= ERROR or "Aborting handle" in line.msg
-                                                        or _REJECTED.search(line.msg) or loader_failure(line)):
+                                                        or REJECTED.match(line.msg.strip()) or loader_failure(line)):
             failed = line
     if not active or (not own and (arms or not named)):
         # bring-up errors that name no node (pluginlib's, launch's, rcl's) beside an arm's nodes at work and no Nav2

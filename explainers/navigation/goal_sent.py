@@ -29,7 +29,7 @@ _MISSING = re.compile(r'"(?P<frame>[^"]+)" passed to lookupTransform argument (?
 _PAST = re.compile(r"extrapolation into the past\.\s+Requested time (?P<asked>[\d.]+) but the earliest data is at "
                    r"time (?P<earliest>[\d.]+)")
 _FUTURE = re.compile(r"extrapolation into the future")
-_REJECTED = re.compile(r"^Action server is inactive\. Rejecting the goal")
+REJECTED = re.compile(r"^Action server is inactive\. Rejecting the goal")
 _BEGUN = re.compile(r"^Begin navigating")
 _ACTIVE = re.compile(r"^Managed nodes are active")  # lifecycle_manager.cpp@humble on
 
@@ -45,7 +45,7 @@ def framed(raw: list[LogLine]) -> Finding | None:
 def rejected(raw: list[LogLine]) -> Finding | None:
     """A goal turned away before the stack came up, when nothing else explains the failure (a stack kept from
     coming up by a missing transform or a node that failed is that reason, read first); else None."""
-    rejected = next((ln for ln in raw if _REJECTED.match(ln.msg.strip())), None)
+    rejected = next((ln for ln in raw if REJECTED.match(ln.msg.strip())), None)
     # the stack came up after the goal was turned away (one that never came up is the node that failed: chain)
     active = rejected is not None and any(ln.t > rejected.t and _ACTIVE.match(ln.msg.strip()) for ln in raw)
     if rejected is not None and active and not any(_BEGUN.match(ln.msg) and ln.t > rejected.t for ln in raw):
