@@ -245,6 +245,16 @@ class Contact:
             gaps = [*self._closed, *self._open.values(), *self._losses]
         return sorted((g for g in gaps if g.overlaps(start_t, end_t)), key=lambda g: g.since)
 
+    def back_since(self, within_s: float) -> int | None:
+        """The robot's clock when the node last heard, before its hole, a participant that DDS had dropped and
+        that was heard again within the last `within_s` seconds (the earliest, if several): what it sent from then
+        on may still come, resent by its writers, which never dropped the node. None: no such participant. A
+        robot that went quiet (it dropped the node) resends nothing."""
+        now = self._wall()
+        with self._lock:
+            return min((g.since_t for g in self._closed
+                        if not g.quiet and g.until is not None and now - g.until <= within_s), default=None)
+
     def stats(self) -> dict[str, int]:
         with self._lock:
             return {"gaps": len(self._closed) + len(self._open), "not_back": len(self._open),

@@ -8,6 +8,7 @@ timestamp), which is the robot's clock, like a bag's receive time on the robot.
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from bisect import bisect_left, insort
@@ -58,6 +59,11 @@ class Limits:
     # A clock that goes back by more than this, on several fresh messages in a row, is a clock jump.
     jump_back_s: float = 30.0
     jump_confirm: int = 3
+    # For `resend_s` of our seconds after the node heard a participant again that DDS had dropped (live/contact.py),
+    # records stamped since it was last heard (or up to `jump_back_s` before) are what DDS resends as the link
+    # comes back, however old: late, never a clock that jumped back. A 35 s dropout's resends were taken for one,
+    # and the events after them, the failure they explained among them, were dropped as "the abandoned future".
+    resend_s: float = 30.0
     # Records that arrive behind the robot's clock (stamped before the newest one kept) are remembered, this many,
     # with when they came: a lossy network delivers what it lost late, when DDS resends it. As many moments of the
     # robot's clock moving on are remembered (one a millisecond at most), to tell how late in our seconds.
@@ -253,6 +259,8 @@ class LiveLog:
         if t >= self.newest - int(self.limits.jump_back_s * NS):
             self._behind = 0
             return
+        if self._resent(t):
+            return
         self._behind += 1
         if self._behind < self.limits.jump_confirm:
             return
@@ -273,6 +281,13 @@ class LiveLog:
         self._front_t.clear()  # stamps from the abandoned future
         self._front_at.clear()
 
+    def _resent(self, t: int, within_s: float | None = None) -> bool:
+        """Whether a record stamped `t` may be a resend: a participant DDS had dropped was heard again within
+        `within_s` (`resend_s`) of our seconds, and `t` is no older than its last record before the hole, less
+        `jump_back_s` (what a failing link lost, or a loaded machine had not read yet, came a moment before)."""
+        since_t = self.contact.back_since(self.limits.resend_s if within_s is None else within_s)
+        return since_t is not None and t >= since_t - int(self.limits.jump_back_s * NS)
+
     def _watch_lateness(self, t: int) -> None:
         now = self._clock()
         if not self._first_arrival:
@@ -284,7 +299,7 @@ class LiveLog:
             else:
                 self._front_t.append(t)
                 self._front_at.append(now)
-        elif 0 < behind <= int(self.limits.jump_back_s * NS):
+        elif behind > 0 and (behind <= int(self.limits.jump_back_s * NS) or self._resent(t)):
             # when the robot's clock first reached t; for a stamp older than any remembered, the oldest remembered
             # moment (so at least that late)
             front = self._front_t
@@ -317,6 +332,23 @@ class LiveLog:
         """Block until an event stamped at or after `t` arrived (the robot's clock passed t), or timeout."""
         with self._lock:
             return self.changed.wait_for(lambda: self.newest >= t, timeout=timeout_s)
+
+    def resending(self, t: int, within_s: float) -> bool:
+        """Whether what the robot sent up to `t` may still come, resent: a participant DDS had dropped was heard
+        again within the last `within_s` of our seconds, and `t` is after its hole began."""
+        with self._lock:
+            return self._resent(t, within_s)
+
+    def wait_resends(self, quiet_s: float, timeout_s: float) -> None:
+        """Block until no late record has come for `quiet_s` of our seconds, at most `timeout_s`."""
+        with self._lock:
+            start = self._clock()
+            while True:
+                last = max(start, self._late[-1][0] if self._late else -math.inf)
+                left = min(start + timeout_s, last + quiet_s) - self._clock()
+                if left <= 0:
+                    return
+                self.changed.wait(timeout=left)
 
     def late_since(self, since: float, stamped_by: int) -> int:
         """How many records stamped at or before `stamped_by` arrived late after `since` (on the log's clock,

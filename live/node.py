@@ -80,6 +80,11 @@ class NodeOptions:
     # 3.5 s for them was measured (scripts/bench_live_robots.py --netloss 100) to put one or two more first answers
     # of 39 right for 1.5 s more on every answer over that link: the second looks (live/recheck.py) correct them.
     max_settle_s: float = 2.0
+    # A failure that comes within `back_within_s` of a dropped robot being heard again, stamped after its hole
+    # began, waits (at most max_settle_s) until no resent record has come for `resend_quiet_s`: its resends come
+    # behind it, and a first answer given before them named a routine line as the cause.
+    back_within_s: float = 5.0
+    resend_quiet_s: float = 0.5
     # With proactive "speak": SPEAK_BURST unasked explanations said at once, then one every this many seconds at
     # most (the others published only); 0 says each one. One waiting longer than SPEAK_STALE_S is never said.
     speak_every_s: float = SPEAK_EVERY_S
@@ -297,6 +302,9 @@ class LiveNode:
             # played ten times faster does not wait ten times longer
             late = min(opts.max_settle_s, self.log.lateness_s(over_s=opts.settle_s, least=3))
             time.sleep(max(0.0, job.received + late - time.monotonic()))
+            if self.log.resending(job.t, opts.back_within_s):
+                # the failure came as a dropped link came back: what the robot logged before it is resent behind it
+                self.log.wait_resends(opts.resend_quiet_s, opts.max_settle_s)
         taken, previous = time.monotonic(), self.thread
         self._session.use_log(self.log.snapshot())
         if job.kind == "failure":

@@ -4,11 +4,14 @@ with duplicates, bounded, and sane across a clock jump."""
 from __future__ import annotations
 
 import random
+import threading
+import time
 from pathlib import Path
 
 from hexar.events import contract as c
 from hexar.events import read_recording
 from hexar.events.records import BoolSample, LogLine, SkillStep, TaskUpdate
+from hexar.live.contact import Contact
 from hexar.live.convert import to_records
 from hexar.live.log import NS, Limits, LiveLog
 from hexar.live.replay import bag_messages
@@ -85,6 +88,136 @@ def test_clock_jump_back_drops_the_abandoned_future() -> None:
     assert snap.task().task_id == "after"
     assert all(line.t < 200 * NS for line in snap.logs)
     assert live.clock_jumps == 1
+
+
+ROBOT = b"\x01" * 12
+
+
+class _Clock:
+    """This machine's seconds, moved on by the test (monotonic for the log, wall for its contact)."""
+
+    def __init__(self) -> None:
+        self.now = 100.0
+
+    def __call__(self) -> float:
+        return self.now
+
+
+def _log(clock: _Clock | None = None) -> LiveLog:
+    live = LiveLog(clock=clock) if clock is not None else LiveLog()
+    live.contact = Contact(lambda: live.newest, wall=clock or time.time, report=lambda line: None)
+    live.contact.seen({ROBOT: "amcl"})
+    return live
+
+
+def _hear(live: LiveLog, record: LogLine | TaskUpdate) -> None:
+    """What a transport does with each record the robot sends: says who wrote it, then keeps it."""
+    live.contact.heard(ROBOT, c.ROSOUT)
+    live.add(record)
+
+
+def _drop(live: LiveLog, clock: _Clock | None, seconds: float) -> None:
+    """The robot's DDS participant is dropped (its lease ran out) and is back `seconds` later."""
+    live.contact.seen({})
+    if clock is not None:
+        clock.now += seconds
+    live.contact.seen({ROBOT: "amcl"})
+
+
+def _dropout(clock: _Clock, live: LiveLog, hole_s: float = 35.0) -> tuple[list[LogLine], list[LogLine]]:
+    """A robot logging twice a second whose link drops for `hole_s` of its clock: what came, and what DDS
+    resends once the link is back (behind the lines sent after it)."""
+    came = [_line(1000.0 + k * 0.5, f"before {k}") for k in range(20)]
+    hole = [_line(1010.0 + k * 0.5, f"in the hole {k}") for k in range(int(hole_s * 2))]
+    after = [_line(1010.0 + hole_s + k * 0.5, f"after {k}") for k in range(4)]
+    for line in came:
+        _hear(live, line)
+        clock.now += 0.5
+    _drop(live, clock, 7.0)
+    for line in after + hole:  # the robot's new lines first, its resends behind them
+        _hear(live, line)
+        clock.now += 0.001
+    return came + hole + after, hole
+
+
+def test_what_a_dropout_resends_is_late_not_a_clock_jump() -> None:
+    clock = _Clock()
+    live = _log(clock)
+    lines, hole = _dropout(clock, live)
+    assert live.clock_jumps == 0 and not live.warnings
+    assert live.snapshot().logs == sorted(lines, key=lambda ln: ln.t)
+    # every resend counts as late, so a second look at an explanation given before it came reads it
+    assert live.late_since(100.0, hole[-1].t) == len(hole)
+
+
+def test_a_clock_that_jumps_back_after_a_dropout_is_still_a_jump() -> None:
+    clock = _Clock()
+    live = _log(clock)
+    _dropout(clock, live)
+    live.add(_task(100.0, "after a restart"))  # the robot restarted with its clock 900 s behind
+    for k in range(5):
+        live.add(_line(100.0 + k))
+    assert live.clock_jumps == 1
+    assert [t.task_id for t in live.snapshot().tasks] == ["after a restart"]
+
+
+def test_old_records_are_a_jump_once_resends_are_over() -> None:
+    clock = _Clock()
+    live = _log(clock)
+    _dropout(clock, live, hole_s=80.0)
+    clock.now += Limits().resend_s + 1.0
+    for k in range(5):  # stamped inside the 80 s hole, long after DDS would have resent anything
+        live.add(_line(1012.0 + k, f"back to {k}"))
+    assert live.clock_jumps == 1
+
+
+def test_a_robot_that_went_quiet_resends_nothing_so_old_records_are_a_jump() -> None:
+    clock = _Clock()
+    live = _log(clock)
+    for k in range(20):
+        _hear(live, _line(1000.0 + k * 0.5, f"before {k}"))
+        clock.now += 0.5
+    clock.now += 40.0  # no lease ran out: the node never dropped the robot, which sends on
+    for k in range(4):
+        _hear(live, _line(1050.0 + k * 0.5, f"after {k}"))
+    for k in range(5):
+        _hear(live, _line(1012.0 + k, f"back to {k}"))
+    assert live.clock_jumps == 1
+
+
+def _resend(live: LiveLog, lines: list[LogLine], every_s: float) -> threading.Thread:
+    def send() -> None:
+        for line in lines:
+            time.sleep(every_s)
+            _hear(live, line)
+
+    thread = threading.Thread(target=send)
+    thread.start()
+    return thread
+
+
+def test_a_failure_as_the_link_comes_back_waits_for_the_resends_until_they_stop() -> None:
+    live = _log()
+    for k in range(10):
+        _hear(live, _line(1000.0 + k * 0.5))
+    assert not live.resending(int(1040.0 * NS), within_s=5.0)
+    _drop(live, None, 0.0)
+    _hear(live, _task(1040.0, "failed"))  # the link is back 35 s later on the robot's clock
+    assert live.resending(int(1040.0 * NS), within_s=5.0) and not live.resending(int(960.0 * NS), within_s=5.0)
+    start = time.monotonic()
+    thread = _resend(live, [_line(1005.0 + k * 0.5, f"resent {k}") for k in range(20)], 0.02)
+    live.wait_resends(quiet_s=0.5, timeout_s=10.0)
+    waited, got = time.monotonic() - start, live.late_since(start, int(1040.0 * NS))
+    thread.join()
+    assert got == 20 and 0.9 <= waited < 5.0  # every resend in, then half a second without one
+    # resends that go on are waited for no longer than the timeout
+    start = time.monotonic()
+    thread = _resend(live, [_line(1015.0 + k * 0.01, f"more {k}") for k in range(100)], 0.02)
+    live.wait_resends(quiet_s=0.5, timeout_s=0.6)
+    waited = time.monotonic() - start
+    thread.join()
+    assert 0.6 <= waited < 1.5
+    assert not live.resending(int(1040.0 * NS), within_s=0.1)  # long after the link came back
 
 
 def test_a_latched_old_flag_is_no_clock_jump() -> None:
