@@ -38,6 +38,7 @@ def fresh_domain() -> int:
 class Heard:
     answers: list[tuple[float, dict[str, Any]]] = field(default_factory=list)
     failures: dict[str, float] = field(default_factory=dict)  # failure key -> when the listener got it
+    first_update: float | None = None  # when the first /task_info update came
 
 
 class Listener:
@@ -64,8 +65,10 @@ class Listener:
                     continue  # the replayer's writer went away
                 update = parse_task_info(0, str(s.data))
                 key = failure_key(update) if update is not None else None
-                if key is not None:
-                    with self._lock:
+                with self._lock:
+                    if update is not None and self.heard.first_update is None:
+                        self.heard.first_update = now
+                    if key is not None:
                         self.heard.failures.setdefault(key, now)
             for s in self._answers.take(16):
                 if not s.sample_info.valid_data:
@@ -85,6 +88,13 @@ class Listener:
     def answers(self, trigger: str | None = None) -> list[tuple[float, dict[str, Any]]]:
         with self._lock:
             return [(t, a) for t, a in self.heard.answers if trigger is None or a.get("trigger") == trigger]
+
+    def wait_task(self, timeout: float = 60.0) -> float | None:
+        """When the robot's first /task_info update came (None: none within `timeout`)."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline and self.heard.first_update is None:
+            time.sleep(0.02)
+        return self.heard.first_update
 
     def wait_answers(self, n: int, trigger: str | None = None, timeout: float = 10.0) -> list[dict[str, Any]]:
         deadline = time.monotonic() + timeout
