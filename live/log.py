@@ -335,7 +335,7 @@ class LiveLog:
 
     def resending(self, t: int, within_s: float) -> bool:
         """Whether what the robot sent up to `t` may still come, resent: a participant DDS had dropped was heard
-        again within the last `within_s` of our seconds, and `t` is after its hole began."""
+        again within the last `within_s` of our seconds, and `t` is no older than its hole (less `jump_back_s`)."""
         with self._lock:
             return self._resent(t, within_s)
 
