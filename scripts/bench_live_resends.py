@@ -18,8 +18,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import signal
 import statistics
 import subprocess
 import sys
@@ -32,7 +30,7 @@ sys.path.insert(0, str(ROOT))
 
 from hexar.live.log import Limits  # noqa: E402
 from tests.live.dds_helpers import Listener, fresh_domain, live_node  # noqa: E402
-from tests.live.test_contact import LEASE_S, SHORT_LEASE  # noqa: E402
+from tests.live.test_contact import robot_dropped_mid_task  # noqa: E402
 from tests.live.test_replay_explains import expected  # noqa: E402
 
 CONFIGS = {"before": (Limits(resend_s=-1.0), 0.0), "jump fix": (Limits(), 0.0), "both": (Limits(), 0.5)}
@@ -43,17 +41,7 @@ def one(run: Path, transport: str, limits: Limits, quiet: float, want: dict[str,
     listener = Listener(domain)
     try:
         with live_node(domain, limits=limits, transport=transport, resend_quiet_s=quiet) as node:
-            cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", "5", "--transport", "dds",
-                   "--domain", str(domain)]
-            robot = subprocess.Popen(cmd, env={**os.environ, "CYCLONEDDS_URI": SHORT_LEASE},
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, text=True)
-            deadline = time.monotonic() + 60
-            while not node.log.stats()["tasks"] and time.monotonic() < deadline:
-                time.sleep(0.05)
-            time.sleep(1.0)
-            robot.send_signal(signal.SIGSTOP)
-            time.sleep(3 * LEASE_S + 1.0)
-            robot.send_signal(signal.SIGCONT)
+            robot, _ = robot_dropped_mid_task(node, run, domain)
             robot.communicate(timeout=120)
             listener.wait_answers(len(want), "failure", timeout=15)
             time.sleep(16.5)  # the node's last look comes 15 s after its answer

@@ -19,7 +19,7 @@ from hexar.events.tasks import build_tasks
 from hexar.live import msgs
 from hexar.live.contact import Contact, annotate, note
 from hexar.live.dds import DdsEndpoint
-from hexar.live.node import FAILURE_QUESTION
+from hexar.live.node import FAILURE_QUESTION, LiveNode
 from hexar.live.recheck import AFTER_S
 from hexar.live.topics import TopicQos
 from tests.live.conftest import LOOPBACK_CYCLONE, NO_RCLPY
@@ -244,6 +244,25 @@ def _told(listener: Listener, robot: subprocess.Popen[str], failures: dict[str, 
 SHORT_LEASE = f"{LOOPBACK_CYCLONE},<Discovery><LeaseDuration>{LEASE_S}s</LeaseDuration></Discovery>"
 
 
+def robot_dropped_mid_task(node: LiveNode, run: Path, domain: int) -> tuple[subprocess.Popen[str], dict[str, int]]:
+    """A robot (`hexar replay` on Cyclone, announcing a 2 s lease) replays `run` at x5 into `node`; a second after
+    its task started it stops for three leases (SIGSTOP: to the node a link that carries nothing), 35 s of its
+    clock, then goes on. The replay's process, and the node's contact figures while the robot was stopped."""
+    cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", "5", "--transport", "dds",
+           "--domain", str(domain)]
+    proc = subprocess.Popen(cmd, env={**os.environ, "CYCLONEDDS_URI": SHORT_LEASE},
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 60
+    while not node.log.stats()["tasks"] and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGSTOP)
+    time.sleep(3 * LEASE_S + 1.0)
+    lost = node.log.contact.stats()
+    proc.send_signal(signal.SIGCONT)
+    return proc, lost
+
+
 def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path, transport: str) -> None:
     """A robot (`hexar replay` on Cyclone) stops for three leases in the middle of its navigation (SIGSTOP: to
     the node a link that carries nothing), then goes on and fails: the node drops it, finds it again, and its
@@ -256,18 +275,7 @@ def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path
     listener = Listener(domain)
     try:
         with live_node(domain, transport=transport) as node:
-            cmd = [sys.executable, "-m", "hexar", "replay", str(run), "--rate", "5", "--transport", "dds",
-                   "--domain", str(domain)]
-            proc = subprocess.Popen(cmd, env={**os.environ, "CYCLONEDDS_URI": SHORT_LEASE},
-                                    stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-            deadline = time.monotonic() + 60
-            while not node.log.stats()["tasks"] and time.monotonic() < deadline:
-                time.sleep(0.05)
-            time.sleep(1.0)
-            proc.send_signal(signal.SIGSTOP)
-            time.sleep(3 * LEASE_S + 1.0)
-            lost = node.log.contact.stats()
-            proc.send_signal(signal.SIGCONT)
+            proc, lost = robot_dropped_mid_task(node, run, domain)
             got, told = _told(listener, proc, failures, 10.0)
             heard = node.log.stats()
     finally:
