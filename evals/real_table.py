@@ -6,6 +6,7 @@ writes them and `--check` fails when the README and the reports disagree."""
 from __future__ import annotations
 
 import json
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -80,8 +81,9 @@ def _row(docs: Path, suite: str, label: str, sources: set[str]) -> SetRow | None
     if now is None:
         return None
     before = None if suite in TUNED else _report(docs, f"{suite}-before")
-    by_module = {m: (Figures.of(s), Figures.of(before["by_module"][m]) if before and m in before.get(
-        "by_module", {}) else None) for m, s in now.get("by_module", {}).items()}
+    once = before.get("by_module", {}) if before else {}
+    by_module = {m: (Figures.of(s), Figures.of(once[m]) if m in once else None)
+                 for m, s in now.get("by_module", {}).items()}
     return SetRow(suite, label, _origin(sources), Figures.of(now["summary"]),
                   Figures.of(before["summary"]) if before else None, by_module)
 
@@ -109,30 +111,31 @@ def module_rows(docs: Path) -> list[SetRow]:
     return rows
 
 
-def _total(rows: list[SetRow]) -> tuple[Figures, Figures]:
-    now, before = Figures(), Figures()
-    for row in rows:
-        now, before = now + row.now, before + (row.before or Figures())
-    return now, before
+def _sum(figures: Iterable[Figures | None]) -> Figures | None:
+    """The figures added up; None where one of them is missing (a sum is blind only if every part was)."""
+    total = Figures()
+    for f in figures:
+        if f is None:
+            return None
+        total += f
+    return total
 
 
 HEAD = ("| set | lines from | measured once: named | no unsupported | honest | wrong "
         "| now: named | no unsupported | honest | wrong |\n|---|---|---|---|---|---|---|---|---|---|")
 
 
-def _line(label: str, origin: str, now: Figures, before: Figures | None) -> str:
+def _line(lead: list[str], now: Figures, before: Figures | None) -> str:
     once = before.cells() if before is not None else ["–"] * 4
-    return "| " + " | ".join([label, origin, *once, *now.cells()]) + " |"
+    return "| " + " | ".join([*lead, *once, *now.cells()]) + " |"
 
 
 def _set_line(row: SetRow) -> str:
-    return _line(f"[{row.label}](docs/eval/{row.suite}/results.md)", row.origin, row.now, row.before)
+    return _line([f"[{row.label}](docs/eval/{row.suite}/results.md)", row.origin], row.now, row.before)
 
 
 def _sum_line(label: str, rows: list[SetRow]) -> str:
-    now, before = _total(rows)
-    measured = all(r.before is not None for r in rows)
-    return _line(f"**{label}**", "", now, before if measured else None)
+    return _line([f"**{label}**", ""], sum((r.now for r in rows), Figures()), _sum(r.before for r in rows))
 
 
 def table(docs: Path) -> str:
@@ -151,12 +154,8 @@ def table(docs: Path) -> str:
            "| module | measured once: named | no unsupported | honest | wrong | now: named | no unsupported "
            "| honest | wrong |", "|---|---|---|---|---|---|---|---|---|"]
     for module in MODULES:
-        now, before = Figures(), Figures()
-        for row in heldout:
-            got = row.modules.get(module)
-            if got is not None:
-                now, before = now + got[0], before + (got[1] or Figures())
-        out.append("| " + " | ".join([module, *before.cells(), *now.cells()]) + " |")
+        got = [r.modules[module] for r in heldout if module in r.modules]
+        out.append(_line([module], sum((n for n, _ in got), Figures()), _sum(b for _, b in got)))
     return "\n".join(out) + "\n"
 
 
