@@ -229,8 +229,8 @@ def _told(listener: Listener, robot: subprocess.Popen[str], failures: dict[str, 
     _, err = robot.communicate(timeout=120)
     assert robot.returncode == 0, err
     got = listener.wait_answers(len(failures), "failure", timeout=timeout)
+    deadline = time.monotonic() + AFTER_S[-1] + 2.0
     time.sleep(9.0)
-    deadline = time.monotonic() + AFTER_S[-1] + 2.0 - 9.0
     while True:
         corrected = {a["task_id"]: a["causes"] for _, a in listener.answers("correction")}
         told = {a["task_id"]: corrected.get(a["task_id"], a["causes"]) for a in got}
