@@ -26,12 +26,25 @@ from hexar.live.node import LiveNode, NodeOptions, Transport, failure_key
 from hexar.live.ros import rclpy_available
 from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS, TopicQos
 
-# 233 domains; start from the process id so two test runs on one machine are unlikely to share one
-_DOMAINS = itertools.count((os.getpid() * 7) % 150 + 40)
+FIRST_DOMAIN, DOMAINS = 20, 200  # Fast DDS's ports allow domains up to 232
+
+
+def _worker_block() -> tuple[int, int]:
+    """The domains this test process may use: all of them, or with pytest-xdist a block of its own per worker
+    (PYTEST_XDIST_WORKER gw0, gw1, ...), so tests running at once never share a domain."""
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1"))
+    worker = int(os.environ.get("PYTEST_XDIST_WORKER", "gw0").removeprefix("gw") or 0)
+    size = DOMAINS // max(workers, 1)
+    return FIRST_DOMAIN + worker * size, size
+
+
+_FIRST, _SIZE = _worker_block()
+# start from the process id so two test runs on one machine are unlikely to share a domain
+_DOMAINS = itertools.count(os.getpid() * 7)
 
 
 def fresh_domain() -> int:
-    return next(_DOMAINS) % 200 + 20
+    return _FIRST + next(_DOMAINS) % _SIZE
 
 
 @dataclass

@@ -11,35 +11,78 @@ import re
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
 import pytest
 
 from hexar.cli import main
-from tests.live.dds_helpers import Listener, fresh_domain, other, replay
+from tests.live.dds_helpers import Listener, fresh_domain, other, replay, replay_process
 
 SHM = Path("/dev/shm")
 
 
-def shm_leftovers(before: set[str]) -> set[str]:
-    """Fast DDS participant segments new in /dev/shm that no running process maps or holds open: what a
-    participant that did not shut down leaves (`fastdds_<16 hex>` and its `_el` lock file). The port segments
-    and their semaphores (`fastdds_port<N>`, `sem.fastdds_port<N>_mutex`) are shared by every Fast DDS process
-    on the machine, and one that ends while another opens them may leave them; they are not this test's."""
+OWN_SEGMENT = re.compile(r"fastdds_[0-9a-f]{16}(_el)?")
+
+
+def _segments_of(proc: Path) -> set[str]:
+    """The /dev/shm files a process maps or holds open."""
+    names = {line.rsplit("/", 1)[-1].split()[0] for line in (proc / "maps").read_text().splitlines()
+             if "/dev/shm/" in line}
+    for fd in (proc / "fd").iterdir():
+        target = os.readlink(fd)
+        if target.startswith("/dev/shm/"):
+            names.add(target.rsplit("/", 1)[-1])
+    return names
+
+
+class Segments:
+    """The Fast DDS participant segments (`fastdds_<16 hex>` and its `_el` lock file) that this test's processes
+    map, polled while they run. pytest-xdist runs other tests at once, whose killed processes may leave segments of
+    their own: only these are this test's to check."""
+
+    def __init__(self) -> None:
+        self.names: set[str] = set()
+        self._pids: list[int] = []
+        self._stop = threading.Event()
+        self._thread = threading.Thread(target=self._poll, daemon=True)
+        self._thread.start()
+
+    def watch(self, proc: subprocess.Popen[str]) -> subprocess.Popen[str]:
+        self._pids.append(proc.pid)
+        return proc
+
+    def look(self) -> set[str]:
+        for pid in list(self._pids):
+            try:
+                self.names |= {n for n in _segments_of(Path(f"/proc/{pid}")) if OWN_SEGMENT.fullmatch(n)}
+            except OSError:
+                continue  # ended meanwhile
+        return self.names
+
+    def _poll(self) -> None:
+        while not self._stop.wait(0.02):
+            self.look()
+
+    def close(self) -> None:
+        self._stop.set()
+        self._thread.join()
+
+
+def shm_leftovers(before: set[str], ours: Segments) -> set[str]:
+    """This test's participant segments new in /dev/shm that no running process maps or holds open: what a
+    participant that did not shut down leaves. The port segments and their semaphores (`fastdds_port<N>`,
+    `sem.fastdds_port<N>_mutex`) are shared by every Fast DDS process on the machine, and one that ends while
+    another opens them may leave them; they are not this test's."""
+    ours.close()
     used: set[str] = set()
     for proc in Path("/proc").glob("[0-9]*"):
         try:
-            lines = [line for line in (proc / "maps").read_text().splitlines() if "/dev/shm/" in line]
-            used |= {line.rsplit("/", 1)[-1].split()[0] for line in lines}
-            for fd in (proc / "fd").iterdir():
-                target = os.readlink(fd)
-                if target.startswith("/dev/shm/"):
-                    used.add(target.rsplit("/", 1)[-1])
+            used |= _segments_of(proc)
         except OSError:
             continue  # a process that ended meanwhile, or one of another user
-    own = re.compile(r"fastdds_[0-9a-f]{16}(_el)?")
-    return {name for name in set(os.listdir(SHM)) - before if name not in used and own.fullmatch(name)}
+    return {name for name in set(os.listdir(SHM)) - before if name not in used and name in ours.names}
 
 
 def serve_process(transport: str, domain: int) -> subprocess.Popen[str]:
@@ -77,15 +120,20 @@ def node_names(domain: int) -> list[str]:
 def test_serve_and_replay_processes(suite: Path, transport: str) -> None:
     domain = fresh_domain()
     before = set(os.listdir(SHM)) if SHM.is_dir() else set()
-    serve = serve_process(transport, domain)
+    ours = Segments()
+    serve = ours.watch(serve_process(transport, domain))
     listener = Listener(domain)
     try:
         assert serve.stderr is not None
         line = serve.stderr.readline()  # printed once the node listens
         assert f"listening over {transport}" in line and "writes only /hexar/answer" in line
+        assert bool(ours.look()) == (transport == "rclpy")  # a Fast DDS participant maps its segment
         if transport == "rclpy":
             assert node_names(domain) == ["hexar"]  # as `ros2 node list` shows it
-        assert "replayed" in replay(suite / "bagfile_7_1", domain, rate=20.0, transport=other(transport))
+        robot = ours.watch(replay_process(suite / "bagfile_7_1", domain, 20.0, transport=other(transport)))
+        played, robot_err = robot.communicate(timeout=120)
+        assert robot.returncode == 0 and "Traceback" not in robot_err, robot_err
+        assert "replayed" in played
         failure = listener.wait_answers(1, "failure")
         listener.ask("Why didn't you bring me the coffee?")
         question = listener.wait_answers(1, "question", timeout=15)
@@ -100,7 +148,7 @@ def test_serve_and_replay_processes(suite: Path, transport: str) -> None:
     assert [p["trigger"] for p in printed] == ["failure", "question"]
     assert serve.returncode == 0 and "Traceback" not in err and "terminate called" not in err
     if SHM.is_dir():
-        assert shm_leftovers(before) == set()
+        assert shm_leftovers(before, ours) == set()
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
@@ -108,16 +156,18 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> Non
     """Ctrl-C or a service manager's SIGTERM: exit 0, the summary line, no abort, nothing left behind."""
     domain = fresh_domain()
     before = set(os.listdir(SHM)) if SHM.is_dir() else set()
-    serve = serve_process(transport, domain)
+    ours = Segments()
+    serve = ours.watch(serve_process(transport, domain))
     assert serve.stderr is not None
     assert "listening" in serve.stderr.readline()
+    assert bool(ours.look()) == (transport == "rclpy")  # a Fast DDS participant maps its segment
     serve.send_signal(sig)
     _, err = _ended(serve)
     assert serve.returncode == 0, err
     assert "hexar serve: received 0 records" in err
     assert "Traceback" not in err and "terminate called" not in err
     if SHM.is_dir():
-        assert shm_leftovers(before) == set()
+        assert shm_leftovers(before, ours) == set()
 
 
 @pytest.mark.parametrize(("argv", "message"), [
