@@ -1,4 +1,4 @@
-"""The bodies of `hexar serve` and `hexar replay` (hexar/cli.py holds only their typer signatures)."""
+"""The bodies of `hexar serve` and `hexar replay` (hexar/cli_robot.py holds only their typer signatures)."""
 
 from __future__ import annotations
 

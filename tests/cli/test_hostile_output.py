@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 from rich.console import Console
 
-from hexar import cli
 from hexar.cli import main
+from hexar.cli_guard import out
 from hexar.evals import audit
 from hexar.evals.cases import scenario
 from hexar.evals.scenarios.bag import TYPESTORE, BagBuilder
@@ -53,7 +53,7 @@ def hostile(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def _wide(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("COLUMNS", "1000")  # rich wraps table cells at the terminal width
     # the CLI's console read COLUMNS once, when it was made: pytest-xdist's workers had set it to 80 by then
-    monkeypatch.setattr(cli.out, "width", 1000)
+    monkeypatch.setattr(out, "width", 1000)
 
 
 def _run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from hexar.cli import guarded
+from hexar.cli_guard import guarded
 from hexar.voice.audio import Audio, silence, write_wav
 from hexar.voice.errors import MicrophoneError, NoSpeechError, TranscriberError
 from hexar.voice.loop import listen
