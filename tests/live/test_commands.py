@@ -13,6 +13,7 @@ import subprocess
 import sys
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -70,6 +71,13 @@ class Segments:
         self._thread.join()
 
 
+@pytest.fixture
+def segments() -> Iterator[Segments]:
+    ours = Segments()
+    yield ours
+    ours.close()  # also when the test failed before it looked
+
+
 def shm_leftovers(before: set[str], ours: Segments) -> set[str]:
     """This test's participant segments new in /dev/shm that no running process maps or holds open: what a
     participant that did not shut down leaves. The port segments and their semaphores (`fastdds_port<N>`,
@@ -117,10 +125,9 @@ def node_names(domain: int) -> list[str]:
         spy.close()
 
 
-def test_serve_and_replay_processes(suite: Path, transport: str) -> None:
-    domain = fresh_domain()
+def test_serve_and_replay_processes(suite: Path, transport: str, segments: Segments) -> None:
+    domain, ours = fresh_domain(), segments
     before = set(os.listdir(SHM)) if SHM.is_dir() else set()
-    ours = Segments()
     serve = ours.watch(serve_process(transport, domain))
     listener = Listener(domain)
     try:
@@ -152,11 +159,10 @@ def test_serve_and_replay_processes(suite: Path, transport: str) -> None:
 
 
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
-def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals) -> None:
+def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals, segments: Segments) -> None:
     """Ctrl-C or a service manager's SIGTERM: exit 0, the summary line, no abort, nothing left behind."""
-    domain = fresh_domain()
+    domain, ours = fresh_domain(), segments
     before = set(os.listdir(SHM)) if SHM.is_dir() else set()
-    ours = Segments()
     serve = ours.watch(serve_process(transport, domain))
     assert serve.stderr is not None
     assert "listening" in serve.stderr.readline()
