@@ -1,14 +1,12 @@
-"""Open a recording (rosbag2 sqlite3/mcap folder, or ROS 1 bag) and decode the HEXAR topics into records."""
+"""Open a recording (rosbag2 sqlite3/mcap folder, or ROS 1 bag) and decode the HEXAR topics into records
+(events/decode.py), naming each kind of damage with one error class."""
 
 from __future__ import annotations
 
-import math
 import sqlite3
-import zlib
 from collections.abc import Callable, Iterable
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
 
 from rosbags.highlevel import AnyReader
 from rosbags.interfaces import Connection
@@ -17,17 +15,8 @@ from rosbags.typesys.store import Typestore
 
 from hexar.events import contract as c
 from hexar.events.bag import Reader
-from hexar.events.cdr import (
-    LayoutError,
-    Status,
-    decode_bool,
-    decode_diagnostics,
-    decode_log,
-    decode_odom,
-    decode_pose_cov,
-    decode_string,
-    decode_twist,
-)
+from hexar.events.cdr import LayoutError
+from hexar.events.decode import decode
 from hexar.events.errors import (
     CorruptRecordingError,
     EmptyRecordingError,
@@ -38,21 +27,8 @@ from hexar.events.errors import (
 from hexar.events.humble import has_standard, humble, humble_hash, is_humble
 from hexar.events.log import EventLog, TopicInfo
 from hexar.events.mcap_index import check_mcap
-from hexar.events.records import (
-    BoolSample,
-    GoalPose,
-    GoalStatus,
-    Grid,
-    LogLine,
-    OdomSample,
-    PoseSample,
-    StatusRecord,
-    TwistSample,
-    stamp_ns,
-)
 from hexar.events.recover import holds_storage, is_cut_short, read_recovered, storage_files
 from hexar.events.storage_rows import mcap_rows, sqlite_messages
-from hexar.events.task_info import parse_task_info
 
 
 class _Unreadable(Exception):
@@ -119,30 +95,6 @@ def _rosbag1_header(path: Path) -> None:
         raise CorruptRecordingError(f"cannot read {path}: {err.strerror or err}") from err
     if head != ROSBAG_V2:
         raise CorruptRecordingError(f"cannot read {path}: not a ROS 1 bag (it does not begin with '#ROSBAG V2.0')")
-
-
-def _yaw(qz: float, qw: float) -> float:
-    return 2.0 * math.atan2(qz, qw)
-
-
-def _diag_fields(msg: Any) -> tuple[int, int, tuple[Status, ...]]:
-    """What `decode_diagnostics` reads, from rosbags' message object."""
-    return (msg.header.stamp.sec, msg.header.stamp.nanosec,
-            tuple((int(s.level), str(s.name), str(s.message), str(s.hardware_id),
-                   tuple((str(kv.key), str(kv.value)) for kv in s.values)) for s in msg.status))
-
-
-def _statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
-    """The records of a DiagnosticArray message object (rosbags' or a live one)."""
-    return _status_records(t, topic, _diag_fields(msg))
-
-
-def _status_records(t: int, topic: str, diag: tuple[int, int, tuple[Status, ...]]) -> list[StatusRecord]:
-    sec, nanosec, statuses = diag
-    stamp = stamp_ns(sec, nanosec) or t
-    return [StatusRecord(t=stamp, topic=topic, level=level, name=name, message=message, hardware_id=hardware_id,
-                         values=values)
-            for level, name, message, hardware_id, values in statuses]
 
 
 def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> EventLog:
@@ -273,7 +225,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
     for conn, t, raw in messages:
         seen += 1
         try:
-            _decode(log, conn, t, raw, typestores[conn.id], ros2, standard[conn.id], warnings)
+            decode(log, conn, t, raw, typestores[conn.id], ros2, standard[conn.id], warnings)
         except _MISFIT as err:
             if standard[conn.id] or not ros2:
                 raise _Unreadable(conn, f"its messages do not fit the standard {conn.msgtype} and the recording "
@@ -281,7 +233,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
             # A stored definition that does not fit its own bytes (test bags carry such stand-ins): the standard
             # one may still fit them exactly, which the strict decoders check.
             try:
-                _decode(log, conn, t, raw, humble(), ros2, True, warnings)
+                decode(log, conn, t, raw, humble(), ros2, True, warnings)
             except Exception as err2:
                 raise _Unreadable(conn, f"its messages fit neither the definition of {conn.msgtype} stored in "
                                         f"the recording nor the standard one ({type(err).__name__}: {err})") from err2
@@ -290,140 +242,6 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
                             "its messages; they fit the standard definition exactly and were read with it")
     log.finish()
     return log, seen > 0 or promised == 0
-
-
-def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw: bytes, ros2: bool,
-            standard: bool) -> None:
-    """The ordinary Nav2 topics: velocity commands, odometry, goals and the navigation action's status."""
-    if msgtype in (c.TWIST_TYPE, c.TWIST_STAMPED_TYPE):
-        stamped = msgtype == c.TWIST_STAMPED_TYPE
-        fast = decode_twist(raw, stamped) if standard else None
-        if fast is not None:
-            stamp, v = fast
-        else:
-            m = _deser(ts, raw, msgtype, ros2)
-            tw = m.twist if stamped else m
-            stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) if stamped else 0
-            v = (tw.linear.x, tw.linear.y, 0.0, 0.0, 0.0, tw.angular.z)
-        log.twists.append(TwistSample(stamp or t, topic, float(v[0]), float(v[1]), float(v[5])))
-    elif msgtype == c.ODOM_TYPE:
-        odom = decode_odom(raw) if standard else None
-        if odom is None:
-            m = _deser(ts, raw, msgtype, ros2)
-            odom = (stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec), float(m.pose.pose.position.x),
-                    float(m.pose.pose.position.y), float(m.twist.twist.linear.x), float(m.twist.twist.angular.z))
-        log.odometry.append(OdomSample(odom[0] or t, *odom[1:]))
-    elif msgtype == c.POSE_STAMPED_TYPE:
-        m = _deser(ts, raw, msgtype, ros2)
-        stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
-        log.goals.append(GoalPose(stamp, float(m.pose.position.x), float(m.pose.position.y), str(m.header.frame_id)))
-    elif msgtype == c.GOAL_STATUS_TYPE:
-        m = _deser(ts, raw, msgtype, ros2)
-        for s in m.status_list:
-            gid = bytes(bytearray(s.goal_info.goal_id.uuid)).hex()
-            accepted = stamp_ns(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)
-            log.goal_statuses.append(GoalStatus(t, gid, accepted, int(s.status), topic))
-
-
-def grid_of(m: Any, topic: str, t: int) -> Grid | str:
-    """An OccupancyGrid (a rosbags, rclpy or DDS message: the fields have the same names) as a Grid, or why it is
-    left out: a grid that does not hold what its header says cannot place a point, and is never guessed at."""
-    import numpy as np
-
-    info = m.info
-    cells = np.asarray(m.data, dtype=np.int8).tobytes()
-    if len(cells) != int(info.width) * int(info.height) or not float(info.resolution) > 0:
-        return (f"{topic}: left out a grid of {info.width} x {info.height} cells at resolution {info.resolution} "
-                f"that holds {len(cells)} values")
-    o = info.origin
-    return Grid(stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t, topic, str(m.header.frame_id),
-                float(info.resolution), int(info.width), int(info.height), float(o.position.x),
-                float(o.position.y), _yaw(float(o.orientation.z), float(o.orientation.w)), zlib.compress(cells, 1))
-
-
-def same_grid(a: Grid | None, b: Grid) -> bool:
-    """Whether `b` repeats `a` (the same cells where they were): an unchanged costmap republished."""
-    return a is not None and (a.packed, a.width, a.origin_x, a.origin_y, a.frame) == (
-        b.packed, b.width, b.origin_x, b.origin_y, b.frame)
-
-
-def _grid(log: EventLog, m: Any, topic: str, t: int, warnings: list[str]) -> None:
-    grid = grid_of(m, topic, t)
-    if isinstance(grid, str):
-        warnings.append(grid)
-    elif not same_grid(next((g for g in reversed(log.grids) if g.topic == topic), None), grid):
-        log.grids.append(grid)  # an unchanged grid adds nothing: the one before stands for it
-
-
-def _decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, ros2: bool, standard: bool,
-            warnings: list[str]) -> None:
-    """Append the record(s) of one message to `log`."""
-    msgtype = conn.msgtype
-    if msgtype == c.LOG_TYPE:
-        fast = decode_log(raw) if standard else None
-        if fast is not None:
-            stamp, level, name, text = fast
-            log.logs.append(LogLine(stamp or t, level, name, text))
-        else:
-            m = _deser(ts, raw, msgtype, ros2)
-            stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec)
-            log.logs.append(LogLine(stamp or t, int(m.level), _text(m.name), _text(m.msg)))
-    elif msgtype == c.ROS1_LOG_TYPE:
-        m = _deser(ts, raw, msgtype, ros2)
-        stamp = stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t
-        level = c.ROS1_LEVELS.get(int(m.level), int(m.level))
-        log.logs.append(LogLine(stamp, level, str(m.name), str(m.msg)))
-    elif msgtype == c.STRING_TYPE:
-        data = decode_string(raw) if standard else None
-        if data is None:
-            data = str(_deser(ts, raw, msgtype, ros2).data)
-        if conn.topic == c.TASK_INFO:
-            update = parse_task_info(t, data)
-            if update is None:
-                warnings.append(f"{conn.topic}: ignored a message that is not task JSON")
-            else:
-                log.task_updates.append(update)
-    elif msgtype == c.BOOL_TYPE:
-        flag = decode_bool(raw) if standard else None
-        if flag is None:
-            flag = bool(_deser(ts, raw, msgtype, ros2).data)
-        log.flags.setdefault(conn.topic, []).append(BoolSample(t, conn.topic, flag))
-    elif msgtype == c.POSE_COV_TYPE:
-        fast_pose = decode_pose_cov(raw) if standard else None
-        if fast_pose is not None:
-            stamp, v = fast_pose
-            log.poses.append(PoseSample(stamp or t, v[0], v[1], _yaw(v[5], v[6]), v[7], v[7 + 7], v[7 + 35]))
-        else:
-            m = _deser(ts, raw, msgtype, ros2)
-            p, cov = m.pose.pose, m.pose.covariance
-            log.poses.append(
-                PoseSample(
-                    stamp_ns(m.header.stamp.sec, m.header.stamp.nanosec) or t,
-                    float(p.position.x), float(p.position.y),
-                    _yaw(float(p.orientation.z), float(p.orientation.w)),
-                    float(cov[0]), float(cov[7]), float(cov[35]),
-                )
-            )
-    elif msgtype == c.GRID_TYPE:
-        _grid(log, _deser(ts, raw, msgtype, ros2), conn.topic, t, warnings)
-    elif msgtype == c.DIAG_TYPE:
-        diag = decode_diagnostics(raw) if standard else None
-        if diag is None:
-            diag = _diag_fields(_deser(ts, raw, msgtype, ros2))
-        log.statuses.setdefault(conn.topic, []).extend(_status_records(t, conn.topic, diag))
-    else:
-        _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
-
-
-def _text(value: object) -> str:
-    """A string field; anything else means the definition gives the field another type."""
-    if not isinstance(value, str):
-        raise TypeError(f"a text field holds {type(value).__name__}")
-    return value
-
-
-def _deser(ts: Typestore, raw: bytes, msgtype: str, ros2: bool) -> Any:
-    return ts.deserialize_cdr(raw, msgtype) if ros2 else ts.deserialize_ros1(raw, msgtype)
 
 
 def _storage(src: Path) -> str:

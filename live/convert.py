@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.reader import _statuses, _yaw, grid_of
+from hexar.events.decode import grid_of, statuses, yaw
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -30,7 +30,7 @@ def _stamp(header: Any) -> int:
 
 
 def _motion(topic: str, msg: Any, t: int) -> list[Record]:
-    """The Nav2 topics, field for field as the reader's `_motion` (events/reader.py) reads them."""
+    """The Nav2 topics, field for field as the reader's `_motion` (events/decode.py) reads them."""
     if topic == c.CMD_VEL:
         stamped = hasattr(msg, "header")  # TwistStamped (Jazzy's cmd_vel) carries its twist under `twist`
         tw = msg.twist if stamped else msg
@@ -53,7 +53,7 @@ def _motion(topic: str, msg: Any, t: int) -> list[Record]:
 def to_records(topic: str, msg: Any, t: int) -> list[Record]:
     """The records of one message on `topic`; `t` is the publisher's write time (for unstamped types).
 
-    The decoding rules are the recording reader's (events/reader.py), reused, so that a live answer and
+    The decoding rules are the recording reader's (events/decode.py), reused, so that a live answer and
     `hexar ask` on the same data read the same records.
     """
     if topic == c.ROSOUT:
@@ -66,12 +66,12 @@ def to_records(topic: str, msg: Any, t: int) -> list[Record]:
         p, cov = msg.pose.pose, msg.pose.covariance
         return [PoseSample(stamp_ns(msg.header.stamp.sec, msg.header.stamp.nanosec) or t,
                            float(p.position.x), float(p.position.y),
-                           _yaw(float(p.orientation.z), float(p.orientation.w)),
+                           yaw(float(p.orientation.z), float(p.orientation.w)),
                            float(cov[0]), float(cov[7]), float(cov[35]))]
     if c.TYPE_OF.get(topic) == c.BOOL_TYPE:
         return [BoolSample(t, topic, bool(msg.data))]
     if c.TYPE_OF.get(topic) == c.DIAG_TYPE:
-        return list(_statuses(t, topic, msg))
+        return list(statuses(t, topic, msg))
     if c.TYPE_OF.get(topic) == c.GRID_TYPE:
         grid = grid_of(msg, topic, t)
         return [grid] if isinstance(grid, Grid) else []

@@ -20,8 +20,8 @@ from pathlib import Path
 from typing import TypeVar
 
 from hexar.events import contract as c
+from hexar.events.decode import same_grid
 from hexar.events.log import EventLog, TopicInfo
-from hexar.events.reader import same_grid
 from hexar.events.records import (
     BoolSample,
     GoalPose,

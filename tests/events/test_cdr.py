@@ -9,7 +9,7 @@ from rosbags.serde import SerdeError
 
 from hexar.evals.scenarios.bag import TYPESTORE
 from hexar.events.cdr import LayoutError, decode_bool, decode_diagnostics
-from hexar.events.reader import _diag_fields
+from hexar.events.decode import diag_fields
 
 TY = TYPESTORE.types
 DIAG = "diagnostic_msgs/msg/DiagnosticArray"
@@ -36,7 +36,7 @@ def test_diagnostics_decoded_by_hand_equal_rosbags_own() -> None:
     rng = np.random.default_rng(7)
     for _ in range(300):
         raw = bytes(TYPESTORE.serialize_cdr(_array(rng), DIAG))
-        assert decode_diagnostics(raw) == _diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
+        assert decode_diagnostics(raw) == diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
 
 
 def test_a_repeated_array_keeps_its_own_stamp_and_a_changed_one_its_own_statuses() -> None:
@@ -48,7 +48,7 @@ def test_a_repeated_array_keeps_its_own_stamp_and_a_changed_one_its_own_statuses
         msg.header.stamp.sec += 1  # type: ignore[attr-defined]
         again = bytes(TYPESTORE.serialize_cdr(msg, DIAG))
         for raw in (first, again):
-            assert decode_diagnostics(raw) == _diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
+            assert decode_diagnostics(raw) == diag_fields(TYPESTORE.deserialize_cdr(raw, DIAG))
     level = TY["diagnostic_msgs/msg/DiagnosticStatus"](level=0, name="battery", message="ok", hardware_id="",
                                                         values=[TY["diagnostic_msgs/msg/KeyValue"](key="v", value="1")])
     stamp = TY["builtin_interfaces/msg/Time"](sec=1, nanosec=2)
