@@ -1,5 +1,5 @@
-"""The live node's work, bounded: a job queue that keeps only the newest few questions and failures, and a
-per-source rate for questions.
+"""The live node's work, bounded: its jobs (a failure to explain, a question, a second look at an answer), a job
+queue that keeps only the newest few questions and failures, and a per-source rate for questions.
 
 Anyone on the robot's DDS domain can publish on /hexar/question. Unbounded, a flood of 10,000 questions queued
 10,000 agent runs, and a person's real question after it waited behind all of them. Here a source (the
@@ -13,7 +13,10 @@ from __future__ import annotations
 import threading
 import time
 from collections import OrderedDict, deque
-from typing import Generic, Protocol, TypeVar
+from dataclasses import dataclass, field
+from typing import Generic, Literal, Protocol, TypeVar
+
+from hexar.events.records import TaskUpdate
 
 MAX_QUESTIONS = 4  # waiting questions; a fifth drops the oldest
 MAX_FAILURES = 32  # waiting proactive explanations (each failure is explained once, see LiveNode._explained)
@@ -106,3 +109,37 @@ class JobQueue(Generic[J]):
     def __len__(self) -> int:
         with self._ready:
             return len(self._jobs)
+
+
+@dataclass
+class Job:
+    kind: Literal["failure", "question", "stop"]
+    text: str = ""
+    task_id: str = ""
+    t: int = 0
+    thread: str | None = None
+    received: float = field(default_factory=time.monotonic)
+
+
+@dataclass(frozen=True)
+class Look:
+    """A second look at an unasked explanation (live/recheck.py): its failure's job, the causes last published and
+    when the first answer went out, when the log last read was taken, which look this is, and whether the first
+    answer was said aloud (so that its correction is said too)."""
+
+    job: Job
+    causes: tuple[str, ...]
+    answered: float
+    since: float
+    n: int = 0
+    spoken: bool = False
+
+
+def failure_key(update: TaskUpdate) -> str | None:
+    """What failed in this update (an invalid plan, or a skill by its index), or None."""
+    if not update.valid:
+        return f"{update.task_id}:invalid"
+    for i, step in enumerate(update.skills):
+        if step.state == "failed":
+            return f"{update.task_id}:{i}:{step.skill}"
+    return None

@@ -8,14 +8,12 @@ timestamp), which is the robot's clock, like a bag's receive time on the robot.
 
 from __future__ import annotations
 
-import math
 import threading
 import time
 from bisect import bisect_left, insort
 from collections import deque
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
-from itertools import takewhile
 from pathlib import Path
 from typing import TypeVar
 
@@ -36,6 +34,7 @@ from hexar.events.records import (
 )
 from hexar.events.roslog import LOG_FILE_TYPE
 from hexar.live.contact import Contact
+from hexar.live.lateness import Lateness
 
 NS = 1_000_000_000
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
@@ -107,14 +106,7 @@ class LiveLog:
         self._behind = 0
         self._since_prune = 0
         self.newest = 0
-        self._first_arrival = 0.0
-        # When the robot's clock passed each stamp, on this machine's clock (sampled every millisecond at most): a
-        # late record's lateness is how long after that it came, in our seconds, however fast a recording plays.
-        self._front_t: deque[int] = deque(maxlen=self.limits.late_kept)
-        self._front_at: deque[float] = deque(maxlen=self.limits.late_kept)
-        # (arrival on this machine's clock, stamp, how many of our seconds late it came, whether it came while
-        # joining)
-        self._late: deque[tuple[float, int, float, bool]] = deque(maxlen=self.limits.late_kept)
+        self._lateness = Lateness(self.limits.late_kept, self.limits.join_s)
         self.warnings: deque[str] = deque(maxlen=50)
         self.received = 0
         self.duplicates = 0
@@ -212,7 +204,7 @@ class LiveLog:
         grids = self._grids.setdefault(r.topic, [])
         if same_grid(grids[-1] if grids else None, r):
             return
-        insort(grids, r, key=lambda g: g.t)
+        insort(grids, r, key=_stamp)
         del grids[:-self.limits.max_grids]
 
     def _run_of(self, r: TaskUpdate) -> TaskUpdate:
@@ -237,16 +229,8 @@ class LiveLog:
         self._count(topic)
         if not items or items[-1].t <= r.t:
             items.append(r)
-            return
-        # out of order: bisect on the stamps; lists stay sorted, so snapshots need no full sort
-        lo, hi = 0, len(items)
-        while lo < hi:
-            mid = (lo + hi) // 2
-            if items[mid].t <= r.t:
-                lo = mid + 1
-            else:
-                hi = mid
-        items.insert(lo, r)
+        else:  # out of order: lists stay sorted by stamp (after equal ones), so snapshots need no full sort
+            insort(items, r, key=_stamp)
 
     # -- bounds ---------------------------------------------------------------------------------------------
 
@@ -278,8 +262,7 @@ class LiveLog:
         self._tasks = {k: v for k, v in self._tasks.items() if v[-1].t <= cut}
         self.newest = max([t, *(r.t for r in self._logs[-1:]), *(r.t for r in self._poses[-1:])])
         self._behind = 0
-        self._front_t.clear()  # stamps from the abandoned future
-        self._front_at.clear()
+        self._lateness.forget_front()
 
     def _resent(self, t: int, within_s: float | None = None) -> bool:
         """Whether a record stamped `t` may be a resend: a participant DDS had dropped was heard again within
@@ -289,22 +272,9 @@ class LiveLog:
         return since_t is not None and t >= since_t - int(self.limits.jump_back_s * NS)
 
     def _watch_lateness(self, t: int) -> None:
-        now = self._clock()
-        if not self._first_arrival:
-            self._first_arrival = now
         behind = self.newest - t
-        if behind < 0:
-            if self._front_at and now - self._front_at[-1] < 0.001:
-                self._front_t[-1] = t  # within a millisecond: passed no later than that entry says
-            else:
-                self._front_t.append(t)
-                self._front_at.append(now)
-        elif behind > 0 and (behind <= int(self.limits.jump_back_s * NS) or self._resent(t)):
-            # when the robot's clock first reached t; for a stamp older than any remembered, the oldest remembered
-            # moment (so at least that late)
-            front = self._front_t
-            passed = self._front_at[min(bisect_left(front, t), len(front) - 1)] if front else now
-            self._late.append((now, t, now - passed, now - self._first_arrival < self.limits.join_s))
+        late = behind > 0 and (behind <= int(self.limits.jump_back_s * NS) or self._resent(t))
+        self._lateness.note(t, behind, self._clock(), late)
 
     def _prune(self) -> None:
         lim = self.limits
@@ -344,7 +314,7 @@ class LiveLog:
         with self._lock:
             start = self._clock()
             while True:
-                last = max(start, self._late[-1][0] if self._late else -math.inf)
+                last = max(start, self._lateness.last_arrival())
                 left = min(start + timeout_s, last + quiet_s) - self._clock()
                 if left <= 0:
                     return
@@ -354,9 +324,7 @@ class LiveLog:
         """How many records stamped at or before `stamped_by` arrived late after `since` (on the log's clock,
         time.monotonic() unless given)."""
         with self._lock:
-            # kept in the order they arrived: the newest first, up to the first that came before `since`
-            return sum(1 for arrived, t, _, _ in takewhile(lambda late: late[0] > since, reversed(self._late))
-                       if t <= stamped_by)
+            return self._lateness.count_since(since, stamped_by)
 
     def lateness_s(self, window_s: float = 60.0, over_s: float = 0.0, q: float = 0.9, least: int = 1) -> float:
         """The `q` quantile of how late records came in the last `window_s` seconds: how many of this machine's
@@ -364,7 +332,7 @@ class LiveLog:
         a late joiner's history; 0 when fewer than `least` were."""
         since = self._clock() - window_s
         with self._lock:
-            late = sorted(s for arrived, _, s, joining in self._late if arrived > since and s > over_s and not joining)
+            late = self._lateness.late_s(since, over_s)
         return late[min(len(late) - 1, int(q * len(late)))] if len(late) >= max(1, least) else 0.0
 
     def snapshot(self) -> EventLog:
@@ -417,13 +385,11 @@ def _trim(items: list[S], oldest: int, max_records: int, keep_one: bool = False)
         items = items[len(items) - max_records:]
     if not items or items[0].t >= oldest:
         return items
-    lo, hi = 0, len(items)
-    while lo < hi:
-        mid = (lo + hi) // 2
-        if items[mid].t < oldest:
-            lo = mid + 1
-        else:
-            hi = mid
+    lo = bisect_left(items, oldest, key=_stamp)
     if keep_one:
         lo = max(lo - 1, 0)
     return items[lo:] if lo else items
+
+
+def _stamp(r: Record) -> int:
+    return r.t

@@ -12,7 +12,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Literal, Protocol
 
@@ -25,8 +25,11 @@ from hexar.live.jobs import (
     SPEAK_EVERY_S,
     SPEAK_STALE_S,
     Bucket,
+    Job,
     JobQueue,
+    Look,
     RateLimit,
+    failure_key,
 )
 from hexar.live.log import NS, LiveLog
 from hexar.live.present import no_task_answer, shape
@@ -89,40 +92,6 @@ class NodeOptions:
     # most (the others published only); 0 says each one. One waiting longer than SPEAK_STALE_S is never said.
     speak_every_s: float = SPEAK_EVERY_S
     phrase: bool | None = None
-
-
-@dataclass
-class Job:
-    kind: Literal["failure", "question", "stop"]
-    text: str = ""
-    task_id: str = ""
-    t: int = 0
-    thread: str | None = None
-    received: float = field(default_factory=time.monotonic)
-
-
-@dataclass(frozen=True)
-class Look:
-    """A second look at an unasked explanation (live/recheck.py): its failure's job, the causes last published and
-    when the first answer went out, when the log last read was taken, which look this is, and whether the first
-    answer was said aloud (so that its correction is said too)."""
-
-    job: Job
-    causes: tuple[str, ...]
-    answered: float
-    since: float
-    n: int = 0
-    spoken: bool = False
-
-
-def failure_key(update: TaskUpdate) -> str | None:
-    """What failed in this update (an invalid plan, or a skill by its index), or None."""
-    if not update.valid:
-        return f"{update.task_id}:invalid"
-    for i, step in enumerate(update.skills):
-        if step.state == "failed":
-            return f"{update.task_id}:{i}:{step.skill}"
-    return None
 
 
 def short_sentence(answer: str, max_words: int = 25) -> str:

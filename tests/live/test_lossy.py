@@ -15,8 +15,8 @@ from typing import Any
 import pytest
 
 from hexar.events import contract as c
+from hexar.live.jobs import failure_key
 from hexar.live.log import NS, Limits
-from hexar.live.node import failure_key
 from tests.live.conftest import LOOPBACK_CYCLONE
 from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
 from tests.live.test_log import records_of

@@ -5,8 +5,7 @@ from __future__ import annotations
 import threading
 import time
 
-from hexar.live.jobs import JobQueue
-from hexar.live.node import Job
+from hexar.live.jobs import Job, JobQueue
 from hexar.live.recheck import AFTER_S, MAX_WAITING, Rechecks
 
 
