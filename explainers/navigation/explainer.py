@@ -66,6 +66,7 @@ from hexar.explainers.navigation import (
     held,
     keepout,
     mapsave,
+    nomap,
     reached,
     smoother,
     states,
@@ -262,8 +263,8 @@ class NavigationExplainer:
                 else:
                     lines = g.supporting(run.notes, cause, strength)
                     if cause == g.TRANSFORM:
-                        lines = d.without_map_timeouts(d.after_planner_gave_up(run, chain.unresolved(lines, before)),
-                                                       before)
+                        lines = d.after_planner_gave_up(run, chain.unresolved(lines, before))
+                        lines = nomap.without_map_timeouts(lines, before)
                     elif cause == g.CONTROLLER:
                         lines = d.after_planner_gave_up(run, lines)
                     lines = states.claimable(run.notes, cause, lines, before)
@@ -272,7 +273,7 @@ class NavigationExplainer:
                     elif cause == g.START_IN_OBSTACLE and strength == "strong":
                         found = keepout.spin_blocked_start(run)
                 if found is not None and found.cause == g.OFF_COSTMAP:
-                    found = d.no_map_finding(found, before)
+                    found = nomap.no_map_finding(found, before)
                 if found is not None:
                     notes = ((n.line, n.entry) for n in run.notes)
                     if found.cause == g.CONFIGURATION and chain.never_came_up(notes, before):

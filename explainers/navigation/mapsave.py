@@ -29,6 +29,7 @@ from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
+from hexar.explainers.navigation.nomap import MAP_QOS, map_came_after, policy_words
 
 SAVER = "map_saver"
 TIMED_OUT = ("Failed to save the map: timeout", "Failed to spin map subscription")
@@ -49,7 +50,7 @@ def map_not_saved(lines: list[LogLine]) -> d.Finding | None:
     found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln) for ln in (qos, failed) if ln])
     found.facts[FACT] = 1.0 if qos is not None else 0.0
     if qos is not None:
-        found.notes.append(d.policy_words(qos.msg))
+        found.notes.append(policy_words(qos.msg))
     found.notes.append(failed.msg.strip())
     return found
 
@@ -58,9 +59,9 @@ def costmap_refused_map(lines: list[LogLine]) -> d.Finding | None:
     """A costmap whose subscription refused the map's publisher, in `lines`, and no word of its static layer after
     that that a map came; None when there is none."""
     for ln in lines:
-        if "costmap" not in ln.name or not d.MAP_QOS.match(ln.msg.strip()):
+        if "costmap" not in ln.name or not MAP_QOS.match(ln.msg.strip()):
             continue
-        if d.map_came_after(ln, lines):
+        if map_came_after(ln, lines):
             continue
         found = d.Finding(g.CONFIGURATION, [Evidence.of_log(g.CONFIGURATION, ln)])
         found.facts[REFUSED] = 1.0
@@ -76,7 +77,7 @@ def template(f: d.Finding) -> tuple[str, str | None, list[str]] | None:
         costmap = node.split(".")[0].replace("_", " ")
         topic = m.group(1) if (m := _TOPIC.search(said)) else "map"
         return (f"My {costmap} never got my map: its subscription to {topic} did not match what the map's publisher "
-                f"offers (the {d.policy_words(said)} of their QoS), so no map reached it: “[{node}] {said}”. That is a "
+                f"offers (the {policy_words(said)} of their QoS), so no map reached it: “[{node}] {said}”. That is a "
                 "configuration problem, and without the map my navigation could not work.",
                 "Make the two sides match: publish the map transient local (a map bridged from ROS 1 or published "
                 "volatile is not), or set the static layer's `map_subscribe_transient_local: false` in that "

@@ -28,8 +28,8 @@ from dataclasses import dataclass
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import map_never_came
 from hexar.explainers.navigation.diagnose import Tagged
+from hexar.explainers.navigation.nomap import map_never_came
 
 
 @dataclass(frozen=True)
