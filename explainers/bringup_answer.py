@@ -33,6 +33,7 @@ from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.logcause import at
+from hexar.explainers.module_wording import verbatim
 
 BRING_UP = "bring_up_controllers"
 MAX_QUOTED = 3
@@ -64,8 +65,6 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
                  question: str = "") -> Explanation:
     # both import the module explainer, which asks this module first
     from hexar.explainers.control.description import waited
-    from hexar.explainers.module_explainer import verbatim
-
     if run.state == "succeeded" and presumes_failure(question):
         return _started_then(explainer, prefix, lines, t0)
     if run.state == "succeeded":
@@ -99,8 +98,6 @@ def _started_then(explainer: str, prefix: str, lines: list[LogLine], t0: int) ->
     """Asked why something did not work, where the only task the logs give is a start that completed: the start is
     told as it went, and what failed after it is said to be beyond what the logs show (a teleop's commands that never
     matched the controller's topic leave no line), never that nothing went wrong."""
-    from hexar.explainers.module_explainer import verbatim
-
     came = [ln for ln in lines if completed(ln)]
     warned = [ln for ln in lines if ln.level == WARN and ln.t > (came[-1].t if came else t0)][:1]
     cause = f"{prefix}unexplained_failure"
@@ -133,8 +130,6 @@ def no_clock(lines: list[LogLine]) -> LogLine | None:
 def _no_clock_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
     """A start whose controller manager never had a clock: on simulated time it waits for /clock, which nothing sent."""
     from hexar.explainers.control.description import BRINGUP
-    from hexar.explainers.module_explainer import verbatim
-
     return Explanation(
         explainer=explainer, causes=[BRINGUP], confidence=0.6, evidence=[Evidence.of_log(BRINGUP, line)],
         text="Starting my drivers and controllers did not complete as far as my recording shows, and what it shows "
@@ -150,8 +145,6 @@ def _no_clock_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
 def _under_way(explainer: str, prefix: str, lines: list[LogLine], t0: int, question: str) -> Explanation:
     """A start with no error that the recording does not see complete. MoveIt's own lines with none of
     ros2_control's (moveit_servo starting) are the arm's motion software starting."""
-    from hexar.explainers.module_explainer import verbatim
-
     began = next((ln for ln in lines if starting(ln)), lines[0])
     arm = moveit_logger(began.name) and not any(control_logger(ln.name) or completed(ln) for ln in lines)
     what, verb = ("my arm's motion software (MoveIt)", "was") if arm else ("my drivers and controllers", "were")
@@ -186,8 +179,6 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
     both readings and no cause. Either way the start could not complete, so "why didn't that work?" is answered by
     this finding rather than by a plan that looks right."""
     from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waiting_answer
-    from hexar.explainers.module_explainer import verbatim
-
     if never_arrived(lines, waiting):
         return Explanation(
             explainer=explainer, causes=[BRINGUP], confidence=0.7, evidence=[Evidence.of_log(BRINGUP, waiting)],
@@ -203,8 +194,6 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
 def _refusal_answer(explainer: str, prefix: str, line: LogLine, t0: int) -> Explanation:
     """diff_drive_controller's refusal: it makes its command subscription when configured and accepts commands only
     once activated (diff_drive_controller.cpp:466@jazzy), so it was configured but not active when they came."""
-    from hexar.explainers.module_explainer import verbatim
-
     who = line.name or "a controller"
     # no "refused": that word is a person's refusal in hexar/causes.yaml
     text = (f"My controller {who} dropped the commands it was sent: {verbatim(line)} at {at(line, t0)}. It had been "

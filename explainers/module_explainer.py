@@ -21,6 +21,7 @@ from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.bringup_answer import derived_start, driver_candidates, start_answer
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at, diagnose, read, said
+from hexar.explainers.module_wording import nav2_logger, verbatim, warned_on_the_way
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import join_words
 from hexar.explainers.shutdown import before_shutdown
@@ -34,7 +35,7 @@ from hexar.explainers.stack_causes import (
     stack_words,
     uncaught,
 )
-from hexar.explainers.stated_causes import adopt, first_thrown, quoted_part, stated_cause, stated_words
+from hexar.explainers.stated_causes import adopt, first_thrown, stated_cause, stated_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -165,7 +166,7 @@ class ModuleExplainer:
             # a driver's own error line whose why is a strerror text or a set-up wording: ranked with the rest
             before = d.end.t if d.end is not None else None
             # launch's lines ("process started", which Nav2's catalogue knows too) carry a process's exception
-            own = [ln for ln in lines if not _nav2_logger(ln)]
+            own = [ln for ln in lines if not nav2_logger(ln)]
             adopt(d, stated_cause(own, self.prefix, before))
             action = action_finding(own) if d.cause is None else None
             if action is not None and (cause := self.action_causes.get(action.kind)) is not None:
@@ -344,31 +345,6 @@ class ModuleExplainer:
         return "\n".join(out)
 
 
-def verbatim(line: LogLine) -> str:
-    """A log line quoted in an answer's sentence: its first line, set in “…” behind its node, so that a reader (and
-    hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
-    line is no text-to-speech timeout)."""
-    return f"“[{line.name or 'unnamed node'}] {quoted_part(line)[:200]}”"
-
-
-def warned_on_the_way(lines: Sequence[LogLine], start: int) -> str:
-    """'My logs show a warning on the way, which did not stop it: “[node] …” at 3.0 s (3 like it).' for the last
-    warning or error of the module's own lines (not Nav2's), quoted; "" when there is none."""
-    warned = [ln for ln in lines if ln.level >= WARN and not _nav2_logger(ln)]
-    if not warned:
-        return ""
-    last = warned[-1]
-    alike = sum(1 for ln in warned if ln.name == last.name and _shape(ln.msg) == _shape(last.msg))
-    kind = "an error" if last.level >= ERROR else "a warning"
-    return (f"My logs show {kind} on the way, which did not stop it: {verbatim(last)} at {at(last, start)}"
-            + (f" ({alike} like it)." if alike > 1 else "."))
-
-
-def _shape(msg: str) -> str:
-    """A line with its numbers left out: a warning repeated with new figures is the same warning."""
-    return "".join("#" if ch.isdigit() else ch for ch in msg.strip())
-
-
 def _upper(text: str) -> str:
     return text[:1].upper() + text[1:]
 
@@ -382,13 +358,6 @@ def _other_module(r: Reading) -> bool:
 
     cat = nav2()
     return cat.role(r.line.name) is not None or cat.match(r.line.msg) is not None
-
-
-def _nav2_logger(line: LogLine) -> bool:
-    """A line of a Nav2 node (by its logger's role): navigation's, whatever its words."""
-    from hexar.explainers.navigation.catalogue import catalogue as nav2
-
-    return nav2().role(line.name) is not None
 
 
 # ros2_control_node runs the hardware interfaces' drivers in its own process: its crash is most often a driver's (a

@@ -3,15 +3,18 @@
 A clause follows the module's head ("I couldn't finish picking up the cup because", "My controllers could not
 run because"); `{meaning}` in it stands for what the decisive line means (its catalogue entry's meaning when that
 entry states this very cause, else the table's default), so a general cause such as a configuration error is told
-in the words of the line that showed it. Every answer quotes the decisive line in its details.
+in the words of the line that showed it. Every answer quotes the decisive line in its details, the way `verbatim`
+sets a line apart from the answer's own words.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-from hexar.explainers.logcause import Diagnosis, said
+from hexar.events.records import ERROR, WARN, LogLine
+from hexar.explainers.logcause import Diagnosis, at, said
+from hexar.explainers.stated_causes import quoted_part
 
 Worded = tuple[str, str | None, list[str]]
 
@@ -45,3 +48,35 @@ class Wording:
         if own and "{meaning}" not in clause:
             seen.append(f"That line means: {own}.")
         return f"{head} {clause.format(meaning=own or self.meanings.get(cause, ''))}", fix, seen
+
+
+def verbatim(line: LogLine) -> str:
+    """A log line quoted in an answer's sentence: its first line, set in “…” behind its node, so that a reader (and
+    hexar/claims.py) takes its words as the log's, never as the answer's claim ("operation time out" on a lidar's
+    line is no text-to-speech timeout)."""
+    return f"“[{line.name or 'unnamed node'}] {quoted_part(line)[:200]}”"
+
+
+def warned_on_the_way(lines: Sequence[LogLine], start: int) -> str:
+    """'My logs show a warning on the way, which did not stop it: “[node] …” at 3.0 s (3 like it).' for the last
+    warning or error of the module's own lines (not Nav2's), quoted; "" when there is none."""
+    warned = [ln for ln in lines if ln.level >= WARN and not nav2_logger(ln)]
+    if not warned:
+        return ""
+    last = warned[-1]
+    alike = sum(1 for ln in warned if ln.name == last.name and _shape(ln.msg) == _shape(last.msg))
+    kind = "an error" if last.level >= ERROR else "a warning"
+    return (f"My logs show {kind} on the way, which did not stop it: {verbatim(last)} at {at(last, start)}"
+            + (f" ({alike} like it)." if alike > 1 else "."))
+
+
+def _shape(msg: str) -> str:
+    """A line with its numbers left out: a warning repeated with new figures is the same warning."""
+    return "".join("#" if ch.isdigit() else ch for ch in msg.strip())
+
+
+def nav2_logger(line: LogLine) -> bool:
+    """A line of a Nav2 node (by its logger's role): navigation's, whatever its words."""
+    from hexar.explainers.navigation.catalogue import catalogue as nav2
+
+    return nav2().role(line.name) is not None

@@ -13,7 +13,7 @@ import re
 
 from hexar.events.records import LogLine
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.module_explainer import verbatim
+from hexar.explainers.module_wording import verbatim
 
 CAUSE = "bringup.configuration_error"
 _ROS_CLOCK = re.compile(r"^Using ROS clock for triggering controller manager cycles")

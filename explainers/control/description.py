@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from hexar.events.records import ERROR, LogLine
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.logcause import Reading, at
+from hexar.explainers.module_wording import verbatim
 
 _WAITING = re.compile(r"Waiting for data on 'robot_description' topic to finish initialization")
 _SUBSCRIBED = re.compile(r"Subscribing to '[^']*' topic for robot description\.?$")
@@ -64,8 +65,6 @@ def description_reading(readings: list[Reading]) -> list[Reading]:
 def waiting_answer(explainer: str, cause: str, head: str, line: LogLine, t0: int) -> Explanation:
     """The warning alone: `head` (what failed or did not complete), the controller manager still waiting, and the
     two readings of that, neither claimed (`cause` is the explainer's unexplained failure)."""
-    from hexar.explainers.module_explainer import verbatim  # the module explainer imports the control explainer
-
     return Explanation(
         explainer=explainer, causes=[cause], evidence=[Evidence.of_log(cause, line)], confidence=0.4,
         text=f"{head} My controller manager was still waiting for my robot description: {verbatim(line)} at "

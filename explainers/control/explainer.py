@@ -35,7 +35,8 @@ from hexar.explainers.control.driver_roles import RoleReading, by_role
 from hexar.explainers.control.wording import role_template, template
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading, at
 from hexar.explainers.manipulation.catalogue import catalogue as moveit_catalogue
-from hexar.explainers.module_explainer import ModuleExplainer, focus, verbatim
+from hexar.explainers.module_explainer import ModuleExplainer, focus
+from hexar.explainers.module_wording import verbatim
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 ACTIVATION = "control.controller_activation_failed"
