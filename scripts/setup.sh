@@ -39,11 +39,11 @@ quiet $PIP install -q --no-deps --no-build-isolation -e .
 # The editable install leaves HEXAR's own modules uncompiled, and a shell or container image that sets
 # PYTHONDONTWRITEBYTECODE never writes their bytecode: every `hexar` start would compile them again (about a sixth
 # of a one-shot `ask`). Compile the folders pyproject.toml maps into the package.
-.venv/bin/python - <<'PY'
-import compileall, sys, tomllib
-dirs = sorted(set(tomllib.load(open("pyproject.toml", "rb"))["tool"]["setuptools"]["package-dir"].values()))
-sys.exit(0 if all(compileall.compile_dir(d, quiet=1, workers=0) for d in dirs) else "compiling HEXAR failed")
-PY
+# compileall's own command line, not compile_dir from a script read on stdin: its worker processes start by
+# forkserver on Python 3.12+ and re-import the parent's main script, which a script on stdin does not have
+# (Debian 13's Python 3.13 failed here with BrokenProcessPool).
+mapfile -t dirs < <(.venv/bin/python -c 'import tomllib; print("\n".join(sorted(set(tomllib.load(open("pyproject.toml", "rb"))["tool"]["setuptools"]["package-dir"].values()))))')
+.venv/bin/python -m compileall -q -j 0 "${dirs[@]}" || { echo "compiling HEXAR failed" >&2; exit 1; }
 # The ROS 2 wheels (x86_64 Linux only) re-execute every Python start; keep that out of the `hexar` command's start.
 .venv/bin/python - <<'PY'
 import importlib.util, shutil, sysconfig
