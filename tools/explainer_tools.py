@@ -11,7 +11,7 @@ an LLM runs the same explainers through `run_explainer` and never pays that impo
 
 from __future__ import annotations
 
-import textwrap
+import inspect
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
@@ -89,12 +89,19 @@ TOOL_EXPLAINER: dict[str, str] = {
 }
 
 
+def described(fn: Callable[..., Any]) -> str:
+    """A tool function's docstring as its description, the same on every Python: 3.13 strips the source's
+    indentation from docstrings when it compiles them, and 3.11 and 3.12 keep it on every line but the first."""
+    return inspect.cleandoc(fn.__doc__ or "")
+
+
 @cache
 def builtin_tools() -> tuple[BaseTool, ...]:
-    """The five functions above as LangChain tools (name, docstring and argument schema taken from each)."""
-    from langchain_core.tools import tool
+    """The five functions above as LangChain tools (name and argument schema taken from each, the description from
+    its docstring by `described`)."""
+    from langchain_core.tools import StructuredTool
 
-    return tuple(tool(fn) for fn in _FUNCTIONS)
+    return tuple(StructuredTool.from_function(fn, description=described(fn)) for fn in _FUNCTIONS)
 
 
 def __getattr__(name: str) -> Any:
@@ -114,8 +121,8 @@ class ToolSpec:
 
 def tool_specs(registry: Registry) -> list[ToolSpec]:
     """The five tools above plus one for every further explainer registered by entry point or config. A built-in
-    description is its docstring as LangChain reads one (dedented, stripped), so both protocols say the same."""
-    out = [ToolSpec(fn.__name__, TOOL_EXPLAINER[fn.__name__], textwrap.dedent(fn.__doc__ or "").strip(), fn)
+    description is its docstring (`described`), so both protocols say the same."""
+    out = [ToolSpec(fn.__name__, TOOL_EXPLAINER[fn.__name__], described(fn), fn)
            for fn in _FUNCTIONS]
     known = set(TOOL_EXPLAINER.values())
     out += [ToolSpec(f"explain_{name}", name, description) for name, description in registry.descriptions().items()
