@@ -57,11 +57,11 @@ def statuses(t: int, topic: str, msg: Any) -> list[StatusRecord]:
 
 
 def status_records(t: int, topic: str, diag: tuple[int, int, tuple[Status, ...]]) -> list[StatusRecord]:
-    sec, nanosec, statuses = diag
+    sec, nanosec, items = diag
     stamp = stamp_ns(sec, nanosec) or t
     return [StatusRecord(t=stamp, topic=topic, level=level, name=name, message=message, hardware_id=hardware_id,
                          values=values)
-            for level, name, message, hardware_id, values in statuses]
+            for level, name, message, hardware_id, values in items]
 
 
 def _motion(log: EventLog, ts: Typestore, topic: str, msgtype: str, t: int, raw: bytes, ros2: bool,
