@@ -225,3 +225,7 @@ class Grid:
         return (self.origin_x, self.origin_x + self.width * self.resolution,
                 self.origin_y, self.origin_y + self.height * self.resolution)
 
+
+# any one record of the event log: what a recording's reader and the live node's converter make of one message
+Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
+          | GoalStatus | Grid)

@@ -30,8 +30,8 @@ from collections.abc import Callable
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.records import stamp_ns
-from hexar.live.convert import Record, to_records
+from hexar.events.records import Record, stamp_ns
+from hexar.live.convert import to_records
 
 NS = 1_000_000_000
 MIN_SPAN = NS // 20  # references this far apart in source time fit a rate (source stamps are exact to µs)

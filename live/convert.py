@@ -14,15 +14,11 @@ from hexar.events.records import (
     LogLine,
     OdomSample,
     PoseSample,
-    StatusRecord,
-    TaskUpdate,
+    Record,
     TwistSample,
     stamp_ns,
 )
 from hexar.events.task_info import parse_task_info
-
-Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
-          | GoalStatus | Grid)
 
 
 def _stamp(header: Any) -> int:

@@ -28,6 +28,7 @@ from hexar.events.records import (
     LogLine,
     OdomSample,
     PoseSample,
+    Record,
     StatusRecord,
     TaskUpdate,
     TwistSample,
@@ -37,8 +38,6 @@ from hexar.live.contact import Contact
 from hexar.live.lateness import Lateness
 
 NS = 1_000_000_000
-Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
-          | GoalStatus | Grid)
 S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus, Grid)
 
 
