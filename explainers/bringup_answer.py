@@ -63,8 +63,9 @@ def derived_start(run: SkillRun | None) -> bool:
 
 def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine], t0: int,
                  question: str = "") -> Explanation:
-    # both import the module explainer, which asks this module first
+    # the control package's __init__ imports its explainer, which imports the module explainer, which imports this
     from hexar.explainers.control.description import waited
+
     if run.state == "succeeded" and presumes_failure(question):
         return _started_then(explainer, prefix, lines, t0)
     if run.state == "succeeded":
@@ -130,6 +131,7 @@ def no_clock(lines: list[LogLine]) -> LogLine | None:
 def _no_clock_answer(explainer: str, line: LogLine, t0: int) -> Explanation:
     """A start whose controller manager never had a clock: on simulated time it waits for /clock, which nothing sent."""
     from hexar.explainers.control.description import BRINGUP
+
     return Explanation(
         explainer=explainer, causes=[BRINGUP], confidence=0.6, evidence=[Evidence.of_log(BRINGUP, line)],
         text="Starting my drivers and controllers did not complete as far as my recording shows, and what it shows "
@@ -179,6 +181,7 @@ def _waiting_answer(explainer: str, prefix: str, lines: list[LogLine], waiting: 
     both readings and no cause. Either way the start could not complete, so "why didn't that work?" is answered by
     this finding rather than by a plan that looks right."""
     from hexar.explainers.control.description import BRINGUP, MEANING, never_arrived, waiting_answer
+
     if never_arrived(lines, waiting):
         return Explanation(
             explainer=explainer, causes=[BRINGUP], confidence=0.7, evidence=[Evidence.of_log(BRINGUP, waiting)],
