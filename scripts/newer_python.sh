@@ -12,10 +12,10 @@ find_python() {
   "$want" -c 'import sys; print(sys.executable)' 2>/dev/null && return
   # pyenv's shims run only the versions it has selected: ask it for an installed one of that minor version (its root
   # found from where pyenv itself is, so that a run with another HOME finds it too)
-  local pyenv v
+  local pyenv v minor="${want#python}"
   pyenv="$(command -v pyenv)" || return 1
   export PYENV_ROOT="${PYENV_ROOT:-$(cd "$(dirname "$(readlink -f "$pyenv")")/.." && pwd)}"
-  v="$("$pyenv" versions --bare 2>/dev/null | grep -xE "${want#python}(\.[0-9]+)?" | sort -V | tail -1)"
+  v="$("$pyenv" versions --bare 2>/dev/null | grep -xE "${minor//./\\.}(\.[0-9]+)?" | sort -V | tail -1)"
   [ -n "$v" ] && PYENV_VERSION="$v" "$pyenv" which "$want" 2>/dev/null
 }
 if ! exe="$(find_python)"; then
