@@ -162,6 +162,8 @@ def chat(
     phrase: Annotated[bool | None, typer.Option("--phrase/--no-phrase", help="let the LLM phrase answers")] = None,
     live: Annotated[bool, typer.Option("--live", help="talk with a running `hexar serve` (DDS) instead")] = False,
     domain: Annotated[int | None, typer.Option(help="with --live: DDS domain id [default: ROS_DOMAIN_ID or 0]")] = None,
+    transport: Annotated[str, typer.Option(help="with --live: auto (dds if cyclonedds is installed), dds or rclpy")
+                         ] = "auto",
 ) -> None:
     """Talk with the robot about a recorded run; follow-up questions keep the thread."""
 
@@ -173,7 +175,9 @@ def chat(
         if live:
             from hexar.live.commands import chat_live_command
 
-            return chat_live_command(domain, out)
+            return chat_live_command(domain, out, transport)
+        if transport != "auto":
+            raise HexarError("--transport needs --live (it picks how the chat reaches hexar serve)")
         if run is None:
             raise HexarError("give a recording, or --live to talk with a running hexar serve")
         checkpoints_file(checkpoints)
@@ -213,6 +217,8 @@ def web(
     launch_log: Annotated[Path | None, typer.Option(help="with --live, follow the newest launch.log in this folder of "
                                                     "launch's log folders [default: ROS_LOG_DIR, else ROS_HOME/log, "
                                                     "else ~/.ros/log, when it exists]")] = None,
+    transport: Annotated[str, typer.Option(help="with --live: auto (dds if cyclonedds is installed), dds or rclpy")
+                         ] = "auto",
 ) -> None:
     """Serve a page of the runs: timeline, path, evidence and a chat with the robot."""
 
@@ -222,7 +228,7 @@ def web(
 
         port_number(port, lowest=0)  # 0: any free port; the page's address line names the one it got
         checkpoints_file(checkpoints)
-        return serve(folder, host, port, llm, checkpoints, live, domain, launch_log)
+        return serve(folder, host, port, llm, checkpoints, live, domain, launch_log, transport)
 
     raise typer.Exit(guarded(body))
 

@@ -1,4 +1,5 @@
-"""`hexar chat --live`: talk with a running `hexar serve` node over DDS; its unasked explanations show up too."""
+"""`hexar chat --live`: talk with a running `hexar serve` node over DDS (cyclonedds, or a node of rclpy); its unasked
+explanations show up too."""
 
 from __future__ import annotations
 
@@ -17,19 +18,74 @@ from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS
 PROMPT_HELP = "Ask the robot why; answers come from the running `hexar serve`. Ctrl-D quits."
 
 
-class LiveChat:
-    """A participant that writes questions (tagged with its thread) and reads the node's answers."""
+class DdsLine:
+    """The chat's two topics over cyclonedds: a participant, no ROS node."""
 
-    def __init__(self, domain: int, show: Callable[[dict[str, Any]], None]) -> None:
+    def __init__(self, domain: int) -> None:
         from hexar.live import msgs
         from hexar.live.dds import DdsEndpoint
 
         self._string = msgs.String
         self.endpoint = DdsEndpoint(domain)
-        self.thread = uuid.uuid4().hex[:12]
-        self.show = show
         self._answers = self.endpoint.reader(ANSWER, c.STRING_TYPE, ANSWER_QOS)
         self._questions = self.endpoint.writer(QUESTION, c.STRING_TYPE, QUESTION_QOS)
+
+    def take(self) -> list[str]:
+        return [str(s.data) for s in self._answers.take(16) if s.sample_info.valid_data]
+
+    def matched(self) -> bool:
+        # status counts, not lists (live/replay.py says why)
+        return bool(self._questions.get_publication_matched_status().current_count
+                    and self._answers.get_subscription_matched_status().current_count)
+
+    def write(self, text: str) -> None:
+        self._questions.write(self._string(data=text))
+
+    def close(self) -> None:
+        self.endpoint.close()
+
+
+class RclpyLine:
+    """The chat's two topics as a node of rclpy (`hexar_chat`), where cyclonedds is missing or asked not to be."""
+
+    def __init__(self, domain: int) -> None:
+        from hexar.live.ros import RosNode, _msg_class, _profile
+
+        self.ros = RosNode("hexar_chat", domain)
+        self._string = _msg_class(c.STRING_TYPE)
+        self._inbox: list[str] = []
+        self._lock = threading.Lock()
+        node = self.ros.node
+        self._answers = node.create_subscription(self._string, ANSWER, self._heard, _profile(ANSWER_QOS))
+        self._questions = node.create_publisher(self._string, QUESTION, _profile(QUESTION_QOS))
+        self.ros.spin(lambda line: None)
+
+    def _heard(self, msg: Any) -> None:
+        with self._lock:
+            self._inbox.append(str(msg.data))
+
+    def take(self) -> list[str]:
+        with self._lock:
+            taken, self._inbox = self._inbox, []
+        return taken
+
+    def matched(self) -> bool:
+        return bool(self._questions.get_subscription_count() and self._answers.get_publisher_count())
+
+    def write(self, text: str) -> None:
+        self._questions.publish(self._string(data=text))
+
+    def close(self) -> None:
+        self.ros.close()
+
+
+class LiveChat:
+    """A participant that writes questions (tagged with its thread) and reads the node's answers."""
+
+    def __init__(self, domain: int, show: Callable[[dict[str, Any]], None], transport: str = "dds") -> None:
+        self.line: DdsLine | RclpyLine = RclpyLine(domain) if transport == "rclpy" else DdsLine(domain)
+        self.thread = uuid.uuid4().hex[:12]
+        self.show = show
         self._mine = threading.Event()
         self._asked = self.thread
         self._stop = threading.Event()
@@ -38,11 +94,9 @@ class LiveChat:
 
     def _read(self) -> None:
         while not self._stop.is_set():
-            for sample in self._answers.take(16):
-                if not sample.sample_info.valid_data:
-                    continue
+            for text in self.line.take():
                 try:  # anyone on the domain can publish here: deep, huge or non-object JSON is skipped
-                    result = loads(str(sample.data))
+                    result = loads(text)
                 except BadJsonError:
                     continue
                 if not isinstance(result, dict):
@@ -68,9 +122,7 @@ class LiveChat:
         """Wait (at most `timeout`) until a node reads /hexar/question: a question written before discovery
         matched it is lost, and discovery across DDS vendors (a node on rclpy) takes a second or more."""
         deadline = time.monotonic() + timeout
-        # status counts, not lists (live/replay.py says why)
-        while time.monotonic() < deadline and not (self._questions.get_publication_matched_status().current_count
-                                                   and self._answers.get_subscription_matched_status().current_count):
+        while time.monotonic() < deadline and not self.line.matched():
             time.sleep(0.05)
         # the node's last answers come as transient-local history once matched: an unasked explanation among
         # them sets the thread a "why?" continues, so it must be read before the first question goes out
@@ -80,21 +132,21 @@ class LiveChat:
         """Send one question and wait for its answer; False when the node did not answer in time."""
         self._mine.clear()
         self._asked = self.thread
-        self._questions.write(self._string(data=json.dumps({"question": question, "thread": self.thread})))
+        self.line.write(json.dumps({"question": question, "thread": self.thread}))
         return self._mine.wait(timeout)
 
     def close(self) -> None:
         self._stop.set()
         self._reader.join(2.0)
-        self.endpoint.close()
+        self.line.close()
 
 
 def chat_live(domain: int, lines: Iterable[str], show: Callable[[dict[str, Any]], None],
-              timeout: float = 30.0) -> int:
+              timeout: float = 30.0, transport: str = "dds") -> int:
     """Ask each line in turn; returns 2 if the node never answered (is `hexar serve` running on this domain?)."""
     from hexar.live.errors import LiveError
 
-    chat = LiveChat(domain, show)
+    chat = LiveChat(domain, show, transport)
     try:
         chat.wait_for_node(timeout)
         for line in lines:

@@ -39,14 +39,31 @@ def domain_id(value: int | None) -> int:
     return int(env)
 
 
-def pick_transport(kind: str) -> str:
+def dds_available() -> bool:
+    """Whether the cyclonedds binding is installed, without importing it (CPython 3.14 has no wheel of it)."""
+    import importlib.util
+
+    if "cyclonedds" in sys.modules:
+        return sys.modules["cyclonedds"] is not None
+    try:
+        return importlib.util.find_spec("cyclonedds") is not None
+    except (ImportError, ValueError):
+        return False
+
+
+def pick_transport(kind: str, prefer: str = "rclpy") -> str:
+    """The transport for --transport `kind`; `auto` is `prefer` where it is installed, else the other one.
+    `hexar serve` prefers rclpy (a node the ROS graph lists); the page and the live chat prefer DDS, where they
+    create no endpoint beyond their own, and use rclpy where cyclonedds is missing."""
     if kind not in TRANSPORTS:
         raise BadOptionError(f"unknown transport {kind!r}: use auto, dds or rclpy")
     if kind != "auto":
         return kind
     from hexar.live.ros import rclpy_available
 
-    return "rclpy" if rclpy_available() else "dds"
+    have = {"rclpy": rclpy_available(), "dds": dds_available()}
+    other = "dds" if prefer == "rclpy" else "rclpy"
+    return prefer if have[prefer] or not have[other] else other
 
 
 def make_transport(kind: str, domain: int | None, tts_topic: str | None, record: Path | None = None) -> Transport:
@@ -256,7 +273,7 @@ def replay_command(run: Path, rate: float, transport: str, domain: int | None, s
     return 0
 
 
-def chat_live_command(domain: int | None, console: Any) -> int:
+def chat_live_command(domain: int | None, console: Any, transport: str = "auto") -> int:
     """`hexar chat --live`: lines from the terminal to the running node, its answers printed."""
     from hexar.live.chat_live import PROMPT_HELP, chat_live
 
@@ -271,5 +288,6 @@ def chat_live_command(domain: int | None, console: Any) -> int:
             except EOFError:
                 return
 
+    chosen, domain = pick_transport(transport, prefer="dds"), domain_id(domain)
     console.print(f"[dim]{PROMPT_HELP}[/dim]")
-    return chat_live(domain_id(domain), lines(), show)
+    return chat_live(domain, lines(), show, transport=chosen)

@@ -31,6 +31,11 @@ from hexar.live.topics import (
     dds_name,
 )
 
+NO_CYCLONEDDS = ("the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'"
+                 if sys.version_info < (3, 14) else
+                 "the DDS transport needs the cyclonedds binding, which has no wheel for this Python: use "
+                 "--transport rclpy (the `ros` extra)")
+
 try:
     from cyclonedds.core import InstanceState, Policy, Qos, ReadCondition, SampleState, ViewState, WaitSet
     from cyclonedds.domain import Domain, DomainParticipant
@@ -40,9 +45,8 @@ try:
 
     from hexar.live import msgs
     from hexar.live.graph_info import DISCOVERY_TOPIC, ParticipantEntitiesInfo, participant_nodes
-except ImportError as err:  # pragma: no cover -- cyclonedds is in the `live` extra that setup.sh installs
-    raise TransportUnavailableError(
-        "the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'") from err
+except ImportError as err:  # cyclonedds is in the `live` extra, which has no wheel for CPython 3.14
+    raise TransportUnavailableError(NO_CYCLONEDDS) from err
 
 TakeBatch = 256
 # This participant's lease unless CYCLONEDDS_URI sets one: Cyclone DDS's default (docs/manual/options.md,

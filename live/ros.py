@@ -110,7 +110,7 @@ def _profile(q: TopicQos) -> Any:
 class RosNode:
     """An rclpy node in its own context on `domain_id`, and the thread that spins it."""
 
-    def __init__(self, name: str, domain_id: int) -> None:
+    def __init__(self, name: str, domain_id: int, **node_options: Any) -> None:
         if not 0 <= domain_id <= 232:
             raise BadOptionError(f"DDS domain id {domain_id} is out of range (0-232, as ROS_DOMAIN_ID)")
         self.rclpy = import_rclpy()
@@ -119,7 +119,7 @@ class RosNode:
         try:
             self.rclpy.init(context=self.context, domain_id=domain_id,
                             signal_handler_options=signals.SignalHandlerOptions.NO)
-            self.node = self.rclpy.create_node(name, context=self.context)
+            self.node = self.rclpy.create_node(name, context=self.context, **node_options)
         except Exception as err:  # rclpy raises RCLError on a bad RMW or middleware configuration
             self.context.try_shutdown()
             raise TransportUnavailableError(f"cannot start the ROS 2 node {name}: {err}") from err
@@ -164,8 +164,15 @@ class RclpyTransport:
     name = "rclpy"
 
     def __init__(self, domain_id: int = 0, tts_topic: str | None = None, node_name: str = "hexar",
-                 recorder: Any = None) -> None:
-        self.ros = RosNode(node_name, domain_id)
+                 recorder: Any = None, answers: bool = True, speaker: str = "hexar serve") -> None:
+        """`answers=False` is the page's viewer: no /hexar/answer, no TTS, no /hexar/question, no /rosout, only the
+        robot's topics read (rclpy itself still writes /parameter_events, as every rclpy node does)."""
+        # the viewer neither logs to /rosout (a topic the robot writes and HEXAR reads) nor serves parameters
+        viewer = {} if answers else {"enable_rosout": False, "start_parameter_services": False}
+        self.ros = RosNode(node_name, domain_id, **viewer)
+        self.domain_id = domain_id
+        self.speaker = speaker
+        self.answers = answers
         self.node = self.ros.node
         self.tts_topic = tts_topic
         self.recorder = recorder
@@ -174,8 +181,10 @@ class RclpyTransport:
         self._humble: Any = None
         self._own: bytes | None = None  # this node's participant (GUID prefix), found once the graph shows it
         self._string = _msg_class(c.STRING_TYPE)
-        self._pubs: dict[str, Any] = {ANSWER: self.node.create_publisher(self._string, ANSWER, _profile(ANSWER_QOS))}
-        if tts_topic:
+        self._pubs: dict[str, Any] = {}
+        if answers:
+            self._pubs[ANSWER] = self.node.create_publisher(self._string, ANSWER, _profile(ANSWER_QOS))
+        if answers and tts_topic:
             self._pubs[tts_topic] = self.node.create_publisher(self._string, tts_topic, _profile(TTS_QOS))
 
     def writer_topics(self) -> list[str]:
@@ -198,7 +207,8 @@ class RclpyTransport:
         def question(msg: Any) -> None:
             on_question(str(msg.data))
 
-        self.node.create_subscription(self._string, QUESTION, question, _profile(QUESTION_QOS))
+        if self.answers:
+            self.node.create_subscription(self._string, QUESTION, question, _profile(QUESTION_QOS))
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
@@ -246,8 +256,9 @@ class RclpyTransport:
         node, found = self.node, dict[bytes, set[str]]()
         try:
             if self._own is None:
-                mine = [i for i in node.get_publishers_info_by_topic(ANSWER)
-                        if i.node_name == node.get_name() and i.node_namespace == node.get_namespace()]
+                own = (node.get_publishers_info_by_topic(ANSWER) if self.answers
+                       else node.get_subscriptions_info_by_topic(SUBSCRIBED[0].topic))
+                mine = [i for i in own if i.node_name == node.get_name() and i.node_namespace == node.get_namespace()]
                 if not mine:
                     return None
                 self._own = participant_of(bytes(mine[0].endpoint_gid))
@@ -270,7 +281,7 @@ class RclpyTransport:
 
     def _report(self, line: str) -> None:
         self.errors += 1
-        print(f"hexar serve: {line}", file=sys.stderr, flush=True)
+        print(f"{self.speaker}: {line}", file=sys.stderr, flush=True)
 
     def publish(self, topic: str, text: str) -> None:
         if topic not in self._pubs:

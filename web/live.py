@@ -79,6 +79,35 @@ class DdsWatcher:
         self.endpoint.close()
 
 
+class RclpyWatcher:
+    """The same read-only subscription as a node of rclpy (`hexar_web`), where cyclonedds is missing (CPython 3.14)
+    or `--transport rclpy` asks for it: the robot's topics, as `hexar serve --transport rclpy` reads them; nothing
+    written but /parameter_events, which rclpy creates for every node."""
+
+    def __init__(self, domain_id: int) -> None:
+        from hexar.live.ros import RclpyTransport
+
+        self.transport = RclpyTransport(domain_id, node_name="hexar_web", answers=False, speaker="hexar web")
+        self.domain_id = domain_id
+
+    @property
+    def errors(self) -> int:
+        return self.transport.errors
+
+    def writer_topics(self) -> list[str]:
+        return self.transport.writer_topics()
+
+    def start(self, log: LiveLog) -> None:
+        log.contact.speaker = "hexar web"
+        self.transport.start(log, lambda record: None, lambda question: None)
+
+    def close(self) -> None:
+        self.transport.close()
+
+
+Watcher = DdsWatcher | RclpyWatcher
+
+
 @dataclass(frozen=True)
 class Snapshot:
     """One state of the live run: its event log, its version and the explainers' findings on that log."""
@@ -96,7 +125,7 @@ class LiveSource:
     """The live run as the page reads it: the latest snapshot, rebuilt only when records arrived (and not more
     often than REBUILD_S), so page polls between arrivals cost nothing."""
 
-    def __init__(self, log: LiveLog, watcher: DdsWatcher | None = None,
+    def __init__(self, log: LiveLog, watcher: Watcher | None = None,
                  follower: LaunchLogFollower | None = None) -> None:
         self.log = log
         self.watcher = watcher
@@ -107,10 +136,12 @@ class LiveSource:
         self.shared = Findings()  # the page's: explainers run one at a time across every run (Findings says why)
 
     @classmethod
-    def over_dds(cls, domain_id: int, limits: Limits | None = None, launch_log: Path | None = None) -> LiveSource:
+    def over_dds(cls, domain_id: int, limits: Limits | None = None, launch_log: Path | None = None,
+                 transport: str = "dds") -> LiveSource:
+        """Follow the robot on `domain_id` over `transport` ("dds": cyclonedds, "rclpy": a node of rclpy)."""
         from hexar.live.launch_log import follower
 
-        watcher = DdsWatcher(domain_id)
+        watcher: Watcher = RclpyWatcher(domain_id) if transport == "rclpy" else DdsWatcher(domain_id)
         log = LiveLog(limits, name=f"live (DDS domain {domain_id})")
         watcher.start(log)
         # as `hexar serve` does: the newest launch's log, when launch writes on this computer (or where it is told)

@@ -23,7 +23,7 @@ from typing import Any
 from urllib.parse import parse_qs, urlparse
 
 from hexar.errors import USER_ERRORS
-from hexar.web.live import LiveSource
+from hexar.web.live import LiveSource, RclpyWatcher
 from hexar.web.store import Store
 
 STATIC = {"index.html": "text/html; charset=utf-8", "app.js": "text/javascript; charset=utf-8",
@@ -251,10 +251,11 @@ def make_server(store: Store, host: str = "127.0.0.1", port: int = 8080) -> Thre
     return server
 
 
-def live_source(live: bool, domain: int | None, launch_log: Path | None = None) -> LiveSource | None:
-    """`--live [--domain N] [--launch-log DIR]`: the robot's topics, read-only over DDS (the transport `hexar serve
-    --transport dds` uses; no rclpy here, since the page writes nothing and needs no ROS graph presence), and the
-    newest launch's log of this computer."""
+def live_source(live: bool, domain: int | None, launch_log: Path | None = None,
+                transport: str = "auto") -> LiveSource | None:
+    """`--live [--domain N] [--launch-log DIR] [--transport T]`: the robot's topics, read-only, and the newest
+    launch's log of this computer. `auto` reads over DDS (the transport `hexar serve --transport dds` uses: the page
+    then writes nothing at all and needs no ROS graph presence), or over rclpy where cyclonedds is missing."""
     from hexar.web.errors import WebError
 
     if not live:
@@ -262,19 +263,22 @@ def live_source(live: bool, domain: int | None, launch_log: Path | None = None) 
             raise WebError("--domain needs --live (it picks the robot's DDS domain)")
         if launch_log is not None:
             raise WebError("--launch-log needs --live (it follows the robot's launch beside its topics)")
+        if transport != "auto":
+            raise WebError("--transport needs --live (it picks how the page reads the robot)")
         return None
-    from hexar.live.commands import domain_id
+    from hexar.live.commands import domain_id, pick_transport
 
-    return LiveSource.over_dds(domain_id(domain), launch_log=launch_log)
+    chosen = pick_transport(transport, prefer="dds")
+    return LiveSource.over_dds(domain_id(domain), launch_log=launch_log, transport=chosen)
 
 
 def serve(root: Path | None, host: str, port: int, llm: str, checkpoints: Path | None, live: bool = False,
-          domain: int | None = None, launch_log: Path | None = None) -> int:
+          domain: int | None = None, launch_log: Path | None = None, transport: str = "auto") -> int:
     from hexar.web.errors import WebError
 
     if root is None and not live:
         root = Path(".")
-    source = live_source(live, domain, launch_log)
+    source = live_source(live, domain, launch_log, transport)
     try:
         store = Store(root, llm, checkpoints, source)
         store.backend()  # an unreachable model is the command's one-line error, not a broken chat later
@@ -289,7 +293,8 @@ def serve(root: Path | None, host: str, port: int, llm: str, checkpoints: Path |
     where = f"http://{host}:{server.server_address[1]}/"
     what = [f"recordings in {root}"] if root is not None else []
     if source is not None and source.watcher is not None:
-        what.append(f"the live robot on DDS domain {source.watcher.domain_id}")
+        over = "rclpy" if isinstance(source.watcher, RclpyWatcher) else "DDS"
+        what.append(f"the live robot on DDS domain {source.watcher.domain_id}, over {over}")
     print(f"HEXAR web: {where}  ({' and '.join(what)}; backend {store.backend().name}; Ctrl-C stops)", flush=True)
     if host not in {"127.0.0.1", "localhost", "::1"}:
         print(f"warning: listening on {host}: anyone who can reach this port can read these runs", flush=True)

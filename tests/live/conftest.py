@@ -14,6 +14,7 @@ import os
 import pytest
 
 from hexar.live.ros import rclpy_available
+from tests.live.dds_helpers import NO_DDS
 
 LOOPBACK_CYCLONE = (
     '<General><Interfaces><NetworkInterface address="127.0.0.1"/></Interfaces>'
@@ -25,7 +26,7 @@ os.environ["CYCLONEDDS_URI"] = LOOPBACK_CYCLONE
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
 
 NO_RCLPY = pytest.mark.skipif(not rclpy_available(), reason="rclpy (the `ros` extra) exists for Linux x86_64 only")
-TRANSPORTS = ["dds", pytest.param("rclpy", marks=NO_RCLPY)]
+TRANSPORTS = [pytest.param("dds", marks=NO_DDS), pytest.param("rclpy", marks=NO_RCLPY)]
 
 
 @pytest.fixture(params=TRANSPORTS)

@@ -19,7 +19,7 @@ from pathlib import Path
 import pytest
 
 from hexar.cli import main
-from tests.live.dds_helpers import Listener, fresh_domain, other, replay, replay_process
+from tests.live.dds_helpers import DEFAULT, Listener, fresh_domain, other, replay, replay_process
 
 SHM = Path("/dev/shm")
 
@@ -181,10 +181,12 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals, segmen
     (["serve", "--transport", "rclpy", "--domain", "500"], "out of range"),
     (["replay", "RUN", "--clock", "-1"], "--clock must be 0"),
     (["serve", "--transport", "zenoh"], "unknown transport"),
-    (["serve", "--transport", "dds", "--domain", "500"], "out of range"),
+    (["chat", "--live", "--transport", "zenoh"], "unknown transport"),
+    (["chat", "--transport", "rclpy"], "--transport needs --live"),
+    (["serve", "--transport", DEFAULT, "--domain", "500"], "out of range"),
     (["serve", "--proactive", "loud"], "unknown --proactive"),
-    (["serve", "--voice", "robot", "--transport", "dds", "--domain", "230"], "--voice robot needs"),
-    (["serve", "--transport", "dds", "--tts-topic", "tts"], "absolute ROS topic"),
+    (["serve", "--voice", "robot", "--transport", DEFAULT, "--domain", "230"], "--voice robot needs"),
+    (["serve", "--transport", DEFAULT, "--tts-topic", "tts"], "absolute ROS topic"),
     (["serve", "--mic", "--wav", "q.wav"], "not both"),
     (["replay", "no/such/recording"], "recording not found"),
     (["replay", "RUN", "--rate", "0"], "--rate must be above 0"),
@@ -193,10 +195,10 @@ def test_a_signal_ends_serve_cleanly(transport: str, sig: signal.Signals, segmen
     (["replay", "RUN", "--start", "1e12"], "past the end of bagfile_7_1, which lasts"),  # was an OverflowError
     (["replay", "RUN", "--start", "inf"], "past the end of bagfile_7_1"),
     (["replay", "RUN", "--clock", "nan"], "--clock must be 0"),
-    (["serve", "--transport", "dds", "--horizon", "nan"], "--horizon above 0"),
-    (["serve", "--transport", "dds", "--duration", "-1"], "--duration must be above 0"),
-    (["serve", "--transport", "dds", "--speak-every", "-5"], "--speak-every must be 0 (say each) or more"),
-    (["serve", "--transport", "dds", "--speak-every", "nan"], "--speak-every must be 0 (say each) or more"),
+    (["serve", "--transport", DEFAULT, "--horizon", "nan"], "--horizon above 0"),
+    (["serve", "--transport", DEFAULT, "--duration", "-1"], "--duration must be above 0"),
+    (["serve", "--transport", DEFAULT, "--speak-every", "-5"], "--speak-every must be 0 (say each) or more"),
+    (["serve", "--transport", DEFAULT, "--speak-every", "nan"], "--speak-every must be 0 (say each) or more"),
 ])
 def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsys: pytest.CaptureFixture[str],
                                monkeypatch: pytest.MonkeyPatch) -> None:
@@ -210,12 +212,12 @@ def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsy
 
 def test_bad_ros_domain_id(suite: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("ROS_DOMAIN_ID", "robot")
-    assert main(["replay", str(suite / "bagfile_7_1"), "--transport", "dds"]) == 2
+    assert main(["replay", str(suite / "bagfile_7_1"), "--transport", DEFAULT]) == 2
     assert capsys.readouterr().err.strip() == "ERROR: ROS_DOMAIN_ID='robot' is not a number"
 
 
 def test_not_a_recording(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["replay", str(tmp_path), "--transport", "dds"]) == 2
+    assert main(["replay", str(tmp_path), "--transport", DEFAULT]) == 2
     assert "has no metadata.yaml" in capsys.readouterr().err
 
 
@@ -228,7 +230,9 @@ def test_chat_live_talks_with_the_running_node(suite: Path, transport: str) -> N
     with live_node(domain, transport=transport):
         played = replay(suite / "bagfile_19_1", domain, rate=40.0, transport=other(transport))
         time.sleep(1.0)
-        assert chat_live(domain, ["Why didn't you tell Maria?", "why?"], shown.append) == 0
+        # the chat on the node's other transport where both exist: each crosses DDS vendors
+        assert chat_live(domain, ["Why didn't you tell Maria?", "why?"], shown.append,
+                         transport=other(transport)) == 0
     answers = [a for a in shown if a["trigger"] == "question"]
     assert answers[0]["causes"] == ["tts.timeout"], (answers[0], played)  # played: any topic no reader matched
     assert answers[1]["route"] == "followup" and answers[1]["thread"] == answers[0]["thread"]
@@ -239,7 +243,7 @@ def test_chat_live_without_a_node_says_so(capsys: pytest.CaptureFixture[str]) ->
     from hexar.live.errors import LiveError
 
     with pytest.raises(LiveError, match="no answer from hexar serve"):
-        chat_live(fresh_domain(), ["why?"], print, timeout=1.0)
+        chat_live(fresh_domain(), ["why?"], print, timeout=1.0, transport=DEFAULT)
     assert main(["chat"]) == 2
     assert "give a recording, or --live" in capsys.readouterr().err
 

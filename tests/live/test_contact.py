@@ -16,14 +16,12 @@ from typing import Any
 from hexar.events import contract as c
 from hexar.events.reader import read_recording
 from hexar.events.tasks import build_tasks
-from hexar.live import msgs
 from hexar.live.contact import Contact, annotate, note
-from hexar.live.dds import DdsEndpoint
 from hexar.live.node import FAILURE_QUESTION, LiveNode
 from hexar.live.recheck import AFTER_S
 from hexar.live.topics import TopicQos
 from tests.live.conftest import LOOPBACK_CYCLONE, NO_RCLPY
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay_process
+from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node, replay_process
 from tests.live.test_replay_explains import expected
 
 LEASE_S = 2
@@ -263,6 +261,7 @@ def robot_dropped_mid_task(node: LiveNode, run: Path, domain: int) -> tuple[subp
     return proc, lost
 
 
+@NO_DDS  # the robot is a Cyclone participant announcing a 2 s lease
 def test_a_robot_dropped_mid_task_is_told_in_the_failure_it_explains(suite: Path, transport: str) -> None:
     """A robot (`hexar replay` on Cyclone) stops for three leases in the middle of its navigation (SIGSTOP: to
     the node a link that carries nothing), then goes on and fails: the node drops it, finds it again, and its
@@ -295,11 +294,15 @@ def _told_failure(line: str) -> bool:
 
 
 @NO_RCLPY
+@NO_DDS
 def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Path) -> None:
     """`hexar serve` on rclpy stalls for 2 s (well inside every lease) while a robot's skill-event publisher that
     keeps its last 5 messages sends 30 of 64 KB, more than the node's socket buffers hold (212 KB by default on
     Linux): what the kernel dropped and the publisher no longer keeps never comes, as on a Wi-Fi link that stalls.
     The node counts them from the writer's sequence numbers and tells them in the failure it explains."""
+    from hexar.live import msgs
+    from hexar.live.dds import DdsEndpoint
+
     run, domain = suite / "bagfile_5_1", fresh_domain()
     serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "rclpy", "--domain", str(domain),
                               "--no-follow-launch-log"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -360,6 +363,7 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
 
 
 @NO_RCLPY
+@NO_DDS
 def test_a_fast_dds_robot_that_dropped_the_node_is_told_from_its_silence(suite: Path) -> None:
     """`hexar serve --transport dds` announcing a 2 s lease is stopped for 6 s in the middle of a Fast DDS
     robot's navigation (`hexar replay --transport rclpy`, Fast DDS's 20 s lease): the robot drops the node and
@@ -400,6 +404,7 @@ def test_a_fast_dds_robot_that_dropped_the_node_is_told_from_its_silence(suite: 
     assert quiet["heard_again"] and quiet["seconds"] >= 3 * LEASE_S - 1
 
 
+@NO_DDS
 def test_the_nodes_own_lease_is_read_from_cyclonedds_uri(tmp_path: Path) -> None:
     from hexar.live.dds import own_lease_s
 

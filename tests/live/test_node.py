@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 
 from hexar.events import read_recording
-from hexar.live.dds import DdsEndpoint
 from tests.live.dds_helpers import Listener, fresh_domain, live_node, make_transport, other, replay
 
 TTS_TOPIC = "/hexar_tts_text"
@@ -19,6 +18,8 @@ TTS_TOPIC = "/hexar_tts_text"
 
 def _dds_writers(node: object, domain: int) -> set[str]:
     from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication
+
+    from hexar.live.dds import DdsEndpoint
 
     spy = DdsEndpoint(domain)
     reader = BuiltinDataReader(spy.participant, BuiltinTopicDcpsPublication)

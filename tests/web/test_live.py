@@ -13,7 +13,9 @@ from typing import Any
 import pytest
 
 from hexar.cli import main
-from tests.live.dds_helpers import fresh_domain
+from tests.live.conftest import NO_RCLPY, TRANSPORTS
+from tests.live.dds_helpers import NO_DDS, fresh_domain
+from tests.live.dds_helpers import other as other_vendor
 from tests.web.live_robot import NAV, Robot, live_page
 from tests.web.test_server import get, post
 
@@ -29,11 +31,13 @@ def wait_for(fetch: Callable[[], Any], ok: Callable[[Any], bool], timeout: float
         time.sleep(0.1)
 
 
-def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
+@pytest.mark.parametrize("transport", TRANSPORTS)
+def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path, transport: str) -> None:
+    """The page on either transport, the robot on the other vendor's where both exist."""
     domain = fresh_domain()
-    robot = Robot(domain)
+    robot = Robot(domain, other_vendor(transport))
     try:
-        with live_page(domain, tmp_path / "t.sqlite") as (url, store):
+        with live_page(domain, tmp_path / "t.sqlite", transport=transport) as (url, store):
             _, runs = get(url + "api/runs")
             assert [(r["recording"], r.get("live")) for r in runs["runs"]] == [("live", True)]
             _, empty = get(url + "api/run?name=live")  # no task yet: the CLI's line, not an error
@@ -50,7 +54,7 @@ def test_live_run_shows_the_failed_task_then_the_next(tmp_path: Path) -> None:
             failed = [s for s in run["spans"] if s["status"] == "failed"]
             assert [(s["skill"], s["error_msg"]) for s in failed] == [(NAV, "Navigation to kitchen failed")]
             # the failure first; the planner's finding on this one-step plan for a fetch follows it
-            assert run["findings"][0]["causes"] == [BLOCKED]
+            assert run["findings"][0]["causes"] == [BLOCKED], run["findings"]
             assert any("Failed to make progress" in e["item"] for e in run["events"])
             assert run["path"]["poses"] >= 10 and run["path"]["stop_label"].startswith("stopped here")
             _, runs = get(url + "api/runs")
@@ -151,6 +155,7 @@ def test_live_chat_tells_a_robot_it_no_longer_hears(tmp_path: Path) -> None:
     assert answer["contact"][0]["heard_again"] is None
 
 
+@NO_DDS
 def test_the_live_page_writes_nothing_on_the_robots_network(tmp_path: Path) -> None:
     from cyclonedds.builtin import BuiltinDataReader, BuiltinTopicDcpsPublication, BuiltinTopicDcpsSubscription
 
@@ -169,6 +174,28 @@ def test_the_live_page_writes_nothing_on_the_robots_network(tmp_path: Path) -> N
         assert store.live.watcher.writer_topics() == []
     assert wrote == set()
     assert {"rt/task_info", "rt/rosout", "rt/amcl_pose"} <= read and "rt/hexar/question" not in read
+
+
+@NO_RCLPY
+def test_the_live_page_over_rclpy_writes_no_topic_of_the_robot_or_hexar(tmp_path: Path) -> None:
+    """Over rclpy the page is a ROS node, `hexar_web`, as `ros2 node info` shows it from another node: it reads the
+    robot's topics and writes only the /parameter_events every rclpy node has (no /rosout, no /hexar/*)."""
+    from hexar.live.ros import RosNode
+
+    domain = fresh_domain()
+    with live_page(domain, tmp_path / "t.sqlite", transport="rclpy") as (_, store):
+        spy = RosNode("hexar_test_spy", domain)
+        try:
+            deadline = time.monotonic() + 10
+            while "hexar_web" not in spy.node.get_node_names() and time.monotonic() < deadline:
+                time.sleep(0.1)
+            wrote = {t for t, _ in spy.node.get_publisher_names_and_types_by_node("hexar_web", "/")}
+            read = {t for t, _ in spy.node.get_subscriber_names_and_types_by_node("hexar_web", "/")}
+        finally:
+            spy.close()
+        assert store.live.watcher.writer_topics() == []
+    assert wrote == {"/parameter_events"}
+    assert {"/task_info", "/rosout", "/amcl_pose"} <= read and "/hexar/question" not in read
 
 
 def test_hexar_web_live_command(tmp_path: Path) -> None:
@@ -207,6 +234,8 @@ def test_hexar_web_live_command(tmp_path: Path) -> None:
     (["web", "--live"], {"ROS_DOMAIN_ID": "robot"}, "ROS_DOMAIN_ID='robot' is not a number"),
     (["web", "--domain", "3"], {}, "--domain needs --live"),
     (["web", "--launch-log", "logs"], {}, "--launch-log needs --live"),
+    (["web", "--transport", "rclpy"], {}, "--transport needs --live"),
+    (["web", "--live", "--transport", "zenoh"], {}, "unknown transport 'zenoh'"),
     (["web", "no/such/folder", "--live", "--domain", "231"], {}, "not a folder"),
 ])
 def test_bad_live_options_are_one_line(argv: list[str], env: dict[str, str], message: str,
@@ -226,14 +255,34 @@ def test_a_recording_named_live_is_refused_with_live(tmp_path: Path, capsys: pyt
     assert err.startswith("ERROR: ") and "named 'live'" in err and "\n" not in err
 
 
-def test_live_without_cyclonedds_is_one_line(capsys: pytest.CaptureFixture[str],
-                                              monkeypatch: pytest.MonkeyPatch) -> None:
+def _without_cyclonedds(monkeypatch: pytest.MonkeyPatch) -> None:
     for name in [m for m in sys.modules if m.startswith("cyclonedds") or m in {"hexar.live.dds", "hexar.live.msgs"}]:
         monkeypatch.delitem(sys.modules, name)
-    monkeypatch.setitem(sys.modules, "cyclonedds", None)  # as where the binding is not installed
-    assert main(["web", "--live", "--llm", "none"]) == 2
+    monkeypatch.setitem(sys.modules, "cyclonedds", None)  # as where the binding is not installed (CPython 3.14)
+
+
+def test_live_over_dds_without_cyclonedds_is_one_line(capsys: pytest.CaptureFixture[str],
+                                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    _without_cyclonedds(monkeypatch)
+    assert main(["web", "--live", "--transport", "dds", "--llm", "none"]) == 2
     err = capsys.readouterr().err.strip()
-    assert err == "ERROR: the DDS transport needs the cyclonedds binding: pip install 'hexar[live]'"
+    assert err.startswith("ERROR: the DDS transport needs the cyclonedds binding") and "\n" not in err
+    assert ("pip install 'hexar[live]'" in err) == (sys.version_info < (3, 14))
+    assert ("use --transport rclpy" in err) == (sys.version_info >= (3, 14))
+
+
+@NO_RCLPY
+def test_live_without_cyclonedds_reads_the_robot_over_rclpy(monkeypatch: pytest.MonkeyPatch) -> None:
+    from hexar.web.live import RclpyWatcher
+    from hexar.web.server import live_source
+
+    _without_cyclonedds(monkeypatch)
+    source = live_source(True, fresh_domain())
+    assert source is not None
+    try:
+        assert isinstance(source.watcher, RclpyWatcher) and source.watcher.writer_topics() == []
+    finally:
+        source.close()
 
 
 def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
