@@ -15,7 +15,7 @@ import pytest
 
 from hexar.live.commands import SILENT_HINT_S
 from hexar.live.discovery import ros_discovery
-from tests.live.dds_helpers import fresh_domain
+from tests.live.dds_helpers import NO_DDS, fresh_domain
 from tests.live.test_replay_explains import expected
 
 # loopback only, no multicast, and not localhost as a peer (Cyclone adds it when no interface has multicast): two
@@ -70,6 +70,7 @@ def _serve_and_replay(run: Path, static_peers: str | None) -> tuple[list[dict[st
 
 
 @pytest.mark.parametrize("peers", [None, "127.0.0.1"])
+@NO_DDS  # Cyclone's static peers
 def test_a_robot_without_multicast_is_heard_through_static_peers(suite: Path, peers: str | None) -> None:
     run = suite / "bagfile_5_1"
     answers, err = _serve_and_replay(run, peers)

@@ -19,7 +19,7 @@ from hexar.events.roslog import LOG_FILE_TYPE
 from hexar.live.launch_log import LaunchLogFollower, log_root
 from hexar.live.log import LiveLog
 from tests.explainers.helpers import explain
-from tests.live.dds_helpers import Listener, fresh_domain
+from tests.live.dds_helpers import DEFAULT, Listener, fresh_domain
 
 CRASH = Path(__file__).parents[1] / "events" / "launch_logs" / "crash" / "launch.log"
 _STAMP = re.compile(r"\b(1795927\d{3})\.(\d+)")
@@ -120,7 +120,7 @@ def test_the_live_log_keeps_launch_lines_beside_rosout_once_and_explains_the_dea
 def test_serve_answers_from_the_launch_log_of_this_computer(tmp_path: Path) -> None:
     _launch(tmp_path, "2026-11-29-07-00-00-000000-robot-1", _now_lines())
     domain = fresh_domain()
-    serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", "dds", "--domain", str(domain),
+    serve = subprocess.Popen([sys.executable, "-m", "hexar", "serve", "--transport", DEFAULT, "--domain", str(domain),
                               "--launch-log", str(tmp_path), "--proactive", "off", "--duration", "60"],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     listener = Listener(domain)

@@ -18,7 +18,7 @@ from hexar.events import contract as c
 from hexar.live.jobs import failure_key
 from hexar.live.log import NS, Limits
 from tests.live.conftest import LOOPBACK_CYCLONE
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, replay
+from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node, replay
 from tests.live.test_log import records_of
 from tests.live.test_replay_explains import expected
 
@@ -86,6 +86,7 @@ LOSSY = ("<Internal><Test><XmitLossiness>200</XmitLossiness></Test>"
          "<WriterLingerDuration>10 s</WriterLingerDuration></Internal>")
 
 
+@NO_DDS  # a Cyclone robot
 def test_a_robot_that_drops_a_fifth_of_its_packets_gets_hexar_asks_causes(suite: Path, transport: str,
                                                                           monkeypatch: pytest.MonkeyPatch) -> None:
     run = suite / ASK_HUMAN
@@ -112,6 +113,7 @@ def test_a_robot_that_drops_a_fifth_of_its_packets_gets_hexar_asks_causes(suite:
     assert last == failures, listener.heard.answers
 
 
+@NO_DDS  # the node's answers stand in as a cyclonedds writer
 def test_hexar_chat_live_shows_a_correction_and_continues_its_thread() -> None:
     import json
 

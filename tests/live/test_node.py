@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from hexar.events import read_recording
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, make_transport, other, replay
+from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node, make_transport, other, replay
 
 TTS_TOPIC = "/hexar_tts_text"
 
@@ -55,6 +55,7 @@ def test_the_node_writes_only_its_answer_and_tts_topics(suite: Path, transport: 
     assert listed == sorted(["/hexar/answer", TTS_TOPIC])
 
 
+@NO_DDS  # reads the TTS topic through the listener's cyclonedds endpoint
 def test_why_continues_the_proactive_thread_and_tts_topic_speaks(suite: Path, transport: str) -> None:
     from hexar.events import contract as c
     from hexar.live.topics import TTS_QOS

@@ -12,7 +12,7 @@ from pathlib import Path
 from hexar.events import contract as c
 from hexar.events.tasks import build_tasks
 from hexar.live.present import heard_words, no_task_yet, present
-from tests.live.dds_helpers import Listener, fresh_domain, live_node, other, replay_process
+from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node, other, replay_process
 
 ROOT = Path(__file__).resolve().parents[2]
 TTS_TOPIC = "/hexar_tts_text"
@@ -112,6 +112,7 @@ def test_no_task_yet_quotes_the_last_error_heard(suite: Path) -> None:
     assert f" The last error I heard came from {last.speaker} at " in said and said.endswith('".')
 
 
+@NO_DDS  # reads the TTS topic through the listener's cyclonedds endpoint
 def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, transport: str) -> None:
     """Asked before the robot had any task, the node answers aloud that there is nothing to explain yet (the
     developer's reason kept in "error"); asked while the robot drives to the kitchen, it says it is still at

@@ -15,7 +15,7 @@ from hexar.live.log import NS
 from hexar.live.speech import TopicSpeaker
 from hexar.live.topics import TTS_QOS
 from hexar.voice.loop import say_answer
-from tests.live.dds_helpers import Listener, fresh_domain, live_node
+from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node
 
 TTS = "/hexar_test_tts"
 
@@ -56,6 +56,7 @@ def _failures_told(n: int, question: str | None = None, **options: Any
         listener.close()
 
 
+@NO_DDS  # the same
 def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
     answers, spoken, unspoken, untold = _failures_told(8, "What happened?")
     triggers = [a["trigger"] for a in answers]
@@ -69,6 +70,7 @@ def test_failures_in_a_row_are_all_published_and_a_few_said() -> None:
     assert len(spoken) == SPEAK_BURST + len(say_answer(question)) and unspoken == explained - SPEAK_BURST
 
 
+@NO_DDS  # reads the TTS topic through the listener's cyclonedds endpoint
 def test_a_household_that_wants_every_failure_said_gets_each() -> None:
     answers, spoken, unspoken, _ = _failures_told(4, speak_every_s=0.0)  # within the live log's five kept tasks
     assert [a["trigger"] for a in answers] == ["failure"] * 4
