@@ -213,12 +213,12 @@ def test_bad_input_is_one_line(argv: list[str], message: str, suite: Path, capsy
 
 def test_bad_ros_domain_id(suite: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv("ROS_DOMAIN_ID", "robot")
-    assert main(["replay", str(suite / "bagfile_7_1"), "--transport", "T"]) == 2
+    assert main(["replay", str(suite / "bagfile_7_1"), "--transport", DEFAULT]) == 2
     assert capsys.readouterr().err.strip() == "ERROR: ROS_DOMAIN_ID='robot' is not a number"
 
 
 def test_not_a_recording(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["replay", str(tmp_path), "--transport", "T"]) == 2
+    assert main(["replay", str(tmp_path), "--transport", DEFAULT]) == 2
     assert "has no metadata.yaml" in capsys.readouterr().err
 
 

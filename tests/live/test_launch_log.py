@@ -126,7 +126,7 @@ def test_serve_answers_from_the_launch_log_of_this_computer(tmp_path: Path) -> N
     listener = Listener(domain)
     try:
         assert serve.stderr is not None
-        assert "listening over dds" in serve.stderr.readline()
+        assert f"listening over {DEFAULT}" in serve.stderr.readline()
         assert f"following launch's log under {tmp_path}" in serve.stderr.readline()
         time.sleep(1.5)  # two polls: the file is read, then handed on
         listener.ask("Why didn't that work?")

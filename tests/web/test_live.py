@@ -189,8 +189,12 @@ def test_the_live_page_over_rclpy_writes_no_topic_of_the_robot_or_hexar(tmp_path
             deadline = time.monotonic() + 10
             while "hexar_web" not in spy.node.get_node_names() and time.monotonic() < deadline:
                 time.sleep(0.1)
+            # the node's name comes first; its endpoints as discovery reaches them
+            read: set[str] = set()
+            while not {"/task_info", "/rosout", "/amcl_pose"} <= read and time.monotonic() < deadline:
+                time.sleep(0.1)
+                read = {t for t, _ in spy.node.get_subscriber_names_and_types_by_node("hexar_web", "/")}
             wrote = {t for t, _ in spy.node.get_publisher_names_and_types_by_node("hexar_web", "/")}
-            read = {t for t, _ in spy.node.get_subscriber_names_and_types_by_node("hexar_web", "/")}
         finally:
             spy.close()
         assert store.live.watcher.writer_topics() == []
