@@ -2,18 +2,22 @@
 # Run one of the README's two commands on a fresh Debian of another release, in a throw-away root of this machine:
 #   sudo bash scripts/debian_root.sh [forky] [test|demo]
 # forky (Debian testing: Python 3.14, as Ubuntu 26.04) by default, or trixie, sid; `test` runs scripts/test.sh.
-# It needs root (debootstrap, mount, chroot) and debootstrap from Debian; it builds the root with only git, python3
-# and python3-venv, clones this repository's HEAD into it and runs the command there with an empty HOME, so
-# setup.sh installs everything else itself, as on a new machine. The root is left in ROOT (default
-# ${TMPDIR:-/tmp}/hexar-<release>-root) for another run; delete it when done. Prints the command's exit status and time.
+# It needs root (debootstrap, mount, chroot; debootstrap is installed from Debian when missing). The root gets only
+# git, python3 and python3-venv; this repository's HEAD (committed work only) is cloned into it and the command runs
+# there with an empty HOME, so setup.sh installs everything else itself, as on a new machine. The root stays in ROOT
+# (default ${TMPDIR:-/tmp}/hexar-<release>-root) for another run; delete it when done.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 release="${1:-forky}"
 what="${2:-test}"
 case "$what" in test | demo) ;; *) echo "unknown command $what: use test or demo" >&2; exit 2 ;; esac
-if [ "$(id -u)" != 0 ] || ! command -v debootstrap >/dev/null; then
-  echo "skipped: needs root and debootstrap (apt-get install debootstrap)"
+if [ "$(id -u)" != 0 ]; then
+  echo "skipped: a Debian root needs root (debootstrap, mount, chroot)"
   exit 0
+fi
+if ! command -v debootstrap >/dev/null; then
+  source scripts/apt_install.sh
+  apt_install debootstrap || exit 1
 fi
 root="${ROOT:-${TMPDIR:-/tmp}/hexar-$release-root}"
 mirror="${DEBIAN_MIRROR:-http://deb.debian.org/debian}"
