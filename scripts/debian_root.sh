@@ -42,12 +42,13 @@ mounted=()
 bind() { mount "$@" && mounted=("${@: -1}" "${mounted[@]}"); }
 cleanup() { for m in "${mounted[@]}"; do umount -l "$m" || true; done; }
 trap cleanup EXIT
+# debootstrap made the root's own /dev nodes: /dev itself is never bound, so that a `rm -rf` of a root still
+# mounted cannot reach this machine's devices
 { mountpoint -q "$root/proc" || bind -t proc proc "$root/proc"; } &&
   { mountpoint -q "$root/sys" || bind -t sysfs sys "$root/sys"; } &&
-  { mountpoint -q "$root/dev" || bind --bind /dev "$root/dev"; } &&
   { mountpoint -q "$root/dev/pts" || bind --bind /dev/pts "$root/dev/pts"; } &&
   { mountpoint -q "$root/dev/shm" || bind -t tmpfs tmpfs "$root/dev/shm"; } ||
-  { echo "skipped: cannot mount /proc, /sys and /dev into $root here"; exit 0; }
+  { echo "skipped: cannot mount /proc, /sys, /dev/pts and /dev/shm into $root here"; exit 0; }
 rm -rf "$root/root/hexar"
 git clone -q . "$root/root/hexar"
 echo "running scripts/$what.sh on Debian $release ($(chroot "$root" python3 --version)) in $root"
