@@ -49,15 +49,15 @@ class RclpyLine:
     """The chat's two topics as a node of rclpy (`hexar_chat`), where cyclonedds is missing or asked not to be."""
 
     def __init__(self, domain: int) -> None:
-        from hexar.live.ros import RosNode, _msg_class, _profile
+        from hexar.live.ros import RosNode, msg_class, qos_profile
 
         self.ros = RosNode("hexar_chat", domain)
-        self._string = _msg_class(c.STRING_TYPE)
+        self._string = msg_class(c.STRING_TYPE)
         self._inbox: list[str] = []
         self._lock = threading.Lock()
         node = self.ros.node
-        self._answers = node.create_subscription(self._string, ANSWER, self._heard, _profile(ANSWER_QOS))
-        self._questions = node.create_publisher(self._string, QUESTION, _profile(QUESTION_QOS))
+        self._answers = node.create_subscription(self._string, ANSWER, self._heard, qos_profile(ANSWER_QOS))
+        self._questions = node.create_publisher(self._string, QUESTION, qos_profile(QUESTION_QOS))
         self.ros.spin(lambda line: None)
 
     def _heard(self, msg: Any) -> None:

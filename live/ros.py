@@ -89,7 +89,7 @@ def rclpy_available() -> bool:
         return False
 
 
-def _msg_class(ros_type: str) -> Any:
+def msg_class(ros_type: str) -> Any:
     module, name = ROS_TYPES[ros_type]
     try:
         return getattr(importlib.import_module(module), name)
@@ -97,7 +97,7 @@ def _msg_class(ros_type: str) -> Any:
         raise TransportUnavailableError(f"the rclpy transport needs the ROS 2 package {module}") from err
 
 
-def _profile(q: TopicQos) -> Any:
+def qos_profile(q: TopicQos) -> Any:
     qos: Any = importlib.import_module("rclpy.qos")
     return qos.QoSProfile(
         depth=q.depth,
@@ -165,9 +165,9 @@ class RclpyTransport:
 
     def __init__(self, domain_id: int = 0, tts_topic: str | None = None, node_name: str = "hexar",
                  recorder: Any = None, answers: bool = True, speaker: str = "hexar serve") -> None:
-        """`answers=False` is the page's viewer: no /hexar/answer, no TTS, no /hexar/question, no /rosout, only the
-        robot's topics read (rclpy itself still writes /parameter_events, as every rclpy node does)."""
-        # the viewer neither logs to /rosout (a topic the robot writes and HEXAR reads) nor serves parameters
+        """`answers=False` is the page's viewer: no /hexar/answer, no TTS, no /hexar/question, only the robot's
+        topics read; rclpy itself still writes /parameter_events, as every rclpy node does."""
+        # nor does the viewer log to /rosout (a topic the robot writes and HEXAR reads) or serve parameters
         viewer = {} if answers else {"enable_rosout": False, "start_parameter_services": False}
         self.ros = RosNode(node_name, domain_id, **viewer)
         self.domain_id = domain_id
@@ -180,12 +180,12 @@ class RclpyTransport:
         self.errors = 0
         self._humble: Any = None
         self._own: bytes | None = None  # this node's participant (GUID prefix), found once the graph shows it
-        self._string = _msg_class(c.STRING_TYPE)
+        self._string = msg_class(c.STRING_TYPE)
         self._pubs: dict[str, Any] = {}
         if answers:
-            self._pubs[ANSWER] = self.node.create_publisher(self._string, ANSWER, _profile(ANSWER_QOS))
+            self._pubs[ANSWER] = self.node.create_publisher(self._string, ANSWER, qos_profile(ANSWER_QOS))
         if answers and tts_topic:
-            self._pubs[tts_topic] = self.node.create_publisher(self._string, tts_topic, _profile(TTS_QOS))
+            self._pubs[tts_topic] = self.node.create_publisher(self._string, tts_topic, qos_profile(TTS_QOS))
 
     def writer_topics(self) -> list[str]:
         return sorted(self._pubs)
@@ -199,16 +199,16 @@ class RclpyTransport:
         for spec in READ_ORDER:
             holder: list[Any] = []
             holder.append(self.node.create_subscription(
-                _msg_class(spec.type), spec.topic, self._callback(spec.topic, spec.type, log, on_record, holder),
-                _profile(spec.qos), raw=True))
-        self.node.create_subscription(_msg_class(CLOCK_TYPE), CLOCK, self._callback(CLOCK, CLOCK_TYPE, log, on_record),
-                                      _profile(CLOCK_QOS), raw=True)
+                msg_class(spec.type), spec.topic, self._callback(spec.topic, spec.type, log, on_record, holder),
+                qos_profile(spec.qos), raw=True))
+        self.node.create_subscription(msg_class(CLOCK_TYPE), CLOCK, self._callback(CLOCK, CLOCK_TYPE, log, on_record),
+                                      qos_profile(CLOCK_QOS), raw=True)
 
         def question(msg: Any) -> None:
             on_question(str(msg.data))
 
         if self.answers:
-            self.node.create_subscription(self._string, QUESTION, question, _profile(QUESTION_QOS))
+            self.node.create_subscription(self._string, QUESTION, question, qos_profile(QUESTION_QOS))
 
         def idle() -> None:
             add_all(self.timeline.flush(), log.add, on_record)
@@ -314,14 +314,14 @@ class RclpyReplayer:
             if topic in self._pubs:
                 continue  # prepared before: a second publisher would have to be matched again
             ros_type = c.TYPE_OF[c.topic_key(topic)]
-            self._pubs[topic] = self.ros.node.create_publisher(_msg_class(ros_type), topic, _profile(qos))
+            self._pubs[topic] = self.ros.node.create_publisher(msg_class(ros_type), topic, qos_profile(qos))
 
     def matched(self, topic: str) -> int:
         return int(self._pubs[topic].get_subscription_count())
 
     def clock(self, t: int) -> None:
         if CLOCK not in self._pubs:
-            self._pubs[CLOCK] = self.ros.node.create_publisher(_msg_class(CLOCK_TYPE), CLOCK, _profile(CLOCK_QOS))
+            self._pubs[CLOCK] = self.ros.node.create_publisher(msg_class(CLOCK_TYPE), CLOCK, qos_profile(CLOCK_QOS))
         stamp = self._humble.types["builtin_interfaces/msg/Time"](sec=t // 1_000_000_000, nanosec=t % 1_000_000_000)
         msg = self._humble.types[CLOCK_TYPE](clock=stamp)
         self._pubs[CLOCK].publish(bytes(self._humble.serialize_cdr(msg, CLOCK_TYPE)))

@@ -85,14 +85,14 @@ class Listener:
             self._thread = threading.Thread(target=self._loop, daemon=True)
             self._thread.start()
         else:
-            from hexar.live.ros import RosNode, _msg_class, _profile
+            from hexar.live.ros import RosNode, msg_class, qos_profile
 
             self.ros = RosNode("hexar_test_listener", domain)
-            string = _msg_class(c.STRING_TYPE)
+            string = msg_class(c.STRING_TYPE)
             node = self.ros.node
-            node.create_subscription(string, c.TASK_INFO, lambda m: self._task(str(m.data)), _profile(LISTEN_TASKS))
-            node.create_subscription(string, ANSWER, lambda m: self._answer(str(m.data)), _profile(LISTEN_ANSWERS))
-            self._question = node.create_publisher(string, QUESTION, _profile(QUESTION_QOS))
+            node.create_subscription(string, c.TASK_INFO, lambda m: self._task(str(m.data)), qos_profile(LISTEN_TASKS))
+            node.create_subscription(string, ANSWER, lambda m: self._answer(str(m.data)), qos_profile(LISTEN_ANSWERS))
+            self._question = node.create_publisher(string, QUESTION, qos_profile(QUESTION_QOS))
             self.ros.spin(lambda line: None)
 
     def _task(self, text: str) -> None:
@@ -130,11 +130,11 @@ class Listener:
                 time.sleep(0.02)
             self._question.write(msgs.String(data=question))
             return
-        from hexar.live.ros import _msg_class
+        from hexar.live.ros import msg_class
 
         while not self._question.get_subscription_count() and time.monotonic() < deadline:
             time.sleep(0.02)
-        self._question.publish(_msg_class(c.STRING_TYPE)(data=question))
+        self._question.publish(msg_class(c.STRING_TYPE)(data=question))
 
     def answers(self, trigger: str | None = None) -> list[tuple[float, dict[str, Any]]]:
         with self._lock:
