@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import contextlib
-import faulthandler
 import os
 import signal
 import sys
@@ -123,9 +121,10 @@ def serve(opts: ServeOptions) -> int:
     if not 0 <= opts.speak_every_s < float("inf"):  # also nan
         raise BadOptionError(f"--speak-every must be 0 (say each) or more seconds, not {opts.speak_every_s}")
     ears_wanted = opts.mic or bool(opts.wavs)
-    _stacks_on_request()
+    from hexar.live.stacks import stacks_on_request
+
     # handlers before the node exists: a signal during start-up still ends it through node.stop()
-    with _stop_on_signals() as stop:
+    with stacks_on_request(), _stop_on_signals() as stop:
         return _run(opts, stop, ears_wanted)
 
 
@@ -212,16 +211,6 @@ def _launch_follower(opts: ServeOptions) -> LaunchLogFollower | None:
               file=sys.stderr, flush=True)
     print(f"hexar serve: following launch's log under {found.root}", file=sys.stderr, flush=True)
     return found
-
-
-def _stacks_on_request() -> None:
-    """`kill -USR1 PID` prints every thread's stack to stderr: a serve that will not end after SIGTERM (a DDS call
-    that blocks) shows where, without a debugger on the robot."""
-    if threading.current_thread() is not threading.main_thread() or not hasattr(signal, "SIGUSR1"):
-        return
-    # a stderr with no file behind it (the CLI run inside a test's capture) has nowhere to print them
-    with contextlib.suppress(AttributeError, OSError, ValueError):
-        faulthandler.register(signal.SIGUSR1, file=sys.stderr, all_threads=True, chain=False)
 
 
 @contextmanager

@@ -279,3 +279,4 @@ def test_sigusr1_prints_every_threads_stack_and_serve_goes_on(transport: str) ->
     _, err = _ended(serve)
     assert serve.returncode == 0, err
     assert "most recent call first" in err and "Thread 0x" in err and "hexar serve: received 0 records" in err
+    assert "in _run" in err  # the main thread, waiting in the serving loop
