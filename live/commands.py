@@ -38,15 +38,10 @@ def domain_id(value: int | None) -> int:
 
 
 def dds_available() -> bool:
-    """Whether the cyclonedds binding is installed, without importing it (CPython 3.14 has no wheel of it)."""
-    import importlib.util
+    """Whether the cyclonedds binding is installed (CPython 3.14 has no wheel of it)."""
+    from hexar.live.ros import importable
 
-    if "cyclonedds" in sys.modules:
-        return sys.modules["cyclonedds"] is not None
-    try:
-        return importlib.util.find_spec("cyclonedds") is not None
-    except (ImportError, ValueError):
-        return False
+    return importable("cyclonedds")
 
 
 def pick_transport(kind: str, prefer: str = "rclpy") -> str:

@@ -79,14 +79,20 @@ def import_rclpy() -> Any:
         raise TransportUnavailableError(f"{NO_ROS} ({err})") from err
 
 
-def rclpy_available() -> bool:
-    """Whether rclpy can be imported here, without importing it (it costs a quarter of a second)."""
-    if "rclpy" in sys.modules:
-        return sys.modules["rclpy"] is not None
+def importable(name: str) -> bool:
+    """Whether module `name` can be imported here, without importing it (a module set to None, as a test does to
+    stand for a machine without it, is not)."""
+    if name in sys.modules:
+        return sys.modules[name] is not None
     try:
-        return importlib.util.find_spec("rclpy") is not None
+        return importlib.util.find_spec(name) is not None
     except (ImportError, ValueError):
         return False
+
+
+def rclpy_available() -> bool:
+    """Whether rclpy can be imported here (importing it costs a quarter of a second)."""
+    return importable("rclpy")
 
 
 def msg_class(ros_type: str) -> Any:
