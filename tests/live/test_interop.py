@@ -96,14 +96,14 @@ def test_every_subscribed_type_crosses_dds_vendors(tmp_path: Path, robot: str, n
 
 def test_answers_from_cyclone_reach_an_rclpy_subscriber() -> None:
     from hexar.live.dds import DdsTransport
-    from hexar.live.ros import RosNode, _msg_class, _profile
+    from hexar.live.ros import RosNode, msg_class, qos_profile
 
     domain = fresh_domain()
     hexar = DdsTransport(domain)
     heard: list[str] = []
     display = RosNode("display", domain)
-    display.node.create_subscription(_msg_class(c.STRING_TYPE), ANSWER, lambda m: heard.append(m.data),
-                                     _profile(ANSWER_QOS))
+    display.node.create_subscription(msg_class(c.STRING_TYPE), ANSWER, lambda m: heard.append(m.data),
+                                     qos_profile(ANSWER_QOS))
     display.spin(print)
     try:
         deadline = time.monotonic() + 10.0
