@@ -77,6 +77,8 @@ def resolve_path(path: Path) -> Path:
             return path
         if path.suffix in {".db3", ".mcap"}:
             return path.parent  # its folder's metadata.yaml, or the metadata rebuilt from the storage files
+        if path.name == "metadata.yaml":
+            return resolve_path(path.parent)  # the file `ros2 bag info` prints: its folder is the recording
         raise NotARecordingError(f"not a recording: {path} (expected a rosbag2 folder or a ROS 1 .bag file)")
     if not (path / "metadata.yaml").is_file() and not holds_storage(path):
         raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml and no .db3 or .mcap file")

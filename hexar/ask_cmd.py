@@ -7,6 +7,7 @@ many questions and recordings there are; each recording is decoded once.
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -21,12 +22,13 @@ if TYPE_CHECKING:
 
 
 def recordings_in(folder: Path) -> list[Path]:
-    """The recordings directly inside a folder: rosbag2 folders and ROS 1 .bag files."""
-    if not folder.is_dir():
-        raise HexarError(f"not a folder: {folder}")
-    from hexar.workspace import is_recording
+    """The recordings `--runs` names, as `hexar runs` lists them: the folder itself when it is one, else every
+    recording under it at any depth."""
+    from hexar.workspace import is_recording, recordings_under
 
-    found = sorted(p for p in folder.iterdir() if is_recording(p) or p.suffix in {".mcap", ".db3"})
+    if not folder.is_dir() and not is_recording(folder):
+        raise HexarError(f"not a folder: {folder}")
+    found = recordings_under(folder)
     if not found:
         raise HexarError(f"no recordings in {folder}")
     return found
@@ -98,13 +100,14 @@ def _ask(targets: list[str], questions: Path | None, runs: Path | None, task: st
             render_answer(console, result, evidence=verbose, verbose=verbose)
         return 0
     worst = 0
+    names = labels(paths)
     for path in paths:
         try:
-            with progress.step(f"reading {path.name}"):
+            with progress.step(f"reading {names[path]}"):
                 agent = OneShot(RunSettings(recording=path, llm=llm, phrase=phrase), backend)
         except USER_ERRORS as err:
             worst = 2
-            _refused({"recording": str(path), "error": str(err)}, as_json)
+            _refused({"recording": str(path), "error": str(err)}, as_json, names[path])
             continue
         _say_recovered(agent)
         for n, line in lines:
@@ -116,7 +119,7 @@ def _ask(targets: list[str], questions: Path | None, runs: Path | None, task: st
             result = {**result, "question": line, "line": n}
             if result["error"]:
                 worst = 2
-                _refused(result, as_json)
+                _refused(result, as_json, names[path])
             elif as_json:
                 print(json_dumps(result))
             else:
@@ -125,7 +128,7 @@ def _ask(targets: list[str], questions: Path | None, runs: Path | None, task: st
                 if questions is not None:
                     print(f"Q: {visible(line)}")
                 answer = visible(result["answer"], keep_newlines=True)
-                print(f"{visible(path.name)}: {answer}" if len(paths) > 1 else answer)
+                print(f"{visible(names[path])}: {answer}" if len(paths) > 1 else answer)
     return worst
 
 
@@ -136,11 +139,20 @@ def _say_recovered(agent: Any) -> None:
             print(f"note: {visible(agent.context.log.path.name)}: {visible(warning)}", file=sys.stderr)
 
 
-def _refused(result: dict[str, Any], as_json: bool) -> None:
+def labels(paths: list[Path]) -> dict[Path, str]:
+    """What each answer of a batch is printed after: the recording's folder name, or where two share one (the same
+    run name under two robots), its path under the folder they have in common."""
+    if len({p.name for p in paths}) == len(paths):
+        return {p: p.name for p in paths}
+    common = Path(os.path.commonpath([p.absolute() for p in paths]))
+    under = {p: p.absolute().relative_to(common).as_posix() for p in paths}
+    return {p: p.name if rel == "." else rel for p, rel in under.items()}
+
+
+def _refused(result: dict[str, Any], as_json: bool, where: str) -> None:
     """A refused line or unreadable recording: its own JSON object with `error`, or one ERROR line."""
     if as_json:
         print(json_dumps({"answer": "", **result}))
         return
-    where = Path(result["recording"]).name
     line = f" line {result['line']}" if "line" in result else ""
     print(f"ERROR: {visible(where)}{line}: {visible(result['error'])}", file=sys.stderr)

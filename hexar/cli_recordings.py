@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.table import Table
+from rich.table import Column, Table
 
 from hexar.cli_guard import guarded, out
 
@@ -78,7 +78,7 @@ def inspect(
     raise typer.Exit(guarded(body))
 
 
-def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
+def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings (nested at any depth), or one recording")],
          as_json: Annotated[bool, typer.Option("--json")] = False) -> None:
     """List the recordings in a folder with their latest task's outcome."""
 
@@ -86,39 +86,40 @@ def runs(folder: Annotated[Path, typer.Argument(help="a folder of recordings")],
         from hexar.errors import HexarError
         from hexar.events import EventsError, read_tasks
         from hexar.safe_text import clip, json_dumps, safe
-
-        if not folder.is_dir():
-            raise HexarError(f"not a folder: {folder}")
-        from hexar.render import natural_key
-
-        rows: list[dict[str, Any]] = []
         from hexar.web.pagedata import verdict
-        from hexar.workspace import is_recording
+        from hexar.workspace import is_recording, recording_name, recordings_under
 
+        if not folder.is_dir() and not is_recording(folder):
+            raise HexarError(f"not a folder: {folder}")
         # only what holds a recording: a folder of other things (a virtualenv, notes) is no unreadable recording
-        paths = sorted((p for p in folder.iterdir() if is_recording(p)), key=natural_key)
+        paths = recordings_under(folder)
         if not paths and not as_json:
             out.print(f"No recordings in {folder}: record one, or write the simulated suite with "
                       "`hexar simulate --out FOLDER`.")
             return 0
+        rows: list[dict[str, Any]] = []
         for path in paths:
+            name = recording_name(folder, path)
             try:
                 log = read_tasks(path)
                 task = log.task() if log.tasks else None
-                rows.append({"recording": path.name, "instruction": task.instruction if task else "",
+                rows.append({"recording": name, "instruction": task.instruction if task else "",
                              "outcome": task.outcome if task else "no task", "tasks": len(log.tasks),
                              "derived_from_nav2": bool(task and task.derived),
                              # "wrong plan": it succeeded as the robot counts it, on a plan that missed the request
                              "verdict": verdict(task) if task else "no task",
                              "recovered": any(w.startswith("recovered:") for w in log.warnings)})
             except EventsError as e:
-                rows.append({"recording": path.name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
+                rows.append({"recording": name, "instruction": "", "outcome": f"unreadable: {e}", "tasks": 0})
         if as_json:
             print(json_dumps(rows, indent=2))
             return 0
-        table = Table("recording", "tasks", "latest task", "outcome")
-        for r in rows:
-            shown = r.get("verdict", r["outcome"]) + (" (recovered)" if r.get("recovered") else "")
+        # the name is what `hexar ask` takes next: folded onto a second line, never cut short
+        outcomes = [r.get("verdict", r["outcome"]) + (" (recovered)" if r.get("recovered") else "") for r in rows]
+        short = max(len(r["recording"]) for r in rows) <= 40  # else folded onto more lines, never cut
+        table = Table(Column("recording", no_wrap=short, overflow="fold"), Column("tasks", no_wrap=True),
+                      "latest task", "outcome")
+        for r, shown in zip(rows, outcomes, strict=True):
             table.add_row(safe(r["recording"]), str(r["tasks"]), safe(clip(r["instruction"])), safe(clip(shown)))
         out.print(table)
         return 0

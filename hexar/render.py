@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import re
-from pathlib import Path
 from typing import Any
 
 from rich.console import Console
@@ -16,11 +14,6 @@ from hexar.events.tasks import Task
 from hexar.safe_text import clip, json_dumps, safe, visible
 
 __all__ = ["clock", "json_dumps", "log_dict", "print_inspection", "safe", "task_dict", "visible"]
-
-
-def natural_key(path: Path) -> list[int | str]:
-    """bagfile_2_1 before bagfile_10_1: digit runs compare as numbers."""
-    return [int(part) if part.isdigit() else part.lower() for part in re.split(r"(\d+)", path.name)]
 
 
 def task_dict(task: Task) -> dict[str, Any]:

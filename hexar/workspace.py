@@ -7,6 +7,7 @@ Nothing here imports the MCP SDK: the server module maps these calls onto tools 
 from __future__ import annotations
 
 import os
+import re
 from collections import OrderedDict
 from collections.abc import Iterator
 from pathlib import Path
@@ -39,11 +40,16 @@ def is_recording(path: Path) -> bool:
         (path.is_file() and path.suffix == ".bag")
 
 
-def find_recordings(root: Path, follow_links: bool = False) -> Iterator[Path]:
+NEVER_RECORDINGS = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".mypy_cache", ".ruff_cache",
+                              ".pytest_cache", ".tox", ".nox"})
+
+
+def find_recordings(root: Path, follow_links: bool = False, linked: bool = False) -> Iterator[Path]:
     """Every rosbag2 folder and ROS 1 bag under `root`, nested at any depth, in name order. Symlinked folders are
     followed only with `follow_links` (a fleet folder of links to recordings), each real folder once, so a link
-    cannot lead the walk round in circles; without it, a link cannot lead the walk out of `root`. A folder the
-    walk cannot open is yielded too, so the caller reports it instead of skipping it."""
+    cannot lead the walk round in circles; without it, a link cannot lead the walk out of `root`, and a link that
+    is itself a recording is yielded only with `linked` (for a caller that refuses what links out, by name). A
+    folder the walk cannot open is yielded too, so the caller reports it instead of skipping it."""
     seen: set[str] = set()
     unreadable: list[Path] = []
 
@@ -64,11 +70,35 @@ def find_recordings(root: Path, follow_links: bool = False) -> Iterator[Path]:
             dirnames[:] = []
             yield here
             continue
-        dirnames.sort()
+        # a virtualenv, a repository's history and caches hold thousands of folders and never a recording
+        dirnames[:] = sorted(d for d in dirnames
+                             if d not in NEVER_RECORDINGS and not (here / d / "pyvenv.cfg").is_file())
+        if linked and not follow_links:
+            yield from (here / name for name in dirnames if (here / name).is_symlink() and is_recording(here / name))
         for name in sorted(filenames):
             if name.endswith(".bag"):
                 yield here / name
     yield from unreadable
+
+
+def recordings_under(folder: Path) -> list[Path]:
+    """What a person means by the recordings in a folder (`hexar runs`, `hexar web`, `ask --runs`): the folder
+    itself when it is one, else every recording under it at any depth (a `robot/date/run` layout as triage reads
+    it) and each link in it to a recording, in natural order of their paths under it (bagfile_2_1 before
+    bagfile_10_1). A folder the walk cannot open is among them, for the caller to report."""
+    if is_recording(folder):
+        return [folder]
+
+    def natural(path: Path) -> list[int | str]:
+        return [int(p) if p.isdigit() else p.lower() for p in re.split(r"(\d+)", recording_name(folder, path))]
+
+    return sorted(find_recordings(folder, linked=True), key=natural)
+
+
+def recording_name(folder: Path, path: Path) -> str:
+    """A recording's name among `recordings_under(folder)`: its path under the folder, or its own name when the
+    folder is the recording."""
+    return path.name if path == folder else path.relative_to(folder).as_posix()
 
 
 def _page(items: list[Any], offset: int, limit: int, key: str) -> dict[str, Any]:

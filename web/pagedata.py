@@ -26,14 +26,15 @@ LIME_LINE = re.compile(r"^\s+(\S+), (present|absent), ([+-]\d+\.\d+)$")
 
 
 def recordings(root: Path) -> list[Path]:
-    """The recordings directly under `root`: rosbag2 folders (a crashed one without metadata.yaml too) and ROS 1
-    bags, by name; a folder that holds no recording (a virtualenv) is not one."""
-    from hexar.workspace import is_recording
+    """The recordings the page lists: the folder itself when it is one, else every recording under it at any depth
+    (rosbag2 folders, a crashed one without metadata.yaml too, and ROS 1 bags; each link in it to a recording, which
+    the page refuses by name when it leads out), in natural order of their paths; a folder that holds no recording
+    (a virtualenv) is not one."""
+    from hexar.workspace import is_recording, recordings_under
 
-    if not root.is_dir():
+    if not root.is_dir() and not is_recording(root):
         raise WebError(f"not a folder: {root}")
-    found = [p for p in root.iterdir() if is_recording(p)]
-    return sorted(found, key=lambda p: [int(part) if part.isdigit() else part for part in re.split(r"(\d+)", p.name)])
+    return recordings_under(root)
 
 
 def explainers_for(registry: Any, task: Task) -> list[str]:

@@ -17,6 +17,7 @@ from hexar.events.tasks import Task
 from hexar.web.errors import WebError
 from hexar.web.live import LIVE, LiveSource, Snapshot
 from hexar.web.pagedata import Findings, cause_words, filtered_lines, recordings, run_detail, task_summary
+from hexar.workspace import recording_name
 
 
 def shown(path: Path) -> str:
@@ -54,12 +55,16 @@ class Store:
         self._ask_lock = threading.Lock()
         self._backend: Any = None
         self._worker: threading.Thread | None = None
-        names = {p.name for p in self._recordings()}  # a missing folder is the one-line error, before serving
+        names = {self.name_of(p) for p in self._recordings()}  # a missing folder is the one-line error, before serving
         if live is not None and LIVE in names:
             raise WebError(f"{root} holds a recording named {LIVE!r}, the live run's name: rename it to use --live")
 
     def _recordings(self) -> list[Path]:
         return [] if self.root is None else recordings(self.root)
+
+    def name_of(self, path: Path) -> str:
+        """A recording's name on the page and in its API: its path under the folder (`robot1/run_3`)."""
+        return path.name if self.root is None else recording_name(self.root, path)
 
     def clean(self, message: str) -> str:
         """An error message with the served folder's absolute location replaced by its shown name."""
@@ -72,7 +77,7 @@ class Store:
     def path(self, name: str) -> Path:
         """A recording of the folder by name; nothing outside the folder can be named."""
         for p in self._recordings():
-            if p.name == name and self.root is not None:
+            if self.root is not None and self.name_of(p) == name:
                 return confine(self.root, p, name)
         where = f"in {self.root}" if self.root is not None else "here: only the live robot is shown"
         raise WebError(f"no recording named {name!r} {where}")
@@ -102,24 +107,25 @@ class Store:
         from hexar.events import EventsError, read_tasks
 
         stamp = path.stat().st_mtime
-        cached = self._rows.get(path.name)
+        name = self.name_of(path)
+        cached = self._rows.get(name)
         if cached and cached[0] == stamp:
             return cached[1]
         out = leaving(self.root, path) if self.root is not None else None
         if out is not None:
-            row = {"recording": path.name, "tasks": 0, "latest": None, "modules": [],
+            row = {"recording": name, "tasks": 0, "latest": None, "modules": [],
                    "error": f"ERROR: {out.name!r} is a link to a file outside the served folder: not read"}
-            self._rows[path.name] = (stamp, row)
+            self._rows[name] = (stamp, row)
             return row
         try:
             log = read_tasks(path)  # tasks derived from Nav2 goals too, as `hexar runs` lists them
             task = log.task() if log.tasks else None
-            row = {"recording": path.name, "tasks": len(log.tasks), "error": "",
+            row = {"recording": name, "tasks": len(log.tasks), "error": "",
                    "latest": task_summary(task) if task else None,
                    "modules": self.findings.modules(task) if task else []}
         except EventsError as e:
-            row = {"recording": path.name, "tasks": 0, "error": self.clean(str(e)), "latest": None, "modules": []}
-        self._rows[path.name] = (stamp, row)
+            row = {"recording": name, "tasks": 0, "error": self.clean(str(e)), "latest": None, "modules": []}
+        self._rows[name] = (stamp, row)
         return row
 
     def runs(self) -> dict[str, Any]:
@@ -127,7 +133,7 @@ class Store:
         pending = 0
         for path in self._recordings():
             row = dict(self._row(path))
-            found = self.findings.cached((path.name, row["latest"]["task_id"])) if row["latest"] else []
+            found = self.findings.cached((row["recording"], row["latest"]["task_id"])) if row["latest"] else []
             row["causes"] = None if found is None else sorted({c for f in found for c in f["causes"]})
             pending += found is None
             rows.append(row)
@@ -157,11 +163,11 @@ class Store:
 
             for path in self._recordings():
                 row = self._row(path)
-                if not row["latest"] or self.findings.cached((path.name, row["latest"]["task_id"])) is not None:
+                if not row["latest"] or self.findings.cached((row["recording"], row["latest"]["task_id"])) is not None:
                     continue
                 try:
                     log = read_recording(path)
-                    self.findings.get(path.name, log, log.task(row["latest"]["task_id"]))
+                    self.findings.get(row["recording"], log, log.task(row["latest"]["task_id"]))
                 except (EventsError, WebError):
                     continue
 

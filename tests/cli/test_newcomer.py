@@ -130,3 +130,58 @@ def test_chat_takes_typos_and_small_talk(suite: Path, tmp_path: Path) -> None:
     out = " ".join(done.stdout.split())
     assert done.returncode == 0 and "is not a question" not in out
     assert "something blocked my path" in out and "You're welcome." in out
+
+
+def _fleet(suite: Path, root: Path) -> Path:
+    """Runs as a team keeps them: by robot and date, the same run name under two robots, a link to a recording,
+    and a virtualenv beside them that holds a copy of a recording (a package's test data), which is no run."""
+    shutil.copytree(suite / "bagfile_5_1", root / "tiago-1" / "2026-11-30" / "bagfile_5_1")
+    shutil.copytree(suite / "bagfile_10_1", root / "tiago-1" / "2026-12-01" / "bagfile_10_1")
+    shutil.copytree(suite / "bagfile_5_2", root / "tiago-2" / "bagfile_5_1")
+    (root / "tiago-2" / "linked").symlink_to(suite / "bagfile_3_1")
+    venv = root / ".venv"
+    shutil.copytree(suite / "bagfile_7_1", venv / "lib" / "site-packages" / "pkg" / "data" / "bag")
+    (venv / "pyvenv.cfg").write_text("home = /usr/bin\n")
+    return root
+
+
+def test_runs_lists_one_recording_and_nested_fleets_by_their_paths(suite: Path, tmp_path: Path,
+                                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["runs", str(suite / "bagfile_5_1"), "--json"]) == 0  # a recording is a folder of one
+    rows = json.loads(capsys.readouterr().out)
+    assert [(r["recording"], r["outcome"]) for r in rows] == [("bagfile_5_1", "failed")]
+    fleet = _fleet(suite, tmp_path / "fleet")
+    assert main(["runs", str(fleet), "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)
+    assert [r["recording"] for r in rows] == ["tiago-1/2026-11-30/bagfile_5_1", "tiago-1/2026-12-01/bagfile_10_1",
+                                              "tiago-2/bagfile_5_1", "tiago-2/linked"]
+    assert [r["outcome"] for r in rows] == ["failed", "succeeded", "failed", "succeeded"]
+
+
+def test_runs_at_80_columns_never_cuts_a_recording_name(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.arm import simulate_arm_suite
+
+    simulate_arm_suite(tmp_path / "arm", "sqlite3", 0)
+    done = subprocess.run([HEXAR, "runs", str(tmp_path / "arm")], capture_output=True, text=True, check=False,
+                          timeout=120, env={**os.environ, "COLUMNS": "80", "TERM": "dumb"})
+    assert done.returncode == 0, done.stderr
+    for name in ("armfile_controllers_not_found_1", "armfile_controllers_not_found_3", "armfile_tolerance_2"):
+        assert f"│ {name} " in done.stdout  # whole, so it can be copied into `hexar ask`
+    assert all(len(line) <= 80 for line in done.stdout.splitlines())
+    assert done.stdout.count("│ failed") == 12 and done.stdout.count("│ succeeded") == 3
+
+
+def test_ask_runs_over_a_fleet_names_each_answer_by_its_path(suite: Path, tmp_path: Path,
+                                                            capsys: pytest.CaptureFixture[str]) -> None:
+    fleet = _fleet(suite, tmp_path / "fleet")
+    assert main(["ask", "--runs", str(fleet), "what happened", "--llm", "none"]) == 0
+    answers = dict(line.split(": ", 1) for line in capsys.readouterr().out.splitlines())
+    assert list(answers) == ["tiago-1/2026-11-30/bagfile_5_1", "tiago-1/2026-12-01/bagfile_10_1",
+                             "tiago-2/bagfile_5_1", "tiago-2/linked"]
+    assert "something blocked my path" in answers["tiago-2/bagfile_5_1"]
+    assert answers["tiago-1/2026-12-01/bagfile_10_1"].startswith("I did all 4 steps of my plan")
+
+
+def test_ask_takes_the_metadata_file_of_a_recording(suite: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["ask", str(suite / "bagfile_5_1" / "metadata.yaml"), "what happened", "--llm", "none"]) == 0
+    assert "something blocked my path" in " ".join(capsys.readouterr().out.split())

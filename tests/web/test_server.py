@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import json
 import time
+import shutil
 import urllib.error
+import urllib.parse
 import urllib.request
 from pathlib import Path
 from typing import Any
@@ -229,3 +231,28 @@ def test_a_recording_without_task_info_is_listed_with_its_nav2_goal(tmp_path: Pa
     assert row["tasks"] == 1 and row["latest"]["outcome"] == "failed" and row["modules"] == ["navigation"]
     # a planner that found no path is a symptom, never told as the cause (issue 20): the honest finding
     assert row["causes"] == ["navigation.unexplained_failure"]
+
+
+def test_a_fleet_by_robot_and_date_and_a_single_recording_are_served_by_their_paths(suite: Path,
+                                                                                     tmp_path: Path) -> None:
+    fleet = tmp_path / "fleet"
+    shutil.copytree(suite / "bagfile_5_1", fleet / "tiago-1" / "2026-11-30" / "bagfile_5_1")
+    shutil.copytree(suite / "bagfile_10_1", fleet / "tiago-2" / "bagfile_5_1")  # the same name, another robot
+    (fleet / "tiago-2" / "linked").symlink_to(suite / "bagfile_3_1")  # leads out of the served folder
+    with served(fleet, tmp_path / "t.sqlite") as url:
+        status, data = get(url + "api/runs")
+        assert status == 200
+        rows = {r["recording"]: r for r in data["runs"]}
+        assert list(rows) == ["tiago-1/2026-11-30/bagfile_5_1", "tiago-2/bagfile_5_1", "tiago-2/linked"]
+        assert rows["tiago-2/bagfile_5_1"]["latest"]["outcome"] == "succeeded"
+        assert "outside the served folder" in rows["tiago-2/linked"]["error"]
+        status, run = get(url + "api/run?name=" + urllib.parse.quote("tiago-1/2026-11-30/bagfile_5_1", safe=""))
+        assert status == 200 and run["task"]["outcome"] == "failed"
+        assert ["navigation.blocked_path"] in [f["causes"] for f in run["findings"]]
+        status, err = get(url + "api/run?name=bagfile_5_1")  # only its path names it
+        assert status == 400 and "no recording named 'bagfile_5_1'" in err["error"]
+    with served(suite / "bagfile_5_1", tmp_path / "t2.sqlite") as url:
+        status, data = get(url + "api/runs")
+        assert [r["recording"] for r in data["runs"]] == ["bagfile_5_1"]
+        status, run = get(url + "api/run?name=bagfile_5_1")
+        assert status == 200 and run["task"]["outcome"] == "failed"
