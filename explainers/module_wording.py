@@ -29,12 +29,14 @@ class Wording:
     # causes whose {meaning} comes only from a code-built note (a refinement): their entries' meanings restate the
     # clause ("a controller could not be activated (...)"), so a line without a note takes the default
     notes_only: frozenset[str] = frozenset()
+    # causes that strike once the step is under way, with their own head ("{what} could not go on because")
+    heads: Mapping[str, str] = field(default_factory=dict)
 
     def __call__(self, cause: str, d: Diagnosis, what: str) -> Worded:
         if cause.endswith(".nominal") and self.nominal is not None:
             return self.nominal(what)
         seen = [f"{self.quoted_by} said: '{said(d.decisive.line)}'"] if d.decisive is not None else []
-        head = self.head.format(what=what)
+        head = self.heads.get(cause, self.head).format(what=what)
         head = head[:1].upper() + head[1:]
         if cause not in self.clauses:
             return f"{head} of a problem my logs name ({cause}).", None, seen

@@ -54,7 +54,9 @@ def _nominal(what: str) -> Worded:
 
 
 template = Wording("{what} could not run because", "ros2_control", CLAUSES, MEANINGS, _nominal,
-                   notes_only=frozenset({"control.controller_activation_failed"}))
+                   notes_only=frozenset({"control.controller_activation_failed"}),
+                   # the arm was moving when it strayed: the step ran, and was cut short
+                   heads={"control.tolerance_violated": "{what} could not go on because"})
 
 
 # A driver's error read by the callback it is logged in (explainers/control/driver_roles.py): the clause says what
