@@ -15,6 +15,7 @@ from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.overview import (
+    NOTHING_TO_CHANGE,
     asks_fix,
     helped,
     presumes_goal_not_done,
@@ -355,7 +356,12 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
-        text = helped(exps, BENIGN)
+        text = helped(exps, BENIGN) or ""
+        failed = _failure_not_told(runtime.context, state, exps)
+        if failed is not None and (not text or text == NOTHING_TO_CHANGE or text.startswith("I have no fix")):
+            fix = helped([failed], BENIGN)
+            stepped = any(e.explainer != "planner" and e.causes and set(e.causes) <= BENIGN for e in exps)
+            text = f"{NOTHING_TO_CHANGE.split(',')[0]}. As for what failed: {fix}" if stepped and fix else fix or text
     else:
         depth += 1
         if depth == 1:
@@ -373,6 +379,17 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
     return {"answer": text, "depth": depth, "route": "followup", "history": remembered(state, turn),
             "timings_ms": _timings(state, "followup", start)}
+
+
+def _failure_not_told(ctx: RunContext, state: AgentState, exps: list[Explanation]) -> Explanation | None:
+    """The failure of a task that failed, when the answer being followed up is not about it (a step that went
+    well, the steps that never ran, "nothing else happened"): "how do I fix it?" then means the failure."""
+    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
+    if name is None:
+        return None
+    failed = _probe(ctx, name, state["question"], state["task_id"])
+    told = {c for e in exps for c in e.causes}
+    return None if not failed.causes or set(failed.causes) & told else failed
 
 
 # A count of nothing is no finding: "I tried 0 recovery manoeuvres" says what the log does not hold. Said as what

@@ -135,6 +135,9 @@ def asks_fix(question: str) -> bool:
     return _FIX.search(question.strip().lower()) is not None
 
 
+NOTHING_TO_CHANGE = "Nothing went wrong there, so I have nothing to suggest changing."
+
+
 def helped(exps: Sequence[Explanation], benign: Set[str], said: str = "") -> str:
     """What would have helped, as the explainers found it: their counterfactuals and fixes (less what `said`
     already holds), or why there is none."""
@@ -147,7 +150,7 @@ def helped(exps: Sequence[Explanation], benign: Set[str], said: str = "") -> str
         return ("The recording does not show what went wrong, so I can't say what would have helped: it holds "
                 "too little about this task.")
     if exps and all(set(e.causes) <= benign for e in exps):
-        return "Nothing went wrong there, so I have nothing to suggest changing."
+        return NOTHING_TO_CHANGE
     return "I have no fix or change to suggest: what I recorded does not show what would have helped."
 
 

@@ -109,3 +109,23 @@ def test_why_not_after_a_no_goes_deeper(suite: Path, tmp_path: Path, followup: s
     # the evidence behind the "no", not the same sentence again
     assert deeper["intent"] == "deeper" and "Failed to make progress" in str(deeper["answer"])
     assert not str(deeper["answer"]).startswith("I couldn't reach the kitchen")
+
+
+def test_a_fix_asked_after_walking_past_the_failure_is_the_failures(suite: Path, tmp_path: Path) -> None:
+    """"What else happened?" moves on to a step that went well, the steps that never ran, then "nothing else";
+    "how do I fix it?" there still means the task's failure, not "nothing went wrong"."""
+    s = _session(suite, "bagfile_14_1", tmp_path / "t.sqlite")
+    thread = s.ask("What happened?")["thread"]
+    fix = s.ask("how can I fix it?", thread=thread)["answer"]
+    assert "Clear the way to the person" in fix
+    walked = s.ask("what else happened?", thread=thread)["answer"]
+    assert walked.startswith("Step 1, going to the kitchen: I reached the kitchen")
+    after_good_step = s.ask("what could you have done differently?", thread=thread)["answer"]
+    assert after_good_step.startswith("Nothing went wrong there. As for what failed: ")
+    assert after_good_step.endswith(fix)
+    rest = [s.ask("what else happened?", thread=thread)["answer"] for _ in range(3)]
+    assert rest[-1].startswith("Nothing else happened")
+    assert s.ask("how do I fix it?", thread=thread)["answer"] == fix
+    ok = _session(suite, "bagfile_10_1", tmp_path / "t.sqlite")  # a task that went well has no failure to fix
+    thread = ok.ask("What happened?")["thread"]
+    assert ok.ask("how can I fix it?", thread=thread)["answer"].startswith("Nothing went wrong there, so I have")
