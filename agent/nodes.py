@@ -198,12 +198,13 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
-    elif set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
+    elif route != "named" and set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
         # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
         # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
         # the drive was fine but the approach to the person was not).
         # Another module's figures of a run that went fine (its speed) are nothing unusual either: "was the arm
-        # slow?" about a clean pick is the arm's to answer, not the drive's.
+        # slow?" about a clean pick is the arm's to answer, not the drive's. A module the question names by what it
+        # does ("who did you ask for help?") is answered by that module, whatever another one found.
         other = _by_findings(ctx, state, {choice}, BENIGN)
         if other is not None:
             choice, route = other, "findings"

@@ -24,7 +24,8 @@ _WHOLE = re.compile(
     r"work|worked|run|ok|okay|fine|alright|all right|good|well)\b|"
     r"\bhow did (it|that|the task|everything|things|your task|the job) go\b|"
     r"\b(everything|all) (ok|okay|fine|alright|all right|good|went well)\b|"
-    r"\bany (problems?|issues?|trouble)\b|"
+    r"\bany (problems?|issues?|trouble)\b|\b(did|has|had) (anything|something) (go|gone) wrong\b|"
+    r"^(so |and |ok |okay )?what went (well|right|ok|okay|fine)\b|"
     r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$|"
     r"^(so |and |ok |okay )?(did|have) you (finish(ed)?|complete(d)?|(do|done) (it|everything)|manage(d)?|"
     r"make it|made it|succeed(ed)?)"
@@ -91,7 +92,8 @@ _YES_NO = re.compile(
     r"succeed(?:ed)?|finish(?:ed)?|complete(?:d)?|arrive(?:d)?|do it|done it|do that|done that|"
     r"fail(?:ed)?|give up|given up|gave up|get stuck|got stuck)\b|"
     + _LEAD + r"(?:were|was|weren't|wasn't) " + _SUBJECT
-    + r" (?P<state>successful|a success|able to do it|a failure|unsuccessful)\b"
+    + r" (?P<state>successful|a success|able to do it|a failure|unsuccessful)\b|"
+    + _LEAD + r"(?:did|has|had) (?:anything|something) (?P<wrong>go|gone) wrong\b"
 )
 _FAILING = ("fail", "give up", "given up", "gave up", "get stuck", "got stuck", "a failure", "unsuccessful")
 _DONE = {"succeeded": True, "failed": False, "canceled": False, "invalid": False, "waiting": False}
@@ -104,7 +106,7 @@ def yes_or_no(question: str, outcome: str) -> str:
     done = _DONE.get(outcome)
     if m is None or done is None:
         return ""
-    failing = (m.group("verb") or m.group("state") or "").startswith(_FAILING)
+    failing = m.group("wrong") is not None or (m.group("verb") or m.group("state") or "").startswith(_FAILING)
     return "Yes." if done != failing else "No."
 
 

@@ -133,6 +133,8 @@ def test_why_not_on_a_goal_the_logs_show_reached_says_it_was_reached(tmp_path: P
     ("bagfile_2_1", "Did you finish?", "No. I didn't start because my plan was faulty"),
     ("bagfile_10_1", "Did you make it?", "Yes. I did all 4 steps of my plan"),
     ("bagfile_10_1", "did you get stuck?", "No. "),
+    ("bagfile_10_1", "did anything go wrong?", "No. I did all 4 steps of my plan"),
+    ("bagfile_12_1", "has something gone wrong", "Yes. I could not get help: the person was farther away"),
 ])
 def test_a_yes_or_no_question_on_the_outcome_is_answered_yes_or_no(suite: Path, run: str, question: str,
                                                                    lead: str) -> None:
@@ -166,3 +168,17 @@ def test_a_goal_found_in_real_nav2_logs_is_answered_yes_or_no(tmp_path: Path) ->
 ])
 def test_the_lead_is_the_recorded_outcome_whatever_a_model_said(text: str, lead: str, said: str) -> None:
     assert with_lead(text, lead) == said
+
+
+def test_what_went_well_is_about_every_step(suite: Path) -> None:
+    (well,) = _ask(suite / "bagfile_9_1", "what went well?")
+    assert str(well["answer"]).startswith("I did all 4 steps of my plan: go to the kitchen, ask someone for help")
+    assert "people or things kept moving into my way" in str(well["answer"])  # and what did not go as well
+
+
+@pytest.mark.parametrize("question", ["who did you ask for help?", "did anyone help you?"])
+def test_a_module_named_by_what_it_does_answers_though_another_found_more(suite: Path, question: str) -> None:
+    """The trip to the kitchen was slow, the asking went well: the question is about the asking."""
+    (answer,) = _ask(suite / "bagfile_9_1", question)
+    assert answer["route"] == "named" and answer["explainers"] == ["ask_human_for_help"]
+    assert str(answer["answer"]).startswith("Asking for help went as planned: I found a person")
