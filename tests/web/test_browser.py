@@ -208,3 +208,24 @@ def test_a_conversation_started_in_the_terminal_continues_in_the_page(page: tupl
     assert first["answer"][:40] in driver.find_element(By.ID, "chat-log").text
     deeper = _ask(driver, "why?")  # the page goes on in the same thread: one level deeper
     assert deeper.text.startswith("Here is what I recorded")
+
+
+def test_a_fleet_by_robot_and_date_opens_a_run_by_its_path(suite: Path, tmp_path: Path) -> None:
+    from selenium.webdriver.common.by import By
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    fleet = tmp_path / "fleet"
+    shutil.copytree(suite / "bagfile_5_1", fleet / "tiago-1" / "2026-11-30" / "bagfile_5_1")
+    shutil.copytree(suite / "bagfile_10_1", fleet / "tiago-2" / "bagfile_5_1")  # the same name, another robot
+    with served(fleet, tmp_path / "t.sqlite") as url, chrome() as driver:
+        driver.get(url + "#/")
+        WebDriverWait(driver, WAIT_S).until(lambda d: len(d.find_elements(By.CSS_SELECTOR, "tr.run")) == 2)
+        rows = driver.find_elements(By.CSS_SELECTOR, "tr.run")
+        assert [r.get_attribute("data-name") for r in rows] == ["tiago-1/2026-11-30/bagfile_5_1",
+                                                                "tiago-2/bagfile_5_1"]
+        rows[0].click()
+        WebDriverWait(driver, WAIT_S).until(lambda d: d.execute_script("return document.body.dataset.ready"))
+        assert driver.find_element(By.ID, "skill-0").get_attribute("data-status") == "failed"
+        answer = _ask(driver, "why?")
+        assert [c.text for c in answer.find_elements(By.CSS_SELECTOR, ".chip")] == ["navigation.blocked_path"]
+        assert "tiago-1/2026-11-30/bagfile_5_1" in driver.find_element(By.TAG_NAME, "body").text
