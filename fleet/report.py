@@ -93,6 +93,10 @@ def summary(rows: list[Row], results: list[dict[str, Any]]) -> dict[str, int]:
             "failed": kinds["failure"], "findings": kinds["finding"]}
 
 
+def _count(n: int, thing: str) -> str:
+    return f"{n} {thing}" if n == 1 else f"{n} {thing}s"
+
+
 def _md(text: object) -> str:
     """Recorded text in a Markdown table cell: no pipes, no newlines, no HTML."""
     return re.sub(r"[|<>\n\r`]", " ", visible(text)).strip()
@@ -143,8 +147,8 @@ def report(rows: list[Row], results: list[dict[str, Any]], pictures: list[str]) 
     lines += ["## Most frequent causes", ""]
     for cause, n in counted(row["cause"] for row in flagged)[:TOP]:
         ex = next(row for row in flagged if row["cause"] == cause)
-        lines += [f"- **{_md(cause)}**: {n} tasks. Example, {_md(ex['recording'])} ({ex['time']}): "
-                  f"\"{_md(ex['explanation'])}\" ({ex['evidence']} evidence items)"]
+        lines += [f"- **{_md(cause)}**: {_count(n, 'task')}. Example, {_md(ex['recording'])} ({ex['time']}): "
+                  f"\"{_md(ex['explanation'])}\" ({_count(ex['evidence'], 'evidence item')})"]
     lines += ["", "## Counts", "",
               f"The tables by cause, module, robot and day count the {len(flagged)} tasks worth a look (a failure, "
               f"a wrong plan or a finding); the other {s['tasks'] - len(flagged)} of the {s['tasks']} tasks went as "

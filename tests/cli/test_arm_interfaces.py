@@ -108,4 +108,6 @@ def test_triage_counts_the_arm_causes(arm_runs: Path, tmp_path: Path) -> None:
     # the fetch that went fine is a success with nothing worth a look, as a drive that went fine is
     fine = user[user["recording"].str.endswith(arm_recording_name("nominal", 1))]
     assert len(fine) == 1 and fine.iloc[0]["outcome"] == "succeeded" and fine.iloc[0]["kind"] == ""
-    assert "0 succeeded with a finding worth a look" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "0 succeeded with a finding worth a look" in report
+    assert "- **manipulation.controllers_not_found**: 1 task. Example, " in report  # not "1 tasks"

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -121,6 +122,10 @@ def test_report_and_figures(full: Path) -> None:
                     "## Recordings to look at first", "## Unreadable recordings"):
         assert section in report
     assert "| navigation.blocked_path | 6 |" in report
+    causes = report.split("## Most frequent causes")[1].split("## Counts")[0]
+    counted = re.findall(r"\*\*: (\d+) (tasks?)\. .*\((\d+) (evidence items?)\)$", causes, re.M)
+    assert counted and all((n == "1") == (word in {"task", "evidence item"})
+                           for n, word in [(c[0], c[1]) for c in counted] + [(c[2], c[3]) for c in counted])
     assert "robot-c/truncated" in report and "cannot read" in report
     first = report.split("## Recordings to look at first")[1].splitlines()[4].split("|")
     assert first[4].strip() == "1"  # failures come before findings
