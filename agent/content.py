@@ -34,8 +34,13 @@ def task_name(task: Task, log: EventLog) -> str:
     if not task.is_recovery:
         return f'your request "{task.instruction}"'
     before = [t for t in log.tasks if t.order < task.order and not t.is_recovery]
-    after = f" after task {before[-1].order} {before[-1].outcome}" if before else ""
+    after = f" after task {before[-1].order} {_ENDED.get(before[-1].outcome, before[-1].outcome)}" if before else ""
     return f"my own recovery task{after}"
+
+
+# how a task before a recovery ended, in words ("after task 1 failed", not "after task 1 invalid")
+_ENDED = {"invalid": "had an invalid plan", "canceled": "was canceled",
+          "succeeded": "succeeded", "failed": "failed"}
 
 
 def _plan_evidence(task: Task, run: SkillRun | None, cause: str) -> list[Evidence]:

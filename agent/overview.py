@@ -168,7 +168,8 @@ def steps_summary(task: Task) -> str:
     if len(runs) < 2:
         return ""
     if all(r.state == "succeeded" for r in runs):
-        return sentence(f"I did all {len(runs)} steps of my plan: {plan_words(task)}")
+        every = "both steps" if len(runs) == 2 else f"all {len(runs)} steps"
+        return sentence(f"I did {every} of my plan: {plan_words(task)}")
     done = [r for r in runs if r.state == "succeeded"]
     ended = [f"{step_ref(r)} {_STATE[r.state]}" for r in runs
              if r.state in {"failed", "running", "canceled"}]

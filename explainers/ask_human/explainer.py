@@ -171,7 +171,7 @@ class AskHumanForHelpExplainer:
             )
             found = "the smallest one that makes success most likely" if cf.flips else "none makes success likely"
             details.append(
-                f"I checked {cf.tried} possible change(s) against what I learned from "
+                f"I checked {cf.tried} possible change{'' if cf.tried == 1 else 's'} against what I learned from "
                 f"{self.causal.meta.get('executions')} simulated runs of this skill; {found}: {had} "
                 f"({odds} chance of success)."
             )

@@ -52,3 +52,9 @@ def test_nothing_else_is_said_plainly(suite: Path) -> None:
 def test_the_mismatch_is_a_finding_of_its_own(suite: Path) -> None:
     answers = _walk(suite / "bagfile_19_2", "Why did you stop talking in the middle?")
     assert any("What I said did not match your request" in a and "lasagne" in a for a in answers)
+
+
+def test_the_recovery_after_an_invalid_plan_is_named_in_words(suite: Path) -> None:
+    answers = _walk(suite / "bagfile_1_1", "What happened?")
+    assert answers[-1].startswith('Nothing else happened in your request "Bring me a coffee from the kitchen"')
+    assert "my own recovery task after task 1 had an invalid plan (task 2)" in answers[-1]
