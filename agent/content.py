@@ -10,6 +10,7 @@ from collections.abc import Callable
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
+from hexar.events.nav_servers import BEHAVIOR_SKILL
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import (
@@ -30,7 +31,9 @@ from hexar.render import clock
 
 
 def task_name(task: Task, log: EventLog) -> str:
-    """How to speak of a task: the request in quotes, or the recovery it is."""
+    """How to speak of a task: the request in quotes, a goal read from the logs, or the recovery it is."""
+    if task.derived:  # a goal some program sent, read from the logs: nobody's request to me
+        return f'the goal "{task.instruction}"'
     if not task.is_recovery:
         return f'your request "{task.instruction}"'
     before = [t for t in log.tasks if t.order < task.order and not t.is_recovery]
@@ -182,7 +185,9 @@ def where(log: EventLog) -> Explanation:
             start = run.time_of("running")
             if start is None:
                 continue
-            if run.skill in NAV_SKILLS:
+            if run.skill == BEHAVIOR_SKILL:  # a spin or a backup is sent nowhere: it has no place to reach
+                goals.append((start, f"to {step_words(run, short=True)}", None))
+            elif run.skill in NAV_SKILLS:
                 goals.append((start, _goal_words(run), {"succeeded": True, "failed": False}.get(run.state)))
             inner = [] if run.skill in NAV_SKILLS else trips_inside(log, task.skill_window(run))
             goals += [(trip.t, "by " + trip.describe(), _reached(log, trip)) for trip in inner]
@@ -198,11 +203,14 @@ def where(log: EventLog) -> Explanation:
     else:
         _, goal, reached = max(goals, key=lambda g: g[0])
         target = goal.removeprefix("in ").removeprefix("by ").removeprefix("at ")
-        if reached:
+        if goal.startswith("to "):
+            text = f"My last step was {goal}, which sends me to no place on my map." + at
+        elif reached:
             text = f"I'm {goal}: that was the last place I drove to, and I got there." + at
         else:
+            # a goal not reached says nothing of how far I got (a stack that never came up never moved me)
             text = (f"My last goal was {target}; the recording does not show whether I got there." if reached is None
-                    else f"My last goal was {target}, but I didn't get there, so I'm somewhere on the way.") + at
+                    else f"My last goal was {target}, but I didn't get there.") + at
     return Explanation(explainer="navigation", text=text, causes=["navigation.nominal"], evidence=evidence,
                        enough_information=pose is not None or bool(goals))
 

@@ -139,3 +139,13 @@ def test_a_time_allowance_that_ran_out_on_a_base_that_never_moved_is_told_with_t
     moving = _backup_that_ran_out(-0.1).write(tmp_path / "moving")
     answer = dict(Session(RunSettings(recording=moving, llm="none")).ask("Why did you fail?"))
     assert answer["causes"] == ["navigation.unexplained_failure"]
+
+
+def test_where_and_how_long_of_a_spin_derived_from_the_logs(tmp_path: Path) -> None:
+    """A spin sends the robot to no place, and a goal read from the logs is nobody's request."""
+    where = str(_ask(tmp_path / "1", "spin-beside-wall", False, "where are you?")["answer"])
+    assert where.startswith("My last step was to turn in place, which sends me to no place on my map.")
+    assert "on the way" not in where and "didn't get there" not in where
+    took = str(_ask(tmp_path / "2", "spin-beside-wall", False, "how long did it take?")["answer"])
+    assert took.startswith('The goal "Run spin (derived from Nav2\'s behaviour server)" took ')
+    assert "your request" not in took.lower()
