@@ -14,6 +14,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
+from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
     asks_fix,
@@ -72,7 +73,7 @@ def _recorded(t: int, topic: str, item: str) -> str:
 
 def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     start = time.perf_counter()
-    reset: dict[str, Any] = {"timings_ms": {}, "error": "", "fallback": [], "asked": ""}
+    reset: dict[str, Any] = {"timings_ms": {}, "error": "", "fallback": [], "asked": "", "object": ""}
     try:
         question = check_question(state.get("question", ""))
     except BadQuestionError as e:
@@ -111,7 +112,9 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         candidates.append("planner")
     update: dict[str, Any] = {"task_id": task.task_id, "task_outcome": task.outcome, "candidates": candidates}
     asked = module_asked(state["question"]) if state.get("intent") == "new" else None
-    if asked is not None and not answers.ran(asked, task, ctx.registry.for_module):
+    if state.get("intent") in {"new", "content"} and (obj := object_asked(state["question"], task)) is not None:
+        update.update(intent="content", object=obj)  # "where is the cup?": what its steps did with it
+    elif asked is not None and not answers.ran(asked, task, ctx.registry.for_module):
         update.update(intent="content", asked=asked)  # its plan never ran the module asked about
     return {**update, "timings_ms": _timings(state, "context", start)}
 
@@ -298,7 +301,11 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     ctx = runtime.context
     task = ctx.log.task(state["task_id"])
     kind = content_kind(state["question"])
-    if state.get("asked"):
+    if state.get("object"):
+        name = ctx.registry.failure_explainer(task)
+        failed = _probe(ctx, name, state["question"], state["task_id"]) if name else None
+        exp = object_state(state["question"], state["object"], task, failed)
+    elif state.get("asked"):
         exp = _with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
     elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)

@@ -20,6 +20,7 @@ class AgentState(TypedDict, total=False):
     intent: Intent
     task_ref: str | None
     asked: str  # the module a question names that its task never ran ("" for none)
+    object: str  # the object of the task's pick and place steps a question asks about ("" for none)
     # context vector C (the recording stays on disk; the run context caches its decoded log)
     task_id: str
     task_outcome: str
