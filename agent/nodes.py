@@ -27,6 +27,7 @@ from hexar.agent.overview import (
     with_lead,
     yes_or_no,
 )
+from hexar.agent.probes import failure_not_told, probe, talked, with_failure
 from hexar.agent.questions import check_question
 from hexar.agent.state import AgentState
 from hexar.agent.walk import next_finding
@@ -41,7 +42,6 @@ if TYPE_CHECKING:
     # Only a type: the one-shot path runs these nodes without importing LangGraph (agent/oneshot.py).
     from langgraph.runtime import Runtime
 
-    from hexar.events.tasks import Task
 
 # Where a piece of evidence comes from, as the robot says it.
 _SOURCE = {
@@ -137,18 +137,13 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
             "timings_ms": _timings(state, "failure_check", start)}
 
 
-def _probe(ctx: RunContext, name: str, question: str, task_id: str) -> Explanation:
-    task = ctx.log.task(task_id)
-    return ctx.probe.get(name).explain(question, Context.for_task(ctx.log, task, ctx.probe))
-
-
 def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str],
                  benign: frozenset[str] = NOTHING_WRONG) -> str | None:
     """For a question that names no module: the first explainer (in plan order) with a notable finding."""
     for name in state["candidates"]:
         if name in exclude:
             continue
-        found = _probe(ctx, name, state["question"], state["task_id"])
+        found = probe(ctx, name, state["question"], state["task_id"])
         if found.enough_information and not set(found.causes) <= benign:
             return name
     return None
@@ -201,7 +196,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
         choice = _by_findings(ctx, state, set()) or state["candidates"][0]
-    elif route != "named" and set(_probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
+    elif route != "named" and set(probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
         # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
         # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
         # the drive was fine but the approach to the person was not).
@@ -240,7 +235,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             verdict = guard.check(exp.text, exp.causes, state.get("task_outcome"))
             if not verdict.ok:
                 fallback.append(f"{exp.explainer}: {verdict.reason}")
-                exp = _probe(ctx, exp.explainer, state["question"], state["task_id"])
+                exp = probe(ctx, exp.explainer, state["question"], state["task_id"])
         kept.append(exp.model_dump())
     texts = list(dict.fromkeys(e["text"] for e in kept))
     text = " ".join(texts) if texts else "I don't have enough information to say."
@@ -303,10 +298,10 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     kind = content_kind(state["question"])
     if state.get("object"):
         name = ctx.registry.failure_explainer(task)
-        failed = _probe(ctx, name, state["question"], state["task_id"]) if name else None
+        failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
         exp = object_state(state["question"], state["object"], task, failed)
     elif state.get("asked"):
-        exp = _with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
+        exp = with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
     elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)
     elif kind == "where":
@@ -320,41 +315,10 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     elif kind == "when":
         exp = measures.when(state["question"], ctx.log, task)
     elif kind == "talked":
-        exp = _talked(ctx, state, task)
+        exp = talked(ctx, state, task)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)
-
-
-def _talked(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
-    """"Who did you talk to?": the person I asked for help (that explainer's answer, or the step I never got to,
-    whose failure "why?" goes on to), then what I said aloud."""
-    module, of = "ask_human_for_help", ctx.registry.for_module
-    step = answers.started_step(module, task, of)
-    if step is not None:
-        asked = _probe(ctx, module, state["question"], state["task_id"])
-        asked = asked.model_copy(update={"text": answers.asked_someone(step, asked)})
-        nothing = "Apart from that, I said nothing aloud for this task."
-    elif answers.steps_of(module, task, of):
-        asked = _with_failure(ctx, state, answers.not_run(module, ctx.log, task, of))
-        nothing = "I didn't say anything either."
-    else:
-        return answers.said(state["question"], ctx.log, task)
-    spoken = answers.said(state["question"], ctx.log, task, nothing)
-    return asked.model_copy(update={"text": f"{asked.text} {spoken.text}",
-                                    "evidence": [*asked.evidence, *spoken.evidence]})
-
-
-def _with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explanation:
-    """"Did anyone help you?" of a task that failed before asking: the answer names the step that failed, so
-    "why?" and "what would have helped?" go on to that failure (its evidence, details and fix), not to the plan."""
-    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
-    if name is None:
-        return exp
-    failed = _probe(ctx, name, state["question"], state["task_id"])
-    return exp.model_copy(update={"evidence": [*exp.evidence, *failed.evidence], "fix": failed.fix,
-                                  "counterfactual": failed.counterfactual,
-                                  "details": [failed.text, *failed.details]})
 
 
 def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -365,7 +329,7 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     depth = state.get("depth", 0)
     if state["intent"] == "helped":
         text = helped(exps, BENIGN) or ""
-        failed = _failure_not_told(runtime.context, state, exps)
+        failed = failure_not_told(runtime.context, state, exps)
         if failed is not None and (not text or text == NOTHING_TO_CHANGE or text.startswith("I have no fix")):
             fix = helped([failed], BENIGN)
             stepped = any(e.explainer != "planner" and e.causes and set(e.causes) <= BENIGN for e in exps)
@@ -387,17 +351,6 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
     return {"answer": text, "depth": depth, "route": "followup", "history": remembered(state, turn),
             "timings_ms": _timings(state, "followup", start)}
-
-
-def _failure_not_told(ctx: RunContext, state: AgentState, exps: list[Explanation]) -> Explanation | None:
-    """The failure of a task that failed, when the answer being followed up is not about it (a step that went
-    well, the steps that never ran, "nothing else happened"): "how do I fix it?" then means the failure."""
-    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
-    if name is None:
-        return None
-    failed = _probe(ctx, name, state["question"], state["task_id"])
-    told = {c for e in exps for c in e.causes}
-    return None if not failed.causes or set(failed.causes) & told else failed
 
 
 # A count of nothing is no finding: "I tried 0 recovery manoeuvres" says what the log does not hold. Said as what
