@@ -122,5 +122,7 @@ def _fate(task: Task, thing: str, pick: SkillRun | None, place: SkillRun | None)
                 "recording does not show whether I still hold it."), "unknown"
     if place.time_of("running") is not None:
         return f"I picked up {thing}{_where(task, pick)} and was putting it down when my recording ends.", "unknown"
+    if task.outcome == "running":  # on its way to put it down
+        return f"I picked up {thing}{_where(task, pick)} and have not put it down yet.", "holding"
     why = f": {step_ref(task.failed_skill)} failed before that" if task.failed_skill is not None else ""
     return f"I picked up {thing}{_where(task, pick)} and never got to put it down{why}.", "holding"
