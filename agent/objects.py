@@ -83,8 +83,10 @@ def object_state(question: str, obj: str, task: Task, failed: Explanation | None
     thing = "the " + obj.replace("_", " ")
     pick, place = _step(task, PICK, obj), _step(task, PLACE, obj)
     runs = [r for r in (pick, place) if r is not None]
-    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=r.time_of(r.state) or task.created,
-                         item=f"step {r.index + 1}: {r.label()} {r.state}") for r in runs]
+    # a step that never ran shows nothing of the object: only those that did are evidence
+    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=r.time_of(r.state) or r.last_change,
+                         item=f"step {r.index + 1}: {r.label()} {r.state}") for r in runs
+                if r.time_of("running") is not None]
     text, fate = _fate(task, thing, pick, place)
     q = " ".join(question.lower().split())
     lead = next((leads[fate] for pattern, leads in _LEADS if pattern.search(q)), None)
