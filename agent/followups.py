@@ -17,7 +17,9 @@ _DEEPER = re.compile(
 _HELPED = re.compile(
     r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
     r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|how (can|could|do) (i|we) fix|"
-    r"how (can|could) (i|we|you) (avoid|prevent)|what should i (do|change)|how do i fix|"
+    r"how (can|could) (i|we|you) (avoid|prevent)|"
+    r"what (should|do|can|must) (i|we) (need to |have to )?(do|change|check|look at|look into|fix)\b|"
+    r"how do i fix|"
     r"what (would|do|should) you (recommend|suggest) (i|we) (do|change)"
 )
 _ELSE = re.compile(r"what else|anything else|something else|any other (problem|issue)s?|what other")

@@ -36,7 +36,8 @@ _FIX = re.compile(
     r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
     r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|"
     r"how (can|could|do|would|should) (i|we|you|one) (fix|solve|repair|avoid|prevent)|"
-    r"how (can|could) (it|this|that) be (fixed|solved|avoided|prevented)|what should i (do|change)|"
+    r"how (can|could) (it|this|that) be (fixed|solved|avoided|prevented)|"
+    r"what (should|do|can|must) (i|we) (need to |have to )?(do|change|check|look at|look into|fix)\b|"
     r"what('s| is) the (fix|solution)|how to fix|what (would|do|should) you (recommend|suggest) (i|we) (do|change)"
 )
 _STATE = {"succeeded": "done", "failed": "failed", "running": "still running when the recording ends",

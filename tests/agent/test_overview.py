@@ -24,7 +24,8 @@ def _ask(run: Path, *questions: str, task: str | None = None) -> list[dict[str, 
 
 
 @pytest.mark.parametrize("question", ["how can I fix this", "what would have helped?",
-                                      "What would you recommend I do?"])
+                                      "What would you recommend I do?", "what should I check?",
+                                      "what do I need to look at?"])
 def test_a_fix_question_is_answered_with_the_fix(suite: Path, question: str,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["ask", str(suite / "bagfile_5_1"), question, "--llm", "none"]) == 0
