@@ -126,7 +126,7 @@ def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints
                 console.print(f"[yellow]{safe(str(e))}[/yellow]")
                 continue
             session.switch(thread, chosen.task_id)
-            console.print(f"Switched to task {chosen.order}: {safe(describe(chosen, log))}. "
+            console.print(f"Switched to task {chosen.order}: {safe(describe(chosen, log))} "
                           "Ask me about it.")
             continue
         if line == "/why":
@@ -152,9 +152,9 @@ def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints
 
 def describe(task: Task, log: EventLog) -> str:
     from hexar.agent.content import task_name
-    from hexar.explainers.recorded import plan_words
+    from hexar.explainers.recorded import plan_words, sentence
 
-    return f"{task_name(task, log)}, {task.outcome}; its plan: {plan_words(task)}"
+    return sentence(f"{task_name(task, log)}, {task.outcome}; its plan: {plan_words(task)}")
 
 
 def _reader(checkpoints: Path, console: Console) -> Callable[[], str]:
