@@ -27,7 +27,7 @@ from hexar.events.errors import (
 from hexar.events.humble import has_standard, humble, humble_hash, is_humble
 from hexar.events.log import EventLog, TopicInfo
 from hexar.events.mcap_index import check_mcap
-from hexar.events.recover import holds_storage, is_cut_short, read_recovered, storage_files
+from hexar.events.recover import STORAGE, holds_storage, is_cut_short, loose_storage, read_recovered, storage_files
 from hexar.events.storage_rows import mcap_rows, sqlite_messages
 
 
@@ -75,11 +75,20 @@ def resolve_path(path: Path) -> Path:
         if path.suffix == ".bag":
             _rosbag1_header(path)
             return path
-        if path.suffix in {".db3", ".mcap"}:
-            return path.parent  # its folder's metadata.yaml, or the metadata rebuilt from the storage files
+        if path.suffix in STORAGE:
+            # one file of its folder's recording (its metadata.yaml, or the splits of one bag cut short), else a
+            # recording of its own: never read with files beside it that another run wrote
+            folder = path.parent
+            split = holds_storage(folder) and len(storage_files(folder)) > 1
+            return folder if (folder / "metadata.yaml").is_file() or split else path
         if path.name == "metadata.yaml":
             return resolve_path(path.parent)  # the file `ros2 bag info` prints: its folder is the recording
         raise NotARecordingError(f"not a recording: {path} (expected a rosbag2 folder or a ROS 1 .bag file)")
+    loose = loose_storage(path)
+    if loose:
+        names = ", ".join(f.name for f in loose[:3]) + (", ..." if len(loose) > 3 else "")
+        raise NotARecordingError(f"not one recording: {path} has no metadata.yaml and holds {len(loose)} storage "
+                                 f"files of separate recordings ({names}): give one of them")
     if not (path / "metadata.yaml").is_file() and not holds_storage(path):
         raise NotARecordingError(f"not a rosbag2 recording: {path} has no metadata.yaml and no .db3 or .mcap file")
     return path
@@ -107,7 +116,10 @@ def read_recording(path: str | Path, topics: Iterable[str] | None = None) -> Eve
     wanted = frozenset(topics) if topics is not None else c.ALL_TOPICS
     src = resolve_path(Path(path))
     cut = [f for f in src.glob("*.mcap") if is_cut_short(f)] if src.is_dir() else []
-    if cut or holds_storage(src):
+    if src.suffix in STORAGE and src.is_file():  # a storage file that is a recording of its own
+        alone = [src] if src.suffix == ".mcap" and is_cut_short(src) else []
+        log = _guarded(src, lambda: read_recovered(src, alone, lambda files: _read_files(files, src, wanted)))
+    elif cut or holds_storage(src):
         log = _guarded(src, lambda: read_recovered(src, cut, lambda files: _read_files(files, src, wanted)))
     else:
         log = _guarded(src, lambda: _read_whole(src, wanted))
@@ -249,6 +261,8 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
 def _storage(src: Path) -> str:
     if src.suffix == ".bag":
         return "rosbag1"
+    if src.suffix in STORAGE:
+        return {".mcap": "mcap", ".db3": "sqlite3"}[src.suffix]
     if any(src.glob("*.mcap")):
         return "mcap"
     if any(src.glob("*.db3")):

@@ -14,6 +14,7 @@ like an MCAP file, a chunk that fails its CRC) is never "recovered": it stays th
 from __future__ import annotations
 
 import mmap
+import re
 import tempfile
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -41,13 +42,41 @@ class Salvage:
     lost_chunk: bool = False  # a compressed chunk was cut, and its messages cannot be read
 
 
+STORAGE = (".db3", ".mcap")
+# rosbag2 splits a recording into <bag>_0.mcap, <bag>_1.mcap, ... (its writer's file naming)
+_SPLIT = re.compile(r"^(?P<stem>.+)_\d+$")
+
+
 def storage_files(folder: Path) -> list[Path]:
     return sorted([*folder.glob("*.db3"), *folder.glob("*.mcap")])
 
 
+def _one_recording(files: list[Path]) -> bool:
+    """Whether storage files without a metadata.yaml are one recording: a single file, or the numbered splits of
+    one bag in one storage format. Files of other names (MCAP files `hexar annotate` or another tool wrote
+    beside each other) are recordings of their own, never read as one."""
+    if len(files) <= 1:
+        return True
+    stems = {m.group("stem") if (m := _SPLIT.match(f.stem)) else None for f in files}
+    return None not in stems and len(stems) == 1 and len({f.suffix for f in files}) == 1
+
+
 def holds_storage(folder: Path) -> bool:
-    """A folder with rosbag2 storage files but no metadata.yaml: a recording whose recorder never closed it."""
-    return folder.is_dir() and not (folder / "metadata.yaml").is_file() and bool(storage_files(folder))
+    """A folder with rosbag2 storage files but no metadata.yaml, which are one recording: a recording whose
+    recorder never closed it."""
+    if not folder.is_dir() or (folder / "metadata.yaml").is_file():
+        return False
+    files = storage_files(folder)
+    return bool(files) and _one_recording(files)
+
+
+def loose_storage(folder: Path) -> list[Path]:
+    """Storage files side by side in a folder without metadata.yaml that are not one recording: each file is a
+    recording of its own."""
+    if not folder.is_dir() or (folder / "metadata.yaml").is_file():
+        return []
+    files = storage_files(folder)
+    return [] if _one_recording(files) else files
 
 
 def is_cut_short(path: Path) -> bool:
@@ -144,11 +173,12 @@ def write_whole(salvage: Salvage, out: Path) -> None:
 
 def read_recovered(src: Path, cut: list[Path], read: Callable[[list[Path]], EventLog]) -> EventLog:
     """A recording cut short, read from its storage files as `ros2 bag reindex` rebuilds it (events/recover.py);
-    each recovery is the first warning of the log. `read` reads the recording from a list of storage files."""
+    each recovery is the first warning of the log. `read` reads the recording from a list of storage files; `src`
+    is a folder, or one storage file read alone."""
     notes: list[str] = []
     with tempfile.TemporaryDirectory(prefix="hexar-recover-") as tmp:
         files: list[Path] = []
-        for file in storage_files(src):
+        for file in storage_files(src) if src.is_dir() else [src]:
             if file not in cut:
                 files.append(file)
                 continue
@@ -163,7 +193,7 @@ def read_recovered(src: Path, cut: list[Path], read: Callable[[list[Path]], Even
             notes.append(f"recovered: {file.name} ends at byte {salvage.cut_at} without its MCAP footer (the "
                          f"recorder stopped before closing it); read the {salvage.messages} messages written before "
                          f"the cut, as `ros2 bag reindex` would{lost}")
-        if not (src / "metadata.yaml").is_file():
+        if src.is_dir() and not (src / "metadata.yaml").is_file():
             names = ", ".join(f.name for f in storage_files(src))
             notes.insert(0, f"recovered: {src.name} has no metadata.yaml (the recorder stopped before writing it); "
                             f"the metadata was rebuilt from {names}, as `ros2 bag reindex` does")

@@ -17,6 +17,7 @@ from hexar.confined import leaving
 from hexar.errors import HexarError
 from hexar.events import EventLog, EventsError, Task, read_recording, read_tasks
 from hexar.events import contract as c
+from hexar.events.recover import loose_storage
 from hexar.render import clock, task_dict
 
 PAGE = 50
@@ -33,11 +34,13 @@ class OutsideFolderError(WorkspaceError):
 
 
 def is_recording(path: Path) -> bool:
-    """A rosbag2 folder (with its metadata.yaml, or storage files whose recorder never wrote it) or a ROS 1 bag."""
-    from hexar.events.recover import holds_storage
+    """A rosbag2 folder (with its metadata.yaml, or storage files whose recorder never wrote it), a ROS 1 bag, or
+    a storage file that is a recording of its own (MCAP files side by side that no metadata.yaml joins)."""
+    from hexar.events.recover import STORAGE, holds_storage
 
-    return (path.is_dir() and ((path / "metadata.yaml").is_file() or holds_storage(path))) or \
-        (path.is_file() and path.suffix == ".bag")
+    if path.is_dir():
+        return (path / "metadata.yaml").is_file() or holds_storage(path)
+    return path.is_file() and (path.suffix == ".bag" or (path.suffix in STORAGE and path in loose_storage(path.parent)))
 
 
 NEVER_RECORDINGS = frozenset({".git", ".hg", ".svn", "__pycache__", "node_modules", ".mypy_cache", ".ruff_cache",
@@ -78,6 +81,7 @@ def find_recordings(root: Path, follow_links: bool = False, linked: bool = False
         for name in sorted(filenames):
             if name.endswith(".bag"):
                 yield here / name
+        yield from loose_storage(here)
     yield from unreadable
 
 
@@ -142,8 +146,8 @@ class Workspace:
             raise OutsideFolderError(f"{recording!r} is outside the served folder")
         if not path.exists():
             raise WorkspaceError(f"no recording {recording!r} in the served folder")
-        if path.is_file() and path.suffix in {".db3", ".mcap"}:
-            path = path.parent
+        if path.is_file() and path.suffix in {".db3", ".mcap"} and not is_recording(path):
+            path = path.parent  # a file of a recording: the recording is its folder
         if not is_recording(path):
             raise WorkspaceError(f"{recording!r} is not a recording (a rosbag2 folder or a ROS 1 .bag)")
         out = leaving(self.root, path)  # the folder is inside; its metadata.yaml or .db3 may still link out
