@@ -63,13 +63,16 @@ def extras(typestore: Any, log: Any, results: list[dict[str, Any]]) -> list[Extr
 
 
 def _originals(path: Path) -> tuple[Any, Iterator[tuple[int, int, bytes]]]:
+    from rosbags.highlevel import AnyReader
+    from rosbags.highlevel.anyreader import AnyReaderError
     from rosbags.rosbag2 import Reader
     from rosbags.rosbag2.errors import ReaderError
 
     try:
-        reader = Reader(path)
+        # a rosbag2 folder, or one MCAP or sqlite3 file that is a recording of its own (AnyReader reads a file)
+        reader: Any = Reader(path) if path.is_dir() else AnyReader([path])
         reader.open()
-    except (ReaderError, OSError) as err:
+    except (ReaderError, AnyReaderError, OSError) as err:
         raise AnnotateError(f"cannot read {path}: {err}") from err
 
     def stream() -> Iterator[tuple[int, int, bytes]]:
@@ -91,7 +94,7 @@ def annotate(run: Path, out: Path, llm: str = "none") -> int:
     from hexar.web.explain import explain_tasks
 
     source = resolve_path(run)
-    if source.is_file():
+    if source.suffix == ".bag":
         raise AnnotateError(f"cannot annotate {run}: only rosbag2 recordings (sqlite3 or mcap) are copied, "
                             "not ROS 1 bags")
     log, results = explain_tasks(run, llm)

@@ -69,3 +69,12 @@ def test_the_splits_of_one_bag_cut_short_stay_one_recording(bags: dict[int, Path
     assert both.warnings[0].startswith("recovered: crashed has no metadata.yaml")
     assert "crashed_0.mcap, crashed_1.mcap" in both.warnings[0]
     assert len(both.tasks) == 3  # scenario 5's task and its recovery, and scenario 10's
+
+
+def test_a_file_of_its_own_is_annotated_alone(bags: dict[int, Path], tmp_path: Path) -> None:
+    folder = _side_by_side(bags, tmp_path / "out", {5: "blocked.mcap", 10: "fine.mcap"})
+    out = tmp_path / "annotated.mcap"
+    assert main(["annotate", str(folder / "blocked.mcap"), "--out", str(out)]) == 0
+    annotated, whole = read_recording(out), read_recording(bags[5])
+    assert [(t.task_id, t.outcome) for t in annotated.tasks] == [(t.task_id, t.outcome) for t in whole.tasks]
+    assert {"/hexar/explanations", "/rosout"} <= set(annotated.topics)
