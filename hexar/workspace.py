@@ -17,7 +17,7 @@ from hexar.confined import leaving
 from hexar.errors import HexarError
 from hexar.events import EventLog, EventsError, Task, read_recording, read_tasks
 from hexar.events import contract as c
-from hexar.events.recover import loose_storage
+from hexar.events.recover import STORAGE, holds_storage, loose_storage
 from hexar.render import clock, task_dict
 
 PAGE = 50
@@ -36,8 +36,6 @@ class OutsideFolderError(WorkspaceError):
 def is_recording(path: Path) -> bool:
     """A rosbag2 folder (with its metadata.yaml, or storage files whose recorder never wrote it), a ROS 1 bag, or
     a storage file that is a recording of its own (MCAP files side by side that no metadata.yaml joins)."""
-    from hexar.events.recover import STORAGE, holds_storage
-
     if path.is_dir():
         return (path / "metadata.yaml").is_file() or holds_storage(path)
     return path.is_file() and (path.suffix == ".bag" or (path.suffix in STORAGE and path in loose_storage(path.parent)))
@@ -48,7 +46,8 @@ NEVER_RECORDINGS = frozenset({".git", ".hg", ".svn", "__pycache__", "node_module
 
 
 def find_recordings(root: Path, follow_links: bool = False, linked: bool = False) -> Iterator[Path]:
-    """Every rosbag2 folder and ROS 1 bag under `root`, nested at any depth, in name order. Symlinked folders are
+    """Every rosbag2 folder, ROS 1 bag and storage file of its own under `root`, nested at any depth, in name
+    order. Symlinked folders are
     followed only with `follow_links` (a fleet folder of links to recordings), each real folder once, so a link
     cannot lead the walk round in circles; without it, a link cannot lead the walk out of `root`, and a link that
     is itself a recording is yielded only with `linked` (for a caller that refuses what links out, by name). A
