@@ -79,7 +79,7 @@ def _where(task: Task, run: SkillRun) -> str:
 
 def object_state(question: str, obj: str, task: Task, failed: Explanation | None) -> Explanation:
     """Where the object went, as far as the task's pick and place steps show; `failed` is the task's failure as
-    its explainer tells it, said after a step of the object's that failed."""
+    its explainer tells it, said after what it kept the object from."""
     thing = "the " + obj.replace("_", " ")
     pick, place = _step(task, PICK, obj), _step(task, PLACE, obj)
     runs = [r for r in (pick, place) if r is not None]
@@ -91,11 +91,12 @@ def object_state(question: str, obj: str, task: Task, failed: Explanation | None
     q = " ".join(question.lower().split())
     lead = next((leads[fate] for pattern, leads in _LEADS if pattern.search(q)), None)
     text = f"{lead} {text}" if lead else text
-    own_failure = any(r.state == "failed" for r in runs)
-    if own_failure and failed is not None:
-        text = f"{text} {failed.text}"
-        evidence += failed.evidence
-    return Explanation(explainer="manipulation", text=text, causes=list(failed.causes) if own_failure and failed
+    # the task's failure kept the object from where it was to go: told after it, and "why?" goes on to it
+    told = failed if failed is not None and failed.enough_information and fate != "placed" else None
+    if told is not None:
+        text = f"{text} {told.text}"
+        evidence += told.evidence
+    return Explanation(explainer="manipulation", text=text, causes=list(told.causes) if told is not None
                        else ["planner.plan_ok"], evidence=evidence,
                        fix=failed.fix if failed is not None else None,
                        counterfactual=failed.counterfactual if failed is not None else None,
