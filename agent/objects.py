@@ -57,9 +57,10 @@ def object_asked(question: str, task: Task) -> str | None:
     words = next(w for w in (m.group("a"), m.group("b"), m.group("c")) if w)
     if words.split()[0] in _PRONOUNS:
         return named[0] if len(named) == 1 else None
+    asked = words.split()
     for obj in named:
-        said = obj.replace("_", " ").lower()
-        if said in words or words.split()[0] in said.split() or said.split()[-1] in words.split():
+        said = obj.replace("_", " ").lower().split()  # whole words: "the cupboard" is no cup
+        if set(said) <= set(asked) or asked[0] in said or said[-1] in asked:
             return obj
     return None
 

@@ -97,7 +97,8 @@ def test_what_the_steps_say_became_of_the_object(tmp_path: Path, ends: list[str]
 @pytest.mark.parametrize(("question", "meant"), [
     ("where is the mug", "red_mug"), ("did you drop it?", "red_mug"), ("what were you carrying?", "red_mug"),
     ("where did you put the red mug?", "red_mug"), ("where is the kitchen?", None), ("where are you?", None),
-    ("why did you stop?", None), ("did you drop the plate?", None),
+    ("why did you stop?", None), ("did you drop the plate?", None), ("where is the mugrack?", None),
+    ("did you get stuck?", None),
 ])
 def test_which_questions_ask_about_the_tasks_object(tmp_path: Path, question: str, meant: str | None) -> None:
     task = read_recording(_fetch(tmp_path, ["succeeded"])).task()
