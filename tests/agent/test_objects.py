@@ -108,3 +108,9 @@ def test_which_questions_ask_about_the_tasks_object(tmp_path: Path, question: st
 def test_a_task_that_picks_nothing_has_no_object_to_ask_about(suite: Path) -> None:
     (answer,) = _ask(suite / "bagfile_5_1", "where is the coffee?")
     assert answer["intent"] != "content" and "something blocked my path" in answer["answer"]
+
+
+def test_an_object_is_named_by_whole_words(arm: Path) -> None:
+    task = read_recording(arm / arm_recording_name("nominal", 1)).task()
+    assert object_asked("where is the cup?", task) == "cup"
+    assert object_asked("where is the cupboard?", task) is None
