@@ -145,7 +145,7 @@ class Workspace:
             raise OutsideFolderError(f"{recording!r} is outside the served folder")
         if not path.exists():
             raise WorkspaceError(f"no recording {recording!r} in the served folder")
-        if path.is_file() and path.suffix in {".db3", ".mcap"} and not is_recording(path):
+        if path.is_file() and path.suffix in STORAGE and not is_recording(path):
             path = path.parent  # a file of a recording: the recording is its folder
         if not is_recording(path):
             raise WorkspaceError(f"{recording!r} is not a recording (a rosbag2 folder or a ROS 1 .bag)")
