@@ -28,8 +28,9 @@ from hexar.agent.overview import (
     yes_or_no,
 )
 from hexar.agent.probes import failure_not_told, probe, talked, with_failure
-from hexar.agent.questions import check_question
+from hexar.agent.questions import EXAMPLE, check_question, quoted
 from hexar.agent.state import AgentState
+from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, off_topic, recording_words
 from hexar.agent.walk import next_finding
 from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.explainers.base import Context, Explanation
@@ -78,7 +79,16 @@ def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         question = check_question(state.get("question", ""))
     except BadQuestionError as e:
         return {**reset, "intent": "invalid", "error": str(e), "answer": str(e)}
+    if about_me(question):
+        return {**reset, "question": question, "intent": "about", "answer": ABOUT_ME, "route": "none",
+                "timings_ms": {"intake": _ms(start)}}
     intent = intent_of(question, bool(state.get("explanations")))
+    # the recording is read only for a question whose words name nothing a robot does
+    if intent == "new" and off_topic(question) and off_topic(question, recording_words(runtime.context.log.tasks)):
+        error = (f"{quoted(question)} is not about anything I did: I can only explain what I did, from my "
+                 f"recording. Ask me why I did something, {EXAMPLE}")
+        return {**reset, "question": question, "intent": "offtopic", "error": error, "answer": OFF_TOPIC,
+                "route": "none", "timings_ms": {"intake": _ms(start)}}
     update: dict[str, Any] = {**reset, "question": question, "intent": intent}
     if intent == "switch":
         update["task_ref"] = task_ref_of(question)

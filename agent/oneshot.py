@@ -18,7 +18,7 @@ from hexar.agent.backends import Backend, resolve
 from hexar.agent.context import RunContext, RunSettings
 from hexar.agent.errors import AgentError
 from hexar.agent.questions import bounded
-from hexar.agent.routing import END, FIRST, NEXT, NODES
+from hexar.agent.routing import END, FIRST, NEXT, NO_EXPLAINER, NODES
 from hexar.agent.state import AgentState
 from hexar.explainers.base import Explanation
 
@@ -47,7 +47,9 @@ def walk(update: dict[str, Any], context: RunContext, recursion_limit: int) -> d
 
 def result_of(state: dict[str, Any], backend: str, recording: str, thread: str, started: float) -> dict[str, Any]:
     """The answer as `hexar ask --json` prints it (shared with the conversational Session)."""
-    exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
+    # a turn answered without an explainer keeps the conversation's explanations, but reports none of them
+    told = state.get("intent") not in NO_EXPLAINER
+    exps = [Explanation.model_validate(e) for e in state.get("explanations", [])] if told else []
     timings = dict(state.get("timings_ms", {}))
     timings["total"] = round((time.perf_counter() - started) * 1000, 2)
     followup = state.get("route") == "followup" and state.get("intent") in {"deeper", "helped"}

@@ -10,11 +10,13 @@ from hexar.agent import nodes
 from hexar.agent.state import AgentState
 
 END = "__end__"
+# Intents answered at intake, by no explainer: refused, off the robot's topic, or about HEXAR itself.
+NO_EXPLAINER = frozenset({"invalid", "about", "offtopic"})
 
 
 def after_intake(state: AgentState) -> Literal["context", "followup", "__end__"]:
     intent = state.get("intent")
-    if intent == "invalid":
+    if intent in NO_EXPLAINER:
         return "__end__"
     if intent in {"deeper", "helped"}:
         return "followup"

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Literal, TypedDict
 
-Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid"]
+Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid", "about", "offtopic"]
 Route = Literal["failure_check", "recovery", "llm", "named", "classifier", "findings", "followup", "none"]
 
 

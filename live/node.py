@@ -306,7 +306,8 @@ class LiveNode:
             result["sentence"] = short_sentence(str(result.get("answer", "")))
             result["event_t"] = job.t  # the failing update, on the robot's clock
         self._publish(result)
-        speak = bool(self.speakers) and (not result.get("error") or bool(result.get("no_task"))) and (
+        told_why = bool(result.get("no_task")) or result.get("intent") == "offtopic"  # a refusal worth hearing
+        speak = bool(self.speakers) and (not result.get("error") or told_why) and (
             job.kind == "question" or (self.options.proactive == "speak" and self._may_speak(job)))
         if speak:
             self._say(result, "question" if job.kind == "question" else "failure")

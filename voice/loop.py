@@ -130,8 +130,10 @@ class Dialogue:
             turn.timings_ms["answer"] = _ms(started)
             turn.error, turn.route = str(result["error"]), str(result["route"])
             turn.explainers, turn.causes = list(result["explainers"]), list(result["causes"])
-            turn.answer = str(result["answer"]) if not turn.error else NOT_UNDERSTOOD
-            turn.spoken = say_answer(result) if not turn.error else [NOT_UNDERSTOOD]
+            # a question off the robot's topic was understood: it hears why it gets no explanation
+            heard_right = not turn.error or result.get("intent") == "offtopic"
+            turn.answer = str(result["answer"]) if heard_right else NOT_UNDERSTOOD
+            turn.spoken = say_answer(result) if heard_right else [NOT_UNDERSTOOD]
         if turn.error:
             self.console.print(f"[yellow]{safe(turn.error)}[/yellow]")
         self.console.print(f"[bold cyan]HEXAR:[/bold cyan] {safe(turn.answer, keep_newlines=True)}")

@@ -9,6 +9,7 @@ import time
 from dataclasses import replace
 from pathlib import Path
 
+from hexar.agent.topic import OFF_TOPIC
 from hexar.events import contract as c
 from hexar.events.tasks import build_tasks
 from hexar.live.present import heard_words, no_task_yet, present
@@ -142,6 +143,8 @@ def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, tran
             time.sleep(1.5)
             listener.ask("Why did you stop?")
             during = listener.wait_answers(2, "question", timeout=15.0)[1]
+            listener.ask("tell me a joke")
+            joke = listener.wait_answers(3, "question", timeout=15.0)[2]
             time.sleep(0.3)
             spoken = [str(s.data) for s in said.take(20) if s.sample_info.valid_data]
     finally:
@@ -157,3 +160,6 @@ def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, tran
     assert not RECORDING.search(during["answer"]) and not RECORDING.search(before["answer"])
     assert any(s.startswith("I haven't had a task") for s in spoken)
     assert any(s.startswith("I'm still working on your request") for s in spoken)
+    # a question about nothing the robot did: refused, and the person hears why rather than silence
+    assert joke["intent"] == "offtopic" and "is not about anything I did" in joke["error"]
+    assert OFF_TOPIC.split(". ")[0] in " ".join(spoken), spoken

@@ -4,6 +4,7 @@ transcribed back and must state the scenario's cause; follow-ups stay in the thr
 from __future__ import annotations
 
 import json
+import re
 import shutil
 import sys
 import types
@@ -165,3 +166,15 @@ def test_several_wavs_after_one_flag_skip_a_silent_one(runs: Path, tmp_path: Pat
     turns = [json.loads(line) for line in (out / LOG_NAME).read_text().splitlines()]
     assert [t["source"] for t in turns] == ["q1.wav", "q2.wav"]
     assert turns[1]["route"] == "followup" and len({t["thread"] for t in turns}) == 1
+
+
+def test_a_question_about_the_world_is_told_why_it_gets_no_explanation(runs: Path, tmp_path: Path,
+                                                                        stt: Transcriber) -> None:
+    """Heard right but about nothing the robot did: the person hears that it only explains what it did, not
+    "I didn't understand" and not the task's finding."""
+    from hexar.agent.topic import OFF_TOPIC
+
+    (turn,) = converse(runs, tmp_path, "bagfile_7_2", EspeakSynthesizer(), ["What is the capital of France?"])
+    assert {"capital", "france"} <= set(re.findall(r"[a-z]+", turn["transcript"].lower())), turn["transcript"]
+    assert turn["answer"] == OFF_TOPIC and "is not about anything I did" in turn["error"]
+    assert "explain what i did" in heard(stt, turn).lower()
