@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from hexar import progress
 from hexar.agent import content as answers
 from hexar.agent import guard, measures
+from hexar.agent.attempts import tried
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
@@ -326,6 +327,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = measures.when(state["question"], ctx.log, task)
     elif kind == "talked":
         exp = talked(ctx, state, task)
+    elif kind == "tried":
+        exp = with_failure(ctx, state, tried(state["question"], ctx.log, task))
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

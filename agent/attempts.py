@@ -1,0 +1,136 @@
+""""Did you try again?", "how many times did you try?": what the robot did to get a step done before it gave up (or
+got through), counted from what its modules logged while the step ran, never guessed.
+
+What counts as another try, from the real log strings (../shared/reference/nav2_log_messages.md, the MoveIt
+catalogue):
+- a step of the plan started again (its /task_info history goes back to running);
+- Nav2 planning a path again: planner_server's "Planning algorithm %s failed to generate a valid path to ..."
+  (planner_server.cpp:348; NavFn's "%s: failed to create plan with tolerance %.2f." on the same attempt) and the
+  Jazzy "%s plugin failed to plan from ...";
+- a Nav2 recovery: behavior_server's "Running %s" ("Attempting %s" up to Galactic), a costmap's "Received request to
+  clear entirely the ...";
+- a MoveIt planning request: move_group's "Planning request received for MoveGroup action..." or "Combined planning
+  and execution request received for MoveGroup action...", else one per "Unable to solve the planning problem".
+"""
+
+from __future__ import annotations
+
+import re
+from collections import Counter
+from dataclasses import dataclass
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import LogLine
+from hexar.events.tasks import SkillRun, Task
+from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.navigation.behaviors import BEGIN
+from hexar.explainers.recorded import join_words, step_ref
+
+# Asked from the start of the question: "why did you give up so quickly?" asks for a cause, not a count of tries.
+TRIED = re.compile(
+    r"^(and |so |but |ok |okay )?(did|have|had) you (even |ever )?(try|tried|retry|retried|attempt(ed)?)"
+    r"( it| that| this)?( again| once more| twice| a second time| more than once| another time| something else|"
+    r" anything else| another way| to go around( it| them| that)?)?\W*$|"
+    r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) you (try|tried|retry|retried|"
+    r"attempt(ed)?)\b|^(and |so |but |ok |okay )?how many (attempts|tries|retries)\b|"
+    r"^(and |so |but |ok |okay )?did you (just )?give up\W*$")
+_REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
+           re.compile(r": failed to create plan with tolerance"),
+           re.compile(r"^\S+ plugin failed to plan (from|calculation to|through)"))
+_CLEAR = re.compile(r"^Received request to clear entirely the (?P<which>\w+)")
+_MOVEIT_REQUEST = re.compile(r"^(Combined planning and execution|Planning) request received for MoveGroup action")
+_MOVEIT_FAILED = re.compile(r"(?:^|\]:? )Unable to solve the planning problem")
+_RECOVERY_WORDS = {"spin": ("a spin", "spins"), "backup": ("a backup", "backups"), "back_up": ("a backup", "backups"),
+                   "wait": ("a wait", "waits"), "drive_on_heading": ("a drive ahead", "drives ahead"),
+                   "assisted_teleop": ("an assisted teleop", "assisted teleops")}
+
+
+def _times(n: int) -> str:
+    return {1: "once", 2: "twice"}.get(n, f"{n} times")
+
+
+def _recoveries(names: list[str]) -> str:
+    parts = []
+    for name, k in Counter(names).items():
+        one, many = _RECOVERY_WORDS.get(name, (f"a {name.replace('_', ' ')}", f"{name.replace('_', ' ')}s"))
+        parts.append(one if k == 1 else f"{k} {many}")
+    return f"{len(names)} recover{'y' if len(names) == 1 else 'ies'} ({join_words(parts)})"
+
+
+@dataclass(frozen=True)
+class _Tries:
+    run: SkillRun
+    said: list[str]  # each kind of try, as the robot says it
+    lines: list[LogLine]
+
+
+def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
+    start, end = task.skill_window(run)
+    lines = [ln for ln in log.logs if start <= ln.t <= end]
+    starts = sum(1 for h in run.history if h.status.strip().lower() == "running")
+    replans = max(sum(1 for ln in lines if p.search(ln.msg.strip())) for p in _REPLAN)
+    recoveries = [m["name"] for ln in lines if _recovering(ln) and (m := BEGIN.match(ln.msg.strip()))]
+    clears = sum(1 for ln in lines if _CLEAR.match(ln.msg.strip()))
+    moveit = sum(1 for ln in lines if _MOVEIT_REQUEST.match(ln.msg.strip())) or \
+        sum(1 for ln in lines if _MOVEIT_FAILED.search(ln.msg))
+    said: list[str] = []
+    if starts > 1:
+        said.append(f"I started it {_times(starts)}")
+    if replans:
+        said.append(f"my planner failed to find a path {_times(replans)}")
+    if recoveries:
+        said.append(f"I ran {_recoveries(recoveries)}")
+    if clears:
+        said.append(f"I cleared my costmaps {_times(clears)}")
+    if moveit > 1:
+        said.append(f"I asked my motion planner for a plan {_times(moveit)}")
+    shown = [ln for ln in lines if any(p.search(ln.msg.strip()) for p in _REPLAN) or _CLEAR.match(ln.msg.strip())
+             or _MOVEIT_REQUEST.match(ln.msg.strip()) or (_recovering(ln) and BEGIN.match(ln.msg.strip()))]
+    return _Tries(run, said, shown)
+
+
+def _recovering(line: LogLine) -> bool:
+    return line.name.endswith(("behavior_server", "recoveries_server"))
+
+
+def _evidence(tries: list[_Tries], task: Task) -> list[Evidence]:
+    out = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=h.t,
+                    item=f"step {t.run.index + 1}: {t.run.label()} {h.status.strip().lower()}")
+           for t in tries for h in t.run.history if h.status.strip().lower() in {"running", "failed", "succeeded"}]
+    out += [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
+            for t in tries for ln in t.lines[:6]]
+    return out or [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
+
+
+def tried(question: str, log: EventLog, task: Task) -> Explanation:
+    """For a failed task, the tries at the step that failed; otherwise every step that needed more than one."""
+    yes_no = re.match(r"^(and |so |but )?(did|have|had) you\b", " ".join(question.lower().split())) is not None
+    started = [r for r in task.skills if r.time_of("running") is not None]
+    failed = task.failed_skill
+    runs = [failed] if failed is not None else started
+    tries = [_tries(log, task, run) for run in runs]
+    retried = [t for t in tries if t.said]
+    if not started:
+        text = "none of my plan's steps started, so there was nothing to try again."
+        lead = "No: " if yes_no else ""
+    elif retried:
+        parts = []
+        for t in retried:
+            ending = ("but none of it got it done, so the step failed" if t.run.state == "failed" else
+                      "and the step went through in the end" if t.run.state == "succeeded" else
+                      "and the step was still going when the recording ends")
+            parts.append(f"for {step_ref(t.run)}, {join_words(t.said)}, {ending}")
+        text = "; ".join(parts) + "."
+        lead = "Yes. "
+    elif failed is not None:
+        text = f"my recording shows one try at {step_ref(failed)}: it failed, and I did not start it again after that."
+        lead = "No. "
+    else:
+        text = "every step of my plan that started went through at the first try."
+        lead = "I didn't need to: "
+    if not yes_no and lead in {"Yes. ", "No. "}:
+        lead = ""
+    said = lead + (text[0].upper() + text[1:] if lead.endswith(". ") else text)
+    return Explanation(explainer="planner", text=said[0].upper() + said[1:], causes=["planner.plan_ok"],
+                       evidence=_evidence(retried or tries, task))

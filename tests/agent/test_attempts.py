@@ -1,0 +1,111 @@
+""""Did you try again?": the tries the robot's modules logged while a step ran (Nav2's failed plans and recoveries,
+MoveIt's planning requests, a step started again), counted from the recording, on the simulated runs and on
+/task_info runs written with rosbags from real log strings."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.followups import content_kind
+from hexar.agent.session import Session
+from hexar.evals.scenarios.arm import simulate_arm_suite
+from hexar.evals.scenarios.bag import BagBuilder
+from hexar.events import read_recording
+
+T0 = 1_741_600_000_000_000_000
+S = 1_000_000_000
+
+
+def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    return [session.ask(q, thread=thread) for q in questions]
+
+
+@pytest.fixture(scope="module")
+def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    out = tmp_path_factory.mktemp("arm")
+    simulate_arm_suite(out, only=lambda s, v: v == 1 and s in {"nominal", "out_of_reach"})
+    return out
+
+
+@pytest.mark.parametrize("question", ["did you try again?", "how many times did you try?", "did you give up?",
+                                      "how many attempts were there", "did you try to go around it?"])
+def test_questions_about_trying_again(question: str) -> None:
+    assert content_kind(question) == "tried"
+
+
+@pytest.mark.parametrize("question", ["can you try again?", "try again", "why did you stop?", "did you talk to maria?",
+                                      "Why did you give up so quickly?", "why did you try again?"])
+def test_not_questions_about_trying_again(question: str) -> None:
+    assert content_kind(question) != "tried"
+
+
+def test_a_blocked_path_counts_its_failed_plans_and_recoveries(suite: Path) -> None:
+    run = suite / "bagfile_5_1"
+    logs = read_recording(run).logs
+    failed_plans = sum(1 for ln in logs if ln.msg.startswith("Planning algorithm GridBased failed to generate"))
+    recoveries = [ln.msg.split()[-1] for ln in logs if ln.name == "behavior_server" and ln.msg.startswith("Running ")]
+    assert failed_plans > 1 and sorted(recoveries) == ["backup", "spin", "spin", "wait"]
+    first, tried, why = _ask(run, "why didn't you bring me the coffee?", "did you try again?", "why?")
+    assert "blocked my path" in str(first["answer"])
+    assert str(tried["answer"]).startswith(f"Yes. For step 1 (to go to the kitchen), my planner failed to find a path "
+                                           f"{failed_plans} times, I ran 4 recoveries (2 spins, a wait and a backup)")
+    assert str(tried["answer"]).endswith("but none of it got it done, so the step failed."), tried["answer"]
+    assert "[behavior_server] INFO Running spin" in str(why["answer"]) or "Received request" in str(why["answer"])
+
+
+def test_how_many_times_is_not_answered_yes_or_no(suite: Path) -> None:
+    (answer,) = _ask(suite / "bagfile_5_1", "how many times did you try?")
+    assert str(answer["answer"]).startswith("For step 1 (to go to the kitchen), my planner failed to find a path")
+
+
+def test_one_failed_pick_is_one_try_and_a_clean_run_needed_none(arm: Path) -> None:
+    from hexar.evals.scenarios.arm import arm_recording_name
+
+    (failed,) = _ask(arm / arm_recording_name("out_of_reach", 1), "did you try again?")
+    assert str(failed["answer"]) == ("No. My recording shows one try at step 2 (to pick up the cup): it failed, and "
+                                     "I did not start it again after that."), failed["answer"]
+    (clean,) = _ask(arm / arm_recording_name("nominal", 1), "did you try again?")
+    assert clean["answer"] == "I didn't need to: every step of my plan that started went through at the first try."
+
+
+def test_a_plan_never_started_had_nothing_to_try(suite: Path) -> None:
+    (answer,) = _ask(suite / "bagfile_1_1", "did you try again?")
+    assert answer["answer"] == "No: none of my plan's steps started, so there was nothing to try again."
+
+
+def _retried_pick(tmp_path: Path) -> Path:
+    """A pick that MoveIt planned twice (its first plan failed) and the plan ran twice before it went through."""
+    b = BagBuilder()
+    plan = [("pick", {"object": "mug"})]
+
+    def publish(t: int, status: str) -> None:
+        b.task_info(t, {"instruction": "Pick up the mug", "task_id": "T1", "task_status": "valid",
+                        "task_error_msg": "", "skill_sequence": [{"skill": s, "params": p, "status": status,
+                                                                  "error_msg": ""} for s, p in plan]})
+
+    publish(T0, "waiting")
+    publish(T0 + S, "Running")
+    for k in range(2):
+        t = T0 + (2 + 4 * k) * S
+        b.log(t, "moveit.ros.move_group.move_action_capability", 20,
+              "Combined planning and execution request received for MoveGroup action. Forwarding to planning and "
+              "execution pipeline.")
+        if k == 0:
+            b.log(t + S, "moveit.ompl_planning.model_based_planning_context", 40,
+                  "Unable to solve the planning problem")
+    publish(T0 + 4 * S, "failed")
+    publish(T0 + 5 * S, "Running")
+    publish(T0 + 9 * S, "succeeded")
+    return b.write(tmp_path / "pick")
+
+
+def test_a_step_started_again_and_planned_twice(tmp_path: Path) -> None:
+    (answer,) = _ask(_retried_pick(tmp_path), "did you try again?")
+    assert answer["answer"] == ("Yes. For step 1 (to pick up the mug), I started it twice and I asked my motion "
+                                "planner for a plan twice, and the step went through in the end."), answer["answer"]
