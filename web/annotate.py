@@ -120,12 +120,18 @@ def annotate(run: Path, out: Path, llm: str = "none") -> int:
                 schemas[msgtype] = writer.register_schema(msgtype, "ros2msg", text.encode())
             return schemas[msgtype]
 
+        # a copy annotated before: its explanations are replaced by today's, not kept beside them on a second channel
+        stale = {conn.id for conn in reader.connections if conn.topic in {EXPLANATIONS, HEXAR_LOG}}
         for conn in reader.connections:
-            channels[conn.id] = writer.register_channel(conn.topic, "cdr", schema(conn.msgtype, conn.msgdef.data))
+            if conn.id not in stale:
+                channels[conn.id] = writer.register_channel(conn.topic, "cdr", schema(conn.msgtype,
+                                                                                     conn.msgdef.data))
         for topic, msgtype in ((EXPLANATIONS, STRING), (HEXAR_LOG, LOG)):
             channels[topic] = writer.register_channel(topic, "cdr", schema(msgtype, ""))
         merged = heapq.merge(originals, ((e.t, e.topic, e.data) for e in added), key=lambda m: m[0])
         for t, key, data in merged:
+            if key in stale:
+                continue
             writer.add_message(channels[key], log_time=t, data=data, publish_time=t)
         writer.finish()  # type: ignore[no-untyped-call]
     return sum(1 for e in added if e.topic == EXPLANATIONS)

@@ -97,3 +97,20 @@ def test_unwritable_output_is_one_line(suite: Path, capsys: pytest.CaptureFixtur
     assert main(["annotate", str(suite / "bagfile_5_1"), "--out", "/definitely/not/here/x.mcap", "--llm", "none"]) == 2
     err = capsys.readouterr().err
     assert err.startswith("ERROR: cannot write") and err.count("\n") == 1
+
+
+def test_annotating_an_annotated_copy_replaces_its_explanations(tmp_path: Path) -> None:
+    """A copy annotated again (after an upgrade, or with another model) holds today's explanations once, on one
+    channel each, not the old ones beside them."""
+    assert main(["simulate", "--out", str(tmp_path / "runs"), "--scenario", "5", "--storage", "mcap"]) == 0
+    run = tmp_path / "runs" / "bagfile_5_1"
+    once, twice = tmp_path / "once.mcap", tmp_path / "twice.mcap"
+    assert main(["annotate", str(run), "--out", str(once), "--llm", "none"]) == 0
+    assert main(["annotate", str(once), "--out", str(twice), "--llm", "none"]) == 0
+    with twice.open("rb") as fh:
+        summary = make_reader(fh).get_summary()
+    assert summary is not None
+    topics = Counter(ch.topic for ch in summary.channels.values())
+    assert topics["/hexar/explanations"] == 1 and topics["/hexar/log"] == 1
+    assert _counts(twice) == _counts(once)
+    assert [e["causes"] for e in _explanations_mcap(twice)] == [e["causes"] for e in _explanations_mcap(once)]
