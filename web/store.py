@@ -6,6 +6,7 @@ from __future__ import annotations
 import hashlib
 import json
 import threading
+import time
 from collections import OrderedDict
 from pathlib import Path
 from typing import Any
@@ -32,6 +33,7 @@ def shown(path: Path) -> str:
     return "/".join(path.parts[-2:])
 
 
+WALK_FRESH_S = 10.0
 KEEP_LOGS = 6  # an hour-long recording decodes to a few hundred MB; keep only the runs being looked at
 
 
@@ -55,12 +57,17 @@ class Store:
         self._ask_lock = threading.Lock()
         self._backend: Any = None
         self._worker: threading.Thread | None = None
+        self._walked: tuple[float, dict[str, Path]] = (float("-inf"), {})
         names = {self.name_of(p) for p in self._recordings()}  # a missing folder is the one-line error, before serving
         if live is not None and LIVE in names:
             raise WebError(f"{root} holds a recording named {LIVE!r}, the live run's name: rename it to use --live")
 
     def _recordings(self) -> list[Path]:
-        return [] if self.root is None else recordings(self.root)
+        """The folder's recordings, walked afresh (each walk also refreshes what `path` looks names up in)."""
+        found = [] if self.root is None else recordings(self.root)
+        with self._lock:
+            self._walked = (time.monotonic(), {self.name_of(p): p for p in found})
+        return found
 
     def name_of(self, path: Path) -> str:
         """A recording's name on the page and in its API: its path under the folder (`robot1/run_3`)."""
@@ -75,10 +82,17 @@ class Store:
         return message
 
     def path(self, name: str) -> Path:
-        """A recording of the folder by name; nothing outside the folder can be named."""
-        for p in self._recordings():
-            if self.root is not None and self.name_of(p) == name:
-                return confine(self.root, p, name)
+        """A recording of the folder by name; nothing outside the folder can be named. One page view asks for
+        the same run many times (timeline, path, evidence, chat): within WALK_FRESH_S of the last walk of the folder
+        a name is looked up in it, and a name it does not hold walks the folder again (a run just recorded)."""
+        with self._lock:
+            walked, by_name = self._walked
+        if time.monotonic() - walked > WALK_FRESH_S or name not in by_name or not by_name[name].exists():
+            self._recordings()
+            with self._lock:
+                by_name = self._walked[1]
+        if self.root is not None and name in by_name:
+            return confine(self.root, by_name[name], name)
         where = f"in {self.root}" if self.root is not None else "here: only the live robot is shown"
         raise WebError(f"no recording named {name!r} {where}")
 

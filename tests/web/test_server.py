@@ -256,3 +256,21 @@ def test_a_fleet_by_robot_and_date_and_a_single_recording_are_served_by_their_pa
         assert [r["recording"] for r in data["runs"]] == ["bagfile_5_1"]
         status, run = get(url + "api/run?name=bagfile_5_1")
         assert status == 200 and run["task"]["outcome"] == "failed"
+
+
+def test_a_run_recorded_or_removed_while_serving_is_seen_at_once(suite: Path, tmp_path: Path) -> None:
+    """The page looks a run's name up in its last walk of the folder; a run recorded since is found without
+    waiting, and a run removed since is the same one-line refusal as any unknown name."""
+    from hexar.web.errors import WebError
+    from hexar.web.store import Store
+
+    root = tmp_path / "fleet"
+    shutil.copytree(suite / "bagfile_5_1", root / "robot1" / "run_a")
+    store = Store(root, "none", tmp_path / "t.sqlite")
+    assert store.log("robot1/run_a").task().outcome == "failed"
+    shutil.copytree(suite / "bagfile_10_1", root / "robot2" / "run_b")
+    assert store.path("robot2/run_b") == root / "robot2" / "run_b"
+    assert store.log("robot2/run_b").task().outcome == "succeeded"
+    shutil.rmtree(root / "robot1")
+    with pytest.raises(WebError, match=r"^no recording named 'robot1/run_a' in "):
+        store.path("robot1/run_a")
