@@ -37,7 +37,8 @@ TRIED = re.compile(
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$")
 _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
            re.compile(r": failed to create plan with tolerance"),
-           re.compile(r"^\S+ plugin failed to plan (from|calculation to|through)"))
+           # "GridBasedplugin failed to plan from" as a Jazzy robot logged it (the format has no space)
+           re.compile(r"^\S+?\s?plugin failed to plan (from|calculation to|through)"))
 _CLEAR = re.compile(r"^Received request to clear entirely the (?P<which>\w+)")
 _MOVEIT_REQUEST = re.compile(r"^(Combined planning and execution|Planning) request received for MoveGroup action")
 _MOVEIT_FAILED = re.compile(r"(?:^|\]:? )Unable to solve the planning problem")
@@ -67,6 +68,8 @@ class _Tries:
 
 def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
     start, end = task.skill_window(run)
+    if run.state == "running" and log.logs:
+        end = max(end, log.logs[-1].t)  # still under way: every line since it started
     lines = [ln for ln in log.logs if start <= ln.t <= end]
     starts = sum(1 for h in run.history if h.status.strip().lower() == "running")
     replans = max(sum(1 for ln in lines if p.search(ln.msg.strip())) for p in _REPLAN)
@@ -126,9 +129,14 @@ def tried(question: str, log: EventLog, task: Task) -> Explanation:
     elif failed is not None:
         text = f"my recording shows one try at {step_ref(failed)}: it failed, and I did not start it again after that."
         lead = "No. "
-    else:
+    elif all(r.state != "running" for r in started):
         text = "every step of my plan that started went through at the first try."
         lead = "I didn't need to: "
+    else:
+        going = [r for r in started if r.state == "running"][-1]
+        text = (f"my recording shows no second try at any step: {step_ref(going)} was still going when the "
+                "recording ends.")
+        lead = "No. "
     if not yes_no and lead in {"Yes. ", "No. "}:
         lead = ""
     said = lead + (text[0].upper() + text[1:] if lead.endswith(". ") else text)

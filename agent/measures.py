@@ -85,9 +85,15 @@ def _steps(log: EventLog, task: Task) -> list[_Step]:
         start = run.time_of("running")
         if start is None:
             continue
-        end = max(run.last_change, start)
+        # a step still under way ran until the recording's last word on its task, not only to its start
+        end = max(_recorded_until(log, task) if run.state == "running" else run.last_change, start)
         out.append(_Step(run, start, end, _path(log, start, end)))
     return out
+
+
+def _recorded_until(log: EventLog, task: Task) -> int:
+    """When the recording stops telling about a task still under way: its end, past the task's last update."""
+    return max(task.last_update, log.end)
 
 
 def _goal(run: SkillRun) -> str:
@@ -156,6 +162,7 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
     ended = _ended(task)
     name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
+        span = _span(_recorded_until(log, task) - task.created)
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
                 f"{_at(task.created)} UTC.")
     elif lead_with_times:
@@ -164,7 +171,8 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
         text = (f"{name[0].upper()}{name[1:]} took {span}, from {_at(task.created)} to {_at(task.last_update)} UTC; "
                 f"{ended}.")
     if steps:
-        each = "; ".join(f"{step_ref(s.run)} took {_span(s.end - s.start)}"
+        each = "; ".join(f"{step_ref(s.run)} had run for {_span(s.end - s.start)} when the recording ends"
+                         if s.run.state == "running" else f"{step_ref(s.run)} took {_span(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],

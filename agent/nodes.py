@@ -28,7 +28,7 @@ from hexar.agent.overview import (
     with_lead,
     yes_or_no,
 )
-from hexar.agent.probes import failure_not_told, probe, talked, with_failure
+from hexar.agent.probes import failure_not_told, notable, probe, talked, with_failure
 from hexar.agent.questions import EXAMPLE, check_question, quoted
 from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, off_topic, recording_words
@@ -148,18 +148,6 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
             "timings_ms": _timings(state, "failure_check", start)}
 
 
-def _by_findings(ctx: RunContext, state: AgentState, exclude: set[str],
-                 benign: frozenset[str] = NOTHING_WRONG) -> str | None:
-    """For a question that names no module: the first explainer (in plan order) with a notable finding."""
-    for name in state["candidates"]:
-        if name in exclude:
-            continue
-        found = probe(ctx, name, state["question"], state["task_id"])
-        if found.enough_information and not set(found.causes) <= benign:
-            return name
-    return None
-
-
 def _llm_choice(ctx: RunContext, state: AgentState) -> str | None:
     """The model's pick among all explainers; a pick outside this task's candidates counts as no pick."""
     model = ctx.backend.model
@@ -206,7 +194,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         label, share = (GENERIC, 0.0) if whole else ctx.classifier.choose(state["question"], state["candidates"])
         choice, route = (label, "classifier") if label != GENERIC and share >= CONFIDENT else (None, "findings")
     if choice is None:
-        choice = _by_findings(ctx, state, set()) or state["candidates"][0]
+        choice = notable(ctx, state, set()) or state["candidates"][0]
     elif route != "named" and set(probe(ctx, choice, state["question"], state["task_id"]).causes) <= NOTHING_WRONG:
         # The person asks "why" about something, but the chosen module saw nothing unusual: if another module
         # of this task did, that is what the question is about (e.g. "why did you stop so awkwardly?" when
@@ -214,7 +202,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # Another module's figures of a run that went fine (its speed) are nothing unusual either: "was the arm
         # slow?" about a clean pick is the arm's to answer, not the drive's. A module the question names by what it
         # does ("who did you ask for help?") is answered by that module, whatever another one found.
-        other = _by_findings(ctx, state, {choice}, BENIGN)
+        other = notable(ctx, state, {choice}, BENIGN)
         if other is not None:
             choice, route = other, "findings"
     return {"selected": [choice], "route": route, "timings_ms": _timings(state, "router", start)}

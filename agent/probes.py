@@ -6,6 +6,7 @@ from __future__ import annotations
 from hexar.agent import content as answers
 from hexar.agent.context import RunContext
 from hexar.agent.state import AgentState
+from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.events.tasks import Task
 from hexar.explainers.base import Context, Explanation
 
@@ -46,10 +47,24 @@ def with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explan
                                   "details": [failed.text, *failed.details]})
 
 
+def notable(ctx: RunContext, state: AgentState, exclude: set[str],
+            benign: frozenset[str] = NOTHING_WRONG) -> str | None:
+    """For a question that names no module: the first explainer (in plan order) with a notable finding."""
+    for name in state["candidates"]:
+        if name in exclude:
+            continue
+        found = probe(ctx, name, state["question"], state["task_id"])
+        if found.enough_information and not set(found.causes) <= benign:
+            return name
+    return None
+
+
 def failure_not_told(ctx: RunContext, state: AgentState, exps: list[Explanation]) -> Explanation | None:
-    """The failure of a task that failed, when the answer being followed up is not about it (a step that went
-    well, the steps that never ran, "nothing else happened"): "how do I fix it?" then means the failure."""
-    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
+    """The failure of a task that failed (or, of one that did not, its notable finding: a node that never came
+    up on a run the recording cuts short, a slow trip), when the answer being followed up is not about it (a step
+    that went well, the tries, the steps that never ran, "nothing else happened"): "how do I fix it?" then means
+    that problem."""
+    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"])) or notable(ctx, state, set(), BENIGN)
     if name is None:
         return None
     failed = probe(ctx, name, state["question"], state["task_id"])

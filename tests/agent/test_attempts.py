@@ -109,3 +109,41 @@ def test_a_step_started_again_and_planned_twice(tmp_path: Path) -> None:
     (answer,) = _ask(_retried_pick(tmp_path), "did you try again?")
     assert answer["answer"] == ("Yes. For step 1 (to pick up the mug), I started it twice and I asked my motion "
                                 "planner for a plan twice, and the step went through in the end."), answer["answer"]
+
+
+def _still_driving(tmp_path: Path) -> Path:
+    """A trip still under way when the recording stops 40 s later, its planner failing once in Jazzy's words."""
+    b = BagBuilder()
+    plan = [("navigate_to_zone", {"location": "kitchen"}), ("say", {"input": "Here you are."})]
+
+    def publish(t: int, first: str) -> None:
+        b.task_info(t, {"instruction": "Go to the kitchen", "task_id": "T1", "task_status": "valid",
+                        "task_error_msg": "", "skill_sequence": [
+                            {"skill": s, "params": p, "status": st, "error_msg": ""}
+                            for (s, p), st in zip(plan, [first, "waiting"], strict=True)]})
+
+    publish(T0, "waiting")
+    publish(T0 + S, "Running")
+    b.log(T0 + 5 * S, "planner_server", 30, 'GridBasedplugin failed to plan from (1.00, 1.00) [q: 0.00, 0.00, -0.00, '
+          '1.00] (yaw: -0.00) to (-1.50, 1.50) [q: 0.00, 0.00, 0.00, 1.00] (yaw: 0.00): "Failed to create plan with '
+          'tolerance of: 0.500000"')
+    b.log(T0 + 41 * S, "controller_server", 20, "Passing new path to controller.")
+    return b.write(tmp_path / "driving")
+
+
+def test_a_step_still_under_way_is_timed_to_the_recordings_end_and_its_tries_counted(tmp_path: Path) -> None:
+    run = _still_driving(tmp_path)
+    long, tried = _ask(run, "how long did it take?", "did you try again?")
+    assert "was not over when the recording ends, 41 s after it began" in str(long["answer"]), long["answer"]
+    assert str(long["answer"]).endswith("Step 1 (to go to the kitchen) had run for 40 s when the recording ends.")
+    assert tried["answer"] == ("Yes. For step 1 (to go to the kitchen), my planner failed to find a path once, and "
+                               "the step was still going when the recording ends."), tried["answer"]
+
+
+def test_a_fix_asked_after_the_tries_of_a_run_that_did_not_fail_is_its_findings(suite: Path) -> None:
+    """A slow trip that got there: after "did you try again?", "what should I check?" is about why it was slow,
+    not "nothing went wrong"."""
+    first, tried, fix = _ask(suite / "bagfile_8_1", "what happened?", "did you try again?", "what should I check?")
+    assert "not sure where I was on my map" in str(first["answer"])
+    assert str(tried["answer"]).startswith("I didn't need to")
+    assert "relocalise" in str(fix["answer"]) and "Nothing went wrong" not in str(fix["answer"]), fix["answer"]
