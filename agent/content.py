@@ -111,6 +111,8 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
         # min() keeps the first of equal rank, so the task being discussed wins a tie
         candidate, run = min(matches, key=lambda m: _rank(m[1]))
         return _went_step(log, candidate, run, current=candidate is task)
+    if _BACK.search(q):
+        return _went_back(log, task)
     under_way = next((run for run in task.skills if run.skill in NAV_SKILLS and run.state == "running"), None)
     if under_way is not None and _ASKED_PLACE.search(q) is None and not any(w in q for w in ("person", "someone")):
         return _went_step(log, task, under_way, current=True)  # "where are you going?": the trip not over yet
@@ -141,6 +143,27 @@ def went(question: str, log: EventLog, task: Task) -> Explanation:
         text = f"For {task_name(task, log)}, {trips_words(task)}. {plan}"
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_plan_evidence(task, None, "planner.plan_ok"))
+
+
+_BACK = re.compile(r"\b(go|went|drive|drove|come|came|head|headed|walk|walked|turn|turned) (back|home|around)\b")
+
+
+def _went_back(log: EventLog, task: Task) -> Explanation:
+    """"Why did you go back?": the last trip after the first one, of the task or of the recovery tasks right after
+    it (a robot that fails drives back in its own recovery); a robot that made one trip or none went nowhere back."""
+    owners = [task]
+    for later in sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order):
+        if not later.is_recovery:
+            break
+        owners.append(later)
+    trips = [(t, r) for t in owners for r in t.skills if r.skill in NAV_SKILLS and _started(r)]
+    if len(trips) >= 2:
+        owner, run = trips[-1]
+        return _went_step(log, owner, run, current=owner is task)
+    plan = sentence(f"My plan was to {plan_words(task)}")
+    done = trips_words(task) if trips else "I didn't drive anywhere"
+    return Explanation(explainer="planner", text=f"I didn't go back for {task_name(task, log)}: {done}. {plan}",
+                       causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
 
 
 def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Explanation:

@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
+from hexar.agent.sequence import AFTER, TASKS
 from hexar.agent.state import Intent
 
 _DEEPER = re.compile(
@@ -35,6 +36,7 @@ _ORDINALS = {"first": "first", "second": "2", "third": "3", "last": "latest", "p
 
 # Questions about what the robot did, not about a problem: answered from the recording's content.
 _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( back| over)? (to|into|towards?|there)\b|"
+                   r"^(and |so |but )?why did you (go|drive|come|head|walk|turn) (back|home|around)\W*$|"
                    r"^where did you (go|drive)\b|^where have you been\b|"
                    # asked of a robot on its way (a live node): the trip under way and why
                    r"^(and |so |but )?why are you (going|driving|coming|heading|walking)( back| over)? "
@@ -86,7 +88,7 @@ def module_asked(question: str) -> str | None:
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
-                  ("talked", _TALKED), ("tried", TRIED))
+                  ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS))
 
 
 def is_order(question: str) -> bool:
@@ -96,9 +98,9 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'long', 'when', 'talked', 'tried' or 'said' for a question about what the robot did,
-    'act' for a request to do something, 'stop' for an order to stop and 'next' for one about what it will do; None
-    for anything else."""
+    """'went', 'where', 'far', 'long', 'when', 'talked', 'tried', 'after', 'tasks' or 'said' for a question about
+    what the robot did, 'act' for a request to do something, 'stop' for an order to stop and 'next' for one about
+    what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

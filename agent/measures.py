@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from datetime import UTC, datetime
 from typing import Literal
 
 from hexar.agent.content import task_name
@@ -33,7 +34,13 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",
               r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
-              r"reach|finish|stop|end|come back|return|drive|head)\b",)),
+              r"reach|finish|stop|end|come back|return|drive|head)\b",
+              # the day a developer replays a run from: answered with its date
+              r"^(and |so |ok |okay )?when (did|does) (it|this|that|all (this|that)) (happen|take place|start|begin)\b",
+              r"^(and |so |ok |okay )?when was (it|this|that)( recorded)?\W*$",
+              r"^(and |so |ok |okay )?when was (this|the|that) (recording|run) (made|recorded|taken)\b",
+              r"^(and |so |ok |okay )?(what|which) (day|date) (was|is) (it|this|that)\b",
+              r"^(and |so |ok |okay )?on what (day|date)\b")),
 )
 _KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
 
@@ -207,11 +214,31 @@ def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | No
     return None
 
 
+_DATED = re.compile(r"\b(day|date|happen|take place|recorded|recording|run)\b|^(and |so |ok |okay )?when was")
+
+
+# Before 2000 on the robot's clock: a simulator's time, which starts at zero, and no calendar day.
+_SIM_CLOCK_NS = 946_684_800 * 1_000_000_000
+
+
+def _on(t: int) -> str:
+    """"On Monday 10 March 2025.": the day of a time on the robot's clock, in UTC."""
+    if t < _SIM_CLOCK_NS:
+        return "My clock was a simulator's, which starts at zero, so my recording gives no calendar day."
+    d = datetime.fromtimestamp(t / 1e9, tz=UTC)
+    return f"On {d:%A} {d.day} {d:%B %Y}."
+
+
 def when(question: str, log: EventLog, task: Task) -> Explanation:
-    """A trip the question asks about (see _trip_asked): its times; otherwise the task's."""
-    asked = _trip_asked(question.lower().replace("_", " "), log, task)
+    """A trip the question asks about (see _trip_asked): its times; otherwise the task's (with its day when the
+    question asks when it all happened)."""
+    q = " ".join(question.lower().replace("_", " ").split())
+    asked = _trip_asked(q, log, task)
     if asked is None:
-        return long(log, task, lead_with_times=True)
+        timed = long(log, task, lead_with_times=True)
+        if _DATED.search(q) is None:
+            return timed
+        return timed.model_copy(update={"text": f"{_on(task.created)} {timed.text}"})
     owner, run = asked
     start = run.time_of("running")
     place = _goal(run)

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from hexar import progress
 from hexar.agent import content as answers
-from hexar.agent import guard, measures
+from hexar.agent import guard, measures, sequence
 from hexar.agent.attempts import tried
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
@@ -317,6 +317,12 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = talked(ctx, state, task)
     elif kind == "tried":
         exp = with_failure(ctx, state, tried(state["question"], ctx.log, task))
+    elif kind == "after":
+        nxt = sequence.next_task(ctx.log, task)
+        why = recovery(ctx.log, nxt, ctx.probe, "why did you do that?") if nxt is not None else None
+        exp = sequence.after(ctx.log, task, why)
+    elif kind == "tasks":
+        exp = sequence.tasks(ctx.log)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

@@ -209,4 +209,4 @@ def recovery(log: EventLog, task: Task, registry: object, question: str) -> Expl
     evidence = [*cause.evidence, Evidence(cause=cause.causes[0] if cause.causes else "planner.plan_ok",
                                           topic="/task_info", t=task.created, item=f"recovery task after: {item}")]
     return cause.model_copy(update={"text": text, "evidence": evidence,
-                                    "details": [f"My recovery plan was to {did}.", *cause.details]})
+                                    "details": [sentence(f"My recovery plan was to {did}"), *cause.details]})

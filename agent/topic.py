@@ -46,7 +46,7 @@ position location pose arm gripper hand pick picked place placed grab grasp hold
 put object person people someone somebody human help helped answer said say speak speaking voice talk navigation
 planner planning controller control manipulation localisation localization battery charge charging sensor sensors
 camera laser lidar scan obstacle obstacles collision blocked wall door reason cause because fix change changes check
-look wait waited waiting work worked held
+look wait waited waiting work worked held day date recorded recording
 """)
 # The world outside the robot: the words people ask a robot about it with are in the question vocabulary (so they
 # are not gibberish), but they are a topic only where the recording names them (a robot that read the news aloud).

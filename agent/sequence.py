@@ -1,0 +1,100 @@
+""""And then?", "what did you do after that?": what the robot did after the task being talked about (its own
+recovery, the next request), and "what tasks did you have?": the recording's tasks in order. Told from /task_info
+(or the goals read from Nav2's logs), never from a failure nobody asked about."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.content import task_name
+from hexar.agent.overview import steps_summary
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import clock
+from hexar.events.tasks import Task
+from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.recorded import plan_words, sentence, step_ref
+
+_LEAD = r"^(and |so |ok |okay |but )?"
+AFTER = re.compile(
+    _LEAD + r"(and )?then( what)?\W*$|"
+    + _LEAD + r"what (did you do|happened|did you) (next|after( that| this| it)?|then|afterwards)\b|"
+    + _LEAD + r"what (came|comes) (next|after)( that| this)?\W*$|"
+    + _LEAD + r"(and )?after (that|this)\W*$")
+TASKS = re.compile(
+    _LEAD + r"(how many|what|which) (tasks|jobs|errands|requests) (did you (have|do|get|run)|were there|have you (had|"
+    r"done))\b|" + _LEAD + r"what (was|were) (your|the) (first|second|third|last|other) (task|request|job)s?\b|"
+    + _LEAD + r"(list|show me) (your|the|all) tasks\b")
+
+_OUTCOME = {"succeeded": "done", "failed": "failed", "invalid": "rejected before it started",
+            "canceled": "canceled", "running": "still under way when the recording ends",
+            "waiting": "not started when the recording ends"}
+
+
+def _ending(task: Task) -> str:
+    failed = task.failed_skill
+    if failed is not None:
+        return f"failed at {step_ref(failed)}"
+    return _OUTCOME.get(task.outcome, task.outcome)
+
+
+_DID = {"succeeded": "and I did it", "failed": "and it failed", "invalid": "but it was rejected before it started",
+        "canceled": "but it was canceled", "running": "and it was still under way when the recording ends",
+        "waiting": "but it had not started when the recording ends"}
+
+
+def _did(task: Task) -> str:
+    """What a task did, briefly: each of its steps when it has several, else its one step and how it ended."""
+    summary = steps_summary(task)
+    if summary or not task.skills:
+        return summary
+    return sentence(f"My plan was to {plan_words(task)}, {_DID.get(task.outcome, task.outcome)}")
+
+
+def next_task(log: EventLog, task: Task) -> Task | None:
+    return min((t for t in log.tasks if t.order > task.order), key=lambda t: t.order, default=None)
+
+
+def after(log: EventLog, task: Task, reason: Explanation | None = None) -> Explanation:
+    """The next task of the recording after `task`, or that nothing came after it. `reason`: why the robot did the
+    next task (the failure a recovery task recovers from), which "why?" then goes on to."""
+    later = sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order)
+    name = task_name(task, log)
+    if not later:
+        end = clock(max(task.last_update, log.end)).split(".")[0]
+        text = (f"Nothing more: {name} was the last task in my recording, which ends at {end} UTC." if
+                task.outcome not in {"running", "waiting"} else
+                f"Nothing more: {name} was still under way when my recording ends, at {end} UTC.")
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                           evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.last_update,
+                                              item=f"task {task.order}: {_item(task, log)} {task.outcome}")])
+    nxt = later[0]
+    gap = (nxt.created - task.last_update) / 1e9
+    when = "Right after that" if gap < 5 else f"{round(gap)} s later"
+    text = f"{when}, I started on {task_name(nxt, log)}. {_did(nxt)}".strip()
+    if len(later) > 1:
+        text += f" {len(later) - 1} more task{'s' if len(later) > 2 else ''} came after it."
+    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=nxt.created,
+                         item=f"task {nxt.order}: {_item(nxt, log)}")]
+    if reason is None:
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)
+    return reason.model_copy(update={"text": text, "evidence": [*reason.evidence, *evidence],
+                                     "details": [reason.text, *reason.details]})
+
+
+def _item(task: Task, log: EventLog) -> str:
+    return task.instruction or task_name(task, log)
+
+
+def tasks(log: EventLog) -> Explanation:
+    """Every task of the recording, in order, with how each ended."""
+    listed = sorted(log.tasks, key=lambda t: t.order)
+    parts = [f"{t.order}. {task_name(t, log)}, {_ending(t)}" for t in listed]
+    head = "I had one task in this recording: " if len(listed) == 1 else \
+        f"I had {len(listed)} tasks in this recording: "
+    text = head + (parts[0].split(". ", 1)[1] if len(listed) == 1 else "; ".join(parts)) + "."
+    if len(listed) > 1:
+        text += " Ask me about one with \"what about task 2?\"."
+    return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=t.created,
+                                          item=f"task {t.order}: {_item(t, log)} {t.outcome}") for t in listed])

@@ -1,0 +1,93 @@
+""""And then?", "what tasks did you have?", "when did this happen?", "why did you go back?": the order of the
+recording's tasks and trips and their day, told from /task_info, not the failure nobody asked about."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.followups import content_kind
+from hexar.agent.session import Session
+from hexar.evals.scenarios.bag import BagBuilder
+from hexar.events import read_recording
+from hexar.events.records import clock
+
+
+def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    return [session.ask(q, thread=thread) for q in questions]
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("and then?", "after"), ("what did you do after that?", "after"), ("what happened next?", "after"),
+    ("then what", "after"), ("how many tasks did you have?", "tasks"), ("what was your first task?", "tasks"),
+    ("when did this happen?", "when"), ("what day was it?", "when"), ("when was this recorded?", "when"),
+    ("why did you go back?", "went"), ("what happens next?", "next"), ("what will you do next?", "next"),
+])
+def test_kinds(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_and_then_tells_the_recovery_and_why_goes_on_to_the_failure_it_recovers_from(suite: Path) -> None:
+    first, then, why, why2 = _ask(suite / "bagfile_5_1", "what happened?", "and then?", "why?", "why?")
+    assert "blocked my path" in str(first["answer"])
+    assert then["answer"] == ('Right after that, I started on my own recovery task after task 1 failed. My plan was '
+                              'to say "Sorry, I could not complete the task.", and I did it.'), then["answer"]
+    assert "Failed to make progress" in str(why["answer"]) and 'task 2: "' not in str(why["answer"])
+    assert str(why2["answer"]).startswith("I did my own recovery task") and "blocked my path" in str(why2["answer"])
+    assert '."."' not in str(why2["answer"]) and '.".' not in str(why2["answer"]), why2["answer"]
+
+
+def test_and_then_after_the_last_task_says_nothing_more(suite: Path) -> None:
+    log = read_recording(suite / "bagfile_10_1")
+    (then,) = _ask(suite / "bagfile_10_1", "and then?")
+    end = clock(max(log.task().last_update, log.end)).split(".")[0]
+    assert then["answer"] == ('Nothing more: your request "Bring me a coffee from the kitchen" was the last task in my '
+                              f"recording, which ends at {end} UTC.")
+
+
+def test_the_tasks_are_listed_in_order_with_how_each_ended(suite: Path) -> None:
+    (listed,) = _ask(suite / "bagfile_1_1", "how many tasks did you have?")
+    assert listed["answer"] == ('I had 2 tasks in this recording: 1. your request "Bring me a coffee from the '
+                                'kitchen", rejected before it started; 2. my own recovery task after task 1 had an '
+                                'invalid plan, done. Ask me about one with "what about task 2?".')
+    (one,) = _ask(suite / "bagfile_10_1", "what was your first task?")
+    assert one["answer"] == 'I had one task in this recording: your request "Bring me a coffee from the kitchen", done.'
+
+
+def test_when_it_happened_gives_the_day(suite: Path) -> None:
+    from datetime import UTC, datetime
+
+    task = read_recording(suite / "bagfile_5_1").task()
+    day = datetime.fromtimestamp(task.created / 1e9, tz=UTC)
+    dated, started = _ask(suite / "bagfile_5_1", "when did this happen?", "when did you start?")
+    assert str(dated["answer"]).startswith(f"On {day:%A} {day.day} {day:%B %Y}. I started on your request")
+    assert str(started["answer"]).startswith("I started on your request")  # a time of day, asked as one
+
+
+def test_a_simulators_clock_gives_no_day(tmp_path: Path) -> None:
+    b = BagBuilder()
+    for t, status in ((120_000_000_000, "Running"), (150_000_000_000, "succeeded")):
+        b.task_info(t, {"instruction": "Go to the kitchen", "task_id": "T1", "task_status": "valid",
+                        "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone",
+                                                                  "params": {"location": "kitchen"},
+                                                                  "status": status, "error_msg": ""}]})
+    (answer,) = _ask(b.write(tmp_path / "gazebo"), "what day was it?")
+    assert str(answer["answer"]).startswith("My clock was a simulator's, which starts at zero, so my recording gives "
+                                            "no calendar day. I started on"), answer["answer"]
+    assert "1970" not in str(answer["answer"])
+
+
+def test_why_did_you_go_back(suite: Path) -> None:
+    (recovered,) = _ask(suite / "bagfile_14_1", "why did you go back?")
+    assert str(recovered["answer"]).startswith("I went to the living room because step 1 of my plan for my own "
+                                               "recovery task after task 1 failed"), recovered["answer"]
+    (delivered,) = _ask(suite / "bagfile_10_1", "why did you go back?")
+    assert str(delivered["answer"]).startswith("I went to the living room because step 3 of my plan")
+    (never,) = _ask(suite / "bagfile_5_1", "why did you go back?")
+    assert str(never["answer"]).startswith('I didn\'t go back for your request "Bring me a coffee from the kitchen": '
+                                           "I tried to go to the kitchen but didn't get there")
