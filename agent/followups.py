@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
-from hexar.agent.sequence import AFTER, TASKS
+from hexar.agent.sequence import AFTER, DOING, TASKS
 from hexar.agent.state import Intent
 
 _DEEPER = re.compile(
@@ -88,7 +88,8 @@ def module_asked(question: str) -> str | None:
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
-                  ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS))
+                  ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
+                  ("doing", DOING))
 
 
 def is_order(question: str) -> bool:
@@ -98,9 +99,9 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'long', 'when', 'talked', 'tried', 'after', 'tasks' or 'said' for a question about
-    what the robot did, 'act' for a request to do something, 'stop' for an order to stop and 'next' for one about
-    what it will do; None for anything else."""
+    """'went', 'where', 'far', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing' or 'said' for a question
+    about what the robot did, 'act' for a request to do something, 'stop' for an order to stop and 'next' for one
+    about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

@@ -66,7 +66,7 @@ def _at(t: int) -> str:
     return clock(t).split(".")[0]
 
 
-def _span(ns: int) -> str:
+def duration(ns: int) -> str:
     s = round(max(ns, 0) / 1e9)
     if s == 0:
         return "less than a second"
@@ -135,11 +135,11 @@ def far(log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {name}.",
                            causes=["planner.plan_ok"], evidence=evidence)
     total = sum(s.metres or 0.0 for s in moved)
-    parts = [f"{s.metres or 0.0:.1f} m {_during(s.run)} ({_span(s.end - s.start)})" for s in moved]
+    parts = [f"{s.metres or 0.0:.1f} m {_during(s.run)} ({duration(s.end - s.start)})" for s in moved]
     head = f"For {name}, I drove about {total:.1f} m"
     # each leg says how long it took; one span over all of them would count the steps between them as driving
     text = f"{head}: {join_words(parts)}." if len(moved) > 1 else \
-        f"{head} in {_span(moved[0].end - moved[0].start)}, {_during(moved[0].run)}."
+        f"{head} in {duration(moved[0].end - moved[0].start)}, {_during(moved[0].run)}."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(task, [s.run for s in moved]),
                        details=["Distances are the path my position estimate traced, so they include its jumps."])
@@ -165,11 +165,11 @@ def _ended(task: Task) -> str:
 
 def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanation:
     steps = _steps(log, task)
-    span = _span(task.last_update - task.created)
+    span = duration(task.last_update - task.created)
     ended = _ended(task)
     name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
-        span = _span(_recorded_until(log, task) - task.created)
+        span = duration(_recorded_until(log, task) - task.created)
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
                 f"{_at(task.created)} UTC.")
     elif lead_with_times:
@@ -178,8 +178,8 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
         text = (f"{name[0].upper()}{name[1:]} took {span}, from {_at(task.created)} to {_at(task.last_update)} UTC; "
                 f"{ended}.")
     if steps:
-        each = "; ".join(f"{step_ref(s.run)} had run for {_span(s.end - s.start)} when the recording ends"
-                         if s.run.state == "running" else f"{step_ref(s.run)} took {_span(s.end - s.start)}"
+        each = "; ".join(f"{step_ref(s.run)} had run for {duration(s.end - s.start)} when the recording ends"
+                         if s.run.state == "running" else f"{step_ref(s.run)} took {duration(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
@@ -249,11 +249,11 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
             if failed is not None and failed.index < run.index else "it never started"
         text = f"I never set off for {place}: that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
     elif run.state == "succeeded":
-        text = (f"{lead}I got to {place} at {_at(run.last_change)} UTC, {_span(run.last_change - start)} after I set "
-                f"off at {_at(start)}.")
+        text = (f"{lead}I got to {place} at {_at(run.last_change)} UTC, {duration(run.last_change - start)} after I "
+                f"set off at {_at(start)}.")
     elif run.state == "failed":
         text = (f"{lead}I never got to {place}: I set off at {_at(start)} UTC and gave up at {_at(run.last_change)}, "
-                f"{_span(run.last_change - start)} later.")
+                f"{duration(run.last_change - start)} later.")
     else:
         text = f"{lead}I set off for {place} at {_at(start)} UTC; the recording ends before I got there."
     text = text[0].upper() + text[1:]

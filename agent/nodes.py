@@ -323,6 +323,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "tasks":
         exp = sequence.tasks(ctx.log)
+    elif kind == "doing":
+        exp = with_failure(ctx, state, sequence.doing(ctx.log, task))
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

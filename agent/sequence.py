@@ -7,13 +7,14 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import task_name
+from hexar.agent.measures import duration
 from hexar.agent.overview import steps_summary
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.records import clock
-from hexar.events.tasks import Task
+from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import plan_words, sentence, step_ref
+from hexar.explainers.recorded import NAV_SKILLS, place_name, plan_words, sentence, step_ref
 
 _LEAD = r"^(and |so |ok |okay |but )?"
 AFTER = re.compile(
@@ -98,3 +99,46 @@ def tasks(log: EventLog) -> Explanation:
     return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=t.created,
                                           item=f"task {t.order}: {_item(t, log)} {t.outcome}") for t in listed])
+
+
+DOING = re.compile(
+    _LEAD + r"what were you (doing|up to|working on|in the middle of)( when| at the time| then| at that (time|point)|"
+    r" before| right before)?\b|"
+    + _LEAD + r"what was happening when\b|"
+    + _LEAD + r"what step (was it|were you|did (you|it) (fail|stop|give up))\b|"
+    + _LEAD + r"(at )?which step (did it|did you) (fail|stop|give up)\b")
+
+
+def _at_place(task: Task, run: SkillRun) -> str:
+    """' in the kitchen': where the robot was for a step, the place its last trip before it reached."""
+    trips = [r for r in task.skills if r.index < run.index and r.skill in NAV_SKILLS]
+    last = trips[-1] if trips else None
+    if last is None or last.state != "succeeded" or not isinstance(last.params.get("location"), str):
+        return ""
+    return " in " + place_name(last.params["location"])
+
+
+def doing(log: EventLog, task: Task) -> Explanation:
+    """"What were you doing when it failed?": the step under way when the task failed (or when the recording
+    ends, of a task still going), where the robot was for it and for how long."""
+    failed = task.failed_skill
+    going = next((r for r in task.skills if r.state == "running"), None)
+    run = failed or going
+    if run is None or (start := run.time_of("running")) is None:
+        summary = steps_summary(task) or sentence(f"My plan was to {plan_words(task)}, {_DID.get(task.outcome, '')}")
+        lead = "Nothing failed. " if task.outcome == "succeeded" else ""
+        return Explanation(explainer="planner", text=f"{lead}{summary}".strip(), causes=["planner.plan_ok"],
+                           evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created,
+                                              item=task.instruction or task_name(task, log))])
+    end = run.time_of("failed") or run.last_change if failed is not None else max(task.last_update, log.end)
+    ran = duration(end - start)
+    if failed is not None:
+        text = (f"When it failed at {clock(end).split('.')[0]} UTC, I was at {step_ref(run)}{_at_place(task, run)}, "
+                f"{ran} into it.")
+    else:
+        text = (f"When my recording ends at {clock(end).split('.')[0]} UTC, I was at {step_ref(run)}"
+                f"{_at_place(task, run)}, for {ran} by then.")
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=h.t,
+                                          item=f"step {run.index + 1}: {run.label()} {h.status.strip().lower()}")
+                                 for h in run.history if h.status.strip().lower() in {"running", "failed"}])

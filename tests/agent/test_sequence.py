@@ -91,3 +91,28 @@ def test_why_did_you_go_back(suite: Path) -> None:
     (never,) = _ask(suite / "bagfile_5_1", "why did you go back?")
     assert str(never["answer"]).startswith('I didn\'t go back for your request "Bring me a coffee from the kitchen": '
                                            "I tried to go to the kitchen but didn't get there")
+
+
+@pytest.mark.parametrize("question", ["what were you doing when it failed?", "what step did you fail at?",
+                                      "what were you doing at the time", "at which step did it fail?"])
+def test_what_were_you_doing_is_the_step_under_way(suite: Path, question: str) -> None:
+    log = read_recording(suite / "bagfile_5_1")
+    failed = log.task().failed_skill
+    assert failed is not None
+    at = clock(failed.time_of("failed") or failed.last_change).split(".")[0]
+    (answer,) = _ask(suite / "bagfile_5_1", question)
+    assert answer["answer"] == f"When it failed at {at} UTC, I was at step 1 (to go to the kitchen), 36 s into it."
+
+
+def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, tmp_path: Path) -> None:
+    (clean,) = _ask(suite / "bagfile_10_1", "what were you doing when it failed?")
+    assert str(clean["answer"]).startswith("Nothing failed. I did all 4 steps of my plan")
+    b = BagBuilder()
+    for t, status in ((1_741_600_000_000_000_000, "Running"), (1_741_600_050_000_000_000, "Running")):
+        b.task_info(t, {"instruction": "Go to the kitchen", "task_id": "T1", "task_status": "valid",
+                        "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone",
+                                                                  "params": {"location": "kitchen"},
+                                                                  "status": status, "error_msg": ""}]})
+    (going,) = _ask(b.write(tmp_path / "going"), "what were you doing?")
+    assert str(going["answer"]).startswith("When my recording ends at ") and \
+        str(going["answer"]).endswith("UTC, I was at step 1 (to go to the kitchen), for 50 s by then."), going["answer"]
