@@ -136,8 +136,8 @@ def doing(log: EventLog, task: Task) -> Explanation:
         text = (f"When it failed at {clock(end).split('.')[0]} UTC, I was at {step_ref(run)}{_at_place(task, run)}, "
                 f"{ran} into it.")
     else:
-        text = (f"When my recording ends at {clock(end).split('.')[0]} UTC, I was at {step_ref(run)}"
-                f"{_at_place(task, run)}, for {ran} by then.")
+        text = (f"At {clock(end).split('.')[0]} UTC, when my recording ends, I was at {step_ref(run)}"
+                f"{_at_place(task, run)}, {ran} into it.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=h.t,
                                           item=f"step {run.index + 1}: {run.label()} {h.status.strip().lower()}")

@@ -114,5 +114,9 @@ def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, 
                                                                   "params": {"location": "kitchen"},
                                                                   "status": status, "error_msg": ""}]})
     (going,) = _ask(b.write(tmp_path / "going"), "what were you doing?")
-    assert str(going["answer"]).startswith("When my recording ends at ") and \
-        str(going["answer"]).endswith("UTC, I was at step 1 (to go to the kitchen), for 50 s by then."), going["answer"]
+    assert str(going["answer"]).startswith("At ") and str(going["answer"]).endswith(
+        " UTC, when my recording ends, I was at step 1 (to go to the kitchen), 50 s into it."), going["answer"]
+    # said live, while the robot is still at it: no recording in the words
+    from hexar.live.present import heard_words
+
+    assert "when I last heard of it, I was at step 1" in heard_words(str(going["answer"]))
