@@ -19,6 +19,7 @@ from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
     asks_fix,
+    confirmed,
     helped,
     presumes_goal_not_done,
     presumes_not_done,
@@ -256,6 +257,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
     lead = yes_or_no(question, task.outcome) if state.get("route") != "recovery" else ""
+    lead = lead or confirmed(question, {c for e in kept for c in e["causes"]}, BENIGN)
     if lead and text:
         text = with_lead(text, lead)
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}

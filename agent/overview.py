@@ -111,6 +111,32 @@ def yes_or_no(question: str, outcome: str) -> str:
     return "Yes." if done != failing else "No."
 
 
+# "Were you charging?", "was your path blocked?": a yes-or-no question about one condition the explainers name.
+_ASKS_YES_NO = re.compile(_LEAD + r"(?:was|were|wasn't|weren't|is|are|isn't|aren't|did|didn't|do|does|had|has|have|"
+                          r"hadn't|hasn't|could|couldn't)\b")
+
+
+def confirmed(question: str, causes: Set[str], benign: Set[str]) -> str:
+    """"Yes." for a yes-or-no question about a cause the answer states ("were you charging?" when I was), "No." for
+    one about a problem where the answer found nothing wrong; "" otherwise: where another problem was found, the
+    answer says which, with no yes or no that no explainer decided (both may have held)."""
+    from hexar.causes import vocabulary
+    from hexar.claims import read_claims
+
+    q = " ".join(question.strip().lower().split())
+    if _ASKS_YES_NO.match(q) is None:
+        return ""
+    claims = read_claims(q)
+    asked = {c for c in claims.affirmed | claims.denied if not c.startswith("claim.")} - set(benign)
+    if len(asked) != 1 or not causes:
+        return ""
+    vocab = vocabulary()
+    stated = set(causes) | {i for c in causes if c in vocab for i in vocab[c].implies}
+    if asked <= stated:
+        return "Yes."
+    return "No." if set(causes) <= set(benign) else ""
+
+
 def with_lead(text: str, lead: str) -> str:
     """`text` opened by `lead` ("Yes." or "No."): a model's own "Yes," or "No." is kept where it agrees with the
     recorded outcome and replaced where it does not ("No pizza was recorded" opens with no answer word)."""

@@ -1,0 +1,38 @@
+""""Were you charging?", "was your path blocked?": a yes-or-no question about one condition is answered "Yes." where
+the explainer found it, "No." where it found nothing wrong, and with no yes or no where it found another problem."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.overview import confirmed
+from hexar.agent.session import Session
+from hexar.causes import BENIGN
+
+
+def _ask(run: Path, question: str) -> str:
+    return str(Session(RunSettings(recording=run, llm="none")).ask(question)["answer"])
+
+
+@pytest.mark.parametrize(("run", "question", "lead"), [
+    ("bagfile_7_3", "were you charging?", "Yes. I couldn't reach the kitchen because I was plugged into my charger"),
+    ("bagfile_6_2", "were you in manual mode?", "Yes. I couldn't reach the dining room because my joystick"),
+    ("bagfile_5_1", "was your path blocked?", "Yes. I couldn't reach the kitchen because something blocked my path"),
+    ("bagfile_5_1", "wasn't something in the way?", "Yes. I couldn't reach the kitchen because something blocked"),
+    ("bagfile_10_1", "was your path blocked?", "No. I reached the kitchen without any problem."),
+    # another problem found: it is told, with no yes or no that nothing decided
+    ("bagfile_7_3", "was your path blocked?", "I couldn't reach the kitchen because I was plugged into my charger"),
+    ("bagfile_6_2", "were you charging?", "I couldn't reach the dining room because my joystick"),
+])
+def test_a_condition_asked_about(suite: Path, run: str, question: str, lead: str) -> None:
+    assert _ask(suite / run, question).startswith(lead)
+
+
+def test_only_yes_or_no_questions_about_one_condition_get_a_lead() -> None:
+    assert confirmed("why was your path blocked?", {"navigation.blocked_path"}, BENIGN) == ""
+    assert confirmed("what happened?", {"navigation.blocked_path"}, BENIGN) == ""
+    assert confirmed("was it blocked or were you charging?", {"navigation.blocked_path"}, BENIGN) == ""
+    assert confirmed("was your path blocked?", {"navigation.blocked_path"}, BENIGN) == "Yes."
