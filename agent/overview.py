@@ -90,7 +90,9 @@ _YES_NO = re.compile(
     _LEAD + r"(?:did|didn't|did not|have|haven't|have not|has|hasn't|has not|could|couldn't|could not) "
     + _SUBJECT + r" (?:(?:actually|really|even|ever|finally|successfully) )?(?:(?:manage|managed) to )?"
     r"(?P<verb>reach(?:ed)? (?:the|your|my|its) (?:goal|destination|target)|get there|got there|make it|made it|"
-    r"succeed(?:ed)?|finish(?:ed)?|complete(?:d)?|arrive(?:d)?|do it|done it|do that|done that|"
+    # "did you finish?" asks about the task; "did you finish the sentence?" about one thing the task did
+    r"succeed(?:ed)?|(?:finish(?:ed)?|complete(?:d)?)(?= (?:it|that|the task|the job|your task|everything|in time)\b"
+    r"|\W*$)|arrive(?:d)?|do it|done it|do that|done that|"
     r"fail(?:ed)?|give up|given up|gave up|get stuck|got stuck)\b|"
     + _LEAD + r"(?:were|was|weren't|wasn't) " + _SUBJECT
     + r" (?P<state>successful|a success|able to do it|a failure|unsuccessful)\b|"

@@ -36,3 +36,13 @@ def test_only_yes_or_no_questions_about_one_condition_get_a_lead() -> None:
     assert confirmed("what happened?", {"navigation.blocked_path"}, BENIGN) == ""
     assert confirmed("was it blocked or were you charging?", {"navigation.blocked_path"}, BENIGN) == ""
     assert confirmed("was your path blocked?", {"navigation.blocked_path"}, BENIGN) == "Yes."
+
+
+def test_did_you_finish_the_sentence_is_not_a_yes_or_no_on_the_task(suite: Path) -> None:
+    """"Did you finish?" asks about the task; "did you finish the sentence?" about a sentence, which a task that
+    failed at asking for help never spoke: no "No." taken from the task's outcome."""
+    from hexar.agent.overview import yes_or_no
+
+    assert yes_or_no("did you finish?", "failed") == "No." and yes_or_no("did you finish it?", "succeeded") == "Yes."
+    assert yes_or_no("did you finish the sentence?", "failed") == ""
+    assert not _ask(suite / "bagfile_16_1", "did you finish the sentence?").startswith("No.")
