@@ -32,7 +32,9 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"(take|need|spend|drive|be)\b",
               r"^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b",
               r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",
-              r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b")),
+              r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b",
+              # "how long did you wait?": every step's time is in the answer, the one asked about among them
+              r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
               r"reach|finish|stop|end|come back|return|drive|head)\b",
               # the day a developer replays a run from: answered with its date

@@ -27,6 +27,7 @@ def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
     ("then what", "after"), ("how many tasks did you have?", "tasks"), ("what was your first task?", "tasks"),
     ("when did this happen?", "when"), ("what day was it?", "when"), ("when was this recorded?", "when"),
     ("why did you go back?", "went"), ("what happens next?", "next"), ("what will you do next?", "next"),
+    ("how long did you wait?", "long"), ("how long did you talk?", "long"),
 ])
 def test_kinds(question: str, kind: str) -> None:
     assert content_kind(question) == kind
