@@ -55,6 +55,7 @@ _SOURCE = {
     "/skills/recommend_pizza/events": "my pizza recommender",
 }
 CONFIDENT = 0.45
+SAID_BEFORE = "I have nothing more specific on that than what I just said:"
 KEEP_TURNS = 20  # the turns of a conversation kept in its saved state
 BUILTIN = {"planner", "navigation", "ask_human_for_help", "text_to_speech", "pizza_recommender"}
 
@@ -260,6 +261,9 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     lead = lead or confirmed(question, {c for e in kept for c in e["causes"]}, BENIGN)
     if lead and text:
         text = with_lead(text, lead)
+    elif text and not whole_task(question) and text in {t["answer"] for t in state.get("history", [])[-2:]}:
+        # a different question that finds nothing more specific: said as such, not as if it were news
+        text = f"{SAID_BEFORE} {text}"
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,

@@ -46,3 +46,26 @@ def test_did_you_finish_the_sentence_is_not_a_yes_or_no_on_the_task(suite: Path)
     assert yes_or_no("did you finish?", "failed") == "No." and yes_or_no("did you finish it?", "succeeded") == "Yes."
     assert yes_or_no("did you finish the sentence?", "failed") == ""
     assert not _ask(suite / "bagfile_16_1", "did you finish the sentence?").startswith("No.")
+
+
+def test_a_question_that_finds_nothing_new_says_so_rather_than_repeating_as_news(arm: Path) -> None:
+    from hexar.agent.nodes import SAID_BEFORE
+    from hexar.evals.scenarios.arm import arm_recording_name
+
+    run = arm / arm_recording_name("controllers_not_found", 1)
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    why, which = (str(session.ask(q, thread=thread)["answer"]) for q in ("why did it fail?", "which controller?"))
+    assert "MoveIt found no controllers for my arm's joints" in why
+    assert which == f"{SAID_BEFORE} {why}"
+    # asked first, in a conversation of its own, it is no repetition
+    assert _ask(run, "which controller?") == why
+
+
+@pytest.fixture(scope="module")
+def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from hexar.evals.scenarios.arm import simulate_arm_suite
+
+    out = tmp_path_factory.mktemp("arm")
+    simulate_arm_suite(out, only=lambda s, v: v == 1 and s == "controllers_not_found")
+    return out
