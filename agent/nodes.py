@@ -32,7 +32,7 @@ from hexar.agent.overview import (
 from hexar.agent.probes import failure_not_told, notable, probe, talked, with_failure
 from hexar.agent.questions import EXAMPLE, check_question, quoted
 from hexar.agent.state import AgentState
-from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, off_topic, recording_words
+from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
 from hexar.agent.walk import next_finding
 from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.explainers.base import Context, Explanation
@@ -82,8 +82,9 @@ def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         question = check_question(state.get("question", ""))
     except BadQuestionError as e:
         return {**reset, "intent": "invalid", "error": str(e), "answer": str(e)}
-    if about_me(question):
-        return {**reset, "question": question, "intent": "about", "answer": ABOUT_ME, "route": "none",
+    meaning = ABOUT_ME if about_me(question) else defined(question)
+    if meaning is not None:  # about HEXAR itself, or what a word of its answers means
+        return {**reset, "question": question, "intent": "about", "answer": meaning, "route": "none",
                 "timings_ms": {"intake": _ms(start)}}
     intent = intent_of(question, bool(state.get("explanations")))
     # the recording is read only for a question whose words name nothing a robot does

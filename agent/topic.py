@@ -13,6 +13,7 @@ import difflib
 import re
 from collections.abc import Iterable
 from functools import cache
+from importlib.resources import files
 
 from hexar.agent.questions import vocabulary
 from hexar.events.tasks import Task
@@ -118,3 +119,28 @@ OFF_TOPIC = ("I can only explain what I did, from what I recorded, and that ques
 
 def about_me(question: str) -> bool:
     return bool(_ABOUT_ME.match(" ".join(question.lower().split())))
+
+
+# "What is a costmap?", "what does AMCL mean?": a word of the answers, defined from agent/data/glossary.yaml.
+_DEFINE = re.compile(
+    r"^(?:(?:and|so|ok|okay|sorry|but)\W+)*(?:"
+    r"what(?:'s|s| is| are| was)(?: an?| the| your| my| this| that)? (?P<a>[a-z0-9_ ]+?)|"
+    r"what (?:does|do) (?:(?:an?|the|your|my|this|that) )?(?P<b>[a-z0-9_ ]+?) (?:mean|stand for|do)|"
+    r"(?:explain|define)(?: an?| the| what)? (?P<c>[a-z0-9_ ]+?)(?: is| means)?)\W*$")
+
+
+@cache
+def _glossary() -> dict[str, str]:
+    import yaml
+
+    raw = yaml.safe_load((files("hexar.agent") / "data" / "glossary.yaml").read_text(encoding="utf-8"))
+    return {said.lower(): " ".join(str(entry["means"]).split()) for entry in raw.values() for said in entry["say"]}
+
+
+def defined(question: str) -> str | None:
+    """What a term of the answers means ("what is a costmap?"), or None for any other question."""
+    m = _DEFINE.match(" ".join(question.lower().replace("-", " ").split()))
+    if m is None:
+        return None
+    term = next(t for t in (m.group("a"), m.group("b"), m.group("c")) if t)
+    return _glossary().get(term.strip())

@@ -90,3 +90,31 @@ def test_what_can_you_do_about_it_is_still_a_fix(suite: Path) -> None:
     first, fix = _ask(suite / "bagfile_5_1", "Why didn't you bring me the coffee?", "what can you do about it?")
     assert not about_me("what can you do about it?")
     assert fix["intent"] == "helped" and fix["answer"] != ABOUT_ME and "blocked" in str(first["answer"])
+
+
+@pytest.mark.parametrize(("question", "start"), [
+    ("what is a costmap?", "A costmap is the grid map my navigation plans on"),
+    ("What does AMCL mean?", "AMCL (adaptive Monte Carlo localisation)"),
+    ("whats use_sim_time", "use_sim_time is a ROS 2 parameter"),
+    ("what is MoveIt?", "MoveIt is the ROS 2 software that plans my arm's motions"),
+    ("what does the controller do?", "A controller turns a planned motion into commands"),
+])
+def test_a_word_of_the_answers_is_defined(suite: Path, question: str, start: str) -> None:
+    first, meant, why = _ask(suite / "bagfile_8_1", "what happened?", question, "why?")
+    assert meant["intent"] == "about" and str(meant["answer"]).startswith(start) and meant["error"] == ""
+    assert meant["explainers"] == [] and meant["causes"] == []
+    # the definition does not cut the conversation: "why?" still goes deeper on the first answer
+    assert why["route"] == "followup" and str(why["answer"]).startswith("Here is what I recorded")
+
+
+def test_every_glossary_entry_loads_and_no_known_question_is_taken_for_a_definition() -> None:
+    from hexar.agent.topic import _glossary, defined
+
+    terms = _glossary()
+    assert len(terms) >= 30 and all(len(meaning.split()) >= 10 for meaning in terms.values())
+    for term in terms:
+        assert defined(f"what is {term}?") == terms[term]
+    asked = {c.question for c in cases()} | {q for qs in examples().values() for q in qs}
+    asked |= {q for q, _, _ in PHRASINGS["accepted"]} | {"what did the controllers do?", "what is the plan?",
+                                                         "what is the problem?", "what was your plan?"}
+    assert [q for q in asked if defined(q)] == []
