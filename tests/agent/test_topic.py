@@ -101,6 +101,7 @@ def test_what_can_you_do_about_it_is_still_a_fix(suite: Path) -> None:
 ])
 def test_a_word_of_the_answers_is_defined(suite: Path, question: str, start: str) -> None:
     first, meant, why = _ask(suite / "bagfile_8_1", "what happened?", question, "why?")
+    assert "not sure where I was on my map" in str(first["answer"])
     assert meant["intent"] == "about" and str(meant["answer"]).startswith(start) and meant["error"] == ""
     assert meant["explainers"] == [] and meant["causes"] == []
     # the definition does not cut the conversation: "why?" still goes deeper on the first answer
