@@ -24,7 +24,12 @@ _HELPED = re.compile(
     r"how do i fix|"
     r"what (would|do|should) you (recommend|suggest) (i|we) (do|change)"
 )
-_ELSE = re.compile(r"what else|anything else|something else|any other (problem|issue)s?|what other")
+# "what else could you have picked?" asks for another choice (the counterfactual), not for more findings
+_CHOICE = r"(pick|picked|choose|chosen|recommend|recommended|suggest|suggested|offer|offered|go with|gone with)"
+_ELSE = re.compile(r"(what else|anything else|something else|what other)(?! (could|would|might|can) (you|i|we) "
+                   r"(have )?" + _CHOICE + r")|any other (problem|issue)s?")
+_ALTERNATIVE = re.compile(r"(what else|anything else|what other \w+) (could|would|might|can) (you|i|we) (have )?"
+                          + _CHOICE)
 _SWITCH = re.compile(
     r"(what|how) about (the )?(first|second|third|last|previous|other|earlier|\d+(st|nd|rd|th)?) task|"
     r"(what|how) about task \d+|"
@@ -124,7 +129,7 @@ def intent_of(question: str, has_history: bool) -> Intent:
         return "content"
     if not has_history:
         return "new"
-    if _HELPED.search(q):
+    if _HELPED.search(q) or _ALTERNATIVE.search(q):
         return "helped"
     if _ELSE.search(q):
         return "else"

@@ -121,3 +121,10 @@ def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, 
     from hexar.live.present import heard_words
 
     assert "when I last heard of it, I was at step 1" in heard_words(str(going["answer"]))
+
+
+def test_what_else_could_you_have_picked_is_the_alternative_not_the_next_finding(suite: Path) -> None:
+    _, other, more = _ask(suite / "bagfile_20_2", "what happened?", "what else could you have picked?",
+                          "what else happened?")
+    assert other["intent"] == "helped" and "I would have recommended a" in str(other["answer"]), other["answer"]
+    assert more["intent"] == "else" and "speech limit" in str(more["answer"])
