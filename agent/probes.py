@@ -50,7 +50,7 @@ def with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explan
 def notable(ctx: RunContext, state: AgentState, exclude: set[str],
             benign: frozenset[str] = NOTHING_WRONG) -> str | None:
     """For a question that names no module: the first explainer (in plan order) with a notable finding."""
-    for name in state["candidates"]:
+    for name in state.get("candidates", []):
         if name in exclude:
             continue
         found = probe(ctx, name, state["question"], state["task_id"])
