@@ -151,12 +151,8 @@ _BACK = re.compile(r"\b(go|went|drive|drove|come|came|head|headed|walk|walked|tu
 def _went_back(log: EventLog, task: Task) -> Explanation:
     """"Why did you go back?": the last trip after the first one, of the task or of the recovery tasks right after
     it (a robot that fails drives back in its own recovery); a robot that made one trip or none went nowhere back."""
-    owners = [task]
-    for later in sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order):
-        if not later.is_recovery:
-            break
-        owners.append(later)
-    trips = [(t, r) for t in owners for r in t.skills if r.skill in NAV_SKILLS and _started(r)]
+    trips = [(t, r) for t in [task, *later_recoveries(log, task)] for r in t.skills
+             if r.skill in NAV_SKILLS and _started(r)]
     if len(trips) >= 2:
         owner, run = trips[-1]
         return _went_step(log, owner, run, current=owner is task)
@@ -164,6 +160,16 @@ def _went_back(log: EventLog, task: Task) -> Explanation:
     done = trips_words(task) if trips else "I didn't drive anywhere"
     return Explanation(explainer="planner", text=f"I didn't go back for {task_name(task, log)}: {done}. {plan}",
                        causes=["planner.plan_ok"], evidence=_plan_evidence(task, None, "planner.plan_ok"))
+
+
+def later_recoveries(log: EventLog, task: Task) -> list[Task]:
+    """The robot's own recovery tasks right after this one (they drive it back after a failure)."""
+    out = []
+    for later in sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order):
+        if not later.is_recovery:
+            break
+        out.append(later)
+    return out
 
 
 def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Explanation:

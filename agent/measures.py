@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from typing import Literal
 
-from hexar.agent.content import task_name
+from hexar.agent.content import later_recoveries, task_name
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.records import clock
@@ -63,7 +63,7 @@ class _Step:
     metres: float | None  # None: no position recorded while it ran
 
 
-def _at(t: int) -> str:
+def hms(t: int) -> str:
     """A time of day to the second (the recording's stamps are UTC)."""
     return clock(t).split(".")[0]
 
@@ -95,12 +95,12 @@ def _steps(log: EventLog, task: Task) -> list[_Step]:
         if start is None:
             continue
         # a step still under way ran until the recording's last word on its task, not only to its start
-        end = max(_recorded_until(log, task) if run.state == "running" else run.last_change, start)
+        end = max(recorded_until(log, task) if run.state == "running" else run.last_change, start)
         out.append(_Step(run, start, end, _path(log, start, end)))
     return out
 
 
-def _recorded_until(log: EventLog, task: Task) -> int:
+def recorded_until(log: EventLog, task: Task) -> int:
     """When the recording stops telling about a task still under way: its end, past the task's last update."""
     return max(task.last_update, log.end)
 
@@ -171,13 +171,13 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
     ended = _ended(task)
     name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
-        span = duration(_recorded_until(log, task) - task.created)
+        span = duration(recorded_until(log, task) - task.created)
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
-                f"{_at(task.created)} UTC.")
+                f"{hms(task.created)} UTC.")
     elif lead_with_times:
-        text = f"I started on {name} at {_at(task.created)} UTC, and {ended} at {_at(task.last_update)}, {span} later."
+        text = f"I started on {name} at {hms(task.created)} UTC, and {ended} at {hms(task.last_update)}, {span} later."
     else:
-        text = (f"{name[0].upper()}{name[1:]} took {span}, from {_at(task.created)} to {_at(task.last_update)} UTC; "
+        text = (f"{name[0].upper()}{name[1:]} took {span}, from {hms(task.created)} to {hms(task.last_update)} UTC; "
                 f"{ended}.")
     if steps:
         each = "; ".join(f"{step_ref(s.run)} had run for {duration(s.end - s.start)} when the recording ends"
@@ -188,21 +188,11 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
                        evidence=_evidence(task, [s.run for s in steps]))
 
 
-def _later_recoveries(log: EventLog, task: Task) -> list[Task]:
-    """The robot's own recovery tasks right after this one (they drive it back after a failure)."""
-    out = []
-    for later in sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order):
-        if not later.is_recovery:
-            break
-        out.append(later)
-    return out
-
-
 def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
     """The trip a "when" question is about: a place it names, the way back ("get back", "return": the last trip,
     also a recovery's), or "get there"/"arrive": the last trip that got there, else the last that set off."""
     trips = [(task, r) for r in task.skills if r.skill in NAV_SKILLS]
-    after = [(t, r) for t in _later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS]
+    after = [(t, r) for t in later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS]
     named = [(t, r) for t, r in trips + after if isinstance(loc := r.params.get("location"), str)
              and re.search(rf"\b{re.escape(loc.replace('_', ' '))}\b", q)]
     if named:
@@ -251,13 +241,13 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
             if failed is not None and failed.index < run.index else "it never started"
         text = f"I never set off for {place}: that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
     elif run.state == "succeeded":
-        text = (f"{lead}I got to {place} at {_at(run.last_change)} UTC, {duration(run.last_change - start)} after I "
-                f"set off at {_at(start)}.")
+        text = (f"{lead}I got to {place} at {hms(run.last_change)} UTC, {duration(run.last_change - start)} after I "
+                f"set off at {hms(start)}.")
     elif run.state == "failed":
-        text = (f"{lead}I never got to {place}: I set off at {_at(start)} UTC and gave up at {_at(run.last_change)}, "
+        text = (f"{lead}I never got to {place}: I set off at {hms(start)} UTC and gave up at {hms(run.last_change)}, "
                 f"{duration(run.last_change - start)} later.")
     else:
-        text = f"{lead}I set off for {place} at {_at(start)} UTC; the recording ends before I got there."
+        text = f"{lead}I set off for {place} at {hms(start)} UTC; the recording ends before I got there."
     text = text[0].upper() + text[1:]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(owner, [run] if start is not None else []))

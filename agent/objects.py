@@ -69,7 +69,7 @@ def _step(task: Task, skill: str, obj: str) -> SkillRun | None:
     return next((r for r in task.skills if r.skill == skill and r.params.get("object") == obj), None)
 
 
-def _where(task: Task, run: SkillRun) -> str:
+def step_place(task: Task, run: SkillRun) -> str:
     """' in the kitchen': where the robot was for a step, the place its last trip before it reached."""
     trips = [r for r in task.skills if r.index < run.index and r.skill in NAV_SKILLS]
     last = trips[-1] if trips else None
@@ -113,20 +113,20 @@ def _fate(task: Task, thing: str, pick: SkillRun | None, place: SkillRun | None)
         return f"I never picked up {thing}: {step_ref(pick) if pick else 'no step of my plan'} never started{why}.", \
             "never"
     if pick.state == "failed":
-        return (f"I never got hold of {thing}: picking it up{_where(task, pick)} failed, so I did not carry it "
+        return (f"I never got hold of {thing}: picking it up{step_place(task, pick)} failed, so I did not carry it "
                 "anywhere."), "never"
     if pick.state != "succeeded":
-        return f"I was still picking up {thing}{_where(task, pick)} when my recording ends.", "unknown"
+        return f"I was still picking up {thing}{step_place(task, pick)} when my recording ends.", "unknown"
     if place is None:
-        return f"I picked up {thing}{_where(task, pick)}, and no step of my plan put it down.", "holding"
+        return f"I picked up {thing}{step_place(task, pick)}, and no step of my plan put it down.", "holding"
     if place.state == "succeeded":
-        return f"I put {thing} down{_where(task, place)}, after I picked it up{_where(task, pick)}.", "placed"
+        return f"I put {thing} down{step_place(task, place)}, after I picked it up{step_place(task, pick)}.", "placed"
     if place.state == "failed":
-        return (f"I picked up {thing}{_where(task, pick)}, but putting it down{_where(task, place)} failed: my "
+        return (f"I picked up {thing}{step_place(task, pick)}, but putting it down{step_place(task, place)} failed: my "
                 "recording does not show whether I still hold it."), "unknown"
     if place.time_of("running") is not None:
-        return f"I picked up {thing}{_where(task, pick)} and was putting it down when my recording ends.", "unknown"
+        return f"I picked up {thing}{step_place(task, pick)} and was putting it down when my recording ends.", "unknown"
     if task.outcome == "running":  # on its way to put it down
-        return f"I picked up {thing}{_where(task, pick)} and have not put it down yet.", "holding"
+        return f"I picked up {thing}{step_place(task, pick)} and have not put it down yet.", "holding"
     why = f": {step_ref(task.failed_skill)} failed before that" if task.failed_skill is not None else ""
-    return f"I picked up {thing}{_where(task, pick)} and never got to put it down{why}.", "holding"
+    return f"I picked up {thing}{step_place(task, pick)} and never got to put it down{why}.", "holding"

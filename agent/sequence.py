@@ -7,14 +7,14 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import task_name
-from hexar.agent.measures import duration
+from hexar.agent.measures import duration, hms, recorded_until
+from hexar.agent.objects import step_place
 from hexar.agent.overview import steps_summary
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import clock
-from hexar.events.tasks import SkillRun, Task
+from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, place_name, plan_words, sentence, step_ref
+from hexar.explainers.recorded import plan_words, sentence, step_ref
 
 _LEAD = r"^(and |so |ok |okay |but )?"
 AFTER = re.compile(
@@ -62,7 +62,7 @@ def after(log: EventLog, task: Task, reason: Explanation | None = None) -> Expla
     later = sorted((t for t in log.tasks if t.order > task.order), key=lambda t: t.order)
     name = task_name(task, log)
     if not later:
-        end = clock(max(task.last_update, log.end)).split(".")[0]
+        end = hms(recorded_until(log, task))
         text = (f"Nothing more: {name} was the last task in my recording, which ends at {end} UTC." if
                 task.outcome not in {"running", "waiting"} else
                 f"Nothing more: {name} was still under way when my recording ends, at {end} UTC.")
@@ -109,15 +109,6 @@ DOING = re.compile(
     + _LEAD + r"(at )?which step (did it|did you) (fail|stop|give up)\b")
 
 
-def _at_place(task: Task, run: SkillRun) -> str:
-    """' in the kitchen': where the robot was for a step, the place its last trip before it reached."""
-    trips = [r for r in task.skills if r.index < run.index and r.skill in NAV_SKILLS]
-    last = trips[-1] if trips else None
-    if last is None or last.state != "succeeded" or not isinstance(last.params.get("location"), str):
-        return ""
-    return " in " + place_name(last.params["location"])
-
-
 def doing(log: EventLog, task: Task) -> Explanation:
     """"What were you doing when it failed?": the step under way when the task failed (or when the recording
     ends, of a task still going), where the robot was for it and for how long."""
@@ -130,14 +121,14 @@ def doing(log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="planner", text=f"{lead}{summary}".strip(), causes=["planner.plan_ok"],
                            evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created,
                                               item=task.instruction or task_name(task, log))])
-    end = run.time_of("failed") or run.last_change if failed is not None else max(task.last_update, log.end)
+    end = run.time_of("failed") or run.last_change if failed is not None else recorded_until(log, task)
     ran = duration(end - start)
     if failed is not None:
-        text = (f"When it failed at {clock(end).split('.')[0]} UTC, I was at {step_ref(run)}{_at_place(task, run)}, "
+        text = (f"When it failed at {hms(end)} UTC, I was at {step_ref(run)}{step_place(task, run)}, "
                 f"{ran} into it.")
     else:
-        text = (f"At {clock(end).split('.')[0]} UTC, when my recording ends, I was at {step_ref(run)}"
-                f"{_at_place(task, run)}, {ran} into it.")
+        text = (f"At {hms(end)} UTC, when my recording ends, I was at {step_ref(run)}"
+                f"{step_place(task, run)}, {ran} into it.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=h.t,
                                           item=f"step {run.index + 1}: {run.label()} {h.status.strip().lower()}")

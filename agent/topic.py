@@ -15,14 +15,10 @@ from collections.abc import Iterable
 from functools import cache
 from importlib.resources import files
 
-from hexar.agent.questions import vocabulary
+from hexar.agent.questions import _words, vocabulary
 from hexar.events.tasks import Task
 
 _WORD = re.compile(r"[a-z]+")
-
-
-def _words(text: str) -> frozenset[str]:
-    return frozenset(text.split())
 
 
 # Words that carry no topic: question words, pronouns, auxiliaries, prepositions, fillers.
