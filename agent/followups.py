@@ -104,9 +104,9 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing' or 'said' for a question
-    about what the robot did, 'act' for a request to do something, 'stop' for an order to stop and 'next' for one
-    about what it will do; None for anything else."""
+    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing' or
+    'said' for a question about what the robot did, 'act' for a request to do something, 'stop' for an order to stop
+    and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

@@ -7,6 +7,7 @@ step ran, so a badly localised robot's jumps count too: the answers say "about".
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -20,13 +21,25 @@ from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_ref, step_words
 
-Measure = Literal["far", "long", "when"]
+Measure = Literal["far", "fast", "start", "long", "when"]
 
 # Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
 _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
-             r"\bwhat distance did you\b")),
+             r"\bwhat distance did you\b",
+             # "how far away was the kitchen?": the way I drove there, and how far I ended from where I set off
+             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|the [a-z ]+|your [a-z ]+)\b",
+             r"^(and |so |ok |okay )?how far (away )?(from|to) (the )?[a-z ]+ (is|was|were) (it|you)\b")),
+    # average speeds from the same positions: a person asks it of a trip that felt slow
+    ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",
+              r"^(and |so |ok |okay )?(what|how fast) (was|is) (your|the robot's|its) (average |top |max(imum)? )?"
+              r"(speed|velocity)\b",
+              r"^(and |so |ok |okay )?at what speed (were|did) you\b")),
+    ("start", (r"^(and |so |ok |okay )?where did you (start|begin|set off|come)( from)?\b",
+               r"^(and |so |ok |okay )?where were you (before|at the start|at first|when (you|i) (started|began|"
+               r"asked))\b",
+               r"^(and |so |ok |okay )?where (was|were) (your|the) start(ing)? (point|position|place)\b")),
     # "how long did the pick take?": every step's time is in the answer, the one asked about among them
     ("long", (r"^(and |so |ok |okay )?how long (did|had) (it|that|this|you|(the|your) [a-z]+( up| down)?) "
               r"(take|need|spend|drive|be)\b",
@@ -78,13 +91,16 @@ def duration(ns: int) -> str:
     return f"{m} min {s} s" if s else f"{m} min"
 
 
-def _path(log: EventLog, start: int, end: int) -> float | None:
-    """Length of the path my position estimate traced in [start, end]: /amcl_pose, or /odom without it."""
-    points = [(p.x, p.y) for p in log.poses if start <= p.t <= end] or \
+def _points(log: EventLog, start: int, end: int) -> list[tuple[float, float]]:
+    """My position estimate in [start, end]: /amcl_pose, or /odom without it."""
+    return [(p.x, p.y) for p in log.poses if start <= p.t <= end] or \
         [(o.x, o.y) for o in log.odometry if start <= o.t <= end]
-    if not points:
-        return None
-    return path_length(points)
+
+
+def _path(log: EventLog, start: int, end: int) -> float | None:
+    """Length of the path my position estimate traced in [start, end]."""
+    points = _points(log, start, end)
+    return path_length(points) if points else None
 
 
 def _steps(log: EventLog, task: Task) -> list[_Step]:
@@ -121,18 +137,38 @@ def _evidence(task: Task, runs: list[SkillRun]) -> list[Evidence]:
         [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
 
 
-def far(log: EventLog, task: Task) -> Explanation:
+# "how far away was the dining room?" of a task that never went there: the place asked about, not the whole errand
+_FAR_PLACE = re.compile(r"\bhow far (?:away )?(?:is|was) (?:the|your) ([a-z][a-z ]*?)(?: from (?:here|you|me))?\W*$")
+_NOT_A_PLACE = frozenset({"trip", "drive", "way", "path", "route", "goal", "errand", "task", "distance"})
+
+
+def far(log: EventLog, task: Task, question: str = "") -> Explanation:
+    """How far I drove for the task, leg by leg; of a place the question names, that trip alone."""
+    q = _norm(question)
+    named = _named_trip(q, log, task) if q else None
+    if named is not None:
+        return _far_to(log, *named)
+    other = _FAR_PLACE.search(q)
+    if other is not None and other.group(1) not in _NOT_A_PLACE:
+        place, name = f"the {other.group(1)}", task_name(task, log)
+        text = f"No step of my plan for {name} went to {place}, so my recording has no distance to it."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence(task, []), enough_information=False)
     steps = _steps(log, task)
     moved = [s for s in steps if s.metres is not None and s.metres >= 0.05]
     name = task_name(task, log)
     evidence = _evidence(task, [s.run for s in steps])
+    if not steps:
+        why = "my plan was rejected before I started" if task.outcome == "invalid" else "none of its steps started"
+        return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {name}: {why}.",
+                           causes=["planner.plan_ok"], evidence=evidence)
     if not any(s.metres is not None for s in steps):
         drove = any(s.run.skill in NAV_SKILLS for s in steps)
         text = (f"I can't tell how far I drove for {name}: this recording holds no position of mine "
-                f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove or not steps else
+                f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove else
                 f"I didn't drive anywhere for {name}.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence,
-                           enough_information=not drove and bool(steps))
+                           enough_information=not drove)
     if not moved:
         return Explanation(explainer="navigation", text=f"I didn't drive anywhere for {name}.",
                            causes=["planner.plan_ok"], evidence=evidence)
@@ -145,6 +181,76 @@ def far(log: EventLog, task: Task) -> Explanation:
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(task, [s.run for s in moved]),
                        details=["Distances are the path my position estimate traced, so they include its jumps."])
+
+
+def _far_to(log: EventLog, owner: Task, run: SkillRun) -> Explanation:
+    """"How far away was the kitchen?": the way I drove there and, as the crow flies, how far I ended up from where
+    I set off. The recording holds no map of its places, so it is the way taken, not the place's own distance."""
+    place, start = _goal(run), run.time_of("running")
+    lead = "In my own recovery task, " if owner.is_recovery else ""
+    if start is None:
+        text = f"I never set off for {place}, so my recording has no distance to it: {_never_set_off(log, owner, run)}"
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence(owner, []), enough_information=False)
+    end = max(recorded_until(log, owner) if run.state == "running" else run.last_change, start)
+    points = _points(log, start, end)
+    if not points:
+        text = (f"I can't tell how far {place} was: my recording holds no position of mine (no {c.AMCL_POSE} or "
+                f"{c.ODOM} messages) while I drove there.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence(owner, [run]), enough_information=False)
+    driven, across = path_length(points), math.dist(points[0], points[-1])
+    took = duration(end - start)
+    if run.state == "succeeded":
+        text = (f"{lead}I drove about {driven:.1f} m to get to {place}, in {took}; where I got to was about "
+                f"{across:.1f} m in a straight line from where I set off.")
+    else:
+        ended = "and the recording ends before I got there" if run.state == "running" else "and I did not get there"
+        text = (f"{lead}I drove about {driven:.1f} m towards {place} in {took}, {ended}; I was then about "
+                f"{across:.1f} m in a straight line from where I set off.")
+    return Explanation(explainer="navigation", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
+                       evidence=_evidence(owner, [run]),
+                       details=["Distances are the path my position estimate traced, so they include its jumps."])
+
+
+def fast(log: EventLog, task: Task) -> Explanation:
+    """My average speed on each leg I drove: the path my positions traced over the time the step ran."""
+    steps = [s for s in _steps(log, task) if s.metres is not None and s.metres >= 0.05 and s.end > s.start]
+    if not steps:
+        return far(log, task)  # nothing driven, or no positions: what "how far" says of it
+    name = task_name(task, log)
+    parts = [f"{(s.metres or 0.0) / ((s.end - s.start) / 1e9):.2f} m/s {_during(s.run)} "
+             f"({s.metres or 0.0:.1f} m in {duration(s.end - s.start)})" for s in steps]
+    text = f"For {name}, I drove at about {join_words(parts)}, on average."
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=_evidence(task, [s.run for s in steps]),
+                       details=["Speeds are averages over each step: the path my position estimate traced, divided "
+                                "by the step's time, stops included."])
+
+
+def start(log: EventLog, task: Task) -> Explanation:
+    """Where I was when I set off on the task's first step (or, when none started, when I was asked)."""
+    first = next((r for r in task.skills if r.time_of("running") is not None), None)
+    at = first.time_of("running") if first is not None else None
+    t = at if at is not None else task.created
+    before = [(p.t, p.x, p.y) for p in log.poses if p.t <= t] or [(o.t, o.x, o.y) for o in log.odometry if o.t <= t]
+    after = [(p.t, p.x, p.y) for p in log.poses if t < p.t <= log.end] or \
+        [(o.t, o.x, o.y) for o in log.odometry if t < o.t <= log.end]
+    pose = before[-1] if before else after[0] if after else None
+    name = task_name(task, log)
+    when = f"when I set off on {step_ref(first)}" if first is not None else f"when I got {name}"
+    if pose is None:
+        text = f"I can't tell where I was {when}: my recording holds no position of mine ({c.AMCL_POSE} or {c.ODOM})."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence(task, [first] if first else []), enough_information=False)
+    pt, x, y = pose
+    which = "my last position recorded before then" if before else "the first position recorded after then"
+    text = (f"{when[0].upper()}{when[1:]}, I was at ({x:.2f}, {y:.2f}) on my map: {which}, at {hms(pt)} UTC. "
+            "My recording names no room for that position.")
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=[*_evidence(task, [first] if first else []),
+                                 Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE if log.poses else c.ODOM, t=pt,
+                                          item=f"x={x:.2f} y={y:.2f}")])
 
 
 def _during(run: SkillRun) -> str:
@@ -188,16 +294,40 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
                        evidence=_evidence(task, [s.run for s in steps]))
 
 
+def _trips(log: EventLog, task: Task) -> tuple[list[tuple[Task, SkillRun]], list[tuple[Task, SkillRun]]]:
+    """The task's trips, and those of the recovery tasks after it."""
+    return ([(task, r) for r in task.skills if r.skill in NAV_SKILLS],
+            [(t, r) for t in later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS])
+
+
+def _named_trip(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
+    """The trip to a place the question names: one that got there, then one that set off (a recovery that drove
+    there answers for the request)."""
+    trips, after = _trips(log, task)
+    named = [(t, r) for t, r in trips + after if isinstance(loc := r.params.get("location"), str)
+             and re.search(rf"\b{re.escape(loc.replace('_', ' '))}\b", q)]
+    if not named:
+        return None
+    return min(named, key=lambda m: 0 if m[1].state == "succeeded" else 1 if m[1].time_of("running") else 2)
+
+
+def _norm(question: str) -> str:
+    return " ".join(question.lower().replace("_", " ").split())
+
+
+def _never_set_off(log: EventLog, owner: Task, run: SkillRun) -> str:
+    failed = owner.failed_skill
+    why = f"{step_ref(failed)} failed first" if failed is not None and failed.index < run.index else "it never started"
+    return f"that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
+
+
 def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
     """The trip a "when" question is about: a place it names, the way back ("get back", "return": the last trip,
     also a recovery's), or "get there"/"arrive": the last trip that got there, else the last that set off."""
-    trips = [(task, r) for r in task.skills if r.skill in NAV_SKILLS]
-    after = [(t, r) for t in later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS]
-    named = [(t, r) for t, r in trips + after if isinstance(loc := r.params.get("location"), str)
-             and re.search(rf"\b{re.escape(loc.replace('_', ' '))}\b", q)]
-    if named:
-        # one that got there, then one that set off: a recovery that drove there answers for the request
-        return min(named, key=lambda m: 0 if m[1].state == "succeeded" else 1 if m[1].time_of("running") else 2)
+    named = _named_trip(q, log, task)
+    if named is not None:
+        return named
+    trips, after = _trips(log, task)
     if re.search(r"\b(get|got|come|came) back\b|\breturn", q):
         return (trips + after)[-1] if trips + after else None
     if re.search(r"\b(get|got) there\b|\barriv|\breach", q) and trips:
@@ -224,7 +354,7 @@ def _on(t: int) -> str:
 def when(question: str, log: EventLog, task: Task) -> Explanation:
     """A trip the question asks about (see _trip_asked): its times; otherwise the task's (with its day when the
     question asks when it all happened)."""
-    q = " ".join(question.lower().replace("_", " ").split())
+    q = _norm(question)
     asked = _trip_asked(q, log, task)
     if asked is None:
         timed = long(log, task, lead_with_times=True)
@@ -236,10 +366,7 @@ def when(question: str, log: EventLog, task: Task) -> Explanation:
     place = _goal(run)
     lead = "In my own recovery task, " if owner is not task else ""
     if start is None:
-        failed = owner.failed_skill
-        why = f"{step_ref(failed)} failed first" \
-            if failed is not None and failed.index < run.index else "it never started"
-        text = f"I never set off for {place}: that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
+        text = f"I never set off for {place}: {_never_set_off(log, owner, run)}"
     elif run.state == "succeeded":
         text = (f"{lead}I got to {place} at {hms(run.last_change)} UTC, {duration(run.last_change - start)} after I "
                 f"set off at {hms(start)}.")

@@ -315,7 +315,11 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     elif kind == "went":
         exp = answers.went(state["question"], ctx.log, task)
     elif kind == "far":
-        exp = measures.far(ctx.log, task)
+        exp = measures.far(ctx.log, task, state["question"])
+    elif kind == "fast":
+        exp = measures.fast(ctx.log, task)
+    elif kind == "start":
+        exp = measures.start(ctx.log, task)
     elif kind == "long":
         exp = measures.long(ctx.log, task)
     elif kind == "when":
