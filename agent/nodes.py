@@ -30,7 +30,7 @@ from hexar.agent.overview import (
     yes_or_no,
 )
 from hexar.agent.probes import failure_not_told, notable, probe, talked, with_failure
-from hexar.agent.questions import EXAMPLE, check_question, quoted
+from hexar.agent.questions import EXAMPLE, check_question, quoted, small_talk_reply
 from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
 from hexar.agent.walk import next_finding
@@ -81,6 +81,10 @@ def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     try:
         question = check_question(state.get("question", ""))
     except BadQuestionError as e:
+        reply = small_talk_reply(state.get("question", ""))
+        if reply is not None:  # "thanks", "hi": refused as a question, with a reply a conversation can say
+            return {**reset, "intent": "smalltalk", "error": str(e), "answer": reply, "route": "none",
+                    "timings_ms": {"intake": _ms(start)}}
         return {**reset, "intent": "invalid", "error": str(e), "answer": str(e)}
     meaning = ABOUT_ME if about_me(question) else defined(question)
     if meaning is not None:  # about HEXAR itself, or what a word of its answers means

@@ -162,16 +162,31 @@ _THANKS = re.compile(r"\b(thanks?|thank you|thx|ty|cheers)\b")
 _HELLO = re.compile(r"^(hi|hello|hey|yo|good (morning|afternoon|evening))\b")
 
 
+# The end of a conversation typed or said as people end one: the chat stops on it, as on Ctrl-D.
+_FAREWELL = re.compile(r"^(?:(?:ok|okay|so|well|alright|right|thanks?|thank you|that's all|that is all)\W*\s*)*"
+                       r"(?:bye|bye bye|goodbye|good bye|quit|exit|see you|see ya|that's all|that is all|that's it|"
+                       r"nothing else|i'm done|i am done)"
+                       r"(?:\W*\s*(?:now|then|for now|robot|tiago|hexar|thanks?|thank you|bye))*\W*$")
+GOODBYE = "Goodbye."
+
+
+def is_farewell(text: str) -> bool:
+    """Whether a turn ends the conversation ("bye", "quit", "ok that's all, thanks")."""
+    return _FAREWELL.match(normalise(text).lower()) is not None
+
+
 def small_talk_reply(text: str) -> str | None:
-    """A reply to a turn that is only small talk ("ok thanks", "hi"), or None for anything else."""
+    """A reply to a turn that is only small talk ("ok thanks", "hi", "bye"), or None for anything else."""
     q = normalise(text).lower()
-    if not q or not _SMALL_TALK.match(q):
+    if not q or not (_SMALL_TALK.match(q) or is_farewell(q)):
         return None
+    if is_farewell(q):
+        return GOODBYE
     if _THANKS.search(q):
-        return "You're welcome. Ask me anything else about this run, or press Ctrl-D to stop."
+        return "You're welcome. Ask me anything else about what I did."
     if _HELLO.match(q):
         return f"Hello! Ask me why I did something, {EXAMPLE}."
-    return f"OK. Ask me why I did something, {EXAMPLE}, or press Ctrl-D to stop."
+    return f"OK. Ask me why I did something, {EXAMPLE}."
 
 
 def _asks(q: str, words: list[str]) -> bool:

@@ -10,8 +10,8 @@ from hexar.agent import nodes
 from hexar.agent.state import AgentState
 
 END = "__end__"
-# Intents answered at intake, by no explainer: refused, off the robot's topic, or about HEXAR itself.
-NO_EXPLAINER = frozenset({"invalid", "about", "offtopic"})
+# Intents answered at intake, by no explainer: refused, small talk, off the robot's topic, or about HEXAR itself.
+NO_EXPLAINER = frozenset({"invalid", "smalltalk", "about", "offtopic"})
 
 
 def after_intake(state: AgentState) -> Literal["context", "followup", "__end__"]:

@@ -4,7 +4,11 @@ from __future__ import annotations
 
 from typing import Any, Literal, TypedDict
 
-Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid", "about", "offtopic"]
+Intent = Literal["new", "deeper", "helped", "else", "switch", "content", "invalid", "smalltalk", "about",
+                 "offtopic"]
+# Refusals (the result's error is set) whose answer a conversation says as its reply: small talk gets one, and a
+# question off the robot's topic hears why, not "not understood".
+SAID_REFUSALS = frozenset({"smalltalk", "offtopic"})
 Route = Literal["failure_check", "recovery", "llm", "named", "classifier", "findings", "followup", "none"]
 
 

@@ -12,7 +12,7 @@ from rich.console import Console
 from rich.panel import Panel
 
 from hexar.agent.context import RunSettings
-from hexar.agent.questions import small_talk_reply
+from hexar.agent.questions import GOODBYE, is_farewell, small_talk_reply
 from hexar.errors import USER_ERRORS
 from hexar.events.errors import NoTaskError
 from hexar.events.log import EventLog
@@ -96,6 +96,9 @@ def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints
         if not line:
             continue
         if line in {"/quit", "/exit"}:
+            return 0
+        if is_farewell(line):  # "bye", "quit": the conversation ends as people end one
+            console.print(GOODBYE)
             return 0
         if line == "/help":
             console.print(HELP)

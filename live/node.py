@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Literal, Protocol
 
+from hexar.agent.state import SAID_REFUSALS
 from hexar.events.errors import EventsError
 from hexar.events.records import GoalStatus, TaskUpdate
 from hexar.live.jobs import (
@@ -306,7 +307,7 @@ class LiveNode:
             result["sentence"] = short_sentence(str(result.get("answer", "")))
             result["event_t"] = job.t  # the failing update, on the robot's clock
         self._publish(result)
-        told_why = bool(result.get("no_task")) or result.get("intent") == "offtopic"  # a refusal worth hearing
+        told_why = bool(result.get("no_task")) or result.get("intent") in SAID_REFUSALS  # a refusal worth hearing
         speak = bool(self.speakers) and (not result.get("error") or told_why) and (
             job.kind == "question" or (self.options.proactive == "speak" and self._may_speak(job)))
         if speak:

@@ -15,6 +15,7 @@ from rich.console import Console
 
 from hexar.agent.context import RunSettings
 from hexar.agent.session import Session, default_checkpoints
+from hexar.agent.state import SAID_REFUSALS
 from hexar.errors import USER_ERRORS
 from hexar.safe_text import json_dumps, safe
 from hexar.voice.audio import Audio, read_wav
@@ -131,7 +132,7 @@ class Dialogue:
             turn.error, turn.route = str(result["error"]), str(result["route"])
             turn.explainers, turn.causes = list(result["explainers"]), list(result["causes"])
             # a question off the robot's topic was understood: it hears why it gets no explanation
-            heard_right = not turn.error or result.get("intent") == "offtopic"
+            heard_right = not turn.error or result.get("intent") in SAID_REFUSALS
             turn.answer = str(result["answer"]) if heard_right else NOT_UNDERSTOOD
             turn.spoken = say_answer(result) if heard_right else [NOT_UNDERSTOOD]
         if turn.error:

@@ -132,6 +132,17 @@ def test_chat_takes_typos_and_small_talk(suite: Path, tmp_path: Path) -> None:
     assert "something blocked my path" in out and "You're welcome." in out
 
 
+def test_chat_ends_when_told_bye(suite: Path, tmp_path: Path) -> None:
+    """"bye" (or "quit", "that's all") ends the chat as Ctrl-D does: what is typed after it is never asked."""
+    for farewell in ("ok bye", "quit", "that's all, thanks"):
+        done = subprocess.run([HEXAR, "chat", str(suite / "bagfile_5_1"), "--llm", "none", "--checkpoints",
+                               str(tmp_path / "t.sqlite")], input=f"why did you stop?\n{farewell}\nwhat happened?\n",
+                              capture_output=True, text=True, cwd=ROOT, timeout=120, check=False)
+        out = " ".join(done.stdout.split())
+        assert done.returncode == 0 and "something blocked my path" in out, farewell
+        assert out.rstrip().endswith("Goodbye.") and "I did none" not in out and "steps of my plan" not in out, out
+
+
 def _fleet(suite: Path, root: Path) -> Path:
     """Runs as a team keeps them: by robot and date, the same run name under two robots, a link to a recording,
     and a virtualenv beside them that holds a copy of a recording (a package's test data), which is no run."""

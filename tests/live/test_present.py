@@ -145,6 +145,8 @@ def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, tran
             during = listener.wait_answers(2, "question", timeout=15.0)[1]
             listener.ask("tell me a joke")
             joke = listener.wait_answers(3, "question", timeout=15.0)[2]
+            listener.ask("thank you")
+            thanks = listener.wait_answers(4, "question", timeout=15.0)[3]
             time.sleep(0.3)
             spoken = [str(s.data) for s in said.take(20) if s.sample_info.valid_data]
     finally:
@@ -163,3 +165,5 @@ def test_questions_before_and_during_a_task_get_spoken_answers(suite: Path, tran
     # a question about nothing the robot did: refused, and the person hears why rather than silence
     assert joke["intent"] == "offtopic" and "is not about anything I did" in joke["error"]
     assert OFF_TOPIC.split(". ")[0] in " ".join(spoken), spoken
+    # thanks: no question, and the person hears a reply, not silence
+    assert thanks["intent"] == "smalltalk" and "You're welcome." in spoken, spoken

@@ -178,3 +178,13 @@ def test_a_question_about_the_world_is_told_why_it_gets_no_explanation(runs: Pat
     assert {"capital", "france"} <= set(re.findall(r"[a-z]+", turn["transcript"].lower())), turn["transcript"]
     assert turn["answer"] == OFF_TOPIC and "is not about anything I did" in turn["error"]
     assert "explain what i did" in heard(stt, turn).lower()
+
+
+def test_a_greeting_gets_a_reply_and_the_thread_goes_on(runs: Path, tmp_path: Path) -> None:
+    """"Hello robot" is no question, and the person hears a greeting that says what to ask, not "I didn't
+    understand"; the "why?" after it still goes deeper on the answer before."""
+    turns = converse(runs, tmp_path, "bagfile_5_1", EspeakSynthesizer(),
+                     ["Why did you stop?", "Hello robot", "Why?"])
+    assert "hello" in turns[1]["transcript"].lower(), turns[1]["transcript"]
+    assert turns[1]["answer"].startswith("Hello! Ask me why I did something")
+    assert turns[2]["route"] == "followup" and turns[2]["answer"].startswith("Here is what I recorded")

@@ -125,6 +125,11 @@ def test_ask_human_run_shows_its_steps_and_distance(page: tuple[Any, str], shots
     answer.find_elements(By.CSS_SELECTOR, ".evlink")[0].click()
     assert driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
     assert "shown" in driver.find_element(By.ID, "path-marker").get_attribute("class")
+    # thanks in the page's chat gets the reply the terminal chat gives, not a red refusal
+    thanks = _ask(driver, "thanks!")
+    assert "error" not in thanks.get_attribute("class")
+    assert thanks.find_element(By.CSS_SELECTOR, ".answer").text == \
+        "You're welcome. Ask me anything else about what I did."
     driver.execute_script("document.getElementById('path').scrollIntoView({block: 'start'})")
     _shot(driver, shots, "ask_human")
 

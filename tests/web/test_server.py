@@ -106,6 +106,10 @@ def test_chat_thread_moves_between_page_and_terminal(webroot: Path, tmp_path: Pa
         assert deeper["intent"] == "deeper" and deeper["thread"] == first["thread"]
         _, bad = post(url + "api/chat", {"name": "bagfile_5_1", "question": "", "thread": first["thread"]})
         assert bad["error"] and not bad["answer"].startswith("Traceback")
+        # small talk is no question (error set, as `hexar ask` refuses it) with a reply the page shows instead
+        _, hello = post(url + "api/chat", {"name": "bagfile_5_1", "question": "hi robot", "thread": first["thread"]})
+        assert hello["intent"] == "smalltalk" and "is not a question" in hello["error"]
+        assert hello["answer"].startswith("Hello! Ask me why I did something") and hello["explainers"] == []
     # `hexar chat` with the same recording path and conversation file sees the page's turns
     session = Session(RunSettings(recording=webroot / "bagfile_5_1", llm="none"), checkpoints=ck)
     turns = session.history(first["thread"])

@@ -21,6 +21,8 @@ export function chatPanel(run) {
   function bubble(who, ...kids) { const b = el("div", { class: `msg ${who}` }, kids); log.append(b); log.scrollTop = log.scrollHeight; return b; }
   function answerBubble(r) {
     if (r.no_task) return bubble("bot", el("p", { class: "answer" }, r.answer), el("p", { class: "meta" }, r.error));
+    // small talk ("thanks") gets its reply, as the terminal chat and the robot give it
+    if (r.error && r.intent === "smalltalk") return bubble("bot", el("p", { class: "answer" }, r.answer));
     if (r.error) return bubble("bot error", r.error);
     return bubble("bot", el("p", { class: "answer" }, r.answer),
       el("p", { class: "meta" }, `backend ${r.backend} · ${r.explainers.join(", ") || "follow-up"} · ${r.route}${r.fallback && r.fallback.length ? " · guard fell back" : ""}`),
