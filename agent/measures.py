@@ -142,8 +142,9 @@ _FAR_PLACE = re.compile(r"\bhow far (?:away )?(?:is|was) (?:the|your) ([a-z][a-z
 _NOT_A_PLACE = frozenset({"trip", "drive", "way", "path", "route", "goal", "errand", "task", "distance"})
 
 
-def far(log: EventLog, task: Task, question: str = "") -> Explanation:
-    """How far I drove for the task, leg by leg; of a place the question names, that trip alone."""
+def far(log: EventLog, task: Task, question: str = "", asked: str = "far") -> Explanation:
+    """How far I drove for the task, leg by leg; of a place the question names, that trip alone. `asked` ("far" or
+    "fast") is what a recording without positions cannot tell."""
     q = _norm(question)
     named = _named_trip(q, log, task) if q else None
     if named is not None:
@@ -164,7 +165,7 @@ def far(log: EventLog, task: Task, question: str = "") -> Explanation:
                            causes=["planner.plan_ok"], evidence=evidence)
     if not any(s.metres is not None for s in steps):
         drove = any(s.run.skill in NAV_SKILLS for s in steps)
-        text = (f"I can't tell how far I drove for {name}: this recording holds no position of mine "
+        text = (f"I can't tell how {asked} I drove for {name}: this recording holds no position of mine "
                 f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove else
                 f"I didn't drive anywhere for {name}.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence,
@@ -217,7 +218,7 @@ def fast(log: EventLog, task: Task) -> Explanation:
     """My average speed on each leg I drove: the path my positions traced over the time the step ran."""
     steps = [s for s in _steps(log, task) if s.metres is not None and s.metres >= 0.05 and s.end > s.start]
     if not steps:
-        return far(log, task)  # nothing driven, or no positions: what "how far" says of it
+        return far(log, task, asked="fast")  # nothing driven, or no positions: what "how far" says of it
     name = task_name(task, log)
     parts = [f"{(s.metres or 0.0) / ((s.end - s.start) / 1e9):.2f} m/s {_during(s.run)} "
              f"({s.metres or 0.0:.1f} m in {duration(s.end - s.start)})" for s in steps]

@@ -111,4 +111,4 @@ def test_without_positions_the_start_is_not_guessed(tmp_path: Path) -> None:
     run = write_recording(excerpt, tmp_path / "run", task=False)
     start, fast = _ask(run, "Where did you start?", "How fast were you going?")
     assert "I can't tell where I was when I set off" in str(start["answer"])
-    assert "I can't tell how far I drove" in str(fast["answer"])
+    assert "I can't tell how fast I drove" in str(fast["answer"])
