@@ -105,15 +105,17 @@ def triage_command(opts: TriageOptions, console: Console) -> int:
                 run_local(todo, workers, on_done, meanwhile=_import_report)
         except KeyboardInterrupt:
             interrupted = True
-    from hexar.fleet.report import write_outputs
+    from hexar.fleet.report import count, write_outputs
 
     # What the results file now holds, without reading it again; in the inputs' order, whoever finished first.
     finished = {**earlier, **{item["key"]: item for item in map(json.loads, new)}}
     results = [relabel(finished[path], rel) for path, rel in found if path in finished]
     summary = write_outputs(results, opts.out, figures=opts.figures, parquet=parquet)
     bad = [r for r in results if r["error"]]
-    console.print(f"{summary['recordings']} recordings, {summary['tasks']} tasks, {summary['failed']} failed, "
-                  f"{summary['findings']} with a finding; {len(bad)} unreadable")
+    # as report.md counts them: a "finding" is a success worth a look, never a failure's cause
+    console.print(f"{count(summary['recordings'], 'recording')}, {count(summary['tasks'], 'task')}: "
+                  f"{summary['failed']} failed or wrongly planned, {summary['findings']} succeeded with a finding "
+                  f"worth a look; {len(bad)} unreadable")
     for r in bad[:20]:
         console.print(f"  [yellow]unreadable[/yellow] {escape(r['recording'])}: {escape(r['error'])}")
     for r in [r for r in results if r.get("recovered")][:20]:

@@ -93,7 +93,8 @@ def summary(rows: list[Row], results: list[dict[str, Any]]) -> dict[str, int]:
             "failed": kinds["failure"], "findings": kinds["finding"]}
 
 
-def _count(n: int, thing: str) -> str:
+def count(n: int, thing: str) -> str:
+    """"1 task", "6 tasks"."""
     return f"{n} {thing}" if n == 1 else f"{n} {thing}s"
 
 
@@ -147,8 +148,8 @@ def report(rows: list[Row], results: list[dict[str, Any]], pictures: list[str]) 
     lines += ["## Most frequent causes", ""]
     for cause, n in counted(row["cause"] for row in flagged)[:TOP]:
         ex = next(row for row in flagged if row["cause"] == cause)
-        lines += [f"- **{_md(cause)}**: {_count(n, 'task')}. Example, {_md(ex['recording'])} ({ex['time']}): "
-                  f"\"{_md(ex['explanation'])}\" ({_count(ex['evidence'], 'evidence item')})"]
+        lines += [f"- **{_md(cause)}**: {count(n, 'task')}. Example, {_md(ex['recording'])} ({ex['time']}): "
+                  f"\"{_md(ex['explanation'])}\" ({count(ex['evidence'], 'evidence item')})"]
     lines += ["", "## Counts", "",
               f"The tables by cause, module, robot and day count the {len(flagged)} tasks worth a look (a failure, "
               f"a wrong plan or a finding); the other {s['tasks'] - len(flagged)} of the {s['tasks']} tasks went as "

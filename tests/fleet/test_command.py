@@ -202,10 +202,14 @@ def test_bad_workers_and_empty_folder_are_one_line(tmp_path: Path, fleet: Path,
     assert "no recordings under" in capsys.readouterr().err
 
 
-def test_globs_and_nested_folders(fleet: Path, tmp_path: Path) -> None:
+def test_globs_and_nested_folders(fleet: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "o"
     pattern = str(fleet / "robot-*" / "seed-*" / "bagfile_1[12]_1")
     assert main(["triage", pattern, "--out", str(out), "--workers", "1", "--no-figures"]) == 0
+    # the summary line counts as report.md does: the failed tasks are not "0 with a finding"
+    said = " ".join(capsys.readouterr().out.split())
+    assert "4 recordings, 8 tasks: 4 failed or wrongly planned, 0 succeeded with a finding worth a look; " \
+        "0 unreadable" in said, said
     df = pd.read_parquet(out / "tasks.parquet")
     # named under the matches' common folder: the same run on two robots is two recordings
     assert sorted(set(df["recording"])) == [f"robot-{r}/seed-{s}/bagfile_{n}_1" for r, s in (("a", 1), ("b", 2))
