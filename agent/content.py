@@ -29,11 +29,19 @@ from hexar.explainers.recorded import (
 from hexar.explainers.tts import compare, first_sentence
 from hexar.render import clock
 
+# the label's tail a derived task's instruction carries in tables: "Run spin (derived from Nav2's behaviour server)"
+_DERIVED = re.compile(r"\s*\(derived from [^)]*\)\s*$")
+
 
 def task_name(task: Task, log: EventLog) -> str:
     """How to speak of a task: the request in quotes, a goal read from the logs, or the recovery it is."""
     if task.derived:  # a goal some program sent, read from the logs: nobody's request to me
-        return f'the goal "{task.instruction}"'
+        # "the goal to run spin": spoken, not the table's label "Run spin (derived from Nav2's behaviour server)"
+        what = _DERIVED.sub("", task.instruction)
+        if what.startswith("Navigate to "):
+            where = what.removeprefix("Navigate to ")
+            return "the navigation goal" if where == "an unrecorded goal" else f"the navigation goal to {where}"
+        return f"the goal to {what[:1].lower()}{what[1:]}"
     if not task.is_recovery:
         return f'your request "{task.instruction}"'
     before = [t for t in log.tasks if t.order < task.order and not t.is_recovery]

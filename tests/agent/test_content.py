@@ -345,3 +345,16 @@ def test_why_did_you_go_there_is_the_last_trip_not_a_place_called_there(suite: P
                                            '"Bring me a coffee from the kitchen" was to go there, but I didn\'t get '
                                            "there.")
     assert "did not go there" not in str(there["answer"])
+
+
+def test_a_goal_read_from_nav2s_logs_is_named_as_spoken(tmp_path: Path) -> None:
+    """A task derived from Nav2's logs is labelled "Navigate to an unrecorded goal (derived from Nav2)" in tables;
+    an answer names it as a person would, never with that label."""
+    from hexar.evals.real_nav2 import corpus, write_recording
+
+    excerpt = next(e for e in corpus() if e.outcome == "failed")
+    run = write_recording(excerpt, tmp_path / "run", task=False)
+    took, after = _ask(run, "How long did it take?", "What did you do after that?")
+    assert str(took["answer"]).startswith("The navigation goal ")
+    assert str(after["answer"]).startswith("Nothing more: the navigation goal was ")
+    assert not any("derived from" in str(a["answer"]) for a in (took, after))
