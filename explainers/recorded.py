@@ -20,6 +20,11 @@ from hexar.events.tasks import SkillRun, Task
 NAV_SKILLS = ("navigate_to_zone", "navigate_to_pose", "dock_robot", "run_behavior")  # the steps that drive the base
 _BEHAVIORS = {"spin": "turn in place", "backup": "back up", "back_up": "back up",
               "drive_on_heading": "drive straight ahead", "wait": "wait", "assisted_teleop": "drive by assisted teleop"}
+# The steps HEXAR derives from Nav2's, MoveIt's and ros2_control's goals (events/nav_goals.py, arm_goals.py), as
+# a person says them rather than as the skill's identifier ("step 1 (to move my arm)", not "(to move arm)").
+_DERIVED_STEPS = {"navigate_to_pose": "drive to my goal", "dock_robot": "dock", "move_arm": "move my arm",
+                  "follow_joint_trajectory": "follow a joint trajectory",
+                  "bring_up_controllers": "bring up my drivers and controllers"}
 _NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \((-?[\d.]+), (-?[\d.]+)\)")
 
 
@@ -139,7 +144,12 @@ def step_words(run: SkillRun, short: bool = False) -> str:
     obj = p.get("object")
     if run.skill in {"pick", "place"} and isinstance(obj, str) and obj:
         return f"{'pick up' if run.skill == 'pick' else 'put down'} the {obj.replace('_', ' ')}"
-    return run.skill.replace("_", " ")
+    x, y = p.get("x"), p.get("y")
+    if run.skill == "navigate_to_pose" and isinstance(x, int | float) and isinstance(y, int | float):
+        return f"drive to ({float(x):.2f}, {float(y):.2f})"
+    if run.skill == "dock_robot" and isinstance(dock := p.get("dock"), str) and dock:
+        return f"dock at {dock}"
+    return _DERIVED_STEPS.get(run.skill, run.skill.replace("_", " "))
 
 
 def step_ref(run: SkillRun) -> str:

@@ -358,3 +358,18 @@ def test_a_goal_read_from_nav2s_logs_is_named_as_spoken(tmp_path: Path) -> None:
     assert str(took["answer"]).startswith("The navigation goal ")
     assert str(after["answer"]).startswith("Nothing more: the navigation goal was ")
     assert not any("derived from" in str(a["answer"]) for a in (took, after))
+
+
+def test_steps_derived_from_moveit_and_ros2_control_are_said_as_steps(tmp_path: Path) -> None:
+    """The steps HEXAR builds from MoveIt's, ros2_control's and Nav2's goals are said as a person says them."""
+    from hexar.evals import real_modules, real_nav2
+
+    arm = next(e for e in real_modules.load_excerpts("real-modules")
+               if e.id == "moveit2-2789-kinematics-not-passed-to-node")
+    run = real_modules.write_recording(arm, tmp_path / "arm", task=False)
+    (doing,) = _ask(run, "What were you doing when it failed?")
+    assert str(doing["answer"]).startswith("When it failed at ")
+    assert "I was at step 1 (to move my arm), " in str(doing["answer"])
+    nav = next(e for e in real_nav2.corpus() if e.id == "nav2-3807-dwb-no-valid-trajectories")
+    (took,) = _ask(real_nav2.write_recording(nav, tmp_path / "nav", task=False), "How long did it take?")
+    assert "it ended when step 1 (to drive to my goal) failed." in str(took["answer"])
