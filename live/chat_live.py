@@ -13,6 +13,7 @@ from typing import Any
 from hexar.bounded_json import loads
 from hexar.errors import BadJsonError
 from hexar.events import contract as c
+from hexar.live.jobs import BURST, PER_SECOND, Bucket
 from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS
 
 PROMPT_HELP = "Ask the robot why; answers come from the running `hexar serve`. Ctrl-D quits."
@@ -87,6 +88,8 @@ class LiveChat:
         self.thread = uuid.uuid4().hex[:12]
         self.show = show
         self._mine = threading.Event()
+        # a margin under the node's bucket: a question may reach it sooner after the last than it was sent
+        self._pace = Bucket(BURST - 1, PER_SECOND * 0.8, time.monotonic())
         self._asked = self.thread
         self._stop = threading.Event()
         self._reader = threading.Thread(target=self._read, daemon=True)
@@ -129,7 +132,11 @@ class LiveChat:
         time.sleep(0.5)
 
     def ask(self, question: str, timeout: float = 30.0) -> bool:
-        """Send one question and wait for its answer; False when the node did not answer in time."""
+        """Send one question and wait for its answer; False when the node did not answer in time. Questions are
+        paced under the node's limit per conversation (live/jobs.py), which drops what comes faster unanswered:
+        piped questions answered in milliseconds would otherwise lose the fourth."""
+        while not self._pace.take(time.monotonic()):
+            time.sleep(0.05)
         self._mine.clear()
         self._asked = self.thread
         self.line.write(json.dumps({"question": question, "thread": self.thread}))
