@@ -247,7 +247,7 @@ def start(log: EventLog, task: Task) -> Explanation:
     pt, x, y = pose
     which = "my last position recorded before then" if before else "the first position recorded after then"
     text = (f"{when[0].upper()}{when[1:]}, I was at ({x:.2f}, {y:.2f}) on my map: {which}, at {hms(pt)} UTC. "
-            "My recording names no room for that position.")
+            "I can't say which room that is: I know rooms only as the places my plan's steps name.")
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[*_evidence(task, [first] if first else []),
                                  Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE if log.poses else c.ODOM, t=pt,

@@ -98,7 +98,8 @@ def test_where_i_set_off_from_is_my_last_position_before_the_first_step(suite: P
     (start,) = _ask(suite / "bagfile_8_1", "Where did you start?")
     assert start["answer"] == (f"When I set off on step 1 (to go to the kitchen), I was at ({before.x:.2f}, "
                                f"{before.y:.2f}) on my map: my last position recorded before then, at "
-                               f"{clock(before.t).split('.')[0]} UTC. My recording names no room for that position.")
+                               f"{clock(before.t).split('.')[0]} UTC. I can't say which room that is: I know "
+                               "rooms only as the places my plan's steps name.")
     # a plan that never started: where I was when asked
     (asked,) = _ask(suite / "bagfile_1_1", "where were you when I asked?")
     assert str(asked["answer"]).startswith('When I got your request "Bring me a coffee from the kitchen", I was at ')
