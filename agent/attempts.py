@@ -66,17 +66,33 @@ class _Tries:
     lines: list[LogLine]
 
 
+def _tags(line: LogLine) -> list[str]:
+    """What kind of try a log line tells, read once: "replan<i>" per planner pattern it matches, "clear",
+    "moveit" (a planning request), "moveit_failed", or "recovery:<name>"."""
+    msg = line.msg.strip()
+    tags = [f"replan{i}" for i, p in enumerate(_REPLAN) if p.search(msg)]
+    if _CLEAR.match(msg):
+        tags.append("clear")
+    if _MOVEIT_REQUEST.match(msg):
+        tags.append("moveit")
+    if _MOVEIT_FAILED.search(line.msg):
+        tags.append("moveit_failed")
+    if _recovering(line) and (m := BEGIN.match(msg)):
+        tags.append(f"recovery:{m['name']}")
+    return tags
+
+
 def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
     start, end = task.skill_window(run)
     if run.state == "running" and log.logs:
         end = max(end, log.logs[-1].t)  # still under way: every line since it started
-    lines = [ln for ln in log.logs if start <= ln.t <= end]
+    tagged = [(ln, tags) for ln in log.logs if start <= ln.t <= end and (tags := _tags(ln))]
+    counts = Counter(tag for _, tags in tagged for tag in tags)
     starts = sum(1 for h in run.history if h.status.strip().lower() == "running")
-    replans = max(sum(1 for ln in lines if p.search(ln.msg.strip())) for p in _REPLAN)
-    recoveries = [m["name"] for ln in lines if _recovering(ln) and (m := BEGIN.match(ln.msg.strip()))]
-    clears = sum(1 for ln in lines if _CLEAR.match(ln.msg.strip()))
-    moveit = sum(1 for ln in lines if _MOVEIT_REQUEST.match(ln.msg.strip())) or \
-        sum(1 for ln in lines if _MOVEIT_FAILED.search(ln.msg))
+    # one failed attempt may be logged by more than one of the patterns: the most any of them counts
+    replans = max(counts[f"replan{i}"] for i in range(len(_REPLAN)))
+    recoveries = [tag.removeprefix("recovery:") for _, tags in tagged for tag in tags if tag.startswith("recovery:")]
+    moveit = counts["moveit"] or counts["moveit_failed"]
     said: list[str] = []
     if starts > 1:
         said.append(f"I started it {_times(starts)}")
@@ -84,12 +100,12 @@ def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
         said.append(f"my planner failed to find a path {_times(replans)}")
     if recoveries:
         said.append(f"I ran {_recoveries(recoveries)}")
-    if clears:
-        said.append(f"I cleared my costmaps {_times(clears)}")
+    if counts["clear"]:
+        said.append(f"I cleared my costmaps {_times(counts['clear'])}")
     if moveit > 1:
         said.append(f"I asked my motion planner for a plan {_times(moveit)}")
-    shown = [ln for ln in lines if any(p.search(ln.msg.strip()) for p in _REPLAN) or _CLEAR.match(ln.msg.strip())
-             or _MOVEIT_REQUEST.match(ln.msg.strip()) or (_recovering(ln) and BEGIN.match(ln.msg.strip()))]
+    # a failed MoveIt plan is told by its request's line, not shown twice
+    shown = [ln for ln, tags in tagged if tags != ["moveit_failed"]]
     return _Tries(run, said, shown)
 
 
