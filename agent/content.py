@@ -26,7 +26,7 @@ from hexar.explainers.recorded import (
     trips_inside,
     utterances,
 )
-from hexar.explainers.tts import compare, first_sentence
+from hexar.explainers.tts import SAID_ANYTHING, compare, first_sentence
 from hexar.render import clock
 
 # the label's tail a derived task's instruction carries in tables: "Run spin (derived from Nav2's behaviour server)"
@@ -256,19 +256,25 @@ def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -
     """What the robot said for this task, and whether it was what the person asked for (`nothing`: the sentence
     for having said nothing, where another answer already named the task)."""
     spoken = utterances(log, (task.created, task.last_update))
+    # "did you say it out loud?": yes or no first, then what (whether it was what was asked is compare()'s lead)
+    yes_no = SAID_ANYTHING.match(" ".join(question.lower().split())) is not None
     if not spoken:
         later = [t for t in log.tasks if t.order > task.order and t.is_recovery]
         after = utterances(log, later[0].window()) if later else []
         extra = sentence(f' Afterwards, in my recovery, I said "{first_sentence(after[-1].text)}"') if after else ""
-        none = nothing or f"I didn't say anything for {task_name(task, log)}."
+        none = nothing or f"{'No. ' if yes_no else ''}I didn't say anything for {task_name(task, log)}."
         return Explanation(explainer="text_to_speech", text=f"{none}{extra}", causes=["tts.completed"])
     last = spoken[-1]
     evidence = [Evidence(cause="tts.completed", topic=c.SAY_EVENTS, t=last.t, item=f"started: text = {last.text}")]
-    compared = compare(task.instruction, last.text, evidence, question) if not task.is_recovery else None
-    if compared is not None:
-        return compared
+    compared = compare(task.instruction, last.text, evidence, "" if yes_no else question) \
+        if not task.is_recovery else None
     cut = " I was cut off before the end." if last.ended == "timed_out" else ""
-    return Explanation(explainer="text_to_speech", text=sentence(f'I said "{first_sentence(last.text, 200)}"') + cut,
+    lead = ("Partly. " if cut else "Yes. ") if yes_no else ""
+    if compared is not None:
+        return compared.model_copy(update={"text": lead + compared.text + (cut if yes_no else "")}) if yes_no \
+            else compared
+    return Explanation(explainer="text_to_speech",
+                       text=lead + sentence(f'I said "{first_sentence(last.text, 200)}"') + cut,
                        causes=["tts.completed"], evidence=evidence)
 
 

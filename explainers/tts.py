@@ -52,10 +52,15 @@ def _num(x: float) -> str:
 
 
 # A question about what was said rather than how the speech went.
+# "Did you say it out loud?", "did you tell me?": whether anything was said at all (then what), not whether it was
+# what the request asked for.
+SAID_ANYTHING = re.compile(r"^(and |so |but )?did you (actually |really |even |ever )?(say|tell|read|speak)( it| that|"
+                           r" this| anything| something| me| her| him| them| anyone)*( out loud| aloud| at all)?\W*$")
 CONTENT_QUESTION = re.compile(
     r"what did you (say|read|tell)|did you (read|say|tell)( me| her| him| them)? (the )?(right|correct|wrong)|"
     r"(right|correct|wrong) (recipe|message|text|thing|story|list|news)|was (that|it) (the )?(right|correct)|"
-    r"(is|was) that what i asked"
+    r"(is|was) that what i asked|"
+    + SAID_ANYTHING.pattern
 )
 # The part of a request that names what to say: the words after the verb that asks for speech.
 _SPEECH_VERB = re.compile(r"\b(read|tell|say|announce|remind|recite|repeat)\b(.*)$", re.I)

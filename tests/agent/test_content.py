@@ -373,3 +373,19 @@ def test_steps_derived_from_moveit_and_ros2_control_are_said_as_steps(tmp_path: 
     nav = next(e for e in real_nav2.corpus() if e.id == "nav2-3807-dwb-no-valid-trajectories")
     (took,) = _ask(real_nav2.write_recording(nav, tmp_path / "nav", task=False), "How long did it take?")
     assert "it ended when step 1 (to drive to my goal) failed." in str(took["answer"])
+
+
+def test_did_you_say_it_is_answered_yes_or_no_then_what(suite: Path) -> None:
+    """"Did you say it out loud?" asks whether anything was said: yes (the words), no (and what the recovery said),
+    or partly when the speech was cut off; whether it was what was asked stays compare()'s own yes or no."""
+    (pizza,) = _ask(suite / "bagfile_20_1", "did you say it out loud?")
+    assert pizza["answer"] == 'Yes. I said "I recommend a Margherita."'
+    (blocked,) = _ask(suite / "bagfile_5_1", "Did you tell me?")
+    assert blocked["answer"] == ('No. I didn\'t say anything for your request "Bring me a coffee from the kitchen". '
+                                 'Afterwards, in my recovery, I said "Sorry, I could not complete the task."')
+    (cut,) = _ask(suite / "bagfile_19_1", "did you say anything?")
+    assert str(cut["answer"]).startswith("Partly. What I said did not match your request")
+    assert str(cut["answer"]).endswith("I was cut off before the end.")
+    right, what = _ask(suite / "bagfile_9_3", "did you say it?", "what did you say?")
+    assert str(right["answer"]).startswith('Yes. I said "Maria, dinner is at eight.", which is what you asked for')
+    assert str(what["answer"]).startswith('I said "Maria, dinner is at eight."')
