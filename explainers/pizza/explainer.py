@@ -251,8 +251,18 @@ class PizzaRecommenderExplainer:
 
 def _asked(rec: PizzaRecommender, known: list[str], pizza: str, question: str) -> list[str]:
     # imported here: whatif words its answers with this module's pretty() and a_pizza()
-    from hexar.explainers.pizza.whatif import asked_change, asked_pizza, asks_what_was_had, what_if, why_not
+    from hexar.explainers.pizza.whatif import (
+        asked_change,
+        asked_pizza,
+        asks_how_sure,
+        asks_what_was_had,
+        how_sure,
+        what_if,
+        why_not,
+    )
 
+    if asks_how_sure(question):
+        return [how_sure(rec, known, pizza)]
     if asks_what_was_had(question):
         had = join_words([pretty(k) for k in known]) if known else "none of the ingredients my recipes know"
         return [f"You told me you had {had}, and from that I recommended {a_pizza(pizza)}."]

@@ -92,6 +92,26 @@ def asked_change(question: str, ingredients: list[str]) -> Change | None:
     return Change(tuple(removed), tuple(added), unknown) if removed or added or unknown else None
 
 
+# "How sure are you?": the tree's own class probabilities for the recorded ingredients, not a confidence made up.
+_SURE = re.compile(r"\bhow (sure|certain|confident)\b|\b(are|were) you (really |quite |very |completely )?"
+                   r"(sure|certain|confident)\b|\bhow (likely|probable)\b")
+
+
+def asks_how_sure(question: str) -> bool:
+    return _SURE.search(question.lower()) is not None
+
+
+def how_sure(rec: PizzaRecommender, known: list[str], pizza: str) -> str:
+    """How sure the recipe model is of `pizza` for these ingredients: the share its leaf gives it (a decision tree's
+    probability; the shipped recipes are distinct, so every leaf holds one pizza and the share is whole)."""
+    label = rec.class_index(pizza)
+    share = float(rec.predict_proba(rec.vector(known).reshape(1, -1))[0][label]) if label is not None else 0.0
+    alone = "alone" if share >= 0.999 else f"in {share:.0%} of the recipes its rules reach"
+    return (f"As sure as my recipe model can be: it is a decision tree learned from {len(rec.labels)} recipes of "
+            f"{len(rec.classes)} pizzas, and for the ingredients you had its rules lead to {a_pizza(pizza)} {alone}. "
+            "It knows no pizza outside those recipes, though.")
+
+
 def asks_what_was_had(question: str) -> bool:
     return _HAD.search(question.lower()) is not None
 

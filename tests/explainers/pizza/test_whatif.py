@@ -104,3 +104,17 @@ def test_could_and_would_questions_about_another_pizza_are_why_nots() -> None:
                      "could you have recommended the Diavola instead"):
         assert asked_pizza(question, rec.classes, "Margherita") == "Diavola", question
     assert asked_pizza("Was the Diavola spicy?", rec.classes, "Margherita") is None
+
+
+def test_how_sure_is_the_trees_own_share_for_the_recorded_ingredients(pizza_bag: MakeBag) -> None:
+    """The fitted tree's probability for the recorded ingredients, with what it was learned from; its leaves each
+    hold one pizza of the recipe data, so the share is whole, and the answer says what it does not know."""
+    rec = default_recommender()
+    proba = rec.predict_proba(rec.vector(AVAILABLE).reshape(1, -1))[0]
+    assert max(proba) == 1.0 and rec.classes[int(proba.argmax())] == "Margherita"
+    log = pizza_bag(AVAILABLE)
+    for question in ("How sure are you?", "are you really sure", "how confident are you about the Margherita?"):
+        assert _ask(log, question) == (
+            f"As sure as my recipe model can be: it is a decision tree learned from {len(rec.labels)} recipes of "
+            f"{len(rec.classes)} pizzas, and for the ingredients you had its rules lead to a Margherita alone. It "
+            "knows no pizza outside those recipes, though."), question
