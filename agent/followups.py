@@ -77,7 +77,9 @@ _MODULE_WORDS = {
         r"\b(did|has|have|had) (anyone|anybody|someone|somebody|a person|people|a human) help(ed)?\b|"
         # not "who did you talk to?": the robot also talks when it only speaks a message (text_to_speech)
         r"\bask(ed)? (anyone|anybody|someone|somebody|a person|a human|people|for help)\b|"
-        r"\b(who|whom) did you ask\b"),
+        r"\b(who|whom) did you ask\b|"
+        # the person's distance is the help skill's measurement, not a trip of the plan
+        r"\bhow (far|close|near)( away)? (was|were|is) (the|that) (person|human|people)\b"),
     # "drop off the coffee" is a delivery, which a tray robot makes without an arm
     "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|drop(ped|ping)?(?! off\b)|"
                                r"pick(ed|ing)? (\w+ )?up|plac(e|ed|ing) (it|them|that|this|the)|put (\w+ )?down)\b"),

@@ -23,13 +23,15 @@ from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place
 
 Measure = Literal["far", "fast", "start", "long", "when"]
 
+_PEOPLE = r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child)\b"
 # Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
 _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
              r"\bwhat distance did you\b",
              # "how far away was the kitchen?": the way I drove there, and how far I ended from where I set off
-             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|the [a-z ]+|your [a-z ]+)\b",
+             # not of a person: how far the person was is the help explainer's recorded distance
+             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|(the|your) (?!" + _PEOPLE + r")[a-z ]+)\b",
              r"^(and |so |ok |okay )?how far (away )?(from|to) (the )?[a-z ]+ (is|was|were) (it|you)\b")),
     # average speeds from the same positions: a person asks it of a trip that felt slow
     ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",

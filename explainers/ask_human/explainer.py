@@ -3,6 +3,7 @@ model on failure, templates for the non-failures (noisy detection, poor approach
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import cache
 from itertools import pairwise
@@ -15,6 +16,7 @@ from hexar.explainers.ask_human.variables import (
     APPROACH_ERROR_LIMIT,
     CAUSE_OF,
     DEFAULT_NOTE,
+    MAX_DISTANCE,
     NOISE_LIMIT,
     TRANSITION_OF_STATE,
     WORLD,
@@ -27,6 +29,8 @@ from hexar.explainers.phrasing import phrase as llm_phrase
 from hexar.explainers.registry import Registry
 
 NAME = "ask_human_for_help"
+_HOW_FAR = re.compile(r"\bhow (far|close|near)\b.*\b(person|people|human|someone|somebody|they|them|he|she|him|her)\b|"
+                      r"\b(distance|far) (to|from) (the )?(person|human)\b")
 SUCCEEDED = "ask_human.succeeded"
 IN_PROGRESS = "ask_human.in_progress"
 STEP_NAMES = {
@@ -138,6 +142,7 @@ class AskHumanForHelpExplainer:
         else:
             found = self._in_progress(steps)
         found = found.model_copy(update={"details": [*found.details, *self._timing(steps)]})
+        found = self._distance_asked(question, steps, found)
         facts = "\n".join([found.text, found.counterfactual or "", *found.details]).strip()
         return llm_phrase(self.model, NAME, question, facts, found)
 
@@ -184,6 +189,24 @@ class AskHumanForHelpExplainer:
             details=details,
             fix=self._fix(causes[0]),
         )
+
+    @staticmethod
+    def _distance_asked(question: str, steps: list[Step], found: Explanation) -> Explanation:
+        """"How far away was the person?": the distance I measured comes first, when the answer does not already
+        give it (as the cause, "too far")."""
+        measured = [s for s in steps if s.key == "person_distance"]
+        if _HOW_FAR.search(question.lower()) is None or not measured or "I measured" in found.text:
+            return found
+        raw = measured[-1].value
+        try:
+            metres = float(raw)
+        except ValueError:
+            return found
+        limit = "within" if metres <= MAX_DISTANCE else "beyond"
+        lead = (f"I measured the person at {metres:.2f} m, {limit} my limit for asking ({MAX_DISTANCE} m, "
+                f"{DEFAULT_NOTE}).")
+        evidence = [*found.evidence, measured[-1].evidence(found.causes[0] if found.causes else SUCCEEDED)]
+        return found.model_copy(update={"text": f"{lead} {found.text}", "evidence": evidence})
 
     @staticmethod
     def _observed(var: str, raw: str, value: str) -> str:

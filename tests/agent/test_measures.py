@@ -41,8 +41,10 @@ def _leg(run: Path, step: int) -> tuple[list[tuple[float, float]], float]:
     # asked before: still theirs
     ("how far did you drive?", "far"), ("when did you start?", "when"), ("where are you?", "where"),
     ("where did you go?", "went"),
+    # the person's distance is the help skill's measurement, asked of its explainer
+    ("How far away was the person?", None), ("how far was the man", None),
 ])
-def test_distance_speed_and_start_questions_are_told_apart(question: str, kind: str) -> None:
+def test_distance_speed_and_start_questions_are_told_apart(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
 
 
@@ -113,3 +115,11 @@ def test_without_positions_the_start_is_not_guessed(tmp_path: Path) -> None:
     start, fast = _ask(run, "Where did you start?", "How fast were you going?")
     assert "I can't tell where I was when I set off" in str(start["answer"])
     assert "I can't tell how fast I drove" in str(fast["answer"])
+
+
+def test_how_far_the_person_was_goes_to_the_help_skill(suite: Path) -> None:
+    """bagfile_8_1 asked for help and got it, and drove slowly: the person's distance is the help skill's, not the
+    slow drive's finding nor "no step went to the person"."""
+    (person,) = _ask(suite / "bagfile_8_1", "How far away was the person?")
+    assert person["explainers"] == ["ask_human_for_help"]
+    assert re.match(r"I measured the person at \d+\.\d\d m, within my limit for asking", str(person["answer"]))

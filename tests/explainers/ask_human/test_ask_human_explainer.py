@@ -168,3 +168,21 @@ def test_a_model_phrases_the_grounded_finding(tmp_path: Path) -> None:
     out = AskHumanForHelpExplainer(model=_Echo()).explain("Why did you wait there so long?", context(log))
     assert out.phrased_by == "echo" and out.text.startswith("PHRASED: I could not get help:")
     assert out.causes == ["ask_human.not_confirmed"]
+
+
+@pytest.mark.parametrize(("scenario", "distance"), [(15, 1.35), (0, 3.2), (12, 5.0)])
+def test_how_far_the_person_was_is_the_measured_distance(tmp_path: Path, explainer: AskHumanForHelpExplainer,
+                                                         scenario: int, distance: float) -> None:
+    """"How far away was the person?" leads with the recorded person_distance and my limit, then the finding; a
+    distance that is the cause ("too far") is said once, in the finding."""
+    cond = replace(scenario_conditions(scenario, random.Random(0)), person_distance=distance)
+    ctx = context(record(tmp_path, cond)[0])
+    out = explainer.explain("How far away was the person?", ctx)
+    plain = explainer.explain("What happened?", ctx)
+    if distance > 4.0:
+        assert out.text == plain.text and out.text.count("I measured") == 1
+        return
+    assert out.text == (f"I measured the person at {distance:.2f} m, within my limit for asking (4.0 m, a configured "
+                        f"default, not recorded). {plain.text}")
+    assert out.causes == plain.causes
+    assert any(e.item.startswith("person_distance = ") for e in out.evidence)
