@@ -248,12 +248,35 @@ def start(log: EventLog, task: Task) -> Explanation:
                            evidence=_evidence(task, [first] if first else []), enough_information=False)
     pt, x, y = pose
     which = "my last position recorded before then" if before else "the first position recorded after then"
-    text = (f"{when[0].upper()}{when[1:]}, I was at ({x:.2f}, {y:.2f}) on my map: {which}, at {hms(pt)} UTC. "
-            "I can't say which room that is: I know rooms only as the places my plan's steps name.")
+    text = f"{when[0].upper()}{when[1:]}, I was at ({x:.2f}, {y:.2f}) on my map: {which}, at {hms(pt)} UTC. "
+    arrived = _arrived_before(log, t, (x, y))
+    if arrived is not None:
+        owner, run = arrived
+        text += (f"That is {_goal(run)}, where {step_ref(run)} of {task_name(owner, log)} had taken me at "
+                 f"{hms(run.last_change)}.")
+    else:
+        text += "I can't say which room that is: I know rooms only as the places my plan's steps name."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[*_evidence(task, [first] if first else []),
                                  Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE if log.poses else c.ODOM, t=pt,
                                           item=f"x={x:.2f} y={y:.2f}")])
+
+
+# How near the last place I got to my position must be for "where did you start?" to name that place: a trip that
+# ended there, not one I drove away from since.
+SAME_PLACE_M = 1.0
+
+
+def _arrived_before(log: EventLog, t: int, at: tuple[float, float]) -> tuple[Task, SkillRun] | None:
+    """The last trip to a named place that got there before `t`, when my position at `t` is still there."""
+    done = [(task, r) for task in log.tasks for r in task.skills if r.skill in NAV_SKILLS and r.state == "succeeded"
+            and r.last_change <= t and isinstance(r.params.get("location"), str)]
+    if not done:
+        return None
+    owner, run = max(done, key=lambda m: m[1].last_change)
+    there = [(p.x, p.y) for p in log.poses if p.t <= run.last_change] or \
+        [(o.x, o.y) for o in log.odometry if o.t <= run.last_change]
+    return (owner, run) if there and math.dist(there[-1], at) <= SAME_PLACE_M else None
 
 
 def _during(run: SkillRun) -> str:

@@ -123,3 +123,16 @@ def test_how_far_the_person_was_goes_to_the_help_skill(suite: Path) -> None:
     (person,) = _ask(suite / "bagfile_8_1", "How far away was the person?")
     assert person["explainers"] == ["ask_human_for_help"]
     assert re.match(r"I measured the person at \d+\.\d\d m, within my limit for asking", str(person["answer"]))
+
+
+def test_where_a_recovery_started_is_the_place_a_trip_had_taken_me(suite: Path) -> None:
+    """bagfile_12_1 reached the kitchen, then asking for help failed: its recovery set off from there, and says so;
+    bagfile_14_1 drove on towards the person after the kitchen, so its recovery names no room."""
+    arrived = read_recording(suite / "bagfile_12_1").tasks[0].skills[0].last_change
+    kitchen = Session(RunSettings(recording=suite / "bagfile_12_1", llm="none")).ask("Where did you start?", task="2")
+    assert str(kitchen["answer"]).endswith('That is the kitchen, where step 1 (to go to the kitchen) of your request '
+                                           f'"Bring me a coffee from the kitchen" had taken me at '
+                                           f"{clock(arrived).split('.')[0]}.")
+    away = Session(RunSettings(recording=suite / "bagfile_14_1", llm="none")).ask("Where did you start?", task="2")
+    assert str(away["answer"]).endswith("I can't say which room that is: I know rooms only as the places my plan's "
+                                        "steps name.")
