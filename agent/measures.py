@@ -10,13 +10,12 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from datetime import UTC, datetime
 from typing import Literal
 
 from hexar.agent.content import later_recoveries, task_name
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import clock
+from hexar.events.records import calendar_day, clock
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_ref, step_words
@@ -365,16 +364,12 @@ def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | No
 _DATED = re.compile(r"\b(day|date|happen|take place|recorded|recording|run)\b|^(and |so |ok |okay )?when was")
 
 
-# Before 2000 on the robot's clock: a simulator's time, which starts at zero, and no calendar day.
-_SIM_CLOCK_NS = 946_684_800 * 1_000_000_000
-
-
 def _on(t: int) -> str:
     """"On Monday 10 March 2025.": the day of a time on the robot's clock, in UTC."""
-    if t < _SIM_CLOCK_NS:
+    day = calendar_day(t)
+    if day is None:
         return "My clock was a simulator's, which starts at zero, so my recording gives no calendar day."
-    d = datetime.fromtimestamp(t / 1e9, tz=UTC)
-    return f"On {d:%A} {d.day} {d:%B %Y}."
+    return f"On {day}."
 
 
 def when(question: str, log: EventLog, task: Task) -> Explanation:

@@ -32,6 +32,19 @@ def clock(t: int) -> str:
     return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
+# Before 2000 on a robot's clock: a simulator's time, which starts at zero, so no calendar day.
+SIM_CLOCK_NS = 946_684_800 * 1_000_000_000
+
+
+def calendar_day(t: int) -> str | None:
+    """"Monday 10 March 2025": the day (UTC) of a nanosecond stamp (any int64 one is before 2263); None on a
+    simulator's clock."""
+    if t < SIM_CLOCK_NS:
+        return None
+    d = datetime.fromtimestamp(t / 1e9, tz=UTC)
+    return f"{d:%A} {d.day} {d:%B %Y}"
+
+
 @dataclass(frozen=True, slots=True)
 class LogLine:
     """One `/rosout` line (rcl_interfaces/msg/Log), or one line of launch's log file (origin "launch.log",
