@@ -8,6 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
+from hexar.agent.logs import LOGS
 from hexar.agent.sequence import AFTER, DOING, TASKS
 from hexar.agent.state import Intent
 
@@ -96,7 +97,7 @@ def module_asked(question: str) -> str | None:
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
                   ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
-                  ("doing", DOING))
+                  ("doing", DOING), ("logs", LOGS))
 
 
 def is_order(question: str) -> bool:
@@ -106,8 +107,8 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing' or
-    'said' for a question about what the robot did, 'act' for a request to do something, 'stop' for an order to stop
+    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs'
+    or 'said' for a question about what the robot did, 'act' for a request to do something, 'stop' for an order to stop
     and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION

@@ -15,6 +15,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
+from hexar.agent.logs import logs
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
@@ -338,6 +339,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "tasks":
         exp = sequence.tasks(ctx.log)
+    elif kind == "logs":
+        exp = logs(state["question"], ctx.log, task)
     elif kind == "doing":
         exp = with_failure(ctx, state, sequence.doing(ctx.log, task))
     else:

@@ -1,0 +1,156 @@
+""""What errors were there?", "show me the logs", "which node failed?", "what was the last error?": the log lines a
+developer replaying a run asks for, read from the recording (/rosout, and launch's log where it was recorded) in the
+task's time, quoted with their node and time, instead of the finding told again.
+
+Repeats of one message from one node are said once, with how often; at most a few distinct messages are quoted,
+and the answer says how many more there are. An error before the task began (a node that failed at bring-up) is
+told as that when the task's own time holds none.
+"""
+
+from __future__ import annotations
+
+import re
+from collections import Counter
+from dataclasses import dataclass
+
+from hexar.agent.content import task_name
+from hexar.agent.measures import hms, recorded_until
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import ERROR, WARN, LogLine
+from hexar.events.tasks import Task
+from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.recorded import join_words
+
+_OPEN = r"^(and |so |but |ok |okay |now |then )?(please )?"
+LOGS = re.compile(
+    _OPEN + r"(what|which|any) (errors?|warnings?|error messages?|warning messages?)\b(?! (did|do|does) (it|that|"
+    r"this) (mean|say))|"
+    + _OPEN + r"(show|list|give|tell|read)( me)? (the |your |all (of )?(the |your )?)?(errors?|warnings?|logs?|"
+    r"log lines|error messages?|warning messages?)\b|"
+    + _OPEN + r"what (was|were|is|are) (the )?(last|first|latest|final) (errors?|warnings?|log lines?|messages?)\b|"
+    + _OPEN + r"what (did|does) (the|your|my) logs? (say|show)\b|"
+    + _OPEN + r"what('s| is) in (the|your|my) logs?\b|"
+    + _OPEN + r"(did|were|was) (you get |you log |you see |there )?(any )?(errors?|warnings?)( logged| recorded)?\W*$|"
+    + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"
+    r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
+)
+QUOTED = 3  # distinct messages quoted in one answer; the rest are counted
+
+
+def asks_logs(q: str) -> bool:
+    """Whether a question (lower case, spaces collapsed) asks for the recorded log lines themselves."""
+    return LOGS.search(q) is not None
+
+
+@dataclass(frozen=True)
+class _Asked:
+    low: int  # the lowest level asked for
+    high: int  # the highest
+    noun: str  # "error", "warning" or "error or warning"
+    last: bool  # only the last one
+    nodes: bool  # which nodes
+    yes_no: bool  # "any errors?"
+
+
+def _asked(q: str) -> _Asked:
+    warn = re.search(r"\bwarnings?\b", q) is not None
+    err = re.search(r"\berrors?\b|\b(failed|crashed|died|errored)\b", q) is not None
+    if warn and not err:
+        low, high, noun = WARN, WARN, "warning"
+    elif err or not re.search(r"\blogs?\b|\blog lines\b|\bmessages?\b", q):
+        low, high, noun = ERROR, 100, "error"
+    else:
+        low, high, noun = WARN, 100, "error or warning"
+    return _Asked(low, high, noun, re.search(r"\b(last|latest|final)\b", q) is not None,
+                  re.search(r"\bwhich (node|process|component)", q) is not None,
+                  re.search(r"^(\w+ )?(any|did|were|was)\b", q) is not None)
+
+
+_PLURAL = {"error": "errors", "warning": "warnings", "error or warning": "errors or warnings"}
+
+
+def _plural(n: int, noun: str) -> str:
+    return f"{n} {noun}" if n == 1 else f"{n} {_PLURAL[noun]}"
+
+
+def _said(msg: str, limit: int = 200) -> str:
+    msg = " ".join(msg.split())
+    return msg if len(msg) <= limit else msg[:limit].rstrip() + "…"
+
+
+def _quote(lines: list[LogLine], counts: Counter[tuple[str, str]], one_node: bool, levels: bool) -> str:
+    """'at 12:00:01, controller_server "..." (4 times)' for each distinct message, the worst first (the
+    node left out where every line came from the one already named, the level where only one was asked for)."""
+    seen: dict[tuple[str, str], LogLine] = {}
+    for ln in lines:
+        seen.setdefault((ln.name, ln.msg), ln)
+    parts = []
+    # the worst first (errors before warnings), each level in the order first seen
+    ranked = sorted(seen.items(), key=lambda kv: (-kv[1].level, kv[1].t))
+    for key, ln in ranked[:QUOTED]:
+        times = f" ({counts[key]} times)" if counts[key] > 1 else ""
+        who = "" if one_node else f" {ln.name or 'a node'}"
+        level = f" ({ln.level_name})" if levels else ""
+        parts.append(f'at {hms(ln.t)},{who}{level} "{_said(ln.msg)}"{times}')
+    more = len(seen) - QUOTED
+    text = "; ".join(parts)
+    return text + (f"; and {more} other message{'s' if more > 1 else ''}" if more > 0 else "")
+
+
+def _evidence(lines: list[LogLine], task: Task) -> list[Evidence]:
+    first: dict[tuple[str, str], LogLine] = {}
+    for ln in lines:
+        first.setdefault((ln.name, ln.msg), ln)
+    quoted = sorted(first.values(), key=lambda ln: (-ln.level, ln.t))[:QUOTED]
+    return [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render()) for ln in quoted] or \
+        [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
+
+
+def _select(log: EventLog, low: int, high: int, start: int, end: int) -> tuple[list[LogLine], bool]:
+    """The lines of these levels in [start, end] (True), else those before `start` (False): a node that failed at
+    bring-up explains the task that came after."""
+    picked = [ln for ln in log.logs if low <= ln.level <= high and ln.t <= end]
+    inside = [ln for ln in picked if start <= ln.t]
+    return (inside, True) if inside else ([ln for ln in picked if ln.t < start], False)
+
+
+def logs(question: str, log: EventLog, task: Task) -> Explanation:
+    """The log lines asked for, in the task's time: counted, by node, the distinct ones quoted."""
+    q = " ".join(question.lower().split())
+    asked = _asked(q)
+    name = task_name(task, log)
+    if not log.logs:
+        text = (f"My recording holds no log lines ({c.ROSOUT}), so I can't tell which {_PLURAL[asked.noun]} there "
+                f"were for {name}.")
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                           evidence=_evidence([], task), enough_information=False)
+    start = task.created
+    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    lines, inside = _select(log, asked.low, asked.high, start, end)
+    times = f"at {hms(start)}" if hms(start) == hms(end) else f"{hms(start)} to {hms(end)}"
+    span = f"while I worked on {name} ({times} UTC)"
+    if not lines:
+        text = f"{'No. ' if asked.yes_no else ''}My log holds no {asked.noun} {span}, nor before it."
+        warned, _ = _select(log, WARN, WARN, start, end) if asked.noun == "error" else ([], True)
+        if warned:
+            text += f' It holds {_plural(len(warned), "warning")}: ask "what warnings were there?" for them.'
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([], task))
+    where = span if inside else f"before I began on {name}, at {hms(start)} UTC (none while I worked on it)"
+    if asked.last:
+        ln = lines[-1]
+        text = (f"The last {asked.noun} {where} came at {hms(ln.t)} from {ln.name or 'a node'}: "
+                f'"{_said(ln.msg)}".')
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([ln], task))
+    counts = Counter((ln.name, ln.msg) for ln in lines)
+    by_node = Counter(ln.name or "a node" for ln in lines)
+    nodes = join_words([f"{node} ({n})" if len(by_node) > 1 else node for node, n in by_node.most_common()])
+    if asked.nodes:
+        ln = lines[0]
+        text = (f"The {_PLURAL[asked.noun]} {where} came from {nodes}. The first, at {hms(ln.t)}, came from "
+                f'{ln.name or "a node"}: "{_said(ln.msg)}".')
+    else:
+        text = (f"{'Yes. ' if asked.yes_no else ''}My log holds {_plural(len(lines), asked.noun)} {where}, from "
+                f"{nodes}: {_quote(lines, counts, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
+    return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
+                       evidence=_evidence(lines, task))

@@ -1,0 +1,100 @@
+""""What errors were there?", "show me the logs", "which node failed?": the recorded log lines themselves, counted and
+quoted from the recording, checked against the same recording read on its own."""
+
+from __future__ import annotations
+
+from collections import Counter
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.followups import content_kind
+from hexar.agent.session import Session
+from hexar.events import read_recording
+from hexar.events.records import ERROR, WARN, clock
+
+
+def _ask(run: Path, *questions: str) -> list[dict[str, object]]:
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    return [session.ask(q, thread=thread) for q in questions]
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("What errors were there?", "logs"), ("show me the logs", "logs"), ("any errors?", "logs"),
+    ("were there any warnings?", "logs"), ("Which node failed?", "logs"), ("what was the last error?", "logs"),
+    ("list the error messages", "logs"), ("what did the logs say?", "logs"), ("did you get any errors", "logs"),
+    # a cause asked for stays the explainers'
+    ("what was the error?", None), ("why was there an error?", None), ("what does this error mean?", None),
+    ("Why did the controller fail?", None),
+])
+def test_log_questions_are_told_apart(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_the_errors_of_a_failed_task_are_counted_by_node_and_quoted(suite: Path) -> None:
+    run = suite / "bagfile_5_1"
+    log = read_recording(run)
+    task = log.tasks[0]
+    errors = [ln for ln in log.logs if ln.level >= ERROR and task.created <= ln.t <= task.last_update]
+    nodes = Counter(ln.name for ln in errors)
+    assert len(errors) >= 2 and len(nodes) >= 2  # the check reads a run with errors from several nodes
+    said, which, last, yes = _ask(run, "What errors were there?", "Which node failed?", "What was the last error?",
+                                  "any errors?")
+    text = str(said["answer"])
+    assert text.startswith(f"My log holds {len(errors)} errors while I worked on your request \"Bring me a coffee "
+                           "from the kitchen\"")
+    assert all(f"{node} ({n})" in text for node, n in nodes.items())
+    first = errors[0]
+    assert f'at {clock(first.t).split(".")[0]}, {first.name} "{first.msg}"' in text
+    assert {(e["topic"], e["t"], e["item"]) for e in said["evidence"]} <= {  # type: ignore[union-attr]
+        (ln.origin, ln.t, ln.render()) for ln in errors}
+    assert str(which["answer"]).endswith(f'The first, at {clock(first.t).split(".")[0]}, came from {first.name}: '
+                                         f'"{first.msg}".')
+    assert str(last["answer"]).endswith(f'from {errors[-1].name}: "{errors[-1].msg}".')
+    assert str(yes["answer"]).startswith("Yes. My log holds")
+    assert said["intent"] == "content" and said["error"] == ""
+
+
+def test_no_error_says_so_and_points_to_the_warnings(suite: Path) -> None:
+    run = suite / "bagfile_10_1"
+    log = read_recording(run)
+    task = log.tasks[0]
+    assert not [ln for ln in log.logs if ln.level >= ERROR and ln.t <= task.last_update]
+    warnings = [ln for ln in log.logs if ln.level == WARN and task.created <= ln.t <= task.last_update]
+    none, warned = _ask(run, "any errors?", "what warnings were there?")
+    assert str(none["answer"]).startswith('No. My log holds no error while I worked on your request "Bring me a '
+                                          'coffee from the kitchen"')
+    assert str(none["answer"]).endswith(f'It holds {len(warnings)} warnings: ask "what warnings were there?" for '
+                                        "them.")
+    assert str(warned["answer"]).startswith(f"My log holds {len(warnings)} warnings while I worked on")
+    assert "(WARN)" not in str(warned["answer"])  # only warnings were asked for: no level on each
+
+
+def test_an_error_at_bring_up_is_told_as_before_the_task(tmp_path: Path) -> None:
+    """A real ros2_control start whose hardware failed: the error is the start's own, quoted as logged."""
+    from hexar.evals import real_modules
+
+    case = next(e for e in real_modules.load_excerpts("real-modules")
+                if e.id == "r2c-controllers-1595-libserial-open-failed")
+    run = real_modules.write_recording(case, tmp_path / "run", task=False)
+    (said,) = _ask(run, "what errors were there?")
+    assert "OpenFailed" in str(said["answer"]) and "controller_manager" in str(said["answer"])
+    assert "derived from" not in str(said["answer"])
+
+
+def test_a_recording_without_logs_says_it_cannot_tell(tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+
+    out = tmp_path / "nolog"
+    b = BagBuilder()
+    for k, status in enumerate(("waiting", "Running", "failed")):
+        b.task_info(sec_ns(1700000000 + k), {
+            "instruction": "Bring me a coffee from the kitchen", "task_id": "t1", "task_status": "valid",
+            "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"},
+                                                      "status": status, "error_msg": ""}]})
+    b.write(out)
+    (said,) = _ask(out, "show me the logs")
+    assert str(said["answer"]).startswith("My recording holds no log lines (/rosout), so I can't tell which "
+                                          "errors or warnings there were")
