@@ -108,7 +108,8 @@ _ABOUT_ME = re.compile(
 
 ABOUT_ME = ("I'm HEXAR: I explain what this robot did, from what it recorded, and I never act on anything myself. "
             "Ask me why I did something (\"Why didn't you bring me the coffee?\"), what happened, how long it took, "
-            "where I went, whether I tried again, what came next, or what to change so it goes better next time.")
+            "where I went, whether I tried again, which errors I logged, what came next, or what to change so it "
+            "goes better next time.")
 OFF_TOPIC = ("I can only explain what I did, from what I recorded, and that question is not about it. "
              "Ask me why I did something.")
 
