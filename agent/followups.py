@@ -9,7 +9,7 @@ import re
 
 from hexar.agent.attempts import TRIED
 from hexar.agent.logs import LOGS
-from hexar.agent.sequence import AFTER, DOING, TASKS
+from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
 from hexar.agent.state import Intent
 
 _DEEPER = re.compile(
@@ -97,7 +97,7 @@ def module_asked(question: str) -> str | None:
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
                   ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
-                  ("doing", DOING), ("logs", LOGS))
+                  ("doing", DOING), ("logs", LOGS), ("plan", PLAN))
 
 
 def is_order(question: str) -> bool:
@@ -107,9 +107,9 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs'
-    or 'said' for a question about what the robot did, 'act' for a request to do something, 'stop' for an order to stop
-    and 'next' for one about what it will do; None for anything else."""
+    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs',
+    'plan' or 'said' for a question about what the robot did, 'act' for a request to do something, 'stop' for an
+    order to stop and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

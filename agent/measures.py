@@ -28,14 +28,13 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
              r"\bwhat distance did you\b",
-             # "how far away was the kitchen?": the way I drove there, and how far I ended from where I set off
-             # not of a person: how far the person was is the help explainer's recorded distance
+             # "how far away was the kitchen?": the way I drove there (a person's distance is the help skill's)
              r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|(the|your) (?!" + _PEOPLE + r")[a-z ]+)\b",
              r"^(and |so |ok |okay )?how far (away )?(from|to) (the )?[a-z ]+ (is|was|were) (it|you)\b")),
     # average speeds from the same positions: a person asks it of a trip that felt slow
     ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",
-              r"^(and |so |ok |okay )?(what|how fast) (was|is) (your|the robot's|its) (average |top |max(imum)? )?"
-              r"(speed|velocity)\b",
+              r"^(and |so |ok |okay )?(what('s| was| is)|how fast (was|is)) (your|the robot's|its) "
+              r"(average |top |max(imum)? )?(speed|velocity)\b",
               r"^(and |so |ok |okay )?at what speed (were|did) you\b")),
     ("start", (r"^(and |so |ok |okay )?where did you (start|begin|set off|come)( from)?\b",
                r"^(and |so |ok |okay )?where were you (before|at the start|at first|when (you|i) (started|began|"

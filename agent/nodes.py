@@ -339,6 +339,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "tasks":
         exp = sequence.tasks(ctx.log)
+    elif kind == "plan":
+        exp = sequence.plan(ctx.log, task)
     elif kind == "logs":
         exp = logs(state["question"], ctx.log, task)
     elif kind == "doing":

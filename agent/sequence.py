@@ -133,3 +133,44 @@ def doing(log: EventLog, task: Task) -> Explanation:
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=h.t,
                                           item=f"step {run.index + 1}: {run.label()} {h.status.strip().lower()}")
                                  for h in run.history if h.status.strip().lower() in {"running", "failed"}])
+
+
+PLAN = re.compile(
+    _LEAD + r"what( is| was|'s| were) (your|the|my) (plan|steps|plan of action)\b|"
+    + _LEAD + r"what (were|are) you (supposed|meant|going|planning|trying|told) to do\b|"
+    + _LEAD + r"what did you (plan|intend|mean) to do\b|"
+    + _LEAD + r"(tell me|show me|list|give me) (your|the) (plan|steps)\b")
+
+
+_ONE_STEP = {"succeeded": "I did it.", "failed": "It failed.", "invalid": "It never started.",
+             "canceled": "It was canceled.", "running": "It was still under way when the recording ends.",
+             "waiting": "It had not started when the recording ends."}
+
+
+def plan(log: EventLog, task: Task) -> Explanation:
+    """"What was your plan?": the task's steps as planned, then what became of them; a goal read from the logs is
+    said to be no plan of the robot's own."""
+    name = task_name(task, log)
+    said = next((u for u in reversed(task.updates) if u.instruction == task.instruction), task.updates[-1])
+    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t, item=task.instruction)] \
+        if task.instruction else []
+    if not task.skills:
+        why = f": {task.error_msg}" if task.error_msg else ""
+        text = f"I had no plan for {name}: it held no steps{why}."
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)
+    if task.derived:
+        text = (f"I had no plan of my own for {name}: it is a goal I read from my logs, to "
+                f"{plan_words(task)}, {_DID.get(task.outcome, task.outcome)}.")
+        return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
+                           evidence=evidence)
+    head = sentence(f"My plan for {name} was to {plan_words(task)}")
+    if len(task.skills) == 1:
+        rest = _ONE_STEP.get(task.outcome, "")
+    elif all(r.state == "succeeded" for r in task.skills):
+        rest = "I did every step."
+    else:
+        rest = steps_summary(task)
+    if task.outcome == "invalid":
+        rest += " " + sentence(f"My planner rejected it{': ' + task.error_msg.strip() if task.error_msg else ''}")
+    return Explanation(explainer="planner", text=f"{head} {rest}".strip(), causes=["planner.plan_ok"],
+                       evidence=evidence)

@@ -35,7 +35,7 @@ def _leg(run: Path, step: int) -> tuple[list[tuple[float, float]], float]:
 @pytest.mark.parametrize(("question", "kind"), [
     ("How far away was the kitchen?", "far"), ("how far is the living room", "far"), ("How far was it?", "far"),
     ("How fast were you going?", "fast"), ("what was your average speed?", "fast"),
-    ("how quickly did you drive", "fast"),
+    ("how quickly did you drive", "fast"), ("what's your top speed", "fast"),
     ("Where did you start?", "start"), ("where did you set off from?", "start"),
     ("where were you when I asked?", "start"),
     # asked before: still theirs

@@ -128,3 +128,27 @@ def test_what_else_could_you_have_picked_is_the_alternative_not_the_next_finding
                           "what else happened?")
     assert other["intent"] == "helped" and "I would have recommended a" in str(other["answer"]), other["answer"]
     assert more["intent"] == "else" and "speech limit" in str(more["answer"])
+
+
+@pytest.mark.parametrize("question", ["What was your plan?", "what's the plan", "what were you supposed to do?",
+                                      "tell me your plan"])
+def test_the_plan_is_its_steps_then_what_became_of_them(suite: Path, question: str) -> None:
+    assert content_kind(question) == "plan"
+    (failed,) = _ask(suite / "bagfile_5_1", question)
+    assert failed["answer"] == ('My plan for your request "Bring me a coffee from the kitchen" was to go to the '
+                                'kitchen, ask someone for help ("Could you please put the coffee on my tray?"), go to '
+                                'the living room and then say "Here is your coffee." I did none of the 4 steps of my '
+                                "plan: step 1 (to go to the kitchen) failed; steps 2, 3 and 4 never started.")
+
+
+def test_a_rejected_plan_and_a_goal_from_the_logs_say_what_they_were(suite: Path, tmp_path: Path) -> None:
+    (rejected,) = _ask(suite / "bagfile_1_1", "What was your plan?")
+    assert str(rejected["answer"]).endswith("My planner rejected it: Skill navigate_to_room is not a valid skill.")
+    (done,) = _ask(suite / "bagfile_20_1", "what was the plan?")
+    assert str(done["answer"]).endswith("and then say the pizza I recommend. I did every step.")
+    from hexar.evals.real_nav2 import corpus, write_recording
+
+    excerpt = next(e for e in corpus() if e.id == "nav2-3807-dwb-no-valid-trajectories")
+    (goal,) = _ask(write_recording(excerpt, tmp_path / "run", task=False), "what was your plan?")
+    assert goal["answer"] == ("I had no plan of my own for the navigation goal: it is a goal I read from my logs, to "
+                              "drive to my goal, and it failed.")
