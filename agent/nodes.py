@@ -14,6 +14,7 @@ from hexar.agent.attempts import tried
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
+from hexar.agent.flags import flag_answer
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.logs import logs
 from hexar.agent.objects import object_asked, object_state
@@ -339,6 +340,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "tasks":
         exp = sequence.tasks(ctx.log)
+    elif kind == "flag":
+        exp = flag_answer(ctx, state, task)
     elif kind == "plan":
         exp = sequence.plan(ctx.log, task)
     elif kind == "logs":

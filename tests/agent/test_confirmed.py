@@ -25,7 +25,10 @@ def _ask(run: Path, question: str) -> str:
     ("bagfile_10_1", "was your path blocked?", "No. I reached the kitchen without any problem."),
     # another problem found: it is told, with no yes or no that nothing decided
     ("bagfile_7_3", "was your path blocked?", "I couldn't reach the kitchen because I was plugged into my charger"),
-    ("bagfile_6_2", "were you charging?", "I couldn't reach the dining room because my joystick"),
+    # a recorded flag decides its own yes or no, and the problem found follows
+    ("bagfile_6_2", "were you charging?", 'No: my charging flag (/power/is_charging) stayed off while I worked on '
+                                          'your request "Could you bring me the book from the dining room?". I '
+                                          "couldn't reach the dining room because my joystick"),
 ])
 def test_a_condition_asked_about(suite: Path, run: str, question: str, lead: str) -> None:
     assert _ask(suite / run, question).startswith(lead)

@@ -1,0 +1,95 @@
+""""Were you charging?", "was someone using the joystick?": answered from the recorded flag itself
+(/power/is_charging, /joy_priority) over the task's time, yes or no, instead of the task's finding with no answer to
+the question. A recording without the flag says so; it is never taken for "no"."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.content import task_name
+from hexar.agent.context import RunContext
+from hexar.agent.measures import hms, recorded_until
+from hexar.agent.overview import with_lead
+from hexar.agent.probes import probe, with_failure
+from hexar.agent.state import AgentState
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import BoolSample
+from hexar.events.tasks import Task
+from hexar.explainers.base import Evidence, Explanation
+
+_LEAD = r"^(and |so |but |ok |okay )?"
+# Per flag: how people ask about it, and how the answer names it.
+_FLAGS: tuple[tuple[str, re.Pattern[str], str], ...] = (
+    (c.IS_CHARGING, re.compile(
+        _LEAD + r"(were|was|are|weren't|wasn't) you (still )?(charging|plugged in|on (the|your) (charger|dock)|"
+        r"docked)\b|" + _LEAD + r"(was|were) (the|your) (charger|battery) (charging|plugged in|connected)\b"),
+     "charging flag"),
+    (c.JOY_PRIORITY, re.compile(
+        _LEAD + r"(was|were|is) (the |a |your )?(joystick|joypad|gamepad)( mode)? (on|in use|used|active|"
+        r"holding|in control|connected)\b|"
+        + _LEAD + r"(was|were|did) (someone|anyone|somebody|a person) (using|use|driving|drive|holding|hold) "
+        r"(you|me|the robot)?( with)? ?(the |a )?(joystick|joypad|gamepad)\b|"
+        + _LEAD + r"(were|was) you (in )?(joystick|manual) (mode|control)\b"),
+     "joystick priority flag"),
+)
+
+
+# The navigation explainer's cause for a flag that held while a goal did not complete (navigation/detectors.py).
+FLAG_CAUSE = {c.IS_CHARGING: "navigation.charging", c.JOY_PRIORITY: "navigation.joystick"}
+
+
+def flag_asked(q: str) -> str | None:
+    """The flag topic a yes-or-no question (lower case, spaces collapsed) asks about, else None."""
+    return next((topic for topic, pattern, _ in _FLAGS if pattern.search(q)), None)
+
+
+def _evidence(s: BoolSample) -> Evidence:
+    return Evidence(cause="planner.plan_ok", topic=s.topic, t=s.t, item=f"data={s.value}")
+
+
+def flag(question: str, log: EventLog, task: Task) -> Explanation:
+    """Yes (with when it held), no, or that the recording holds no such flag."""
+    q = " ".join(question.lower().split())
+    topic = flag_asked(q) or c.IS_CHARGING
+    what = next(words for t, _, words in _FLAGS if t == topic)
+    name = task_name(task, log)
+    samples = sorted(log.flags.get(topic, []), key=lambda s: s.t)
+    if not samples:
+        text = f"I can't tell: my recording holds no {what} ({topic}) for {name}."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
+    start = task.created
+    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    latched = [s for s in samples if s.t <= start][-1:]  # the value that held when the task began
+    during = latched + [s for s in samples if start < s.t <= end]
+    if not during:
+        text = f"I can't tell: my {what} ({topic}) was first recorded after {name} ended, at {hms(samples[0].t)}."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False,
+                           evidence=[_evidence(samples[0])])
+    held = [s for s in during if s.value]
+    if not held:
+        text = f"No: my {what} ({topic}) stayed off while I worked on {name}."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                           evidence=[_evidence(during[0]), *([_evidence(during[-1])] if len(during) > 1 else [])])
+    off = next((s for s in during if not s.value and s.t > held[0].t), None)
+    since = "when I began" if held[0] is during[0] and held[0].t <= start else f"at {hms(held[0].t)} UTC"
+    until = f", until {hms(off.t)} UTC" if off is not None else ""
+    text = f"Yes: my {what} ({topic}) was on from {since}{until}, while I worked on {name}."
+    evidence = [_evidence(held[0]), *([_evidence(off)] if off is not None else [])]
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence)
+
+
+def flag_answer(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
+    """The flag, yes or no, then the task's failure (whose evidence "why?" goes on to); where the failure's
+    explainer blames that very flag, its answer, led by "Yes."."""
+    found = flag(state["question"], ctx.log, task)
+    name = ctx.registry.failure_explainer(task)
+    failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
+    topic = flag_asked(" ".join(state["question"].lower().split())) or c.IS_CHARGING
+    if failed is None:
+        return found
+    if found.text.startswith("Yes") and FLAG_CAUSE[topic] in failed.causes:
+        return failed.model_copy(update={"text": with_lead(failed.text, "Yes.")})
+    # the flag decided the yes or no; what did stop me follows, as it would have been told
+    told = with_failure(ctx, state, found)
+    return told.model_copy(update={"text": f"{found.text} {failed.text}"}) if found.enough_information else told

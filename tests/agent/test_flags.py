@@ -1,0 +1,72 @@
+""""Were you charging?", "was someone using the joystick?": the recorded flag decides yes or no; where the failure
+was that flag, its explainer's answer says so; a recording without the flag cannot say no."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.followups import content_kind
+from hexar.agent.session import Session
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+from hexar.events import contract as c
+from hexar.events.records import clock
+
+T0 = sec_ns(1_741_600_000)
+
+
+def _ask(run: Path, question: str) -> dict[str, object]:
+    return dict(Session(RunSettings(recording=run, llm="none")).ask(question))
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("were you charging?", "flag"), ("Were you plugged in?", "flag"), ("were you docked", "flag"),
+    ("was someone using the joystick?", "flag"), ("were you in manual mode?", "flag"),
+    ("was the joystick on?", "flag"),
+    ("why were you charging?", None), ("what is a joystick?", None),
+])
+def test_flag_questions_are_told_apart(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_a_flag_that_stayed_off_is_no_and_the_failure_follows(suite: Path) -> None:
+    blocked = _ask(suite / "bagfile_5_1", "Were you charging?")
+    assert blocked["answer"] == ("No: my charging flag (/power/is_charging) stayed off while I worked on your "
+                                 'request "Bring me a coffee from the kitchen". I couldn\'t reach the kitchen because '
+                                 "something blocked my path and I found no other way around it.")
+    assert any(e["topic"] == c.IS_CHARGING for e in blocked["evidence"])  # type: ignore[union-attr]
+    fine = _ask(suite / "bagfile_10_1", "was someone using the joystick?")
+    assert fine["answer"] == ('No: my joystick priority flag (/joy_priority) stayed off while I worked on your request '
+                              '"Bring me a coffee from the kitchen".')
+
+
+def test_the_flag_that_stopped_me_is_yes_with_the_failure(suite: Path) -> None:
+    charged = _ask(suite / "bagfile_7_1", "were you plugged in?")
+    assert str(charged["answer"]).startswith("Yes. I couldn't reach the kitchen because I was plugged into my charger")
+    assert charged["causes"] == ["navigation.charging"]
+
+
+def test_a_flag_on_during_a_task_that_went_well_is_yes_with_when(tmp_path: Path) -> None:
+    b = BagBuilder()
+    b.flag(T0, c.IS_CHARGING, True)
+    b.flag(T0 + sec_ns(6), c.IS_CHARGING, False)
+    for k, status in enumerate(("waiting", "Running", "succeeded")):
+        b.task_info(T0 + sec_ns(1 + 5 * k), {
+            "instruction": "Say hello", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": "say", "params": {"input": "Hello"}, "status": status, "error_msg": ""}]})
+    run = b.write(tmp_path / "run")
+    said = _ask(run, "Were you charging?")
+    off = clock(T0 + sec_ns(6)).split(".")[0]
+    assert said["answer"] == (f"Yes: my charging flag (/power/is_charging) was on from when I began, until {off} "
+                              'UTC, while I worked on your request "Say hello".')
+
+
+def test_no_flag_recorded_is_no_answer(tmp_path: Path) -> None:
+    from hexar.evals.real_nav2 import corpus, write_recording
+
+    excerpt = next(e for e in corpus() if e.outcome == "failed")
+    said = _ask(write_recording(excerpt, tmp_path / "run", task=False), "were you charging?")
+    assert str(said["answer"]).startswith("I can't tell: my recording holds no charging flag (/power/is_charging) "
+                                          "for the navigation goal.")
