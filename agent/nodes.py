@@ -9,14 +9,14 @@ from typing import TYPE_CHECKING, Any
 
 from hexar import progress
 from hexar.agent import content as answers
-from hexar.agent import guard, measures, sequence
+from hexar.agent import guard, sequence
 from hexar.agent.attempts import tried
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.flags import flag_answer
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
-from hexar.agent.logs import logs
+from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
@@ -316,20 +316,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
     elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)
-    elif kind == "where":
-        exp = answers.where(ctx.log)
-    elif kind == "went":
-        exp = answers.went(state["question"], ctx.log, task)
-    elif kind == "far":
-        exp = measures.far(ctx.log, task, state["question"])
-    elif kind == "fast":
-        exp = measures.fast(ctx.log, task)
-    elif kind == "start":
-        exp = measures.start(ctx.log, task)
-    elif kind == "long":
-        exp = measures.long(ctx.log, task)
-    elif kind == "when":
-        exp = measures.when(state["question"], ctx.log, task)
+    elif kind in FROM_RECORDING:
+        exp = FROM_RECORDING[kind](state["question"], ctx.log, task)
     elif kind == "talked":
         exp = talked(ctx, state, task)
     elif kind == "tried":
@@ -338,14 +326,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         nxt = sequence.next_task(ctx.log, task)
         why = recovery(ctx.log, nxt, ctx.probe, "why did you do that?") if nxt is not None else None
         exp = sequence.after(ctx.log, task, why)
-    elif kind == "tasks":
-        exp = sequence.tasks(ctx.log)
     elif kind == "flag":
         exp = flag_answer(ctx, state, task)
-    elif kind == "plan":
-        exp = sequence.plan(ctx.log, task)
-    elif kind == "logs":
-        exp = logs(state["question"], ctx.log, task)
     elif kind == "doing":
         exp = with_failure(ctx, state, sequence.doing(ctx.log, task))
     else:

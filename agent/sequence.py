@@ -14,6 +14,7 @@ from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.planner import step_outcome
 from hexar.explainers.recorded import plan_words, sentence, step_ref
 
 _LEAD = r"^(and |so |ok |okay |but )?"
@@ -152,8 +153,10 @@ def plan(log: EventLog, task: Task) -> Explanation:
     said to be no plan of the robot's own."""
     name = task_name(task, log)
     said = next((u for u in reversed(task.updates) if u.instruction == task.instruction), task.updates[-1])
-    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t, item=task.instruction)] \
-        if task.instruction else []
+    # a recovery task has no request: its first step's own words, as recorded, stand for it
+    item = task.instruction or next((v for run in task.skills for v in run.params.values()
+                                     if isinstance(v, str) and v), "")
+    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t, item=item)] if item else []
     if not task.skills:
         why = f": {task.error_msg}" if task.error_msg else ""
         text = f"I had no plan for {name}: it held no steps{why}."
@@ -172,5 +175,6 @@ def plan(log: EventLog, task: Task) -> Explanation:
         rest = steps_summary(task)
     if task.outcome == "invalid":
         rest += " " + sentence(f"My planner rejected it{': ' + task.error_msg.strip() if task.error_msg else ''}")
+    # "why?" after it: the recorded request, then each step and what became of it
     return Explanation(explainer="planner", text=f"{head} {rest}".strip(), causes=["planner.plan_ok"],
-                       evidence=evidence)
+                       evidence=evidence, details=[step_outcome(run) for run in task.skills])

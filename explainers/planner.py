@@ -36,7 +36,8 @@ _STEP_STATE = {"succeeded": "done", "failed": "failed", "running": "still runnin
                "canceled": "canceled"}
 
 
-def _step_outcome(run: SkillRun) -> str:
+def step_outcome(run: SkillRun) -> str:
+    """"Step 2, to ask someone for help: failed.": one step and what became of it."""
     return f"Step {run.index + 1}, to {step_words(run, short=True)}: {_STEP_STATE.get(run.state, 'never started')}."
 
 
@@ -102,7 +103,7 @@ class PlannerExplainer:
                 causes=["planner.plan_ok"],
                 evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=said.t, item=item)]
                 if item else [],
-                details=[*(_step_outcome(run) for run in task.skills), f"The task {_OUTCOME[task.outcome]}."],
+                details=[*(step_outcome(run) for run in task.skills), f"The task {_OUTCOME[task.outcome]}."],
             )
         causes = list(dict.fromkeys(f.cause for f in findings))
         first = findings[0]

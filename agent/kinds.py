@@ -1,0 +1,31 @@
+"""The content questions answered from the recording alone ("how far did you drive?", "what was your plan?",
+"show me the logs"), each kind by one function of (question, log, task); the content node (agent/nodes.py) answers
+the kinds that also ask an explainer itself."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from hexar.agent import content, measures, sequence
+from hexar.agent.logs import logs
+from hexar.agent.places import place
+from hexar.events.log import EventLog
+from hexar.events.tasks import Task
+from hexar.explainers.base import Explanation
+
+Answer = Callable[[str, EventLog, Task], Explanation]
+
+FROM_RECORDING: dict[str, Answer] = {
+    "where": lambda q, log, task: content.where(log),
+    "went": content.went,
+    "far": lambda q, log, task: measures.far(log, task, q),
+    "fast": lambda q, log, task: measures.fast(log, task),
+    "start": lambda q, log, task: measures.start(log, task),
+    "long": lambda q, log, task: measures.long(log, task),
+    "when": measures.when,
+    "tasks": lambda q, log, task: sequence.tasks(log),
+    "place": place,
+    "plan": lambda q, log, task: sequence.plan(log, task),
+    "logs": logs,
+    "said": content.said,
+}

@@ -1,0 +1,72 @@
+""""Where is the kitchen?": a room the robot knows only as a place its plans name, so the answer is where it was
+when a trip there got there (its position estimate then), or that no trip of the recording did. Never a map
+position the recording does not hold."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.content import task_name
+from hexar.agent.measures import hms
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.tasks import SkillRun, Task
+from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.recorded import NAV_SKILLS, place_name, step_ref
+
+# The rooms of a home people ask about; a place a plan names is matched by its own words (recording-independent
+# here, so that "where is the coffee?" stays a question for the explainers).
+_ROOMS = (r"kitchen|living ?room|dining ?room|bed ?room|bath ?room|office|hall|hallway|garage|garden|"
+          r"lounge|pantry|study|entrance|corridor|laundry( room)?|toilet|charging (station|dock)|dock|charger")
+PLACE = re.compile(r"^(and |so |ok |okay |but )?where('s| is| was) (the |my |your )?(?P<place>" + _ROOMS + r")\W*$")
+
+
+def place_asked(q: str) -> str | None:
+    """The room a "where is the kitchen?" names (lower case, spaces collapsed), else None."""
+    m = PLACE.search(q)
+    return m.group("place") if m is not None else None
+
+
+def _key(name: str) -> str:
+    return re.sub(r"[\s_]+", "", name.lower())
+
+
+def _trips_to(log: EventLog, room: str) -> list[tuple[Task, SkillRun]]:
+    return [(task, r) for task in log.tasks for r in task.skills if r.skill in NAV_SKILLS
+            and _key(str(r.params.get("location", ""))) == _key(room)]
+
+
+_NOT_THERE = {"failed": "failed", "running": "was still under way when my recording ends", "canceled": "was canceled"}
+
+
+def place(question: str, log: EventLog, task: Task) -> Explanation:
+    """Where I was when a trip got to the room asked about, or why I can't tell."""
+    room = place_asked(" ".join(question.lower().split())) or ""
+    trips = _trips_to(log, room)
+    got = [(t, r) for t, r in trips if r.state == "succeeded"]
+    if not trips:
+        text = (f"I can't tell: no step of any plan in my recording went to the {room}, and I know rooms only as "
+                "the places my plans name.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
+    owner, run = (got or trips)[-1]
+    name = place_name(run.params.get("location"))
+    if not got:
+        ended = _NOT_THERE.get(run.state, "never started")
+        step = step_ref(run)
+        text = (f"I can't tell: I never got to {name} in my recording, so I have no position for it. "
+                f"{step[0].upper()}{step[1:]} of {task_name(owner, log)} {ended}.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False,
+                           evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=run.last_change,
+                                              item=owner.instruction)] if owner.instruction else [])
+    at = [p for p in log.poses if p.t <= run.last_change] or []
+    if not at:
+        text = (f"I got to {name} at {hms(run.last_change)} UTC ({step_ref(run)} of {task_name(owner, log)}), but my "
+                f"recording holds no position of mine ({c.AMCL_POSE}) to say where on my map that is.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
+    pose = at[-1]
+    text = (f"When I got to {name} at {hms(run.last_change)} UTC, for {step_ref(run)} of {task_name(owner, log)}, I "
+            f"was at ({pose.x:.2f}, {pose.y:.2f}) on my map. I know {name} only as a place my plan names, so that is "
+            "where I stopped for it, not the room's outline.")
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE, t=pose.t,
+                                          item=f"x = {pose.x:.2f}, y = {pose.y:.2f}")])

@@ -1,0 +1,51 @@
+""""Where is the kitchen?": where the robot was when a trip there got there, read from the recording, or why it
+cannot tell; never a room's position the recording does not hold."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.context import RunSettings
+from hexar.agent.followups import content_kind
+from hexar.agent.session import Session
+from hexar.events import read_recording
+from hexar.events.records import clock
+
+
+def _ask(run: Path, question: str) -> str:
+    return str(Session(RunSettings(recording=run, llm="none")).ask(question)["answer"])
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("Where is the kitchen?", "place"), ("where's the living room", "place"), ("where is my bedroom?", "place"),
+    # the robot, a trip, an object: their own questions
+    ("where are you?", "where"), ("where did you go?", "went"), ("where is the coffee?", None),
+    ("why did you go to the kitchen?", "went"),
+])
+def test_a_room_asked_for_is_a_place_question(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_a_room_reached_is_where_i_stopped_for_it(suite: Path) -> None:
+    run = suite / "bagfile_8_1"
+    log = read_recording(run)
+    trip = log.tasks[0].skills[0]
+    pose = [p for p in log.poses if p.t <= trip.last_change][-1]
+    assert _ask(run, "Where is the kitchen?") == (
+        f"When I got to the kitchen at {clock(trip.last_change).split('.')[0]} UTC, for step 1 (to go to the kitchen) "
+        f'of your request "Bring me a coffee from the kitchen", I was at ({pose.x:.2f}, {pose.y:.2f}) on my map. I '
+        "know the kitchen only as a place my plan names, so that is where I stopped for it, not the room's outline.")
+
+
+def test_a_room_never_reached_or_never_in_a_plan_is_not_placed(suite: Path) -> None:
+    assert _ask(suite / "bagfile_5_1", "where is the kitchen?") == (
+        "I can't tell: I never got to the kitchen in my recording, so I have no position for it. Step 1 (to go to the "
+        'kitchen) of your request "Bring me a coffee from the kitchen" failed.')
+    assert _ask(suite / "bagfile_5_1", "where's the living room?").endswith("Step 3 (to go to the living room) of "
+                                                                             'your request "Bring me a coffee from the '
+                                                                             'kitchen" never started.')
+    assert _ask(suite / "bagfile_5_1", "where is the bathroom?") == (
+        "I can't tell: no step of any plan in my recording went to the bathroom, and I know rooms only as the places "
+        "my plans name.")
