@@ -125,6 +125,14 @@ def test_ask_human_run_shows_its_steps_and_distance(page: tuple[Any, str], shots
     answer.find_elements(By.CSS_SELECTOR, ".evlink")[0].click()
     assert driver.find_elements(By.CSS_SELECTOR, "#events-body tr.hl")
     assert "shown" in driver.find_element(By.ID, "path-marker").get_attribute("class")
+    # the suggestion a developer replaying a run clicks: the run's log lines, quoted with their nodes
+    driver.find_element(By.XPATH, "//div[@class='suggest']/button[text()='What errors were there?']").click()
+    from selenium.webdriver.support.ui import WebDriverWait
+
+    WebDriverWait(driver, WAIT_S).until(lambda d: "My log holds" in d.find_elements(
+        By.CSS_SELECTOR, ".msg.bot:not(.pending)")[-1].text)
+    errors = driver.find_elements(By.CSS_SELECTOR, ".msg.bot:not(.pending)")[-1]
+    assert "My log holds" in errors.text and "error" in errors.text
     # thanks in the page's chat gets the reply the terminal chat gives, not a red refusal
     thanks = _ask(driver, "thanks!")
     assert "error" not in thanks.get_attribute("class")

@@ -48,7 +48,7 @@ export function chatPanel(run) {
     input.focus();
   }
   const form = el("form", { class: "ask", on: { submit: (e) => { e.preventDefault(); const q = input.value; input.value = ""; ask(q); } } }, input, send);
-  const suggestions = el("div", { class: "suggest" }, ["What happened?", "why?", "What would have helped?", "What else happened?"].map((q) =>
+  const suggestions = el("div", { class: "suggest" }, ["What happened?", "why?", "What would have helped?", "What else happened?", "What errors were there?"].map((q) =>
     el("button", { class: "secondary", type: "button", on: { click: () => ask(q) } }, q)));
   const reset = el("button", { class: "link", type: "button", on: { click: () => { thread = ""; localStorage.removeItem(key); log.replaceChildren(); showThread(); } } }, "new thread");
   if (thread) {
