@@ -7,7 +7,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
-from hexar.agent.logs import logs
 from hexar.agent.places import place
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -26,6 +25,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "tasks": lambda q, log, task: sequence.tasks(log),
     "place": place,
     "plan": lambda q, log, task: sequence.plan(log, task),
-    "logs": logs,
     "said": content.said,
 }

@@ -17,6 +17,7 @@ from hexar.agent.errors import BadQuestionError
 from hexar.agent.flags import flag_answer
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.kinds import FROM_RECORDING
+from hexar.agent.logs import logs
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
@@ -74,7 +75,8 @@ def _recorded(t: int, topic: str, item: str) -> str:
     source = _SOURCE.get(topic, topic)
     if item in {"data=True", "data=False"}:  # a recorded on/off flag
         return f"at {clock(t)} {source} was {'on' if item == 'data=True' else 'off'} ({topic})"
-    return f"at {clock(t)} {source} recorded \"{item}\""
+    # a logged message may end in a newline ("Known controllers and their joints:\n"): said without it
+    return f"at {clock(t)} {source} recorded \"{' '.join(item.split())}\""
 
 
 def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -328,8 +330,9 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "flag":
         exp = flag_answer(ctx, state, task)
-    elif kind == "doing":
-        exp = with_failure(ctx, state, sequence.doing(ctx.log, task))
+    elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
+        asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)
+        exp = with_failure(ctx, state, asked)
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, exp, "content", start)

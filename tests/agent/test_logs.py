@@ -48,8 +48,9 @@ def test_the_errors_of_a_failed_task_are_counted_by_node_and_quoted(suite: Path)
     assert all(f"{node} ({n})" in text for node, n in nodes.items())
     first = errors[0]
     assert f'at {clock(first.t).split(".")[0]}, {first.name} "{first.msg}"' in text
-    assert {(e["topic"], e["t"], e["item"]) for e in said["evidence"]} <= {  # type: ignore[union-attr]
-        (ln.origin, ln.t, ln.render()) for ln in errors}
+    # the quoted lines lead the evidence; the failure's own follows, for "why?"
+    cited = [(e["topic"], e["t"], e["item"]) for e in said["evidence"]]  # type: ignore[union-attr]
+    assert set(cited[:3]) <= {(ln.origin, ln.t, ln.render()) for ln in errors}
     assert str(which["answer"]).endswith(f'The first, at {clock(first.t).split(".")[0]}, came from {first.name}: '
                                          f'"{first.msg}".')
     assert str(last["answer"]).endswith(f'from {errors[-1].name}: "{errors[-1].msg}".')
@@ -98,3 +99,9 @@ def test_a_recording_without_logs_says_it_cannot_tell(tmp_path: Path) -> None:
     (said,) = _ask(out, "show me the logs")
     assert str(said["answer"]).startswith("My recording holds no log lines (/rosout), so I can't tell which "
                                           "errors or warnings there were")
+
+
+def test_why_after_the_errors_goes_on_to_the_failure(suite: Path) -> None:
+    _, why, deeper = _ask(suite / "bagfile_5_1", "What errors were there?", "why?", "why?")
+    assert str(why["answer"]).startswith("Here is what I recorded: ")
+    assert "something blocked my path" in str(deeper["answer"])
