@@ -1,6 +1,6 @@
 """The content questions answered from the recording alone ("how far did you drive?", "what was your plan?",
-"show me the logs"), each kind by one function of (question, log, task); the content node (agent/nodes.py) answers
-the kinds that also ask an explainer itself."""
+"where is the kitchen?"), each kind by one function of (question, log, task); the content node (agent/nodes.py)
+answers the kinds that also ask an explainer itself (the errors, a flag, a try again, what I was doing)."""
 
 from __future__ import annotations
 
