@@ -48,7 +48,7 @@ _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( bac
                    r"^where did you (go|drive)\b|^where have you been\b|"
                    # asked of a robot on its way (a live node): the trip under way and why
                    r"^(and |so |but )?why are you (going|driving|coming|heading|walking)( back| over)? "
-                   r"(to|into|towards?|there)\b|^(and |so |but )?where are you (going|heading|driving|off to)\b")
+                   r"(to|into|towards?|there)\b|^(and |so |but )?where (are|were) you (going|heading|driving|off to)\b")
 # A request to act, phrased as a question ("can you try again?"): the agent is read-only and says so.
 _ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|could|would|will|won't|wont) you "
                   r"(please |just )?(try|retry|go|bring|fetch|get me|do it|do that|drive|move|come|start|restart|turn|"

@@ -31,7 +31,8 @@ LOGS = re.compile(
     + _OPEN + r"what (was|were|is|are) (the )?(last|first|latest|final) (errors?|warnings?|log lines?|messages?)\b|"
     + _OPEN + r"what (did|does) (the|your|my) logs? (say|show)\b|"
     + _OPEN + r"what('s| is) in (the|your|my) logs?\b|"
-    + _OPEN + r"(did|were|was) (you get |you log |you see |there )?(any )?(errors?|warnings?)( logged| recorded)?\W*$|"
+    + _OPEN + r"(did|were|was) (you get |you log |you see |there )?(any |an |a )?(errors?|warnings?)( logged| "
+    r"recorded)?\W*$|"
     + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"
     r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
 )

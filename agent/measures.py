@@ -34,7 +34,7 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     # average speeds from the same positions: a person asks it of a trip that felt slow
     ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",
               r"^(and |so |ok |okay )?(what('s| was| is)|how fast (was|is)) (your|the robot's|its) "
-              r"(average |top |max(imum)? )?(speed|velocity)\b",
+              r"(average |top |max(imum)? )?(speed|velocity)\b(?! limit)",
               r"^(and |so |ok |okay )?at what speed (were|did) you\b")),
     ("start", (r"^(and |so |ok |okay )?where did you (start|begin|set off|come)( from)?\b",
                r"^(and |so |ok |okay )?where were you (before|at the start|at first|when (you|i) (started|began|"

@@ -137,7 +137,8 @@ def doing(log: EventLog, task: Task) -> Explanation:
 
 
 PLAN = re.compile(
-    _LEAD + r"what( is| was|'s| were) (your|the|my) (plan|steps|plan of action)\b|"
+    _LEAD + r"what( is| was|'s| were) (your|the|my) (plan|steps|plan of action)\b(?! (for )?(tomorrow|next|now|"
+    r"later|today))|"
     + _LEAD + r"what (were|are) you (supposed|meant|going|planning|trying|told) to do\b|"
     + _LEAD + r"what did you (plan|intend|mean) to do\b|"
     + _LEAD + r"(tell me|show me|list|give me) (your|the) (plan|steps)\b")

@@ -25,6 +25,7 @@ def _ask(run: Path, *questions: str) -> list[dict[str, object]]:
     ("What errors were there?", "logs"), ("show me the logs", "logs"), ("any errors?", "logs"),
     ("were there any warnings?", "logs"), ("Which node failed?", "logs"), ("what was the last error?", "logs"),
     ("list the error messages", "logs"), ("what did the logs say?", "logs"), ("did you get any errors", "logs"),
+    ("did you get an error?", "logs"),
     # a cause asked for stays the explainers'
     ("what was the error?", None), ("why was there an error?", None), ("what does this error mean?", None),
     ("Why did the controller fail?", None),

@@ -141,6 +141,10 @@ def test_the_plan_is_its_steps_then_what_became_of_them(suite: Path, question: s
                                 "plan: step 1 (to go to the kitchen) failed; steps 2, 3 and 4 never started.")
 
 
+def test_a_plan_for_later_is_no_question_about_the_recorded_one() -> None:
+    assert content_kind("what is the plan for tomorrow?") is None and content_kind("what's the plan now?") is None
+
+
 def test_a_rejected_plan_and_a_goal_from_the_logs_say_what_they_were(suite: Path, tmp_path: Path) -> None:
     (rejected,) = _ask(suite / "bagfile_1_1", "What was your plan?")
     assert str(rejected["answer"]).endswith("My planner rejected it: Skill navigate_to_room is not a valid skill.")
