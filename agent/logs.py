@@ -39,17 +39,12 @@ LOGS = re.compile(
 QUOTED = 3  # distinct messages quoted in one answer; the rest are counted
 
 
-def asks_logs(q: str) -> bool:
-    """Whether a question (lower case, spaces collapsed) asks for the recorded log lines themselves."""
-    return LOGS.search(q) is not None
-
-
 @dataclass(frozen=True)
 class _Asked:
     low: int  # the lowest level asked for
     high: int  # the highest
     noun: str  # "error", "warning" or "error or warning"
-    last: bool  # only the last one
+    one: str  # "last" or "first" for only that one, else ""
     nodes: bool  # which nodes
     yes_no: bool  # "any errors?"
 
@@ -63,7 +58,8 @@ def _asked(q: str) -> _Asked:
         low, high, noun = ERROR, 100, "error"
     else:
         low, high, noun = WARN, 100, "error or warning"
-    return _Asked(low, high, noun, re.search(r"\b(last|latest|final)\b", q) is not None,
+    one = "last" if re.search(r"\b(last|latest|final)\b", q) else "first" if re.search(r"\bfirst\b", q) else ""
+    return _Asked(low, high, noun, one,
                   re.search(r"\bwhich (node|process|component)", q) is not None,
                   re.search(r"^(\w+ )?(any|did|were|was)\b", q) is not None)
 
@@ -138,9 +134,9 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
             text += f' It holds {_plural(len(warned), "warning")}: ask "what warnings were there?" for them.'
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([], task))
     where = span if inside else f"before I began on {name}, at {hms(start)} UTC (none while I worked on it)"
-    if asked.last:
-        ln = lines[-1]
-        text = (f"The last {asked.noun} {where} came at {hms(ln.t)} from {ln.name or 'a node'}: "
+    if asked.one:
+        ln = lines[-1] if asked.one == "last" else lines[0]
+        text = (f"The {asked.one} {asked.noun} {where} came at {hms(ln.t)} from {ln.name or 'a node'}: "
                 f'"{_said(ln.msg)}".')
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([ln], task))
     counts = Counter((ln.name, ln.msg) for ln in lines)

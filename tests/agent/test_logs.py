@@ -41,20 +41,22 @@ def test_the_errors_of_a_failed_task_are_counted_by_node_and_quoted(suite: Path)
     errors = [ln for ln in log.logs if ln.level >= ERROR and task.created <= ln.t <= task.last_update]
     nodes = Counter(ln.name for ln in errors)
     assert len(errors) >= 2 and len(nodes) >= 2  # the check reads a run with errors from several nodes
-    said, which, last, yes = _ask(run, "What errors were there?", "Which node failed?", "What was the last error?",
-                                  "any errors?")
+    said, which, last, first, yes = _ask(run, "What errors were there?", "Which node failed?",
+                                         "What was the last error?", "what was the first error?", "any errors?")
     text = str(said["answer"])
     assert text.startswith(f"My log holds {len(errors)} errors while I worked on your request \"Bring me a coffee "
                            "from the kitchen\"")
     assert all(f"{node} ({n})" in text for node, n in nodes.items())
-    first = errors[0]
-    assert f'at {clock(first.t).split(".")[0]}, {first.name} "{first.msg}"' in text
+    first_line = errors[0]
+    assert f'at {clock(first_line.t).split(".")[0]}, {first_line.name} "{first_line.msg}"' in text
     # the quoted lines lead the evidence; the failure's own follows, for "why?"
     cited = [(e["topic"], e["t"], e["item"]) for e in said["evidence"]]  # type: ignore[union-attr]
     assert set(cited[:3]) <= {(ln.origin, ln.t, ln.render()) for ln in errors}
-    assert str(which["answer"]).endswith(f'The first, at {clock(first.t).split(".")[0]}, came from {first.name}: '
-                                         f'"{first.msg}".')
+    assert str(which["answer"]).endswith(f'The first, at {clock(first_line.t).split(".")[0]}, came from '
+                                         f'{first_line.name}: "{first_line.msg}".')
     assert str(last["answer"]).endswith(f'from {errors[-1].name}: "{errors[-1].msg}".')
+    assert str(first["answer"]).startswith("The first error while I worked on")
+    assert str(first["answer"]).endswith(f'from {first_line.name}: "{first_line.msg}".')
     assert str(yes["answer"]).startswith("Yes. My log holds")
     assert said["intent"] == "content" and said["error"] == ""
 
