@@ -150,13 +150,18 @@ class LiveChat:
 
 def chat_live(domain: int, lines: Iterable[str], show: Callable[[dict[str, Any]], None],
               timeout: float = 30.0, transport: str = "dds") -> int:
-    """Ask each line in turn; returns 2 if the node never answered (is `hexar serve` running on this domain?)."""
+    """Ask each line in turn, until one ends the talk ("bye"); returns 2 if the node never answered (is `hexar
+    serve` running on this domain?)."""
+    from hexar.agent.questions import GOODBYE, is_farewell
     from hexar.live.errors import LiveError
 
     chat = LiveChat(domain, show, transport)
     try:
         chat.wait_for_node(timeout)
         for line in lines:
+            if is_farewell(line):  # "bye", "quit": the talk ends here, as `hexar chat` ends, nothing sent
+                show({"trigger": "farewell", "answer": GOODBYE, "thread": chat.thread})
+                break
             if line.strip() and not chat.ask(line.strip(), timeout):
                 raise LiveError(f"no answer from hexar serve on DDS domain {domain} within {timeout:.0f} s")
     finally:

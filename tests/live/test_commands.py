@@ -232,10 +232,14 @@ def test_chat_live_talks_with_the_running_node(suite: Path, transport: str) -> N
         played = replay(suite / "bagfile_19_1", domain, rate=40.0, transport=other(transport))
         time.sleep(1.0)
         # the chat on the node's other transport where both exist: each crosses DDS vendors
-        # piped, five questions come faster than the node takes them from one conversation: none may be lost
+        # piped, five questions come faster than the node takes them from one conversation: none may be lost;
+        # "bye" ends the talk, and what follows it is never asked
         assert chat_live(domain, ["Why didn't you tell Maria?", "why?", "thanks", "How long did it take?",
-                                  "What did you say?"], shown.append, transport=other(transport)) == 0
+                                  "What did you say?", "bye", "what happened?"], shown.append,
+                         transport=other(transport)) == 0
+    assert shown[-1] == {"trigger": "farewell", "answer": "Goodbye.", "thread": shown[-2]["thread"]}
     answers = [a for a in shown if a["trigger"] == "question"]
+    assert len(answers) == 5
     assert answers[0]["causes"] == ["tts.timeout"], (answers[0], played)  # played: any topic no reader matched
     assert answers[1]["route"] == "followup" and answers[1]["thread"] == answers[0]["thread"]
     assert answers[2]["intent"] == "smalltalk" and answers[2]["answer"].startswith("You're welcome.")
