@@ -1,9 +1,10 @@
-""""Were you charging?", "was someone using the joystick?": answered from the recorded flag itself
-(/power/is_charging, /joy_priority) over the task's time, yes or no, instead of the task's finding with no answer to
-the question. A recording without the flag says so; it is never taken for "no"."""
+""""Were you charging?", "was someone using the joystick?", "what is your speed limit?": answered from the recorded
+flag or setting itself (/power/is_charging, /joy_priority, max_vel_x on /diagnostics) over the task's time, instead of
+the task's finding with no answer to the question. A recording without it says so; it is never taken for "no"."""
 
 from __future__ import annotations
 
+import math
 import re
 
 from hexar.agent.content import task_name
@@ -14,9 +15,11 @@ from hexar.agent.probes import probe, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import BoolSample
+from hexar.events.records import BoolSample, StatusRecord
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.navigation.detectors import SPEED_KEY, status_item
+from hexar.explainers.recorded import join_words
 
 _LEAD = r"^(and |so |but |ok |okay )?"
 # Per flag: how people ask about it, and how the answer names it.
@@ -93,3 +96,41 @@ def flag_answer(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     # the flag decided the yes or no; what did stop me follows, as it would have been told
     told = with_failure(ctx, state, found)
     return told.model_copy(update={"text": f"{found.text} {failed.text}"}) if found.enough_information else told
+
+
+# "What is your speed limit?", "how fast can you go?": the controller's configured limit as the robot published it
+# (the original HEXAR's /diagnostics key), not the speeds it drove at ("how fast were you going?", measures.py).
+LIMIT = re.compile(
+    _LEAD + r"what('s| is| was| were) (your|the|my) (speed limit|max(imum)? (speed|velocity)|velocity limit)s?\b|"
+    + _LEAD + r"how fast (can|could|may|were) you (go|drive|move|allowed to (go|drive|move))\b|"
+    + _LEAD + r"(what|which) speed (can|could|may) you\b")
+
+
+def _limit_of(r: StatusRecord) -> float | None:
+    try:
+        value = float(r.get(SPEED_KEY) or "nan")
+    except ValueError:
+        return None
+    return value if math.isfinite(value) and value > 0 else None
+
+
+def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
+    """The speed limit published while the task ran (the one in force when it began, and any change after)."""
+    name = task_name(task, log)
+    limits = [(r, v) for r in log.statuses.get(c.DIAGNOSTICS, []) if (v := _limit_of(r)) is not None]
+    if not limits:
+        text = f"I can't tell: my recording holds no speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) for {name}."
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
+    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    during = ([m for m in limits if m[0].t <= task.created][-1:] +
+              [m for m in limits if task.created < m[0].t <= end]) or limits[:1]
+    changes = [m for i, m in enumerate(during) if i == 0 or m[1] != during[i - 1][1]]
+    first = f"{changes[0][1]:.2f} m/s"
+    if len(changes) == 1:
+        text = f"My speed limit was {first} while I worked on {name} ({SPEED_KEY} on {c.DIAGNOSTICS})."
+    else:
+        later = join_words([f"{v:.2f} m/s at {hms(r.t)} UTC" for r, v in changes[1:]])
+        text = f"My speed limit changed while I worked on {name}: {first} at first, then {later} ({SPEED_KEY})."
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.DIAGNOSTICS, t=r.t,
+                                          item=status_item(r, SPEED_KEY)) for r, _ in changes[:4]])

@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
-from hexar.agent.flags import flag_asked
+from hexar.agent.flags import LIMIT, flag_asked
 from hexar.agent.logs import LOGS
 from hexar.agent.places import place_asked
 from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
@@ -110,8 +110,8 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs',
-    'plan', 'flag', 'place' or 'said' for a question about what the robot did, 'act' for a request to do something,
-    'stop' for an order to stop and 'next' for one about what it will do; None for anything else."""
+    'plan', 'flag', 'limit', 'place' or 'said' for a question about what the robot did, 'act' for a request to do
+    something, 'stop' for an order to stop and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
@@ -119,6 +119,8 @@ def content_kind(question: str) -> str | None:
     kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None)
     if kind is None and flag_asked(q) is not None:
         kind = "flag"
+    if kind is None and LIMIT.search(q):
+        kind = "limit"
     if kind is None and place_asked(q) is not None:
         kind = "place"
     if kind is None and (kind := measure_kind(q)) is None and CONTENT_QUESTION.search(q):

@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
+from hexar.agent.flags import speed_limit
 from hexar.agent.places import place
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -24,6 +25,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "when": measures.when,
     "tasks": lambda q, log, task: sequence.tasks(log),
     "place": place,
+    "limit": speed_limit,
     "plan": lambda q, log, task: sequence.plan(log, task),
     "said": content.said,
 }

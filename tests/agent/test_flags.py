@@ -70,3 +70,34 @@ def test_no_flag_recorded_is_no_answer(tmp_path: Path) -> None:
     said = _ask(write_recording(excerpt, tmp_path / "run", task=False), "were you charging?")
     assert str(said["answer"]).startswith("I can't tell: my recording holds no charging flag (/power/is_charging) "
                                           "for the navigation goal.")
+
+
+@pytest.mark.parametrize("question", ["What is your speed limit?", "how fast can you go?",
+                                      "what was your maximum speed?"])
+def test_the_speed_limit_is_the_published_setting(suite: Path, question: str) -> None:
+    from hexar.events import read_recording
+
+    assert content_kind(question) == "limit"
+    log = read_recording(suite / "bagfile_8_1")
+    published = {r.get("max_vel_x") for r in log.statuses[c.DIAGNOSTICS] if r.get("max_vel_x")}
+    assert len(published) == 1  # one limit through the run
+    said = _ask(suite / "bagfile_8_1", question)
+    assert said["answer"] == (f"My speed limit was {float(published.pop()):.2f} m/s while I worked on your request "
+                              '"Bring me a coffee from the kitchen" (max_vel_x on /diagnostics).')
+    assert content_kind("how fast were you going?") == "fast"  # the speeds driven, not the limit
+
+
+def test_a_speed_limit_changed_during_the_task_is_told_with_when(tmp_path: Path) -> None:
+    b = BagBuilder()
+    for k, limit in enumerate(("0.50", "0.50", "0.30")):
+        b.status(T0 + sec_ns(3 * k), c.DIAGNOSTICS, "controller_server", "velocity limits",
+                 [("max_vel_x", limit), ("max_vel_theta", "1.00")])
+    for k, status in enumerate(("waiting", "Running", "succeeded")):
+        b.task_info(T0 + sec_ns(1 + 4 * k), {
+            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
+                                "error_msg": ""}]})
+    said = _ask(b.write(tmp_path / "run"), "what is your speed limit?")
+    changed = clock(T0 + sec_ns(6)).split(".")[0]
+    assert said["answer"] == ('My speed limit changed while I worked on your request "Go to the kitchen": 0.50 m/s '
+                              f"at first, then 0.30 m/s at {changed} UTC (max_vel_x).")

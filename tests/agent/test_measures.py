@@ -43,8 +43,8 @@ def _leg(run: Path, step: int) -> tuple[list[tuple[float, float]], float]:
     ("where did you go?", "went"),
     # the person's distance is the help skill's measurement, asked of its explainer
     ("How far away was the person?", None), ("how far was the man", None),
-    # a limit is a setting, not a speed the recording shows; a trip under way is where I went
-    ("what is your speed limit?", None), ("where were you going?", "went"),
+    # a limit is a published setting (agent/flags.py), not a speed driven; a trip under way is where I went
+    ("what is your speed limit?", "limit"), ("where were you going?", "went"),
 ])
 def test_distance_speed_and_start_questions_are_told_apart(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
