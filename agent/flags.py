@@ -4,7 +4,6 @@ the task's finding with no answer to the question. A recording without it says s
 
 from __future__ import annotations
 
-import math
 import re
 
 from hexar.agent.content import task_name
@@ -15,10 +14,11 @@ from hexar.agent.probes import probe, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import BoolSample, StatusRecord
+from hexar.events.records import BoolSample
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.navigation.detectors import SPEED_KEY, status_item
+from hexar.explainers.navigation.detectors import speed_limit as published_limit
 from hexar.explainers.recorded import join_words
 
 _LEAD = r"^(and |so |but |ok |okay )?"
@@ -106,18 +106,10 @@ LIMIT = re.compile(
     + _LEAD + r"(what|which) speed (can|could|may) you\b")
 
 
-def _limit_of(r: StatusRecord) -> float | None:
-    try:
-        value = float(r.get(SPEED_KEY) or "nan")
-    except ValueError:
-        return None
-    return value if math.isfinite(value) and value > 0 else None
-
-
 def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
     """The speed limit published while the task ran (the one in force when it began, and any change after)."""
     name = task_name(task, log)
-    limits = [(r, v) for r in log.statuses.get(c.DIAGNOSTICS, []) if (v := _limit_of(r)) is not None]
+    limits = [(r, v) for r in log.statuses.get(c.DIAGNOSTICS, []) if (v := published_limit(r)) is not None]
     if not limits:
         text = f"I can't tell: my recording holds no speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) for {name}."
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)

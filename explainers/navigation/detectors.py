@@ -340,7 +340,8 @@ def moving_obstacles(run: Run) -> Finding | None:
     return found
 
 
-def _limit(r: StatusRecord) -> float | None:
+def speed_limit(r: StatusRecord) -> float | None:
+    """The positive, finite max_vel_x a /diagnostics record publishes, else None."""
     try:
         value = float(r.get(SPEED_KEY) or "nan")
     except ValueError:
@@ -359,12 +360,12 @@ def speed(run: Run, statuses: list[StatusRecord], cause: str) -> Finding:
     for line in (run.begin, run.end):
         if line is not None:
             found.evidence.append(Evidence.of_log(cause, line))
-    limits = [r for r in statuses if _limit(r) is not None]  # an empty or "nan" limit is no limit to state
+    limits = [r for r in statuses if speed_limit(r) is not None]  # an empty or "nan" limit is no limit to state
     if limits:
         r = limits[-1]
         item = status_item(r, SPEED_KEY)
         found.evidence.append(Evidence(cause=cause, topic=c.DIAGNOSTICS, t=r.t, item=item))
-        found.facts["max_vel_x"] = _limit(r) or 0.0
+        found.facts["max_vel_x"] = speed_limit(r) or 0.0
     if not found.evidence and run.poses:
         # no navigator lines: the recorded poses are what shows the drive went as it did
         for p in dict.fromkeys([run.poses[0], run.poses[-1]]):
