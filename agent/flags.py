@@ -8,7 +8,7 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
-from hexar.agent.measures import hms, recorded_until
+from hexar.agent.measures import hms, worked_until
 from hexar.agent.overview import with_lead
 from hexar.agent.probes import probe, with_failure
 from hexar.agent.state import AgentState
@@ -51,10 +51,8 @@ def _evidence(s: BoolSample) -> Evidence:
     return Evidence(cause="planner.plan_ok", topic=s.topic, t=s.t, item=f"data={s.value}")
 
 
-def flag(question: str, log: EventLog, task: Task) -> Explanation:
-    """Yes (with when it held), no, or that the recording holds no such flag."""
-    q = " ".join(question.lower().split())
-    topic = flag_asked(q) or c.IS_CHARGING
+def flag(topic: str, log: EventLog, task: Task) -> Explanation:
+    """Yes (with when the flag on `topic` held), no, or that the recording holds no such flag."""
     what = next(words for t, _, words in _FLAGS if t == topic)
     name = task_name(task, log)
     samples = sorted(log.flags.get(topic, []), key=lambda s: s.t)
@@ -62,7 +60,7 @@ def flag(question: str, log: EventLog, task: Task) -> Explanation:
         text = f"I can't tell: my recording holds no {what} ({topic}) for {name}."
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
     start = task.created
-    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    end = worked_until(log, task)
     latched = [s for s in samples if s.t <= start][-1:]  # the value that held when the task began
     during = latched + [s for s in samples if start < s.t <= end]
     if not during:
@@ -85,10 +83,10 @@ def flag(question: str, log: EventLog, task: Task) -> Explanation:
 def flag_answer(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     """The flag, yes or no, then the task's failure (whose evidence "why?" goes on to); where the failure's
     explainer blames that very flag, its answer, led by "Yes."."""
-    found = flag(state["question"], ctx.log, task)
+    topic = flag_asked(" ".join(state["question"].lower().split())) or c.IS_CHARGING
+    found = flag(topic, ctx.log, task)
     name = ctx.registry.failure_explainer(task)
     failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
-    topic = flag_asked(" ".join(state["question"].lower().split())) or c.IS_CHARGING
     if failed is None:
         return found
     if found.text.startswith("Yes") and FLAG_CAUSE[topic] in failed.causes:
@@ -113,7 +111,7 @@ def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
     if not limits:
         text = f"I can't tell: my recording holds no speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) for {name}."
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
-    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    end = worked_until(log, task)
     during = ([m for m in limits if m[0].t <= task.created][-1:] +
               [m for m in limits if task.created < m[0].t <= end]) or limits[:1]
     changes = [m for i, m in enumerate(during) if i == 0 or m[1] != during[i - 1][1]]

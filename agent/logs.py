@@ -14,7 +14,7 @@ from collections import Counter
 from dataclasses import dataclass
 
 from hexar.agent.content import task_name
-from hexar.agent.measures import hms, recorded_until
+from hexar.agent.measures import hms, worked_until
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.records import ERROR, WARN, LogLine
@@ -76,31 +76,35 @@ def _said(msg: str, limit: int = 200) -> str:
     return msg if len(msg) <= limit else msg[:limit].rstrip() + "…"
 
 
-def _quote(lines: list[LogLine], counts: Counter[tuple[str, str]], one_node: bool, levels: bool) -> str:
-    """'at 12:00:01, controller_server "..." (4 times)' for each distinct message, the worst first (the
-    node left out where every line came from the one already named, the level where only one was asked for)."""
-    seen: dict[tuple[str, str], LogLine] = {}
+def _distinct(lines: list[LogLine]) -> list[LogLine]:
+    """Each message of a node once (its first line), the worst first (errors before warnings), each level in the
+    order first seen: the order the answer quotes them and cites them in."""
+    first: dict[tuple[str, str], LogLine] = {}
     for ln in lines:
-        seen.setdefault((ln.name, ln.msg), ln)
+        first.setdefault((ln.name, ln.msg), ln)
+    return sorted(first.values(), key=lambda ln: (-ln.level, ln.t))
+
+
+def _quote(lines: list[LogLine], one_node: bool, levels: bool) -> str:
+    """'at 12:00:01, controller_server "..." (4 times)' for each distinct message (the node left out where every
+    line came from the one already named, the level where only one was asked for)."""
+    counts = Counter((ln.name, ln.msg) for ln in lines)
+    distinct = _distinct(lines)
     parts = []
-    # the worst first (errors before warnings), each level in the order first seen
-    ranked = sorted(seen.items(), key=lambda kv: (-kv[1].level, kv[1].t))
-    for key, ln in ranked[:QUOTED]:
-        times = f" ({counts[key]} times)" if counts[key] > 1 else ""
+    for ln in distinct[:QUOTED]:
+        n = counts[(ln.name, ln.msg)]
+        times = f" ({n} times)" if n > 1 else ""
         who = "" if one_node else f" {ln.name or 'a node'}"
         level = f" ({ln.level_name})" if levels else ""
         parts.append(f'at {hms(ln.t)},{who}{level} "{_said(ln.msg)}"{times}')
-    more = len(seen) - QUOTED
+    more = len(distinct) - QUOTED
     text = "; ".join(parts)
     return text + (f"; and {more} other message{'s' if more > 1 else ''}" if more > 0 else "")
 
 
 def _evidence(lines: list[LogLine], task: Task) -> list[Evidence]:
-    first: dict[tuple[str, str], LogLine] = {}
-    for ln in lines:
-        first.setdefault((ln.name, ln.msg), ln)
-    quoted = sorted(first.values(), key=lambda ln: (-ln.level, ln.t))[:QUOTED]
-    return [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render()) for ln in quoted] or \
+    return [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
+            for ln in _distinct(lines)[:QUOTED]] or \
         [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
 
 
@@ -123,7 +127,7 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                            evidence=_evidence([], task), enough_information=False)
     start = task.created
-    end = recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+    end = worked_until(log, task)
     lines, inside = _select(log, asked.low, asked.high, start, end)
     times = f"at {hms(start)}" if hms(start) == hms(end) else f"{hms(start)} to {hms(end)}"
     span = f"while I worked on {name} ({times} UTC)"
@@ -139,7 +143,6 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
         text = (f"The {asked.one} {asked.noun} {where} came at {hms(ln.t)} from {ln.name or 'a node'}: "
                 f'"{_said(ln.msg)}".')
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([ln], task))
-    counts = Counter((ln.name, ln.msg) for ln in lines)
     by_node = Counter(ln.name or "a node" for ln in lines)
     nodes = join_words([f"{node} ({n})" if len(by_node) > 1 else node for node, n in by_node.most_common()])
     if asked.nodes:
@@ -148,6 +151,6 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                 f'{ln.name or "a node"}: "{_said(ln.msg)}".')
     else:
         text = (f"{'Yes. ' if asked.yes_no else ''}My log holds {_plural(len(lines), asked.noun)} {where}, from "
-                f"{nodes}: {_quote(lines, counts, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
+                f"{nodes}: {_quote(lines, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
     return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
                        evidence=_evidence(lines, task))

@@ -121,6 +121,11 @@ def recorded_until(log: EventLog, task: Task) -> int:
     return max(task.last_update, log.end)
 
 
+def worked_until(log: EventLog, task: Task) -> int:
+    """The end of a task's time: its last update, or for one still under way the recording's end."""
+    return recorded_until(log, task) if task.outcome in {"running", "waiting"} else task.last_update
+
+
 def _goal(run: SkillRun) -> str:
     loc = run.params.get("location")
     if isinstance(loc, str) and loc:
@@ -297,11 +302,10 @@ def _ended(task: Task) -> str:
 
 def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanation:
     steps = _steps(log, task)
-    span = duration(task.last_update - task.created)
+    span = duration(worked_until(log, task) - task.created)
     ended = _ended(task)
     name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
-        span = duration(recorded_until(log, task) - task.created)
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
                 f"{hms(task.created)} UTC.")
     elif lead_with_times:

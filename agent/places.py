@@ -58,7 +58,7 @@ def place(question: str, log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False,
                            evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=run.last_change,
                                               item=owner.instruction)] if owner.instruction else [])
-    at = [p for p in log.poses if p.t <= run.last_change] or []
+    at = [p for p in log.poses if p.t <= run.last_change]
     if not at:
         text = (f"I got to {name} at {hms(run.last_change)} UTC ({step_ref(run)} of {task_name(owner, log)}), but my "
                 f"recording holds no position of mine ({c.AMCL_POSE}) to say where on my map that is.")
