@@ -2,7 +2,18 @@ from __future__ import annotations
 
 import json
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
+
+from hexar.agent.context import RunSettings
+from hexar.agent.session import Session
+
+
+def converse(run: Path, *questions: str) -> list[dict[str, Any]]:
+    """The questions asked in turn in one new conversation about a recording, without an LLM: their results."""
+    session = Session(RunSettings(recording=run, llm="none"))
+    thread = session.new_thread()
+    return [session.ask(q, thread=thread) for q in questions]
 
 
 class CountingModel:

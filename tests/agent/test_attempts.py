@@ -5,25 +5,17 @@ MoveIt's planning requests, a step started again), counted from the recording, o
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import pytest
 
-from hexar.agent.context import RunSettings
 from hexar.agent.followups import content_kind
-from hexar.agent.session import Session
 from hexar.evals.scenarios.arm import simulate_arm_suite
 from hexar.evals.scenarios.bag import BagBuilder
 from hexar.events import read_recording
+from tests.agent.helpers import converse
 
 T0 = 1_741_600_000_000_000_000
 S = 1_000_000_000
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +43,7 @@ def test_a_blocked_path_counts_its_failed_plans_and_recoveries(suite: Path) -> N
     failed_plans = sum(1 for ln in logs if ln.msg.startswith("Planning algorithm GridBased failed to generate"))
     recoveries = [ln.msg.split()[-1] for ln in logs if ln.name == "behavior_server" and ln.msg.startswith("Running ")]
     assert failed_plans > 1 and sorted(recoveries) == ["backup", "spin", "spin", "wait"]
-    first, tried, why = _ask(run, "why didn't you bring me the coffee?", "did you try again?", "why?")
+    first, tried, why = converse(run, "why didn't you bring me the coffee?", "did you try again?", "why?")
     assert "blocked my path" in str(first["answer"])
     assert str(tried["answer"]).startswith(f"Yes. For step 1 (to go to the kitchen), my planner failed to find a path "
                                            f"{failed_plans} times, I ran 4 recoveries (2 spins, a wait and a backup)")
@@ -60,22 +52,22 @@ def test_a_blocked_path_counts_its_failed_plans_and_recoveries(suite: Path) -> N
 
 
 def test_how_many_times_is_not_answered_yes_or_no(suite: Path) -> None:
-    (answer,) = _ask(suite / "bagfile_5_1", "how many times did you try?")
+    (answer,) = converse(suite / "bagfile_5_1", "how many times did you try?")
     assert str(answer["answer"]).startswith("For step 1 (to go to the kitchen), my planner failed to find a path")
 
 
 def test_one_failed_pick_is_one_try_and_a_clean_run_needed_none(arm: Path) -> None:
     from hexar.evals.scenarios.arm import arm_recording_name
 
-    (failed,) = _ask(arm / arm_recording_name("out_of_reach", 1), "did you try again?")
+    (failed,) = converse(arm / arm_recording_name("out_of_reach", 1), "did you try again?")
     assert str(failed["answer"]) == ("No. My recording shows one try at step 2 (to pick up the cup): it failed, and "
                                      "I did not start it again after that."), failed["answer"]
-    (clean,) = _ask(arm / arm_recording_name("nominal", 1), "did you try again?")
+    (clean,) = converse(arm / arm_recording_name("nominal", 1), "did you try again?")
     assert clean["answer"] == "I didn't need to: every step of my plan that started went through at the first try."
 
 
 def test_a_plan_never_started_had_nothing_to_try(suite: Path) -> None:
-    (answer,) = _ask(suite / "bagfile_1_1", "did you try again?")
+    (answer,) = converse(suite / "bagfile_1_1", "did you try again?")
     assert answer["answer"] == "No: none of my plan's steps started, so there was nothing to try again."
 
 
@@ -106,7 +98,7 @@ def _retried_pick(tmp_path: Path) -> Path:
 
 
 def test_a_step_started_again_and_planned_twice(tmp_path: Path) -> None:
-    (answer,) = _ask(_retried_pick(tmp_path), "did you try again?")
+    (answer,) = converse(_retried_pick(tmp_path), "did you try again?")
     assert answer["answer"] == ("Yes. For step 1 (to pick up the mug), I started it twice and I asked my motion "
                                 "planner for a plan twice, and the step went through in the end."), answer["answer"]
 
@@ -133,7 +125,7 @@ def _still_driving(tmp_path: Path) -> Path:
 
 def test_a_step_still_under_way_is_timed_to_the_recordings_end_and_its_tries_counted(tmp_path: Path) -> None:
     run = _still_driving(tmp_path)
-    long, tried = _ask(run, "how long did it take?", "did you try again?")
+    long, tried = converse(run, "how long did it take?", "did you try again?")
     assert "was not over when the recording ends, 41 s after it began" in str(long["answer"]), long["answer"]
     assert str(long["answer"]).endswith("Step 1 (to go to the kitchen) had run for 40 s when the recording ends.")
     assert tried["answer"] == ("Yes. For step 1 (to go to the kitchen), my planner failed to find a path once, and "
@@ -143,7 +135,7 @@ def test_a_step_still_under_way_is_timed_to_the_recordings_end_and_its_tries_cou
 def test_a_fix_asked_after_the_tries_of_a_run_that_did_not_fail_is_its_findings(suite: Path) -> None:
     """A slow trip that got there: after "did you try again?", "what should I check?" is about why it was slow,
     not "nothing went wrong"."""
-    first, tried, fix = _ask(suite / "bagfile_8_1", "what happened?", "did you try again?", "what should I check?")
+    first, tried, fix = converse(suite / "bagfile_8_1", "what happened?", "did you try again?", "what should I check?")
     assert "not sure where I was on my map" in str(first["answer"])
     assert str(tried["answer"]).startswith("I didn't need to")
     assert "relocalise" in str(fix["answer"]) and "Nothing went wrong" not in str(fix["answer"]), fix["answer"]

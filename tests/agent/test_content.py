@@ -4,19 +4,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from hexar.agent.context import RunSettings
-from hexar.agent.session import Session
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, object]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
+from tests.agent.helpers import converse
 
 
 def test_why_did_you_go_and_where_are_you(suite: Path) -> None:
-    went, where, said = _ask(suite / "bagfile_14_1", "Why did you go to the kitchen?", "Where are you now?",
-                             "What did you say?")
+    went, where, said = converse(suite / "bagfile_14_1", "Why did you go to the kitchen?", "Where are you now?",
+                                 "What did you say?")
     assert str(went["answer"]).startswith('I went to the kitchen because step 1 of my plan for your request "Bring '
                                           'me a coffee from the kitchen" was to go there, and I got there.')
     assert "the person did not" not in str(went["answer"])
@@ -28,7 +21,7 @@ def test_why_did_you_go_and_where_are_you(suite: Path) -> None:
 
 
 def test_a_place_the_plan_never_went(suite: Path) -> None:
-    (went,) = _ask(suite / "bagfile_3_1", "Why did you go to the kitchen?")
+    (went,) = converse(suite / "bagfile_3_1", "Why did you go to the kitchen?")
     assert str(went["answer"]).startswith("I did not go to the kitchen for your request")
     assert "I went to the dining room and the living room" in str(went["answer"])
 
@@ -36,9 +29,9 @@ def test_a_place_the_plan_never_went(suite: Path) -> None:
 def test_only_a_reached_place_is_where_i_went(suite: Path) -> None:
     """bagfile_5_1 stops on the way to the kitchen: the later steps only ever waited, so no answer may say the robot
     went to the living room, and a room in no step is not answered with rooms it never reached."""
-    living, dining, kitchen, anywhere = _ask(suite / "bagfile_5_1", "Why did you go to the living room?",
-                                             "Why did you go to the dining room?", "Why did you go to the kitchen?",
-                                             "Where did you go?")
+    living, dining, kitchen, anywhere = converse(suite / "bagfile_5_1", "Why did you go to the living room?",
+                                                 "Why did you go to the dining room?", "Why did you go to the kitchen?",
+                                                 "Where did you go?")
     assert str(living["answer"]).startswith("I did not go to the living room: step 3 of my plan")
     assert "step 1 (to go to the kitchen) failed first, so I never set off" in str(living["answer"])
     assert str(dining["answer"]).startswith("I did not go to the dining room for your request")
@@ -51,18 +44,18 @@ def test_only_a_reached_place_is_where_i_went(suite: Path) -> None:
 
 def test_a_recovery_trip_counts_where_the_request_never_went(suite: Path) -> None:
     """bagfile_14_1: the request never got to the living room, the recovery task drove there."""
-    (went,) = _ask(suite / "bagfile_14_1", "Why did you go to the living room?")
+    (went,) = converse(suite / "bagfile_14_1", "Why did you go to the living room?")
     assert str(went["answer"]).startswith("I went to the living room because step 1 of my plan for my own recovery "
                                           "task after task 1 failed (task 2)")
 
 
 def test_where_when_the_robot_never_moved(suite: Path) -> None:
-    (where,) = _ask(suite / "bagfile_6_1", "Where are you now?")
+    (where,) = converse(suite / "bagfile_6_1", "Where are you now?")
     assert str(where["answer"]).startswith("My last goal was the kitchen, but I didn't get there")
 
 
 def test_content_then_why_goes_deeper_on_it(suite: Path) -> None:
-    said, why = _ask(suite / "bagfile_19_2", "Did you read me the right recipe?", "why?")
+    said, why = converse(suite / "bagfile_19_2", "Did you read me the right recipe?", "why?")
     assert str(said["answer"]).startswith("No. What I said did not match your request")
     assert why["intent"] == "deeper" and "Margherita" in str(why["answer"])
 
@@ -78,7 +71,7 @@ def test_how_far_adds_up_the_legs_of_the_trip(suite: Path) -> None:
     and ended, and the legs add up to the total said first."""
     from hexar.events import read_recording
 
-    (far,) = _ask(suite / "bagfile_10_1", "How far did you drive?")
+    (far,) = converse(suite / "bagfile_10_1", "How far did you drive?")
     text = str(far["answer"])
     assert text.startswith('For your request "Bring me a coffee from the kitchen", I drove about ')
     kitchen, helper, back = (_figure(text, " m to go to the kitchen"), _figure(text, " m during step 2"),
@@ -96,9 +89,9 @@ def test_how_far_adds_up_the_legs_of_the_trip(suite: Path) -> None:
 
 
 def test_how_far_on_a_trip_that_failed_or_never_moved(suite: Path) -> None:
-    (failed,) = _ask(suite / "bagfile_5_1", "how far did you go")
+    (failed,) = converse(suite / "bagfile_5_1", "how far did you go")
     assert ", to go to the kitchen, and I did not get there." in str(failed["answer"])
-    (still,) = _ask(suite / "bagfile_6_1", "How far did you travel?")  # the joystick held the base
+    (still,) = converse(suite / "bagfile_6_1", "How far did you travel?")  # the joystick held the base
     assert str(still["answer"]) == 'I didn\'t drive anywhere for your request "Bring me a coffee from the kitchen".'
 
 
@@ -107,7 +100,7 @@ def test_how_far_without_any_position_says_it_cannot_tell(tmp_path: Path) -> Non
 
     excerpt = next(e for e in corpus() if e.outcome == "failed")
     run = write_recording(excerpt, tmp_path / "run", task=False)
-    (far,) = _ask(run, "How far did you drive?")
+    (far,) = converse(run, "How far did you drive?")
     assert "I can't tell how far I drove" in str(far["answer"])
     assert "no /amcl_pose or /odom messages" in str(far["answer"])
 
@@ -118,7 +111,7 @@ def test_how_long_and_when_read_the_plan_times(suite: Path) -> None:
 
     log = read_recording(suite / "bagfile_14_1")
     task, recovery = log.tasks
-    took, began = _ask(suite / "bagfile_14_1", "How long did it take?", "When did you start?")
+    took, began = converse(suite / "bagfile_14_1", "How long did it take?", "When did you start?")
     start, end = clock(task.created).split(".")[0], clock(task.last_update).split(".")[0]
     assert str(took["answer"]).startswith(f'Your request "Bring me a coffee from the kitchen" took 56 s, from {start} '
                                           f"to {end} UTC; it ended when step 2 (to ask someone for help) failed.")
@@ -126,10 +119,10 @@ def test_how_long_and_when_read_the_plan_times(suite: Path) -> None:
     assert str(began["answer"]).startswith(f"I started on your request \"Bring me a coffee from the kitchen\" at "
                                            f"{start} UTC, and it ended when step 2")
     # the request never drove back; its recovery task did, and "get back" is that trip
-    (back,) = _ask(suite / "bagfile_14_1", "When did you get back?")
+    (back,) = converse(suite / "bagfile_14_1", "When did you get back?")
     arrived = clock(recovery.skills[0].last_change).split(".")[0]
     assert str(back["answer"]).startswith(f"In my own recovery task, I got to the living room at {arrived} UTC")
-    (never,) = _ask(suite / "bagfile_5_1", "When did you get back?")
+    (never,) = converse(suite / "bagfile_5_1", "When did you get back?")
     assert str(never["answer"]) == ('I never set off for the living room: that was step 3 of your request "Bring me a '
                                     'coffee from the kitchen", and step 1 (to go to the kitchen) failed first.')
 
@@ -148,8 +141,8 @@ def test_figures_questions_are_content_and_why_questions_are_not() -> None:
 
 def test_a_request_to_act_is_declined_not_answered_with_the_failure(suite: Path) -> None:
     """The agent is read-only: "can you try again?" gets no failure cause dressed as an answer, and no action."""
-    again, bring, nxt, why = _ask(suite / "bagfile_5_1", "Can you try again?", "Could you bring me the coffee?",
-                                  "What are you going to do next?", "Can you tell me why you stopped?")
+    again, bring, nxt, why = converse(suite / "bagfile_5_1", "Can you try again?", "Could you bring me the coffee?",
+                                      "What are you going to do next?", "Can you tell me why you stopped?")
     for answer in (again, bring):
         text = str(answer["answer"])
         assert text.startswith("I can't do that here: here I only explain what I did"), text
@@ -161,7 +154,7 @@ def test_a_request_to_act_is_declined_not_answered_with_the_failure(suite: Path)
 
 def test_how_long_on_a_rejected_plan_says_it_was_rejected(suite: Path) -> None:
     """bagfile_1_1: the plan held a skill the robot lacks and was rejected; nothing was canceled."""
-    (took,) = _ask(suite / "bagfile_1_1", "How long did it take?")
+    (took,) = converse(suite / "bagfile_1_1", "How long did it take?")
     assert str(took["answer"]).endswith("UTC; my plan for it was rejected before it started."), took["answer"]
     assert "canceled" not in str(took["answer"])
 
@@ -169,8 +162,8 @@ def test_how_long_on_a_rejected_plan_says_it_was_rejected(suite: Path) -> None:
 def test_a_module_the_plan_never_ran_is_said_so_not_the_failure(suite: Path) -> None:
     """bagfile_5_1, a coffee fetch that failed on its first trip: a question about recommending, asking for help or
     the arm is answered with what the plan was and how far it got, not with the blocked path."""
-    recommend, helped, arm, why = _ask(suite / "bagfile_5_1", "What did you recommend?", "Did anyone help you?",
-                                       "Why did you drop the cup?", "Why did you stop?")
+    recommend, helped, arm, why = converse(suite / "bagfile_5_1", "What did you recommend?", "Did anyone help you?",
+                                           "Why did you drop the cup?", "Why did you stop?")
     assert str(recommend["answer"]).startswith('I didn\'t recommend anything for your request "Bring me a coffee '
                                                'from the kitchen": no step of my plan was to recommend a pizza.')
     assert str(recommend["answer"]).endswith('Your request "Bring me a coffee from the kitchen" failed.')
@@ -186,8 +179,8 @@ def test_a_module_the_plan_never_ran_is_said_so_not_the_failure(suite: Path) -> 
 
 def test_after_a_step_never_reached_why_goes_on_to_the_failure_before_it(suite: Path) -> None:
     """The answer names step 1's failure as the reason: "why?" and "what would have helped?" are about it."""
-    _, why, deeper, fix = _ask(suite / "bagfile_5_1", "Did anyone help you?", "why?", "why?",
-                               "what would have helped?")
+    _, why, deeper, fix = converse(suite / "bagfile_5_1", "Did anyone help you?", "why?", "why?",
+                                   "what would have helped?")
     assert "[controller_server] ERROR Failed to make progress" in str(why["answer"]), why["answer"]
     assert str(deeper["answer"]).startswith("I couldn't reach the kitchen because something blocked my path")
     assert fix["answer"] == "Clear the way to the kitchen and ask me again."
@@ -209,7 +202,7 @@ def test_a_module_another_task_ran_points_to_that_task(tmp_path: Path) -> None:
     robot.sid = 10
     assert robot.run_task(coffee.instruction, normal_plan(coffee, 1), "")
     run = b.write(tmp_path / "two_tasks")
-    recommend, helped, switched = _ask(run, "What did you recommend?", "Did anyone help you?", "What about task 1?")
+    recommend, helped, switched = converse(run, "What did you recommend?", "Did anyone help you?", "What about task 1?")
     text = str(recommend["answer"])
     assert text.startswith(f'I didn\'t recommend anything for your request "{coffee.instruction}"'), text
     assert text.endswith(f'In task 1, your request "{pizza.instruction}", I did: ask "what about task 1?".'), text
@@ -238,8 +231,8 @@ def test_which_questions_name_a_module() -> None:
 def test_an_order_without_a_question_is_declined_not_refused_or_obeyed(suite: Path) -> None:
     """"please try again", "bring me the coffee" and "stop!" are what people say to a robot: not refused as "not a
     question", not answered with the failure, and "stop" says what would stop the robot."""
-    again, bring, stop, still_why = _ask(suite / "bagfile_5_1", "please try again", "bring me the coffee", "Stop!",
-                                         "stopped?")
+    again, bring, stop, still_why = converse(suite / "bagfile_5_1", "please try again", "bring me the coffee", "Stop!",
+                                             "stopped?")
     for answer in (again, bring):
         assert not answer["error"], answer
         assert str(answer["answer"]).startswith("I can't do that here: here I only explain what I did"), answer
@@ -261,18 +254,18 @@ def test_orders_and_stops_are_told_apart_from_questions() -> None:
 
 def test_who_did_you_talk_to_is_whom_i_asked_and_what_i_said(suite: Path) -> None:
     """Not the failure of another step: the person the robot asked for help, then what it said aloud."""
-    (declined,) = _ask(suite / "bagfile_15_1", "Who did you talk to?")
+    (declined,) = converse(suite / "bagfile_15_1", "Who did you talk to?")
     assert str(declined["answer"]).startswith('Step 2 of my plan was to ask someone for help ("Could you please '
                                               'put the coffee on my tray?"). I could not get help: the person '
                                               "declined to help."), declined["answer"]
     assert 'in my recovery, I said "Sorry, I could not complete the task."' in str(declined["answer"])
-    never, why = _ask(suite / "bagfile_5_1", "who did you speak with", "why?")
+    never, why = converse(suite / "bagfile_5_1", "who did you speak with", "why?")
     assert str(never["answer"]).startswith("I didn't ask anyone for help for your request"), never["answer"]
     assert "because step 1 (to go to the kitchen) failed first. I didn't say anything either." in str(never["answer"])
     assert "[controller_server] ERROR Failed to make progress" in str(why["answer"]), why["answer"]
-    (maria,) = _ask(suite / "bagfile_10_3", "Did you talk to Maria?")
+    (maria,) = converse(suite / "bagfile_10_3", "Did you talk to Maria?")
     assert str(maria["answer"]).startswith('Yes: I said "Maria, dinner is at eight.", which is what you asked for')
-    (pizza,) = _ask(suite / "bagfile_20_1", "who did you talk to")
+    (pizza,) = converse(suite / "bagfile_20_1", "who did you talk to")
     assert pizza["answer"] == 'I said "I recommend a Margherita."'
 
 
@@ -312,9 +305,9 @@ def test_where_are_you_going_is_the_trip_not_over_yet(tmp_path: Path) -> None:
     """Asked as a robot is asked on its way, in the present tense: the trip under way and the plan step behind it,
     not the robot's position; a place no step went to is still told as such."""
     run = _cut(tmp_path / "on_the_way", 5, 10.0)
-    going, why, where, garage, there = _ask(run, "Where are you going?", "Why are you going to the kitchen?",
-                                            "Where are you?", "Why are you going to the garage?",
-                                            "Why are you going there?")
+    going, why, where, garage, there = converse(run, "Where are you going?", "Why are you going to the kitchen?",
+                                                "Where are you?", "Why are you going to the garage?",
+                                                "Why are you going there?")
     for answer in (going, why, there):
         assert str(answer["answer"]).startswith('I set off for the kitchen because step 1 of my plan for your request '
                                                 '"Bring me a coffee from the kitchen" was to go there, and the '
@@ -340,7 +333,7 @@ def test_present_tense_trips_are_went_and_where_are_you_is_where() -> None:
 def test_why_did_you_go_there_is_the_last_trip_not_a_place_called_there(suite: Path) -> None:
     """"There" names no place: the answer is the last trip the robot set off on and the step behind it, not "I did
     not go there"."""
-    (there,) = _ask(suite / "bagfile_5_1", "Why did you go there?")
+    (there,) = converse(suite / "bagfile_5_1", "Why did you go there?")
     assert str(there["answer"]).startswith('I tried to go to the kitchen because step 1 of my plan for your request '
                                            '"Bring me a coffee from the kitchen" was to go there, but I didn\'t get '
                                            "there.")
@@ -354,7 +347,7 @@ def test_a_goal_read_from_nav2s_logs_is_named_as_spoken(tmp_path: Path) -> None:
 
     excerpt = next(e for e in corpus() if e.outcome == "failed")
     run = write_recording(excerpt, tmp_path / "run", task=False)
-    took, after = _ask(run, "How long did it take?", "What did you do after that?")
+    took, after = converse(run, "How long did it take?", "What did you do after that?")
     assert str(took["answer"]).startswith("The navigation goal ")
     assert str(after["answer"]).startswith("Nothing more: the navigation goal was ")
     assert not any("derived from" in str(a["answer"]) for a in (took, after))
@@ -367,25 +360,25 @@ def test_steps_derived_from_moveit_and_ros2_control_are_said_as_steps(tmp_path: 
     arm = next(e for e in real_modules.load_excerpts("real-modules")
                if e.id == "moveit2-2789-kinematics-not-passed-to-node")
     run = real_modules.write_recording(arm, tmp_path / "arm", task=False)
-    (doing,) = _ask(run, "What were you doing when it failed?")
+    (doing,) = converse(run, "What were you doing when it failed?")
     assert str(doing["answer"]).startswith("When it failed at ")
     assert "I was at step 1 (to move my arm), " in str(doing["answer"])
     nav = next(e for e in real_nav2.corpus() if e.id == "nav2-3807-dwb-no-valid-trajectories")
-    (took,) = _ask(real_nav2.write_recording(nav, tmp_path / "nav", task=False), "How long did it take?")
+    (took,) = converse(real_nav2.write_recording(nav, tmp_path / "nav", task=False), "How long did it take?")
     assert "it ended when step 1 (to drive to my goal) failed." in str(took["answer"])
 
 
 def test_did_you_say_it_is_answered_yes_or_no_then_what(suite: Path) -> None:
     """"Did you say it out loud?" asks whether anything was said: yes (the words), no (and what the recovery said),
     or partly when the speech was cut off; whether it was what was asked stays compare()'s own yes or no."""
-    (pizza,) = _ask(suite / "bagfile_20_1", "did you say it out loud?")
+    (pizza,) = converse(suite / "bagfile_20_1", "did you say it out loud?")
     assert pizza["answer"] == 'Yes. I said "I recommend a Margherita."'
-    (blocked,) = _ask(suite / "bagfile_5_1", "Did you tell me?")
+    (blocked,) = converse(suite / "bagfile_5_1", "Did you tell me?")
     assert blocked["answer"] == ('No. I didn\'t say anything for your request "Bring me a coffee from the kitchen". '
                                  'Afterwards, in my recovery, I said "Sorry, I could not complete the task."')
-    (cut,) = _ask(suite / "bagfile_19_1", "did you say anything?")
+    (cut,) = converse(suite / "bagfile_19_1", "did you say anything?")
     assert str(cut["answer"]).startswith("Partly. What I said did not match your request")
     assert str(cut["answer"]).endswith("I was cut off before the end.")
-    right, what = _ask(suite / "bagfile_9_3", "did you say it?", "what did you say?")
+    right, what = converse(suite / "bagfile_9_3", "did you say it?", "what did you say?")
     assert str(right["answer"]).startswith('Yes. I said "Maria, dinner is at eight.", which is what you asked for')
     assert str(what["answer"]).startswith('I said "Maria, dinner is at eight."')

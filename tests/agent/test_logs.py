@@ -8,17 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from hexar.agent.context import RunSettings
 from hexar.agent.followups import content_kind
-from hexar.agent.session import Session
 from hexar.events import read_recording
 from hexar.events.records import ERROR, WARN, clock
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, object]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
+from tests.agent.helpers import converse
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -41,8 +34,8 @@ def test_the_errors_of_a_failed_task_are_counted_by_node_and_quoted(suite: Path)
     errors = [ln for ln in log.logs if ln.level >= ERROR and task.created <= ln.t <= task.last_update]
     nodes = Counter(ln.name for ln in errors)
     assert len(errors) >= 2 and len(nodes) >= 2  # the check reads a run with errors from several nodes
-    said, which, last, first, yes = _ask(run, "What errors were there?", "Which node failed?",
-                                         "What was the last error?", "what was the first error?", "any errors?")
+    said, which, last, first, yes = converse(run, "What errors were there?", "Which node failed?",
+                                             "What was the last error?", "what was the first error?", "any errors?")
     text = str(said["answer"])
     assert text.startswith(f"My log holds {len(errors)} errors while I worked on your request \"Bring me a coffee "
                            "from the kitchen\"")
@@ -67,7 +60,7 @@ def test_no_error_says_so_and_points_to_the_warnings(suite: Path) -> None:
     task = log.tasks[0]
     assert not [ln for ln in log.logs if ln.level >= ERROR and ln.t <= task.last_update]
     warnings = [ln for ln in log.logs if ln.level == WARN and task.created <= ln.t <= task.last_update]
-    none, warned = _ask(run, "any errors?", "what warnings were there?")
+    none, warned = converse(run, "any errors?", "what warnings were there?")
     assert str(none["answer"]).startswith('No. My log holds no error while I worked on your request "Bring me a '
                                           'coffee from the kitchen"')
     assert str(none["answer"]).endswith(f'It holds {len(warnings)} warnings: ask "what warnings were there?" for '
@@ -83,7 +76,7 @@ def test_an_error_at_bring_up_is_told_as_before_the_task(tmp_path: Path) -> None
     case = next(e for e in real_modules.load_excerpts("real-modules")
                 if e.id == "r2c-controllers-1595-libserial-open-failed")
     run = real_modules.write_recording(case, tmp_path / "run", task=False)
-    (said,) = _ask(run, "what errors were there?")
+    (said,) = converse(run, "what errors were there?")
     assert "OpenFailed" in str(said["answer"]) and "controller_manager" in str(said["answer"])
     assert "derived from" not in str(said["answer"])
 
@@ -99,12 +92,12 @@ def test_a_recording_without_logs_says_it_cannot_tell(tmp_path: Path) -> None:
             "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"},
                                                       "status": status, "error_msg": ""}]})
     b.write(out)
-    (said,) = _ask(out, "show me the logs")
+    (said,) = converse(out, "show me the logs")
     assert str(said["answer"]).startswith("My recording holds no log lines (/rosout), so I can't tell which "
                                           "errors or warnings there were")
 
 
 def test_why_after_the_errors_goes_on_to_the_failure(suite: Path) -> None:
-    _, why, deeper = _ask(suite / "bagfile_5_1", "What errors were there?", "why?", "why?")
+    _, why, deeper = converse(suite / "bagfile_5_1", "What errors were there?", "why?", "why?")
     assert str(why["answer"]).startswith("Here is what I recorded: ")
     assert "something blocked my path" in str(deeper["answer"])

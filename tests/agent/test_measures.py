@@ -15,12 +15,7 @@ from hexar.agent.followups import content_kind
 from hexar.agent.session import Session
 from hexar.events import read_recording
 from hexar.events.records import clock
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, object]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
+from tests.agent.helpers import converse
 
 
 def _leg(run: Path, step: int) -> tuple[list[tuple[float, float]], float]:
@@ -53,8 +48,8 @@ def test_distance_speed_and_start_questions_are_told_apart(question: str, kind: 
 def test_how_far_a_place_was_is_the_trip_there(suite: Path) -> None:
     """bagfile_8_1 got to the kitchen (step 1): the way driven there and how far it ended from where it set off."""
     points, seconds = _leg(suite / "bagfile_8_1", 0)
-    kitchen, dining, errand = _ask(suite / "bagfile_8_1", "How far away was the kitchen?",
-                                   "how far is the dining room?", "how far was it?")
+    kitchen, dining, errand = converse(suite / "bagfile_8_1", "How far away was the kitchen?",
+                                       "how far is the dining room?", "how far was it?")
     driven = sum(math.dist(a, b) for a, b in itertools.pairwise(points))
     across = math.dist(points[0], points[-1])
     assert kitchen["answer"] == (f"I drove about {driven:.1f} m to get to the kitchen, in {round(seconds)} s; where "
@@ -67,10 +62,10 @@ def test_how_far_a_place_was_is_the_trip_there(suite: Path) -> None:
 
 
 def test_how_far_a_place_was_on_a_trip_that_failed_or_never_set_off(suite: Path) -> None:
-    (towards,) = _ask(suite / "bagfile_5_1", "how far away was the kitchen?")
+    (towards,) = converse(suite / "bagfile_5_1", "how far away was the kitchen?")
     assert re.fullmatch(r"I drove about \d+\.\d m towards the kitchen in \d+ s, and I did not get there; I was then "
                         r"about \d+\.\d m in a straight line from where I set off\.", str(towards["answer"]))
-    (never,) = _ask(suite / "bagfile_5_1", "how far was the living room?")
+    (never,) = converse(suite / "bagfile_5_1", "how far was the living room?")
     assert str(never["answer"]).startswith("I never set off for the living room, so my recording has no distance to "
                                            "it: that was step 3 of your request")
     assert "step 1 (to go to the kitchen) failed first." in str(never["answer"])
@@ -79,7 +74,7 @@ def test_how_far_a_place_was_on_a_trip_that_failed_or_never_set_off(suite: Path)
 def test_a_plan_rejected_before_it_started_drove_nowhere(suite: Path) -> None:
     """bagfile_1_1's plan was invalid: no step ran, so the answer is that it drove nowhere, not that the recording
     holds no position (it holds three)."""
-    far, fast = _ask(suite / "bagfile_1_1", "How far did you drive?", "How fast were you going?")
+    far, fast = converse(suite / "bagfile_1_1", "How far did you drive?", "How fast were you going?")
     for answer in (far, fast):
         assert answer["answer"] == ('I didn\'t drive anywhere for your request "Bring me a coffee from the kitchen": '
                                     "my plan was rejected before I started.")
@@ -88,7 +83,7 @@ def test_a_plan_rejected_before_it_started_drove_nowhere(suite: Path) -> None:
 def test_how_fast_is_each_legs_average(suite: Path) -> None:
     points, seconds = _leg(suite / "bagfile_12_1", 0)
     metres = sum(math.dist(a, b) for a, b in itertools.pairwise(points))
-    (fast,) = _ask(suite / "bagfile_12_1", "How fast were you going?")
+    (fast,) = converse(suite / "bagfile_12_1", "How fast were you going?")
     assert fast["answer"] == (f'For your request "Bring me a coffee from the kitchen", I drove at about '
                               f"{metres / seconds:.2f} m/s to go to the kitchen ({metres:.1f} m in "
                               f"{round(seconds)} s), on average.")
@@ -99,13 +94,13 @@ def test_where_i_set_off_from_is_my_last_position_before_the_first_step(suite: P
     first = log.tasks[0].skills[0].time_of("running")
     assert first is not None
     before = [p for p in log.poses if p.t <= first][-1]
-    (start,) = _ask(suite / "bagfile_8_1", "Where did you start?")
+    (start,) = converse(suite / "bagfile_8_1", "Where did you start?")
     assert start["answer"] == (f"When I set off on step 1 (to go to the kitchen), I was at ({before.x:.2f}, "
                                f"{before.y:.2f}) on my map: my last position recorded before then, at "
                                f"{clock(before.t).split('.')[0]} UTC. I can't say which room that is: I know "
                                "rooms only as the places my plan's steps name.")
     # a plan that never started: where I was when asked
-    (asked,) = _ask(suite / "bagfile_1_1", "where were you when I asked?")
+    (asked,) = converse(suite / "bagfile_1_1", "where were you when I asked?")
     assert str(asked["answer"]).startswith('When I got your request "Bring me a coffee from the kitchen", I was at ')
 
 
@@ -114,7 +109,7 @@ def test_without_positions_the_start_is_not_guessed(tmp_path: Path) -> None:
 
     excerpt = next(e for e in corpus() if e.outcome == "failed")
     run = write_recording(excerpt, tmp_path / "run", task=False)
-    start, fast = _ask(run, "Where did you start?", "How fast were you going?")
+    start, fast = converse(run, "Where did you start?", "How fast were you going?")
     assert "I can't tell where I was when I set off" in str(start["answer"])
     assert "I can't tell how fast I drove" in str(fast["answer"])
 
@@ -122,7 +117,7 @@ def test_without_positions_the_start_is_not_guessed(tmp_path: Path) -> None:
 def test_how_far_the_person_was_goes_to_the_help_skill(suite: Path) -> None:
     """bagfile_8_1 asked for help and got it, and drove slowly: the person's distance is the help skill's, not the
     slow drive's finding nor "no step went to the person"."""
-    (person,) = _ask(suite / "bagfile_8_1", "How far away was the person?")
+    (person,) = converse(suite / "bagfile_8_1", "How far away was the person?")
     assert person["explainers"] == ["ask_human_for_help"]
     assert re.match(r"I measured the person at \d+\.\d\d m, within my limit for asking", str(person["answer"]))
 

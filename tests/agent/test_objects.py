@@ -4,16 +4,14 @@ recordings and on /task_info runs where the place failed or a trip failed after 
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import pytest
 
-from hexar.agent.context import RunSettings
 from hexar.agent.objects import object_asked
-from hexar.agent.session import Session
 from hexar.evals.scenarios.arm import arm_recording_name, simulate_arm_suite
 from hexar.evals.scenarios.bag import BagBuilder
 from hexar.events import read_recording
+from tests.agent.helpers import converse
 
 T0 = 1_741_600_000_000_000_000
 PLAN = [("navigate_to_zone", {"location": "kitchen"}), ("pick", {"object": "red_mug"}),
@@ -26,12 +24,6 @@ def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
     out = tmp_path_factory.mktemp("arm")
     simulate_arm_suite(out, only=lambda s, v: v == 1 and s in {"nominal", "tolerance"})
     return out
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
 
 
 def _fetch(tmp_path: Path, ends: list[str]) -> Path:
@@ -59,8 +51,8 @@ def _fetch(tmp_path: Path, ends: list[str]) -> Path:
 
 
 def test_a_pick_that_failed_never_held_the_cup(arm: Path) -> None:
-    where, dropped, kitchen = _ask(arm / arm_recording_name("tolerance", 1), "where is the cup?", "did you drop it?",
-                                   "where is the kitchen?")
+    where, dropped, kitchen = converse(arm / arm_recording_name("tolerance", 1), "where is the cup?",
+                                       "did you drop it?", "where is the kitchen?")
     assert where["intent"] == "content"
     assert where["answer"].startswith("I never got hold of the cup: picking it up in the kitchen failed, so I did "
                                       "not carry it anywhere. Picking up the cup could not go on because my arm "
@@ -70,8 +62,8 @@ def test_a_pick_that_failed_never_held_the_cup(arm: Path) -> None:
 
 
 def test_a_fetch_that_went_well_put_the_cup_down_where_it_was_to_go(arm: Path) -> None:
-    where, picked, holding = _ask(arm / arm_recording_name("nominal", 1), "Where's my cup?",
-                                  "did you pick up the cup?", "what are you holding?")
+    where, picked, holding = converse(arm / arm_recording_name("nominal", 1), "Where's my cup?",
+                                      "did you pick up the cup?", "what are you holding?")
     told = "I put the cup down in the dining room, after I picked it up in the kitchen."
     assert where["answer"] == told and picked["answer"] == f"Yes. {told}" and holding["answer"] == told
 
@@ -90,7 +82,7 @@ def test_a_fetch_that_went_well_put_the_cup_down_where_it_was_to_go(arm: Path) -
      "the kitchen) failed."),
 ])
 def test_what_the_steps_say_became_of_the_object(tmp_path: Path, ends: list[str], question: str, said: str) -> None:
-    (answer,) = _ask(_fetch(tmp_path, ends), question)
+    (answer,) = converse(_fetch(tmp_path, ends), question)
     assert answer["answer"].startswith(said), answer["answer"]
 
 
@@ -106,7 +98,7 @@ def test_which_questions_ask_about_the_tasks_object(tmp_path: Path, question: st
 
 
 def test_a_task_that_picks_nothing_has_no_object_to_ask_about(suite: Path) -> None:
-    (answer,) = _ask(suite / "bagfile_5_1", "where is the coffee?")
+    (answer,) = converse(suite / "bagfile_5_1", "where is the coffee?")
     assert answer["intent"] != "content" and "something blocked my path" in answer["answer"]
 
 

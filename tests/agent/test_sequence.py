@@ -4,22 +4,14 @@ recording's tasks and trips and their day, told from /task_info, not the failure
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import pytest
 
-from hexar.agent.context import RunSettings
 from hexar.agent.followups import content_kind
-from hexar.agent.session import Session
 from hexar.evals.scenarios.bag import BagBuilder
 from hexar.events import read_recording
 from hexar.events.records import clock
-
-
-def _ask(run: Path, *questions: str) -> list[dict[str, Any]]:
-    session = Session(RunSettings(recording=run, llm="none"))
-    thread = session.new_thread()
-    return [session.ask(q, thread=thread) for q in questions]
+from tests.agent.helpers import converse
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -34,7 +26,7 @@ def test_kinds(question: str, kind: str) -> None:
 
 
 def test_and_then_tells_the_recovery_and_why_goes_on_to_the_failure_it_recovers_from(suite: Path) -> None:
-    first, then, why, why2 = _ask(suite / "bagfile_5_1", "what happened?", "and then?", "why?", "why?")
+    first, then, why, why2 = converse(suite / "bagfile_5_1", "what happened?", "and then?", "why?", "why?")
     assert "blocked my path" in str(first["answer"])
     assert then["answer"] == ('Right after that, I started on my own recovery task after task 1 failed. My plan was '
                               'to say "Sorry, I could not complete the task.", and I did it.'), then["answer"]
@@ -45,18 +37,18 @@ def test_and_then_tells_the_recovery_and_why_goes_on_to_the_failure_it_recovers_
 
 def test_and_then_after_the_last_task_says_nothing_more(suite: Path) -> None:
     log = read_recording(suite / "bagfile_10_1")
-    (then,) = _ask(suite / "bagfile_10_1", "and then?")
+    (then,) = converse(suite / "bagfile_10_1", "and then?")
     end = clock(max(log.task().last_update, log.end)).split(".")[0]
     assert then["answer"] == ('Nothing more: your request "Bring me a coffee from the kitchen" was the last task in my '
                               f"recording, which ends at {end} UTC.")
 
 
 def test_the_tasks_are_listed_in_order_with_how_each_ended(suite: Path) -> None:
-    (listed,) = _ask(suite / "bagfile_1_1", "how many tasks did you have?")
+    (listed,) = converse(suite / "bagfile_1_1", "how many tasks did you have?")
     assert listed["answer"] == ('I had 2 tasks in this recording: 1. your request "Bring me a coffee from the '
                                 'kitchen", rejected before it started; 2. my own recovery task after task 1 had an '
                                 'invalid plan, done. Ask me about one with "what about task 2?".')
-    (one,) = _ask(suite / "bagfile_10_1", "what was your first task?")
+    (one,) = converse(suite / "bagfile_10_1", "what was your first task?")
     assert one["answer"] == 'I had one task in this recording: your request "Bring me a coffee from the kitchen", done.'
 
 
@@ -65,7 +57,7 @@ def test_when_it_happened_gives_the_day(suite: Path) -> None:
 
     task = read_recording(suite / "bagfile_5_1").task()
     day = datetime.fromtimestamp(task.created / 1e9, tz=UTC)
-    dated, started = _ask(suite / "bagfile_5_1", "when did this happen?", "when did you start?")
+    dated, started = converse(suite / "bagfile_5_1", "when did this happen?", "when did you start?")
     assert str(dated["answer"]).startswith(f"On {day:%A} {day.day} {day:%B %Y}. I started on your request")
     assert str(started["answer"]).startswith("I started on your request")  # a time of day, asked as one
 
@@ -77,19 +69,19 @@ def test_a_simulators_clock_gives_no_day(tmp_path: Path) -> None:
                         "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone",
                                                                   "params": {"location": "kitchen"},
                                                                   "status": status, "error_msg": ""}]})
-    (answer,) = _ask(b.write(tmp_path / "gazebo"), "what day was it?")
+    (answer,) = converse(b.write(tmp_path / "gazebo"), "what day was it?")
     assert str(answer["answer"]).startswith("My clock was a simulator's, which starts at zero, so my recording gives "
                                             "no calendar day. I started on"), answer["answer"]
     assert "1970" not in str(answer["answer"])
 
 
 def test_why_did_you_go_back(suite: Path) -> None:
-    (recovered,) = _ask(suite / "bagfile_14_1", "why did you go back?")
+    (recovered,) = converse(suite / "bagfile_14_1", "why did you go back?")
     assert str(recovered["answer"]).startswith("I went to the living room because step 1 of my plan for my own "
                                                "recovery task after task 1 failed"), recovered["answer"]
-    (delivered,) = _ask(suite / "bagfile_10_1", "why did you go back?")
+    (delivered,) = converse(suite / "bagfile_10_1", "why did you go back?")
     assert str(delivered["answer"]).startswith("I went to the living room because step 3 of my plan")
-    (never,) = _ask(suite / "bagfile_5_1", "why did you go back?")
+    (never,) = converse(suite / "bagfile_5_1", "why did you go back?")
     assert str(never["answer"]).startswith('I didn\'t go back for your request "Bring me a coffee from the kitchen": '
                                            "I tried to go to the kitchen but didn't get there")
 
@@ -101,12 +93,12 @@ def test_what_were_you_doing_is_the_step_under_way(suite: Path, question: str) -
     failed = log.task().failed_skill
     assert failed is not None
     at = clock(failed.time_of("failed") or failed.last_change).split(".")[0]
-    (answer,) = _ask(suite / "bagfile_5_1", question)
+    (answer,) = converse(suite / "bagfile_5_1", question)
     assert answer["answer"] == f"When it failed at {at} UTC, I was at step 1 (to go to the kitchen), 36 s into it."
 
 
 def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, tmp_path: Path) -> None:
-    (clean,) = _ask(suite / "bagfile_10_1", "what were you doing when it failed?")
+    (clean,) = converse(suite / "bagfile_10_1", "what were you doing when it failed?")
     assert str(clean["answer"]).startswith("Nothing failed. I did all 4 steps of my plan")
     b = BagBuilder()
     for t, status in ((1_741_600_000_000_000_000, "Running"), (1_741_600_050_000_000_000, "Running")):
@@ -114,7 +106,7 @@ def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, 
                         "task_error_msg": "", "skill_sequence": [{"skill": "navigate_to_zone",
                                                                   "params": {"location": "kitchen"},
                                                                   "status": status, "error_msg": ""}]})
-    (going,) = _ask(b.write(tmp_path / "going"), "what were you doing?")
+    (going,) = converse(b.write(tmp_path / "going"), "what were you doing?")
     assert str(going["answer"]).startswith("At ") and str(going["answer"]).endswith(
         " UTC, when my recording ends, I was at step 1 (to go to the kitchen), 50 s into it."), going["answer"]
     # said live, while the robot is still at it: no recording in the words
@@ -124,8 +116,8 @@ def test_what_were_you_doing_of_a_clean_run_and_of_one_still_going(suite: Path, 
 
 
 def test_what_else_could_you_have_picked_is_the_alternative_not_the_next_finding(suite: Path) -> None:
-    _, other, more = _ask(suite / "bagfile_20_2", "what happened?", "what else could you have picked?",
-                          "what else happened?")
+    _, other, more = converse(suite / "bagfile_20_2", "what happened?", "what else could you have picked?",
+                              "what else happened?")
     assert other["intent"] == "helped" and "I would have recommended a" in str(other["answer"]), other["answer"]
     assert more["intent"] == "else" and "speech limit" in str(more["answer"])
 
@@ -134,7 +126,7 @@ def test_what_else_could_you_have_picked_is_the_alternative_not_the_next_finding
                                       "tell me your plan"])
 def test_the_plan_is_its_steps_then_what_became_of_them(suite: Path, question: str) -> None:
     assert content_kind(question) == "plan"
-    (failed,) = _ask(suite / "bagfile_5_1", question)
+    (failed,) = converse(suite / "bagfile_5_1", question)
     assert failed["answer"] == ('My plan for your request "Bring me a coffee from the kitchen" was to go to the '
                                 'kitchen, ask someone for help ("Could you please put the coffee on my tray?"), go to '
                                 'the living room and then say "Here is your coffee." I did none of the 4 steps of my '
@@ -146,13 +138,13 @@ def test_a_plan_for_later_is_no_question_about_the_recorded_one() -> None:
 
 
 def test_a_rejected_plan_and_a_goal_from_the_logs_say_what_they_were(suite: Path, tmp_path: Path) -> None:
-    (rejected,) = _ask(suite / "bagfile_1_1", "What was your plan?")
+    (rejected,) = converse(suite / "bagfile_1_1", "What was your plan?")
     assert str(rejected["answer"]).endswith("My planner rejected it: Skill navigate_to_room is not a valid skill.")
-    (done,) = _ask(suite / "bagfile_20_1", "what was the plan?")
+    (done,) = converse(suite / "bagfile_20_1", "what was the plan?")
     assert str(done["answer"]).endswith("and then say the pizza I recommend. I did every step.")
     from hexar.evals.real_nav2 import corpus, write_recording
 
     excerpt = next(e for e in corpus() if e.id == "nav2-3807-dwb-no-valid-trajectories")
-    (goal,) = _ask(write_recording(excerpt, tmp_path / "run", task=False), "what was your plan?")
+    (goal,) = converse(write_recording(excerpt, tmp_path / "run", task=False), "what was your plan?")
     assert goal["answer"] == ("I had no plan of my own for the navigation goal: it is a goal I read from my logs, to "
                               "drive to my goal, and it failed.")
