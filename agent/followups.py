@@ -9,8 +9,10 @@ import re
 
 from hexar.agent.attempts import TRIED
 from hexar.agent.flags import LIMIT, flag_asked
+from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS
 from hexar.agent.places import place_asked
+from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
 from hexar.agent.state import Intent
 
@@ -110,13 +112,15 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs',
-    'plan', 'flag', 'limit', 'place' or 'said' for a question about what the robot did, 'act' for a request to do
-    something, 'stop' for an order to stop and 'next' for one about what it will do; None for anything else."""
+    'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken' or 'fault' for a question about what the
+    robot did, its recording or where a failure lies, 'act' for a request to do something, 'stop' for an order to
+    stop and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
-    kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None)
+    kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or clock_kind(q) or \
+        health_kind(q)
     if kind is None and flag_asked(q) is not None:
         kind = "flag"
     if kind is None and LIMIT.search(q):

@@ -9,6 +9,7 @@ from collections.abc import Callable
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import speed_limit
 from hexar.agent.places import place
+from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
@@ -28,4 +29,6 @@ FROM_RECORDING: dict[str, Answer] = {
     "limit": speed_limit,
     "plan": lambda q, log, task: sequence.plan(log, task),
     "said": content.said,
+    "clock": clock,
+    "recorded": recorded,
 }

@@ -16,6 +16,7 @@ from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.flags import flag_answer
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
+from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.logs import logs
 from hexar.agent.objects import object_asked, object_state
@@ -330,6 +331,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "flag":
         exp = flag_answer(ctx, state, task)
+    elif kind in {"broken", "fault"}:
+        exp = health(ctx, state, task)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)
         exp = with_failure(ctx, state, asked)

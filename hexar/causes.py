@@ -18,6 +18,8 @@ NOTHING_WRONG = frozenset({"planner.plan_ok", "navigation.nominal", "manipulatio
 # nominal cause is, but the router still lets an explainer that found them answer a question about them.
 FIGURES_OF_SUCCESS = frozenset({"navigation.nominal_speed", "tts.utterance_matches"})
 BENIGN = NOTHING_WRONG | FIGURES_OF_SUCCESS
+# Where a cause can lie (causes.yaml's `origin`).
+ORIGINS = ("hardware", "setup", "own", "request", "surroundings", "person", "state", "unknown", "none")
 
 
 @dataclass(frozen=True)
@@ -25,6 +27,7 @@ class Cause:
     id: str
     means: str
     patterns: tuple[re.Pattern[str], ...]
+    origin: str
     implies: tuple[str, ...] = ()
 
     @property
@@ -40,7 +43,7 @@ def vocabulary() -> dict[str, Cause]:
     text = resources.files("hexar").joinpath("causes.yaml").read_text(encoding="utf-8")
     raw = load(text)
     return {
-        cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]),
+        cid: Cause(cid, entry["means"], tuple(re.compile(p, re.I) for p in entry["patterns"]), entry["origin"],
                    tuple(entry.get("implies", ())))
         for cid, entry in raw.items()
     }
