@@ -32,8 +32,9 @@ TRIED = re.compile(
     r"^(and |so |but |ok |okay )?(did|have|had) you (even |ever )?(try|tried|retry|retried|attempt(ed)?)"
     r"( it| that| this)?( again| once more| twice| a second time| more than once| another time| something else|"
     r" anything else| another way| to go around( it| them| that)?)?\W*$|"
-    r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) you (try|tried|retry|retried|"
-    r"attempt(ed)?)\b|^(and |so |but |ok |okay )?how many (attempts|tries|retries)\b|"
+    r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) (you|it|the robot|nav2|the planner|"
+    r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
+    r"^(and |so |but |ok |okay )?how many (attempts|tries|retries|re-?plans|recoveries)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$")
 _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
            re.compile(r": failed to create plan with tolerance"),

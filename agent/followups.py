@@ -10,8 +10,9 @@ import re
 from hexar.agent.attempts import TRIED
 from hexar.agent.flags import LIMIT, flag_asked
 from hexar.agent.health import health_kind
-from hexar.agent.logs import LOGS
-from hexar.agent.places import place_asked
+from hexar.agent.logs import LOGS, NODES
+from hexar.agent.overview import SETTING_FIX
+from hexar.agent.places import FAILED_AT, place_asked
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
 from hexar.agent.state import Intent
@@ -22,6 +23,7 @@ _DEEPER = re.compile(
     r"tell me more|more details?|go on|explain( that| more)?|what do you mean|because of what)\W*$"
 )
 _HELPED = re.compile(
+    SETTING_FIX + "|"
     r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
     r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|how (can|could|do) (i|we) fix|"
     r"how (can|could) (i|we|you) (avoid|prevent)|"
@@ -69,6 +71,7 @@ _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna 
 _TALKED = re.compile(r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
                      r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
 _WHERE = re.compile(r"where are you\b(?! (going|heading|driving|off to)\b)|where did you (end up|stop)\b|"
+                    r"what('s| is| was) (your|the robot's|its|the robot) (position|pose|location)\W*$|"
                     r"where('s| is) the robot\b|where did you finish\b")
 
 
@@ -99,9 +102,10 @@ def module_asked(question: str) -> str | None:
 
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
-_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("where", _WHERE), ("went", _WENT),
+_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("failed_at", FAILED_AT), ("where", _WHERE),
+                  ("went", _WENT),
                   ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
-                  ("doing", DOING), ("logs", LOGS), ("plan", PLAN))
+                  ("doing", DOING), ("logs", LOGS), ("nodes", NODES), ("plan", PLAN))
 
 
 def is_order(question: str) -> bool:
@@ -111,10 +115,10 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks', 'doing', 'logs',
-    'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken' or 'fault' for a question about what the
-    robot did, its recording or where a failure lies, 'act' for a request to do something, 'stop' for an order to
-    stop and 'next' for one about what it will do; None for anything else."""
+    """'went', 'where', 'failed_at', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks',
+    'doing', 'logs', 'nodes', 'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken' or 'fault' for a
+    question about what the robot did, its recording or where a failure lies, 'act' for a request to do something,
+    'stop' for an order to stop and 'next' for one about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

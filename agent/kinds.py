@@ -8,7 +8,8 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import speed_limit
-from hexar.agent.places import place
+from hexar.agent.logs import nodes
+from hexar.agent.places import place, where_failed
 from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -18,6 +19,7 @@ Answer = Callable[[str, EventLog, Task], Explanation]
 
 FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
+    "failed_at": where_failed,
     "went": content.went,
     "far": lambda q, log, task: measures.far(log, task, q),
     "fast": lambda q, log, task: measures.fast(log, task),
@@ -28,6 +30,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "place": place,
     "limit": speed_limit,
     "plan": lambda q, log, task: sequence.plan(log, task),
+    "nodes": nodes,
     "said": content.said,
     "clock": clock,
     "recorded": recorded,

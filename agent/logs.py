@@ -154,3 +154,34 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                 f"{nodes}: {_quote(lines, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
     return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
                        evidence=_evidence(lines, task))
+
+
+NODES = re.compile(
+    _OPEN + r"(which|what) (nodes|processes)( of yours)? (were|are|was|did you have) (running|up|alive|active|there|"
+    r"launched|started|online)\b|"
+    + _OPEN + r"(list|show)( me)? (the |your |all (of )?(the |your )?)?(nodes|processes)\b|"
+    + _OPEN + r"(what|which) (nodes|processes) (did|do) you (have|run|start|launch)\b")
+NAMED = 8  # nodes named, most lines first; the rest are counted
+
+
+def nodes(question: str, log: EventLog, task: Task) -> Explanation:
+    """"Which nodes were running?": the nodes whose lines the log holds, over the whole recording, with their
+    counts and errors. A node that never logged does not show, and the answer says so rather than "not running"."""
+    if not log.logs:
+        text = f"I can't tell: my recording holds no log lines ({c.ROSOUT}), and nodes show in my recording only there."
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
+    lines = Counter(ln.name or "a node" for ln in log.logs)
+    errors = Counter(ln.name or "a node" for ln in log.logs if ln.level >= ERROR)
+    named = [f"{node} ({n} line{'s' if n > 1 else ''}" + (f", {errors[node]} error{'s' if errors[node] > 1 else ''}"
+             if errors[node] else "") + ")" for node, n in lines.most_common(NAMED)]
+    rest = len(lines) - NAMED
+    if rest > 0:
+        named.append(f"{rest} other node{'s' if rest > 1 else ''}")
+    text = (f"My log holds lines from {len(lines)} node{'s' if len(lines) > 1 else ''}: {join_words(named)}. A node "
+            "that never logged does not show here, and my log cannot tell whether one was still running at the end.")
+    first: dict[str, LogLine] = {}
+    for ln in log.logs:
+        first.setdefault(ln.name or "a node", ln)
+    evidence = [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
+                for node, ln in first.items() if node in dict(lines.most_common(NAMED))]
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)

@@ -32,7 +32,12 @@ _WHOLE = re.compile(
     r"( (it|the task|your task|the job|everything))?\W*$"
 )
 # A fix asked for: the same words as a "what would have helped?" follow-up (agent/followups.py).
+# "Which parameter should I change?": a developer's way of asking for the fix.
+SETTING_FIX = (r"(which|what) (parameters?|params?|settings?|values?|config(uration)?|files?|options?|plugins?) "
+               r"(should|do|must|can|would|could) (i|we|you) (have )?(change|changed|set|tune|tuned|adjust|adjusted|"
+               r"fix|fixed|edit|edited|look at|check|checked)\b")
 _FIX = re.compile(
+    SETTING_FIX + "|"
     r"what (would|could|might) have (helped|worked|prevented it|made a difference)|"
     r"what (could|can|should) (i|we|you) (have )?do(ne)?( differently| about it)?|"
     r"how (can|could|do|would|should) (i|we|you|one) (fix|solve|repair|avoid|prevent)|"

@@ -12,7 +12,7 @@ from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, place_name, step_ref
+from hexar.explainers.recorded import NAV_SKILLS, last_pose, place_name, step_ref
 
 # The rooms of a home people ask about; a place a plan names is matched by its own words (recording-independent
 # here, so that "where is the coffee?" stays a question for the explainers).
@@ -67,6 +67,36 @@ def place(question: str, log: EventLog, task: Task) -> Explanation:
     text = (f"When I got to {name} at {hms(run.last_change)} UTC, for {step_ref(run)} of {task_name(owner, log)}, I "
             f"was at ({pose.x:.2f}, {pose.y:.2f}) on my map. I know {name} only as a place my plan names, so that is "
             "where I stopped for it, not the room's outline.")
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE, t=pose.t,
+                                          item=f"x = {pose.x:.2f}, y = {pose.y:.2f}")])
+
+
+# "Where were you when it failed?": the position at the failure, not at the recording's end.
+FAILED_AT = re.compile(
+    r"\b(where were you|what was (your|the robot's|its|the robot) (position|pose|location))( exactly)? "
+    r"(when|as|at the (time|moment)) (it|you|the task|that|this|the step|your task) ?(failed|stopped|gave up|went "
+    r"wrong|happened|aborted|crashed|broke down)\b")
+
+
+def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
+    """The last position recorded up to the moment the task failed (its failed step's last change), or where the
+    robot is at the end of a task that did not fail."""
+    from hexar.agent.content import where
+
+    failed = task.failed_skill
+    when = failed.last_change if failed is not None else task.last_update if task.outcome == "failed" else None
+    if when is None:
+        told = where(log)
+        return told.model_copy(update={"text": f"Nothing failed in {task_name(task, log)}. {told.text}"})
+    what = f"{step_ref(failed)} failed" if failed is not None else f"{task_name(task, log)} failed"
+    pose = last_pose(log, when)
+    if pose is None:
+        text = (f"I can't tell: my recording holds no position ({c.AMCL_POSE}) up to when {what}, at {hms(when)} "
+                "UTC.")
+        return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
+    text = (f"When {what}, at {hms(when)} UTC, my last recorded position was ({pose.x:.2f}, {pose.y:.2f}) on my map, "
+            f"at {hms(pose.t)}.")
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE, t=pose.t,
                                           item=f"x = {pose.x:.2f}, y = {pose.y:.2f}")])

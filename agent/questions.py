@@ -39,7 +39,7 @@ _SPELLING = {
 _ASKING = _words("why what what's whats how how's when where where'd who whom whose which why'd whys")
 _OPENERS = _words(
     "did do does was were is are can could would will should have has had didn't don't doesn't wasn't weren't "
-    "isn't aren't can't couldn't wouldn't won't shouldn't haven't hasn't tell explain describe show say give "
+    "isn't aren't can't couldn't wouldn't won't shouldn't haven't hasn't tell explain describe show say give list "
     "walk help talk wonder curious"
 )
 # A statement about what the robot did or what went wrong is a question about it ("you didnt bring it").

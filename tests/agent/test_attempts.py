@@ -26,7 +26,8 @@ def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.mark.parametrize("question", ["did you try again?", "how many times did you try?", "did you give up?",
-                                      "how many attempts were there", "did you try to go around it?"])
+                                      "how many attempts were there", "did you try to go around it?",
+                                      "how many times did it replan?", "how many recoveries were there?"])
 def test_questions_about_trying_again(question: str) -> None:
     assert content_kind(question) == "tried"
 
@@ -51,8 +52,9 @@ def test_a_blocked_path_counts_its_failed_plans_and_recoveries(suite: Path) -> N
     assert "[behavior_server] INFO Running spin" in str(why["answer"]) or "Received request" in str(why["answer"])
 
 
-def test_how_many_times_is_not_answered_yes_or_no(suite: Path) -> None:
-    (answer,) = converse(suite / "bagfile_5_1", "how many times did you try?")
+@pytest.mark.parametrize("question", ["how many times did you try?", "how many times did it replan?"])
+def test_how_many_times_is_not_answered_yes_or_no(suite: Path, question: str) -> None:
+    (answer,) = converse(suite / "bagfile_5_1", question)
     assert str(answer["answer"]).startswith("For step 1 (to go to the kitchen), my planner failed to find a path")
 
 

@@ -101,3 +101,24 @@ def test_why_after_the_errors_goes_on_to_the_failure(suite: Path) -> None:
     _, why, deeper = converse(suite / "bagfile_5_1", "What errors were there?", "why?", "why?")
     assert str(why["answer"]).startswith("Here is what I recorded: ")
     assert "something blocked my path" in str(deeper["answer"])
+
+
+@pytest.mark.parametrize("question", ["which nodes were running?", "list the nodes", "what nodes did you have?",
+                                      "show me all the processes"])
+def test_which_nodes_is_its_own_question(question: str) -> None:
+    assert content_kind(question) == "nodes"
+
+
+def test_the_nodes_are_those_that_logged_with_their_counts_and_errors(suite: Path) -> None:
+    run = suite / "bagfile_5_1"
+    log = read_recording(run)
+    names = Counter(ln.name for ln in log.logs)
+    errors = Counter(ln.name for ln in log.logs if ln.level >= ERROR)
+    (said,) = converse(run, "which nodes were running?")
+    text = str(said["answer"])
+    assert text.startswith(f"My log holds lines from {len(names)} nodes: ")
+    top, n = names.most_common(1)[0]
+    assert f"{top} ({n} lines" in text
+    assert all(f"{node} ({names[node]} line" in text and f"{k} error" in text for node, k in errors.items())
+    assert text.endswith("A node that never logged does not show here, and my log cannot tell whether one was still "
+                         "running at the end.")

@@ -25,7 +25,8 @@ def _ask(run: Path, *questions: str, task: str | None = None) -> list[dict[str, 
 
 @pytest.mark.parametrize("question", ["how can I fix this", "what would have helped?",
                                       "What would you recommend I do?", "what should I check?",
-                                      "what do I need to look at?"])
+                                      "what do I need to look at?", "which parameter should I change?",
+                                      "what settings should I tune?"])
 def test_a_fix_question_is_answered_with_the_fix(suite: Path, question: str,
                                                  capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["ask", str(suite / "bagfile_5_1"), question, "--llm", "none"]) == 0
@@ -183,3 +184,9 @@ def test_a_module_named_by_what_it_does_answers_though_another_found_more(suite:
     (answer,) = _ask(suite / "bagfile_9_1", question)
     assert answer["route"] == "named" and answer["explainers"] == ["ask_human_for_help"]
     assert str(answer["answer"]).startswith("Asking for help went as planned: I found a person")
+
+
+def test_a_setting_to_change_asked_after_the_cause_is_the_fix(suite: Path) -> None:
+    cause, setting = _ask(suite / "bagfile_5_1", "what happened?", "which parameter should I change?")
+    assert "something blocked my path" in str(cause["answer"])
+    assert str(setting["answer"]) == "Clear the way to the kitchen and ask me again."

@@ -22,7 +22,8 @@ def _ask(run: Path, question: str) -> str:
     ("Where is the kitchen?", "place"), ("where's the living room", "place"), ("where is my bedroom?", "place"),
     # the robot, a trip, an object: their own questions
     ("where are you?", "where"), ("where did you go?", "went"), ("where is the coffee?", None),
-    ("why did you go to the kitchen?", "went"),
+    ("why did you go to the kitchen?", "went"), ("what was your position?", "where"),
+    ("where were you when it failed?", "failed_at"), ("what was the robot's position when it stopped?", "failed_at"),
 ])
 def test_a_room_asked_for_is_a_place_question(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
@@ -49,3 +50,19 @@ def test_a_room_never_reached_or_never_in_a_plan_is_not_placed(suite: Path) -> N
     assert _ask(suite / "bagfile_5_1", "where is the bathroom?") == (
         "I can't tell: no step of any plan in my recording went to the bathroom, and I know rooms only as the places "
         "my plans name.")
+
+
+def test_the_position_when_it_failed_is_the_last_one_before_the_failure(suite: Path) -> None:
+    run = suite / "bagfile_5_1"
+    log = read_recording(run)
+    failed = log.tasks[0].failed_skill
+    assert failed is not None
+    before = [p for p in log.poses if p.t <= failed.last_change][-1]
+    assert log.poses[-1].t > failed.last_change  # the robot's pose went on being recorded after the failure
+    said = _ask(run, "where were you when it failed?")
+    assert said == (f"When step 1 (to go to the kitchen) failed, at {clock(failed.last_change).split('.')[0]} UTC, my "
+                    f"last recorded position was ({before.x:.2f}, {before.y:.2f}) on my map, at "
+                    f"{clock(before.t).split('.')[0]}.")
+    fine = _ask(suite / "bagfile_10_1", "where were you when it failed?")
+    assert fine.startswith('Nothing failed in your request "Bring me a coffee from the kitchen". I\'m in the living '
+                           "room")
