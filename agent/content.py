@@ -286,12 +286,18 @@ def _how_it_ended(task: Task, log: EventLog) -> str:
 
 
 def read_only(kind: str, log: EventLog, task: Task) -> Explanation:
-    """"Can you try again?" and "what will you do next?": the agent explains from the recording and never commands
-    the robot, so it says so (with how the task ended) instead of answering with a failure nobody asked about."""
+    """"Can you try again?", "what will you do next?", "will you remember this?", "are you sad?": the agent explains
+    from the recording, never commands the robot and has no feelings, so it says so (with how the task ended)
+    instead of answering with a failure nobody asked about."""
     now = _how_it_ended(task, log)
     if kind == "next":
         text = ("I can't tell what I will do next: I only explain what I have already done, from what I recorded. "
                 + now)
+    elif kind == "learn":
+        text = ("Nothing I say here changes how I act next time: I only explain what I did, from my recording. "
+                + now)
+    elif kind == "feel":
+        text = f"I have no feelings to tell you about: I can only explain what I did, from my recording. {now}"
     elif kind == "stop":
         text = ("I can't stop from here: here I only explain what I did, from my recording, and I send no commands. "
                 f"To stop me now, press my emergency stop button. {now}")

@@ -12,6 +12,7 @@ from hexar.agent.flags import LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.overview import SETTING_FIX
+from hexar.agent.person import PERSON
 from hexar.agent.places import FAILED_AT, place_asked
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
@@ -67,8 +68,17 @@ _STOP = re.compile(r"^(please |robot |hey |now |ok |okay )*(stop|halt|freeze)( (
                    r"right now|please|immediately))*\W*$")
 _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna )?do (next|now)\b|"
                    r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
+# "Will you remember this next time?": HEXAR changes nothing in how the robot acts, and says so with the fix.
+_LEARN = re.compile(r"^(and |so |but |ok |okay )?(will|would|do|did|can) you (remember|learn|know better|do better|"
+                    r"avoid (it|this|that))\b|^(and |so |but )?(have|did) you learn(ed|t)?\b|"
+                    r"^(and |so |but |ok |okay )?(will|would|could|can|might) (it|this|that) happen again\b")
+# "Are you sad?": the robot has no feelings to report; it says so with how the task ended.
+_FEEL = re.compile(r"^(and |so |but |ok |okay )?(are|were) you (feeling )?(sad|happy|upset|angry|mad|frustrated|"
+                   r"disappointed|embarrassed|annoyed|hurt|scared|afraid|lonely|tired|bored)\W*$|"
+                   r"^(and |so )?how (do|did) you feel( about (it|this|that))?\W*$")
 # "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
-_TALKED = re.compile(r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
+_TALKED = re.compile(r"^(and |so |but )?what did you (ask|say to|tell) (her|him|them|the person|that person)\W*$|"
+                     r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
                      r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
 _WHERE = re.compile(r"where are you\b(?! (going|heading|driving|off to)\b)|where did you (end up|stop)\b|"
                     r"what('s| is| was) (your|the robot's|its|the robot) (position|pose|location)\W*$|"
@@ -102,10 +112,10 @@ def module_asked(question: str) -> str | None:
 
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
-_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("failed_at", FAILED_AT), ("where", _WHERE),
-                  ("went", _WENT),
-                  ("talked", _TALKED), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
-                  ("doing", DOING), ("logs", LOGS), ("nodes", NODES), ("plan", PLAN))
+_CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("learn", _LEARN), ("feel", _FEEL),
+                  ("failed_at", FAILED_AT), ("where", _WHERE), ("went", _WENT), ("talked", _TALKED),
+                  ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS), ("doing", DOING),
+                  ("logs", LOGS), ("nodes", NODES), ("plan", PLAN))
 
 
 def is_order(question: str) -> bool:
@@ -115,10 +125,11 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'failed_at', 'far', 'fast', 'start', 'long', 'when', 'talked', 'tried', 'after', 'tasks',
-    'doing', 'logs', 'nodes', 'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken' or 'fault' for a
-    question about what the robot did, its recording or where a failure lies, 'act' for a request to do something,
-    'stop' for an order to stop and 'next' for one about what it will do; None for anything else."""
+    """'went', 'where', 'failed_at', 'far', 'fast', 'start', 'long', 'when', 'talked', 'person', 'tried', 'after',
+    'tasks', 'doing', 'logs', 'nodes', 'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken' or
+    'fault' for a question about what the robot did, its recording or where a failure lies, 'act' for a request to do
+    something, 'stop' for an order to stop, 'next' for one about what it will do, 'learn' for one about next time
+    and 'feel' for one about its feelings; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

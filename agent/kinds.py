@@ -9,6 +9,7 @@ from collections.abc import Callable
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import speed_limit
 from hexar.agent.logs import nodes
+from hexar.agent.person import person
 from hexar.agent.places import place, where_failed
 from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
@@ -28,6 +29,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "when": measures.when,
     "tasks": lambda q, log, task: sequence.tasks(log),
     "place": place,
+    "person": person,
     "limit": speed_limit,
     "plan": lambda q, log, task: sequence.plan(log, task),
     "nodes": nodes,

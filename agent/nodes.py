@@ -319,6 +319,11 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = with_failure(ctx, state, answers.not_run(state["asked"], ctx.log, task, ctx.registry.for_module))
     elif kind in {"act", "next", "stop"}:
         exp = answers.read_only(kind, ctx.log, task)
+    elif kind in {"learn", "feel"}:  # "why?" goes on to the failure; what keeps it from happening again is said
+        exp = with_failure(ctx, state, answers.read_only(kind, ctx.log, task))
+        if kind == "learn" and exp.fix:
+            exp = exp.model_copy(update={"text": f"{exp.text} To keep it from happening again: {exp.fix[0].lower()}"
+                                                  f"{exp.fix[1:]}"})
     elif kind in FROM_RECORDING:
         exp = FROM_RECORDING[kind](state["question"], ctx.log, task)
     elif kind == "talked":

@@ -382,3 +382,21 @@ def test_did_you_say_it_is_answered_yes_or_no_then_what(suite: Path) -> None:
     right, what = converse(suite / "bagfile_9_3", "did you say it?", "what did you say?")
     assert str(right["answer"]).startswith('Yes. I said "Maria, dinner is at eight.", which is what you asked for')
     assert str(what["answer"]).startswith('I said "Maria, dinner is at eight."')
+
+
+def test_next_time_and_feelings_are_said_honestly_then_why_goes_on_to_the_failure(suite: Path) -> None:
+    """HEXAR changes nothing in how the robot acts and reports no feelings: it says so, with how the task ended and,
+    for "next time", what would keep the failure from happening again."""
+    from hexar.agent.followups import content_kind
+
+    assert [content_kind(q) for q in ("will you remember this next time?", "will it happen again?", "are you sad?",
+                                      "how do you feel about it?", "why are you sad?")] == \
+        ["learn", "learn", "feel", "feel", None]
+    learn, feel, why = converse(suite / "bagfile_5_1", "will you remember this next time?", "are you sad?", "why?")
+    assert learn["answer"] == ("Nothing I say here changes how I act next time: I only explain what I did, from my "
+                               'recording. Your request "Bring me a coffee from the kitchen" failed. To keep it from '
+                               "happening again: clear the way to the kitchen and ask me again.")
+    assert str(feel["answer"]).startswith("I have no feelings to tell you about")
+    assert "Failed to make progress" in str(why["answer"])  # the failure's evidence, not the task's status alone
+    (fine,) = converse(suite / "bagfile_10_1", "will it happen again?")
+    assert "To keep it" not in str(fine["answer"]) and str(fine["answer"]).endswith("was done.")

@@ -1,0 +1,79 @@
+""""What did they say?", "why did she say no?", "where was he?", "what was her name?": the person the help skill
+asked, told from what the skill recorded of them (/episodic_memory: detected, how far, agreed, confirmed), which is
+never their words, their reasons, their place on the map or their name. Said so, rather than answered with the
+task's finding again."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.tasks import SkillRun, Task
+from hexar.explainers.ask_human.explainer import NAME, Step, last_execution
+from hexar.explainers.base import Explanation
+
+_WHO = r"(they|she|he|the person|the human|that person|them|her|him|the man|the woman)"
+_LEAD = r"^(and |so |but |ok |okay )?"
+PERSON = re.compile(
+    _LEAD + r"what did " + _WHO + r" (say|answer|reply|tell you|respond)\b|"
+    + _LEAD + r"(what was|what's|what is) (their|her|his|the person's) (answer|reply|response)\b|"
+    + _LEAD + r"why did(n't| not)? " + _WHO + r" (say no|refuse|decline|not help|help|say yes|agree|not answer|"
+              r"ignore (you|me)|not confirm)\b|"
+    + _LEAD + r"where (was|were|is|are) " + _WHO + r"\W*$|"
+    + _LEAD + r"(what was|what's|what is|who was|who is) (her|his|their|the person's) name\b|"
+    + _LEAD + r"(who|what) (was|is) (that|the) (person|human|man|woman)\b")
+_ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
+_CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
+
+
+def _steps(log: EventLog, task: Task) -> tuple[SkillRun | None, dict[str, Step]]:
+    """The task's last ask-for-help step that started, and what its last execution recorded, by key."""
+    run = next((r for r in reversed(task.skills) if r.skill == NAME and r.time_of("running") is not None), None)
+    if run is None:
+        return None, {}
+    start, end = task.skill_window(run)
+    records = [r for r in log.statuses.get(c.EPISODIC_MEMORY, []) if start <= r.t <= end]
+    return run, {s.key: s for s in last_execution(records)}
+
+
+def _answered(steps: dict[str, Step]) -> str:
+    accepted = steps.get("user_accepted")
+    if accepted is None or accepted.value not in _ACCEPTED:
+        return "my recording holds no answer from them: I never got as far as asking" if "AskForHelpState" not in \
+            steps else "my recording holds no answer from them"
+    said = _ACCEPTED[accepted.value]
+    confirmed = steps.get("user_confirmed")
+    if accepted.value == "True" and confirmed is not None and confirmed.value in _CONFIRMED:
+        said += f", and {_CONFIRMED[confirmed.value]}"
+    return said
+
+
+def person(question: str, log: EventLog, task: Task) -> Explanation:
+    """What the help skill recorded of the person, for the part of them asked about."""
+    q = " ".join(question.lower().split())
+    run, steps = _steps(log, task)
+    if run is None:
+        text = "I asked nobody for help in this task, so my recording holds nothing of a person."
+        return Explanation(explainer=NAME, text=text, causes=["planner.plan_ok"], enough_information=False)
+    if not steps:
+        text = f"My recording holds nothing of the person: no {c.EPISODIC_MEMORY} record of my ask for help."
+        return Explanation(explainer=NAME, text=text, causes=["planner.plan_ok"], enough_information=False)
+    answered = _answered(steps)
+    detected = steps.get("person_detected")
+    if detected is None or detected.value != "True":
+        text = "I never detected anybody to ask, so my recording holds nothing of a person."
+    elif re.search(r"\bname\b|\bwho (was|is)\b", q):
+        text = ("My recording holds no name: I knew the person only as someone I detected and asked for help"
+                f"; {answered}.")
+    elif re.search(r"^(\w+ )?where\b", q):
+        distance = steps.get("person_distance")
+        text = (f"I measured the person at {distance.value} m from me when I detected them" if distance is not None
+                else "I detected the person") + (", but my recording holds no position for them on my map.")
+    elif re.search(r"\bwhy\b", q):
+        text = f"I can't tell why: my recording holds only that {answered}, not their reasons."
+    else:
+        text = f"My recording holds only their yes or no, not their words: {answered}."
+    evidence = [s.evidence("planner.plan_ok") for k, s in steps.items()
+                if k in {"person_detected", "person_distance", "user_accepted", "user_confirmed"}]
+    return Explanation(explainer=NAME, text=text[0].upper() + text[1:], causes=["planner.plan_ok"], evidence=evidence)
