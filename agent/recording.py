@@ -65,23 +65,24 @@ def recorded(question: str, log: EventLog, task: Task) -> Explanation:
     span = (f"{duration(log.end - log.start)}, from {hms(log.start)} to {hms(log.end)} UTC"
             + (f" on {day}" if day is not None else " on a simulator's clock"))
     kind = {"sqlite3": "a rosbag2 (sqlite3)", "mcap": "a rosbag2 (MCAP)", "rosbag1": "a ROS 1 bag"}.get(log.storage)
-    head = (f"I have been listening for {span}." if log.storage == "live" else
-            f"My recording is {kind or 'a recording'} of {span}.")
+    live = log.storage == "live"
+    # live, the counts are of every message heard, while only the latest are kept (live/log.py's limits)
+    head, holds = (f"What I keep of what I have heard spans {span}.", "I have heard") if live else \
+        (f"My recording is {kind or 'a recording'} of {span}.", "It holds")
     if not topics:
-        none = "I have heard no messages." if log.storage == "live" else "It holds no messages."
-        return Explanation(explainer="planner", text=f"{head} {none}", causes=["planner.plan_ok"],
+        return Explanation(explainer="planner", text=f"{head} {holds} no messages.", causes=["planner.plan_ok"],
                            enough_information=False)
     shown = [f"{i.count:,} on {i.topic}" for i in topics[:SHOWN]]
     rest = topics[SHOWN:]
     if rest:
         shown.append(f"{sum(i.count for i in rest):,} on {_count(len(rest), 'other topic')}")
-    text = f"{head} It holds {_count(total, 'message')} on {_count(len(topics), 'topic')}: {join_words(shown)}."
+    text = f"{head} {holds} {_count(total, 'message')} on {_count(len(topics), 'topic')}: {join_words(shown)}."
     tasks = [t for t in log.tasks if not t.is_recovery]
     if tasks:
         text += (f" It tells of {_count(len(tasks), 'task')}" + (': ask "what tasks were there?" for them.'
                                                                  if len(tasks) > 1 else "."))
     if log.warnings:
-        text += f" While reading it, I set aside: {join_words(log.warnings[:3])}"
+        text += f" {'Listening' if live else 'While reading it'}, I set aside: {join_words(log.warnings[:3])}"
         text += f" and {len(log.warnings) - 3} more." if len(log.warnings) > 3 else "."
     evidence = [Evidence(cause="planner.plan_ok", topic=i.topic, t=log.start, item=f"{_count(i.count, 'message')}, "
                          f"{i.type}") for i in topics]

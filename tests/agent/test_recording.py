@@ -75,3 +75,25 @@ def test_what_was_recorded_counts_each_topic_and_what_was_set_aside(tmp_path: Pa
     assert f"It holds {sum(i.count for i in log.topics.values()):,} messages on {len(log.topics)} topics" \
         in str(many["answer"])
     assert "other topics." in str(many["answer"]) and "blocked" not in str(many["answer"])
+
+
+def test_live_the_counts_are_of_what_was_heard_and_the_time_of_the_last_message(suite: Path) -> None:
+    from hexar.agent.context import RunSettings
+    from hexar.agent.session import Session
+    from hexar.live.clock import Timeline
+    from hexar.live.log import LiveLog
+    from hexar.live.replay import bag_messages
+
+    run = suite / "bagfile_5_1"
+    timeline, live = Timeline(), LiveLog()
+    for topic, _, t, msg in bag_messages(run).messages:
+        live.extend(timeline.records(topic, msg, t))
+    live.extend(timeline.flush())
+    snap = live.snapshot()
+    session = Session(RunSettings(recording=Path("live"), llm="none"), log=snap)
+    heard = str(session.ask("what did you record?")["answer"])
+    assert heard.startswith("What I keep of what I have heard spans ")
+    assert f"I have heard {sum(i.count for i in snap.topics.values()):,} messages on {len(snap.topics)} topics" in heard
+    now = str(session.ask("what time is it?")["answer"])
+    assert now.startswith(f"I tell the time only by what I have heard: its last message came at "
+                          f"{clock(snap.end).split('.')[0]} UTC")
