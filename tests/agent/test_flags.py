@@ -101,3 +101,18 @@ def test_a_speed_limit_changed_during_the_task_is_told_with_when(tmp_path: Path)
     changed = clock(T0 + sec_ns(6)).split(".")[0]
     assert said["answer"] == ('My speed limit changed while I worked on your request "Go to the kitchen": 0.50 m/s '
                               f"at first, then 0.30 m/s at {changed} UTC (max_vel_x).")
+
+
+def test_a_speed_limit_published_only_after_the_task_is_not_its_limit(tmp_path: Path) -> None:
+    b = BagBuilder()
+    for k, status in enumerate(("waiting", "Running", "succeeded")):
+        b.task_info(T0 + sec_ns(1 + 2 * k), {
+            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
+                                "error_msg": ""}]})
+    b.status(T0 + sec_ns(9), c.DIAGNOSTICS, "controller_server", "velocity limits", [("max_vel_x", "0.40")])
+    said = _ask(b.write(tmp_path / "run"), "what is your speed limit?")
+    assert said["answer"] == (f"I can't tell: my speed limit (max_vel_x on /diagnostics) was first published at "
+                              f"{clock(T0 + sec_ns(9)).split('.')[0]} UTC, after your request \"Go to the kitchen\" "
+                              "ended; it was 0.40 m/s then.")
+    assert said["enough_information"] is False
