@@ -115,12 +115,12 @@ def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
     during = ([m for m in limits if m[0].t <= task.created][-1:] +
               [m for m in limits if task.created < m[0].t <= end])
     if not during:  # published only after the task: not the limit it worked under
-        later, value = limits[0]
-        text = (f"I can't tell: my speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) was first published at {hms(later.t)} "
+        published, value = limits[0]
+        text = (f"I can't tell: my speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) was first published at {hms(published.t)} "
                 f"UTC, after {name} ended; it was {value:.2f} m/s then.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False,
-                           evidence=[Evidence(cause="planner.plan_ok", topic=c.DIAGNOSTICS, t=later.t,
-                                              item=status_item(later, SPEED_KEY))])
+                           evidence=[Evidence(cause="planner.plan_ok", topic=c.DIAGNOSTICS, t=published.t,
+                                              item=status_item(published, SPEED_KEY))])
     changes = [m for i, m in enumerate(during) if i == 0 or m[1] != during[i - 1][1]]
     first = f"{changes[0][1]:.2f} m/s"
     if len(changes) == 1:
