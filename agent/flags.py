@@ -116,8 +116,8 @@ def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
               [m for m in limits if task.created < m[0].t <= end])
     if not during:  # published only after the task: not the limit it worked under
         published, value = limits[0]
-        text = (f"I can't tell: my speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) was first published at {hms(published.t)} "
-                f"UTC, after {name} ended; it was {value:.2f} m/s then.")
+        text = (f"I can't tell: my speed limit ({SPEED_KEY} on {c.DIAGNOSTICS}) was first published at "
+                f"{hms(published.t)} UTC, after {name} ended; it was {value:.2f} m/s then.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False,
                            evidence=[Evidence(cause="planner.plan_ok", topic=c.DIAGNOSTICS, t=published.t,
                                               item=status_item(published, SPEED_KEY))])
