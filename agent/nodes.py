@@ -11,6 +11,7 @@ from hexar import progress
 from hexar.agent import content as answers
 from hexar.agent import guard, sequence
 from hexar.agent.attempts import tried
+from hexar.agent.cited import asks_specific, cited
 from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
@@ -42,7 +43,6 @@ from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ModelError
 from hexar.prompts import load
-from hexar.render import clock
 from hexar.tools.explainer_tools import explainer_of_tool, run_explainer, scope, tools_for
 
 if TYPE_CHECKING:
@@ -51,15 +51,9 @@ if TYPE_CHECKING:
 
 
 # Where a piece of evidence comes from, as the robot says it.
-_SOURCE = {
-    "/rosout": "my log", "launch.log": "my launch's log", "/task_info": "my task status",
-    "/amcl_pose": "my localisation",
-    "/joy_priority": "my joystick switch", "/power/is_charging": "my charger", "/diagnostics": "my diagnostics",
-    "/episodic_memory": "my ask-for-help skill", "/skills/say/events": "my speech",
-    "/skills/recommend_pizza/events": "my pizza recommender",
-}
 CONFIDENT = 0.45
 SAID_BEFORE = "I have nothing more specific on that than what I just said:"
+QUOTED_BEFORE = "I have nothing more specific on that than the lines I just quoted:"
 KEEP_TURNS = 20  # the turns of a conversation kept in its saved state
 BUILTIN = {"planner", "navigation", "ask_human_for_help", "text_to_speech", "pizza_recommender"}
 
@@ -70,14 +64,6 @@ def _ms(start: float) -> float:
 
 def _timings(state: AgentState, key: str, start: float) -> dict[str, float]:
     return {**state.get("timings_ms", {}), key: _ms(start)}
-
-
-def _recorded(t: int, topic: str, item: str) -> str:
-    source = _SOURCE.get(topic, topic)
-    if item in {"data=True", "data=False"}:  # a recorded on/off flag
-        return f"at {clock(t)} {source} was {'on' if item == 'data=True' else 'off'} ({topic})"
-    # a logged message may end in a newline ("Known controllers and their joints:\n"): said without it
-    return f"at {clock(t)} {source} recorded \"{' '.join(item.split())}\""
 
 
 def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -97,7 +83,8 @@ def intake(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
                 "timings_ms": {"intake": _ms(start)}}
     intent = intent_of(question, bool(state.get("explanations")))
     # the recording is read only for a question whose words name nothing a robot does
-    if intent == "new" and off_topic(question) and off_topic(question, recording_words(runtime.context.log.tasks)):
+    if intent == "new" and not asks_specific(question) and off_topic(question) and \
+            off_topic(question, recording_words(runtime.context.log.tasks)):
         error = (f"{quoted(question)} is not about anything I did: I can only explain what I did, from my "
                  f"recording. Ask me why I did something, {EXAMPLE}")
         return {**reset, "question": question, "intent": "offtopic", "error": error, "answer": OFF_TOPIC,
@@ -253,6 +240,14 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     question = state["question"]
     if state.get("intent") == "new" and asks_fix(question):  # "how can I fix this?": the cause, then the fix
         text = f"{text} {helped([Explanation.model_validate(e) for e in kept], BENIGN, text)}".strip()
+    quoted_lines = ""
+    if state.get("intent") == "new" and asks_specific(question):  # "which joint?": the lines that say it
+        quoted_lines = cited([Explanation.model_validate(e) for e in kept])
+        last = [t["answer"] for t in state.get("history", [])[-2:]]
+        if quoted_lines and any(quoted_lines in said for said in last):
+            text = f"{QUOTED_BEFORE} {quoted_lines.removeprefix('Here is what I recorded: ')}"
+        else:  # the finding just heard is not told again before its lines
+            text = quoted_lines if quoted_lines and text in last else f"{text} {quoted_lines}".strip()
     task = ctx.log.task(state["task_id"])
     failed = state.get("route") == "failure_check"
     # what became of every step, too; and of a task done where nothing failed, when the question takes it for
@@ -271,13 +266,16 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     lead = lead or confirmed(question, {c for e in kept for c in e["causes"]}, BENIGN)
     if lead and text:
         text = with_lead(text, lead)
-    elif text and not whole_task(question) and text in {t["answer"] for t in state.get("history", [])[-2:]}:
+    elif text and not quoted_lines and not whole_task(question) and \
+            text in {t["answer"] for t in state.get("history", [])[-2:]}:
         # a different question that finds nothing more specific: said as such, not as if it were news
         text = f"{SAID_BEFORE} {text}"
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
+    # lines already quoted: the next "why?" goes past them
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
-            "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start)}
+            "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start),
+            **({"depth": 1} if quoted_lines else {})}
 
 
 def remembered(state: AgentState, turn: Any) -> list[Any]:
@@ -362,10 +360,7 @@ def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     else:
         depth += 1
         if depth == 1:
-            # the explainers' first three items (the strongest), told in the order they happened
-            cited = list(dict.fromkeys((ev.t, ev.topic, ev.item) for e in exps for ev in e.evidence if ev.item))
-            items = [_recorded(*ev) for ev in sorted(cited[:3])]
-            text = ("Here is what I recorded: " + "; ".join(items) + ".") if items else ""
+            text = cited(exps)
         elif depth == 2:
             # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)
             heard = {ev.item for e in exps for ev in e.evidence}

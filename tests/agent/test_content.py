@@ -400,3 +400,24 @@ def test_next_time_and_feelings_are_said_honestly_then_why_goes_on_to_the_failur
     assert "Failed to make progress" in str(why["answer"])  # the failure's evidence, not the task's status alone
     (fine,) = converse(suite / "bagfile_10_1", "will it happen again?")
     assert "To keep it" not in str(fine["answer"]) and str(fine["answer"]).endswith("was done.")
+
+
+def test_a_specific_the_finding_leaves_out_is_answered_with_the_recorded_lines(tmp_path: Path) -> None:
+    """"Which joint?": the finding names no joint, the controller's lines do; asked again, they are not retold as
+    news, and "why?" then goes past them to the chain."""
+    from hexar.agent.cited import asks_specific
+    from hexar.evals.scenarios.arm import simulate_arm_suite
+
+    assert [asks_specific(q) for q in ("which joint was out of tolerance?", "by how much?", "what was the tolerance?",
+                                       "which room did you go to?", "which parameter should I change?")] == \
+        [True, True, True, False, False]
+    simulate_arm_suite(tmp_path, only=lambda s, v: v == 1 and s == "tolerance")
+    joint, much, tolerance, why = converse(tmp_path / "armfile_tolerance_1", "which joint was out of tolerance?",
+                                           "by how much?", "what was the tolerance?", "why?")
+    assert "my arm strayed from its planned trajectory" in str(joint["answer"])
+    assert 'ERROR State tolerances failed for joint 7:"' in str(joint["answer"])
+    assert "Position Error: 0.199038, Position Tolerance: 0.100000" in str(joint["answer"])
+    assert str(much["answer"]).startswith("I have nothing more specific on that than the lines I just quoted: at ")
+    assert "strayed" not in str(much["answer"])
+    assert "Position Tolerance: 0.100000" in str(tolerance["answer"])  # a follow-up, not refused as off the topic
+    assert "tolerances.hpp" in str(why["answer"])  # past the quoted lines: the decisive line and its source
