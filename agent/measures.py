@@ -18,7 +18,15 @@ from hexar.events.log import EventLog
 from hexar.events.records import calendar_day, clock
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, step_ref, step_words
+from hexar.explainers.recorded import (
+    NAV_SKILLS,
+    join_words,
+    path_length,
+    place_name,
+    positions,
+    step_ref,
+    step_words,
+)
 
 Measure = Literal["far", "fast", "start", "long", "when"]
 
@@ -93,8 +101,7 @@ def duration(ns: int) -> str:
 
 def _points(log: EventLog, start: int, end: int) -> list[tuple[float, float]]:
     """My position estimate in [start, end]: /amcl_pose, or /odom without it."""
-    return [(p.x, p.y) for p in log.poses if start <= p.t <= end] or \
-        [(o.x, o.y) for o in log.odometry if start <= o.t <= end]
+    return [(x, y) for _, x, y in positions(log, start, end)[0]]
 
 
 def _path(log: EventLog, start: int, end: int) -> float | None:
@@ -239,10 +246,9 @@ def start(log: EventLog, task: Task) -> Explanation:
     first = next((r for r in task.skills if r.time_of("running") is not None), None)
     at = first.time_of("running") if first is not None else None
     t = at if at is not None else task.created
-    before = [(p.t, p.x, p.y) for p in log.poses if p.t <= t] or [(o.t, o.x, o.y) for o in log.odometry if o.t <= t]
-    after = [(p.t, p.x, p.y) for p in log.poses if t < p.t <= log.end] or \
-        [(o.t, o.x, o.y) for o in log.odometry if t < o.t <= log.end]
-    pose = before[-1] if before else after[0] if after else None
+    before, source = positions(log, None, t)
+    after, later = positions(log, t + 1, log.end)
+    pose, topic = (before[-1], source) if before else (after[0], later) if after else (None, source)
     name = task_name(task, log)
     when = f"when I set off on {step_ref(first)}" if first is not None else f"when I got {name}"
     if pose is None:
@@ -261,8 +267,7 @@ def start(log: EventLog, task: Task) -> Explanation:
         text += "I can't say which room that is: I know rooms only as the places my plan's steps name."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[*_evidence(task, [first] if first else []),
-                                 Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE if log.poses else c.ODOM, t=pt,
-                                          item=f"x={x:.2f} y={y:.2f}")])
+                                 Evidence(cause="planner.plan_ok", topic=topic, t=pt, item=f"x={x:.2f} y={y:.2f}")])
 
 
 # How near the last place I got to my position must be for "where did you start?" to name that place: a trip that
@@ -277,9 +282,8 @@ def _arrived_before(log: EventLog, t: int, at: tuple[float, float]) -> tuple[Tas
     if not done:
         return None
     owner, run = max(done, key=lambda m: m[1].last_change)
-    there = [(p.x, p.y) for p in log.poses if p.t <= run.last_change] or \
-        [(o.x, o.y) for o in log.odometry if o.t <= run.last_change]
-    return (owner, run) if there and math.dist(there[-1], at) <= SAME_PLACE_M else None
+    there = positions(log, None, run.last_change)[0]
+    return (owner, run) if there and math.dist(there[-1][1:], at) <= SAME_PLACE_M else None
 
 
 def _during(run: SkillRun) -> str:

@@ -12,7 +12,7 @@ from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, last_pose, place_name, step_ref
+from hexar.explainers.recorded import NAV_SKILLS, place_name, positions, step_ref
 
 # The rooms of a home people ask about; a place a plan names is matched by its own words (recording-independent
 # here, so that "where is the coffee?" stays a question for the explainers).
@@ -90,13 +90,13 @@ def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
         told = where(log)
         return told.model_copy(update={"text": f"Nothing failed in {task_name(task, log)}. {told.text}"})
     what = f"{step_ref(failed)} failed" if failed is not None else f"{task_name(task, log)} failed"
-    pose = last_pose(log, when)
-    if pose is None:
-        text = (f"I can't tell: my recording holds no position ({c.AMCL_POSE}) up to when {what}, at {hms(when)} "
-                "UTC.")
+    before, topic = positions(log, None, when)
+    if not before:
+        text = (f"I can't tell: my recording holds no position ({c.AMCL_POSE} or {c.ODOM}) up to when {what}, at "
+                f"{hms(when)} UTC.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)
-    text = (f"When {what}, at {hms(when)} UTC, my last recorded position was ({pose.x:.2f}, {pose.y:.2f}) on my map, "
-            f"at {hms(pose.t)}.")
+    t, x, y = before[-1]
+    frame = "on my map" if topic == c.AMCL_POSE else f"by my odometry ({topic})"
+    text = f"When {what}, at {hms(when)} UTC, my last recorded position was ({x:.2f}, {y:.2f}) {frame}, at {hms(t)}."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
-                       evidence=[Evidence(cause="planner.plan_ok", topic=c.AMCL_POSE, t=pose.t,
-                                          item=f"x = {pose.x:.2f}, y = {pose.y:.2f}")])
+                       evidence=[Evidence(cause="planner.plan_ok", topic=topic, t=t, item=f"x = {x:.2f}, y = {y:.2f}")])

@@ -106,6 +106,17 @@ def trips_inside(log: EventLog, window: tuple[int, int]) -> list[Trip]:
     return out
 
 
+def positions(log: EventLog, start: int | None = None, end: int | None = None
+              ) -> tuple[list[tuple[int, float, float]], str]:
+    """My position estimates (t, x, y) in [start, end] (open where None), in time order, and the topic they came
+    from: /amcl_pose, or /odom in a window where no /amcl_pose was recorded."""
+    def inside(t: int) -> bool:
+        return (start is None or t >= start) and (end is None or t <= end)
+
+    amcl = [(p.t, p.x, p.y) for p in log.poses if inside(p.t)]
+    return (amcl, c.AMCL_POSE) if amcl else ([(o.t, o.x, o.y) for o in log.odometry if inside(o.t)], c.ODOM)
+
+
 def last_pose(log: EventLog, until: int | None = None) -> PoseSample | None:
     poses = log.view({c.AMCL_POSE}, (log.start, until if until is not None else log.end)).poses()
     return poses[-1] if poses else None
