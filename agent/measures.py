@@ -18,15 +18,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import calendar_day, clock
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import (
-    NAV_SKILLS,
-    join_words,
-    path_length,
-    place_name,
-    positions,
-    step_ref,
-    step_words,
-)
+from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, positions, step_ref, step_words
 
 Measure = Literal["far", "fast", "start", "long", "when"]
 
