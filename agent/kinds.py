@@ -10,7 +10,7 @@ from hexar.agent import content, measures, sequence
 from hexar.agent.flags import speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
-from hexar.agent.places import place, where_failed
+from hexar.agent.places import goal, place, where_failed
 from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -21,6 +21,7 @@ Answer = Callable[[str, EventLog, Task], Explanation]
 FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
     "failed_at": where_failed,
+    "goal": goal,
     "went": content.went,
     "far": lambda q, log, task: measures.far(log, task, q),
     "fast": lambda q, log, task: measures.fast(log, task),

@@ -12,7 +12,7 @@ from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
-from hexar.explainers.recorded import NAV_SKILLS, place_name, positions, step_ref
+from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, positions, step_ref
 
 # The rooms of a home people ask about; a place a plan names is matched by its own words (recording-independent
 # here, so that "where is the coffee?" stays a question for the explainers).
@@ -100,3 +100,42 @@ def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
     text = f"When {what}, at {hms(when)} UTC, my last recorded position was ({x:.2f}, {y:.2f}) {frame}, at {hms(t)}."
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=topic, t=t, item=f"x = {x:.2f}, y = {y:.2f}")])
+
+
+# "What was your goal?", "where was the goal?": the goals my steps were sent to, as the recording gives them.
+GOAL = re.compile(r"^(and |so |but |ok |okay )?(what|where) (was|were|is|are) (your|the|my|its) (navigation )?"
+                  r"(goals?|goal poses?|goal positions?|targets?|destinations?)( (coordinates|pose|position))?\W*$|"
+                  r"^(and |so )?what (were|are) the (goal|target) (coordinates|poses?|positions?)\W*$")
+_OUTCOME = {"succeeded": "I got there", "failed": "I didn't get there", "running": "I was still on my way",
+            "canceled": "it was canceled"}
+
+
+def goal(question: str, log: EventLog, task: Task) -> Explanation:
+    """Each navigation step's goal (a named place, a map position, or that the recording does not give it) and
+    whether I got there; a task without a trip is told by its request."""
+    name = task_name(task, log)
+    trips = [r for r in task.skills if r.skill in NAV_SKILLS]
+    if not trips:
+        text = f"My goal was {name}; none of its steps sent me anywhere."
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"])
+    goals, unknown = [], []
+    for run in trips:
+        outcome = _OUTCOME.get(run.state, "I never set off") if run.time_of("running") is not None else \
+            "I never set off"
+        loc, x, y = run.params.get("location"), run.params.get("x"), run.params.get("y")
+        if isinstance(loc, str) and loc:
+            goals.append(f"{place_name(loc)} ({outcome})")
+        elif isinstance(x, int | float) and isinstance(y, int | float):
+            goals.append(f"({float(x):.2f}, {float(y):.2f}) on my map ({outcome})")
+        else:
+            source = run.params.get("derived_from")
+            unknown.append(f"My recording does not give my goal{' for ' + step_ref(run) if len(trips) > 1 else ''}"
+                           + (f": I know of it only from the {source}" if isinstance(source, str) else "")
+                           + f". {outcome[0].upper()}{outcome[1:]}.")
+    said = f"my goal{'s were' if len(goals) > 1 else ' was'} {join_words(goals)}." if goals else ""
+    # a goal read from the logs is named by its position already ("the navigation goal to (0.58, -0.55)")
+    said = (said[0].upper() + said[1:] if task.derived else f"For {name}, {said}") if said else ""
+    text = " ".join(([said] if said else []) + unknown)
+    return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=r.last_change,
+                                          item=f"step {r.index + 1}: {r.label()} {r.state}") for r in trips])

@@ -86,3 +86,28 @@ def test_the_position_when_it_failed_falls_back_to_odometry_and_says_so(tmp_path
     assert said == (f"When step 1 (to go to the kitchen) failed, at {clock(t0 + sec_ns(7)).split('.')[0]} UTC, my last "
                     f"recorded position was (1.25, 0.50) by my odometry (/odom), at "
                     f"{clock(t0 + sec_ns(5)).split('.')[0]}.")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("what was your goal?", "goal"), ("where was the goal?", "goal"), ("what were the goal coordinates?", "goal"),
+    ("what was the goal pose?", "goal"), ("why did you go to the kitchen?", "went"),
+])
+def test_the_goal_is_its_own_question(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_the_goal_is_each_trip_s_place_or_position_or_what_the_recording_lacks(suite: Path, tmp_path: Path) -> None:
+    from hexar.evals import real_nav2
+
+    assert _ask(suite / "bagfile_5_1", "what was your goal?") == (
+        'For your request "Bring me a coffee from the kitchen", my goals were the kitchen (I didn\'t get there) and '
+        "the living room (I never set off).")
+    cases = {e.id: e for e in real_nav2.corpus()}
+    # a real Nav2 log with its goal line: the position it gives
+    posed = real_nav2.write_recording(cases["nav2-1367-reached-goal-but-navigation-failed"], tmp_path / "a", False)
+    assert _ask(posed, "where was the goal?") == (
+        "My goal was (0.58, -0.55) on my map (I didn't get there).")
+    # one without: it says where it knows of the goal from, never a position
+    unposed = real_nav2.write_recording(cases["nav2-451-goaldist-unreachable-area"], tmp_path / "b", False)
+    assert _ask(unposed, "what was your goal?") == ("My recording does not give my goal: I know of it only from the "
+                                                    "Nav2 log (no goal line). I didn't get there.")
