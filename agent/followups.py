@@ -14,6 +14,7 @@ from hexar.agent.logs import LOGS, NODES
 from hexar.agent.overview import SETTING_FIX
 from hexar.agent.person import PERSON
 from hexar.agent.places import FAILED_AT, GOAL, place_asked
+from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
 from hexar.agent.state import Intent
@@ -115,7 +116,7 @@ def module_asked(question: str) -> str | None:
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("learn", _LEARN), ("feel", _FEEL),
                   ("failed_at", FAILED_AT), ("goal", GOAL), ("where", _WHERE), ("went", _WENT), ("talked", _TALKED),
                   ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS), ("doing", DOING),
-                  ("logs", LOGS), ("nodes", NODES), ("plan", PLAN))
+                  ("logs", LOGS), ("nodes", NODES), ("plugins", PLUGINS), ("plan", PLAN))
 
 
 def is_order(question: str) -> bool:
@@ -126,10 +127,10 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """'went', 'where', 'failed_at', 'goal', 'far', 'fast', 'start', 'long', 'when', 'talked', 'person', 'tried',
-    'after', 'tasks', 'doing', 'logs', 'nodes', 'plan', 'flag', 'limit', 'place', 'said', 'clock', 'recorded', 'broken'
-    or 'fault' for a question about what the robot did, its recording or where a failure lies, 'act' for a request to
-    do something, 'stop' for an order to stop, 'next' for one about what it will do, 'learn' for one about next time
-    and 'feel' for one about its feelings; None for anything else."""
+    'after', 'tasks', 'doing', 'logs', 'nodes', 'plugins', 'plan', 'flag', 'limit', 'place', 'said', 'clock',
+    'recorded', 'broken' or 'fault' for a question about what the robot did, its recording or where a failure lies,
+    'act' for a request to do something, 'stop' for an order to stop, 'next' for one about what it will do, 'learn'
+    for one about next time and 'feel' for one about its feelings; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

@@ -11,6 +11,7 @@ from hexar.agent.flags import speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
 from hexar.agent.places import goal, place, where_failed
+from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
@@ -34,6 +35,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "limit": speed_limit,
     "plan": lambda q, log, task: sequence.plan(log, task),
     "nodes": nodes,
+    "plugins": plugins,
     "said": content.said,
     "clock": clock,
     "recorded": recorded,
