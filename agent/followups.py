@@ -13,10 +13,10 @@ from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.overview import SETTING_FIX
 from hexar.agent.person import PERSON
-from hexar.agent.places import FAILED_AT, GOAL, place_asked
+from hexar.agent.places import FAILED_AT, GOAL, REACHED, place_asked
 from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
-from hexar.agent.sequence import AFTER, DOING, PLAN, TASKS
+from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
 from hexar.agent.state import Intent
 
 _DEEPER = re.compile(
@@ -68,7 +68,8 @@ _ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|
 _STOP = re.compile(r"^(please |robot |hey |now |ok |okay )*(stop|halt|freeze)( (it|now|moving|driving|that|there|"
                    r"right now|please|immediately))*\W*$")
 _NEXT = re.compile(r"^(and |so |ok |okay )?what (are|will) you (going to |gonna )?do (next|now)\b|"
-                   r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|^(and |so )?what happens next\b")
+                   r"^(and |so )?what('s| is) (your |the )?next (step|move|plan)\b|"
+                   r"^(and |so )?what happens (next|now)\b")
 # "Will you remember this next time?": HEXAR changes nothing in how the robot acts, and says so with the fix.
 _LEARN = re.compile(r"^(and |so |but |ok |okay )?(will|would|do|did|can) you (remember|learn|know better|do better|"
                     r"avoid (it|this|that))\b|^(and |so |but )?(have|did) you learn(ed|t)?\b|"
@@ -83,6 +84,7 @@ _TALKED = re.compile(r"^(and |so |but )?what did you (ask|say to|tell) (her|him|
                      r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
 _WHERE = re.compile(r"where are you\b(?! (going|heading|driving|off to)\b)|where did you (end up|stop)\b|"
                     r"what('s| is| was) (your|the robot's|its|the robot) (position|pose|location)\W*$|"
+                    r"^(and |so )?(which|what) room (are|were) you in\b|"
                     r"where('s| is) the robot\b|where did you finish\b")
 
 
@@ -114,9 +116,10 @@ def module_asked(question: str) -> str | None:
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("learn", _LEARN), ("feel", _FEEL),
-                  ("failed_at", FAILED_AT), ("goal", GOAL), ("where", _WHERE), ("went", _WENT), ("talked", _TALKED),
-                  ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS), ("doing", DOING),
-                  ("logs", LOGS), ("nodes", NODES), ("plugins", PLUGINS), ("plan", PLAN))
+                  ("failed_at", FAILED_AT), ("goal", GOAL), ("reached", REACHED), ("where", _WHERE), ("went", _WENT),
+                  ("talked", _TALKED), ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
+                  ("request", REQUEST), ("doing", DOING), ("logs", LOGS), ("nodes", NODES), ("plugins", PLUGINS),
+                  ("plan", PLAN))
 
 
 def is_order(question: str) -> bool:
@@ -126,11 +129,10 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """'went', 'where', 'failed_at', 'goal', 'far', 'fast', 'start', 'long', 'when', 'talked', 'person', 'tried',
-    'after', 'tasks', 'doing', 'logs', 'nodes', 'plugins', 'plan', 'flag', 'limit', 'place', 'said', 'clock',
-    'recorded', 'broken' or 'fault' for a question about what the robot did, its recording or where a failure lies,
-    'act' for a request to do something, 'stop' for an order to stop, 'next' for one about what it will do, 'learn'
-    for one about next time and 'feel' for one about its feelings; None for anything else."""
+    """The kind of a question about what the robot did, its recording or where a failure lies: a name of
+    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault'), 'flag', 'limit', 'place',
+    a measure ('far', 'fast', 'start', 'long', 'when') or 'said'. Among them 'act' is a request to do something,
+    'stop' an order to stop, 'next' a question about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 

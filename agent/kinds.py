@@ -10,7 +10,7 @@ from hexar.agent import content, measures, sequence
 from hexar.agent.flags import speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
-from hexar.agent.places import goal, place, where_failed
+from hexar.agent.places import goal, place, reached, where_failed
 from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded
 from hexar.events.log import EventLog
@@ -23,6 +23,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
     "failed_at": where_failed,
     "goal": goal,
+    "reached": reached,
     "went": content.went,
     "far": lambda q, log, task: measures.far(log, task, q),
     "fast": lambda q, log, task: measures.fast(log, task),
@@ -30,10 +31,11 @@ FROM_RECORDING: dict[str, Answer] = {
     "long": lambda q, log, task: measures.long(log, task),
     "when": measures.when,
     "tasks": lambda q, log, task: sequence.tasks(log),
+    "request": sequence.request,
     "place": place,
     "person": person,
     "limit": speed_limit,
-    "plan": lambda q, log, task: sequence.plan(log, task),
+    "plan": lambda q, log, task: sequence.plan(log, task, counted="how many" in q.lower()),
     "nodes": nodes,
     "plugins": plugins,
     "said": content.said,

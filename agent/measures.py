@@ -47,7 +47,8 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",
               r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b",
               # "how long did you wait?": every step's time is in the answer, the one asked about among them
-              r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b")),
+              r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
+              r"^(and |so )?(which|what) (step|part|leg) (took|was) (the )?(longest|slowest|quickest|shortest)\b")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
               r"reach|finish|stop|end|come back|return|drive|head)\b",
               # the day a developer replays a run from: answered with its date
@@ -345,7 +346,7 @@ def _never_set_off(log: EventLog, owner: Task, run: SkillRun) -> str:
     return f"that was step {run.index + 1} of {task_name(owner, log)}, and {why}."
 
 
-def _trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
+def trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
     """The trip a "when" question is about: a place it names, the way back ("get back", "return": the last trip,
     also a recovery's), or "get there"/"arrive": the last trip that got there, else the last that set off."""
     named = _named_trip(q, log, task)
@@ -372,10 +373,10 @@ def _on(t: int) -> str:
 
 
 def when(question: str, log: EventLog, task: Task) -> Explanation:
-    """A trip the question asks about (see _trip_asked): its times; otherwise the task's (with its day when the
+    """A trip the question asks about (see trip_asked): its times; otherwise the task's (with its day when the
     question asks when it all happened)."""
     q = _norm(question)
-    asked = _trip_asked(q, log, task)
+    asked = trip_asked(q, log, task)
     if asked is None:
         timed = long(log, task, lead_with_times=True)
         if _DATED.search(q) is None:

@@ -139,3 +139,35 @@ def goal(question: str, log: EventLog, task: Task) -> Explanation:
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=r.last_change,
                                           item=f"step {r.index + 1}: {r.label()} {r.state}") for r in trips])
+
+
+# "Did you reach the kitchen?", "did you get there?": yes or no from the trip's own outcome, with its times.
+REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|reached|get to|got to|make it to|"
+                     r"made it to|arrive (at|in)|arrived (at|in)|get into|go into|end up (at|in))( the| your| my)? "
+                     # "did you reach the goal?" asks whether the task was done (overview.yes_or_no)
+                     r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)\W*$)(?P<place>[a-z][a-z ]*?)\W*$|"
+                     r"^(and |so |but |ok |okay )?(did|have) you (ever )?(get|got|make it|made it|arrive|arrived) "
+                     r"(there|back)\W*$")
+
+
+def reached(question: str, log: EventLog, task: Task) -> Explanation:
+    """"Yes."/"No." and the trip's times for the place asked about; a place no trip went to is said so, with where
+    the trips did go."""
+    from hexar.agent.content import trips_words
+    from hexar.agent.measures import trip_asked, when
+    from hexar.agent.overview import with_lead
+
+    q = " ".join(question.lower().replace("_", " ").split())
+    asked = trip_asked(q, log, task)
+    if asked is None:
+        m = REACHED.search(q)
+        place = m["place"] if m is not None and m["place"] else "there"
+        text = f"No: no step of {task_name(task, log)} went to the {place}. {trips_words(task, capital=True)}."
+        if place == "there":
+            text = f"No step of {task_name(task, log)} went anywhere. {trips_words(task, capital=True)}."
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"])
+    told = when(question, log, task)
+    lead = {"succeeded": "Yes.", "failed": "No.", "canceled": "No."}.get(asked[1].state, "")
+    if asked[1].time_of("running") is None:
+        lead = "No."
+    return told.model_copy(update={"text": with_lead(told.text, lead)}) if lead else told

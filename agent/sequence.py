@@ -141,7 +141,8 @@ PLAN = re.compile(
     r"later|today))|"
     + _LEAD + r"what (were|are) you (supposed|meant|going|planning|trying|told) to do\b|"
     + _LEAD + r"what did you (plan|intend|mean) to do\b|"
-    + _LEAD + r"(tell me|show me|list|give me) (your|the) (plan|steps)\b")
+    + _LEAD + r"(tell me|show me|list|give me) (your|the) (plan|steps)\b|"
+    + _LEAD + r"how many steps (did|does|were|was|are) (there|it|you|your plan|the plan)( have| in (it|the plan))?\b")
 
 
 _ONE_STEP = {"succeeded": "I did it.", "failed": "It failed.", "invalid": "It never started.",
@@ -149,9 +150,9 @@ _ONE_STEP = {"succeeded": "I did it.", "failed": "It failed.", "invalid": "It ne
              "waiting": "It had not started when the recording ends."}
 
 
-def plan(log: EventLog, task: Task) -> Explanation:
-    """"What was your plan?": the task's steps as planned, then what became of them; a goal read from the logs is
-    said to be no plan of the robot's own."""
+def plan(log: EventLog, task: Task, counted: bool = False) -> Explanation:
+    """"What was your plan?": the task's steps as planned (`counted`: how many first), then what became of them; a
+    goal read from the logs is said to be no plan of the robot's own."""
     name = task_name(task, log)
     said = next((u for u in reversed(task.updates) if u.instruction == task.instruction), task.updates[-1])
     # a recovery task has no request: its first step's own words, as recorded, stand for it
@@ -167,7 +168,9 @@ def plan(log: EventLog, task: Task) -> Explanation:
                 f"{plan_words(task)}, {_DID.get(task.outcome, task.outcome)}.")
         return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
                            evidence=evidence)
-    head = sentence(f"My plan for {name} was to {plan_words(task)}")
+    n = len(task.skills)
+    head = sentence(f"My plan for {name} had {n} step{'s' if n > 1 else ''}: {plan_words(task)}" if counted else
+                    f"My plan for {name} was to {plan_words(task)}")
     if len(task.skills) == 1:
         rest = _ONE_STEP.get(task.outcome, "")
     elif all(r.state == "succeeded" for r in task.skills):
@@ -179,3 +182,34 @@ def plan(log: EventLog, task: Task) -> Explanation:
     # "why?" after it: the recorded request, then each step and what became of it
     return Explanation(explainer="planner", text=f"{head} {rest}".strip(), causes=["planner.plan_ok"],
                        evidence=evidence, details=[step_outcome(run) for run in task.skills])
+
+
+# "What did I ask you?", "who gave you the task?": the request as the task status received it.
+REQUEST = re.compile(
+    _LEAD + r"what (did|have) (i|we) (ask|asked|tell|told|want|wanted)( of)? you( to do)?\W*$|"
+    + _LEAD + r"what (was|is) (my|our|the|your) (request|task|instruction|order|job|command)\W*$|"
+    + _LEAD + r"(who|whom) (gave|sent|asked|told|ordered) (you|me)\b|" + _LEAD + r"who asked\b|"
+    + _LEAD + r"when did (i|we|they|someone|anyone) (ask|tell|send|give) (you|me)\b")
+
+
+def request(question: str, log: EventLog, task: Task) -> Explanation:
+    """The request as received (its words and when), or that a goal read from the logs came with none; who asked is
+    never recorded, and a question about it is told so."""
+    q = " ".join(question.lower().split())
+    who = re.search(r"\b(who|whom)\b", q) is not None
+    evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
+    if task.derived:
+        text = (f"No one asked me in words that my recording holds: {task_name(task, log)} was read from the logs, "
+                f"at {hms(task.created)} UTC; who sent it is not recorded.")
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence[:0])
+    said = f'"{task.instruction}" at {hms(task.created)} UTC'
+    text = (f"My recording does not say who asked: it holds the request {said}, as my task status received it."
+            if who else f"You asked me {said}.")
+    failed = task.failed_skill
+    ended = f"failed at {step_ref(failed)}" if failed is not None else _ENDED.get(task.outcome, task.outcome)
+    return Explanation(explainer="planner", text=f"{text} It {ended}.", causes=["planner.plan_ok"], evidence=evidence)
+
+
+_ENDED = {"succeeded": "was done", "failed": "failed", "invalid": "was rejected before it started",
+          "canceled": "was canceled", "running": "was still under way when the recording ends",
+          "waiting": "had not started when the recording ends"}

@@ -111,3 +111,24 @@ def test_the_goal_is_each_trip_s_place_or_position_or_what_the_recording_lacks(s
     unposed = real_nav2.write_recording(cases["nav2-451-goaldist-unreachable-area"], tmp_path / "b", False)
     assert _ask(unposed, "what was your goal?") == ("My recording does not give my goal: I know of it only from the "
                                                     "Nav2 log (no goal line). I didn't get there.")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("did you reach the kitchen?", "reached"), ("did you get to the living room?", "reached"),
+    ("did you get there?", "reached"), ("did you make it to the garage?", "reached"),
+    ("did you make it?", None), ("why didn't you reach the kitchen?", None), ("did you reach the goal?", None),
+])
+def test_did_you_reach_is_its_own_question(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_did_you_reach_a_place_is_yes_or_no_from_the_trip(suite: Path) -> None:
+    failed = _ask(suite / "bagfile_5_1", "did you reach the kitchen?")
+    assert failed.startswith("No. I never got to the kitchen: I set off at ")
+    never = _ask(suite / "bagfile_5_1", "did you get to the living room?")
+    assert never.startswith("No. I never set off for the living room: that was step 3")
+    done = _ask(suite / "bagfile_9_1", "did you reach the kitchen?")
+    assert done.startswith("Yes. I got to the kitchen at ")
+    nowhere = _ask(suite / "bagfile_9_1", "did you make it to the garage?")
+    assert nowhere == ('No: no step of your request "Bring me a coffee from the kitchen" went to the garage. I went to '
+                       "the kitchen and the living room.")

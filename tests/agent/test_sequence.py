@@ -148,3 +148,30 @@ def test_a_rejected_plan_and_a_goal_from_the_logs_say_what_they_were(suite: Path
     (goal,) = converse(write_recording(excerpt, tmp_path / "run", task=False), "what was your plan?")
     assert goal["answer"] == ("I had no plan of my own for the navigation goal: it is a goal I read from my logs, to "
                               "drive to my goal, and it failed.")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("what did I ask you?", "request"), ("what was my request?", "request"), ("who gave you the task?", "request"),
+    ("when did I ask you?", "request"), ("what did you want me to do?", None),
+    ("how many steps did the plan have?", "plan"), ("which step took the longest?", "long"),
+    ("what happens now?", "next"), ("which room are you in?", "where"),
+])
+def test_request_and_plan_questions_are_told_apart(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_the_request_as_received_and_who_asked_never_recorded(suite: Path, tmp_path: Path) -> None:
+    from hexar.evals import real_nav2
+
+    run = suite / "bagfile_5_1"
+    created = clock(read_recording(run).tasks[0].created).split(".")[0]
+    asked, who, steps = converse(run, "what did I ask you?", "who gave you the task?",
+                                 "how many steps did the plan have?")
+    assert asked["answer"] == (f'You asked me "Bring me a coffee from the kitchen" at {created} UTC. It failed at '
+                               "step 1 (to go to the kitchen).")
+    assert str(who["answer"]).startswith("My recording does not say who asked: it holds the request")
+    assert str(steps["answer"]).startswith('My plan for your request "Bring me a coffee from the kitchen" had 4 steps: '
+                                           "go to the kitchen, ask someone for help")
+    case = next(e for e in real_nav2.corpus() if e.id == "nav2-1367-reached-goal-but-navigation-failed")
+    (derived,) = converse(real_nav2.write_recording(case, tmp_path / "run", task=False), "what was my request?")
+    assert str(derived["answer"]).startswith("No one asked me in words that my recording holds: the navigation goal")
