@@ -131,3 +131,30 @@ def speed_limit(question: str, log: EventLog, task: Task) -> Explanation:
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence(cause="planner.plan_ok", topic=c.DIAGNOSTICS, t=r.t,
                                           item=status_item(r, SPEED_KEY)) for r, _ in changes[:4]])
+
+
+# "What's your battery level?", "was your battery low?": HEXAR reads no battery state, only the charging flag.
+BATTERY = re.compile(
+    _LEAD + r"(what('s| is| was)|how('s| is| was)) (your|the|my) (battery|charge)( level| charge| state)?\b|"
+    + _LEAD + r"how much (battery|charge|power) (do|did|does) (you|it) have\b|"
+    + _LEAD + r"(was|is|were) (your|the) battery (low|empty|flat|dead|charged|full|ok|okay|running out)\b|"
+    + _LEAD + r"(did|do) you (run out of|have( enough)?) (battery|power|charge)\b|"
+    + _LEAD + r"(were|are) you (low on|out of|running out of) (battery|power|charge)\b")
+BATTERY_TYPE = "sensor_msgs/msg/BatteryState"
+
+
+def battery(question: str, log: EventLog, task: Task) -> Explanation:
+    """That the battery's level is not something HEXAR reads (naming a recorded BatteryState topic it leaves
+    aside), then what the charging flag shows."""
+    held = [i for i in log.topics.values() if i.type == BATTERY_TYPE]
+    if held:
+        topics = join_words([f"{i.topic} ({i.count} messages)" for i in held])
+        text = f"I can't tell my battery level: my recording holds {topics}, but I do not read its {BATTERY_TYPE}."
+    else:
+        text = f"I can't tell my battery level: my recording holds no battery state ({BATTERY_TYPE})."
+    charging = flag(c.IS_CHARGING, log, task)
+    # the flag's own yes or no answers "were you charging?", not this question
+    flagged = re.sub(r"^(Yes|No): my ", "My ", charging.text)
+    said = f"{text} {flagged}" if charging.enough_information else text
+    return Explanation(explainer="navigation", text=said, causes=["planner.plan_ok"], enough_information=False,
+                       evidence=charging.evidence)

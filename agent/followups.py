@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
-from hexar.agent.flags import LIMIT, flag_asked
+from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.overview import SETTING_FIX
@@ -130,9 +130,9 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """The kind of a question about what the robot did, its recording or where a failure lies: a name of
-    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault'), 'flag', 'limit', 'place',
-    a measure ('far', 'fast', 'start', 'long', 'when') or 'said'. Among them 'act' is a request to do something,
-    'stop' an order to stop, 'next' a question about what it will do; None for anything else."""
+    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault'), 'flag', 'limit',
+    'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when') or 'said'. Among them 'act' is a request to
+    do something, 'stop' an order to stop, 'next' a question about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
@@ -143,6 +143,8 @@ def content_kind(question: str) -> str | None:
         kind = "flag"
     if kind is None and LIMIT.search(q):
         kind = "limit"
+    if kind is None and BATTERY.search(q):
+        kind = "battery"
     if kind is None and place_asked(q) is not None:
         kind = "place"
     if kind is None and (kind := measure_kind(q)) is None and CONTENT_QUESTION.search(q):

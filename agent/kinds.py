@@ -7,7 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
-from hexar.agent.flags import speed_limit
+from hexar.agent.flags import battery, speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
 from hexar.agent.places import goal, place, reached, where_failed
@@ -35,6 +35,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "place": place,
     "person": person,
     "limit": speed_limit,
+    "battery": battery,
     "plan": lambda q, log, task: sequence.plan(log, task, counted="how many" in q.lower()),
     "nodes": nodes,
     "plugins": plugins,

@@ -116,3 +116,44 @@ def test_a_speed_limit_published_only_after_the_task_is_not_its_limit(tmp_path: 
                               f"{clock(T0 + sec_ns(9)).split('.')[0]} UTC, after your request \"Go to the kitchen\" "
                               "ended; it was 0.40 m/s then.")
     assert said["enough_information"] is False
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("what's your battery level?", "battery"), ("was your battery low?", "battery"),
+    ("did you run out of battery?", "battery"), ("were you low on power?", "battery"),
+    ("were you charging?", "flag"),
+])
+def test_battery_questions_are_told_apart(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_the_battery_level_is_not_read_and_the_charging_flag_is_told(suite: Path, tmp_path: Path) -> None:
+    from hexar.evals.scenarios.bag import TYPESTORE
+
+    said = _ask(suite / "bagfile_7_1", "was your battery low?")
+    assert said["answer"] == ("I can't tell my battery level: my recording holds no battery state "
+                              "(sensor_msgs/msg/BatteryState). My charging flag (/power/is_charging) was on from when "
+                              'I began, while I worked on your request "Bring me a coffee from the kitchen".')
+    assert said["enough_information"] is False
+    # a robot that records its battery: the topic is named, and that HEXAR does not read it
+    ty = TYPESTORE.types
+    b = BagBuilder()
+    for k, status in enumerate(("waiting", "Running", "succeeded")):
+        b.task_info(T0 + sec_ns(1 + 2 * k), {
+            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
+                                "error_msg": ""}]})
+    header = ty["std_msgs/msg/Header"](stamp=ty["builtin_interfaces/msg/Time"](sec=T0 // 10**9, nanosec=0),
+                                       frame_id="battery")
+    import numpy as np
+
+    state = ty["sensor_msgs/msg/BatteryState"](
+        header=header, voltage=24.1, temperature=30.0, current=-1.2, charge=10.0, capacity=20.0,
+        design_capacity=20.0, percentage=0.5, power_supply_status=2, power_supply_health=1,
+        power_supply_technology=3, present=True, cell_voltage=np.array([], dtype=np.float32),
+        cell_temperature=np.array([], dtype=np.float32), location="base", serial_number="")
+    for k in range(3):
+        b.raw(T0 + sec_ns(k), "/battery_state", "sensor_msgs/msg/BatteryState", state)
+    held = _ask(b.write(tmp_path / "run"), "what's your battery level?")
+    assert held["answer"] == ("I can't tell my battery level: my recording holds /battery_state (3 messages), but I do "
+                              "not read its sensor_msgs/msg/BatteryState.")
