@@ -7,6 +7,7 @@ from typing import Any
 
 from hexar.agent.context import RunSettings
 from hexar.agent.session import Session
+from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 
 
 def converse(run: Path, *questions: str) -> list[dict[str, Any]]:
@@ -33,3 +34,23 @@ class CountingModel:
         if schema is not None:
             json.loads(self.reply)
         return self.reply
+
+
+def one_step_task(b: BagBuilder, t0: int, every_s: float, instruction: str, skill: str, params: dict[str, Any],
+                  outcome: str = "succeeded", error: str = "") -> None:
+    """A /task_info task of one step, as the robot publishes it: waiting, running, then `outcome`, `every_s` apart
+    from `t0` + 1 s (`error` on the last update)."""
+    for k, status in enumerate(("waiting", "Running", outcome)):
+        b.task_info(t0 + sec_ns(1 + every_s * k), {
+            "instruction": instruction, "task_id": "t1", "task_status": "valid", "task_error_msg": "",
+            "skill_sequence": [{"skill": skill, "params": params, "status": status,
+                                "error_msg": error if status == outcome else ""}]})
+
+
+def real_module_run(case_id: str, out: Path) -> Path:
+    """The real module excerpt `case_id` (evals/data/real_modules) written with rosbags at `out`, its task derived
+    from its logs as for any recording without /task_info."""
+    from hexar.evals import real_modules
+
+    case = next(e for e in real_modules.load_excerpts("real-modules") if e.id == case_id)
+    return Path(real_modules.write_recording(case, out, task=False))

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from tests.agent.helpers import converse
+from tests.agent.helpers import converse, real_module_run
 
 
 def test_why_did_you_go_and_where_are_you(suite: Path) -> None:
@@ -355,11 +355,9 @@ def test_a_goal_read_from_nav2s_logs_is_named_as_spoken(tmp_path: Path) -> None:
 
 def test_steps_derived_from_moveit_and_ros2_control_are_said_as_steps(tmp_path: Path) -> None:
     """The steps HEXAR builds from MoveIt's, ros2_control's and Nav2's goals are said as a person says them."""
-    from hexar.evals import real_modules, real_nav2
+    from hexar.evals import real_nav2
 
-    arm = next(e for e in real_modules.load_excerpts("real-modules")
-               if e.id == "moveit2-2789-kinematics-not-passed-to-node")
-    run = real_modules.write_recording(arm, tmp_path / "arm", task=False)
+    run = real_module_run("moveit2-2789-kinematics-not-passed-to-node", tmp_path / "arm")
     (doing,) = converse(run, "What were you doing when it failed?")
     assert str(doing["answer"]).startswith("When it failed at ")
     assert "I was at step 1 (to move my arm), " in str(doing["answer"])

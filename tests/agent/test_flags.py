@@ -13,6 +13,7 @@ from hexar.agent.session import Session
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import contract as c
 from hexar.events.records import clock
+from tests.agent.helpers import one_step_task
 
 T0 = sec_ns(1_741_600_000)
 
@@ -52,10 +53,7 @@ def test_a_flag_on_during_a_task_that_went_well_is_yes_with_when(tmp_path: Path)
     b = BagBuilder()
     b.flag(T0, c.IS_CHARGING, True)
     b.flag(T0 + sec_ns(6), c.IS_CHARGING, False)
-    for k, status in enumerate(("waiting", "Running", "succeeded")):
-        b.task_info(T0 + sec_ns(1 + 5 * k), {
-            "instruction": "Say hello", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "say", "params": {"input": "Hello"}, "status": status, "error_msg": ""}]})
+    one_step_task(b, T0, 5, "Say hello", "say", {"input": "Hello"})
     run = b.write(tmp_path / "run")
     said = _ask(run, "Were you charging?")
     off = clock(T0 + sec_ns(6)).split(".")[0]
@@ -92,11 +90,7 @@ def test_a_speed_limit_changed_during_the_task_is_told_with_when(tmp_path: Path)
     for k, limit in enumerate(("0.50", "0.50", "0.30")):
         b.status(T0 + sec_ns(3 * k), c.DIAGNOSTICS, "controller_server", "velocity limits",
                  [("max_vel_x", limit), ("max_vel_theta", "1.00")])
-    for k, status in enumerate(("waiting", "Running", "succeeded")):
-        b.task_info(T0 + sec_ns(1 + 4 * k), {
-            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
-                                "error_msg": ""}]})
+    one_step_task(b, T0, 4, "Go to the kitchen", "navigate_to_zone", {"location": "kitchen"})
     said = _ask(b.write(tmp_path / "run"), "what is your speed limit?")
     changed = clock(T0 + sec_ns(6)).split(".")[0]
     assert said["answer"] == ('My speed limit changed while I worked on your request "Go to the kitchen": 0.50 m/s '
@@ -105,11 +99,7 @@ def test_a_speed_limit_changed_during_the_task_is_told_with_when(tmp_path: Path)
 
 def test_a_speed_limit_published_only_after_the_task_is_not_its_limit(tmp_path: Path) -> None:
     b = BagBuilder()
-    for k, status in enumerate(("waiting", "Running", "succeeded")):
-        b.task_info(T0 + sec_ns(1 + 2 * k), {
-            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
-                                "error_msg": ""}]})
+    one_step_task(b, T0, 2, "Go to the kitchen", "navigate_to_zone", {"location": "kitchen"})
     b.status(T0 + sec_ns(9), c.DIAGNOSTICS, "controller_server", "velocity limits", [("max_vel_x", "0.40")])
     said = _ask(b.write(tmp_path / "run"), "what is your speed limit?")
     assert said["answer"] == (f"I can't tell: my speed limit (max_vel_x on /diagnostics) was first published at "
@@ -138,11 +128,7 @@ def test_the_battery_level_is_not_read_and_the_charging_flag_is_told(suite: Path
     # a robot that records its battery: the topic is named, and that HEXAR does not read it
     ty = TYPESTORE.types
     b = BagBuilder()
-    for k, status in enumerate(("waiting", "Running", "succeeded")):
-        b.task_info(T0 + sec_ns(1 + 2 * k), {
-            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
-                                "error_msg": ""}]})
+    one_step_task(b, T0, 2, "Go to the kitchen", "navigate_to_zone", {"location": "kitchen"})
     header = ty["std_msgs/msg/Header"](stamp=ty["builtin_interfaces/msg/Time"](sec=T0 // 10**9, nanosec=0),
                                        frame_id="battery")
     import numpy as np

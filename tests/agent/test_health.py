@@ -10,7 +10,7 @@ import pytest
 from hexar.agent.followups import content_kind
 from hexar.causes import BENIGN, ORIGINS, vocabulary
 from hexar.evals.scenarios.arm import simulate_arm_suite
-from tests.agent.helpers import converse
+from tests.agent.helpers import converse, real_module_run
 
 
 @pytest.fixture(scope="module")
@@ -60,11 +60,7 @@ def test_a_task_that_went_well_has_nothing_broken(arm: Path) -> None:
 
 def test_a_hardware_failure_is_possibly_broken_and_says_what_it_cannot_tell(tmp_path: Path) -> None:
     """A real ros2_control start whose serial device could not be opened."""
-    from hexar.evals import real_modules
-
-    case = next(e for e in real_modules.load_excerpts("real-modules")
-                if e.id == "r2c-controllers-1595-libserial-open-failed")
-    run = real_modules.write_recording(case, tmp_path / "run", task=False)
+    run = real_module_run("r2c-controllers-1595-libserial-open-failed", tmp_path / "run")
     (said,) = converse(run, "is the robot broken?")
     assert str(said["answer"]).startswith("Possibly: my recording shows a device of mine failing")
     assert "control.hardware_failure" in said["causes"]  # type: ignore[operator]

@@ -11,7 +11,7 @@ import pytest
 from hexar.agent.followups import content_kind
 from hexar.events import read_recording
 from hexar.events.records import ERROR, WARN, clock
-from tests.agent.helpers import converse
+from tests.agent.helpers import converse, real_module_run
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -71,11 +71,7 @@ def test_no_error_says_so_and_points_to_the_warnings(suite: Path) -> None:
 
 def test_an_error_at_bring_up_is_told_as_before_the_task(tmp_path: Path) -> None:
     """A real ros2_control start whose hardware failed: the error is the start's own, quoted as logged."""
-    from hexar.evals import real_modules
-
-    case = next(e for e in real_modules.load_excerpts("real-modules")
-                if e.id == "r2c-controllers-1595-libserial-open-failed")
-    run = real_modules.write_recording(case, tmp_path / "run", task=False)
+    run = real_module_run("r2c-controllers-1595-libserial-open-failed", tmp_path / "run")
     (said,) = converse(run, "what errors were there?")
     assert "OpenFailed" in str(said["answer"]) and "controller_manager" in str(said["answer"])
     assert "derived from" not in str(said["answer"])

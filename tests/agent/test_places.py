@@ -71,15 +71,13 @@ def test_the_position_when_it_failed_is_the_last_one_before_the_failure(suite: P
 def test_the_position_when_it_failed_falls_back_to_odometry_and_says_so(tmp_path: Path) -> None:
     """A robot that records /odom but no /amcl_pose: its odometry is the position, named as such (not "my map")."""
     from hexar.evals.scenarios.bag import BagBuilder, sec_ns
+    from tests.agent.helpers import one_step_task
     from tests.events.test_motion import _odom
 
     t0 = sec_ns(1_741_600_000)
     b = BagBuilder()
-    for k, status in enumerate(("waiting", "Running", "failed")):
-        b.task_info(t0 + sec_ns(1 + 3 * k), {
-            "instruction": "Go to the kitchen", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "navigate_to_zone", "params": {"location": "kitchen"}, "status": status,
-                                "error_msg": "Navigation to kitchen failed" if status == "failed" else ""}]})
+    one_step_task(b, t0, 3, "Go to the kitchen", "navigate_to_zone", {"location": "kitchen"}, "failed",
+                  "Navigation to kitchen failed")
     for s, x in ((1, 0.0), (3, 0.5), (5, 1.25), (8, 9.0)):  # the last after the failure, at 7 s
         b.raw(t0 + sec_ns(s), "/odom", "nav_msgs/msg/Odometry", _odom(t0 + sec_ns(s), x, 0.5))
     said = _ask(b.write(tmp_path / "run"), "where were you when it failed?")

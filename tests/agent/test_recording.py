@@ -12,7 +12,7 @@ from hexar.agent.followups import content_kind
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events.reader import read_recording
 from hexar.events.records import clock
-from tests.agent.helpers import converse
+from tests.agent.helpers import converse, one_step_task
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -37,10 +37,7 @@ def test_the_time_is_the_last_message_s_with_its_day(suite: Path) -> None:
 
 
 def _say_hello(b: BagBuilder, t0: int) -> None:
-    for k, status in enumerate(("waiting", "Running", "succeeded")):
-        b.task_info(t0 + sec_ns(1 + k), {
-            "instruction": "Say hello", "task_id": "t1", "task_status": "valid", "task_error_msg": "",
-            "skill_sequence": [{"skill": "say", "params": {"input": "Hello"}, "status": status, "error_msg": ""}]})
+    one_step_task(b, t0, 1, "Say hello", "say", {"input": "Hello"})
 
 
 def test_a_simulator_s_clock_gives_no_time_of_day(tmp_path: Path) -> None:
