@@ -50,7 +50,6 @@ if TYPE_CHECKING:
     from langgraph.runtime import Runtime
 
 
-# Where a piece of evidence comes from, as the robot says it.
 CONFIDENT = 0.45
 SAID_BEFORE = "I have nothing more specific on that than what I just said:"
 QUOTED_BEFORE = "I have nothing more specific on that than the lines I just quoted:"
