@@ -16,13 +16,14 @@ from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
 _LEAD = r"^(and |so |but |ok |okay |then )?"
-_PART = (r"(you|it|the robot|robot|something|anything|(the |my |your |its )?(arm|gripper|hand|base|wheels?|motors?|"
-         r"robot|hardware|sensors?|camera|lidar|laser|speaker|battery|joints?|drivers?))")
+_THING = (r"(it|the robot|robot|something|anything|(the |my |your |its )?(arm|gripper|hand|base|wheels?|motors?|"
+          r"robot|hardware|sensors?|camera|lidar|laser|speaker|battery|joints?|drivers?))")
+_PART = r"(you|" + _THING + ")"  # "did you break anything?" asks about the house, not about the robot's parts
 _BROKEN = (r"(broken|broke|damaged|faulty|defective|dead|bust(ed)?|kaput|out of order|malfunctioning|"
            r"not working( properly)?)")
 BROKEN = re.compile(
     _LEAD + r"(is|are|was|were|has|have) " + _PART + r" (been )?(still )?" + _BROKEN + r"\b|"
-    + _LEAD + r"(did|has|have) " + _PART + r" (break|broken|broke)( down)?\b|"
+    + _LEAD + r"(did|has|have) " + _THING + r" (break|broken|broke)( down)?\b|"
     + _LEAD + r"(is|was) (it|this|that) (a |an )?(hardware|mechanical|electrical) "
               r"(problem|issue|fault|failure|error)\b|"
     + _LEAD + r"(do|does|will) " + _PART + r" need (a |to be )?(repair(ed|ing|s)?|fix(ed|ing)|servic(e|ed|ing)|"

@@ -27,6 +27,7 @@ def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
     ("is it my fault?", "fault"), ("did I do something wrong?", "fault"), ("whose fault was it?", "fault"),
     ("did I break it?", "fault"),
     ("why is the arm broken?", None), ("what is a fault?", None), ("what broke?", None),
+    ("did you break anything?", None),
 ])
 def test_where_a_failure_lies_is_told_apart(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
