@@ -130,7 +130,7 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """The kind of a question about what the robot did, its recording or where a failure lies: a name of
-    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault'), 'flag', 'limit',
+    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault', 'lost'), 'flag', 'limit',
     'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when') or 'said'. Among them 'act' is a request to
     do something, 'stop' an order to stop, 'next' a question about what it will do; None for anything else."""
     from hexar.agent.measures import measure_kind

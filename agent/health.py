@@ -37,6 +37,11 @@ FAULT = re.compile(
     + _LEAD + r"(whose|who's|who is|who was) (fault|to blame)\b|who (caused|is responsible for|was responsible for)\b|"
     + _LEAD + r"was (it|this|that) (someone|somebody|anyone)'?s fault\b")
 
+LOST = re.compile(_LEAD + r"(did|were|was|are) (you|it|the robot) (get |getting )?(lost|confused about where)\b|"
+                  + _LEAD + r"did (you|it|the robot) (know|lose track of) where (you|it) (were|was)\b")
+# The causes that say I did not know where I was (navigation's localisation findings).
+_LOST_CAUSES = frozenset({"navigation.poor_localisation", "navigation.off_costmap"})
+
 # Per origin of the failure's cause: the answer's opening to each question, before the failure as told.
 _IS_BROKEN = {
     "hardware": "Possibly: my recording shows a device of mine failing, which can be the device itself or only its "
@@ -59,9 +64,11 @@ _NOT_FAULT = "Nothing in my recording says you did anything wrong."
 
 
 def health_kind(q: str) -> str | None:
-    """'broken' or 'fault' for a question (lower case, spaces collapsed) about where a failure lies, else None."""
+    """'broken', 'fault' or 'lost' for a question (lower case, spaces collapsed) about where a failure lies."""
     if BROKEN.search(q):
         return "broken"
+    if LOST.search(q):
+        return "lost"
     return "fault" if FAULT.search(q) else None
 
 
@@ -79,17 +86,21 @@ def health(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     """The answer to "is the arm broken?" or "is it my fault?": where the failure's cause lies, then the failure
     (whose evidence "why?" goes on to). A task without a failure or a notable finding says that nothing went wrong."""
     q = " ".join(state["question"].lower().split())
-    broken = health_kind(q) != "fault"
+    kind = health_kind(q)
+    broken = kind == "broken"
     name = ctx.registry.failure_explainer(task) or notable(ctx, state, set(), BENIGN)
     found = probe(ctx, name, state["question"], state["task_id"]) if name is not None else None
     where = origin(found) if found is not None and found.enough_information else "unknown"
     if found is None or where == "none":
         ended = {"succeeded": "went without a problem", "running": "has gone without a problem so far"}.get(
             task.outcome, "shows no problem")
-        lead = "Nothing in my recording says so" if broken else "Nothing went wrong"
+        lead = "Nothing went wrong" if kind == "fault" else "Nothing in my recording says so"
         text = f"{lead}: {task_name(task, ctx.log)} {ended}."
         return Explanation(explainer=found.explainer if found else "planner", text=text,
                            causes=list(found.causes) if found else ["planner.plan_ok"],
                            evidence=list(found.evidence) if found else [])
-    opening = _IS_BROKEN[where] if broken else _IS_FAULT.get(where, _NOT_FAULT)
+    if kind == "lost":
+        opening = "Yes." if set(found.causes) & _LOST_CAUSES else "Nothing in my recording says I was lost."
+    else:
+        opening = _IS_BROKEN[where] if broken else _IS_FAULT.get(where, _NOT_FAULT)
     return found.model_copy(update={"text": f"{opening} {found.text}"})

@@ -333,7 +333,7 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = sequence.after(ctx.log, task, why)
     elif kind == "flag":
         exp = flag_answer(ctx, state, task)
-    elif kind in {"broken", "fault"}:
+    elif kind in {"broken", "fault", "lost"}:
         exp = health(ctx, state, task)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)

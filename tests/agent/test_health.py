@@ -81,3 +81,14 @@ def test_where_the_cause_lies_leads_the_failure(suite: Path, run: str, broken: s
     assert broken in str(said["answer"])
     assert str(blamed["answer"]).startswith(fault)
     assert said["causes"] == blamed["causes"] and said["causes"] and told["causes"][0] in said["causes"]
+
+
+@pytest.mark.parametrize(("run", "lead"), [
+    ("bagfile_8_1", "Yes. I reached the kitchen, but slowly and unsteadily, because I was not sure where I was"),
+    ("bagfile_5_1", "Nothing in my recording says I was lost. I couldn't reach the kitchen because something blocked"),
+    ("bagfile_10_1", "Nothing in my recording says so: your request"),
+])
+def test_did_you_get_lost_is_yes_only_where_localisation_was_the_finding(suite: Path, run: str, lead: str) -> None:
+    assert content_kind("did you get lost?") == content_kind("did you know where you were?") == "lost"
+    (said,) = converse(suite / run, "did you get lost?")
+    assert str(said["answer"]).startswith(lead)
