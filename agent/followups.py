@@ -18,6 +18,7 @@ from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
 from hexar.agent.state import Intent
+from hexar.agent.unseen import unseen_kind
 
 _DEEPER = re.compile(
     r"^(and |but |so |ok |okay )?(why( is| was| did)?( that| this| it)?( so| happen(ed)?)?|why not|how come|"
@@ -130,15 +131,16 @@ def is_order(question: str) -> bool:
 
 def content_kind(question: str) -> str | None:
     """The kind of a question about what the robot did, its recording or where a failure lies: a name of
-    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault', 'lost'), 'flag', 'limit',
-    'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when') or 'said'. Among them 'act' is a request to
-    do something, 'stop' an order to stop, 'next' a question about what it will do; None for anything else."""
+    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault', 'lost', 'contact',
+    'blocked'), 'flag', 'limit', 'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when') or 'said'.
+    Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
+    None for anything else."""
     from hexar.agent.measures import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
     kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or clock_kind(q) or \
-        health_kind(q)
+        health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:
         kind = "flag"
     if kind is None and LIMIT.search(q):

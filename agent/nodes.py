@@ -38,6 +38,7 @@ from hexar.agent.probes import failure_not_told, notable, probe, talked, with_fa
 from hexar.agent.questions import EXAMPLE, check_question, quoted, small_talk_reply
 from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
+from hexar.agent.unseen import unseen
 from hexar.agent.walk import next_finding
 from hexar.causes import BENIGN, NOTHING_WRONG
 from hexar.explainers.base import Context, Explanation
@@ -335,6 +336,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = flag_answer(ctx, state, task)
     elif kind in {"broken", "fault", "lost"}:
         exp = health(ctx, state, task)
+    elif kind in {"contact", "blocked"}:
+        exp = unseen(ctx, state, task)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)
         exp = with_failure(ctx, state, asked)
