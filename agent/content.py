@@ -202,15 +202,22 @@ def _went_step(log: EventLog, task: Task, run: SkillRun, current: bool) -> Expla
                        details=[f"Step {run.index + 1} of task {task.order}, {step_words(run)}: {run.state}."])
 
 
-def _goal_words(run: SkillRun) -> str:
-    """Where a navigation step was sent: a named place, a map position (a goal derived from Nav2), or neither."""
+def goal_place(run: SkillRun) -> tuple[str, str] | None:
+    """Where a navigation step was sent, with the word that goes before it: ("in", "the kitchen") for a named place,
+    ("at", "(1.00, 2.00) on my map") for a map position (a goal derived from Nav2); None for neither."""
     p = run.params
     if p.get("location"):
-        return "in " + place_name(p["location"])
+        return "in", place_name(p["location"])
     x, y = p.get("x"), p.get("y")
     if isinstance(x, int | float) and isinstance(y, int | float):
-        return f"at ({float(x):.2f}, {float(y):.2f}) on my map"
-    return "at a position the recording does not give"
+        return "at", f"({float(x):.2f}, {float(y):.2f}) on my map"
+    return None
+
+
+def _goal_words(run: SkillRun) -> str:
+    """Where a navigation step was sent: a named place, a map position, or neither."""
+    where = goal_place(run)
+    return f"{where[0]} {where[1]}" if where is not None else "at a position the recording does not give"
 
 
 def where(log: EventLog) -> Explanation:

@@ -9,7 +9,7 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
-from hexar.agent.probes import notable, probe
+from hexar.agent.probes import finding
 from hexar.agent.state import AgentState
 from hexar.causes import BENIGN, vocabulary
 from hexar.events.tasks import Task
@@ -82,14 +82,12 @@ def origin(found: Explanation) -> str:
     return next((o for c in causes if c in known and (o := known[c].origin) != "unknown"), "unknown")
 
 
-def health(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
-    """The answer to "is the arm broken?" or "is it my fault?": where the failure's cause lies, then the failure
-    (whose evidence "why?" goes on to). A task without a failure or a notable finding says that nothing went wrong."""
-    q = " ".join(state["question"].lower().split())
-    kind = health_kind(q)
+def health(ctx: RunContext, state: AgentState, task: Task, kind: str) -> Explanation:
+    """The answer to "is the arm broken?", "is it my fault?" or "did you get lost?" (`kind`, see health_kind): where
+    the failure's cause lies, then the failure (whose evidence "why?" goes on to). A task without a failure or a
+    notable finding says that nothing went wrong."""
     broken = kind == "broken"
-    name = ctx.registry.failure_explainer(task) or notable(ctx, state, set(), BENIGN)
-    found = probe(ctx, name, state["question"], state["task_id"]) if name is not None else None
+    found = finding(ctx, state)
     where = origin(found) if found is not None and found.enough_information else "unknown"
     if found is None or where == "none":
         ended = {"succeeded": "went without a problem", "running": "has gone without a problem so far"}.get(

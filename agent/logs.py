@@ -182,6 +182,7 @@ def nodes(question: str, log: EventLog, task: Task) -> Explanation:
     first: dict[str, LogLine] = {}
     for ln in log.logs:
         first.setdefault(ln.name or "a node", ln)
+    shown = {node for node, _ in lines.most_common(NAMED)}
     evidence = [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
-                for node, ln in first.items() if node in dict(lines.most_common(NAMED))]
+                for node, ln in first.items() if node in shown]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)

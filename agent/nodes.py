@@ -335,9 +335,9 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     elif kind == "flag":
         exp = flag_answer(ctx, state, task)
     elif kind in {"broken", "fault", "lost"}:
-        exp = health(ctx, state, task)
+        exp = health(ctx, state, task, kind)
     elif kind in {"contact", "blocked"}:
-        exp = unseen(ctx, state, task)
+        exp = unseen(ctx, state, task, kind)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)
         exp = with_failure(ctx, state, asked)

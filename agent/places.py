@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import re
 
-from hexar.agent.content import task_name
-from hexar.agent.measures import hms
+from hexar.agent.content import goal_place, task_name, trips_words, where
+from hexar.agent.measures import hms, trip_asked, when
+from hexar.agent.overview import with_lead
 from hexar.events import contract as c
 from hexar.events.log import EventLog
 from hexar.events.tasks import SkillRun, Task
@@ -82,8 +83,6 @@ FAILED_AT = re.compile(
 def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
     """The last position recorded up to the moment the task failed (its failed step's last change), or where the
     robot is at the end of a task that did not fail."""
-    from hexar.agent.content import where
-
     failed = task.failed_skill
     when = failed.last_change if failed is not None else task.last_update if task.outcome == "failed" else None
     if when is None:
@@ -122,11 +121,9 @@ def goal(question: str, log: EventLog, task: Task) -> Explanation:
     for run in trips:
         outcome = _OUTCOME.get(run.state, "I never set off") if run.time_of("running") is not None else \
             "I never set off"
-        loc, x, y = run.params.get("location"), run.params.get("x"), run.params.get("y")
-        if isinstance(loc, str) and loc:
-            goals.append(f"{place_name(loc)} ({outcome})")
-        elif isinstance(x, int | float) and isinstance(y, int | float):
-            goals.append(f"({float(x):.2f}, {float(y):.2f}) on my map ({outcome})")
+        sent = goal_place(run)
+        if sent is not None:
+            goals.append(f"{sent[1]} ({outcome})")
         else:
             source = run.params.get("derived_from")
             unknown.append(f"My recording does not give my goal{' for ' + step_ref(run) if len(trips) > 1 else ''}"
@@ -153,10 +150,6 @@ REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|
 def reached(question: str, log: EventLog, task: Task) -> Explanation:
     """"Yes."/"No." and the trip's times for the place asked about; a place no trip went to is said so, with where
     the trips did go."""
-    from hexar.agent.content import trips_words
-    from hexar.agent.measures import trip_asked, when
-    from hexar.agent.overview import with_lead
-
     q = " ".join(question.lower().replace("_", " ").split())
     asked = trip_asked(q, log, task)
     if asked is None:

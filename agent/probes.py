@@ -59,14 +59,19 @@ def notable(ctx: RunContext, state: AgentState, exclude: set[str],
     return None
 
 
-def failure_not_told(ctx: RunContext, state: AgentState, exps: list[Explanation]) -> Explanation | None:
-    """The failure of a task that failed (or, of one that did not, its notable finding: a node that never came
-    up on a run the recording cuts short, a slow trip), when the answer being followed up is not about it (a step
-    that went well, the tries, the steps that never ran, "nothing else happened"): "how do I fix it?" then means
-    that problem."""
+def finding(ctx: RunContext, state: AgentState) -> Explanation | None:
+    """The failure of a task that failed, or, of one that did not, its notable finding (a node that never came up
+    on a run the recording cuts short, a slow trip); None when there is neither."""
     name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"])) or notable(ctx, state, set(), BENIGN)
-    if name is None:
+    return probe(ctx, name, state["question"], state["task_id"]) if name is not None else None
+
+
+def failure_not_told(ctx: RunContext, state: AgentState, exps: list[Explanation]) -> Explanation | None:
+    """The task's failure or notable finding (see finding), when the answer being followed up is not about it (a
+    step that went well, the tries, the steps that never ran, "nothing else happened"): "how do I fix it?" then
+    means that problem."""
+    failed = finding(ctx, state)
+    if failed is None:
         return None
-    failed = probe(ctx, name, state["question"], state["task_id"])
     told = {c for e in exps for c in e.causes}
     return None if not failed.causes or set(failed.causes) & told else failed

@@ -8,7 +8,7 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
-from hexar.agent.probes import notable, probe
+from hexar.agent.probes import finding
 from hexar.agent.state import AgentState
 from hexar.causes import BENIGN
 from hexar.events.tasks import Task
@@ -34,11 +34,10 @@ def unseen_kind(q: str) -> str | None:
     return "blocked" if WHAT_BLOCKED.search(q) else None
 
 
-def unseen(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
-    """What the recording cannot show, then the task's failure (or its notable finding) as its explainer tells it."""
-    kind = unseen_kind(" ".join(state["question"].lower().split()))
-    name = ctx.registry.failure_explainer(task) or notable(ctx, state, set(), BENIGN)
-    found = probe(ctx, name, state["question"], state["task_id"]) if name is not None else None
+def unseen(ctx: RunContext, state: AgentState, task: Task, kind: str) -> Explanation:
+    """What the recording cannot show (`kind`, see unseen_kind), then the task's failure (or its notable finding) as
+    its explainer tells it."""
+    found = finding(ctx, state)
     if kind == "contact":
         opening = "I can't tell: my recording holds no bumper or contact sensor."
         if found is not None and set(found.causes) & _CHECKED:
