@@ -23,7 +23,7 @@ CITED = 3  # recorded items told at once: the explainers' strongest
 SPECIFIC = re.compile(
     r"^(and |so |but |ok |okay )?(which|what) (joints?|controllers?|nodes?|plugins?|topics?|frames?|parameters?|"
     r"values?|error codes?|exceptions?|tolerances?|planners?|links?|files?|lines?|thresholds?|devices?|ports?|"
-    r"interfaces?)\b(?! (can|could|should|do|does|would|will) (i|we|you) )|"
+    r"interfaces?|trajector(y|ies)|critics?)\b(?! (can|could|should|do|does|would|will) (i|we|you) )|"
     r"^(and |so |but )?(by )?how (much|far off|big was the error)\W*$|"
     r"^(and |so |but )?what (was|were) the (tolerances?|errors? values?|values?|limits?|thresholds?|exceptions?|"
     r"error codes?)\W*$")

@@ -11,12 +11,14 @@ from hexar.agent.attempts import TRIED
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
+from hexar.agent.mentions import mentions_kind
 from hexar.agent.overview import SETTING_FIX
 from hexar.agent.person import PERSON
 from hexar.agent.places import FAILED_AT, GOAL, REACHED, place_asked
 from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
+from hexar.agent.skills import SKILLS
 from hexar.agent.state import Intent
 from hexar.agent.unseen import unseen_kind
 
@@ -120,7 +122,7 @@ _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("learn", _LE
                   ("failed_at", FAILED_AT), ("goal", GOAL), ("reached", REACHED), ("where", _WHERE), ("went", _WENT),
                   ("talked", _TALKED), ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
                   ("request", REQUEST), ("doing", DOING), ("logs", LOGS), ("nodes", NODES), ("plugins", PLUGINS),
-                  ("plan", PLAN))
+                  ("plan", PLAN), ("skills", SKILLS))
 
 
 def is_order(question: str) -> bool:
@@ -151,7 +153,7 @@ def content_kind(question: str) -> str | None:
         kind = "place"
     if kind is None and (kind := measure_kind(q)) is None and CONTENT_QUESTION.search(q):
         kind = "said"
-    return kind
+    return kind or mentions_kind(q)
 
 
 def normalise(question: str) -> str:

@@ -10,9 +10,10 @@ from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
-from hexar.agent.places import goal, place, reached, where_failed
+from hexar.agent.places import goal, place, reached, when_at, where_failed
 from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded
+from hexar.agent.skills import skills
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
@@ -29,7 +30,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "fast": lambda q, log, task: measures.fast(log, task),
     "start": lambda q, log, task: measures.start(log, task),
     "long": lambda q, log, task: measures.long(log, task),
-    "when": measures.when,
+    "when": when_at,
     "tasks": lambda q, log, task: sequence.tasks(log),
     "request": sequence.request,
     "place": place,
@@ -42,4 +43,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "said": content.said,
     "clock": clock,
     "recorded": recorded,
+    "skills": skills,
 }

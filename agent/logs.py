@@ -85,7 +85,7 @@ def _distinct(lines: list[LogLine]) -> list[LogLine]:
     return sorted(first.values(), key=lambda ln: (-ln.level, ln.t))
 
 
-def _quote(lines: list[LogLine], one_node: bool, levels: bool) -> str:
+def quote(lines: list[LogLine], one_node: bool, levels: bool) -> str:
     """'at 12:00:01, controller_server "..." (4 times)' for each distinct message (the node left out where every
     line came from the one already named, the level where only one was asked for)."""
     counts = Counter((ln.name, ln.msg) for ln in lines)
@@ -102,7 +102,7 @@ def _quote(lines: list[LogLine], one_node: bool, levels: bool) -> str:
     return text + (f"; and {more} other message{'s' if more > 1 else ''}" if more > 0 else "")
 
 
-def _evidence(lines: list[LogLine], task: Task) -> list[Evidence]:
+def line_evidence(lines: list[LogLine], task: Task) -> list[Evidence]:
     return [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
             for ln in _distinct(lines)[:QUOTED]] or \
         [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
@@ -125,7 +125,7 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
         text = (f"My recording holds no log lines ({c.ROSOUT}), so I can't tell which {_PLURAL[asked.noun]} there "
                 f"were for {name}.")
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
-                           evidence=_evidence([], task), enough_information=False)
+                           evidence=line_evidence([], task), enough_information=False)
     start = task.created
     end = worked_until(log, task)
     lines, inside = _select(log, asked.low, asked.high, start, end)
@@ -136,13 +136,14 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
         warned, _ = _select(log, WARN, WARN, start, end) if asked.noun == "error" else ([], True)
         if warned:
             text += f' It holds {_plural(len(warned), "warning")}: ask "what warnings were there?" for them.'
-        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([], task))
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence([], task))
     where = span if inside else f"before I began on {name}, at {hms(start)} UTC (none while I worked on it)"
     if asked.one:
         ln = lines[-1] if asked.one == "last" else lines[0]
         text = (f"The {asked.one} {asked.noun} {where} came at {hms(ln.t)} from {ln.name or 'a node'}: "
                 f'"{_said(ln.msg)}".')
-        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence([ln], task))
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                           evidence=line_evidence([ln], task))
     by_node = Counter(ln.name or "a node" for ln in lines)
     nodes = join_words([f"{node} ({n})" if len(by_node) > 1 else node for node, n in by_node.most_common()])
     if asked.nodes:
@@ -151,9 +152,9 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                 f'{ln.name or "a node"}: "{_said(ln.msg)}".')
     else:
         text = (f"{'Yes. ' if asked.yes_no else ''}My log holds {_plural(len(lines), asked.noun)} {where}, from "
-                f"{nodes}: {_quote(lines, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
+                f"{nodes}: {quote(lines, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
     return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
-                       evidence=_evidence(lines, task))
+                       evidence=line_evidence(lines, task))
 
 
 NODES = re.compile(

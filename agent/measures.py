@@ -50,7 +50,9 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
               r"^(and |so )?(which|what) (step|part|leg) (took|was) (the )?(longest|slowest|quickest|shortest)\b")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
-              r"reach|finish|stop|end|come back|return|drive|head)\b",
+              r"reach|finish|stop|end|come back|return|drive|head|give up|fail|quit|abort)\b",
+              r"^(and |so |ok |okay )?(when|at what time|what time) did (it|that|this|the task|the step|things) "
+              r"(fail|go wrong|break|abort|stop|end|finish)\b",
               # the day a developer replays a run from: answered with its date
               r"^(and |so |ok |okay )?when (did|does) (it|this|that|all (this|that)) (happen|take place|start|begin)\b",
               r"^(and |so |ok |okay )?when was (it|this|that)( recorded)?\W*$",
@@ -151,7 +153,7 @@ def far(log: EventLog, task: Task, question: str = "", asked: str = "far") -> Ex
     """How far I drove for the task, leg by leg; of a place the question names, that trip alone. `asked` ("far" or
     "fast") is what a recording without positions cannot tell."""
     q = _norm(question)
-    named = _named_trip(q, log, task) if q else None
+    named = named_trip(q, log, task) if q else None
     if named is not None:
         return _far_to(log, *named)
     other = _FAR_PLACE.search(q)
@@ -325,7 +327,7 @@ def _trips(log: EventLog, task: Task) -> tuple[list[tuple[Task, SkillRun]], list
             [(t, r) for t in later_recoveries(log, task) for r in t.skills if r.skill in NAV_SKILLS])
 
 
-def _named_trip(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
+def named_trip(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
     """The trip to a place the question names: one that got there, then one that set off (a recovery that drove
     there answers for the request)."""
     trips, after = _trips(log, task)
@@ -349,7 +351,7 @@ def _never_set_off(log: EventLog, owner: Task, run: SkillRun) -> str:
 def trip_asked(q: str, log: EventLog, task: Task) -> tuple[Task, SkillRun] | None:
     """The trip a "when" question is about: a place it names, the way back ("get back", "return": the last trip,
     also a recovery's), or "get there"/"arrive": the last trip that got there, else the last that set off."""
-    named = _named_trip(q, log, task)
+    named = named_trip(q, log, task)
     if named is not None:
         return named
     trips, after = _trips(log, task)

@@ -20,6 +20,7 @@ from hexar.agent.followups import content_kind, intent_of, module_asked, task_re
 from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.logs import logs
+from hexar.agent.mentions import mentioned
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     NOTHING_TO_CHANGE,
@@ -338,6 +339,8 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = health(ctx, state, task, kind)
     elif kind in {"contact", "blocked"}:
         exp = unseen(ctx, state, task, kind)
+    elif kind == "mentions":
+        exp = mentioned(ctx, state, task)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)
         exp = with_failure(ctx, state, asked)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import goal_place, task_name, trips_words, where
-from hexar.agent.measures import hms, trip_asked, when
+from hexar.agent.measures import hms, named_trip, trip_asked, when
 from hexar.agent.overview import with_lead
 from hexar.events import contract as c
 from hexar.events.log import EventLog
@@ -140,20 +140,40 @@ def goal(question: str, log: EventLog, task: Task) -> Explanation:
 
 # "Did you reach the kitchen?", "did you get there?": yes or no from the trip's own outcome, with its times.
 REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|reached|get to|got to|make it to|"
-                     r"made it to|arrive (at|in)|arrived (at|in)|get into|go into|end up (at|in))( the| your| my)? "
+                     r"made it to|arrive (at|in)|arrived (at|in)|get into|go into|go to|drive to|"
+                     r"end up (at|in))( the| your| my)? "
                      # "did you reach the goal?" asks whether the task was done (overview.yes_or_no)
-                     r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)\W*$)(?P<place>[a-z][a-z ]*?)\W*$|"
+                     r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)\W*$)"
+                     # "did you go to the wrong room?" asks about the plan, "... to the person?" about the help skill
+                     r"(?!((the|your|my|a|an) )?(wrong|right|correct|same|other|another|person|people|someone|"
+                     r"somebody|anyone|human|them|"
+                     r"him|her)\b)(?P<place>[a-z][a-z ]*?)\W*$|"
                      r"^(and |so |but |ok |okay )?(did|have) you (ever )?(get|got|make it|made it|arrive|arrived) "
                      r"(there|back)\W*$")
+
+
+_ROOM = re.compile(r"\b(?P<room>" + _ROOMS + r")\b")
+
+
+def when_at(question: str, log: EventLog, task: Task) -> Explanation:
+    """"When did you reach the kitchen?": a room no trip went to is said so, not answered with the last trip that
+    got somewhere (measures.when's "when did you arrive?"); any other question is measures.when's."""
+    q = " ".join(question.lower().replace("_", " ").split())
+    room = _ROOM.search(q)
+    if room is None or named_trip(q, log, task) is not None:
+        return when(question, log, task)
+    text = f"No step of {task_name(task, log)} went to the {room['room']}. {trips_words(task, capital=True)}."
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"])
 
 
 def reached(question: str, log: EventLog, task: Task) -> Explanation:
     """"Yes."/"No." and the trip's times for the place asked about; a place no trip went to is said so, with where
     the trips did go."""
     q = " ".join(question.lower().replace("_", " ").split())
-    asked = trip_asked(q, log, task)
+    m = REACHED.search(q)
+    # a place named ("did you reach the kitchen?") is that place's trip or none, never the last trip that got there
+    asked = named_trip(q, log, task) if m is not None and m["place"] else trip_asked(q, log, task)
     if asked is None:
-        m = REACHED.search(q)
         place = m["place"] if m is not None and m["place"] else "there"
         text = f"No: no step of {task_name(task, log)} went to the {place}. {trips_words(task, capital=True)}."
         if place == "there":

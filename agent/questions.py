@@ -103,9 +103,25 @@ _COMMON = (
 )
 
 
+# A developer replaying a run asks in the words of the stack ("is use_sim_time set?", "which critic rejected it?"):
+# those are questions about the robot, not words the reader does not know.
+_DEVELOPER = (
+    "ros nav2 moveit tf tf2 transform transforms frame frames tree node nodes topic topics parameter parameters "
+    "param params yaml config configuration configured setting settings sim use clock timestamp stamp stamps "
+    "tolerance tolerances threshold thresholds timeout timeouts limit limits rate rates frequency hz baud port "
+    "ports device devices driver drivers serial usb firewall network dds discovery launch launched lifecycle "
+    "configure activate active inactive plugin plugins controller controllers manager spawner hardware interface "
+    "interfaces joint joints trajectory trajectories velocity velocities effort position command commands critic "
+    "critics costmap costmaps footprint inflation radius waypoint waypoints dock docking docked undock behavior "
+    "behaviour bt xml amcl odom odometry lidar scan laser imu ik kinematics solver solvers planner planners "
+    "pipeline octomap collision collisions scene gripper grasp link links urdf srdf description log logs warning "
+    "warnings line lines set value values loaded load running exception exceptions crash crashed died exit code"
+)
+
+
 @cache
 def vocabulary() -> frozenset[str]:
-    words = set(_COMMON.split())
+    words = set(_COMMON.split()) | set(_DEVELOPER.split())
     for qs in examples().values():
         for q in qs:
             words.update(_WORD.findall(q.lower()))

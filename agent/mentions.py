@@ -1,0 +1,114 @@
+""""What is my footprint?", "which critic rejected the trajectories?", "is use_sim_time set?", "which dock?": a
+developer replaying a run asks for one thing of the stack by its name. HEXAR reads no parameter values, so the only
+place such a thing shows is the log: the lines that name it, up to the task's end (bring-up before it included),
+quoted with their node and time. Where no line names it, the answer says so, and that the recording holds no
+parameters, instead of the task's finding with nothing on what was asked.
+"""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.cited import asks_specific
+from hexar.agent.content import task_name
+from hexar.agent.context import RunContext
+from hexar.agent.logs import line_evidence, quote
+from hexar.agent.measures import worked_until
+from hexar.agent.overview import asks_fix
+from hexar.agent.probes import finding, with_failure
+from hexar.agent.state import AgentState
+from hexar.events import contract as c
+from hexar.events.log import EventLog
+from hexar.events.records import LogLine
+from hexar.events.tasks import Task
+from hexar.explainers.base import Explanation
+
+# The things of a ROS 2 stack a developer asks for by name; each with the spellings a log line uses for it.
+_TERMS: dict[str, tuple[str, ...]] = {
+    "footprint": ("footprint",), "tolerance": ("tolerance",), "threshold": ("threshold",),
+    "timeout": ("timeout", "timed out", "time out"), "baud": ("baud",), "port": ("port",),
+    "device": ("device", "/dev/"), "frame": ("frame",), "critic": ("critic",), "dock": ("dock",),
+    "waypoint": ("waypoint",), "solver": ("solver",), "kinematics": ("kinematics", "ik "),
+    "ik": ("kinematics", "ik "), "behavior tree": ("behavior tree", "behaviour tree", "bt ", "xml"),
+    "bt": ("behavior tree", "bt ", "xml"), "xml": ("xml",), "file": ("file",), "trajectory": ("trajectory",),
+    "namespace": ("namespace",), "use_sim_time": ("use_sim_time", "sim time", "sim_time"),
+    "sim time": ("use_sim_time", "sim time", "sim_time"), "clock": ("clock",), "firewall": ("firewall",),
+    "inflation": ("inflation",), "radius": ("radius",), "costmap": ("costmap",), "map": ("map",),
+    "progress checker": ("progress", "movement time allowance"), "goal checker": ("goal checker", "goal_checker"),
+    "transform": ("transform", "tf"), "tf": ("transform", "tf"), "urdf": ("urdf", "robot_description"),
+    "robot description": ("robot_description", "robot description", "urdf"), "srdf": ("srdf",),
+    "octomap": ("octomap",), "rate": ("rate", "hz", "frequency"), "frequency": ("frequency", "hz", "rate"),
+    "velocity": ("velocity", "vel"), "speed": ("speed", "vel"), "baud rate": ("baud",),
+    "controller": ("controller",), "joint": ("joint",), "version": ("version",), "distro": ("distro",),
+    "hardware interface": ("hardware", "interface"), "interface": ("interface",), "pipeline": ("pipeline",),
+    "gripper": ("gripper",), "group": ("group",), "topic": ("topic",), "parameter": ("param",),
+    "param": ("param",), "yaml": ("yaml",), "config": ("config", "yaml"),
+}
+_NAMES = "|".join(sorted((re.escape(t) for t in _TERMS), key=len, reverse=True))
+_LEAD = r"^(and |so |but |ok |okay |now |then )?"
+MENTIONS = re.compile(
+    _LEAD + r"(which|what|what's|how many|how big|how long|how wide) (is |was |are |were )?((my|the|your|its|their|"
+    r"that) )?([a-z_]+ ){0,3}?(" + _NAMES + r")s?\b|"
+    + _LEAD + r"(is|was|are|were|did you set) ((my|the|your) )?(" + _NAMES + r")s?( [a-z]+)? "
+    r"(set|on|true|false|enabled|"
+    r"right|correct|ok|okay|configured|defined|loaded|missing|there)\b|"
+    + _LEAD + r"(where|which one) (is|was|are|were) ((my|the|your) )?([a-z_]+ )?(" + _NAMES + r")s?\b")
+QUOTED_LINES = 3
+
+
+def mentions_kind(q: str) -> str | None:
+    """'mentions' for a question (lower case, spaces collapsed) that asks for a named thing of the stack, unless it
+    asks for a specific of the failure the finding's own lines give (agent/cited.py) or for the fix ("which
+    parameter should I change?")."""
+    return "mentions" if MENTIONS.search(q) and not asks_specific(q) and not asks_fix(q) else None
+
+
+def asked_terms(q: str) -> list[str]:
+    """The named things a question asks for, longest first ("progress checker" before "progress")."""
+    found = []
+    for m in re.finditer(r"\b(" + _NAMES + r")s?\b", q):
+        if m.group(1) not in found:
+            found.append(m.group(1))
+    return found
+
+
+def _names(line: LogLine, spellings: tuple[str, ...]) -> bool:
+    text = f" {line.msg.lower().replace('_', ' ')} ".replace("use sim time", "use_sim_time")
+    return any(s in text or s.replace("_", " ") in text for s in spellings)
+
+
+def mentions(question: str, log: EventLog, task: Task) -> Explanation:
+    """The log lines up to the task's end that name what was asked, or that none does."""
+    q = " ".join(question.lower().split())
+    terms = asked_terms(q)
+    name = task_name(task, log)
+    end = worked_until(log, task)
+    named = {t: [ln for ln in log.logs if ln.t <= end and _names(ln, _TERMS[t])] for t in terms}
+    found = [t for t in terms if named[t]]
+    missing = " or ".join(t for t in terms if not named[t]) or "that"
+    lines = sorted({id(ln): ln for t in found for ln in named[t]}.values(), key=lambda ln: ln.t)
+    if not lines:
+        where = f"no line of my log ({c.ROSOUT}) up to the end of {name} names {missing}" if log.logs else \
+            f"my recording holds no log lines ({c.ROSOUT})"
+        text = (f"I can't tell: {where}, and my recording holds no parameter values, only what my nodes logged. "
+                "The parameter files or `ros2 param get` on the robot give it.")
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
+    when = f"before I began on {name}" if all(ln.t < task.created for ln in lines) else f"up to the end of {name}"
+    n = len(lines)
+    text = (f"My log names {' and '.join(found)} in {n} line{'s' if n > 1 else ''} {when}: "
+            f"{quote(lines, False, True)}.")
+    if len(found) < len(terms):
+        text += f" No line names {missing}."
+    text += " I read no parameter values, only what my nodes logged."
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence(lines, task))
+
+
+def mentioned(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
+    """The lines that name what was asked; where none does, that, then the task's finding, which is all the
+    recording has on it. "Why?" after either goes on to the failure."""
+    asked = mentions(state["question"], ctx.log, task)
+    told = with_failure(ctx, state, asked)
+    if asked.enough_information:
+        return told
+    found = finding(ctx, state)
+    return told if found is None else told.model_copy(update={"text": f"{asked.text} {found.text}"})
