@@ -16,6 +16,7 @@ from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import (
     NAV_SKILLS,
     Trip,
+    Utterance,
     join_words,
     last_pose,
     place_name,
@@ -26,7 +27,7 @@ from hexar.explainers.recorded import (
     trips_inside,
     utterances,
 )
-from hexar.explainers.tts import SAID_ANYTHING, compare, first_sentence
+from hexar.explainers.tts import SAID_ANYTHING, WHOLE_MESSAGE, compare, first_sentence
 from hexar.render import clock
 
 # the label's tail a derived task's instruction carries in tables: "Run spin (derived from Nav2's behaviour server)"
@@ -273,6 +274,12 @@ def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -
         return Explanation(explainer="text_to_speech", text=f"{none}{extra}", causes=["tts.completed"])
     last = spoken[-1]
     evidence = [Evidence(cause="tts.completed", topic=c.SAY_EVENTS, t=last.t, item=f"started: text = {last.text}")]
+    if WHOLE_MESSAGE.search(q := " ".join(question.lower().split())):
+        # "can you say the rest?" asks me to act, which HEXAR never does: it gives the words instead
+        act = "I can't say it again from here: I only explain what I did. " if re.match(
+            r"(\w+ )?(can|could|would|will) you\b", q) else ""
+        return Explanation(explainer="text_to_speech", text=act + _whole(last), causes=["tts.completed"],
+                           evidence=evidence)
     compared = compare(task.instruction, last.text, evidence, "" if yes_no else question) \
         if not task.is_recovery else None
     cut = " I was cut off before the end." if last.ended == "timed_out" else ""
@@ -283,6 +290,19 @@ def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -
     return Explanation(explainer="text_to_speech",
                        text=lead + sentence(f'I said "{first_sentence(last.text, 200)}"') + cut,
                        causes=["tts.completed"], evidence=evidence)
+
+
+def _whole(last: Utterance) -> str:
+    """The whole text of the last thing I was to say, and how far I got where I was cut off."""
+    words = len(last.text.split())
+    whole = f'The whole message was "{" ".join(last.text.split())}" ({words} words).'
+    if last.ended != "timed_out":
+        return whole + (" I said all of it." if last.ended == "finished" else
+                        " My recording ends before it says whether I finished saying it.")
+    if last.said:
+        got = len(last.said.split())
+        return whole + f' I was cut off after the first {got}, at "...{" ".join(last.said.split()[-6:])}".'
+    return whole + " I was cut off before the end; my recording does not say how far I got."
 
 
 def _how_it_ended(task: Task, log: EventLog) -> str:

@@ -8,7 +8,7 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
-from hexar.agent.measures import hms, worked_until
+from hexar.agent.measures import duration, hms, worked_until
 from hexar.agent.overview import with_lead
 from hexar.agent.probes import probe, with_failure
 from hexar.agent.state import AgentState
@@ -26,18 +26,23 @@ _LEAD = r"^(and |so |but |ok |okay )?"
 _FLAGS: tuple[tuple[str, re.Pattern[str], str], ...] = (
     (c.IS_CHARGING, re.compile(
         _LEAD + r"(were|was|are|weren't|wasn't) you (still )?(charging|plugged in|on (the|your) (charger|dock)|"
-        r"docked)\b|" + _LEAD + r"(was|were) (the|your) (charger|battery) (charging|plugged in|connected)\b"),
+        r"docked)\b|" + _LEAD + r"(was|were) (the|your) (charger|battery) (charging|plugged in|connected)\b|"
+        + _LEAD + r"how long (were|was|have) you (been )?(charging|plugged in|on (the|your) (charger|dock)|docked)\b"),
      "charging flag"),
     (c.JOY_PRIORITY, re.compile(
-        _LEAD + r"(was|were|is) (the |a |your )?(joystick|joypad|gamepad)( mode)? (on|in use|used|active|"
+        _LEAD + r"(how long )?(was|were|is) (the |a |your )?(joystick|joypad|gamepad)( mode)? (on|in use|used|active|"
         r"holding|in control|connected)\b|"
         + _LEAD + r"(was|were|did) (someone|anyone|somebody|a person) (using|use|driving|drive|holding|hold) "
         r"(you|me|the robot)?( with)? ?(the |a )?(joystick|joypad|gamepad)\b|"
-        + _LEAD + r"(were|was) you (in )?(joystick|manual) (mode|control)\b"),
+        + _LEAD + r"(were|was) you (in )?(joystick|manual) (mode|control)\b|"
+        + _LEAD + r"who (was|is) (using|driving|holding|on|controlling( you with)?) (the |a |your )?"
+                  r"(joystick|joypad|gamepad)\b"),
      "joystick priority flag"),
 )
 
 
+_HOW_LONG = re.compile(r"\bhow long\b")
+_WHO = re.compile(r"^(\w+ )?who\b")
 # The navigation explainer's cause for a flag that held while a goal did not complete (navigation/detectors.py).
 FLAG_CAUSE = {c.IS_CHARGING: "navigation.charging", c.JOY_PRIORITY: "navigation.joystick"}
 
@@ -51,8 +56,9 @@ def _evidence(s: BoolSample) -> Evidence:
     return Evidence(cause="planner.plan_ok", topic=s.topic, t=s.t, item=f"data={s.value}")
 
 
-def flag(topic: str, log: EventLog, task: Task) -> Explanation:
-    """Yes (with when the flag on `topic` held), no, or that the recording holds no such flag."""
+def flag(topic: str, log: EventLog, task: Task, timed: bool = False) -> Explanation:
+    """Yes (with when the flag on `topic` held, and for how long where `timed`), no, or that the recording holds no
+    such flag."""
     what = next(words for t, _, words in _FLAGS if t == topic)
     name = task_name(task, log)
     samples = sorted(log.flags.get(topic, []), key=lambda s: s.t)
@@ -76,6 +82,12 @@ def flag(topic: str, log: EventLog, task: Task) -> Explanation:
     since = "when I began" if held[0] is during[0] and held[0].t <= start else f"at {hms(held[0].t)} UTC"
     until = f", until {hms(off.t)} UTC" if off is not None else ""
     text = f"Yes: my {what} ({topic}) was on from {since}{until}, while I worked on {name}."
+    if timed:
+        held_for = (off.t if off is not None else end) - max(held[0].t, start)
+        whole = duration(end - start)
+        text = "M" + text.removeprefix("Yes: m").removesuffix(".") + (
+            f": the whole {whole} I worked on it." if duration(held_for) == whole else
+            f": {duration(held_for)} of the {whole} I worked on it.")
     evidence = [_evidence(held[0]), *([_evidence(off)] if off is not None else [])]
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence)
 
@@ -83,13 +95,21 @@ def flag(topic: str, log: EventLog, task: Task) -> Explanation:
 def flag_answer(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     """The flag, yes or no, then the task's failure (whose evidence "why?" goes on to); where the failure's
     explainer blames that very flag, its answer, led by "Yes."."""
-    topic = flag_asked(" ".join(state["question"].lower().split())) or c.IS_CHARGING
-    found = flag(topic, ctx.log, task)
+    q = " ".join(state["question"].lower().split())
+    topic = flag_asked(q) or c.IS_CHARGING
+    found = flag(topic, ctx.log, task, timed=_HOW_LONG.search(q) is not None)
+    if _WHO.search(q):  # a flag is no person: who held the joystick is never recorded
+        said = found.text
+        if said.startswith("Yes: my "):
+            said = "My recording does not say who: it holds only that " + said.removeprefix("Yes: ")
+        elif said.startswith("No: "):
+            said = "Nobody, as far as my recording shows: " + said.removeprefix("No: ")
+        found = found.model_copy(update={"text": said})
     name = ctx.registry.failure_explainer(task)
     failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
     if failed is None:
         return found
-    if found.text.startswith("Yes") and FLAG_CAUSE[topic] in failed.causes:
+    if found.text.startswith("Yes: ") and FLAG_CAUSE[topic] in failed.causes and not _HOW_LONG.search(q):
         return failed.model_copy(update={"text": with_lead(failed.text, "Yes.")})
     # the flag decided the yes or no; what did stop me follows, as it would have been told
     told = with_failure(ctx, state, found)

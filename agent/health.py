@@ -28,7 +28,8 @@ BROKEN = re.compile(
               r"(problem|issue|fault|failure|error)\b|"
     + _LEAD + r"(do|does|will) " + _PART + r" need (a |to be )?(repair(ed|ing|s)?|fix(ed|ing)|servic(e|ed|ing)|"
               r"replac(ed|ing))\b|"
-    + _LEAD + r"(is|was) (there )?(something|anything) (broken|wrong) with " + _PART + r"\b")
+    + _LEAD + r"(is|was) (there )?(something|anything) (broken|wrong) with " + _PART + r"\b|"
+    + _LEAD + r"(are|were) you (ok|okay|alright|all right|fine|hurt|injured|unhurt|unharmed|in one piece)\W*$")
 FAULT = re.compile(
     _LEAD + r"(is|was|it's|its) (it|this|that|all|everything)? ?(my|our) fault\b|"
     + _LEAD + r"(is|was) (it|this|that) (because of|down to) me\b|"

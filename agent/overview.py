@@ -43,7 +43,13 @@ _FIX = re.compile(
     r"how (can|could|do|would|should) (i|we|you|one) (fix|solve|repair|avoid|prevent)|"
     r"how (can|could) (it|this|that) be (fixed|solved|avoided|prevented)|"
     r"what (should|do|can|must) (i|we) (need to |have to )?(do|change|check|look at|look into|fix)\b|"
-    r"what('s| is) the (fix|solution)|how to fix|what (would|do|should) you (recommend|suggest) (i|we) (do|change)"
+    r"what('s| is) the (fix|solution)|how to fix|what (would|do|should) you (recommend|suggest) (i|we) (do|change)|"
+    r"how (do|can|should|could) (i|we) (turn|switch|shut|take) (\w+ ){0,2}off\b|"
+    r"^(\w+ )?should (i|we) (unplug|move|remove|clear|restart|reboot|turn off|switch off|change|raise|lower|"
+    r"increase|decrease|set|tune)\b|"
+    r"what should (i|we) (move|remove|clear|unplug|take away|get out of the way)\b|"
+    r"what should (the|my|your) (\w+ ){0,2}(tolerances?|limits?|values?|thresholds?|timeouts?|settings?|"
+    r"parameters?|rates?) be\b"
 )
 _STATE = {"succeeded": "done", "failed": "failed", "running": "still running when the recording ends",
           "canceled": "canceled", "waiting": "never started"}

@@ -22,7 +22,8 @@ PERSON = re.compile(
               r"ignore (you|me)|not confirm)\b|"
     + _LEAD + r"where (was|were|is|are) " + _WHO + r"\W*$|"
     + _LEAD + r"(what was|what's|what is|who was|who is) (her|his|their|the person's) name\b|"
-    + _LEAD + r"(who|what) (was|is) (that|the) (person|human|man|woman)\b")
+    + _LEAD + r"(who|what) (was|is) (that|the) (person|human|man|woman)\b|"
+    + _LEAD + r"who (helped( you)?|said (no|yes)|declined|refused|agreed|answered|replied|confirmed)\b")
 _ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
 _CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
 
@@ -63,7 +64,7 @@ def person(question: str, log: EventLog, task: Task) -> Explanation:
     detected = steps.get("person_detected")
     if detected is None or detected.value != "True":
         text = "I never detected anybody to ask, so my recording holds nothing of a person."
-    elif re.search(r"\bname\b|\bwho (was|is)\b", q):
+    elif re.search(r"\bname\b|^(\w+ )?who\b", q):
         text = ("My recording holds no name: I knew the person only as someone I detected and asked for help"
                 f"; {answered}.")
     elif re.search(r"^(\w+ )?where\b", q):

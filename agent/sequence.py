@@ -186,7 +186,7 @@ def plan(log: EventLog, task: Task, counted: bool = False) -> Explanation:
 
 # "What did I ask you?", "who gave you the task?": the request as the task status received it.
 REQUEST = re.compile(
-    _LEAD + r"what (did|have) (i|we) (ask|asked|tell|told|want|wanted)( of)? you( to do)?\W*$|"
+    _LEAD + r"what (did|have) (i|we) (ask|asked|tell|told|want|wanted)( of)?( you)?( to do| for)?\W*$|"
     + _LEAD + r"what (was|is) (my|our|the|your) (request|task|instruction|order|job|command)\W*$|"
     + _LEAD + r"(who|whom) (gave|sent|asked|told|ordered) (you|me)\b|" + _LEAD + r"who asked\b|"
     + _LEAD + r"when did (i|we|they|someone|anyone) (ask|tell|send|give) (you|me)\b")

@@ -56,7 +56,15 @@ def _num(x: float) -> str:
 # what the request asked for.
 SAID_ANYTHING = re.compile(r"^(and |so |but )?did you (actually |really |even |ever )?(say|tell|read|speak)( it| that|"
                            r" this| anything| something| me| her| him| them| anyone)*( out loud| aloud| at all)?\W*$")
+# "What were you trying to say?", "say the rest": the whole text the robot was to say, and where a cut came.
+WHOLE_MESSAGE = re.compile(
+    r"what (were|was) you (trying|going|about|meant|supposed) to (say|tell|read)\b|"
+    r"what did you (want|mean|try|intend|have) to (say|tell|read)\b|"
+    r"what (was|is) the (whole|full|entire|complete) (message|text|list|story)\b|"
+    r"what (was|is) the rest( of (it|the (message|text|list)))?\W*$|(say|tell|read)( me)? the rest\b|"
+    r"what did(n't| you not) you (get to )?say\b|what did you (leave out|miss out|not say|never say)\b")
 CONTENT_QUESTION = re.compile(
+    WHOLE_MESSAGE.pattern + "|"
     r"what did you (say|read|tell)|did you (read|say|tell)( me| her| him| them)? (the )?(right|correct|wrong)|"
     r"(right|correct|wrong) (recipe|message|text|thing|story|list|news)|was (that|it) (the )?(right|correct)|"
     r"(is|was) that what i asked|"

@@ -1,0 +1,102 @@
+"""Questions a person at home asks after a run, each answered from what the recording holds rather than with the
+task's finding again: the whole message the robot was to say, who held the joystick, how long it was charging, who
+helped, when it gave up, what to move, whether it is okay, what was asked of it, whether it went to a place."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.followups import content_kind, intent_of
+from hexar.agent.questions import check_question
+from tests.agent.helpers import converse
+
+BLOCKED = "I couldn't reach the kitchen because something blocked my path and I found no other way around it."
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("what were you trying to say?", "said"), ("what was the whole message?", "said"),
+    ("can you say the rest?", "said"), ("how long were you charging?", "flag"),
+    ("who was using the joystick?", "flag"), ("how long was the joystick on?", "flag"),
+    ("who helped you?", "person"), ("who said no?", "person"), ("when did you give up?", "when"),
+    ("when did it fail?", "when"), ("are you okay?", "broken"), ("what did I ask for?", "request"),
+    ("did you go to the kitchen?", "reached"), ("how long did it take?", "long"),
+])
+def test_kinds(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_the_whole_message_and_where_it_was_cut(suite: Path) -> None:
+    whole, rest = converse(suite / "bagfile_19_1", "what was the whole message?", "can you say the rest?")
+    text = str(whole["answer"])
+    assert text.startswith('The whole message was "Hello everyone, this is a message from Anna.')
+    assert text.endswith('(112 words). I was cut off after the first 48, at "...as planned. Please do not wait".')
+    assert rest["answer"] == "I can't say it again from here: I only explain what I did. " + text
+    (done,) = converse(suite / "bagfile_8_1", "what was the whole message?")
+    assert done["answer"] == 'The whole message was "Here is your coffee." (4 words). I said all of it.'
+
+
+def test_a_flag_is_no_person_and_its_time_is_measured(suite: Path) -> None:
+    (who,) = converse(suite / "bagfile_6_1", "who was using the joystick?")
+    assert str(who["answer"]).startswith("My recording does not say who: it holds only that my joystick priority "
+                                         "flag (/joy_priority) was on from when I began")
+    (nobody,) = converse(suite / "bagfile_5_1", "who was using the joystick?")
+    assert nobody["answer"] == ("Nobody, as far as my recording shows: my joystick priority flag (/joy_priority) "
+                                'stayed off while I worked on your request "Bring me a coffee from the kitchen". '
+                                + BLOCKED)
+    (charging,) = converse(suite / "bagfile_7_1", "how long were you charging?")
+    assert str(charging["answer"]).startswith(
+        'My charging flag (/power/is_charging) was on from when I began, while I worked on your request "Bring me a '
+        'coffee from the kitchen": the whole 1 min 1 s I worked on it.')
+
+
+def test_who_helped_and_who_declined(suite: Path) -> None:
+    (helped,) = converse(suite / "bagfile_8_1", "who helped you?")
+    assert helped["answer"] == ("My recording holds no name: I knew the person only as someone I detected and asked "
+                                "for help; they agreed to help, and then confirmed that they had helped.")
+    (declined,) = converse(suite / "bagfile_15_1", "who said no?")
+    assert str(declined["answer"]).endswith("; they declined.")
+
+
+def test_when_what_to_move_and_whether_i_am_okay(suite: Path) -> None:
+    when, move, okay = converse(suite / "bagfile_5_1", "when did you give up?", "what should I move?",
+                                "are you okay?")
+    assert "it ended when step 1 (to go to the kitchen) failed at 15:10:48, 36 s later" in str(when["answer"])
+    assert move["answer"] == f"{BLOCKED} Clear the way to the kitchen and ask me again."
+    assert okay["answer"] == ("Nothing in my recording says a part of me is broken: what stopped me was around me. "
+                              + BLOCKED)
+
+
+def test_what_was_asked_and_where_the_wrong_plan_went(suite: Path) -> None:
+    went, asked = converse(suite / "bagfile_3_1", "did you go to the kitchen?", "what did I ask for?")
+    assert went["answer"] == ('No: no step of your request "Bring me a coffee from the kitchen" went to the kitchen. '
+                              "I went to the dining room and the living room.")
+    assert asked["answer"] == 'You asked me "Bring me a coffee from the kitchen" at 13:10:03 UTC. It was done.'
+
+
+@pytest.mark.parametrize("question", ["how do I turn off manual mode?", "should I unplug you?",
+                                      "what should the tolerance be?"])
+def test_a_fix_asked_in_other_words(question: str) -> None:
+    from hexar.agent.overview import asks_fix
+
+    assert asks_fix(question)
+
+
+@pytest.mark.parametrize("question", ["is use_sim_time set?", "which ik solver?", "what is the baud rate?"])
+def test_a_developer_s_words_are_a_question(question: str) -> None:
+    assert check_question(question) == question
+    assert intent_of(question, False) == "content"
+
+
+def test_a_room_no_trip_went_to_is_never_answered_with_another_room(suite: Path) -> None:
+    # the wrong plan went to the dining room and the living room, never to the kitchen asked about
+    reached, when, there = converse(suite / "bagfile_3_1", "did you reach the kitchen?",
+                                    "when did you reach the kitchen?", "did you get there?")
+    assert reached["answer"] == ('No: no step of your request "Bring me a coffee from the kitchen" went to the '
+                                 "kitchen. I went to the dining room and the living room.")
+    assert when["answer"] == ('No step of your request "Bring me a coffee from the kitchen" went to the kitchen. '
+                              "I went to the dining room and the living room.")
+    assert there["answer"] == "Yes. I got to the living room at 13:11:02 UTC, 12 s after I set off at 13:10:50."
+    (wrong,) = converse(suite / "bagfile_3_1", "did you go to the wrong room?")
+    assert str(wrong["answer"]).startswith("Yes. I did the wrong thing because my plan did not match your request")
