@@ -35,7 +35,9 @@ TRIED = re.compile(
     r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) (you|it|the robot|nav2|the planner|"
     r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
     r"^(and |so |but |ok |okay )?how many (attempts|tries|retries|re-?plans|recoveries)\b|"
-    r"^(and |so |but |ok |okay )?did you (just )?give up\W*$")
+    r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
+    r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
+    r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")
 _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
            re.compile(r": failed to create plan with tolerance"),
            # "GridBasedplugin failed to plan from" as a Jazzy robot logged it (the format has no space)

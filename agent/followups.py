@@ -102,6 +102,12 @@ _MODULE_WORDS = {
         # not "who did you talk to?": the robot also talks when it only speaks a message (text_to_speech)
         r"\bask(ed)? (anyone|anybody|someone|somebody|a person|a human|people|for help)\b|"
         r"\b(who|whom) did you ask\b|"
+        # whether anyone was found: the help skill's detection, not a trip
+        r"\b(was|were) (anyone|anybody|someone|somebody|people) (home|there|around)\b|"
+        r"\bdid you (look for|search for|see|notice|find|detect) (me|anyone|anybody|someone|somebody|a person|"
+        r"people|the person)\b|"
+        r"\bwhy (didn't|did not|couldn't|could not) you (see|notice|find|detect|ask) (me|anyone|anybody|someone|"
+        r"somebody|a person|the person|for help)\b|"
         # the person's distance is the help skill's measurement, not a trip of the plan
         r"\bhow (far|close|near)( away)? (was|were|is) (the|that) (person|human|people)\b"),
     # "drop off the coffee" is a delivery, which a tray robot makes without an arm

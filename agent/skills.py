@@ -18,7 +18,7 @@ _LEAD = r"^(and |so |but |ok |okay |now |then )?"
 SKILLS = re.compile(
     _LEAD + r"(what|which) (skills|abilities|actions|capabilities) (do|did|have|can) you( have| got| use| know)?\b|"
     + _LEAD + r"(what|which) (skills|places|rooms|locations) (do|did|can) you (have|know|go to|drive to|visit)\b|"
-    + _LEAD + r"where (all )?can you (go|drive)\W*$|"
+    + _LEAD + r"where (all )?can you (go|drive)\W*$|" + _LEAD + r"what (can't|cannot|can not) you do\W*$|"
     # a skill's or place's name as a plan writes it, not any name a stack logs ("what is use_sim_time?")
     + _LEAD + r"what('s| is| was| does) (the |a |an )?(skill |place |room )?(?P<name>(navigate|ask|look|recommend|say|"
     r"explain|pick|place|move|follow|bring|go|find|fetch|deliver|open|grab|kitchen|dining|living|bed|bath)"
@@ -77,6 +77,10 @@ def skills(question: str, log: EventLog, task: Task) -> Explanation:
         said = [f"{_DOES[s]} ({s})" for s in mine]
         text = f"My skills are to {join_words(said)}." + (
             f" My recording's plans named {join_words(used)}." if used else "")
+        cannot = re.search(r"\b(can't|cannot|can not)\b", q) is not None
         if not any(s in _ARM for s in mine):
-            text += " I cannot manipulate objects: to fetch something I ask a person to put it on my tray."
+            limit = "I cannot manipulate objects: to fetch something I ask a person to put it on my tray."
+            text = f"{limit} {text}" if cannot else f"{text} {limit}"
+        elif cannot:
+            text = f"I can do only what my skills do. {text}"
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence(task))

@@ -8,6 +8,7 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
+from hexar.agent.places import where_failed
 from hexar.agent.probes import finding
 from hexar.agent.state import AgentState
 from hexar.causes import BENIGN
@@ -22,7 +23,9 @@ WHAT_BLOCKED = re.compile(_LEAD + r"what (was|were|is) (in (the|your|my) way|blo
                           r"path)|the (obstacle|obstruction|blockage))\b|"
                           + _LEAD + r"what (blocked|stopped) (you|your path|the way|the path)\b|"
                           + _LEAD + r"what (kind of|sort of)? ?(obstacle|thing|object) (was it|blocked you)\b|"
-                          + _LEAD + r"(was|is) (the|a) door (closed|shut|open|locked)\b")
+                          + _LEAD + r"(was|is) (the|a) door (closed|shut|open|locked)\b|"
+                          + _LEAD + r"where (was|is|were|are) (the|that|this) (obstacles?|obstructions?|blockages?|"
+                          r"things? in (the|your|my) way)\b")
 # The findings that tell of a collision check stopping me: the nearest the recording comes to a touch.
 _CHECKED = frozenset({"navigation.collision_ahead"})
 
@@ -46,8 +49,9 @@ def unseen(ctx: RunContext, state: AgentState, task: Task, kind: str) -> Explana
         opening = ("I can't tell whether a door was closed: my recording holds no camera image or door sensor, only "
                    "what my navigation logged.")
     else:
-        opening = ("I can't tell what it was: my recording holds no camera image or object detection, only what my "
-                   "navigation logged.")
+        what = "where" if re.match(r"(\w+ )?where\b", state["question"].lower()) else "what"
+        opening = (f"I can't tell {what} it was: my recording holds no camera image or object detection, only what "
+                   "my navigation logged.")
     if found is None or set(found.causes) <= BENIGN:
         named = task_name(task, ctx.log)
         ended = " went without a problem." if task.outcome == "succeeded" else " shows no problem in my recording."
@@ -55,4 +59,9 @@ def unseen(ctx: RunContext, state: AgentState, task: Task, kind: str) -> Explana
             opening = "My recording shows nothing in my way."
         text = f"{opening} {named[0].upper()}{named[1:]}{ended}"
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
+    if opening.startswith("I can't tell where"):  # the nearest the recording comes: where I was when it failed
+        at = where_failed(state["question"], ctx.log, task)
+        if at.enough_information:
+            return found.model_copy(update={"text": f"{opening} {found.text} {at.text}",
+                                            "evidence": [*found.evidence, *at.evidence]})
     return found.model_copy(update={"text": f"{opening} {found.text}"})

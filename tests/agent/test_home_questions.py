@@ -100,3 +100,24 @@ def test_a_room_no_trip_went_to_is_never_answered_with_another_room(suite: Path)
     assert there["answer"] == "Yes. I got to the living room at 13:11:02 UTC, 12 s after I set off at 13:10:50."
     (wrong,) = converse(suite / "bagfile_3_1", "did you go to the wrong room?")
     assert str(wrong["answer"]).startswith("Yes. I did the wrong thing because my plan did not match your request")
+
+
+def test_where_the_obstacle_was_is_where_i_was_when_it_failed(suite: Path) -> None:
+    where, around = converse(suite / "bagfile_5_1", "where is the obstacle?", "could you not go around it?")
+    assert where["answer"] == (
+        "I can't tell where it was: my recording holds no camera image or object detection, only what my navigation "
+        f"logged. {BLOCKED} When step 1 (to go to the kitchen) failed, at 15:10:48 UTC, my last recorded position "
+        "was (1.74, 1.46) on my map, at 15:10:47.")
+    assert str(around["answer"]).startswith("For step 1 (to go to the kitchen), my planner failed to find a path 14 "
+                                            "times, I ran 4 recoveries")
+
+
+def test_whether_anyone_was_found_is_the_help_skill_s_and_what_i_cannot_do(suite: Path) -> None:
+    (home,) = converse(suite / "bagfile_5_1", "was anyone home?")
+    assert str(home["answer"]).startswith('I didn\'t ask anyone for help for your request "Bring me a coffee from the '
+                                          'kitchen": step 2 of my plan was to ask someone for help')
+    (looked,) = converse(suite / "bagfile_11_1", "did you look for me?")
+    assert str(looked["answer"]).startswith("I could not get help: I did not detect anybody.")
+    (cannot,) = converse(suite / "bagfile_4_1", "what can't you do?")
+    assert str(cannot["answer"]).startswith("I cannot manipulate objects: to fetch something I ask a person to put "
+                                            "it on my tray. My skills are to say something aloud (say)")
