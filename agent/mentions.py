@@ -48,7 +48,9 @@ _NAMES = "|".join(sorted((re.escape(t) for t in _TERMS), key=len, reverse=True))
 _LEAD = r"^(and |so |but |ok |okay |now |then )?"
 MENTIONS = re.compile(
     _LEAD + r"(which|what|what's|how many|how big|how long|how wide) (is |was |are |were )?((my|the|your|its|their|"
-    r"that) )?([a-z_]+ ){0,3}?(" + _NAMES + r")s?\b|"
+    # "what did the controllers do?" asks what a module did (its explainer's), not for a named thing
+    r"that) )?((?!(did|do|does|has|have|had|can|could|would|will|should|happened|went|made|caused)\b)[a-z_]+ ){0,3}?"
+    r"(" + _NAMES + r")s?\b|"
     + _LEAD + r"(is|was|are|were|did you set) ((my|the|your) )?(" + _NAMES + r")s?( [a-z]+)? "
     r"(set|on|true|false|enabled|"
     r"right|correct|ok|okay|configured|defined|loaded|missing|there)\b|"

@@ -23,6 +23,7 @@ from tests.agent.helpers import converse, real_module_run
     # a specific of the failure keeps the finding and its lines (agent/cited.py); errors and plugins their own
     ("which controller?", None), ("which trajectory failed?", None), ("what errors were there?", "logs"),
     ("which planner did you use?", "plugins"), ("what happened?", None), ("why did you fail?", None),
+    ("what did the controllers do?", None), ("what did the joint do?", None),
 ])
 def test_a_named_thing_of_the_stack_is_its_own_question(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
