@@ -25,6 +25,7 @@ SPECIFIC = re.compile(
     r"values?|error codes?|exceptions?|tolerances?|planners?|links?|files?|lines?|thresholds?|devices?|ports?|"
     r"interfaces?|trajector(y|ies)|critics?)\b(?! (can|could|should|do|does|would|will) (i|we|you) )|"
     r"^(and |so |but )?(by )?how (much|far off|big was the error)\W*$|"
+    r"^(and |so |but )?how (old|stale|late|out of date) (was|were|is) (the|my|your) [a-z ]+\W*$|"
     r"^(and |so |but )?what (was|were) the (tolerances?|errors? values?|values?|limits?|thresholds?|exceptions?|"
     r"error codes?)\W*$")
 

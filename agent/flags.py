@@ -8,13 +8,13 @@ import re
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
-from hexar.agent.measures import duration, hms, worked_until
+from hexar.agent.measures import worked_until
 from hexar.agent.overview import with_lead
 from hexar.agent.probes import probe, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import BoolSample
+from hexar.events.records import BoolSample, duration, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.navigation.detectors import SPEED_KEY, status_item
@@ -27,7 +27,9 @@ _FLAGS: tuple[tuple[str, re.Pattern[str], str], ...] = (
     (c.IS_CHARGING, re.compile(
         _LEAD + r"(were|was|are|weren't|wasn't) you (still )?(charging|plugged in|on (the|your) (charger|dock)|"
         r"docked)\b|" + _LEAD + r"(was|were) (the|your) (charger|battery) (charging|plugged in|connected)\b|"
-        + _LEAD + r"how long (were|was|have) you (been )?(charging|plugged in|on (the|your) (charger|dock)|docked)\b"),
+        + _LEAD + r"how long (were|was|have) you (been )?(charging|plugged in|on (the|your) (charger|dock)|docked)\b|"
+        + _LEAD + r"when (did|were|was) (you|i|it|the robot) (get |got |being |be )?(unplugged|plugged in|"
+                  r"disconnected|connected|charging|docked|undocked)\b"),
      "charging flag"),
     (c.JOY_PRIORITY, re.compile(
         _LEAD + r"(how long )?(was|were|is) (the |a |your )?(joystick|joypad|gamepad)( mode)? (on|in use|used|active|"
@@ -36,12 +38,15 @@ _FLAGS: tuple[tuple[str, re.Pattern[str], str], ...] = (
         r"(you|me|the robot)?( with)? ?(the |a )?(joystick|joypad|gamepad)\b|"
         + _LEAD + r"(were|was) you (in )?(joystick|manual) (mode|control)\b|"
         + _LEAD + r"who (was|is) (using|driving|holding|on|controlling( you with)?) (the |a |your )?"
-                  r"(joystick|joypad|gamepad)\b"),
+                  r"(joystick|joypad|gamepad)\b|"
+        + _LEAD + r"who (turned|switched|put) (on )?(the |your )?(joystick|manual mode|manual control)\b|"
+        + _LEAD + r"when (was|did) (the |your )?(joystick|manual mode|manual control) (get |go )?(switched |turned )?"
+                  r"(on|off|used|take over|took over)\b"),
      "joystick priority flag"),
 )
 
 
-_HOW_LONG = re.compile(r"\bhow long\b")
+_HOW_LONG = re.compile(r"\bhow long\b|^(\w+ )?when\b")  # asked for the flag's times, not a yes or no
 _WHO = re.compile(r"^(\w+ )?who\b")
 # The navigation explainer's cause for a flag that held while a goal did not complete (navigation/detectors.py).
 FLAG_CAUSE = {c.IS_CHARGING: "navigation.charging", c.JOY_PRIORITY: "navigation.joystick"}

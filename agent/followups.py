@@ -14,7 +14,7 @@ from hexar.agent.logs import LOGS, NODES
 from hexar.agent.mentions import mentions_kind
 from hexar.agent.overview import SETTING_FIX
 from hexar.agent.person import PERSON
-from hexar.agent.places import FAILED_AT, GOAL, REACHED, place_asked
+from hexar.agent.places import AT_PLACE, FAILED_AT, GOAL, REACHED, ROUTE, place_asked
 from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
@@ -61,7 +61,7 @@ _WENT = re.compile(r"^(and |so |but )?why did you (go|drive|come|head|walk)( bac
 # A request to act, phrased as a question ("can you try again?"): the agent is read-only and says so.
 _ACT = re.compile(r"^(and |so |ok |okay |then |now )?(please |robot |hey )?(can|could|would|will|won't|wont) you "
                   r"(please |just )?(try|retry|go|bring|fetch|get me|do it|do that|drive|move|come|start|restart|turn|"
-                  r"pick|put|open|close|give|carry|deliver|make|cook|read|tell maria)\b|"
+                  r"pick|put|open|close|give|carry|deliver|make|cook|read|tell maria|recommend|suggest|choose|order)\b|"
                   r"^(and |so |ok |okay |now )?(please )?(try|do it|do that) again\b|"
                   # an order given as one, as people speak to a robot ("bring me the coffee", "go to the kitchen")
                   r"^(ok |okay |now |then |robot |hey )?(please )?(retry|go (to|back|home|and|get)|bring|fetch|"
@@ -84,7 +84,9 @@ _FEEL = re.compile(r"^(and |so |but |ok |okay )?(are|were) you (feeling )?(sad|h
 # "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
 _TALKED = re.compile(r"^(and |so |but )?what did you (ask|say to|tell) (her|him|them|the person|that person)\W*$|"
                      r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
-                     r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b")
+                     r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b|"
+                     r"^(and |so |but )?did you (say|ask) (please|thank you|thanks|sorry|hello|hi)\b|"
+                     r"^(and |so |but )?were you (polite|rude|nice)\b")
 _WHERE = re.compile(r"where are you\b(?! (going|heading|driving|off to)\b)|where did you (end up|stop)\b|"
                     r"what('s| is| was) (your|the robot's|its|the robot) (position|pose|location)\W*$|"
                     r"^(and |so )?(which|what) room (are|were) you in\b|"
@@ -102,6 +104,7 @@ _MODULE_WORDS = {
         # not "who did you talk to?": the robot also talks when it only speaks a message (text_to_speech)
         r"\bask(ed)? (anyone|anybody|someone|somebody|a person|a human|people|for help)\b|"
         r"\b(who|whom) did you ask\b|"
+        r"\b(get|got|getting|drive|drove|come|came|go|went) (to|up to|near|close to) (the|that) person\b|"
         # whether anyone was found: the help skill's detection, not a trip
         r"\b(was|were) (anyone|anybody|someone|somebody|people) (home|there|around)\b|"
         r"\bdid you (look for|search for|see|notice|find|detect) (me|anyone|anybody|someone|somebody|a person|"
@@ -125,7 +128,8 @@ def module_asked(question: str) -> str | None:
 
 # In this order: "stop" before a request to act, and both before the questions about what was done.
 _CONTENT_KINDS = (("stop", _STOP), ("act", _ACT), ("next", _NEXT), ("learn", _LEARN), ("feel", _FEEL),
-                  ("failed_at", FAILED_AT), ("goal", GOAL), ("reached", REACHED), ("where", _WHERE), ("went", _WENT),
+                  ("failed_at", FAILED_AT), ("goal", GOAL), ("reached", REACHED), ("at_place", AT_PLACE),
+                  ("route", ROUTE), ("where", _WHERE), ("went", _WENT),
                   ("talked", _TALKED), ("person", PERSON), ("tried", TRIED), ("after", AFTER), ("tasks", TASKS),
                   ("request", REQUEST), ("doing", DOING), ("logs", LOGS), ("nodes", NODES), ("plugins", PLUGINS),
                   ("plan", PLAN), ("skills", SKILLS))

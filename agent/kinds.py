@@ -10,7 +10,7 @@ from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.logs import nodes
 from hexar.agent.person import person
-from hexar.agent.places import goal, place, reached, when_at, where_failed
+from hexar.agent.places import at_place, goal, place, reached, when_at, where_failed
 from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded
 from hexar.agent.skills import skills
@@ -31,6 +31,8 @@ FROM_RECORDING: dict[str, Answer] = {
     "start": lambda q, log, task: measures.start(log, task),
     "long": lambda q, log, task: measures.long(log, task),
     "when": when_at,
+    "at_place": at_place,
+    "route": lambda q, log, task: measures.far(log, task),
     "tasks": lambda q, log, task: sequence.tasks(log),
     "request": sequence.request,
     "place": place,

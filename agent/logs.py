@@ -14,10 +14,10 @@ from collections import Counter
 from dataclasses import dataclass
 
 from hexar.agent.content import task_name
-from hexar.agent.measures import hms, worked_until
+from hexar.agent.measures import worked_until
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import ERROR, WARN, LogLine
+from hexar.events.records import ERROR, WARN, LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import join_words

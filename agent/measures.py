@@ -15,14 +15,15 @@ from typing import Literal
 from hexar.agent.content import later_recoveries, task_name
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import calendar_day, clock
+from hexar.events.records import calendar_day, duration, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, positions, step_ref, step_words
 
 Measure = Literal["far", "fast", "start", "long", "when"]
 
-_PEOPLE = r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child)\b"
+_PEOPLE = (r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child|collision|"
+           r"obstacle|obstruction|object|thing|wall)\b")  # a distance no trip of mine measures
 # Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
 _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
@@ -77,21 +78,6 @@ class _Step:
     start: int
     end: int
     metres: float | None  # None: no position recorded while it ran
-
-
-def hms(t: int) -> str:
-    """A time of day to the second (the recording's stamps are UTC)."""
-    return clock(t).split(".")[0]
-
-
-def duration(ns: int) -> str:
-    s = round(max(ns, 0) / 1e9)
-    if s == 0:
-        return "less than a second"
-    if s < 60:
-        return f"{s} s"
-    m, s = divmod(s, 60)
-    return f"{m} min {s} s" if s else f"{m} min"
 
 
 def _points(log: EventLog, start: int, end: int) -> list[tuple[float, float]]:

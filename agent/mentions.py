@@ -42,6 +42,10 @@ _TERMS: dict[str, tuple[str, ...]] = {
     "controller": ("controller",), "joint": ("joint",), "version": ("version",), "distro": ("distro",),
     "hardware interface": ("hardware", "interface"), "interface": ("interface",), "pipeline": ("pipeline",),
     "gripper": ("gripper",), "group": ("group",), "topic": ("topic",), "parameter": ("param",),
+    "initial pose": ("initial pose", "initialpose", "initial_pose"), "odometry": ("odom",), "odom": ("odom",),
+    "lidar": ("lidar", "laser", "scan"), "laser": ("laser", "scan", "lidar"), "camera": ("camera", "image"),
+    "imu": ("imu",), "package": ("package", "library", "librar"), "resource": ("resource", "claim"),
+    "simulation": ("simulation", "simulator", "gazebo", "paused", "pause"), "permission": ("permission", "denied"),
     "param": ("param",), "yaml": ("yaml",), "config": ("config", "yaml"),
 }
 _NAMES = "|".join(sorted((re.escape(t) for t in _TERMS), key=len, reverse=True))
@@ -52,10 +56,14 @@ MENTIONS = re.compile(
     r"that) )?((?!(did|do|does|has|have|had|can|could|would|will|should|happened|went|made|caused)\b)[a-z_]+ ){0,3}?"
     r"(" + _NAMES + r")s?\b|"
     + _LEAD + r"(is|was|are|were|did you set) ((my|the|your) )?(" + _NAMES + r")s?( [a-z]+)? "
-    r"(set|on|true|false|enabled|"
+    r"(set|on|true|false|enabled|published|publishing|running|working|alive|paused|"
     r"right|correct|ok|okay|configured|defined|loaded|missing|there)\b|"
     + _LEAD + r"(where|which one) (is|was|are|were) ((my|the|your) )?([a-z_]+ )?(" + _NAMES + r")s?\b")
-QUOTED_LINES = 3
+# The named things that are settings: where no line names one, the answer says where its value is kept.
+_SETTINGS = frozenset({"footprint", "tolerance", "threshold", "timeout", "baud", "baud rate", "port", "use_sim_time",
+                       "sim time", "inflation", "radius", "rate", "frequency", "velocity", "speed", "parameter",
+                       "param", "yaml", "config", "progress checker", "goal checker", "namespace", "kinematics",
+                       "solver", "ik", "initial pose"})
 
 
 def mentions_kind(q: str) -> str | None:
@@ -93,7 +101,8 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
         where = f"no line of my log ({c.ROSOUT}) up to the end of {name} names {missing}" if log.logs else \
             f"my recording holds no log lines ({c.ROSOUT})"
         text = (f"I can't tell: {where}, and my recording holds no parameter values, only what my nodes logged. "
-                "The parameter files or `ros2 param get` on the robot give it.")
+                "The parameter files or `ros2 param get` on the robot give it.") if set(terms) & _SETTINGS else \
+            f"I can't tell: {where}."
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
     when = f"before I began on {name}" if all(ln.t < task.created for ln in lines) else f"up to the end of {name}"
     n = len(lines)

@@ -45,6 +45,7 @@ _FIX = re.compile(
     r"what (should|do|can|must) (i|we) (need to |have to )?(do|change|check|look at|look into|fix)\b|"
     r"what('s| is) the (fix|solution)|how to fix|what (would|do|should) you (recommend|suggest) (i|we) (do|change)|"
     r"how (do|can|should|could) (i|we) (turn|switch|shut|take) (\w+ ){0,2}off\b|"
+    r"how (do|can|should|could) (i|we) (install|add|get|build) (it|that|them|the [a-z_ ]+)\W*$|"
     r"^(\w+ )?should (i|we) (unplug|move|remove|clear|restart|reboot|turn off|switch off|change|raise|lower|"
     r"increase|decrease|set|tune)\b|"
     r"what should (i|we) (move|remove|clear|unplug|take away|get out of the way)\b|"

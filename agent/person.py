@@ -19,11 +19,12 @@ PERSON = re.compile(
     _LEAD + r"what did " + _WHO + r" (say|answer|reply|tell you|respond)\b|"
     + _LEAD + r"(what was|what's|what is) (their|her|his|the person's) (answer|reply|response)\b|"
     + _LEAD + r"why did(n't| not)? " + _WHO + r" (say no|refuse|decline|not help|help|say yes|agree|not answer|"
-              r"ignore (you|me)|not confirm)\b|"
+              r"ignore (you|me)|not confirm|confirm)\b|"
     + _LEAD + r"where (was|were|is|are) " + _WHO + r"\W*$|"
     + _LEAD + r"(what was|what's|what is|who was|who is) (her|his|their|the person's) name\b|"
     + _LEAD + r"(who|what) (was|is) (that|the) (person|human|man|woman)\b|"
-    + _LEAD + r"who (helped( you)?|said (no|yes)|declined|refused|agreed|answered|replied|confirmed)\b")
+    + _LEAD + r"who (helped( you)?|said (no|yes)|declined|refused|agreed|answered|replied|confirmed)\b|"
+    + _LEAD + r"how many (people|persons|humans|others) did you (meet|see|detect|find|ask|talk to|speak to)\b")
 _ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
 _CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
 
@@ -62,8 +63,11 @@ def person(question: str, log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer=NAME, text=text, causes=["planner.plan_ok"], enough_information=False)
     answered = _answered(steps)
     detected = steps.get("person_detected")
+    many = re.search(r"\bhow many\b", q) is not None
     if detected is None or detected.value != "True":
-        text = "I never detected anybody to ask, so my recording holds nothing of a person."
+        text = f"{'None: ' if many else ''}I never detected anybody to ask, so my recording holds nothing of a person."
+    elif many:
+        text = f"One, as far as my recording shows: the person I detected and asked for help; {answered}."
     elif re.search(r"\bname\b|^(\w+ )?who\b", q):
         text = ("My recording holds no name: I knew the person only as someone I detected and asked for help"
                 f"; {answered}.")

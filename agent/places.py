@@ -7,10 +7,11 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import goal_place, task_name, trips_words, where
-from hexar.agent.measures import hms, named_trip, trip_asked, when
+from hexar.agent.measures import named_trip, trip_asked, when
 from hexar.agent.overview import with_lead
 from hexar.events import contract as c
 from hexar.events.log import EventLog
+from hexar.events.records import hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, positions, step_ref
@@ -143,7 +144,7 @@ REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|
                      r"made it to|arrive (at|in)|arrived (at|in)|get into|go into|go to|drive to|"
                      r"end up (at|in))( the| your| my)? "
                      # "did you reach the goal?" asks whether the task was done (overview.yes_or_no)
-                     r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)\W*$)"
+                     r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)( or not)?\W*$)"
                      # "did you go to the wrong room?" asks about the plan, "... to the person?" about the help skill
                      r"(?!((the|your|my|a|an) )?(wrong|right|correct|same|other|another|person|people|someone|"
                      r"somebody|anyone|human|them|"
@@ -153,6 +154,46 @@ REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|
 
 
 _ROOM = re.compile(r"\b(?P<room>" + _ROOMS + r")\b")
+# "What did you do in the kitchen?": the steps between getting to a place and setting off from it.
+AT_PLACE = re.compile(r"^(and |so |but |ok |okay )?what (did you do|happened) (in|at) (the |my |your )?"
+                      r"(?P<room>" + _ROOMS + r")\W*$")
+# "What path did you take?", "which way did you go?": the legs I drove, in order, with their lengths.
+ROUTE = re.compile(r"^(and |so |but |ok |okay )?(what|which) (path|route|way) did you (take|follow|go|drive|use)\b|"
+                   r"^(and |so |but |ok |okay )?which way did you (go|come|drive)\b|"
+                   r"^(and |so |but |ok |okay )?did you (go|take) the (right|wrong|best|shortest|long) "
+                   r"(way|path|route)\b")
+
+
+def at_place(question: str, log: EventLog, task: Task) -> Explanation:
+    """The steps I ran at the place asked about: from the step that got me there to the next step that drove."""
+    q = " ".join(question.lower().replace("_", " ").split())
+    m = AT_PLACE.search(q)
+    room = m["room"] if m is not None else "place"
+    trip = named_trip(q, log, task)
+    if trip is None or trip[1].state != "succeeded":  # never went there, or never got there: when_at says which
+        return when_at(f"when did you reach the {room}?", log, task)
+    owner, run = trip
+    after = owner.skills[run.index + 1:]
+    there = []
+    for step in after:
+        if step.skill in NAV_SKILLS:
+            break
+        there.append(step)
+    place = place_name(str(run.params.get("location", "")))
+    arrived = f"I got to {place} at {hms(run.last_change)} UTC"
+    if not there:
+        nxt = f"; I went on to step {after[0].index + 1} at once" if after else ", and that was the end of my plan"
+        text = f"Nothing there but arrive: {arrived}{nxt}."
+    else:
+        done = [f"{step_ref(s)}, which {_STEP_ENDED.get(s.state, s.state)}" for s in there]
+        text = f"{arrived}; there I ran {join_words(done)}."
+    ev = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=s.last_change, item=f"step {s.index + 1}: "
+                   f"{s.label()} {s.state}") for s in [run, *there]]
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=ev)
+
+
+_STEP_ENDED = {"succeeded": "went as planned", "failed": "failed", "canceled": "was canceled",
+               "waiting": "never started", "running": "was still under way when my recording ends"}
 
 
 def when_at(question: str, log: EventLog, task: Task) -> Explanation:

@@ -115,7 +115,9 @@ _DEVELOPER = (
     "critics costmap costmaps footprint inflation radius waypoint waypoints dock docking docked undock behavior "
     "behaviour bt xml amcl odom odometry lidar scan laser imu ik kinematics solver solvers planner planners "
     "pipeline octomap collision collisions scene gripper grasp link links urdf srdf description log logs warning "
-    "warnings line lines set value values loaded load running exception exceptions crash crashed died exit code"
+    "warnings line lines set value values loaded load running exception exceptions crash crashed died exit code "
+    "simulation simulator gazebo paused pause unpause published publish publishes publishing package packages "
+    "install installed permission permissions resource resources namespace namespaces initial"
 )
 
 

@@ -5,9 +5,8 @@ from __future__ import annotations
 
 import re
 
-from hexar.agent.measures import duration, hms
 from hexar.events.log import EventLog
-from hexar.events.records import calendar_day
+from hexar.events.records import calendar_day, duration, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import join_words

@@ -7,11 +7,12 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import task_name
-from hexar.agent.measures import duration, hms, recorded_until
+from hexar.agent.measures import recorded_until
 from hexar.agent.objects import step_place
 from hexar.agent.overview import steps_summary
 from hexar.events import contract as c
 from hexar.events.log import EventLog
+from hexar.events.records import duration, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.planner import step_outcome

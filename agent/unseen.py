@@ -16,12 +16,14 @@ from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
 _LEAD = r"^(and |so |but |ok |okay )?"
-CONTACT = re.compile(_LEAD + r"(did|have) you (hit|bump(ed)? into|run into|ran into|crash(ed)? into|collide with|"
+CONTACT = re.compile(_LEAD + r"(did|have) (you|the arm|your arm|the gripper|the robot) (hit|bump(ed)? into|run into|"
+                     r"ran into|crash(ed)? into|collide with|"
                      r"touch|knock(ed)? (over|into)|drive into|drove into) (anything|something|anyone|someone|"
                      r"somebody|anybody|it|that|a [a-z]+|the [a-z]+)\b")
 WHAT_BLOCKED = re.compile(_LEAD + r"what (was|were|is) (in (the|your|my) way|blocking (you|your path|the way|the "
                           r"path)|the (obstacle|obstruction|blockage))\b|"
                           + _LEAD + r"what (blocked|stopped) (you|your path|the way|the path)\b|"
+                          + _LEAD + r"what (was|is) (ahead of|in front of) (you|me|the robot)\b|"
                           + _LEAD + r"what (kind of|sort of)? ?(obstacle|thing|object) (was it|blocked you)\b|"
                           + _LEAD + r"(was|is) (the|a) door (closed|shut|open|locked)\b|"
                           + _LEAD + r"where (was|is|were|are) (the|that|this) (obstacles?|obstructions?|blockages?|"

@@ -32,6 +32,22 @@ def clock(t: int) -> str:
     return wall + f".{t // 1_000_000 % 1000:03d}"
 
 
+def hms(t: int) -> str:
+    """A time of day to the second (the recording's stamps are UTC)."""
+    return clock(t).split(".")[0]
+
+
+def duration(ns: int) -> str:
+    """A span as said: "less than a second", "36 s", "1 min 5 s"."""
+    s = round(max(ns, 0) / 1e9)
+    if s == 0:
+        return "less than a second"
+    if s < 60:
+        return f"{s} s"
+    m, s = divmod(s, 60)
+    return f"{m} min {s} s" if s else f"{m} min"
+
+
 # Before 2000 on a robot's clock: a simulator's time, which starts at zero, so no calendar day.
 SIM_CLOCK_NS = 946_684_800 * 1_000_000_000
 

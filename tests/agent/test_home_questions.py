@@ -121,3 +121,34 @@ def test_whether_anyone_was_found_is_the_help_skill_s_and_what_i_cannot_do(suite
     (cannot,) = converse(suite / "bagfile_4_1", "what can't you do?")
     assert str(cannot["answer"]).startswith("I cannot manipulate objects: to fetch something I ask a person to put "
                                             "it on my tray. My skills are to say something aloud (say)")
+
+
+def test_what_i_did_in_a_room_the_way_i_went_and_whom_i_met(suite: Path) -> None:
+    kitchen, way, met = converse(suite / "bagfile_10_1", "what did you do in the kitchen?", "what path did you take?",
+                                 "how many people did you meet?")
+    assert kitchen["answer"] == ("I got to the kitchen at 20:10:34 UTC; there I ran step 2 (to ask someone for help), "
+                                 "which went as planned.")
+    assert str(way["answer"]).startswith('For your request "Bring me a coffee from the kitchen", I drove about 14.3 m: '
+                                         "6.0 m to go to the kitchen (14 s)")
+    assert met["answer"] == ("One, as far as my recording shows: the person I detected and asked for help; they "
+                             "agreed to help, and then confirmed that they had helped.")
+    (never,) = converse(suite / "bagfile_5_1", "what did you do in the kitchen?")
+    assert never["answer"] == ("I never got to the kitchen: I set off at 15:10:11 UTC and gave up at 15:10:48, 36 s "
+                               "later.")
+
+
+def test_flag_times_and_getting_to_the_person(suite: Path) -> None:
+    (unplugged,) = converse(suite / "bagfile_7_2", "when did you get unplugged?")
+    assert str(unplugged["answer"]).startswith("My charging flag (/power/is_charging) was on from when I began")
+    assert "the whole 1 min I worked on it" in str(unplugged["answer"])
+    (slow,) = converse(suite / "bagfile_17_1", "why did it take so long to get to the person?")
+    assert str(slow["answer"]).startswith("I got help, but my approach to the person was poor")
+    (polite,) = converse(suite / "bagfile_15_2", "did you say please?")
+    assert str(polite["answer"]).startswith('Step 2 of my plan was to ask someone for help ("Could you please put the '
+                                            'book on my tray?").')
+
+
+def test_why_the_person_did_not_confirm_is_not_recorded(suite: Path) -> None:
+    (asked,) = converse(suite / "bagfile_16_1", "why didn't they confirm?")
+    assert str(asked["answer"]).startswith("I can't tell why: my recording holds only that they agreed to help, and "
+                                           "then never confirmed that they had helped")

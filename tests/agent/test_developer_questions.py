@@ -1,0 +1,70 @@
+"""Questions a developer asks of a real recording (rosbags files written from real Nav2 and module excerpts, tasks
+derived from their logs) and of the simulated arm, answered from what the logs hold: the named thing's lines, a
+sensor the log never names, the staleness of a state, whether a goal was reached, and a request to install."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.followups import content_kind
+from hexar.agent.overview import asks_fix
+from hexar.evals import real_nav2
+from hexar.evals.scenarios.arm import simulate_arm_suite
+from tests.agent.helpers import converse, real_module_run
+
+
+def _real(case_id: str, out: Path) -> Path:
+    case = next(e for e in real_nav2.corpus() if e.id == case_id)
+    return real_nav2.write_recording(case, out, task=False)
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("what is the initial pose?", "mentions"), ("is odometry published?", "mentions"),
+    ("is the lidar working?", "mentions"), ("what resource?", "mentions"), ("was the simulation paused?", "mentions"),
+    ("did you reach the goal or not?", None), ("how far was the collision?", None),
+    ("what was ahead of you?", "blocked"), ("did the arm hit something?", "contact"),
+])
+def test_kinds(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_a_goal_reached_or_not_is_the_goal_s_outcome(tmp_path: Path) -> None:
+    (asked,) = converse(_real("nav2-1367-reached-goal-but-navigation-failed", tmp_path / "run"),
+                        "did you reach the goal or not?")
+    assert asked["answer"] == ("No. My navigation to the goal at (0.58, -0.55) failed, but my navigation logs do not "
+                               "show why.")
+
+
+def test_a_sensor_the_log_names_and_one_it_never_does(tmp_path: Path) -> None:
+    (odom,) = converse(_real("tb3-ue-37-no-odom-published", tmp_path / "odom"), "is odometry published?")
+    assert str(odom["answer"]).startswith(
+        "My log names odometry in 1 line up to the end of the navigation goal: at 14:21:47, "
+        'local_costmap.local_costmap (INFO) "Timed out waiting for transform from base_link to odom to become '
+        "available")
+    (lidar,) = converse(_real("tb4-318-lidar-create3-clock", tmp_path / "lidar"), "is the lidar working?")
+    text = str(lidar["answer"])
+    # no line names it, and a sensor is no setting: nothing said of parameter files
+    assert text.startswith("I can't tell: no line of my log (/rosout) up to the end of the navigation goal names "
+                           "lidar. My navigation to my goal did not finish")
+    assert "ros2 param" not in text
+
+
+def test_a_resource_conflict_is_quoted(tmp_path: Path) -> None:
+    (asked,) = converse(real_module_run("moveit2-2698-dual-arm-resource-conflict", tmp_path / "run"), "what resource?")
+    assert "\"Resource conflict for controller 'both_arm_controller'. Command interface 'robot_joint1_l/position' " \
+           "is already claimed.\"" in str(asked["answer"])
+
+
+def test_how_old_the_state_was_quotes_the_state_monitor(tmp_path: Path) -> None:
+    simulate_arm_suite(tmp_path, only=lambda s, v: v == 2 and s == "stale_state")
+    (asked,) = converse(tmp_path / "armfile_stale_state_2", "how old was the joint state?")
+    text = str(asked["answer"])
+    assert text.startswith("I couldn't finish picking up the apple because the joint states MoveIt received were "
+                           "older than the time it asked for")
+    assert "latest received state has time" in text
+
+
+def test_install_is_a_fix_question() -> None:
+    assert asks_fix("how do I install it?") and asks_fix("how can we install the navfn planner")
