@@ -10,7 +10,10 @@ catalogue):
 - a Nav2 recovery: behavior_server's "Running %s" ("Attempting %s" up to Galactic), a costmap's "Received request to
   clear entirely the ...";
 - a MoveIt planning request: move_group's "Planning request received for MoveGroup action..." or "Combined planning
-  and execution request received for MoveGroup action...", else one per "Unable to solve the planning problem".
+  and execution request received for MoveGroup action...", else one per "Unable to solve the planning problem";
+- a path found invalid on the way, which the behaviour tree plans anew: "Path validation failed. Invalid pose indices:
+  [...]" (nav2_behavior_tree validate_path_action.cpp:74, lyrical and main), and MPPI restarting its optimisation,
+  "Soft reset triggered by trajectory validator" (nav2_mppi_controller optimizer.cpp:249, lyrical and main).
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ TRIED = re.compile(
     r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
     r"^(and |so |but |ok |okay )?how many (attempts|tries|retries|re-?plans|recoveries)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
+    r"^(and |so |but |ok |okay )?why did (you|it|the planner|nav2) (re-?plan|replanned|re-?route)\b|"
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
     r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")
 _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
@@ -43,6 +47,8 @@ _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"
            # "GridBasedplugin failed to plan from" as a Jazzy robot logged it (the format has no space)
            re.compile(r"^\S+?\s?plugin failed to plan (from|calculation to|through)"))
 _CLEAR = re.compile(r"^Received request to clear entirely the (?P<which>\w+)")
+_INVALID = re.compile(r"^Path validation failed\. Invalid pose indices")
+_SOFT_RESET = re.compile(r"^Soft reset triggered by trajectory validator")
 _MOVEIT_REQUEST = re.compile(r"^(Combined planning and execution|Planning) request received for MoveGroup action")
 _MOVEIT_FAILED = re.compile(r"(?:^|\]:? )Unable to solve the planning problem")
 _RECOVERY_WORDS = {"spin": ("a spin", "spins"), "backup": ("a backup", "backups"), "back_up": ("a backup", "backups"),
@@ -76,6 +82,10 @@ def _tags(line: LogLine) -> list[str]:
     tags = [f"replan{i}" for i, p in enumerate(_REPLAN) if p.search(msg)]
     if _CLEAR.match(msg):
         tags.append("clear")
+    if _INVALID.match(msg):
+        tags.append("invalid")
+    if _SOFT_RESET.match(msg):
+        tags.append("soft_reset")
     if _MOVEIT_REQUEST.match(msg):
         tags.append("moveit")
     if _MOVEIT_FAILED.search(line.msg):
@@ -105,6 +115,11 @@ def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
         said.append(f"I ran {_recoveries(recoveries)}")
     if counts["clear"]:
         said.append(f"I cleared my costmaps {_times(counts['clear'])}")
+    if counts["invalid"]:
+        said.append(f"my path was found to cross an obstacle in my costmap {_times(counts['invalid'])}, so I "
+                    "planned a new one")
+    if counts["soft_reset"]:
+        said.append(f"my controller started its trajectory optimisation over {_times(counts['soft_reset'])}")
     if moveit > 1:
         said.append(f"I asked my motion planner for a plan {_times(moveit)}")
     # a failed MoveIt plan is told by its request's line, not shown twice

@@ -119,10 +119,17 @@ _MODULE_WORDS = {
 }
 
 
+# "why are scans dropped?": data a node dropped, not something the arm let fall
+_DATA_DROPPED = re.compile(r"\b(scans?|messages?|msgs?|frames?|packets?|data|transforms?|tfs?|points?|clouds?|"
+                           r"images?|goals?|requests?|connections?)( (are|were|is|was|being|get|got|getting))? "
+                           r"dropp(ed|ing)\b|\bdropp(ed|ing) (scans?|messages?|frames?|packets?|data|transforms?)\b")
+
+
 def module_asked(question: str) -> str | None:
     """The one module a question names by what it does ('manipulation' for "why did you drop it?"), else None."""
     q = normalise(question)
-    named = [module for module, words in _MODULE_WORDS.items() if words.search(q)]
+    named = [module for module, words in _MODULE_WORDS.items() if words.search(q)
+             and not (module == "manipulation" and _DATA_DROPPED.search(q))]
     return named[0] if len(named) == 1 else None
 
 

@@ -19,7 +19,7 @@ from hexar.agent.probes import finding, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import LogLine
+from hexar.events.records import WARN, LogLine
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
@@ -46,6 +46,8 @@ _TERMS: dict[str, tuple[str, ...]] = {
     "lidar": ("lidar", "laser", "scan"), "laser": ("laser", "scan", "lidar"), "camera": ("camera", "image"),
     "imu": ("imu",), "package": ("package", "library", "librar"), "resource": ("resource", "claim"),
     "simulation": ("simulation", "simulator", "gazebo", "paused", "pause"), "permission": ("permission", "denied"),
+    "plugin": ("plugin",), "library": ("librar",), "ekf": ("ekf",), "detector": ("detector", "detection"),
+    "qos": ("qos", "durability", "reliability"), "behavior server": ("behavior_server", "behavior server"),
     "param": ("param",), "yaml": ("yaml",), "config": ("config", "yaml"),
 }
 _NAMES = "|".join(sorted((re.escape(t) for t in _TERMS), key=len, reverse=True))
@@ -58,7 +60,9 @@ MENTIONS = re.compile(
     + _LEAD + r"(is|was|are|were|did you set) ((my|the|your) )?(" + _NAMES + r")s?( [a-z]+)? "
     r"(set|on|true|false|enabled|published|publishing|running|working|alive|paused|"
     r"right|correct|ok|okay|configured|defined|loaded|missing|there)\b|"
-    + _LEAD + r"(where|which one) (is|was|are|were) ((my|the|your) )?([a-z_]+ )?(" + _NAMES + r")s?\b")
+    + _LEAD + r"(where|which one) (is|was|are|were) ((my|the|your) )?([a-z_]+ )?(" + _NAMES + r")s?\b|"
+    + _LEAD + r"(is|was|are|were) ((my|the|your) )?[a-z_]+ (using|on|set to|publishing|reading|getting|receiving) "
+    r"((my|the|your) )?(" + _NAMES + r")s?\b")
 # The named things that are settings: where no line names one, the answer says where its value is kept.
 _SETTINGS = frozenset({"footprint", "tolerance", "threshold", "timeout", "baud", "baud rate", "port", "use_sim_time",
                        "sim time", "inflation", "radius", "rate", "frequency", "velocity", "speed", "parameter",
@@ -104,9 +108,14 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
                 "The parameter files or `ros2 param get` on the robot give it.") if set(terms) & _SETTINGS else \
             f"I can't tell: {where}."
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
+    # a start-up's routine lines ("waypoint_follower lifecycle node launched") say less than a warning about it
+    routine = len(lines)
+    lines = [ln for ln in lines if ln.level >= WARN] or lines
+    routine -= len(lines)
     when = f"before I began on {name}" if all(ln.t < task.created for ln in lines) else f"up to the end of {name}"
     n = len(lines)
-    text = (f"My log names {' and '.join(found)} in {n} line{'s' if n > 1 else ''} {when}: "
+    level = f" at warning or error level ({routine} more at info level)" if routine else ""
+    text = (f"My log names {' and '.join(found)} in {n} line{'s' if n > 1 else ''}{level} {when}: "
             f"{quote(lines, False, True)}.")
     if len(found) < len(terms):
         text += f" No line names {missing}."

@@ -29,7 +29,7 @@ _WHOLE = re.compile(
     r"^(so |and |ok |okay )?(tell me )?what (happened|did you do|have you done)( (here|there|today|then))?\W*$|"
     r"^(so |and |ok |okay )?(did|have) you (finish(ed)?|complete(d)?|(do|done) (it|everything)|manage(d)?|"
     r"make it|made it|succeed(ed)?)"
-    r"( (it|the task|your task|the job|everything))?\W*$"
+    r"( (it|the task|your task|the job|everything|the mission|your mission|the errand|the route|the waypoints))?\W*$"
 )
 # A fix asked for: the same words as a "what would have helped?" follow-up (agent/followups.py).
 # "Which parameter should I change?": a developer's way of asking for the fix.
@@ -130,6 +130,10 @@ _ASKS_YES_NO = re.compile(_LEAD + r"(?:was|were|wasn't|weren't|is|are|isn't|aren
                           r"hadn't|hasn't|could|couldn't)\b")
 
 
+_GOOD = re.compile(r"\b(good|fine|ok|okay|alright|all right|accurate|correct|right|healthy|stable|working|reliable|"
+                   r"precise)\W*$")
+
+
 def confirmed(question: str, causes: Set[str], benign: Set[str]) -> str:
     """"Yes." for a yes-or-no question about a cause the answer states ("were you charging?" when I was), "No." for
     one about a problem where the answer found nothing wrong; "" otherwise: where another problem was found, the
@@ -146,9 +150,11 @@ def confirmed(question: str, causes: Set[str], benign: Set[str]) -> str:
         return ""
     vocab = vocabulary()
     stated = set(causes) | {i for c in causes if c in vocab for i in vocab[c].implies}
+    # "was localization good?" names the cause (poor localisation) but asks whether it went well: the answer flips
+    good = _GOOD.search(q) is not None
     if asked <= stated:
-        return "Yes."
-    return "No." if set(causes) <= set(benign) else ""
+        return "No." if good else "Yes."
+    return ("Yes." if good else "No.") if set(causes) <= set(benign) else ""
 
 
 def with_lead(text: str, lead: str) -> str:

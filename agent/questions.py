@@ -117,7 +117,9 @@ _DEVELOPER = (
     "pipeline octomap collision collisions scene gripper grasp link links urdf srdf description log logs warning "
     "warnings line lines set value values loaded load running exception exceptions crash crashed died exit code "
     "simulation simulator gazebo paused pause unpause published publish publishes publishing package packages "
-    "install installed permission permissions resource resources namespace namespaces initial"
+    "install installed permission permissions resource resources namespace namespaces initial localization "
+    "localisation localize localise ekf ukf detector detectors qos durability reliability library libraries mission "
+    "good bad accurate inaccurate healthy correct incorrect wifi"
 )
 
 

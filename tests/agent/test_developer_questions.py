@@ -68,3 +68,36 @@ def test_how_old_the_state_was_quotes_the_state_monitor(tmp_path: Path) -> None:
 
 def test_install_is_a_fix_question() -> None:
     assert asks_fix("how do I install it?") and asks_fix("how can we install the navfn planner")
+
+
+def _blind(case_id: str, out: Path) -> Path:
+    case = next(e for r in range(1, 30) for e in real_nav2.blind_set(r) if e.id == case_id)
+    return real_nav2.write_recording(case, out, task=False)
+
+
+def test_a_path_found_invalid_and_an_optimiser_reset_are_tries(tmp_path: Path) -> None:
+    run = _blind("nav2-guide-fork-run4-mppi-soft-reset-path-invalid-replanned-succeeded", tmp_path / "run")
+    (why,) = converse(run, "why did you replan?")
+    assert why["answer"] == (
+        "For step 1 (to drive to (-1.50, 1.50)), my path was found to cross an obstacle in my costmap once, so I "
+        "planned a new one and my controller started its trajectory optimisation over twice, and the step went "
+        "through in the end.")
+
+
+def test_quality_asked_as_good_flips_the_yes_or_no(tmp_path: Path, suite: Path) -> None:
+    (nominal,) = converse(_blind("kilted-nav2-amcl-nominal", tmp_path / "run"), "was localization good?")
+    assert str(nominal["answer"]).startswith("Yes. I reached the goal at (10.00, 4.00) without any problem.")
+    good, poor = converse(suite / "bagfile_8_1", "was localization good?", "was your localization poor?")
+    assert str(good["answer"]).startswith("No. I reached the kitchen, but slowly and unsteadily")
+    assert str(poor["answer"]).startswith("Yes. I reached the kitchen, but slowly and unsteadily")
+
+
+def test_start_up_lines_give_way_to_warnings_and_data_dropped_is_no_arm(tmp_path: Path) -> None:
+    (plugin,) = converse(_blind("kilted-nav2-smoother-plugin-misspelt", tmp_path / "sm"), "what is the plugin called?")
+    assert str(plugin["answer"]).startswith("My log names plugin in 1 line at warning or error level (20 more at info "
+                                            "level) up to the end of the navigation goal: at 09:48:48, smoother_server "
+                                            '(FATAL) "Failed to create smoother.')
+    (dropped,) = converse(_blind("roverrobotics-19-ekf-wall-time-slam-drops-sim-scans", tmp_path / "rr"),
+                          "why are scans dropped?")
+    assert "arm" not in str(dropped["answer"])
+    assert "Message Filter dropping message" in str(dropped["answer"])
