@@ -47,9 +47,10 @@ def test_the_lines_that_name_it_are_quoted_with_their_node(tmp_path: Path) -> No
         'the costmap.". I read no parameter values, only what my nodes logged.')
     assert any("no robot footprint provided" in e["item"] for e in footprint["evidence"])  # type: ignore[union-attr]
     (dock,) = converse(_real("mowgli-486-dock-charge-timeout", tmp_path / "dock"), "which dock?")
-    assert str(dock["answer"]).startswith("My log names dock in 8 lines up to the end of the navigation goal: at "
-                                          '10:33:12, a node (ERROR) "Docking failed, will retry: Timed out waiting '
-                                          'for charge to start" (2 times);')
+    assert str(dock["answer"]).startswith("My log names dock in 4 lines at warning or error level (4 more at info "
+                                          "level) up to the end of the navigation goal: at 10:33:12, a node (ERROR) "
+                                          '"Docking failed, will retry: Timed out waiting for charge to start" (2 '
+                                          "times);")
 
 
 def test_what_no_line_names_is_said_beside_what_one_does(tmp_path: Path) -> None:
