@@ -54,3 +54,12 @@ def real_module_run(case_id: str, out: Path) -> Path:
 
     case = next(e for e in real_modules.load_excerpts("real-modules") if e.id == case_id)
     return Path(real_modules.write_recording(case, out, task=False))
+
+
+def real_nav2_run(case_id: str, out: Path) -> Path:
+    """The real Nav2 excerpt `case_id` (the corpus or a blind set, evals/data/real_nav2) written with rosbags at
+    `out`, its task derived from its logs."""
+    from hexar.evals import real_nav2
+
+    cases = [*real_nav2.corpus(), *(e for r in range(1, 30) for e in real_nav2.blind_set(r))]
+    return Path(real_nav2.write_recording(next(e for e in cases if e.id == case_id), out, task=False))

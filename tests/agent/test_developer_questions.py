@@ -10,14 +10,8 @@ import pytest
 
 from hexar.agent.followups import content_kind
 from hexar.agent.overview import asks_fix
-from hexar.evals import real_nav2
 from hexar.evals.scenarios.arm import simulate_arm_suite
-from tests.agent.helpers import converse, real_module_run
-
-
-def _real(case_id: str, out: Path) -> Path:
-    case = next(e for e in real_nav2.corpus() if e.id == case_id)
-    return real_nav2.write_recording(case, out, task=False)
+from tests.agent.helpers import converse, real_module_run, real_nav2_run
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -31,19 +25,19 @@ def test_kinds(question: str, kind: str | None) -> None:
 
 
 def test_a_goal_reached_or_not_is_the_goal_s_outcome(tmp_path: Path) -> None:
-    (asked,) = converse(_real("nav2-1367-reached-goal-but-navigation-failed", tmp_path / "run"),
+    (asked,) = converse(real_nav2_run("nav2-1367-reached-goal-but-navigation-failed", tmp_path / "run"),
                         "did you reach the goal or not?")
     assert asked["answer"] == ("No. My navigation to the goal at (0.58, -0.55) failed, but my navigation logs do not "
                                "show why.")
 
 
 def test_a_sensor_the_log_names_and_one_it_never_does(tmp_path: Path) -> None:
-    (odom,) = converse(_real("tb3-ue-37-no-odom-published", tmp_path / "odom"), "is odometry published?")
+    (odom,) = converse(real_nav2_run("tb3-ue-37-no-odom-published", tmp_path / "odom"), "is odometry published?")
     assert str(odom["answer"]).startswith(
         "My log names odometry in 1 line up to the end of the navigation goal: at 14:21:47, "
         'local_costmap.local_costmap (INFO) "Timed out waiting for transform from base_link to odom to become '
         "available")
-    (lidar,) = converse(_real("tb4-318-lidar-create3-clock", tmp_path / "lidar"), "is the lidar working?")
+    (lidar,) = converse(real_nav2_run("tb4-318-lidar-create3-clock", tmp_path / "lidar"), "is the lidar working?")
     text = str(lidar["answer"])
     # no line names it, and a sensor is no setting: nothing said of parameter files
     assert text.startswith("I can't tell: no line of my log (/rosout) up to the end of the navigation goal names "
@@ -70,13 +64,9 @@ def test_install_is_a_fix_question() -> None:
     assert asks_fix("how do I install it?") and asks_fix("how can we install the navfn planner")
 
 
-def _blind(case_id: str, out: Path) -> Path:
-    case = next(e for r in range(1, 30) for e in real_nav2.blind_set(r) if e.id == case_id)
-    return real_nav2.write_recording(case, out, task=False)
-
 
 def test_a_path_found_invalid_and_an_optimiser_reset_are_tries(tmp_path: Path) -> None:
-    run = _blind("nav2-guide-fork-run4-mppi-soft-reset-path-invalid-replanned-succeeded", tmp_path / "run")
+    run = real_nav2_run("nav2-guide-fork-run4-mppi-soft-reset-path-invalid-replanned-succeeded", tmp_path / "run")
     (why,) = converse(run, "why did you replan?")
     assert why["answer"] == (
         "For step 1 (to drive to (-1.50, 1.50)), my path was found to cross an obstacle in my costmap once, so I "
@@ -85,7 +75,7 @@ def test_a_path_found_invalid_and_an_optimiser_reset_are_tries(tmp_path: Path) -
 
 
 def test_quality_asked_as_good_flips_the_yes_or_no(tmp_path: Path, suite: Path) -> None:
-    (nominal,) = converse(_blind("kilted-nav2-amcl-nominal", tmp_path / "run"), "was localization good?")
+    (nominal,) = converse(real_nav2_run("kilted-nav2-amcl-nominal", tmp_path / "run"), "was localization good?")
     assert str(nominal["answer"]).startswith("Yes. I reached the goal at (10.00, 4.00) without any problem.")
     good, poor = converse(suite / "bagfile_8_1", "was localization good?", "was your localization poor?")
     assert str(good["answer"]).startswith("No. I reached the kitchen, but slowly and unsteadily")
@@ -93,11 +83,12 @@ def test_quality_asked_as_good_flips_the_yes_or_no(tmp_path: Path, suite: Path) 
 
 
 def test_start_up_lines_give_way_to_warnings_and_data_dropped_is_no_arm(tmp_path: Path) -> None:
-    (plugin,) = converse(_blind("kilted-nav2-smoother-plugin-misspelt", tmp_path / "sm"), "what is the plugin called?")
+    (plugin,) = converse(real_nav2_run("kilted-nav2-smoother-plugin-misspelt", tmp_path / "sm"),
+                         "what is the plugin called?")
     assert str(plugin["answer"]).startswith("My log names plugin in 1 line at warning or error level (20 more at info "
                                             "level) up to the end of the navigation goal: at 09:48:48, smoother_server "
                                             '(FATAL) "Failed to create smoother.')
-    (dropped,) = converse(_blind("roverrobotics-19-ekf-wall-time-slam-drops-sim-scans", tmp_path / "rr"),
+    (dropped,) = converse(real_nav2_run("roverrobotics-19-ekf-wall-time-slam-drops-sim-scans", tmp_path / "rr"),
                           "why are scans dropped?")
     assert "arm" not in str(dropped["answer"])
     assert "Message Filter dropping message" in str(dropped["answer"])

@@ -10,9 +10,8 @@ import pytest
 
 from hexar.agent.followups import content_kind
 from hexar.agent.mentions import asked_terms
-from hexar.evals import real_nav2
 from hexar.evals.scenarios.arm import simulate_arm_suite
-from tests.agent.helpers import converse, real_module_run
+from tests.agent.helpers import converse, real_module_run, real_nav2_run
 
 
 @pytest.mark.parametrize(("question", "kind"), [
@@ -34,19 +33,15 @@ def test_the_longest_name_is_asked_for() -> None:
     assert asked_terms("what baud rate did it use?") == ["baud rate"]
 
 
-def _real(case_id: str, out: Path) -> Path:
-    case = next(e for e in real_nav2.corpus() if e.id == case_id)
-    return real_nav2.write_recording(case, out, task=False)
-
 
 def test_the_lines_that_name_it_are_quoted_with_their_node(tmp_path: Path) -> None:
-    (footprint,) = converse(_real("tb4-591-jazzy-no-footprint", tmp_path / "fp"), "what is my footprint?")
+    (footprint,) = converse(real_nav2_run("tb4-591-jazzy-no-footprint", tmp_path / "fp"), "what is my footprint?")
     assert footprint["answer"] == (
         'My log names footprint in 1 line up to the end of the navigation goal: at 13:06:22, controller_server '
         '(ERROR) "Original error: Considering footprint in collision checking but no robot footprint provided in '
         'the costmap.". I read no parameter values, only what my nodes logged.')
     assert any("no robot footprint provided" in e["item"] for e in footprint["evidence"])  # type: ignore[union-attr]
-    (dock,) = converse(_real("mowgli-486-dock-charge-timeout", tmp_path / "dock"), "which dock?")
+    (dock,) = converse(real_nav2_run("mowgli-486-dock-charge-timeout", tmp_path / "dock"), "which dock?")
     assert str(dock["answer"]).startswith("My log names dock in 4 lines at warning or error level (4 more at info "
                                           "level) up to the end of the navigation goal: at 10:33:12, a node (ERROR) "
                                           '"Docking failed, will retry: Timed out waiting for charge to start" (2 '
@@ -54,13 +49,13 @@ def test_the_lines_that_name_it_are_quoted_with_their_node(tmp_path: Path) -> No
 
 
 def test_what_no_line_names_is_said_beside_what_one_does(tmp_path: Path) -> None:
-    run = _real("nav2-3746-sim-time-extrapolation", tmp_path / "tf")
+    run = real_nav2_run("nav2-3746-sim-time-extrapolation", tmp_path / "tf")
     (tolerance,) = converse(run, "what's the transform tolerance?")
     text = str(tolerance["answer"])
     assert text.startswith("My log names transform in 2 lines")
     assert "No line names tolerance." in text
     # "which critic?" is a specific of the failure: the finding, then the lines it rests on (agent/cited.py)
-    (critic,) = converse(_real("nav2-3807-dwb-no-valid-trajectories", tmp_path / "dwb"),
+    (critic,) = converse(real_nav2_run("nav2-3807-dwb-no-valid-trajectories", tmp_path / "dwb"),
                          "which critic rejected the trajectories?")
     assert critic["answer"] == (
         "I couldn't reach my goal because my controller failed to compute velocity commands to follow the path. "
