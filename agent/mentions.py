@@ -8,6 +8,7 @@ parameters, instead of the task's finding with nothing on what was asked.
 from __future__ import annotations
 
 import re
+from functools import cache
 
 from hexar.agent.cited import asks_specific
 from hexar.agent.content import task_name
@@ -86,9 +87,19 @@ def asked_terms(q: str) -> list[str]:
     return found
 
 
-def _names(line: LogLine, spellings: tuple[str, ...]) -> bool:
-    text = f" {line.msg.lower().replace('_', ' ')} ".replace("use sim time", "use_sim_time")
-    return any(s in text or s.replace("_", " ") in text for s in spellings)
+@cache
+def _spelled(term: str) -> re.Pattern[str]:
+    """A term's spellings at the start of a word ("port" in "ports", not in "support"; "vel" in "cmd_vel", not in
+    "level"), a spelling that ends in a space a whole word ("ik")."""
+    ways = []
+    for s in _TERMS[term]:
+        word = re.escape(s.strip().replace("_", " "))
+        ways.append((r"\b" if s[0].isalnum() else "") + word + (r"\b" if s.endswith(" ") else ""))
+    return re.compile("|".join(ways))
+
+
+def _names(line: LogLine, term: str) -> bool:
+    return _spelled(term).search(line.msg.lower().replace("_", " ")) is not None
 
 
 def mentions(question: str, log: EventLog, task: Task) -> Explanation:
@@ -97,7 +108,7 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
     terms = asked_terms(q)
     name = task_name(task, log)
     end = worked_until(log, task)
-    named = {t: [ln for ln in log.logs if ln.t <= end and _names(ln, _TERMS[t])] for t in terms}
+    named = {t: [ln for ln in log.logs if ln.t <= end and _names(ln, t)] for t in terms}
     found = [t for t in terms if named[t]]
     missing = " or ".join(t for t in terms if not named[t]) or "that"
     lines = sorted({id(ln): ln for t in found for ln in named[t]}.values(), key=lambda ln: ln.t)
