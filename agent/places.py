@@ -159,9 +159,8 @@ AT_PLACE = re.compile(r"^(and |so |but |ok |okay )?what (did you do|happened) (i
                       r"(?P<room>" + _ROOMS + r")\W*$")
 # "What path did you take?", "which way did you go?": the legs I drove, in order, with their lengths.
 ROUTE = re.compile(r"^(and |so |but |ok |okay )?(what|which) (path|route|way) did you (take|follow|go|drive|use)\b|"
-                   r"^(and |so |but |ok |okay )?which way did you (go|come|drive)\b|"
-                   r"^(and |so |but |ok |okay )?did you (go|take) the (right|wrong|best|shortest|long) "
-                   r"(way|path|route)\b")
+                   # "did you go the wrong way?" asks for a judgement the legs do not give: the finding's
+                   r"^(and |so |but |ok |okay )?which way did you (go|come|drive)\b")
 
 
 def at_place(question: str, log: EventLog, task: Task) -> Explanation:

@@ -22,6 +22,8 @@ BLOCKED = "I couldn't reach the kitchen because something blocked my path and I 
     ("who helped you?", "person"), ("who said no?", "person"), ("when did you give up?", "when"),
     ("when did it fail?", "when"), ("are you okay?", "broken"), ("what did I ask for?", "request"),
     ("did you go to the kitchen?", "reached"), ("how long did it take?", "long"),
+    ("which way did you go?", "route"), ("what did you do in the kitchen?", "at_place"),
+    ("did you go the wrong way?", None),  # a judgement the legs driven do not give: the finding's
 ])
 def test_kinds(question: str, kind: str) -> None:
     assert content_kind(question) == kind
