@@ -5,6 +5,7 @@ the task's finding with no answer to the question. A recording without it says s
 from __future__ import annotations
 
 import re
+from typing import Literal
 
 from hexar.agent.content import task_name
 from hexar.agent.context import RunContext
@@ -46,6 +47,7 @@ _FLAGS: tuple[tuple[str, re.Pattern[str], str], ...] = (
 )
 
 
+Asked = Literal["yes_no", "timed", "who"]
 _HOW_LONG = re.compile(r"\bhow long\b|^(\w+ )?when\b")  # asked for the flag's times, not a yes or no
 _WHO = re.compile(r"^(\w+ )?who\b")
 # The navigation explainer's cause for a flag that held while a goal did not complete (navigation/detectors.py).
@@ -61,9 +63,9 @@ def _evidence(s: BoolSample) -> Evidence:
     return Evidence(cause="planner.plan_ok", topic=s.topic, t=s.t, item=f"data={s.value}")
 
 
-def flag(topic: str, log: EventLog, task: Task, timed: bool = False) -> Explanation:
-    """Yes (with when the flag on `topic` held, and for how long where `timed`), no, or that the recording holds no
-    such flag."""
+def flag(topic: str, log: EventLog, task: Task, asked: Asked = "yes_no") -> Explanation:
+    """Yes (with when the flag on `topic` held), no, or that the recording holds no such flag; asked "timed", when
+    and for how long it held, and asked "who", that a flag names nobody."""
     what = next(words for t, _, words in _FLAGS if t == topic)
     name = task_name(task, log)
     samples = sorted(log.flags.get(topic, []), key=lambda s: s.t)
@@ -80,19 +82,23 @@ def flag(topic: str, log: EventLog, task: Task, timed: bool = False) -> Explanat
                            evidence=[_evidence(samples[0])])
     held = [s for s in during if s.value]
     if not held:
-        text = f"No: my {what} ({topic}) stayed off while I worked on {name}."
+        lead = "Nobody, as far as my recording shows:" if asked == "who" else "No:"
+        text = f"{lead} my {what} ({topic}) stayed off while I worked on {name}."
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
                            evidence=[_evidence(during[0]), *([_evidence(during[-1])] if len(during) > 1 else [])])
     off = next((s for s in during if not s.value and s.t > held[0].t), None)
     since = "when I began" if held[0] is during[0] and held[0].t <= start else f"at {hms(held[0].t)} UTC"
     until = f", until {hms(off.t)} UTC" if off is not None else ""
-    text = f"Yes: my {what} ({topic}) was on from {since}{until}, while I worked on {name}."
-    if timed:
+    held_when = f"my {what} ({topic}) was on from {since}{until}, while I worked on {name}"
+    if asked == "timed":
         held_for = (off.t if off is not None else end) - max(held[0].t, start)
         whole = duration(end - start)
-        text = "M" + text.removeprefix("Yes: m").removesuffix(".") + (
-            f": the whole {whole} I worked on it." if duration(held_for) == whole else
-            f": {duration(held_for)} of the {whole} I worked on it.")
+        text = f"M{held_when[1:]}: " + (f"the whole {whole} I worked on it." if duration(held_for) == whole else
+                                        f"{duration(held_for)} of the {whole} I worked on it.")
+    elif asked == "who":  # a flag is no person: who held the joystick is never recorded
+        text = f"My recording does not say who: it holds only that {held_when}."
+    else:
+        text = f"Yes: {held_when}."
     evidence = [_evidence(held[0]), *([_evidence(off)] if off is not None else [])]
     return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence)
 
@@ -102,22 +108,15 @@ def flag_answer(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     explainer blames that very flag, its answer, led by "Yes."."""
     q = " ".join(state["question"].lower().split())
     topic = flag_asked(q) or c.IS_CHARGING
-    found = flag(topic, ctx.log, task, timed=_HOW_LONG.search(q) is not None)
-    if _WHO.search(q):  # a flag is no person: who held the joystick is never recorded
-        said = found.text
-        if said.startswith("Yes: my "):
-            said = "My recording does not say who: it holds only that " + said.removeprefix("Yes: ")
-        elif said.startswith("No: "):
-            said = "Nobody, as far as my recording shows: " + said.removeprefix("No: ")
-        found = found.model_copy(update={"text": said})
+    found = flag(topic, ctx.log, task, "timed" if _HOW_LONG.search(q) else "who" if _WHO.search(q) else "yes_no")
     name = ctx.registry.failure_explainer(task)
     failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
     if failed is None:
         return found
-    if found.text.startswith("Yes: ") and FLAG_CAUSE[topic] in failed.causes and not _HOW_LONG.search(q):
+    if found.text.startswith("Yes: ") and FLAG_CAUSE[topic] in failed.causes:  # only a yes-or-no is answered "Yes:"
         return failed.model_copy(update={"text": with_lead(failed.text, "Yes.")})
     # the flag decided the yes or no; what did stop me follows, as it would have been told
-    told = with_failure(ctx, state, found)
+    told = with_failure(ctx, state, found, failed)
     return told.model_copy(update={"text": f"{found.text} {failed.text}"}) if found.enough_information else told
 
 

@@ -151,7 +151,8 @@ def is_order(question: str) -> bool:
 def content_kind(question: str) -> str | None:
     """The kind of a question about what the robot did, its recording or where a failure lies: a name of
     _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault', 'lost', 'contact',
-    'blocked'), 'flag', 'limit', 'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when') or 'said'.
+    'blocked'), 'flag', 'limit', 'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when'), 'said', or
+    'mentions' (a named thing of the stack, looked up in the log, when nothing else took it).
     Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
     None for anything else."""
     from hexar.agent.measures import measure_kind

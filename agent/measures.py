@@ -22,15 +22,16 @@ from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place
 
 Measure = Literal["far", "fast", "start", "long", "when"]
 
-_PEOPLE = (r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child|collision|"
-           r"obstacle|obstruction|object|thing|wall)\b")  # a distance no trip of mine measures
+# A person's or an obstacle's distance: no trip of mine measures it (the help skill measures a person's).
+_NO_TRIP = (r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child|collision|"
+            r"obstacle|obstruction|object|thing|wall)\b")
 # Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
 _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
     ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
              r"\bwhat distance did you\b",
              # "how far away was the kitchen?": the way I drove there (a person's distance is the help skill's)
-             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|(the|your) (?!" + _PEOPLE + r")[a-z ]+)\b",
+             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|(the|your) (?!" + _NO_TRIP + r")[a-z ]+)\b",
              r"^(and |so |ok |okay )?how far (away )?(from|to) (the )?[a-z ]+ (is|was|were) (it|you)\b")),
     # average speeds from the same positions: a person asks it of a trip that felt slow
     ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",

@@ -138,8 +138,8 @@ def mentioned(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     """The lines that name what was asked; where none does, that, then the task's finding, which is all the
     recording has on it. "Why?" after either goes on to the failure."""
     asked = mentions(state["question"], ctx.log, task)
-    told = with_failure(ctx, state, asked)
-    if asked.enough_information:
+    found = finding(ctx, state)  # of a failed task, the failure: with_failure's own answer, not asked twice
+    told = with_failure(ctx, state, asked, found)
+    if asked.enough_information or found is None:
         return told
-    found = finding(ctx, state)
-    return told if found is None else told.model_copy(update={"text": f"{asked.text} {found.text}"})
+    return told.model_copy(update={"text": f"{asked.text} {found.text}"})

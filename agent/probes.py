@@ -35,13 +35,15 @@ def talked(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
                                     "evidence": [*asked.evidence, *spoken.evidence]})
 
 
-def with_failure(ctx: RunContext, state: AgentState, exp: Explanation) -> Explanation:
+def with_failure(ctx: RunContext, state: AgentState, exp: Explanation,
+                 failed: Explanation | None = None) -> Explanation:
     """"Did anyone help you?" of a task that failed before asking: the answer names the step that failed, so
-    "why?" and "what would have helped?" go on to that failure (its evidence, details and fix), not to the plan."""
+    "why?" and "what would have helped?" go on to that failure (its evidence, details and fix), not to the plan.
+    `failed`: the failure's explainer's answer where the caller has it already (it is not asked again)."""
     name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
     if name is None:
         return exp
-    failed = probe(ctx, name, state["question"], state["task_id"])
+    failed = failed or probe(ctx, name, state["question"], state["task_id"])
     return exp.model_copy(update={"evidence": [*exp.evidence, *failed.evidence], "fix": failed.fix,
                                   "counterfactual": failed.counterfactual,
                                   "details": [failed.text, *failed.details]})

@@ -43,25 +43,27 @@ def unseen(ctx: RunContext, state: AgentState, task: Task, kind: str) -> Explana
     """What the recording cannot show (`kind`, see unseen_kind), then the task's failure (or its notable finding) as
     its explainer tells it."""
     found = finding(ctx, state)
+    q = state["question"].lower()
+    door = kind == "blocked" and re.search(r"\bdoor\b", q) is not None
+    where = kind == "blocked" and not door and re.match(r"(\w+ )?where\b", q) is not None
     if kind == "contact":
         opening = "I can't tell: my recording holds no bumper or contact sensor."
         if found is not None and set(found.causes) & _CHECKED:
             opening += " What it holds is that a collision check stopped me first."
-    elif re.search(r"\bdoor\b", state["question"].lower()):
+    elif door:
         opening = ("I can't tell whether a door was closed: my recording holds no camera image or door sensor, only "
                    "what my navigation logged.")
     else:
-        what = "where" if re.match(r"(\w+ )?where\b", state["question"].lower()) else "what"
-        opening = (f"I can't tell {what} it was: my recording holds no camera image or object detection, only what "
-                   "my navigation logged.")
+        opening = (f"I can't tell {'where' if where else 'what'} it was: my recording holds no camera image or object "
+                   "detection, only what my navigation logged.")
     if found is None or set(found.causes) <= BENIGN:
         named = task_name(task, ctx.log)
         ended = " went without a problem." if task.outcome == "succeeded" else " shows no problem in my recording."
-        if kind == "blocked" and "door" not in opening:
+        if kind == "blocked" and not door:
             opening = "My recording shows nothing in my way."
         text = f"{opening} {named[0].upper()}{named[1:]}{ended}"
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
-    if opening.startswith("I can't tell where"):  # the nearest the recording comes: where I was when it failed
+    if where:  # the nearest the recording comes: where I was when it failed
         at = where_failed(state["question"], ctx.log, task)
         if at.enough_information:
             return found.model_copy(update={"text": f"{opening} {found.text} {at.text}",
