@@ -38,6 +38,10 @@ EXECUTE_TRAJECTORY_STATUS = "/execute_trajectory/_action/status"
 FJT_STATUS = "/*/follow_joint_trajectory/_action/status"
 _FJT_SUFFIX = "/follow_joint_trajectory/_action/status"
 
+# Every rclcpp and rclpy node announces the parameters it declares and every later change on this topic: a
+# recording that starts before the bring-up holds each node's settings.
+PARAMETER_EVENTS = "/parameter_events"
+
 LOG_TYPE = "rcl_interfaces/msg/Log"
 STRING_TYPE = "std_msgs/msg/String"
 BOOL_TYPE = "std_msgs/msg/Bool"
@@ -49,6 +53,7 @@ ODOM_TYPE = "nav_msgs/msg/Odometry"
 POSE_STAMPED_TYPE = "geometry_msgs/msg/PoseStamped"
 GOAL_STATUS_TYPE = "action_msgs/msg/GoalStatusArray"
 GRID_TYPE = "nav_msgs/msg/OccupancyGrid"
+PARAMETER_EVENT_TYPE = "rcl_interfaces/msg/ParameterEvent"
 
 ASK_HUMAN_STATUS_NAME = "/skills/skill_ask_human_for_help"
 SAY_STATUS_NAME = "/skills/skill_say"
@@ -106,6 +111,9 @@ CONTRACT: tuple[TopicSpec, ...] = (
               "MoveIt's ExecuteTrajectory goals"),
     TopicSpec(FJT_STATUS, GOAL_STATUS_TYPE, "status_list[goal_info.goal_id, goal_info.stamp, status]",
               "each joint trajectory controller's FollowJointTrajectory goals (any controller name)"),
+    TopicSpec(PARAMETER_EVENTS, PARAMETER_EVENT_TYPE, "stamp, node, new_parameters, changed_parameters, "
+              "deleted_parameters[name, value]",
+              "each node's parameters as declared at start-up and as set later: the settings a question names"),
 )
 
 
@@ -129,6 +137,8 @@ ALL_TOPICS: frozenset[str] = frozenset(TYPE_OF)
 NAV2_TOPICS: frozenset[str] = frozenset({CMD_VEL, ODOM, GOAL_POSE, NAV_STATUS})
 # The grids a planner failure is checked on: optional like the ordinary Nav2 topics.
 GRID_TOPICS: frozenset[str] = frozenset({MAP, GLOBAL_COSTMAP, KEEPOUT_MASK})
+# Optional like them: another type under one of these names is skipped with a warning, not refused.
+OPTIONAL_TOPICS: frozenset[str] = NAV2_TOPICS | GRID_TOPICS | frozenset({PARAMETER_EVENTS})
 # What deriving tasks from Nav2 goals reads (recordings without /task_info).
 NAV_GOAL_TOPICS: frozenset[str] = frozenset({ROSOUT, NAV_STATUS, GOAL_POSE})
 ARM_STATUS_TOPICS: frozenset[str] = frozenset({MOVE_ACTION_STATUS, EXECUTE_TRAJECTORY_STATUS, FJT_STATUS})

@@ -32,6 +32,8 @@ from hexar.events.records import (
     Grid,
     LogLine,
     OdomSample,
+    ParameterSample,
+    ParameterValue,
     PoseSample,
     StatusRecord,
     TwistSample,
@@ -178,6 +180,8 @@ def decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, r
             )
     elif msgtype == c.GRID_TYPE:
         _grid(log, deser(ts, raw, msgtype, ros2), conn.topic, t, warnings)
+    elif msgtype == c.PARAMETER_EVENT_TYPE:
+        log.parameters.extend(parameter_samples(deser(ts, raw, msgtype, ros2), t))
     elif msgtype == c.DIAG_TYPE:
         diag = decode_diagnostics(raw) if standard else None
         if diag is None:
@@ -185,6 +189,43 @@ def decode(log: EventLog, conn: Connection, t: int, raw: bytes, ts: Typestore, r
         log.statuses.setdefault(conn.topic, []).extend(status_records(t, conn.topic, diag))
     else:
         _motion(log, ts, conn.topic, msgtype, t, raw, ros2, standard)
+
+
+# rcl_interfaces/msg/ParameterValue's fields, by the value of its type field
+_VALUE_FIELDS = {1: "bool_value", 2: "integer_value", 3: "double_value", 4: "string_value", 5: "byte_array_value",
+                 6: "bool_array_value", 7: "integer_array_value", 8: "double_array_value", 9: "string_array_value"}
+
+
+def parameter_value(value: Any) -> ParameterValue:
+    """A ParameterValue's one set field (rosbags, rclpy and DDS messages alike), None when not set. A byte array is
+    kept as one hex string (rclpy gives its bytes as one-byte `bytes`, rosbags as numbers)."""
+    kind = int(value.type)
+    name = _VALUE_FIELDS.get(kind)
+    if name is None:
+        return None
+    field = getattr(value, name)
+    if kind == 1:
+        return bool(field)
+    if kind == 2:
+        return int(field)
+    if kind == 3:
+        return float(field)
+    if kind == 4:
+        return str(field)
+    items = list(field.tolist() if hasattr(field, "tolist") else field)
+    if kind == 5:
+        return (bytes(b[0] if isinstance(b, bytes) else int(b) for b in items).hex(),)
+    return tuple(items)
+
+
+def parameter_samples(m: Any, t: int) -> list[ParameterSample]:
+    """One ParameterEvent's parameters: declared, set and undeclared, stamped by the event (else `t`)."""
+    stamp = stamp_ns(m.stamp.sec, m.stamp.nanosec) or t
+    node = _text(m.node)
+    return ([ParameterSample(stamp, node, _text(p.name), parameter_value(p.value), "new") for p in m.new_parameters]
+            + [ParameterSample(stamp, node, _text(p.name), parameter_value(p.value), "changed")
+               for p in m.changed_parameters]
+            + [ParameterSample(stamp, node, _text(p.name), None, "deleted") for p in m.deleted_parameters])
 
 
 def _text(value: object) -> str:

@@ -19,6 +19,7 @@ from hexar.events.records import (
     Grid,
     LogLine,
     OdomSample,
+    ParameterSample,
     PoseSample,
     StatusRecord,
     TaskUpdate,
@@ -82,6 +83,7 @@ class EventLog:
     goals: list[GoalPose] = field(default_factory=list)
     goal_statuses: list[GoalStatus] = field(default_factory=list)
     grids: list[Grid] = field(default_factory=list)
+    parameters: list[ParameterSample] = field(default_factory=list)
     _times: dict[str, list[int]] = field(default_factory=dict, repr=False)
 
     def finish(self) -> None:
@@ -95,6 +97,7 @@ class EventLog:
         for motion in (self.twists, self.odometry, self.goals, self.goal_statuses):
             motion.sort(key=lambda r: r.t)
         self.grids.sort(key=lambda r: r.t)
+        self.parameters.sort(key=lambda r: r.t)
         self.__dict__.pop("tasks", None)
         self._times.clear()
 

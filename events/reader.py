@@ -201,7 +201,7 @@ def _read(reader: AnyReader, src: Path, wanted: frozenset[str], skip: dict[int, 
             continue
         expected = c.TYPE_OF.get(key)
         if expected is not None and conn.msgtype not in c.ACCEPTED_TYPES[key] and (
-                key in c.NAV2_TOPICS or key in c.ARM_STATUS_TOPICS or key in c.GRID_TOPICS):
+                key in c.OPTIONAL_TOPICS or key in c.ARM_STATUS_TOPICS):
             # an ordinary topic name that this robot uses for another type: not ours to read, not an error
             warnings.append(f"skipped {conn.topic}: type {conn.msgtype}, HEXAR reads it as {expected}")
             continue

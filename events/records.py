@@ -255,6 +255,41 @@ class Grid:
                 self.origin_y, self.origin_y + self.height * self.resolution)
 
 
+# rcl_interfaces/msg/ParameterValue's type field: what each value holds (0 is PARAMETER_NOT_SET)
+PARAMETER_TYPES = {1: "bool", 2: "integer", 3: "double", 4: "string", 5: "byte_array", 6: "bool_array",
+                   7: "integer_array", 8: "double_array", 9: "string_array"}
+ParameterValue = bool | int | float | str | tuple[bool | int | float | str, ...] | None
+
+
+@dataclass(frozen=True, slots=True)
+class ParameterSample:
+    """One parameter of a node as its /parameter_events (rcl_interfaces/msg/ParameterEvent) announced it: declared
+    ("new", with the value it started with), set ("changed") or undeclared ("deleted", no value)."""
+
+    t: int
+    node: str
+    name: str
+    value: ParameterValue
+    change: str  # "new", "changed" or "deleted"
+
+    @property
+    def said(self) -> str:
+        """The value as a launch or parameter file writes it: true, 0.3, 'map', [0.1, 0.2]."""
+        return said_value(self.value)
+
+
+def said_value(value: ParameterValue) -> str:
+    if value is None:
+        return "not set"
+    if isinstance(value, tuple):
+        return "[" + ", ".join(said_value(v) for v in value) + "]"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return repr(value)
+    return str(value)
+
+
 # any one record of the event log: what a recording's reader and the live node's converter make of one message
 Record = (LogLine | TaskUpdate | PoseSample | BoolSample | StatusRecord | TwistSample | OdomSample | GoalPose
-          | GoalStatus | Grid)
+          | GoalStatus | Grid | ParameterSample)

@@ -27,6 +27,7 @@ from hexar.events.records import (
     Grid,
     LogLine,
     OdomSample,
+    ParameterSample,
     PoseSample,
     Record,
     StatusRecord,
@@ -38,7 +39,8 @@ from hexar.live.contact import Contact
 from hexar.live.lateness import Lateness
 
 NS = 1_000_000_000
-S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus, Grid)
+S = TypeVar("S", LogLine, PoseSample, BoolSample, StatusRecord, TwistSample, OdomSample, GoalPose, GoalStatus, Grid,
+              ParameterSample)
 
 
 @dataclass(frozen=True)
@@ -97,6 +99,8 @@ class LiveLog:
         self._goals: list[GoalPose] = []
         self._goal_statuses: list[GoalStatus] = []
         self._grids: dict[str, list[Grid]] = {}
+        # a node's parameters are announced once, at its start: kept whatever their age, the newest max_records
+        self._parameters: list[ParameterSample] = []
         self._tasks: dict[str, list[TaskUpdate]] = {}  # insertion order = order first seen
         self._runs: dict[str, tuple[str, int]] = {}  # task id as published -> (its current run's id, run number)
         self._counts: dict[str, int] = {}
@@ -141,7 +145,7 @@ class LiveLog:
             return hash(("flag", r.topic, r.t, r.value))
         if isinstance(r, Grid):
             return hash(("grid", r.topic, r.t, r.width, r.height, r.packed))
-        if isinstance(r, (TwistSample, OdomSample, GoalPose, GoalStatus)):
+        if isinstance(r, (TwistSample, OdomSample, GoalPose, GoalStatus, ParameterSample)):
             return hash((type(r).__name__, *(getattr(r, f) for f in r.__slots__)))
         return hash(("status", r.topic, r.t, r.name, r.message, r.values))
 
@@ -159,6 +163,10 @@ class LiveLog:
             self._seen.discard(self._seen_order.popleft())
         if isinstance(r, Grid):
             self._add_grid(r)
+            return True
+        if isinstance(r, ParameterSample):  # no clock to watch: a node's start-up values are old by nature
+            self._insert(self._parameters, r, c.PARAMETER_EVENTS)
+            del self._parameters[:-self.limits.max_records]
             return True
         if not isinstance(r, BoolSample):  # a latched flag may legitimately be hours old
             self._watch_clock(r.t, fresh=isinstance(r, (LogLine, TaskUpdate)))
@@ -344,6 +352,7 @@ class LiveLog:
             twists, odom, goals = list(self._twists), list(self._odom), list(self._goals)
             goal_statuses = list(self._goal_statuses)
             grids = [g for kept in self._grids.values() for g in kept]
+            parameters = list(self._parameters)
             counts = dict(self._counts)
             warnings = list(self.warnings)
         stamps = [*(r.t for r in logs[:1] + logs[-1:]), *(r.t for r in poses[:1] + poses[-1:]),
@@ -354,7 +363,8 @@ class LiveLog:
         log = EventLog(path=Path(self.name), storage="live", start=min(stamps, default=0),
                        end=max(stamps, default=0), topics=topics, warnings=warnings, logs=logs,
                        task_updates=updates, poses=poses, flags=flags, statuses=statuses, twists=twists,
-                       odometry=odom, goals=goals, goal_statuses=goal_statuses, grids=grids)
+                       odometry=odom, goals=goals, goal_statuses=goal_statuses, grids=grids,
+                       parameters=parameters)
         log.finish()
         return log
 

@@ -32,6 +32,34 @@ def _header(t: int, frame: str) -> Any:
     return _T["std_msgs/msg/Header"](stamp=_time(t), frame_id=frame)
 
 
+def parameter(name: str, value: Any) -> Any:
+    """An rcl_interfaces/msg/Parameter with its ParameterValue's type set from the Python value (None: not set)."""
+    import numpy as np
+
+    fields: dict[str, Any] = {"bool_value": False, "integer_value": 0, "double_value": 0.0, "string_value": "",
+                              "byte_array_value": np.array([], dtype=np.uint8),
+                              "bool_array_value": np.array([], dtype=np.bool_),
+                              "integer_array_value": np.array([], dtype=np.int64),
+                              "double_array_value": np.array([], dtype=np.float64), "string_array_value": []}
+    kind = 0
+    if isinstance(value, bool):
+        kind, fields["bool_value"] = 1, value
+    elif isinstance(value, int):
+        kind, fields["integer_value"] = 2, value
+    elif isinstance(value, float):
+        kind, fields["double_value"] = 3, value
+    elif isinstance(value, str):
+        kind, fields["string_value"] = 4, value
+    elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
+        kind, fields["string_array_value"] = 9, value
+    elif isinstance(value, list) and all(isinstance(v, float) for v in value):
+        kind, fields["double_array_value"] = 8, np.array(value, dtype=np.float64)
+    elif isinstance(value, list):
+        kind, fields["integer_array_value"] = 7, np.array(value, dtype=np.int64)
+    return _T["rcl_interfaces/msg/Parameter"](name=name, value=_T["rcl_interfaces/msg/ParameterValue"](
+        type=kind, **fields))
+
+
 @dataclass
 class BagBuilder:
     """Messages in publication order; `t` values are integer nanoseconds since the epoch.
@@ -87,6 +115,16 @@ class BagBuilder:
         )
         m = _T["diagnostic_msgs/msg/DiagnosticArray"](header=_header(t, ""), status=[status])
         self.messages.append((t + self.receive_lag, topic, c.DIAG_TYPE, m))
+
+    def parameters(self, t: int, node: str, new: dict[str, Any] | None = None,
+                   changed: dict[str, Any] | None = None, deleted: Sequence[str] = ()) -> None:
+        """One rcl_interfaces/msg/ParameterEvent of `node`, as rclcpp publishes it when parameters are declared
+        (`new`), set (`changed`) or undeclared (`deleted`)."""
+        m = _T[c.PARAMETER_EVENT_TYPE](
+            stamp=_time(t), node=node, new_parameters=[parameter(k, v) for k, v in (new or {}).items()],
+            changed_parameters=[parameter(k, v) for k, v in (changed or {}).items()],
+            deleted_parameters=[parameter(k, None) for k in deleted])
+        self.messages.append((t + self.receive_lag, c.PARAMETER_EVENTS, c.PARAMETER_EVENT_TYPE, m))
 
     def raw(self, t: int, topic: str, msgtype: str, msg: Any) -> None:
         self.messages.append((t, topic, msgtype, msg))

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from hexar.events import contract as c
 from hexar.events import read_recording
-from hexar.events.records import BoolSample, LogLine, SkillStep, TaskUpdate
+from hexar.events.records import BoolSample, LogLine, ParameterSample, SkillStep, TaskUpdate
 from hexar.live.contact import Contact
 from hexar.live.convert import to_records
 from hexar.live.log import NS, Limits, LiveLog
@@ -61,6 +61,19 @@ def test_keeps_the_current_and_last_n_tasks_and_a_horizon() -> None:
     # the evidence of every kept task stays, older lines go
     assert snap.logs[0].t >= 700 * NS
     assert snap.task("task7").created == 700 * NS
+
+
+def test_a_nodes_start_up_parameters_outlive_the_horizon_and_count_once() -> None:
+    live = LiveLog(Limits(keep_tasks=2, horizon_s=60.0, max_records=50))
+    declared = [ParameterSample(NS, "/amcl", f"p{k}", float(k), "new") for k in range(60)]
+    live.extend(declared + declared[:10])  # a late joiner's second copy adds nothing
+    for i in range(10):
+        live.add(_task(i * 100.0, f"task{i}"))
+        live.add(_line(i * 100.0 + 1, f"line {i}"))
+    snap = live.snapshot()
+    assert snap.logs[0].t >= 700 * NS
+    assert [p.name for p in snap.parameters] == [f"p{k}" for k in range(10, 60)]  # the newest max_records
+    assert live.duplicates == 10
 
 
 def test_record_cap_and_long_lines_are_cut() -> None:
