@@ -1,8 +1,9 @@
 """"What is my footprint?", "which critic rejected the trajectories?", "is use_sim_time set?", "which dock?": a
-developer replaying a run asks for one thing of the stack by its name. HEXAR reads no parameter values, so the only
-place such a thing shows is the log: the lines that name it, up to the task's end (bring-up before it included),
-quoted with their node and time. Where no line names it, the answer says so, and that the recording holds no
-parameters, instead of the task's finding with nothing on what was asked.
+developer replaying a run asks for one thing of the stack by its name. Where the recording holds the nodes'
+parameters (/parameter_events) and one of them is what was asked, its values answer (agent/parameters.py).
+Otherwise the place such a thing shows is the log: the lines that name it, up to the task's end (bring-up before it
+included), quoted with their node and time. Where no line names it, the answer says so, and why the recording holds
+no value for it, instead of the task's finding with nothing on what was asked.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from hexar.agent.context import RunContext
 from hexar.agent.logs import line_evidence, quote
 from hexar.agent.measures import worked_until
 from hexar.agent.overview import asks_fix
+from hexar.agent.parameters import IDENTIFIER, asks_parameters, not_held, parameter_list, parameter_values, settings
 from hexar.agent.probes import finding, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
@@ -71,11 +73,28 @@ _SETTINGS = frozenset({"footprint", "tolerance", "threshold", "timeout", "baud",
                        "solver", "ik", "initial pose"})
 
 
+# "what's failure_tolerance set to?", "is use_sim_time true?", "what is max_vel_x?": a parameter asked for by its
+# name, as the subject of the question ("did planner_server produce a path?" asks what a node did)
+_ID = IDENTIFIER.pattern
+VALUE_OF = re.compile(
+    r"^(and |so |but |ok )?(what|what's|whats|which|how (big|long|large|high|low|much|fast) (is|was))"
+    r"( (is|was|are|were))?( (the|my|your))?( value of)? " + _ID + r"( (value|values|parameter|param))?\W*$|"
+    + _ID + r"( and " + _ID + r")? (is |was |are |were )?(set to|set at)\b|"
+    r"(^|[.?!] )(is|was|are|were) " + _ID + r" (set|true|false|on|off|enabled|disabled)\b|"
+    r"\bvalue of " + _ID)
+
+
+# "which nodes use sim time?", "how many nodes had use_sim_time false?"
+_WHICH_NODES = re.compile(r"^(and |so |but )?(which|what|how many) (nodes?|ones?|of them)\b.*\b(" + _NAMES + r"|"
+                          + IDENTIFIER.pattern + r")")
+
+
 def mentions_kind(q: str) -> str | None:
-    """'mentions' for a question (lower case, spaces collapsed) that asks for a named thing of the stack, unless it
-    asks for a specific of the failure the finding's own lines give (agent/cited.py) or for the fix ("which
-    parameter should I change?")."""
-    return "mentions" if MENTIONS.search(q) and not asks_specific(q) and not asks_fix(q) else None
+    """'mentions' for a question (lower case, spaces collapsed) that asks for a named thing of the stack or a
+    parameter by its name, unless it asks for a specific of the failure the finding's own lines give
+    (agent/cited.py) or for the fix ("which parameter should I change?")."""
+    named = MENTIONS.search(q) or VALUE_OF.search(q) or _WHICH_NODES.search(q)
+    return "mentions" if named and not asks_specific(q) and not asks_fix(q) else None
 
 
 def asked_terms(q: str) -> list[str]:
@@ -92,7 +111,7 @@ def _spelled(term: str) -> re.Pattern[str]:
     """A term's spellings at the start of a word ("port" in "ports", not in "support"; "vel" in "cmd_vel", not in
     "level"), a spelling that ends in a space a whole word ("ik")."""
     ways = []
-    for s in _TERMS[term]:
+    for s in _TERMS.get(term, (term,)):
         word = re.escape(s.strip().replace("_", " "))
         ways.append((r"\b" if s[0].isalnum() else "") + word + (r"\b" if s.endswith(" ") else ""))
     return re.compile("|".join(ways))
@@ -106,8 +125,15 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
     """The log lines up to the task's end that name what was asked, or that none does."""
     q = " ".join(question.lower().split())
     terms = asked_terms(q)
-    name = task_name(task, log)
     end = worked_until(log, task)
+    values = parameter_values(q, log, end, terms)
+    if values is None and asks_parameters(q, log):
+        values = parameter_list(q, log, end)
+    if values is not None:
+        return Explanation(explainer="planner", text=values[0], causes=["planner.plan_ok"], evidence=values[1])
+    if VALUE_OF.search(q):  # a parameter by its name: the lines that name it
+        terms = [m.group(0) for m in IDENTIFIER.finditer(q) if m.group(0) not in terms] + terms
+    name = task_name(task, log)
     named = {t: [ln for ln in log.logs if ln.t <= end and _names(ln, t)] for t in terms}
     found = [t for t in terms if named[t]]
     missing = " or ".join(t for t in terms if not named[t]) or "that"
@@ -115,9 +141,8 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
     if not lines:
         where = f"no line of my log ({c.ROSOUT}) up to the end of {name} names {missing}" if log.logs else \
             f"my recording holds no log lines ({c.ROSOUT})"
-        text = (f"I can't tell: {where}, and my recording holds no parameter values, only what my nodes logged. "
-                "The parameter files or `ros2 param get` on the robot give it.") if set(terms) & _SETTINGS else \
-            f"I can't tell: {where}."
+        text = (f"I can't tell: {where}, and {not_held(q, log, end)}. The parameter files or `ros2 param get` on "
+                "the robot give it.") if set(terms) & _SETTINGS or VALUE_OF.search(q) else f"I can't tell: {where}."
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False)
     # a start-up's routine lines ("waypoint_follower lifecycle node launched") say less than a warning about it
     routine = len(lines)
@@ -130,7 +155,9 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
             f"{quote(lines, False, True)}.")
     if len(found) < len(terms):
         text += f" No line names {missing}."
-    text += " I read no parameter values, only what my nodes logged."
+    if set(terms) & _SETTINGS or VALUE_OF.search(q):
+        text += f" As for its value: {not_held(q, log, end)}." if settings(log, end) else \
+            f" My recording holds no parameter values (no {c.PARAMETER_EVENTS}), only what my nodes logged."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence(lines, task))
 
 

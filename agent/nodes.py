@@ -35,6 +35,7 @@ from hexar.agent.overview import (
     with_lead,
     yes_or_no,
 )
+from hexar.agent.parameters import asks_parameters
 from hexar.agent.probes import failure_not_told, notable, probe, talked, with_failure
 from hexar.agent.questions import EXAMPLE, check_question, quoted, small_talk_reply
 from hexar.agent.state import AgentState
@@ -127,6 +128,8 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         update.update(intent="content", object=obj)  # "where is the cup?": what its steps did with it
     elif asked is not None and not answers.ran(asked, task, ctx.registry.for_module):
         update.update(intent="content", asked=asked)  # its plan never ran the module asked about
+    elif state.get("intent") == "new" and asks_parameters(state["question"], log):
+        update.update(intent="content")  # "which nodes use sim time?": the recorded parameters say it
     return {**update, "timings_ms": _timings(state, "context", start)}
 
 
@@ -339,7 +342,7 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = health(ctx, state, task, kind)
     elif kind in {"contact", "blocked"}:
         exp = unseen(ctx, state, task, kind)
-    elif kind == "mentions":
+    elif kind == "mentions" or asks_parameters(state["question"], ctx.log):
         exp = mentioned(ctx, state, task)
     elif kind in {"doing", "logs"}:  # "why?" after them goes on to the failure
         asked = sequence.doing(ctx.log, task) if kind == "doing" else logs(state["question"], ctx.log, task)

@@ -12,6 +12,7 @@ from functools import cache
 from hexar.agent.classifier import examples
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.followups import is_order
+from hexar.agent.parameters import IDENTIFIER
 
 
 def _words(text: str) -> frozenset[str]:
@@ -246,6 +247,11 @@ def check_question(question: str) -> str:
         raise BadQuestionError(f"that question is too long: ask in at most {MAX_QUESTION} characters, {EXAMPLE}")
     q = normalise(question)
     words = _WORD.findall(q.lower())
+    # a parameter or topic by its name ("max_vel_x", "FollowPath.max_vel_x") is one word a developer knows, among
+    # other words: alone, its own words must be known ("use_sim_time?", not "asdf_qwer?")
+    named = _WORD.findall(IDENTIFIER.sub(" parameter ", q.lower()))
+    if len(named) > 1 and named != words:
+        words = named
     if not words:
         raise BadQuestionError(f"I can't read {quoted(question)} as a question: ask me why I did something, "
                                f"{EXAMPLE}")

@@ -63,3 +63,27 @@ def real_nav2_run(case_id: str, out: Path) -> Path:
 
     cases = [*real_nav2.corpus(), *(e for r in range(1, 30) for e in real_nav2.blind_set(r))]
     return Path(real_nav2.write_recording(next(e for e in cases if e.id == case_id), out, task=False))
+
+
+def real_nav2_with_parameters(case_id: str, out: Path,
+                              declared: Mapping[str, Mapping[str, Any]],
+                              changed: Sequence[tuple[float, str, str, Any]] = ()) -> Path:
+    """The real Nav2 excerpt `case_id` as real_nav2_run writes it, with the /parameter_events its nodes would have
+    published: each node of `declared` announces its parameters 2 s before the first line, and each (seconds after
+    the first line, node, name, value) of `changed` sets one."""
+    from hexar.evals import real_nav2
+    from hexar.events.console import parse_console, stamped
+
+    cases = [*real_nav2.corpus(), *(e for r in range(1, 30) for e in real_nav2.blind_set(r))]
+    case = next(e for e in cases if e.id == case_id)
+    records = stamped(parse_console(case.lines))
+    b = BagBuilder()
+    for r in records:
+        assert r.stamp_ns is not None
+        b.log(r.stamp_ns, r.name or r.process, r.level, r.msg, r.file, r.function, r.line)
+    first = min(r.stamp_ns or 0 for r in records)
+    for k, (node, params) in enumerate(declared.items()):
+        b.parameters(first - sec_ns(2) + k * 1_000_000, node, new=dict(params))
+    for after_s, node, name, value in changed:
+        b.parameters(first + sec_ns(after_s), node, changed={name: value})
+    return b.write(out)

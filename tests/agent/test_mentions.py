@@ -1,5 +1,5 @@
 """"What is my footprint?", "which dock?", "is use_sim_time set?": the log lines that name what a developer asks for,
-with their node and time, or that none does (and that the recording holds no parameter values), then the finding;
+with their node and time, or that none does (and why the recording holds no value for it), then the finding;
 never the finding alone, as if it answered."""
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ def test_the_lines_that_name_it_are_quoted_with_their_node(tmp_path: Path) -> No
     assert footprint["answer"] == (
         'My log names footprint in 1 line up to the end of the navigation goal: at 13:06:22, controller_server '
         '(ERROR) "Original error: Considering footprint in collision checking but no robot footprint provided in '
-        'the costmap.". I read no parameter values, only what my nodes logged.')
+        'the costmap.". My recording holds no parameter values (no /parameter_events), only what my nodes logged.')
     assert any("no robot footprint provided" in e["item"] for e in footprint["evidence"])  # type: ignore[union-attr]
     (dock,) = converse(real_nav2_run("mowgli-486-dock-charge-timeout", tmp_path / "dock"), "which dock?")
     assert str(dock["answer"]).startswith("My log names dock in 4 lines at warning or error level (4 more at info "
