@@ -82,7 +82,8 @@ _FEEL = re.compile(r"^(and |so |but |ok |okay )?(are|were) you (feeling )?(sad|h
                    r"disappointed|embarrassed|annoyed|hurt|scared|afraid|lonely|tired|bored)\W*$|"
                    r"^(and |so )?how (do|did) you feel( about (it|this|that))?\W*$")
 # "Who did you talk to?": whom the robot asked for help and what it said aloud, not a failure nobody asked about.
-_TALKED = re.compile(r"^(and |so |but )?what did you (ask|say to|tell) (her|him|them|the person|that person)\W*$|"
+_TALKED = re.compile(r"^(and |so |but )?what (exactly |actually )?did you (ask|say to|tell) (her|him|them|the person|"
+                     r"that person)\W*$|^(and |so |but )?what (exactly |actually )?did you ask( for)?\W*$|"
                      r"\b(who|whom) (did|have) you (talk|talked|speak|spoken|chat|chatted)( to| with)?\b|"
                      r"^(and |so |but )?did you (talk|speak) (to|with) [a-z]+\b|"
                      r"^(and |so |but )?did you (say|ask) (please|thank you|thanks|sorry|hello|hi)\b|"

@@ -24,7 +24,12 @@ PERSON = re.compile(
     + _LEAD + r"(what was|what's|what is|who was|who is) (her|his|their|the person's) name\b|"
     + _LEAD + r"(who|what) (was|is) (that|the) (person|human|man|woman)\b|"
     + _LEAD + r"who (helped( you)?|said (no|yes)|declined|refused|agreed|answered|replied|confirmed)\b|"
-    + _LEAD + r"how many (people|persons|humans|others) did you (meet|see|detect|find|ask|talk to|speak to)\b")
+    + _LEAD + r"how many (people|persons|humans|others) did you (meet|see|detect|find|ask|talk to|speak to)\b|"
+    # "who put the book on your tray?", "did somebody give it to you?", "did you pick it up yourself?"
+    + _LEAD + r"who (put|gave|handed|loaded|placed|brought)\b|"
+    + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place|"
+              r"help)\b|"
+    + r"\bdid you (pick|get|take) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|on your own)\b")
 _ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
 _CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
 

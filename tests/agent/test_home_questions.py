@@ -154,3 +154,23 @@ def test_why_the_person_did_not_confirm_is_not_recorded(suite: Path) -> None:
     (asked,) = converse(suite / "bagfile_16_1", "why didn't they confirm?")
     assert str(asked["answer"]).startswith("I can't tell why: my recording holds only that they agreed to help, and "
                                            "then never confirmed that they had helped")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("who put the book on your tray?", "person"), ("did somebody give it to you?", "person"),
+    ("did you pick the book up yourself?", "person"), ("what exactly did you ask that person?", "talked"),
+    ("what did you ask?", "talked"), ("how long did each step take?", "long"),
+    ("how long did pick and place each take?", "long"), ("how long were you in the dining room?", "long"),
+    ("why did you spend so long in the kitchen?", "long"), ("what were you waiting for?", "long"),
+    ("what did you say?", "said"),  # what it said aloud stays the speech's
+])
+def test_a_persons_help_and_the_time_of_each_step_are_their_own_questions(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_who_gave_it_and_where_the_time_went_are_answered_from_the_steps(suite: Path) -> None:
+    who, asked, waited = converse(suite / "bagfile_8_1", "who put the coffee on your tray?",
+                                  "what exactly did you ask that person?", "what were you waiting for?")
+    assert str(who["answer"]).endswith("they agreed to help, and then confirmed that they had helped.")
+    assert '("Could you please put the coffee on my tray?")' in str(asked["answer"])
+    assert "step 2 (to ask someone for help) took" in str(waited["answer"])
