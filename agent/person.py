@@ -26,9 +26,10 @@ PERSON = re.compile(
     + _LEAD + r"who (helped( you)?|said (no|yes)|declined|refused|agreed|answered|replied|confirmed)\b|"
     + _LEAD + r"how many (people|persons|humans|others) did you (meet|see|detect|find|ask|talk to|speak to)\b|"
     # "who put the book on your tray?", "did somebody give it to you?", "did you pick it up yourself?"
-    + _LEAD + r"who (put|gave|handed|loaded|placed|brought)\b|"
-    + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place|"
-              r"help)\b|"
+    # not "who gave you the task?" (the request's) nor "did anyone help you?" (the ask-for-help step's)
+    + _LEAD + r"who (put|gave|handed|loaded|placed|brought)\b(?!.*\b(task|request|order|job|instruction|command|"
+              r"plan|errand)s?\b)|"
+    + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place)\b|"
     + r"\bdid you (pick|get|take) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|on your own)\b")
 _ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
 _CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
