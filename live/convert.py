@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from hexar.events import contract as c
-from hexar.events.decode import grid_of, statuses, yaw
+from hexar.events.decode import grid_of, parameter_samples, statuses, yaw
 from hexar.events.records import (
     BoolSample,
     GoalPose,
@@ -68,6 +68,10 @@ def to_records(topic: str, msg: Any, t: int) -> list[Record]:
         return [BoolSample(t, topic, bool(msg.data))]
     if c.TYPE_OF.get(topic) == c.DIAG_TYPE:
         return list(statuses(t, topic, msg))
+    if topic == c.PARAMETER_EVENTS:
+        # HEXAR's own rclpy nodes announce their parameters too: they are not the robot's
+        own = str(msg.node).rsplit("/", 1)[-1].startswith("hexar")
+        return [] if own else list[Record](parameter_samples(msg, t))
     if c.TYPE_OF.get(topic) == c.GRID_TYPE:
         grid = grid_of(msg, topic, t)
         return [grid] if isinstance(grid, Grid) else []

@@ -80,6 +80,7 @@ IDL: dict[str, type[Any]] = {
     c.POSE_COV_TYPE: msgs.PoseWithCovarianceStamped, c.DIAG_TYPE: msgs.DiagnosticArray,
     c.TWIST_TYPE: msgs.Twist, c.ODOM_TYPE: msgs.Odometry, c.POSE_STAMPED_TYPE: msgs.PoseStamped,
     c.GOAL_STATUS_TYPE: msgs.GoalStatusArray, CLOCK_TYPE: msgs.Clock, c.GRID_TYPE: msgs.OccupancyGrid,
+    c.PARAMETER_EVENT_TYPE: msgs.ParameterEvent,
 }
 # Match ROS 2 peers on topic and type name, as ROS 2's RMWs do (rmw_cyclonedds sends no type information at
 # all: "not yet providing type discovery, assignability checking", ros2/rmw_cyclonedds

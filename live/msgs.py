@@ -7,7 +7,8 @@ final structs. Each field has the IDL type rosidl gives it: `byte` is an octet, 
 std_msgs/String|Bool|Header, geometry_msgs/PoseWithCovarianceStamped, diagnostic_msgs/DiagnosticArray,
 geometry_msgs/Twist|Vector3|PoseStamped, action_msgs/GoalStatusArray|GoalStatus|GoalInfo,
 unique_identifier_msgs/UUID; nav_msgs/Odometry, nav_msgs/OccupancyGrid, nav_msgs/MapMetaData and
-geometry_msgs/TwistWithCovariance as rosbags' Humble type store defines them). A test checks each against the
+geometry_msgs/TwistWithCovariance and rcl_interfaces/ParameterEvent|Parameter|ParameterValue as rosbags' Humble
+type store defines them). A test checks each against the
 Kilted rclpy message classes (tests/live/test_msgs.py).
 """
 
@@ -17,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 from cyclonedds.idl import IdlStruct
-from cyclonedds.idl.types import array, byte, float32, float64, int8, int32, sequence, uint8, uint32
+from cyclonedds.idl.types import array, byte, float32, float64, int8, int32, int64, sequence, uint8, uint32
 
 
 def _dds(ros_type: str) -> str:
@@ -224,6 +225,55 @@ class OccupancyGrid(IdlStruct, typename=_dds("nav_msgs/msg/OccupancyGrid")):
 @dataclass
 class Clock(IdlStruct, typename=_dds("rosgraph_msgs/msg/Clock")):
     clock: Time = field(default_factory=Time)
+
+
+if TYPE_CHECKING:
+    Bytes = list[int]
+    Bools = list[bool]
+    Int64s = list[int]
+    Float64s = list[float]
+    Strings = list[str]
+else:
+    Bytes = sequence[byte]
+    Bools = sequence[bool]
+    Int64s = sequence[int64]
+    Float64s = sequence[float64]
+    Strings = sequence[str]
+
+
+@dataclass
+class ParameterValue(IdlStruct, typename=_dds("rcl_interfaces/msg/ParameterValue")):
+    type: uint8 = 0  # 1 bool, 2 integer, 3 double, 4 string, 5-9 arrays of byte, bool, integer, double, string
+    bool_value: bool = False
+    integer_value: int64 = 0
+    double_value: float64 = 0.0
+    string_value: str = ""
+    byte_array_value: Bytes = field(default_factory=list)
+    bool_array_value: Bools = field(default_factory=list)
+    integer_array_value: Int64s = field(default_factory=list)
+    double_array_value: Float64s = field(default_factory=list)
+    string_array_value: Strings = field(default_factory=list)
+
+
+@dataclass
+class Parameter(IdlStruct, typename=_dds("rcl_interfaces/msg/Parameter")):
+    name: str = ""
+    value: ParameterValue = field(default_factory=ParameterValue)
+
+
+if TYPE_CHECKING:
+    Parameters = list[Parameter]
+else:
+    Parameters = sequence[Parameter]
+
+
+@dataclass
+class ParameterEvent(IdlStruct, typename=_dds("rcl_interfaces/msg/ParameterEvent")):
+    stamp: Time = field(default_factory=Time)
+    node: str = ""
+    new_parameters: Parameters = field(default_factory=list)
+    changed_parameters: Parameters = field(default_factory=list)
+    deleted_parameters: Parameters = field(default_factory=list)
 
 
 def time_of(t: int) -> Time:

@@ -111,6 +111,10 @@ def to_dds(msgtype: str, m: Any) -> Any:
                 goal_id=msgs.UUID(uuid=[int(b) for b in s.goal_info.goal_id.uuid]),
                 stamp=msgs.Time(s.goal_info.stamp.sec, s.goal_info.stamp.nanosec)), status=int(s.status))
             for s in m.status_list])
+    if msgtype == c.PARAMETER_EVENT_TYPE:
+        return msgs.ParameterEvent(stamp=msgs.Time(m.stamp.sec, m.stamp.nanosec), node=m.node, **{
+            kind: [_parameter(p) for p in getattr(m, kind)]
+            for kind in ("new_parameters", "changed_parameters", "deleted_parameters")})
     header = msgs.Header(stamp=msgs.Time(m.header.stamp.sec, m.header.stamp.nanosec), frame_id=m.header.frame_id)
     if msgtype == c.POSE_COV_TYPE:
         p = m.pose.pose
@@ -140,6 +144,18 @@ def to_dds(msgtype: str, m: Any) -> Any:
             map_load_time=msgs.Time(i.map_load_time.sec, i.map_load_time.nanosec), resolution=float(i.resolution),
             width=int(i.width), height=int(i.height), origin=_pose(i.origin)), data=[int(v) for v in m.data])
     raise BadOptionError(f"cannot replay type {msgtype}")
+
+
+def _parameter(p: Any) -> Any:
+    from hexar.live import msgs
+
+    v = p.value
+    return msgs.Parameter(name=p.name, value=msgs.ParameterValue(
+        type=int(v.type), bool_value=bool(v.bool_value), integer_value=int(v.integer_value),
+        double_value=float(v.double_value), string_value=v.string_value,
+        byte_array_value=[int(b) for b in v.byte_array_value], bool_array_value=[bool(b) for b in v.bool_array_value],
+        integer_array_value=[int(i) for i in v.integer_array_value],
+        double_array_value=[float(d) for d in v.double_array_value], string_array_value=list(v.string_array_value)))
 
 
 def _pose(p: Any) -> Any:

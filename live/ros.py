@@ -42,7 +42,7 @@ ROS_TYPES = {
     c.DIAG_TYPE: ("diagnostic_msgs.msg", "DiagnosticArray"), c.TWIST_TYPE: ("geometry_msgs.msg", "Twist"),
     c.ODOM_TYPE: ("nav_msgs.msg", "Odometry"), c.POSE_STAMPED_TYPE: ("geometry_msgs.msg", "PoseStamped"),
     c.GOAL_STATUS_TYPE: ("action_msgs.msg", "GoalStatusArray"), CLOCK_TYPE: ("rosgraph_msgs.msg", "Clock"),
-    c.GRID_TYPE: ("nav_msgs.msg", "OccupancyGrid"),
+    c.GRID_TYPE: ("nav_msgs.msg", "OccupancyGrid"), c.PARAMETER_EVENT_TYPE: ("rcl_interfaces.msg", "ParameterEvent"),
 }
 BARE_DDS = "_CREATED_BY_BARE_DDS_APP_"  # the name rmw gives a writer of a plain DDS program (no ROS node)
 TAKE_BATCH = 256  # at most this many more messages of one topic per callback

@@ -79,6 +79,10 @@ SUBSCRIBED: tuple[LiveTopic, ...] = (
       for topic in (c.MOVE_ACTION_STATUS, c.EXECUTE_TRAJECTORY_STATUS)),
     *(LiveTopic(f"/{name}/follow_joint_trajectory/_action/status", c.GOAL_STATUS_TYPE,
                 TopicQos(durability="transient_local", depth=10)) for name in ARM_CONTROLLERS),
+    # Every node's parameters as it declares them, and each change. rcl offers them with
+    # rmw_qos_profile_parameter_events (reliable, volatile, keep-last 1000): volatile, so only a node that starts
+    # after HEXAR is heard declaring its values; a change is heard whenever it comes.
+    LiveTopic(c.PARAMETER_EVENTS, c.PARAMETER_EVENT_TYPE, TopicQos(depth=1000)),
 )
 ARM_STATUS: frozenset[str] = frozenset(t.topic for t in SUBSCRIBED if c.topic_key(t.topic) in c.ARM_STATUS_TOPICS)
 
@@ -108,4 +112,5 @@ PUBLISHED_BY_ROBOT: dict[str, TopicQos] = {
     c.GLOBAL_COSTMAP: TopicQos(durability="transient_local", depth=1),
     c.KEEPOUT_MASK: TopicQos(durability="transient_local", depth=1),
     **{topic: TopicQos(durability="transient_local", depth=1) for topic in ARM_STATUS},
+    c.PARAMETER_EVENTS: TopicQos(depth=1000),
 }

@@ -26,7 +26,8 @@ from tests.live.test_nav2_topics import T0, TY, _odom, _pose, _status, _time, _t
 
 pytest.importorskip("rclpy")
 
-STAMPED = ("logs", "poses", "statuses", "odometry", "goals", "grids")  # same stamps whatever the sender's clock
+# same stamps whatever the sender's clock
+STAMPED = ("logs", "poses", "statuses", "odometry", "goals", "grids", "parameters")
 
 
 def every_type(out: Path) -> Path:
@@ -54,6 +55,11 @@ def every_type(out: Path) -> Path:
     for i, topic in enumerate((c.MAP, c.GLOBAL_COSTMAP, c.KEEPOUT_MASK)):
         t = T0 + sec_ns(2.5 + i * 0.1)
         b.raw(t, topic, c.GRID_TYPE, grid_msg(t, cells, 0.05, (-1.5, 2.25)))
+    # a node's parameters: every kind of value a ParameterValue holds but bytes, and a change
+    b.parameters(T0 + sec_ns(2.9), "/amcl", new={"use_sim_time": True, "max_particles": 2000, "alpha1": 0.2,
+                                                 "base_frame_id": "base_footprint", "plugins": ["a", "b"],
+                                                 "footprint": [0.1, -0.1], "ids": [4, 5]},
+                 changed={"alpha1": 0.3}, deleted=["ids"])
     return b.write(out)
 
 
@@ -81,12 +87,15 @@ def test_every_subscribed_type_crosses_dds_vendors(tmp_path: Path, robot: str, n
     finally:
         transport.close()
     snap = log.snapshot()
-    assert {t: info.count for t, info in snap.topics.items()} == {spec.topic: 1 for spec in SUBSCRIBED}
+    # the live log counts records: the one parameter event carries 9 (7 declared, 1 set, 1 undeclared)
+    assert {t: info.count for t, info in snap.topics.items()} == {
+        spec.topic: 9 if spec.topic == c.PARAMETER_EVENTS else 1 for spec in SUBSCRIBED}
     assert transport.errors == 0  # type: ignore[attr-defined]
     for name in STAMPED:
         assert getattr(snap, name) == getattr(rec, name), name
     assert [s.level for s in snap.statuses[c.DIAGNOSTICS]] == [2]  # an octet, not b'\x02'
     assert (snap.poses[0].cov_x, snap.poses[0].cov_yaw) == (0.25, 0.1)
+    assert [p.said for p in snap.parameters][:4] == ["true", "2000", "0.2", "'base_footprint'"]
     assert [g.value(-1.5 + 0.125, 2.25 + 0.075) for g in snap.grids] == [99, 99, 99]  # a signed cell, in its place
     assert unstamped(snap.task_updates) == unstamped(rec.task_updates)
     assert {k: unstamped(v) for k, v in snap.flags.items()} == {k: unstamped(v) for k, v in rec.flags.items()}

@@ -23,7 +23,7 @@ from cyclonedds.idl.types import array, sequence
 
 # the names cyclonedds uses for primitive kinds, as rosidl writes them
 PRIMITIVE = {"byte": "octet", "float32": "float", "float64": "double", "int8": "int8", "uint8": "uint8",
-             "int32": "int32", "uint32": "uint32"}
+             "int32": "int32", "uint32": "uint32", "int64": "int64"}
 
 
 def ros_name(cls: type[Any]) -> str:
