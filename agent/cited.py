@@ -15,7 +15,7 @@ _SOURCE = {
     "/amcl_pose": "my localisation",
     "/joy_priority": "my joystick switch", "/power/is_charging": "my charger", "/diagnostics": "my diagnostics",
     "/episodic_memory": "my ask-for-help skill", "/skills/say/events": "my speech",
-    "/skills/recommend_pizza/events": "my pizza recommender",
+    "/skills/recommend_pizza/events": "my pizza recommender", "/parameter_events": "my nodes' parameters",
 }
 CITED = 3  # recorded items told at once: the explainers' strongest
 

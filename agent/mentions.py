@@ -17,7 +17,7 @@ from hexar.agent.context import RunContext
 from hexar.agent.logs import line_evidence, quote
 from hexar.agent.measures import worked_until
 from hexar.agent.overview import asks_fix
-from hexar.agent.parameters import IDENTIFIER, asks_parameters, not_held, parameter_list, parameter_values, settings
+from hexar.agent.parameters import IDENTIFIER, asks_parameters, not_held, parameter_list, parameter_values
 from hexar.agent.probes import finding, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
@@ -156,7 +156,7 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
     if len(found) < len(terms):
         text += f" No line names {missing}."
     if set(terms) & _SETTINGS or VALUE_OF.search(q):
-        text += f" As for its value: {not_held(q, log, end)}." if settings(log, end) else \
+        text += f" As for its value: {not_held(q, log, end)}." if log.settings(end) else \
             f" My recording holds no parameter values (no {c.PARAMETER_EVENTS}), only what my nodes logged."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence(lines, task))
 

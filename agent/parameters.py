@@ -30,16 +30,6 @@ def _spaced(name: str) -> str:
     return re.sub(r"[_.]+", " ", _last(name)).strip()
 
 
-def settings(log: EventLog, until: int) -> dict[tuple[str, str], ParameterSample]:
-    """Each (node, parameter)'s last announcement up to `until`: what it was set to then; an undeclared one is
-    left out."""
-    last: dict[tuple[str, str], ParameterSample] = {}
-    for p in log.parameters:
-        if p.t <= until or (p.node, p.name) not in last:
-            last[(p.node, p.name)] = p
-    return {k: p for k, p in last.items() if p.change != "deleted"}
-
-
 def named(question: str, names: set[str]) -> list[str]:
     """The recorded parameter names a question names whole: "failure_tolerance", its dotted full name, or its words
     spaced ("transform tolerance", "use sim time")."""
@@ -97,7 +87,7 @@ def _changes(held: list[ParameterSample], log: EventLog) -> str:
 def parameter_values(question: str, log: EventLog, until: int, terms: list[str]) -> tuple[str, list[Evidence]] | None:
     """The recorded values of the parameters a question asks for, as they stood at `until`, with their evidence;
     None when the recording holds no parameter of that name."""
-    held = settings(log, until)
+    held = log.settings(until)
     names = asked_names(question, {name for _, name in held}, terms)
     if not names:
         return None
@@ -134,7 +124,7 @@ def asks_parameters(question: str, log: EventLog) -> bool:
 def parameter_list(question: str, log: EventLog, until: int) -> tuple[str, list[Evidence]]:
     """The parameters of the node a question names, those changed while running, or what the recording holds."""
     q = " ".join(question.lower().split())
-    held = settings(log, until)
+    held = log.settings(until)
     nodes = sorted({node for node, _ in held})
     asked = [n for n in nodes if re.search(r"(?<![\w/])" + re.escape(n.rsplit("/", 1)[-1].lower()) + r"(?![\w])", q)]
     if asked:
@@ -163,7 +153,7 @@ def _evidence(p: ParameterSample) -> Evidence:
 
 def not_held(question: str, log: EventLog, until: int) -> str:
     """Why the recording gives no value: it holds no /parameter_events, or none of the parameter named."""
-    held = settings(log, until)
+    held = log.settings(until)
     if not held:
         return (f"my recording holds no parameter values (no {c.PARAMETER_EVENTS}; record it from before the "
                 "bring-up and I can read each node's settings)")

@@ -144,6 +144,15 @@ class EventLog:
         known = ", ".join(t.task_id for t in tasks)
         raise NoTaskError(f"no task {ref!r} in {self.path.name} (tasks: {known})")
 
+    def settings(self, until: int) -> dict[tuple[str, str], ParameterSample]:
+        """Each (node, parameter)'s last announcement on /parameter_events up to `until` (a parameter first
+        announced later: its first value), an undeclared one left out: what each node was set to then."""
+        last: dict[tuple[str, str], ParameterSample] = {}
+        for p in self.parameters:
+            if p.t <= until or (p.node, p.name) not in last:
+                last[(p.node, p.name)] = p
+        return {k: p for k, p in last.items() if p.change != "deleted"}
+
     def view(self, topics: frozenset[str] | set[str], window: tuple[int, int] | None = None) -> View:
         """The events of `topics` inside `window` (inclusive), for one explainer."""
         return View(self, frozenset(topics), window)

@@ -28,6 +28,7 @@ from hexar.explainers.manipulation.catalogue import catalogue
 from hexar.explainers.manipulation.wording import template
 from hexar.explainers.module_explainer import ModuleExplainer, focus
 from hexar.explainers.recorded import NAV_SKILLS
+from hexar.explainers.sim_time import with_sim_time
 
 SKILLS = ("pick", "place", "move_arm")
 REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "manipulation.goal_state_invalid"})
@@ -129,7 +130,7 @@ class ManipulationExplainer(ModuleExplainer):
         return d
 
     def explain(self, question: str, context: Context) -> Explanation:
-        found = super().explain(question, context)
+        found = with_sim_time(super().explain(question, context), context.log, context.window[1])
         if not set(found.causes) & REACH:
             return found
         return self._with_navigation(question, context, found)

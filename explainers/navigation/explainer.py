@@ -82,6 +82,7 @@ from hexar.explainers.navigation.unmanaged import unmanaged
 from hexar.explainers.phrasing import phrase
 from hexar.explainers.recorded import NAV_SKILLS
 from hexar.explainers.shutdown import before_shutdown
+from hexar.explainers.sim_time import with_sim_time
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -119,8 +120,10 @@ class NavigationExplainer:
             # step's, after the trips): explain each trip in its own window, with its own /task_info outcome,
             # and answer with the first one that was not a plain, problem-free drive.
             parts = [self._explain(question, context.with_window(task.skill_window(r))) for r in trips]
-            return next((p for p in parts if not set(p.causes) <= {d.NOMINAL, d.NOMINAL_SPEED}), parts[0])
-        return self._explain(question, context)
+            found = next((p for p in parts if not set(p.causes) <= {d.NOMINAL, d.NOMINAL_SPEED}), parts[0])
+        else:
+            found = self._explain(question, context)
+        return with_sim_time(found, context.log, context.window[1])
 
     def _explain(self, question: str, context: Context) -> Explanation:
         view = context.view(self.topics)

@@ -65,16 +65,17 @@ def real_nav2_run(case_id: str, out: Path) -> Path:
     return Path(real_nav2.write_recording(next(e for e in cases if e.id == case_id), out, task=False))
 
 
-def real_nav2_with_parameters(case_id: str, out: Path,
-                              declared: Mapping[str, Mapping[str, Any]],
-                              changed: Sequence[tuple[float, str, str, Any]] = ()) -> Path:
-    """The real Nav2 excerpt `case_id` as real_nav2_run writes it, with the /parameter_events its nodes would have
-    published: each node of `declared` announces its parameters 2 s before the first line, and each (seconds after
-    the first line, node, name, value) of `changed` sets one."""
-    from hexar.evals import real_nav2
+def real_run_with_parameters(case_id: str, out: Path, declared: Mapping[str, Mapping[str, Any]],
+                             changed: Sequence[tuple[float, str, str, Any]] = ()) -> Path:
+    """The real Nav2 or module excerpt `case_id` as real_nav2_run or real_module_run writes it (its task derived from
+    its logs), with the /parameter_events its nodes would have published: each node of `declared` announces its
+    parameters 2 s before the first line, and each (seconds after the first line, node, name, value) of `changed`
+    sets one."""
+    from hexar.evals import real_modules, real_nav2
     from hexar.events.console import parse_console, stamped
 
-    cases = [*real_nav2.corpus(), *(e for r in range(1, 30) for e in real_nav2.blind_set(r))]
+    cases = [*real_nav2.corpus(), *(e for r in range(1, 30) for e in real_nav2.blind_set(r)),
+             *real_modules.load_excerpts("real-modules")]
     case = next(e for e in cases if e.id == case_id)
     records = stamped(parse_console(case.lines))
     b = BagBuilder()

@@ -11,7 +11,7 @@ import pytest
 
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.questions import check_question
-from tests.agent.helpers import converse, real_nav2_run, real_nav2_with_parameters
+from tests.agent.helpers import converse, real_nav2_run, real_run_with_parameters
 
 CASE = "nav2-3746-sim-time-extrapolation"  # Extrapolation into the future: a clock mix-up on a real robot
 DECLARED = {
@@ -25,7 +25,7 @@ DECLARED = {
 
 @pytest.fixture(scope="module")
 def run(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    return real_nav2_with_parameters(CASE, tmp_path_factory.mktemp("params") / "run", DECLARED,
+    return real_run_with_parameters(CASE, tmp_path_factory.mktemp("params") / "run", DECLARED,
                                      [(0.5, "/controller_server", "failure_tolerance", 0.5)])
 
 
