@@ -167,6 +167,9 @@ def mentioned(ctx: RunContext, state: AgentState, task: Task) -> Explanation:
     asked = mentions(state["question"], ctx.log, task)
     found = finding(ctx, state)  # of a failed task, the failure: with_failure's own answer, not asked twice
     told = with_failure(ctx, state, asked, found)
+    if asked.evidence and all(e.topic == c.PARAMETER_EVENTS for e in asked.evidence) and found is not None:
+        # the values were said: "why?" goes on to the failure's lines, not to the parameters again
+        told = told.model_copy(update={"evidence": [*found.evidence, *asked.evidence]})
     if asked.enough_information or found is None:
         return told
     return told.model_copy(update={"text": f"{asked.text} {found.text}"})

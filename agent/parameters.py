@@ -41,11 +41,17 @@ def named(question: str, names: set[str]) -> list[str]:
 
 
 def asked_names(question: str, names: set[str], terms: list[str]) -> list[str]:
-    """The recorded parameter names a question asks for: those it names whole (see named), else those whose name
-    holds a word it asks for ("sim time" in use_sim_time, "tolerance" in xy_goal_tolerance)."""
+    """The recorded parameter names a question asks for: those it names whole (see named), else those under a part
+    of a dotted name it names, else those whose name holds a word it asks for ("sim time" in use_sim_time,
+    "tolerance" in xy_goal_tolerance)."""
     whole = named(question, names)
     if whole:
         return whole
+    # a part of a dotted name ("arm_5_joint" of constraints.arm_5_joint.trajectory): every parameter under it
+    parts = {m.group(0) for m in IDENTIFIER.finditer(" ".join(question.lower().split()))}
+    under = sorted(n for n in names if parts & set(n.lower().split(".")[:-1]))
+    if under:
+        return under
     words = [t.replace("_", " ") for t in terms]
     return sorted(n for n in names
                   if any(re.search(r"(^| )" + re.escape(w) + r"( |$)", _spaced(n)) for w in words))

@@ -97,6 +97,19 @@ def _aborted(log: _Log) -> SkillResult:
     return SkillResult(log.t + sec_ns(0.1), False, "The skill has been aborted")
 
 
+def announce_parameters(b: BagBuilder, t: int, situation: str) -> None:
+    """What the arm's nodes announce on /parameter_events as they start: use_sim_time (move_group's false where it
+    asks for wall-clock time while the rest run on the simulator's), and the joint trajectory controller's joints
+    and tolerances (ros2_controllers' parameter names; its path tolerance is the 0.1 the tolerance abort quotes)."""
+    b.parameters(t, "/robot_state_publisher", new={"use_sim_time": True})
+    b.parameters(t + sec_ns(0.2), "/controller_manager", new={"use_sim_time": True, "update_rate": 100})
+    b.parameters(t + sec_ns(0.4), "/arm_controller", new={
+        "use_sim_time": True, "joints": list(JOINTS), "constraints.goal_time": 0.0,
+        "constraints.stopped_velocity_tolerance": 0.01,
+        **{f"constraints.{j}.{kind}": value for j in JOINTS for kind, value in (("trajectory", 0.1), ("goal", 0.05))}})
+    b.parameters(t + sec_ns(0.8), "/move_group", new={"use_sim_time": situation != "stale_state"})
+
+
 def plan(obj: str) -> list[tuple[str, dict[str, Any]]]:
     return [("navigate_to_zone", {"location": "kitchen"}), ("pick", {"object": obj}),
             ("navigate_to_zone", {"location": "dining_room"}), ("place", {"object": obj}),
@@ -116,6 +129,7 @@ def record_arm(situation: str, variant: int, seed: int = 0) -> BagBuilder:
     home = ROOMS["dining_room"]
     robot = Robot(b, rng, 0, variant, start + sec_ns(rng.uniform(3, 6)), home)
     robot.arm_situation = situation
+    announce_parameters(b, start, situation)
     if situation == "out_of_reach":
         robot.first_navigation = "poor_localisation"
     ok = robot.run_task(f"Bring me the {obj} from the kitchen", plan(obj))

@@ -35,7 +35,7 @@ def test_a_setting_that_differs_between_nodes_is_said_node_by_node(run: Path) ->
         assert str(answer["answer"]).endswith(
             "use_sim_time differs between my nodes: true on 3 nodes (/amcl, /controller_server, "
             "/local_costmap/local_costmap) but false on 1 node (/bt_navigator)."), question
-        assert {e["topic"] for e in answer["evidence"]} == {"/parameter_events"}  # type: ignore[union-attr]
+        assert "/parameter_events" in {e["topic"] for e in answer["evidence"]}  # type: ignore[union-attr]
 
 
 def test_a_value_changed_while_running_is_the_one_at_the_end_with_what_it_was(run: Path) -> None:
