@@ -53,6 +53,8 @@ def log_dict(log: EventLog) -> dict[str, Any]:
         "duration_s": round((log.end - log.start) / 1e9, 3),
         "topics": [{"topic": i.topic, "type": i.type, "count": i.count} for i in log.topics.values()],
         "tasks": [task_dict(t) for t in log.tasks],
+        "parameters": [{"t_ns": p.t, "node": p.node, "name": p.name, "value": p.said, "change": p.change}
+                       for p in log.parameters],
         "warnings": list(log.warnings),
     }
 
@@ -67,6 +69,11 @@ def print_inspection(console: Console, log: EventLog) -> None:
     for info in log.topics.values():
         topics.add_row(safe(info.topic), safe(info.type), str(info.count))
     console.print(topics)
+    if log.parameters:
+        held = log.settings(log.end)
+        changed = sum(p.change == "changed" for p in held.values())
+        console.print(f"Parameters: {len(held)} of {len({node for node, _ in held})} nodes, as they announced them on "
+                      f"/parameter_events ({changed} changed while running); --json lists them.")
     for task in log.tasks:
         label = "recovery task" if task.is_recovery else f"\"{safe(clip(task.instruction))}\""
         if task.derived and task.instruction.endswith(" (derived from Nav2)"):

@@ -52,6 +52,15 @@ def test_real_bags_inspect_cleanly_and_say_there_is_no_task(real_bags: Path, nam
     assert "No task to explain" in out and "/rosout" in out
 
 
+def test_a_real_bags_parameters_are_counted_and_listed(real_bags: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["inspect", str(real_bags / "gps_vehicle_run")]) == 0
+    assert "Parameters: 13 of 5 nodes" in " ".join(capsys.readouterr().out.split())
+    assert main(["inspect", "--json", str(real_bags / "gps_vehicle_run")]) == 0
+    listed = json.loads(capsys.readouterr().out)["parameters"]
+    assert {"node": "/motion_spec_provider", "name": "look_ahead_dist", "value": "3.0", "change": "new"}.items() <= \
+        next(p for p in listed if p["name"] == "look_ahead_dist").items()
+
+
 @pytest.mark.parametrize(("args", "message"), [
     (["inspect", "/definitely/not/here"], "recording not found"),
     (["runs", "/definitely/not/here"], "not a folder"),
