@@ -9,16 +9,30 @@ from collections.abc import Callable
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.logs import nodes
+from hexar.agent.mentions import mentions
 from hexar.agent.person import person
 from hexar.agent.places import at_place, goal, place, reached, when_at, where_failed
 from hexar.agent.plugins import plugins
-from hexar.agent.recording import clock, recorded
+from hexar.agent.recording import clock, recorded, topic_data
 from hexar.agent.skills import skills
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
 Answer = Callable[[str, EventLog, Task], Explanation]
+
+
+def _topic_data(question: str, log: EventLog, task: Task) -> Explanation:
+    """What the recording holds on the topics asked about; where it holds none, the log lines that name the thing
+    ("Timed out waiting for transform from base_link to odom") say what the topic cannot."""
+    told = topic_data(question, log, task)
+    if told.enough_information:
+        return told
+    named = mentions(question, log, task)
+    if not named.enough_information:
+        return told
+    return told.model_copy(update={"text": f"{told.text} {named.text}", "evidence": [*named.evidence, *told.evidence]})
+
 
 FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
@@ -45,5 +59,6 @@ FROM_RECORDING: dict[str, Answer] = {
     "said": content.said,
     "clock": clock,
     "recorded": recorded,
+    "topic_data": _topic_data,
     "skills": skills,
 }

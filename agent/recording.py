@@ -26,13 +26,69 @@ RECORDED = re.compile(
     + _LEAD + r"(what|how much|how many messages) (was|were|is|got) recorded\b|"
     + _LEAD + r"how (long|big) is (your|the|this) (recording|bag|rosbag)\b")
 SHOWN = 5  # topics named, most messages first; the rest are counted
+# "did any /scan get published?", "was odom updating?", "were joint_states coming in?", "did docking_server ever get
+# a BatteryState message?": whether data flowed on a topic, which only the recording's topics can say
+_TOPIC_WORDS = {"scan": "scan", "laser": "scan", "lidar": "scan", "odom": "odom", "odometry": "odom",
+                "cmd_vel": "cmd_vel", "joint_states": "joint_states", "joint states": "joint_states", "tf": "tf",
+                "tf_static": "tf_static", "clock": "clock", "imu": "imu", "battery_state": "battery_state",
+                "batterystate": "battery_state", "battery state": "battery_state", "points": "points",
+                "pointcloud": "points", "point cloud": "points", "image": "image", "camera": "image",
+                "map": "map", "costmap": "costmap", "goal_pose": "goal_pose", "amcl_pose": "amcl_pose"}
+_NAMED = r"(/[a-z0-9_/]+|" + "|".join(sorted((re.escape(w) for w in _TOPIC_WORDS), key=len, reverse=True)) + r")"
+TOPIC_DATA = re.compile(
+    r"\b(did|was|were|is|are|has|have|had)\b[a-z_ ]{0,40}?\b(any |the |my |a )?" + _NAMED + r"s?\b( (data|messages?|"
+    r"topic))?[a-z_ ]{0,30}?\b(published|publishing|get published|arriv\w*|receiv\w*|sent|coming in|come in|updat\w*|"
+    r"flowing|recorded|in the bag|reach\w*|alive)\b|"
+    r"\b(anything|any messages?|any data) (on|from|in) (the )?" + _NAMED + r"\b|"
+    r"\b(ever )?(get|got|receive|received) (a |any )?" + _NAMED + r"( messages?)?\b")
 
 
 def clock_kind(q: str) -> str | None:
-    """'clock' or 'recorded' for a question (lower case, spaces collapsed) about the recording itself."""
+    """'clock', 'recorded' or 'topic_data' for a question (lower case, spaces collapsed) about the recording
+    itself."""
     if CLOCK.search(q):
         return "clock"
-    return "recorded" if RECORDED.search(q) else None
+    if RECORDED.search(q):
+        return "recorded"
+    return "topic_data" if TOPIC_DATA.search(q) else None
+
+
+def _asked_topics(q: str) -> list[str]:
+    """The topic names a question asks about, as a recording names them: "/scan", or a word for one ("lidar")."""
+    found: list[str] = []
+    for m in re.finditer(r"(?<![a-z0-9_])" + _NAMED + r"(?![a-z0-9_])", q):
+        word = m.group(1)
+        name = word.strip("/") if word.startswith("/") else _TOPIC_WORDS[word]
+        if name not in found:
+            found.append(name)
+    return found
+
+
+def topic_data(question: str, log: EventLog, task: Task) -> Explanation:
+    """How many messages the recording holds on the topics a question names (live: how many were heard), or that it
+    holds none of them and which topics it does hold: whether data flowed there is for the recording to say."""
+    q = " ".join(question.lower().split())
+    asked = _asked_topics(q)
+    held = sorted(log.topics.values(), key=lambda i: i.topic)
+    said, evidence = [], []
+    for name in asked:
+        last = name.rsplit("/", 1)[-1]
+        on = [i for i in held if i.topic.strip("/") == name or i.topic.rsplit("/", 1)[-1] == last]
+        if on:
+            said.append(join_words([f"{_count(i.count, 'message')} on {i.topic} ({i.type})" for i in on]))
+            evidence += [Evidence(cause="planner.plan_ok", topic=i.topic, t=log.start,
+                                  item=f"{_count(i.count, 'message')}, {i.type}") for i in on]
+    missing = [f"/{n}" for n in asked if not any(i.topic.strip("/") == n or i.topic.rsplit("/", 1)[-1] ==
+                                               n.rsplit("/", 1)[-1] for i in held)]
+    holds = "I have heard" if log.storage == "live" else "My recording holds"
+    parts = [f"{holds} {join_words(said)}."] if said else []
+    if missing:
+        kept = join_words([i.topic for i in held][:8]) + (f" and {len(held) - 8} more" if len(held) > 8 else "")
+        parts.append(f"{'It holds' if said else holds} no {join_words(missing)}: it has only {kept}, so whether "
+                     f"anything was published on {join_words(missing)} it cannot tell.")
+    text = " ".join(parts)
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence,
+                       enough_information=bool(said) and not missing)
 
 
 def _heard(log: EventLog) -> str:

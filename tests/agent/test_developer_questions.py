@@ -15,7 +15,7 @@ from tests.agent.helpers import converse, real_module_run, real_nav2_run
 
 
 @pytest.mark.parametrize(("question", "kind"), [
-    ("what is the initial pose?", "mentions"), ("is odometry published?", "mentions"),
+    ("what is the initial pose?", "mentions"), ("is odometry published?", "topic_data"),
     ("is the lidar working?", "mentions"), ("what resource?", "mentions"), ("was the simulation paused?", "mentions"),
     ("did you reach the goal or not?", None), ("how far was the collision?", None),
     ("what was ahead of you?", "blocked"), ("did the arm hit something?", "contact"),
@@ -34,7 +34,8 @@ def test_a_goal_reached_or_not_is_the_goal_s_outcome(tmp_path: Path) -> None:
 def test_a_sensor_the_log_names_and_one_it_never_does(tmp_path: Path) -> None:
     (odom,) = converse(real_nav2_run("tb3-ue-37-no-odom-published", tmp_path / "odom"), "is odometry published?")
     assert str(odom["answer"]).startswith(
-        "My log names odometry in 1 line up to the end of the navigation goal: at 14:21:47, "
+        "My recording holds no /odom: it has only /rosout, so whether anything was published on /odom it cannot "
+        "tell. My log names odometry in 1 line up to the end of the navigation goal: at 14:21:47, "
         'local_costmap.local_costmap (INFO) "Timed out waiting for transform from base_link to odom to become '
         "available")
     (lidar,) = converse(real_nav2_run("tb4-318-lidar-create3-clock", tmp_path / "lidar"), "is the lidar working?")
@@ -92,3 +93,27 @@ def test_start_up_lines_give_way_to_warnings_and_data_dropped_is_no_arm(tmp_path
                           "why are scans dropped?")
     assert "arm" not in str(dropped["answer"])
     assert "Message Filter dropping message" in str(dropped["answer"])
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("did any /scan get published before the error?", "topic_data"),
+    ("was any cmd_vel actually sent to the base?", "topic_data"),
+    ("were joint_states actually coming in during the pick?", "topic_data"),
+    ("did docking_server ever get a BatteryState message?", "topic_data"),
+    ("was odom from rtabmap updating during this?", "topic_data"), ("is there anything on /tf?", "topic_data"),
+    ("did the wheels move?", None), ("what topics did you record?", "recorded"),
+])
+def test_whether_data_flowed_on_a_topic_is_its_own_question(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_whether_data_flowed_is_answered_from_the_recordings_topics(tmp_path: Path, suite: Path) -> None:
+    (scan,) = converse(real_module_run("ldlidar-9-wrong-tty-device", tmp_path / "lidar"),
+                       "did any /scan get published before the error?")
+    assert scan["answer"] == ("My recording holds no /scan: it has only /rosout, so whether anything was published "
+                              "on /scan it cannot tell.")
+    (pose, charging) = converse(suite / "bagfile_7_1", "was any amcl_pose published?",
+                                "were the joint states updating?")
+    assert str(pose["answer"]).startswith("My recording holds ")
+    assert "messages on /amcl_pose (geometry_msgs/msg/PoseWithCovarianceStamped)" in str(pose["answer"])
+    assert str(charging["answer"]).startswith("My recording holds no /joint_states: it has only /amcl_pose, ")
