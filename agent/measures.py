@@ -51,13 +51,16 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               # "how long did you wait?": every step's time is in the answer, the one asked about among them
               r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
               r"^(and |so )?(which|what) (step|part|leg) (took|was) (the )?(longest|slowest|quickest|shortest)\b",
-              # "how long did each step take?", "how long did pick and place each take?", "how long were you in
-              # the dining room?", "why did you spend so long in the kitchen?", "what were you waiting for?"
+              # "how long did each step take?", "how long were you in the kitchen?", "what were you waiting for?",
+              # "how long did you keep trying?", "and for how long?"
               r"^(and |so |ok |okay )?how long did ([a-z]+ )?(each|every|all the|the) (steps?|parts?|legs?|skills?)"
               r"( each)? take\b|^(and |so )?how long did [a-z]+ and [a-z]+ (each )?take\b",
               r"^(and |so )?how long were you (in|at) (the )?[a-z_]+( room)?\W*$",
               r"\bwhy did you (spend|stay|wait|stand) (so much longer|so long|that long|longer)\b",
-              r"^(and |so )?(what|who) were you waiting (for|on)\b")),
+              r"^(and |so )?(what|who) were you waiting (for|on)\b",
+              r"^(and |so )?how long did (you|it|the robot|the planner) (keep|kept) (trying|going|waiting|looking|"
+              r"searching|driving)\b|\bfor how long\W*$",
+              r"^(and |so )?how long did (it|the planner|moveit|the robot) (try|plan|wait|search|look)\b")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
               r"reach|finish|stop|end|come back|return|drive|head|give up|fail|quit|abort)\b",
               r"^(and |so |ok |okay )?(when|at what time|what time) did (it|that|this|the task|the step|things) "

@@ -162,6 +162,8 @@ def test_why_the_person_did_not_confirm_is_not_recorded(suite: Path) -> None:
     ("what did you ask?", "talked"), ("how long did each step take?", "long"),
     ("how long did pick and place each take?", "long"), ("how long were you in the dining room?", "long"),
     ("why did you spend so long in the kitchen?", "long"), ("what were you waiting for?", "long"),
+    ("how long did you keep trying to get to the kitchen?", "long"), ("did you look, and for how long?", "long"),
+    ("how long did it plan before giving up?", "long"),
     ("what did you say?", "said"),  # what it said aloud stays the speech's
 ])
 def test_a_persons_help_and_the_time_of_each_step_are_their_own_questions(question: str, kind: str) -> None:
