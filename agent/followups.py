@@ -21,6 +21,7 @@ from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
 from hexar.agent.skills import SKILLS
 from hexar.agent.state import Intent
 from hexar.agent.unseen import unseen_kind
+from hexar.agent.window import window_kind
 
 _DEEPER = re.compile(
     r"^(and |but |so |ok |okay )?(why( is| was| did)?( that| this| it)?( so| happen(ed)?)?|why not|how come|"
@@ -160,8 +161,9 @@ def content_kind(question: str) -> str | None:
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
-    kind = next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or clock_kind(q) or \
-        health_kind(q) or unseen_kind(q)
+    # a time of day names the moment asked about (agent/window.py): what the log holds then
+    kind = window_kind(q) or next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
+        clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:
         kind = "flag"
     if kind is None and LIMIT.search(q):

@@ -15,6 +15,7 @@ from hexar.agent.places import at_place, goal, place, reached, when_at, where_fa
 from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded, topic_data
 from hexar.agent.skills import skills
+from hexar.agent.window import at_time
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
@@ -60,5 +61,6 @@ FROM_RECORDING: dict[str, Answer] = {
     "clock": clock,
     "recorded": recorded,
     "topic_data": _topic_data,
+    "at_time": at_time,
     "skills": skills,
 }
