@@ -124,7 +124,8 @@ _MODULE_WORDS = {
 # "why are scans dropped?": data a node dropped, not something the arm let fall
 _DATA_DROPPED = re.compile(r"\b(scans?|messages?|msgs?|frames?|packets?|data|transforms?|tfs?|points?|clouds?|"
                            r"images?|goals?|requests?|connections?)( (are|were|is|was|being|get|got|getting))? "
-                           r"dropp(ed|ing)\b|\bdropp(ed|ing) (scans?|messages?|frames?|packets?|data|transforms?)\b")
+                           r"dropp(ed|ing)\b|"
+                           r"\bdropp(ed|ing) ([a-z0-9_]+ )?(scans?|messages?|frames?|packets?|data|transforms?)\b")
 
 
 def module_asked(question: str) -> str | None:

@@ -8,7 +8,7 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
-from hexar.agent.logs import nodes
+from hexar.agent.logs import nodes, stated_spans
 from hexar.agent.mentions import mentions
 from hexar.agent.person import person
 from hexar.agent.places import at_place, goal, place, reached, when_at, where_failed
@@ -21,6 +21,10 @@ from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
 Answer = Callable[[str, EventLog, Task], Explanation]
+
+
+def _with_spans(told: Explanation, log: EventLog, task: Task) -> Explanation:
+    return told.model_copy(update={"text": told.text + stated_spans(log, task)})
 
 
 def _topic_data(question: str, log: EventLog, task: Task) -> Explanation:
@@ -44,7 +48,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "far": lambda q, log, task: measures.far(log, task, q),
     "fast": lambda q, log, task: measures.fast(log, task),
     "start": lambda q, log, task: measures.start(log, task),
-    "long": lambda q, log, task: measures.long(log, task),
+    "long": lambda q, log, task: _with_spans(measures.long(log, task), log, task),
     "when": when_at,
     "at_place": at_place,
     "route": lambda q, log, task: measures.far(log, task),

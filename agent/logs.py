@@ -37,6 +37,9 @@ LOGS = re.compile(
     r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
 )
 QUOTED = 3  # distinct messages quoted in one answer; the rest are counted
+# a span a log line states itself: "within 10.000000 seconds", "timed out after 5 seconds", "waited 2.5 s"
+_STATED = re.compile(r"\b(within|after|for|took|waited|wait of|timeout of|timed out after)\s+\d+(\.\d+)?\s*"
+                     r"(seconds?|secs?|s|ms|milliseconds?)\b", re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -187,3 +190,13 @@ def nodes(question: str, log: EventLog, task: Task) -> Explanation:
     evidence = [Evidence(cause="planner.plan_ok", topic=ln.origin, t=ln.t, item=ln.render())
                 for node, ln in first.items() if node in shown]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=evidence)
+
+
+def stated_spans(log: EventLog, task: Task) -> str:
+    """The spans the task's log lines state themselves ('"... within 10.000000 seconds." (hello_moveit, 21:08:24)'),
+    for a "how long?" whose answer the recorded times alone do not give: a wait a node timed, whose start is
+    before the recording or in no line."""
+    start, end = task.window()
+    lines = [ln for ln in log.logs if start - 60_000_000_000 <= ln.t <= end and _STATED.search(ln.msg)]
+    told = [f'"{_said(ln.msg)}" ({ln.name or "a node"}, {hms(ln.t)})' for ln in _distinct(lines)[:QUOTED]]
+    return f" My log states how long itself: {join_words(told)}." if told else ""

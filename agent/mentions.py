@@ -17,7 +17,15 @@ from hexar.agent.context import RunContext
 from hexar.agent.logs import line_evidence, quote
 from hexar.agent.measures import worked_until
 from hexar.agent.overview import asks_fix
-from hexar.agent.parameters import IDENTIFIER, asks_parameters, not_held, parameter_list, parameter_values
+from hexar.agent.parameters import (
+    IDENTIFIER,
+    LISTING,
+    asks_parameters,
+    node_asked,
+    not_held,
+    parameter_list,
+    parameter_values,
+)
 from hexar.agent.probes import finding, with_failure
 from hexar.agent.state import AgentState
 from hexar.events import contract as c
@@ -126,13 +134,17 @@ def mentions(question: str, log: EventLog, task: Task) -> Explanation:
     q = " ".join(question.lower().split())
     terms = asked_terms(q)
     end = worked_until(log, task)
-    values = parameter_values(q, log, end, terms)
+    # "what parameters did the arm controller announce?": its list; else the values of those named
+    listing = asks_parameters(q, log) and LISTING.search(q) is not None and node_asked(q, log)
+    values = parameter_list(q, log, end) if listing else parameter_values(q, log, end, terms)
     if values is None and asks_parameters(q, log):
         values = parameter_list(q, log, end)
     if values is not None:
         return Explanation(explainer="planner", text=values[0], causes=["planner.plan_ok"], evidence=values[1])
-    if VALUE_OF.search(q):  # a parameter by its name: the lines that name it
-        terms = [m.group(0) for m in IDENTIFIER.finditer(q) if m.group(0) not in terms] + terms
+    if VALUE_OF.search(q):  # a parameter by its name: the lines that name it (a node's name is no parameter)
+        nodes = {ln.name.rsplit(".", 1)[-1].lower() for ln in log.logs}
+        terms = [m.group(0) for m in IDENTIFIER.finditer(q) if m.group(0) not in terms and m.group(0) not in nodes] \
+            + terms
     name = task_name(task, log)
     named = {t: [ln for ln in log.logs if ln.t <= end and _names(ln, t)] for t in terms}
     found = [t for t in terms if named[t]]

@@ -30,14 +30,16 @@ def _spaced(name: str) -> str:
     return re.sub(r"[_.]+", " ", _last(name)).strip()
 
 
-def named(question: str, names: set[str]) -> list[str]:
-    """The recorded parameter names a question names whole: "failure_tolerance", its dotted full name, or its words
-    spaced ("transform tolerance", "use sim time")."""
+def named(question: str, names: set[str], spaced: bool = True) -> list[str]:
+    """The recorded parameter names a question names whole: "failure_tolerance", its dotted full name, its last part
+    where that is an identifier of its own ("max_vel_x" of FollowPath.max_vel_x, not "trajectory" of
+    constraints.arm_1_joint.trajectory, a word any question may hold), or, with `spaced`, its words spaced
+    ("transform tolerance", "use sim time")."""
     q = " ".join(question.lower().split())
     return sorted(n for n in names
                   if re.search(r"(?<![\w.])" + re.escape(n.lower()) + r"(?![\w])", q)
-                  or re.search(r"(?<![\w.])" + re.escape(_last(n)) + r"(?![\w])", q)
-                  or (" " in _spaced(n) and re.search(r"\b" + re.escape(_spaced(n)) + r"s?\b", q)))
+                  or ("_" in _last(n) and re.search(r"(?<![\w.])" + re.escape(_last(n)) + r"(?![\w])", q))
+                  or (spaced and " " in _spaced(n) and re.search(r"\b" + re.escape(_spaced(n)) + r"s?\b", q)))
 
 
 def asked_names(question: str, names: set[str], terms: list[str]) -> list[str]:
@@ -111,11 +113,16 @@ def parameter_values(question: str, log: EventLog, until: int, terms: list[str])
 
 
 # "what parameters did amcl have?", "which parameters changed?", "what settings did you run with?"
-_LISTING = re.compile(r"^(and |so |but |ok )?(what|which|how many|list|show|were|was|did|any|are)\b.*"
+LISTING = re.compile(r"^(and |so |but |ok )?(what|which|how many|list|show|were|was|did|any|are)\b.*"
                       r"\b(parameters|params|settings|parameter values)\b|\b(parameters?|params?|settings?) "
                       r"(changed|were changed|was changed|did you change|were set|did you use|did you run with)\b")
 _CHANGED = re.compile(r"\b(chang|modif|set (while|during|at run)|updat)")
 _LISTED = 12
+
+
+# a question that asks for a value: its words may name a parameter spaced ("which nodes use sim time?"); elsewhere
+# spaced words are the question's own ("the costmap missed its update rate")
+_ASKS = re.compile(r"^(and |so |but )?(what|what's|whats|which|is|was|are|were|how|does|did)\b")
 
 
 def asks_parameters(question: str, log: EventLog) -> bool:
@@ -124,7 +131,20 @@ def asks_parameters(question: str, log: EventLog) -> bool:
     if not log.parameters:
         return False
     q = " ".join(question.lower().split())
-    return bool(named(q, {p.name for p in log.parameters})) or _LISTING.search(q) is not None
+    return bool(named(q, {p.name for p in log.parameters}, spaced=_ASKS.search(q) is not None)) or \
+        LISTING.search(q) is not None
+
+
+def node_asked(question: str, log: EventLog) -> bool:
+    """Whether a question names a node that announced parameters ("amcl", "the arm controller")."""
+    q = " ".join(question.lower().split())
+    return any(_names_node(q, node) for node in {p.node for p in log.parameters})
+
+
+def _names_node(q: str, node: str) -> bool:
+    last = node.rsplit("/", 1)[-1].lower()
+    return re.search(r"(?<![\w/])(" + re.escape(last) + "|" + re.escape(last.replace("_", " ")) + r")(?![\w])",
+                     q) is not None
 
 
 def parameter_list(question: str, log: EventLog, until: int) -> tuple[str, list[Evidence]]:
@@ -132,7 +152,7 @@ def parameter_list(question: str, log: EventLog, until: int) -> tuple[str, list[
     q = " ".join(question.lower().split())
     held = log.settings(until)
     nodes = sorted({node for node, _ in held})
-    asked = [n for n in nodes if re.search(r"(?<![\w/])" + re.escape(n.rsplit("/", 1)[-1].lower()) + r"(?![\w])", q)]
+    asked = [n for n in nodes if _names_node(q, n)]
     if asked:
         shown = [p for (node, _), p in sorted(held.items()) if node in asked]
         more = f", and {len(shown) - _LISTED} more" if len(shown) > _LISTED else ""

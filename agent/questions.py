@@ -120,7 +120,8 @@ _DEVELOPER = (
     "simulation simulator gazebo paused pause unpause published publish publishes publishing package packages "
     "install installed permission permissions resource resources namespace namespaces initial localization "
     "localisation localize localise ekf ukf detector detectors qos durability reliability library libraries mission "
-    "good bad accurate inaccurate healthy correct incorrect wifi"
+    "good bad accurate inaccurate healthy correct incorrect wifi logged sensor sensors origin bounds local global map "
+    "maps out queue full"
 )
 
 

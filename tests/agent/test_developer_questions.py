@@ -117,3 +117,12 @@ def test_whether_data_flowed_is_answered_from_the_recordings_topics(tmp_path: Pa
     assert str(pose["answer"]).startswith("My recording holds ")
     assert "messages on /amcl_pose (geometry_msgs/msg/PoseWithCovarianceStamped)" in str(pose["answer"])
     assert str(charging["answer"]).startswith("My recording holds no /joint_states: it has only /amcl_pose, ")
+
+
+def test_a_wait_a_log_line_times_itself_is_told_with_the_recorded_times(tmp_path: Path) -> None:
+    run = real_module_run("doc-moveit2-tutorials-first-project-no-robot-description", tmp_path / "run")
+    (waited,) = converse(run, "how long did it wait for robot_description before failing?")
+    assert str(waited["answer"]).endswith(
+        'My log states how long itself: "Could not find parameter robot_description and did not receive '
+        'robot_description via std_msgs::msg::String subscription within 10.000000 seconds." (hello_moveit, '
+        "21:08:24).")

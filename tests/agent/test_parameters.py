@@ -92,3 +92,30 @@ def test_a_parameter_name_is_a_word_but_a_made_up_one_alone_is_not() -> None:
     assert check_question("use_sim_time?") == "use_sim_time?"
     with pytest.raises(BadQuestionError, match="I don't understand 'asdf_qwer\\?'"):
         check_question("asdf_qwer?")
+
+
+@pytest.fixture(scope="module")
+def arm(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from hexar.evals.scenarios.arm import simulate_arm_suite
+
+    out = tmp_path_factory.mktemp("arm")
+    simulate_arm_suite(out, only=lambda s, v: v == 1 and s in {"tolerance", "nominal"})
+    return out
+
+
+def test_a_word_a_parameter_ends_in_is_no_question_about_it(arm: Path) -> None:
+    # constraints.arm_1_joint.trajectory ends in "trajectory"; update_rate spaced is "update rate"
+    (far,) = converse(arm / "armfile_tolerance_1", "how far into the trajectory did arm_controller abort?")
+    assert "/parameter_events" not in str(far["answer"])
+    (warned,) = converse(arm / "armfile_nominal_1",
+                         "anything in the warnings I should worry about, e.g. the costmap missing its update rate?")
+    assert "/parameter_events" not in str(warned["answer"])
+
+
+def test_a_node_named_in_words_lists_its_parameters(arm: Path) -> None:
+    (listed,) = converse(arm / "armfile_nominal_1", "what parameters did the arm controller announce?")
+    assert str(listed["answer"]).startswith("/arm_controller announced 18 parameters on /parameter_events: "
+                                            "constraints.arm_1_joint.goal = 0.05, ")
+    (joint,) = converse(arm / "armfile_tolerance_1", "what path tolerance is configured for arm_6_joint?")
+    assert str(joint["answer"]).endswith("/arm_controller has constraints.arm_6_joint.goal = 0.05; /arm_controller "
+                                         "has constraints.arm_6_joint.trajectory = 0.1.")
