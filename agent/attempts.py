@@ -37,7 +37,7 @@ TRIED = re.compile(
     r" anything else| another way| to go around( it| them| that)?)?\W*$|"
     r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) (you|it|the robot|nav2|the planner|"
     r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
-    r"^(and |so |but |ok |okay )?how many (attempts|tries|retries|re-?plans|recoveries)\b|"
+    r"^(and |so |but |ok |okay )?how many ([a-z]+ )?(attempts|tries|retries|re-?plans|recoveries|recovery cycles)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
     r"^(and |so |but |ok |okay )?why did (you|it|the planner|nav2) (re-?plan|replanned|re-?route)\b|"
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"

@@ -33,12 +33,16 @@ LOGS = re.compile(
     + _OPEN + r"what('s| is) in (the|your|my) logs?\b|"
     + _OPEN + r"(did|were|was) (you get |you log |you see |there )?(any |an |a )?(errors?|warnings?)( logged| "
     r"recorded)?\W*$|"
+    # "were there any WARN or ERROR lines at all?", "how many times did it warn?"
+    + _OPEN + r"(were|was|are|is) there (any|many) (warn(ing)?s?|errors?)( or (warn(ing)?s?|errors?))?"
+    r"( lines?| messages?)?\b|"
+    r"\bhow many (times did (it|they|the node|[a-z_]+) (warn|complain|error|log it)|warnings|errors)\b|"
     + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"
     r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
 )
 QUOTED = 3  # distinct messages quoted in one answer; the rest are counted
 # a span a log line states itself: "within 10.000000 seconds", "timed out after 5 seconds", "waited 2.5 s"
-_STATED = re.compile(r"\b(within|after|for|took|waited|wait of|timeout of|timed out after)\s+\d+(\.\d+)?\s*"
+_STATED = re.compile(r"\b(within|after|waited|wait of|timeout of|timed out after)\s+\d+(\.\d+)?\s*"
                      r"(seconds?|secs?|s|ms|milliseconds?)\b", re.IGNORECASE)
 
 
@@ -53,7 +57,7 @@ class _Asked:
 
 
 def _asked(q: str) -> _Asked:
-    warn = re.search(r"\bwarnings?\b", q) is not None
+    warn = re.search(r"\bwarn(ings?|ed|s)?\b", q) is not None
     err = re.search(r"\berrors?\b|\b(failed|crashed|died|errored)\b", q) is not None
     if warn and not err:
         low, high, noun = WARN, WARN, "warning"
@@ -195,7 +199,9 @@ def nodes(question: str, log: EventLog, task: Task) -> Explanation:
 def stated_spans(log: EventLog, task: Task) -> str:
     """The spans the task's log lines state themselves ('"... within 10.000000 seconds." (hello_moveit, 21:08:24)'),
     for a "how long?" whose answer the recorded times alone do not give: a wait a node timed, whose start is
-    before the recording or in no line."""
+    before the recording or in no line. Only of a task read from the logs: a robot's own task has its times."""
+    if not task.derived:
+        return ""
     start, end = task.window()
     lines = [ln for ln in log.logs if start - 60_000_000_000 <= ln.t <= end and _STATED.search(ln.msg)]
     told = [f'"{_said(ln.msg)}" ({ln.name or "a node"}, {hms(ln.t)})' for ln in _distinct(lines)[:QUOTED]]

@@ -40,6 +40,8 @@ TOPIC_DATA = re.compile(
     r"topic))?[a-z_ ]{0,30}?\b(published|publishing|get published|arriv\w*|receiv\w*|sent|coming in|come in|updat\w*|"
     r"flowing|recorded|in the bag|reach\w*|alive)\b|"
     r"\b(anything|any messages?|any data) (on|from|in) (the )?" + _NAMED + r"\b|"
+    r"\b(arriv\w*|publish\w*|come in|came in|received?|sent) (on|in|at|to) (the )?" + _NAMED + r"\b|"
+    r"\bany " + _NAMED + r"( or " + _NAMED + r")?( data| messages?)? (in|on) (the |this |my )?(bag|recording)\b|"
     r"\b(ever )?(get|got|receive|received) (a |any )?" + _NAMED + r"( messages?)?\b")
 
 

@@ -126,3 +126,21 @@ def test_a_wait_a_log_line_times_itself_is_told_with_the_recorded_times(tmp_path
         'My log states how long itself: "Could not find parameter robot_description and did not receive '
         'robot_description via std_msgs::msg::String subscription within 10.000000 seconds." (hello_moveit, '
         "21:08:24).")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("did anything arrive on /joint_states in this bag?", "topic_data"),
+    ("was the base moving at all? any cmd_vel or odom in this bag?", "topic_data"),
+    ("were there any WARN or ERROR lines at all in this run?", "logs"),
+    ("how many times did it warn?", "logs"), ("how many spin recoveries ran before it gave up?", "tried"),
+])
+def test_set_five_questions_find_their_answers(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
+
+
+def test_how_often_a_node_warned_is_counted(tmp_path: Path) -> None:
+    run = real_module_run("ifra-srrc-3-missing-fixed-joints-nominal", tmp_path / "run")
+    (warned,) = converse(run, "how many times did it warn, and did it ever stop?")
+    assert str(warned["answer"]).startswith("My log holds 3 warnings while I worked on the goal to move the arm")
+    assert str(warned["answer"]).endswith('"The complete state of the robot is not yet known. Missing BASE_TF_joint, '
+                                          'TCP_joint" (3 times).')
