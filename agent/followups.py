@@ -12,6 +12,7 @@ from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.mentions import mentions_kind
+from hexar.agent.node_status import node_status_kind
 from hexar.agent.overview import SETTING_FIX
 from hexar.agent.person import PERSON
 from hexar.agent.places import AT_PLACE, FAILED_AT, GOAL, REACHED, ROUTE, place_asked
@@ -152,8 +153,9 @@ def is_order(question: str) -> bool:
 
 
 def content_kind(question: str) -> str | None:
-    """The kind of a question about what the robot did, its recording or where a failure lies: a name of
-    _CONTENT_KINDS, the recording's ('clock', 'recorded'), a failure's ('broken', 'fault', 'lost', 'contact',
+    """The kind of a question about what the robot did, its recording or where a failure lies: a moment of it
+    ('at_time'), one of its nodes ('node_status'), a name of _CONTENT_KINDS, the recording's ('clock', 'recorded',
+    'topic_data'), a failure's ('broken', 'fault', 'lost', 'contact',
     'blocked'), 'flag', 'limit', 'battery', 'place', a measure ('far', 'fast', 'start', 'long', 'when'), 'said', or
     'mentions' (a named thing of the stack, looked up in the log, when nothing else took it).
     Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
@@ -162,8 +164,9 @@ def content_kind(question: str) -> str | None:
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
-    # a time of day names the moment asked about (agent/window.py): what the log holds then
-    kind = window_kind(q) or next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
+    # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
+    kind = window_kind(q) or node_status_kind(q) or \
+        next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
         clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:
         kind = "flag"

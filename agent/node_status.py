@@ -1,0 +1,78 @@
+""""Did controller_manager crash after that or keep running?", "did move_group still start up?", "did docking_server
+come up?": a developer asks what became of one node. The log says what it can: the node's own lines (how many, from
+when to when, its last), what launch said of its process (finished cleanly, died with an exit code), and whether
+its last line came at the recording's end. A node with no line is said to have none, never to have run or not.
+"""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.logs import line_evidence
+from hexar.events.log import EventLog
+from hexar.events.records import LEVEL_NAMES, LogLine, hms
+from hexar.events.tasks import Task
+from hexar.explainers.base import Explanation
+
+_NODE = r"(?P<node>[a-z][a-z0-9]*(?:_[a-z0-9]+)+|amcl|rviz2?|gazebo|ekf)"
+NODE_STATUS = re.compile(
+    r"^(and |so |but |ok )?(did|has|had|was|is|were|does) (the )?" + _NODE + r"( node| process| server)? (ever |still |"
+    r"otherwise |actually |even |then )?(start(ed|ing)?( up)?|come up|came up|crash(ed)?|die|died|keep running|kept "
+    r"running|stay up|stay alive|run|running|go active|become active|make it to active|get configured|configure|"
+    r"activate|shut down|exit|exited|finish|finished|fail to (configure|activate|start)|bring up|brought up)\b")
+# launch's words for a process's end ("[move_group-1]: process has died [pid 4, exit code -6, ...]")
+_ENDED = re.compile(r"process has (died|finished cleanly)|process started with pid")
+# a C++ program's own last words on stderr, often folded into the node's last logged line
+_ABORTED = re.compile(r"terminate called after throwing|Segmentation fault|Aborted \(core dumped\)")
+
+
+def node_status_kind(q: str) -> str | None:
+    return "node_status" if NODE_STATUS.search(q) else None
+
+
+def _lines_of(log: EventLog, node: str) -> tuple[list[LogLine], list[LogLine]]:
+    """The node's own lines (its logger, or one under it), and launch's lines about its process."""
+    own = [ln for ln in log.logs if ln.name.lower() == node or ln.name.lower().startswith(node + ".")
+           or ln.name.lower().endswith("." + node)]
+    if not own:  # "lifecycle_manager" asked, "lifecycle_manager_navigation" logged
+        own = [ln for ln in log.logs if ln.name.lower().startswith(node + "_")]
+    process = [ln for ln in log.logs if re.fullmatch(re.escape(node) + r"-\d+", ln.name.lower())
+               and _ENDED.search(ln.msg)]
+    return own, process
+
+
+def node_status(question: str, log: EventLog, task: Task) -> Explanation:
+    """What the log shows became of the node a question names."""
+    m = NODE_STATUS.search(" ".join(question.lower().split()))
+    node = m.group("node") if m else ""
+    own, process = _lines_of(log, node)
+    if not own and not process:
+        return Explanation(explainer="planner", causes=["planner.plan_ok"], enough_information=False,
+                           text=f"My log holds no line from {node or 'that node'} and no word from launch about its "
+                                "process: it may not have run, or its lines were not recorded; I can't tell.")
+    parts = []
+    if own:
+        last = own[-1]
+        when = f"at {hms(last.t)}" if len(own) == 1 else f"from {hms(own[0].t)} to {hms(last.t)}"
+        parts.append(f"The node {node} logged {len(own)} line{'s' if len(own) > 1 else ''} {when}; its last "
+                     f'({LEVEL_NAMES.get(last.level, str(last.level))}): "{" ".join(last.msg.split())[:200]}"')
+    aborted = next((ln for ln in own if _ABORTED.search(ln.msg)), None)
+    if aborted is not None:
+        said = _ABORTED.search(aborted.msg)
+        parts.append(f'its output at {hms(aborted.t)} holds "{said.group(0) if said else ""}": its process aborted '
+                     "there")
+    ended = process[-1] if process else None
+    if aborted is not None:
+        pass
+    elif ended is not None and "finished cleanly" in ended.msg:
+        parts.append(f"launch said its process finished cleanly at {hms(ended.t)}")
+    elif ended is not None and "started with pid" not in ended.msg:
+        parts.append(f'its process ended at {hms(ended.t)}: "{" ".join(ended.msg.split())[:160]}"')
+    else:
+        tail = (log.end - own[-1].t) / 1e9 if own else 0.0
+        parts.append("no line says its process ended" + (
+            f"; its last line came {tail:.0f} s before my recording ends" if tail >= 1 else
+            ", and its last line is the recording's last moment: what came after is not recorded"))
+    text = "; ".join(parts) + "."
+    return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
+                       evidence=line_evidence([*own[-2:], *process[-1:]], task))

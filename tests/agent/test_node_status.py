@@ -1,0 +1,39 @@
+"""What became of one node ("did controller_manager crash after that or keep running?", "did move_group still start
+up?"): its own lines, what launch said of its process, a C++ abort in its output, or that the log holds nothing of
+it. Real excerpts written with rosbags."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.followups import content_kind
+from tests.agent.helpers import converse, real_module_run, real_nav2_run
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("did controller_manager crash after that or keep running?", "node_status"),
+    ("did move_group still start up despite this error?", "node_status"),
+    ("did lifecycle_manager bring up the rest of nav2?", "node_status"), ("was amcl running?", "node_status"),
+    ("did you start?", None), ("did the robot crash?", None),
+])
+def test_a_node_by_its_name_is_its_own_question(question: str, kind: str | None) -> None:
+    assert content_kind(question) == kind
+
+
+def test_an_abort_in_a_nodes_output_is_said(tmp_path: Path) -> None:
+    run = real_module_run("r2c-controllers-1595-libserial-open-failed", tmp_path / "run")
+    (crashed,) = converse(run, "did controller_manager crash after that or keep running?")
+    text = str(crashed["answer"])
+    assert text.startswith("The node controller_manager logged 1 line at 04:42:10; its last (ERROR): ")
+    assert text.endswith('its output at 04:42:10 holds "terminate called after throwing": its process aborted there.')
+
+
+def test_launch_ending_a_process_and_a_node_never_heard(tmp_path: Path) -> None:
+    run = real_nav2_run("kilted-nav2-dock-database-missing", tmp_path / "run")
+    (manager, never) = converse(run, "did lifecycle_manager bring up the rest of nav2?", "did rviz2 start?")
+    assert str(manager["answer"]).startswith("The node lifecycle_manager logged ")
+    assert str(manager["answer"]).endswith("launch said its process finished cleanly at 09:33:42.")
+    assert never["answer"] == ("My log holds no line from rviz2 and no word from launch about its process: it may not "
+                               "have run, or its lines were not recorded; I can't tell.")
