@@ -11,7 +11,7 @@ from hexar.agent.measures import named_trip, trip_asked, when
 from hexar.agent.overview import with_lead
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import hms
+from hexar.events.records import LogLine, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, place_name, positions, step_ref
@@ -78,7 +78,21 @@ def place(question: str, log: EventLog, task: Task) -> Explanation:
 FAILED_AT = re.compile(
     r"\b(where were you|what was (your|the robot's|its|the robot) (position|pose|location))( exactly)? "
     r"(when|as|at the (time|moment)) (it|you|the task|that|this|the step|your task) ?(failed|stopped|gave up|went "
-    r"wrong|happened|aborted|crashed|broke down)\b")
+    r"wrong|happened|aborted|crashed|broke down)\b|"
+    r"\bwhere (was|were) (the robot|you|it|i) when (it|you|the robot|the planner) (tried|was trying|were trying) to "
+    r"(plan|move|drive|dock)\b")
+# Nav2's lines that state where the robot was: bt_navigator's "Begin navigating from current location (x, y) to
+# ..." and the planner's "... failed to plan from (x, y) to (x, y)"
+_STATED_AT = re.compile(r"(?:from current location|failed to plan from) \((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
+
+
+def logged_position(log: EventLog, until: int) -> tuple[LogLine, float, float] | None:
+    """The last line up to `until` that states the robot's position, with that position (its map's frame)."""
+    for ln in reversed(log.logs):
+        m = _STATED_AT.search(ln.msg) if ln.t <= until else None
+        if m is not None:
+            return ln, float(m.group(1)), float(m.group(2))
+    return None
 
 
 def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
@@ -92,6 +106,16 @@ def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
     what = f"{step_ref(failed)} failed" if failed is not None else f"{task_name(task, log)} failed"
     before, topic = positions(log, None, when)
     if not before:
+        stated = logged_position(log, when)
+        if stated is not None:  # no pose topic, but Nav2's own line says where it started from
+            ln, x, y = stated
+            then = f"as {what}" if when - ln.t < 1_000_000_000 else f"before {what} at {hms(when)} UTC"
+            quoted = " ".join(ln.msg.split())[:160]
+            text = (f"My recording holds no position ({c.AMCL_POSE} or {c.ODOM}), but my log states one: at "
+                    f'{hms(ln.t)}, {ln.name or "a node"} "{quoted}": I was at ({x:.2f}, {y:.2f}) on my map then, '
+                    f"{then}.")
+            return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"],
+                               evidence=[Evidence.of_log("planner.plan_ok", ln)])
         text = (f"I can't tell: my recording holds no position ({c.AMCL_POSE} or {c.ODOM}) up to when {what}, at "
                 f"{hms(when)} UTC.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], enough_information=False)

@@ -144,3 +144,13 @@ def test_how_often_a_node_warned_is_counted(tmp_path: Path) -> None:
     assert str(warned["answer"]).startswith("My log holds 3 warnings while I worked on the goal to move the arm")
     assert str(warned["answer"]).endswith('"The complete state of the robot is not yet known. Missing BASE_TF_joint, '
                                           'TCP_joint" (3 times).')
+
+
+def test_where_it_was_is_read_from_nav2_s_own_line_without_a_pose_topic(tmp_path: Path) -> None:
+    run = real_nav2_run("mowgli-306-kilted-goal-outside-costmap", tmp_path / "run")
+    (where,) = converse(run, "where was the robot when it tried to plan?")
+    assert str(where["answer"]).startswith("My recording holds no position (/amcl_pose or /odom), but my log states "
+                                           'one: at 22:13:20, planner_server "GridBased plugin failed to plan from '
+                                           "(4.12, 14.97) to (-15.42, -9.71)")
+    assert str(where["answer"]).endswith("I was at (4.12, 14.97) on my map then, as step 1 (to drive to my goal) "
+                                         "failed.")
