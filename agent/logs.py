@@ -61,6 +61,8 @@ def _asked(q: str) -> _Asked:
     err = re.search(r"\berrors?\b|\b(failed|crashed|died|errored)\b", q) is not None
     if warn and not err:
         low, high, noun = WARN, WARN, "warning"
+    elif warn:  # "any WARN or ERROR lines?": both
+        low, high, noun = WARN, 100, "error or warning"
     elif err or not re.search(r"\blogs?\b|\blog lines\b|\bmessages?\b", q):
         low, high, noun = ERROR, 100, "error"
     else:

@@ -154,3 +154,10 @@ def test_where_it_was_is_read_from_nav2_s_own_line_without_a_pose_topic(tmp_path
                                            "(4.12, 14.97) to (-15.42, -9.71)")
     assert str(where["answer"]).endswith("I was at (4.12, 14.97) on my map then, as step 1 (to drive to my goal) "
                                          "failed.")
+
+
+def test_warnings_or_errors_asked_together_are_counted_together(tmp_path: Path) -> None:
+    run = real_nav2_run("kilted-nav2-ekf-nominal", tmp_path / "run")
+    (both,) = converse(run, "were there any WARN or ERROR lines at all in this run?")
+    assert str(both["answer"]).startswith("Yes. My log holds 2 errors or warnings while I worked on the navigation "
+                                          "goal to (10.00, 4.00)")
