@@ -312,6 +312,9 @@ def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
 
             robot.blocked_trip("nav1", "Bring me a coffee from the kitchen")
             robot.heard_by(store)
+            # every record heard is in the snapshot the page draws: a snapshot rebuilt at most every REBUILD_S could
+            # otherwise lag a record behind, and the chat's fresh one below would redraw the page (seen under load)
+            store.live.snapshot(fresh=True)
             _, final = wait_for(lambda: get(url + "api/run?name=live"),
                                 lambda r: r[1].get("task", {}).get("outcome") == "failed")
             WebDriverWait(driver, 15).until(lambda d: d.execute_script("return document.body.dataset.version")
@@ -325,8 +328,12 @@ def test_the_open_live_page_follows_the_robot(tmp_path: Path) -> None:
             driver.find_element(By.ID, "chat-input").send_keys("and then")  # typed, not sent yet
             # an unchanged run is not redrawn by the next poll
             driver.execute_script("window.shownTimeline = document.getElementById('timeline')")
+            heard = store.live.log.snapshot().topics
             time.sleep(2.5)
-            assert driver.execute_script("return window.shownTimeline.isConnected")
+            # what was heard meanwhile, should the page have redrawn: the topics' counts before and after
+            after = store.live.log.snapshot().topics
+            assert driver.execute_script("return window.shownTimeline.isConnected"), (
+                {t: i.count for t, i in heard.items()}, {t: i.count for t, i in after.items()})
 
             robot.blocked_trip("nav2", "Go to the kitchen again")
             WebDriverWait(driver, 15).until(lambda d: d.execute_script(ready) == "nav2")
