@@ -56,14 +56,10 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
         when = f"at {hms(last.t)}" if len(own) == 1 else f"from {hms(own[0].t)} to {hms(last.t)}"
         parts.append(f"The node {node} logged {len(own)} line{'s' if len(own) > 1 else ''} {when}; its last "
                      f'({LEVEL_NAMES.get(last.level, str(last.level))}): "{" ".join(last.msg.split())[:200]}"')
-    aborted = next((ln for ln in own if _ABORTED.search(ln.msg)), None)
-    if aborted is not None:
-        said = _ABORTED.search(aborted.msg)
-        parts.append(f'its output at {hms(aborted.t)} holds "{said.group(0) if said else ""}": its process aborted '
-                     "there")
+    aborted = next(((ln, m) for ln in own if (m := _ABORTED.search(ln.msg)) is not None), None)
     ended = process[-1] if process else None
     if aborted is not None:
-        pass
+        parts.append(f'its output at {hms(aborted[0].t)} holds "{aborted[1].group(0)}": its process aborted there')
     elif ended is not None and "finished cleanly" in ended.msg:
         parts.append(f"launch said its process finished cleanly at {hms(ended.t)}")
     elif ended is not None and "started with pid" not in ended.msg:

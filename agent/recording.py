@@ -72,16 +72,16 @@ def topic_data(question: str, log: EventLog, task: Task) -> Explanation:
     q = " ".join(question.lower().split())
     asked = _asked_topics(q)
     held = sorted(log.topics.values(), key=lambda i: i.topic)
-    said, evidence = [], []
+    said, evidence, missing = [], [], []
     for name in asked:
         last = name.rsplit("/", 1)[-1]
         on = [i for i in held if i.topic.strip("/") == name or i.topic.rsplit("/", 1)[-1] == last]
-        if on:
-            said.append(join_words([f"{_count(i.count, 'message')} on {i.topic} ({i.type})" for i in on]))
-            evidence += [Evidence(cause="planner.plan_ok", topic=i.topic, t=log.start,
-                                  item=f"{_count(i.count, 'message')}, {i.type}") for i in on]
-    missing = [f"/{n}" for n in asked if not any(i.topic.strip("/") == n or i.topic.rsplit("/", 1)[-1] ==
-                                               n.rsplit("/", 1)[-1] for i in held)]
+        if not on:
+            missing.append(f"/{name}")
+            continue
+        said.append(join_words([f"{_count(i.count, 'message')} on {i.topic} ({i.type})" for i in on]))
+        evidence += [Evidence(cause="planner.plan_ok", topic=i.topic, t=log.start,
+                              item=f"{_count(i.count, 'message')}, {i.type}") for i in on]
     holds = "I have heard" if log.storage == "live" else "My recording holds"
     parts = [f"{holds} {join_words(said)}."] if said else []
     if missing:
