@@ -124,7 +124,8 @@ def serve(opts: ServeOptions) -> int:
 
 
 def _run(opts: ServeOptions, stop: threading.Event, ears_wanted: bool) -> int:
-    from hexar.live.log import Limits, LiveLog
+    from hexar.live.limits import Limits
+    from hexar.live.log import LiveLog
     from hexar.live.node import LiveNode
     from hexar.live.speech import Ears, make_speakers
 

@@ -28,7 +28,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from hexar.live.log import Limits  # noqa: E402
+from hexar.live.limits import Limits  # noqa: E402
 from tests.live.dds_helpers import Listener, fresh_domain, live_node  # noqa: E402
 from tests.live.test_contact import robot_dropped_mid_task  # noqa: E402
 from tests.live.test_replay_explains import expected  # noqa: E402

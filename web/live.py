@@ -15,7 +15,8 @@ from typing import TYPE_CHECKING, Any
 
 from hexar.events.log import EventLog
 from hexar.events.tasks import Task
-from hexar.live.log import Limits, LiveLog
+from hexar.live.limits import Limits
+from hexar.live.log import LiveLog
 from hexar.web.pagedata import Findings
 
 if TYPE_CHECKING:

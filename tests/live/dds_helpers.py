@@ -23,7 +23,8 @@ from hexar.events import contract as c
 from hexar.events.task_info import parse_task_info
 from hexar.live.commands import dds_available
 from hexar.live.jobs import failure_key
-from hexar.live.log import Limits, LiveLog
+from hexar.live.limits import Limits
+from hexar.live.log import LiveLog
 from hexar.live.node import LiveNode, NodeOptions, Transport
 from hexar.live.ros import rclpy_available
 from hexar.live.topics import ANSWER, ANSWER_QOS, QUESTION, QUESTION_QOS, TopicQos

@@ -13,7 +13,8 @@ from hexar.events import read_recording
 from hexar.events.records import BoolSample, LogLine, ParameterSample, SkillStep, TaskUpdate
 from hexar.live.contact import Contact
 from hexar.live.convert import to_records
-from hexar.live.log import NS, Limits, LiveLog
+from hexar.live.limits import Limits
+from hexar.live.log import NS, LiveLog
 from hexar.live.replay import bag_messages
 
 

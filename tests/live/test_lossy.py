@@ -16,7 +16,8 @@ import pytest
 
 from hexar.events import contract as c
 from hexar.live.jobs import failure_key
-from hexar.live.log import NS, Limits
+from hexar.live.limits import Limits
+from hexar.live.log import NS
 from tests.live.conftest import LOOPBACK_CYCLONE
 from tests.live.dds_helpers import NO_DDS, Listener, fresh_domain, live_node, replay
 from tests.live.test_log import records_of

@@ -26,7 +26,8 @@ from hexar.events.reader import read_recording
 from hexar.events.records import ERROR, INFO, WARN, OdomSample
 from hexar.explainers.navigation import diagnose as g
 from hexar.live.dds import DdsTransport
-from hexar.live.log import Limits, LiveLog
+from hexar.live.limits import Limits
+from hexar.live.log import LiveLog
 from hexar.live.node import FAILURE_QUESTION
 from hexar.live.replay import DdsReplayer
 from hexar.live.replay import replay as replay_in_process
