@@ -31,6 +31,9 @@ class Wording:
     notes_only: frozenset[str] = frozenset()
     # causes that strike once the step is under way, with their own head ("{what} could not go on because")
     heads: Mapping[str, str] = field(default_factory=dict)
+    # cause -> (the start of a line's meaning, clause, fix): such a line is told with its own clause ("a trajectory
+    # the controller rejected" is the sender's set-up, not the controller's)
+    by_meaning: Mapping[str, tuple[str, str, str]] = field(default_factory=dict)
 
     def __call__(self, cause: str, d: Diagnosis, what: str) -> Worded:
         if cause.endswith(".nominal") and self.nominal is not None:
@@ -47,6 +50,9 @@ class Wording:
             own = d.decisive.note  # a code-built text in the line says more than the line's mined entry
         elif cause in self.notes_only:
             own = ""
+        if cause in self.by_meaning and own.startswith(self.by_meaning[cause][0]):
+            prefix, clause, fix = self.by_meaning[cause]
+            own = own.removeprefix(prefix).lstrip(": ")
         if own and "{meaning}" not in clause:
             seen.append(f"That line means: {own}.")
         return f"{head} {clause.format(meaning=own or self.meanings.get(cause, ''))}", fix, seen

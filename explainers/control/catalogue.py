@@ -19,7 +19,8 @@ REFUSED = "joint_trajectory_controller.can_t_accept_new_action_goals"
 INVALID = frozenset(f"joint_trajectory_controller.{key}" for key in (
     "time_between_points_and_is_not", "mismatch_between_joint_names_and_at", "mismatch_between_joint_names_size_and",
     "empty_trajectory_received", "velocity_of_last_trajectory_point_of", "received_trajectory_with_non_zero_start",
-    "the_given_trajectory_has_no_position"))
+    "the_given_trajectory_has_no_position", "joints_on_incoming_trajectory_don_t", "incoming_joint_doesn_t_match_the",
+    "empty_joint_names_on_incoming_trajectory"))
 
 
 @cache

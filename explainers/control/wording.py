@@ -53,7 +53,15 @@ def _nominal(what: str) -> Worded:
             ["The controller logs show no error for this goal."])
 
 
+# joint_trajectory_controller's checks of a goal it has just received (explainers/control/catalogue.py INVALID)
+REJECTED = ("the trajectory sent did not fit the controller, which rejected the goal before it started",
+            "the trajectory they were sent did not fit the controller, which rejected the goal before it started: "
+            "{meaning}.",
+            "Send a trajectory the controller takes: its joint names, the times and values of its points as the quoted "
+            "line asks (the controller's 'joints' parameter lists the joints it takes).")
+
 template = Wording("{what} could not run because", "ros2_control", CLAUSES, MEANINGS, _nominal,
+                   by_meaning={"control.configuration_error": REJECTED},
                    notes_only=frozenset({"control.controller_activation_failed"}),
                    # the arm was moving when it strayed: the step ran, and was cut short
                    heads={"control.tolerance_violated": "{what} could not go on because"})

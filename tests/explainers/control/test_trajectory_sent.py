@@ -47,3 +47,18 @@ def test_a_trajectory_faster_than_the_joints_stays_a_tolerance_and_no_limit_beyo
     log = read_recording(write_recording(_excerpt("traj-too-fast"), tmp_path / "run", task=True))
     _, found = explain(log, "control", QUESTIONS["failed"])
     assert found.causes == ["control.tolerance_violated"] and "beyond its position limits" not in found.text
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_goal_for_fewer_joints_is_the_senders_not_the_controllers_set_up(tmp_path: Path, task: bool) -> None:
+    # held-out set 33: "Joints on incoming trajectory don't match the controller joints." (validate_trajectory_msg)
+    excerpt = next(e for e in load_excerpts("real-modules-heldout33") if e.id == "kilted-control-goal-partial-joints")
+    log = read_recording(write_recording(excerpt, tmp_path / "run", task=task))
+    if not task:
+        assert [(t.skills[0].skill, t.outcome) for t in log.tasks] == [("follow_joint_trajectory", "failed")]
+    _, found = explain(log, "control", QUESTIONS["failed"])
+    assert found.causes == ["control.configuration_error"]
+    assert "the trajectory they were sent did not fit the controller, which rejected the goal before it started: it " \
+           "named other joints, or fewer, than the controller's joints" in found.text
+    assert "robot description" not in found.text and "set up wrongly" not in found.text
+    assert read_claims(found.text).causes == {"control.configuration_error"}
