@@ -51,6 +51,11 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
 
+    code = line.msg.strip()
+    if code in moveit().error_codes and "move_group" in line.name:
+        # getActionResultString's own word for a code it has no sentence for ("CONTROL_FAILED"), logged by
+        # move_action as the goal ends (scripts/modules_mining.yaml, return_files)
+        return MOVE_ARM, "failed"
     for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
         entry = cat.match(line.msg)
         if entry is None:

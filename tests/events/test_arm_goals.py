@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from hexar.evals.real_modules import load_excerpts, write_recording
 from hexar.evals.scenarios.bag import BagBuilder, sec_ns
 from hexar.events import contract as c
 from hexar.events import read_recording
@@ -215,3 +216,12 @@ def test_a_spawners_line_is_ros2_controls_to_read_not_moveits(tmp_path: Path) ->
     assert [(t.skills[0].skill, t.outcome) for t in log.tasks] == [("follow_joint_trajectory", "failed")]
     [reading] = read(log.logs, [moveit(), control()])
     assert reading.cause is None and reading.catalogue == control().name
+
+
+def test_move_groups_result_code_said_alone_ends_its_goal(tmp_path: Path) -> None:
+    # real_modules heldout2, mogi-simple-arm: move_action logs getActionResultString's default, the code's name
+    case = next(e for e in load_excerpts("real-modules-heldout2")
+                if e.id == "mogi-simple-arm-move-group-without-sim-time")
+    tasks = read_recording(write_recording(case, tmp_path / "run", task=False)).tasks
+    assert [(t.skills[0].skill, t.outcome, t.skills[0].error_msg) for t in tasks] == [
+        ("move_arm", "failed", "CONTROL_FAILED")]
