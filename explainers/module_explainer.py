@@ -226,8 +226,11 @@ class ModuleExplainer:
                      else f" {driver_candidates(run, first) or self.candidates_of(first)}")
             return Explanation(
                 explainer=self.name, causes=[cause], evidence=ev, confidence=0.4,
-                text=f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know."
-                     + quoted + maybe,
+                # a line whose words leave candidates is no line the logs say nothing of: their why is still open
+                text=(f"{_upper(self._what(run))} failed, and I can't tell why for sure." if d.candidates and
+                      first is not None else
+                      f"{_upper(self._what(run))} failed, but my {self.name} logs do not show a cause I know.")
+                + quoted + maybe,
                 fix="Read that node's own log around that time; the decisive line may be at DEBUG level." if first
                 else "Record /rosout at INFO level from move_group and the controller manager.",
                 details=[*(f"The last line about it was '{said(r.line)}'." for r in d.symptoms[:1]),

@@ -146,12 +146,21 @@ def decisive_parts(line: LogLine, floor: int = ERROR) -> list[str]:
     return out
 
 
+# A first line this short is a tag (the function that logs, "LdsLidar *GetInstance"), and its next line says what
+# went wrong: both are quoted.
+SHORT_TAG = 32
+
+
 def quoted_part(line: LogLine) -> str:
     """The words to quote of a line: its what() text when a lower-level line carries an exception, else its first
-    line."""
+    line (and the next after a short tag)."""
     parts = decisive_parts(line)
-    first = clean(line.msg).strip().splitlines()
-    return parts[0] if parts and line.level < ERROR else (first[0] if first else "")
+    first = [ln.strip() for ln in clean(line.msg).strip().splitlines() if ln.strip()]
+    if parts and line.level < ERROR:
+        return parts[0]
+    if len(first) > 1 and len(first[0]) < SHORT_TAG:  # "LdsLidar *GetInstance\nparse summary info failed, ..."
+        return f"{first[0]} {first[1]}"
+    return first[0] if first else ""
 
 
 def _param(m: re.Match[str]) -> str:

@@ -297,3 +297,30 @@ def test_an_address_the_driver_was_given_is_no_missing_one(tmp_path: Path) -> No
               "address \"192.168.0\" into 4 tokens, check ip address")]
     found = _explain(tmp_path, given, 0.5)
     assert "had no IP address" not in found.text
+
+
+def _real_module(tmp_path: Path, suite: str, ident: str) -> Explanation:
+    from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
+    from hexar.events import read_recording
+
+    excerpt = next(e for e in load_excerpts(suite) if e.id == ident)
+    return explain(read_recording(write_recording(excerpt, tmp_path / "run", task=False)), "control",
+                   QUESTIONS["failed"])[1]
+
+
+def test_a_line_whose_words_say_what_is_missing_is_not_told_as_no_cause_known(tmp_path: Path) -> None:
+    # held-out set 29: "cannot open serial port: [Errno 2] No such file or directory: '/dev/ttyACM0'"
+    found = _real_module(tmp_path, "real-modules-heldout29", "kilted-lifecycle-configure-serial-port-missing")
+    assert found.text.startswith("Starting my drivers and controllers failed, and I can't tell why for sure. The first "
+                                 "error was “[base_driver] "
+                                 "cannot open serial port: [Errno 2] No such file or directory: '/dev/ttyACM0'”")
+    assert "do not show a cause I know" not in found.text and "is not there" in found.text
+    assert _claims(found) == set()
+
+
+def test_a_first_line_that_only_tags_its_function_is_quoted_with_the_next(tmp_path: Path) -> None:
+    # held-out set 3, livox_ros_driver2 issue 117: "LdsLidar *GetInstance\nparse summary info failed, can not open
+    # file: path_default", the driver's config path left at its default
+    found = _real_module(tmp_path, "real-modules-heldout3", "livox-ros-driver2-117-config-not-given")
+    assert "“[unnamed node] LdsLidar *GetInstance parse summary info failed, can not open file: path_default”" in \
+        found.text
