@@ -26,7 +26,7 @@ from hexar.events.records import ERROR, TRACEBACK, WARN, LogLine, clock
 from hexar.explainers.base import Evidence
 from hexar.explainers.navigation import states
 from hexar.explainers.navigation.catalogue import Entry, catalogue
-from hexar.explainers.navigation.detectors import UNEXPLAINED, Finding, Run
+from hexar.explainers.navigation.detectors import INITIAL_POSE, UNEXPLAINED, Finding, Run, pose_set_after
 from hexar.explainers.navigation.diagnose import NO_PROGRESS, TRANSFORM
 from hexar.explainers.navigation.wording import SYMPTOMS, quotable
 from hexar.explainers.stack import bringup_findings, stack_catalogue
@@ -339,6 +339,8 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
     for line in run.lines:
         entry = cat.match(line.msg)
         said = SYMPTOMS.get(entry.id) if entry is not None else None
+        if entry is not None and entry.id == INITIAL_POSE and pose_set_after(line, run.lines):
+            said = None
         if said is not None and said not in found.notes:
             found.notes.append(said)
     errors = decisive_errors(raw, until)
@@ -384,4 +386,6 @@ def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"
     text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} {said} a warning "
             "or an error. The recording shows no goal's end, so it does not show whether a goal was reached.")
+    if any(ln.level >= WARN or _warns(ln) for ln in lines):  # a node that is not Nav2's, or not named, did warn
+        text += last_warning(lines)
     return text, [own[0], own[-1]]

@@ -189,6 +189,13 @@ def _asks_initial_pose(line: LogLine) -> bool:
     return entry is not None and entry.id == INITIAL_POSE
 
 
+def pose_set_after(line: LogLine, lines: list[LogLine]) -> bool:
+    """AMCL applied an initial pose after `line` asked for one ("Setting pose (%.6f): %.3f %.3f %.3f",
+    amcl_node.cpp:589@humble) and did not ask again: its request was answered, it says nothing of the failure."""
+    set_at = [ln.t for ln in lines if ln.t >= line.t and ln.msg.startswith("Setting pose (")]
+    return bool(set_at) and not any(ln.t > set_at[-1] and _asks_initial_pose(ln) for ln in lines)
+
+
 def poor_localisation(run: Run) -> Finding | None:
     best: list[PoseSample] = []
     current: list[PoseSample] = []
@@ -217,7 +224,7 @@ def poor_localisation(run: Run) -> Finding | None:
         found.facts = {"poses": float(len(best)), "max_cov": max(worst.cov_xy, worst.cov_yaw),
                        "seconds": (best[-1].t - best[0].t) / 1e9}
     found.evidence += [Evidence.of_log(POOR_LOCALISATION, ln) for ln in warnings[:3]]
-    if any(n.entry.id == INITIAL_POSE for n in run.notes):
+    if any(n.entry.id == INITIAL_POSE and not pose_set_after(n.line, run.lines) for n in run.notes):
         found.facts["no_initial_pose"] = 1.0  # AMCL never got a start pose: it was not localised at all
     return found
 

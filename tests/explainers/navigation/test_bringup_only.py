@@ -88,3 +88,18 @@ def test_a_warning_pasted_without_its_level_is_no_run_that_went_normally(tmp_pat
     answer = _explain(tmp_path, MPPI, False)
     assert "went normally" not in answer.text and NOMINAL not in answer.causes
     assert "The last warning my logs show came from controller_server: 'Inconsistent configuration" in answer.text
+
+
+def test_an_initial_pose_asked_for_and_then_set_is_no_finding(tmp_path: Path) -> None:
+    # blind set 11 (spent): AMCL asks for an initial pose, a costmap waits for base_link -> map, then AMCL logs
+    # "initialPoseReceived" and "Setting pose (79.000000): -2.000 -0.500 -0.000" and the stack comes up
+    from hexar.evals.real_nav2 import blind_set
+
+    case = next(e for e in blind_set(11) if e.id == "ros2-nav2-docker-humble-tb3-spawned-initial-pose-stack-active")
+    log = read_recording(write_recording(case, tmp_path / "run", task=False))
+    answer = NavigationExplainer().explain("what happened?", Context.for_task(log, log.task()))
+    assert "initial pose" not in answer.text
+    # the warnings of a node with no name stay in the answer: "went normally" is said of Nav2's own nodes
+    assert answer.text.startswith("As far as my recording shows, my navigation went normally")
+    assert answer.text.endswith("The last warning my logs show came from a node that gave no name (at 22:13:20.700 "
+                                "UTC).")
