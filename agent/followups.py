@@ -160,7 +160,7 @@ def content_kind(question: str) -> str | None:
     'mentions' (a named thing of the stack, looked up in the log, when nothing else took it).
     Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
     None for anything else."""
-    from hexar.agent.measures import measure_kind
+    from hexar.agent.measure_words import measure_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)

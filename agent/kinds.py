@@ -4,6 +4,7 @@ answers the kinds that also ask an explainer itself (the errors, a flag, a try a
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
@@ -18,6 +19,7 @@ from hexar.agent.recording import clock, recorded, topic_data
 from hexar.agent.skills import skills
 from hexar.agent.window import at_time
 from hexar.events.log import EventLog
+from hexar.events.records import duration, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
@@ -40,6 +42,20 @@ def _topic_data(question: str, log: EventLog, task: Task) -> Explanation:
     return told.model_copy(update={"text": f"{told.text} {named.text}", "evidence": [*named.evidence, *told.evidence]})
 
 
+_AFTER_LAUNCH = re.compile(r"\bafter (the |my )?(launch|start|starting|bring-?up|startup)\b")
+
+
+def _after_launch(question: str, told: Explanation, log: EventLog, task: Task) -> Explanation:
+    """'How many seconds after launch did the goal fail?': the task's times, and how long after the log's first
+    line (launch's, at the bring-up) it began."""
+    first = log.logs[0] if log.logs else None
+    if first is None or not _AFTER_LAUNCH.search(question.lower()) or first.t > task.created:
+        return told
+    said = f"{first.name or 'a node'}: \"{' '.join(first.msg.split())[:80]}\""
+    return told.model_copy(update={"text": f"{told.text} I began {duration(task.created - first.t)} after my log's "
+                                           f"first line ({hms(first.t)}, {said})."})
+
+
 FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
     "failed_at": where_failed,
@@ -50,7 +66,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "fast": lambda q, log, task: measures.fast(log, task),
     "start": lambda q, log, task: measures.start(log, task),
     "long": lambda q, log, task: _with_spans(measures.long(log, task), log, task),
-    "when": when_at,
+    "when": lambda q, log, task: _after_launch(q, when_at(q, log, task), log, task),
     "at_place": at_place,
     "route": lambda q, log, task: measures.far(log, task),
     "tasks": lambda q, log, task: sequence.tasks(log),

@@ -10,7 +10,6 @@ from __future__ import annotations
 import math
 import re
 from dataclasses import dataclass
-from typing import Literal
 
 from hexar.agent.content import later_recoveries, task_name
 from hexar.events import contract as c
@@ -19,68 +18,6 @@ from hexar.events.records import calendar_day, duration, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, join_words, path_length, place_name, positions, step_ref, step_words
-
-Measure = Literal["far", "fast", "start", "long", "when"]
-
-# A person's or an obstacle's distance: no trip of mine measures it (the help skill measures a person's).
-_NO_TRIP = (r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|user|owner|kid|child|collision|"
-            r"obstacle|obstruction|object|thing|wall)\b")
-# Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
-_ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
-    ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
-             r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
-             r"\bwhat distance did you\b",
-             # "how far away was the kitchen?": the way I drove there (a person's distance is the help skill's)
-             r"^(and |so |ok |okay )?how far (away )?(is|was) (it|that|(the|your) (?!" + _NO_TRIP + r")[a-z ]+)\b",
-             r"^(and |so |ok |okay )?how far (away )?(from|to) (the )?[a-z ]+ (is|was|were) (it|you)\b")),
-    # average speeds from the same positions: a person asks it of a trip that felt slow
-    ("fast", (r"^(and |so |ok |okay )?how (fast|quickly|quick) (were|did|was|are) (you|it|the robot)\b",
-              r"^(and |so |ok |okay )?(what('s| was| is)|how fast (was|is)) (your|the robot's|its) "
-              r"(average |top |max(imum)? )?(speed|velocity)\b(?! limit)",
-              r"^(and |so |ok |okay )?at what speed (were|did) you\b")),
-    ("start", (r"^(and |so |ok |okay )?where did you (start|begin|set off|come)( from)?\b",
-               r"^(and |so |ok |okay )?where were you (before|at the start|at first|when (you|i) (started|began|"
-               r"asked))\b",
-               r"^(and |so |ok |okay )?where (was|were) (your|the) start(ing)? (point|position|place)\b")),
-    # "how long did the pick take?": every step's time is in the answer, the one asked about among them
-    ("long", (r"^(and |so |ok |okay )?how long (did|had) (it|that|this|you|(the|your) [a-z]+( up| down)?) "
-              r"(take|need|spend|drive|be)\b",
-              r"^(and |so )?how long were you (gone|away|driving|out|busy|on it)\b",
-              r"^(and |so )?how much time did (it|you|that) (take|need|spend)\b",
-              r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b",
-              # "how long did you wait?": every step's time is in the answer, the one asked about among them
-              r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
-              r"^(and |so )?(which|what) (step|part|leg) (took|was) (the )?(longest|slowest|quickest|shortest)\b",
-              # "how long did each step take?", "how long were you in the kitchen?", "what were you waiting for?",
-              # "how long did you keep trying?", "and for how long?"
-              r"^(and |so |ok |okay )?how long did ([a-z]+ )?(each|every|all the|the) (steps?|parts?|legs?|skills?)"
-              r"( each)? take\b|^(and |so )?how long did [a-z]+ and [a-z]+ (each )?take\b",
-              r"^(and |so )?how long were you (in|at) (the )?[a-z_]+( room)?\W*$",
-              r"\bwhy did you (spend|stay|wait|stand) (so much longer|so long|that long|longer)\b",
-              r"^(and |so )?(what|who) were you waiting (for|on)\b",
-              r"^(and |so )?how long did (you|it|the robot|the planner) (keep|kept) (trying|going|waiting|looking|"
-              r"searching|driving)\b|\bfor how long\W*$",
-              r"^(and |so )?how long did (it|the planner|moveit|the robot) (try|plan|wait|search|look)\b")),
-    ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
-              r"reach|finish|stop|end|come back|return|drive|head|give up|fail|quit|abort)\b",
-              r"^(and |so |ok |okay )?(when|at what time|what time) did (it|that|this|the task|the step|things) "
-              r"(fail|go wrong|break|abort|stop|end|finish)\b",
-              # the day a developer replays a run from: answered with its date
-              r"^(and |so |ok |okay )?when (did|does) (it|this|that|all (this|that)) (happen|take place|start|begin)\b",
-              r"^(and |so |ok |okay )?when was (it|this|that)( recorded)?\W*$",
-              r"^(and |so |ok |okay )?when was (this|the|that) (recording|run) (made|recorded|taken)\b",
-              r"^(and |so |ok |okay )?(what|which) (day|date) (was|is) (it|this|that)\b",
-              r"^(and |so |ok |okay )?on what (day|date)\b")),
-)
-_KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
-
-
-def measure_kind(q: str) -> Measure | None:
-    """'far', 'long' or 'when' for a question (lower case, spaces collapsed) about distance or time."""
-    for kind, pattern in _KINDS:
-        if pattern.search(q):
-            return kind
-    return None
 
 
 @dataclass(frozen=True)
@@ -314,6 +251,9 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
                          if s.run.state == "running" else f"{step_ref(s.run)} took {duration(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
+        most = max(steps, key=lambda s: s.end - s.start)  # "why did it take so long?": where the time went
+        if len(steps) > 1 and 2 * (most.end - most.start) > sum(s.end - s.start for s in steps):
+            text += f" Most of that time went to {step_ref(most.run)}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(task, [s.run for s in steps]))
 

@@ -16,6 +16,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.flags import flag_answer
+from hexar.agent.focus import with_pointed
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
@@ -253,6 +254,8 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         else:  # the finding just heard is not told again before its lines
             text = quoted_lines if quoted_lines and text in last else f"{text} {quoted_lines}".strip()
     task = ctx.log.task(state["task_id"])
+    if state.get("intent") == "new" and not quoted_lines:  # "why did it fail with 'Transform data too old'?"
+        text = with_pointed(text, question, ctx.log, task)
     failed = state.get("route") == "failure_check"
     # what became of every step, too; and of a task done where nothing failed, when the question takes it for
     # not done ("why didn't you bring it?": I did)

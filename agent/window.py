@@ -64,6 +64,8 @@ def at_time(question: str, log: EventLog, task: Task) -> Explanation:
         return Explanation.not_enough(
             "planner", f"My recording does not cover {what} UTC: it runs from {hms(log.start)} to {hms(log.end)}.")
     lines = [ln for ln in log.logs if start <= ln.t <= end]
+    if first == last and any(not first <= ln.t < first + length for ln in lines):
+        said = f"within {_AROUND_S:g} s of {hms(first)}"  # the moment's neighbours too: not said to be at it
     if not lines:
         before = next((ln for ln in reversed(log.logs) if ln.t < start), None)
         after = next((ln for ln in log.logs if ln.t > end), None)

@@ -65,7 +65,11 @@ WHOLE_MESSAGE = re.compile(
     r"what did(n't| you not) you (get to )?say\b|what did you (leave out|miss out|not say|never say)\b")
 CONTENT_QUESTION = re.compile(
     WHOLE_MESSAGE.pattern + "|"
-    r"what did you (say|read|tell)|did you (read|say|tell)( me| her| him| them)? (the )?(right|correct|wrong)|"
+    r"what (exactly |actually )?did you (say|read|tell)|did you (read|say|tell)( me| her| him| them)? (the )?"
+    r"(right|correct|wrong)|"
+    # "did you tell Maria dinner is at eight?", "did you give her the message?": whether it was said, and what
+    r"did you (actually |really |even )?(tell|give|pass on|deliver) (?!(me|us)\b)[a-z]+ (that\b|the message\b|"
+    r"about\b|[a-z]+ (is|was|are|were|will)\b)|"
     r"(right|correct|wrong) (recipe|message|text|thing|story|list|news)|was (that|it) (the )?(right|correct)|"
     r"(is|was) that what i asked|"
     + SAID_ANYTHING.pattern

@@ -48,11 +48,11 @@ def one_step_task(b: BagBuilder, t0: int, every_s: float, instruction: str, skil
 
 
 def real_module_run(case_id: str, out: Path) -> Path:
-    """The real module excerpt `case_id` (evals/data/real_modules) written with rosbags at `out`, its task derived
-    from its logs as for any recording without /task_info."""
+    """The real module excerpt `case_id` (any suite of evals/data/real_modules) written with rosbags at `out`, its
+    task derived from its logs as for any recording without /task_info."""
     from hexar.evals import real_modules
 
-    case = next(e for e in real_modules.load_excerpts("real-modules") if e.id == case_id)
+    case = next(e for suite in real_modules.FILES for e in real_modules.load_excerpts(suite) if e.id == case_id)
     return Path(real_modules.write_recording(case, out, task=False))
 
 

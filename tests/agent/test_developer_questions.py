@@ -27,8 +27,10 @@ def test_kinds(question: str, kind: str | None) -> None:
 def test_a_goal_reached_or_not_is_the_goal_s_outcome(tmp_path: Path) -> None:
     (asked,) = converse(real_nav2_run("nav2-1367-reached-goal-but-navigation-failed", tmp_path / "run"),
                         "did you reach the goal or not?")
+    # the log's own "Reached the goal!" is told beside the failure: the question's words point at it
     assert asked["answer"] == ("No. My navigation to the goal at (0.58, -0.55) failed, but my navigation logs do not "
-                               "show why.")
+                               'show why. What my log says of it: at 22:13:20, controller_server (INFO) "Reached the '
+                               'goal!".')
 
 
 def test_a_sensor_the_log_names_and_one_it_never_does(tmp_path: Path) -> None:
@@ -161,3 +163,13 @@ def test_warnings_or_errors_asked_together_are_counted_together(tmp_path: Path) 
     (both,) = converse(run, "were there any WARN or ERROR lines at all in this run?")
     assert str(both["answer"]).startswith("Yes. My log holds 2 errors or warnings while I worked on the navigation "
                                           "goal to (10.00, 4.00)")
+
+
+def test_how_long_after_launch_is_told_against_the_logs_first_line(tmp_path: Path) -> None:
+    run = real_nav2_run("kilted-nav2-through-pose-off-map", tmp_path / "run")
+    (asked, when) = converse(run, "How many seconds after launch did the goal fail?", "when did the goal fail?")
+    assert str(asked["answer"]).startswith("I started on the navigation goal to (16.00, 4.00) at 07:39:53 UTC, and it "
+                                           "ended when step 1")
+    assert str(asked["answer"]).endswith("I began 4 s after my log's first line (07:39:49, launch: \"All log files "
+                                         "can be found below /home/robot/ws/.ros/log/2026-11-30-07-39-49-803\").")
+    assert "after my log's first line" not in str(when["answer"])  # only asked after launch

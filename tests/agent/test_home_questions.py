@@ -165,8 +165,13 @@ def test_why_the_person_did_not_confirm_is_not_recorded(suite: Path) -> None:
     ("how long did you keep trying to get to the kitchen?", "long"), ("did you look, and for how long?", "long"),
     ("how long did it plan before giving up?", "long"),
     ("what did you say?", "said"),  # what it said aloud stays the speech's
+    ("What exactly did you say to Maria?", "said"), ("Did you tell Maria dinner is at eight?", "said"),
+    ("did you give her the message?", "said"), ("did you tell me the way?", None),
+    ("How long did the whole errand take from when I asked?", "long"),
+    ("how long did the follow_joint_trajectory goal take?", "long"),
+    ("why did it take so long?", None),  # why is the explainers'
 ])
-def test_a_persons_help_and_the_time_of_each_step_are_their_own_questions(question: str, kind: str) -> None:
+def test_a_persons_help_and_the_time_of_each_step_are_their_own_questions(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
 
 
@@ -176,3 +181,9 @@ def test_who_gave_it_and_where_the_time_went_are_answered_from_the_steps(suite: 
     assert str(who["answer"]).endswith("they agreed to help, and then confirmed that they had helped.")
     assert '("Could you please put the coffee on my tray?")' in str(asked["answer"])
     assert "step 2 (to ask someone for help) took" in str(waited["answer"])
+
+
+def test_whether_the_message_was_given_is_what_was_said(suite: Path) -> None:
+    # bagfile_8_3 reached the kitchen slowly: the question is whether the message was given, not why it was slow
+    (asked,) = converse(suite / "bagfile_8_3", "Did you tell Maria dinner is at eight?")
+    assert str(asked["answer"]).startswith('Yes: I said "Maria, dinner is at eight."')

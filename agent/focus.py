@@ -1,0 +1,105 @@
+"""The log lines a developer's question points at by their own words: "why did it fail with 'Transform data too
+old'?", "what's wrong with voxel_layer.plugin?", "why did the clear_entirely_local_costmap call time out?".
+
+A finding names the cause in the explainer's words; a question that quotes a line, names an identifier of the stack
+(a node, a parameter, a service, a plugin type, a device) or a node of the log asks about those lines as well. They
+are found by what the question and a line share, never by what the question means: a quoted phrase found in the
+line, an identifier found in it or naming its node, and the question's other words the line repeats. A question in
+a person's words (no identifier, no quote, no node's name) points at no line, so a home user's answer stays as it was.
+"""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.logs import quote
+from hexar.agent.measures import worked_until
+from hexar.events.log import EventLog
+from hexar.events.records import LogLine
+from hexar.events.tasks import Task
+
+# 'Transform data too old', "Init lds lidar fail!", ‘…’: what a developer copied from the log
+_QUOTED = re.compile(r"'([^']{6,})'|\"([^\"]{6,})\"|‘([^’]{6,})’|“([^”]{6,})”")
+# voxel_layer.plugin, /base_driver, nav2_navfn_planner/NavfnPlanner, ttyACM0, BaseObstacle, dwb_core::DWBLocalPlanner
+_IDENT = re.compile(r"(?<![\w/.:-])/?[A-Za-z][\w]*(?:(?:[./]|::)[A-Za-z_][\w]*)*")
+_WORD = re.compile(r"[a-z][a-z0-9]+")
+# words every question and many lines hold: they point at nothing
+_COMMON = frozenset({"about", "after", "again", "also", "before", "being", "could", "does", "doing", "done",
+    "during", "error", "errors", "fail", "failed", "fails", "failing", "failure", "from", "have", "happen",
+    "happened", "into", "just", "keep", "kept", "line", "lines", "logs", "made", "make", "never", "node", "nodes",
+    "only", "other", "problem", "really", "said", "says", "should", "still", "than", "that", "their", "them", "then",
+    "there", "these", "they", "this", "those", "time", "times", "went", "were", "what", "when", "where", "which",
+    "while", "whole", "with", "would", "wrong", "your", "robot"})
+TOP = 3  # lines told at once
+# what every node of a bring-up prints (nav2_util's lifecycle_node.cpp, launch's execute_local.py): it names the node,
+# and says nothing of what was asked about it
+_ROUTINE = re.compile(r"lifecycle node launched|^Creating bond|^process started with pid|^(Configuring|Activating|"
+                      r"Cleaning up|Deactivating)$")
+
+
+def _identifiers(question: str, nodes: set[str]) -> list[str]:
+    """The question's identifiers: a word of the stack's spelling (an underscore, a dot or slash inside, '::', a
+    capital after a lower-case letter, letters with digits), or a word that is the name of a node of the log."""
+    out = []
+    for m in _IDENT.finditer(question):
+        word = m.group(0).strip("/.:")
+        shaped = re.search(r"[_./]|::|[a-z][A-Z]|[A-Za-z]\d", word) is not None
+        if len(word) >= 4 and (shaped or word.lower() in nodes) and word.lower() not in out:
+            out.append(word.lower())
+    return out
+
+
+def _node(line: LogLine) -> str:
+    """A line's node as a question names it: launch's process name without its number ("controller_server-2")."""
+    return re.sub(r"-\d+$", "", line.name.rsplit(".", 1)[-1].strip("/").lower())
+
+
+def _norm(text: str) -> str:
+    return " ".join(text.lower().split())
+
+
+def pointed_lines(question: str, log: EventLog, until: int | None = None, by_words: bool = False) -> list[LogLine]:
+    """The log's lines (up to `until`) the question points at by a quote, an identifier or a node's name, with
+    the question's other words they repeat; strongest first, at most TOP, warnings before routine lines of the same
+    strength. `by_words`: a line that repeats two of the question's words counts too (a developer's question on a
+    log read without a plan of the robot's). Empty when the question names nothing of the log."""
+    lines = [ln for ln in log.logs if until is None or ln.t <= until]
+    if not lines:
+        return []
+    nodes = {_node(ln) for ln in lines if ln.name}
+    quotes = [_norm(next(g for g in m.groups() if g)) for m in _QUOTED.finditer(question)]
+    idents = _identifiers(question, nodes)
+    bare = _QUOTED.sub(" ", question.lower())
+    parts = {w for i in idents for w in _WORD.findall(i)}  # "controller" of controller_server counts once
+    words = {w for w in _WORD.findall(bare) if len(w) >= 4 and w not in _COMMON} - parts
+    if not quotes and not idents and not (by_words and len(words) >= 2):
+        return []
+    scored = []
+    for ln in lines:
+        msg = _norm(ln.msg)
+        node = _node(ln)
+        score = 3 * sum(1 for q in quotes if q in msg) + 2 * sum(1 for i in idents if i in msg or i == node)
+        shared = sum(1 for w in words if w[:6] in msg or w in node)  # "configure" in "Configuring"
+        # without a quote or an identifier, two of the question's own words in one line point at it
+        if score == 0 and (not by_words or shared < 2):
+            continue
+        scored.append((score + shared - (_ROUTINE.search(ln.msg) is not None), ln.level, ln))
+    if not scored:
+        return []
+    best = max(s for s, _, _ in scored)
+    kept = [x for x in scored if x[0] >= best - 1]
+    kept.sort(key=lambda x: (-x[0], -x[1], -len(x[2].msg)))  # the longer of two errors says more
+    return sorted((ln for _, _, ln in kept[:TOP]), key=lambda ln: ln.t)
+
+
+def with_pointed(text: str, question: str, log: EventLog, task: Task) -> str:
+    """The answer with the lines the question points at that it does not quote already: "… What my log says of
+    it: at 07:39:52, tf_help (ERROR) "…"."."""
+    lines = pointed_lines(question, log, worked_until(log, task), by_words=task.derived)
+    told = _norm(text)
+    fresh = {(ln.name, ln.msg) for ln in lines if _norm(ln.msg)[:60] not in told}
+    if not fresh:
+        return text
+    # every repeat of a line told, so that its count is the log's ("Passing new path to controller." (5 times))
+    fresh_lines = [ln for ln in log.logs if (ln.name, ln.msg) in fresh and ln.t <= worked_until(log, task)]
+    return f"{text} What my log says of it: {quote(fresh_lines, False, True)}.".strip()
