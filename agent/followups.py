@@ -161,11 +161,12 @@ def content_kind(question: str) -> str | None:
     Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
     None for anything else."""
     from hexar.agent.measure_words import measure_kind
+    from hexar.agent.moved import moved_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
     # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
-    kind = window_kind(q) or node_status_kind(q) or \
+    kind = window_kind(q) or node_status_kind(q) or moved_kind(q) or \
         next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
         clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:

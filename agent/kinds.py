@@ -11,6 +11,7 @@ from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.logs import nodes, stated_spans
 from hexar.agent.mentions import mentions
+from hexar.agent.moved import moved
 from hexar.agent.node_status import node_status
 from hexar.agent.person import person
 from hexar.agent.places import at_place, goal, place, reached, when_at, where_failed
@@ -84,5 +85,6 @@ FROM_RECORDING: dict[str, Answer] = {
     "topic_data": _topic_data,
     "at_time": at_time,
     "node_status": node_status,
+    "moved": moved,
     "skills": skills,
 }
