@@ -45,6 +45,10 @@ STATE_CAUSES = frozenset({NO_STATES, "manipulation.stale_robot_state"})
 FETCH = re.compile(r"Failed to fetch current robot state")
 MONITOR = re.compile(r"Didn't received? robot state|latest received state has time")
 UNTOLD = "no state monitor line says which"
+# the state monitor's line without its times ("Didn't received robot state (joint angles) with recent timestamp
+# within 1.000000 seconds. Check clock synchronization ..."): MoveIt's own hint points at the clocks, its numbers
+# would have confirmed it
+HINTED = "the state monitor's hint, without its times"
 
 
 def state_monitor_cause(msg: str) -> str | None:
@@ -103,6 +107,9 @@ class ManipulationExplainer(ModuleExplainer):
             if r.cause == NO_STATES and FETCH.search(r.line.msg) and (not told or by_times):
                 out.append(Reading(r.line, r.entry, by_times or r.cause, r.catalogue, "" if told else UNTOLD))
                 continue
+            if r.cause == "manipulation.stale_robot_state" and cause is None and MONITOR.search(r.line.msg):
+                out.append(Reading(r.line, r.entry, r.cause, r.catalogue, HINTED))
+                continue
             out.append(Reading(r.line, r.entry, cause, r.catalogue) if cause is not None else r)
         return out
 
@@ -114,6 +121,12 @@ class ManipulationExplainer(ModuleExplainer):
                     "(nothing published them where move_group listens), or they came stamped older than it asked "
                     "for (simulated and wall-clock time mixed).",
                     f"{fix} If they are published, give every node the same use_sim_time.", seen[:1])
+        if cause == "manipulation.stale_robot_state" and d.decisive is not None and d.decisive.note == HINTED:
+            _, fix, seen = template(cause, d, what)
+            return (f"I couldn't finish {what} because MoveIt received no state of my arm recent enough, and its "
+                    "own line points at the clocks: most likely, simulated time and wall-clock time were mixed. "
+                    "That line gives no times to confirm it; joint states that never arrived would read the same.",
+                    fix, seen[:1])
         return template(cause, d, what)
 
     def reason_before(self, context: Context, d: Diagnosis) -> Diagnosis:

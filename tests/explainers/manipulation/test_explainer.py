@@ -299,3 +299,22 @@ def test_a_controller_left_out_with_no_goal_failing_for_it_is_a_set_up_error(tmp
     _, found = _explain(tmp_path, [(0, SCM, ERROR, NO_NS)], "Why didn't that work?")
     assert found.causes == ["manipulation.configuration_error"]
     assert "found no controllers" not in found.text
+
+
+@pytest.mark.parametrize(("suite", "ident"), [
+    ("real-modules", "moveit2-1480-move-group-without-sim-time"),
+    ("real-modules-heldout", "moveit2-tutorials-587-mgi-node-without-sim-time")])
+def test_the_state_monitors_hint_without_its_times_is_said_as_the_likely_clock_mix(
+        tmp_path: Path, suite: str, ident: str) -> None:
+    # "Didn't received robot state (joint angles) with recent timestamp within 1.000000 seconds.\nCheck clock
+    # synchronization ...": MoveIt's hint names the clocks; without "Requested time ..." nothing confirms it
+    from hexar.evals.real_modules import QUESTIONS, load_excerpts, write_recording
+    from hexar.events import read_recording
+
+    excerpt = next(e for e in load_excerpts(suite) if e.id == ident)
+    log = read_recording(write_recording(excerpt, tmp_path / "run", task=False))
+    _, found = explain(log, "manipulation", QUESTIONS["failed"])
+    assert found.causes == ["manipulation.stale_robot_state"]
+    assert "most likely, simulated time and wall-clock time were mixed. That line gives no times to confirm it" in \
+        found.text
+    assert read_claims(found.text).causes == {"manipulation.stale_robot_state"}
