@@ -9,7 +9,8 @@ it is often the C library's strerror text or a client library's wording, the sam
 - set-up words (explainers/stack/setup_phrases.json, each grounded in real source strings): a version that does not
   match, a parameter that is empty, missing, undeclared or of the wrong type, a driver's address it was never given;
 - a device library's own result texts (the same file, kind `device`: the Dynamixel SDK's bus results), each with
-  the cause it states, or none when it leaves several open (a servo that sends no status packet).
+  the cause it states, or none when it leaves several open (a servo that sends no status packet); a node's words
+  for a file it could not open (kind `file`), which leave the path or the install open.
 
 Such a text is a cause only on a decisive line: an ERROR or FATAL line, or the `what():` text of a C++ exception
 that ended a process (launch prints it under the process's name, whatever the level of the line it follows), at or
@@ -172,7 +173,8 @@ def _setup(line: LogLine, part: str, phrase: Phrase, m: re.Match[str], prefix: s
            controllers: frozenset[str]) -> tuple[str | None, str, str] | None:
     """(cause, meaning, fix) of a set-up wording, by who said it and what it names."""
     own = f"{prefix}configuration_error" if prefix in ("control.", "manipulation.") else BRINGUP
-    if phrase.kind == "device":  # a device library's own words for the exchange that failed (Dynamixel SDK)
+    if phrase.kind in ("device", "file"):  # a device library's words for the exchange that failed (Dynamixel SDK),
+        # a node's for a file it could not open
         return (phrase.cause, phrase.meaning, phrase.fix)  # None: the words name only candidates
     if phrase.kind == "address":  # a driver's own words for an address it was never given (an empty parameter)
         who = line.name.strip("/").split("/")[-1] or "my driver"

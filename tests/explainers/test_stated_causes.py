@@ -57,10 +57,10 @@ def test_the_data_loads_every_pattern_compiles_and_every_cause_is_known() -> Non
         assert re.search(e["pattern"], e["text"])  # the pattern finds its own strerror text
     for p in setup:
         re.compile(p["pattern"])
-        kinds = {"version", "parameter", "device", "address", "manifest", "section", "simulation"}
+        kinds = {"version", "parameter", "device", "address", "manifest", "section", "simulation", "file"}
         assert p["kind"] in kinds and p["sources"]
         assert all(SOURCE.search(s) for s in p["sources"])
-        if p["kind"] == "device":  # a device library's words state their cause, told in the phrase's meaning
+        if p["kind"] in ("device", "file"):  # their words state their cause (or none), told in the phrase's meaning
             assert (p["cause"] is None or p["cause"] in vocabulary()) and p["meaning"] and p["fix"]
             assert not read_claims(f"It failed because {p['meaning']}.").affirmed - {p["cause"]}
     assert len(phrases()) == len(errnos) + len(setup)
@@ -324,3 +324,6 @@ def test_a_first_line_that_only_tags_its_function_is_quoted_with_the_next(tmp_pa
     found = _real_module(tmp_path, "real-modules-heldout3", "livox-ros-driver2-117-config-not-given")
     assert "“[unnamed node] LdsLidar *GetInstance parse summary info failed, can not open file: path_default”" in \
         found.text
+    # the words read as a file it could not open (kind `file`), not as the port, cable or power of a device
+    assert "Its words say that a file it was to read could not be opened" in found.text
+    assert "baud" not in found.text and "cable" not in found.text and _claims(found) == set()
