@@ -95,7 +95,9 @@ class ControlExplainer(ModuleExplainer):
         if found is not None:
             return spawners.answer(self.name, found)
         if not spawners.gave_up(lines):
-            inactive = spawners.never_activated(lines)
+            # a goal refused by a controller left inactive: its configure came at the start, before the goal's window
+            inactive = spawners.never_activated(lines) or (spawners.never_activated(
+                [ln for ln in context.log.logs if ln.t <= context.window[1]]) if run is not None else None)
             return spawners.inactive_answer(self.name, inactive) if inactive is not None else None
         # the robot description that came after the spawners gave up may lie after a window that ends with them
         early = spawners.gave_up_early([*lines, *self.lines_after(context)])

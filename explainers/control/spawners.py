@@ -115,14 +115,25 @@ ACTIVATION = "control.controller_activation_failed"
 SETTLED_NS = 2_000_000_000  # the start went on this long after the configure: an activation would have come
 
 
+# joint_trajectory_controller's goal_received_callback on a controller that is not active: the refusal that follows
+# from a controller left inactive, no error of its own
+_REFUSED = re.compile(r"^Can't accept new action goals\. Controller is not running\.")
+
+
 def never_activated(lines: list[LogLine]) -> LogLine | None:
-    """The configure line of a controller never activated while others were, in a start with no error."""
-    if any(ln.level >= ERROR for ln in lines):
-        return None
+    """The configure line of a controller never activated while others were, in a start with no error but that
+    controller's refusal of a goal."""
     activated = {n for ln in lines if (m := _ACTIVATING.match(ln.msg)) for n in m["names"].split()}
     last = max((ln.t for ln in lines), default=0)
-    return next((ln for ln in lines if (m := _CONFIGURING.match(ln.msg)) and activated
-                 and m["name"] not in activated and last - ln.t >= SETTLED_NS), None)
+    for ln in lines:
+        m = _CONFIGURING.match(ln.msg)
+        if m is None or not activated or m["name"] in activated:
+            continue
+        refused = [r for r in lines if r.t > ln.t and _REFUSED.match(r.msg) and r.name.rsplit(".", 1)[-1] == m["name"]]
+        # its refusal of a goal shows it inactive then; without one, the start must have gone on long enough
+        if (refused or last - ln.t >= SETTLED_NS) and not any(r.level >= ERROR and r not in refused for r in lines):
+            return ln
+    return None
 
 
 def inactive_answer(explainer: str, configured: LogLine) -> Explanation:
@@ -134,4 +145,4 @@ def inactive_answer(explainer: str, configured: LogLine) -> Explanation:
               "other controllers but not it, so it took no goal or command. Its spawner left it inactive (as "
               "--inactive does), or nothing activated it afterwards."),
         fix=f"Spawn {name} without --inactive, or activate it (ros2 control switch_controllers --activate {name}).",
-        details=["No error came from my controllers; the controller manager's activations never named it."])
+        details=["The controller manager's activations never named it."])

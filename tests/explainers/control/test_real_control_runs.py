@@ -158,3 +158,15 @@ def test_spawners_that_reached_their_manager_are_not_told_as_giving_up_early(tmp
     # set 33's fault-free run: the description came first, the spawners loaded their controllers
     causes, _, _ = _ask(tmp_path, "goal-nominal", True, "real-modules-heldout33")
     assert causes == ["control.nominal"]
+
+
+@pytest.mark.parametrize("task", [True, False], ids=["task_info", "derived"])
+def test_a_goal_refused_by_a_controller_left_inactive_is_the_controller_never_activated(
+        tmp_path: Path, task: bool) -> None:
+    # held-out set 31: arm_controller configured, never in an "Activating controllers: [...]" line, then its
+    # "Can't accept new action goals. Controller is not running." for the goal that came a second later
+    causes, text, _ = _ask(tmp_path, "spawned-inactive", task, "real-modules-heldout31")
+    assert causes == ["control.controller_activation_failed"]
+    assert text.startswith("My controller arm_controller was never activated: my controller manager configured it, "
+                           "then activated my other controllers but not it")
+    assert "took too long" not in text
