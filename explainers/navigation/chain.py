@@ -385,7 +385,7 @@ def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     nodes = list(dict.fromkeys(cat.role(ln.name) or ln.name for ln in own))
     said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"
     text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} {said} a warning "
-            "or an error. The recording shows no goal's end, so it does not show whether a goal was reached.")
+            "or an error. The recording shows no goal ending here, so it does not show whether I reached one.")
     if any(ln.level >= WARN or _warns(ln) for ln in lines):  # a node that is not Nav2's, or not named, did warn
         text += last_warning(lines)
     return text, [own[0], own[-1]]

@@ -18,7 +18,7 @@ from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, keepout, mapsave, smoother, states, waypoints, worded
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
 from hexar.explainers.navigation.nomap import NO_MAP, NO_MAP_FACT
-from hexar.explainers.stack.bringup import LAUNCH_ANY
+from hexar.explainers.stack.bringup import AGAIN, LAUNCH_ANY
 
 
 def quote(line: LogLine | None) -> str:
@@ -139,6 +139,7 @@ def _bringup(f: Finding, place: str) -> tuple[str, str | None, list[str]]:
     # a process that died may have died mid-goal: said as what launch reported, not as a node that never came up
     head = f"I couldn't reach {place} because " if what.startswith("the process of ") else \
         f"I couldn't reach {place} because my nodes never came up: " if what.startswith(LAUNCH_ANY) else \
+        f"I couldn't reach {place} because of a bring-up failure: " if what.startswith(AGAIN) else \
         f"I couldn't reach {place} because a node of my navigation never came up: "
     return (f"{head}{what.rstrip('.')}.",
             "Fix the error quoted from the failing node (its parameters file, its configure step, or why its "
@@ -317,8 +318,10 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "(use_sim_time everywhere or nowhere) and that odometry and localisation publish their transforms.",
                 seen)
     if f.cause == g.CONFIGURATION and f.notes:
-        return (f"I couldn't reach {place} because my navigation stack was misconfigured and a node of it never "
-                f"came up: {f.notes[0].rstrip('.')}.",
+        # a node asked to configure again was up already: the stack was brought up twice, not a node that stayed down
+        came = ":" if f.notes[0].startswith(AGAIN) else " and a node of it never came up:"
+        return (f"I couldn't reach {place} because my navigation stack was misconfigured{came} "
+                f"{f.notes[0].rstrip('.')}.",
                 "Fix the error quoted from that node (often its parameters or plugins) and restart the navigation "
                 "until the lifecycle manager reports 'Managed nodes are active'.",
                 [f"Also: {n}." for n in f.notes[1:]] + seen)

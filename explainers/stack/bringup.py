@@ -118,6 +118,13 @@ def rcl_refused(msg: str) -> tuple[str, str] | None:
     return (m["what"], m["arg"]) if m is not None else None
 
 
+# rcl_lifecycle's refusal of a transition its node's state has not ("Unable to start transition %u from current state
+# %s: %s", rcl_lifecycle.c:355@jazzy, the line itself cites it): configure (transition 1) asked of a node already
+# inactive or active. The node is up; something brought it up before this request (a second lifecycle manager that
+# manages it, or the same launch started twice)
+_AGAIN = re.compile(r"Unable to start transition 1 from current state (?P<state>inactive|active)\b")
+AGAIN = "my lifecycle manager asked"
+
 LAUNCH_NAV = "my launch stopped with an error before it had started my navigation nodes"
 LAUNCH_ANY = "my launch stopped with an error before it had started any of my nodes"
 
@@ -154,6 +161,10 @@ class BringupFinding:
         if self.kind == "lifecycle_transition":
             why = f": {self.detail}" if self.detail else ""
             return f"{who} stopped in a lifecycle transition and never became active{why}"
+        if self.kind == "lifecycle_again":
+            return (f"{AGAIN} {who} to configure again while it was already {self.detail or 'configured'}, a "
+                    "transition that state does not have: something had brought it up before (a second lifecycle "
+                    "manager that manages it, or the same launch started twice)")
         if self.kind == "lifecycle_wait":
             return (f"my lifecycle manager kept waiting for {who}'s lifecycle service ({self.detail}) and never "
                     f"found it, so it configured none of my nodes")
@@ -347,6 +358,13 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
             seen.add(("launch_failed", ""))
             detail = unretrieved["text"].replace('\\"', '"').strip()
             out.append(BringupFinding("launch_failed", "", line.t, line, None, detail))
+            continue
+        again = _AGAIN.search(line.msg) if line.level >= ERROR else None
+        if again is not None:
+            node = _node(line, "lifecycle_transition")
+            if ("lifecycle_again", node) not in seen:
+                seen.add(("lifecycle_again", node))
+                out.append(BringupFinding("lifecycle_again", node, line.t, line, None, again["state"]))
             continue
         loader = _loader_finding(line)
         if loader is not None:

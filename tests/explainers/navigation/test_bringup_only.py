@@ -103,3 +103,19 @@ def test_an_initial_pose_asked_for_and_then_set_is_no_finding(tmp_path: Path) ->
     assert answer.text.startswith("As far as my recording shows, my navigation went normally")
     assert answer.text.endswith("The last warning my logs show came from a node that gave no name (at 22:13:20.700 "
                                 "UTC).")
+
+
+def test_a_configure_asked_of_nodes_already_up_is_a_bring_up_run_twice(tmp_path: Path) -> None:
+    # blind set 2 (spent), turtlebot3#1061: lifecycle_manager_localization configures map_server, which is active
+    # already, and controller_server, inactive already: rcl_lifecycle has no transition 1 from those states
+    from hexar.evals.real_nav2 import blind_set
+
+    case = next(e for e in blind_set(2) if e.id == "tb3-1061-jazzy-lifecycle-bringup-aborted")
+    log = read_recording(write_recording(case, tmp_path / "run", task=False))
+    answer = NavigationExplainer().explain("what happened?", Context.for_task(log, log.task()))
+    assert answer.text.startswith(
+        "I couldn't reach my goal because of a bring-up failure: my lifecycle manager asked controller_server to "
+        "configure again while it was already inactive, a transition that state does not have: something had brought "
+        "it up before (a second lifecycle manager that manages it, or the same launch started twice).")
+    assert "never became active" not in answer.text
+    assert read_claims(answer.text).causes == {"navigation.bringup_failure"}
