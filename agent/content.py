@@ -256,8 +256,10 @@ def where(log: EventLog) -> Explanation:
             # a goal not reached says nothing of how far I got (a stack that never came up never moved me)
             text = (f"My last goal was {target}; the recording does not show whether I got there." if reached is None
                     else f"My last goal was {target}, but I didn't get there.") + at
+    # where I am is told by a recorded position, or by a goal I got to
+    reached_last = bool(goals) and max(goals, key=lambda g: g[0])[2] is True
     return Explanation(explainer="navigation", text=text, causes=["navigation.nominal"], evidence=evidence,
-                       enough_information=pose is not None or bool(goals))
+                       enough_information=pose is not None or reached_last)
 
 
 def said(question: str, log: EventLog, task: Task, nothing: str | None = None) -> Explanation:

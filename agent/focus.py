@@ -17,6 +17,7 @@ from hexar.agent.measures import worked_until
 from hexar.events.log import EventLog
 from hexar.events.records import LogLine
 from hexar.events.tasks import Task
+from hexar.explainers.base import Explanation
 
 # 'Transform data too old', "Init lds lidar fail!", ‘…’: what a developer copied from the log
 _QUOTED = re.compile(r"'([^']{6,})'|\"([^\"]{6,})\"|‘([^’]{6,})’|“([^”]{6,})”")
@@ -103,3 +104,12 @@ def with_pointed(text: str, question: str, log: EventLog, task: Task) -> str:
     # every repeat of a line told, so that its count is the log's ("Passing new path to controller." (5 times))
     fresh_lines = [ln for ln in log.logs if (ln.name, ln.msg) in fresh and ln.t <= worked_until(log, task)]
     return f"{text} What my log says of it: {quote(fresh_lines, False, True)}.".strip()
+
+
+def when_untold(exp: Explanation, question: str, log: EventLog, task: Task) -> Explanation:
+    """An answer from the recording that could not tell ("my position is not recorded"), with the lines the question
+    points at ("Robot is out of bounds of the costmap!"); one that could, as it was."""
+    if exp.enough_information:
+        return exp
+    text = with_pointed(exp.text, question, log, task)
+    return exp if text == exp.text else exp.model_copy(update={"text": text})

@@ -9,6 +9,7 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.flags import battery, speed_limit
+from hexar.agent.focus import with_pointed
 from hexar.agent.logs import nodes, stated_spans
 from hexar.agent.mentions import mentions
 from hexar.agent.moved import moved
@@ -37,6 +38,9 @@ def _topic_data(question: str, log: EventLog, task: Task) -> Explanation:
     told = topic_data(question, log, task)
     if told.enough_information:
         return told
+    pointed = with_pointed(told.text, question, log, task)  # "Received amcl_pose": the topic's name in a line
+    if pointed != told.text:
+        return told.model_copy(update={"text": pointed})
     named = mentions(question, log, task)
     if not named.enough_information:
         return told

@@ -36,7 +36,8 @@ def _lines_of(log: EventLog, node: str) -> tuple[list[LogLine], list[LogLine]]:
            or ln.name.lower().endswith("." + node)]
     if not own:  # "lifecycle_manager" asked, "lifecycle_manager_navigation" logged
         own = [ln for ln in log.logs if ln.name.lower().startswith(node + "_")]
-    process = [ln for ln in log.logs if re.fullmatch(re.escape(node) + r"-\d+", ln.name.lower())
+    # launch names a process after its executable: base_driver's is often "base_driver_node-1"
+    process = [ln for ln in log.logs if re.fullmatch(re.escape(node) + r"(_node)?-\d+", ln.name.lower())
                and _ENDED.search(ln.msg)]
     return own, process
 

@@ -16,7 +16,7 @@ from hexar.agent.classifier import GENERIC
 from hexar.agent.context import RunContext
 from hexar.agent.errors import BadQuestionError
 from hexar.agent.flags import flag_answer
-from hexar.agent.focus import with_pointed
+from hexar.agent.focus import when_untold, with_pointed
 from hexar.agent.followups import content_kind, intent_of, module_asked, task_ref_of
 from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
@@ -352,7 +352,7 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         exp = with_failure(ctx, state, asked)
     else:
         exp = answers.said(state["question"], ctx.log, task)
-    return _direct(state, exp, "content", start)
+    return _direct(state, when_untold(exp, state["question"], ctx.log, task), "content", start)
 
 
 def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:

@@ -66,3 +66,20 @@ def test_a_line_the_answer_already_quotes_is_not_told_again(tmp_path: Path) -> N
     (asked,) = converse(run, "Is this a bug in the driver, or is the device on /dev/ttyACM0 just not connected?")
     text = str(asked["answer"])
     assert text.count("cannot open serial port") == 1 and "What my log says of it" not in text
+
+
+def test_a_topic_the_recording_lacks_is_told_with_the_lines_that_name_it(tmp_path: Path) -> None:
+    # blind set 1: nav2_system_tests' tester logs "Received amcl_pose"; the recording holds only /rosout
+    (asked,) = converse(real_nav2_run("nav2-4440-system-test-bt-navigator-passed", tmp_path / "run"),
+                        "Was amcl_pose being received during the test?")
+    assert asked["answer"] == ("My recording holds no /amcl_pose: it has only /rosout, so whether anything was "
+                               "published on /amcl_pose it cannot tell. What my log says of it: at 05:54:50, "
+                               'nav2_tester (INFO) "Received amcl_pose" (2 times).')
+
+
+def test_a_position_the_recording_cannot_give_is_told_with_the_lines_on_it(tmp_path: Path) -> None:
+    (asked,) = converse(real_nav2_run("orsus-scout-humble-relocalized-in-unmapped-area-off-costmap", tmp_path / "run"),
+                        "Where is the robot compared to the costmap bounds?")
+    assert str(asked["answer"]).endswith('My position is not recorded: this recording has no /amcl_pose messages. What '
+                                         'my log says of it: at 22:13:20, a node (WARN) "Robot is out of bounds of the '
+                                         'costmap!".')

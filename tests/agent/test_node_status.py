@@ -37,3 +37,10 @@ def test_launch_ending_a_process_and_a_node_never_heard(tmp_path: Path) -> None:
     assert str(manager["answer"]).endswith("launch said its process finished cleanly at 09:33:42.")
     assert never["answer"] == ("My log holds no line from rviz2 and no word from launch about its process: it may not "
                                "have run, or its lines were not recorded; I can't tell.")
+
+
+def test_a_process_named_after_its_executable_is_the_nodes(tmp_path: Path) -> None:
+    # held-out set 26: node base_driver, run by the executable base_driver_node ("base_driver_node-1")
+    (asked,) = converse(real_module_run("kilted-respawn-crash-loop", tmp_path / "run"),
+                        "Did base_driver start correctly?")
+    assert str(asked["answer"]).endswith("launch said its process finished cleanly at 12:58:22.")
