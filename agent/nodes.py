@@ -1,9 +1,9 @@
-"""The agent's nodes: intake, context, failure check, router, tools, answer, follow-up."""
+"""The agent's nodes: intake, context, failure check, router, tools, answer, walk, content (the follow-up is in
+followup_node.py)."""
 
 from __future__ import annotations
 
 import json
-import re
 import time
 from typing import TYPE_CHECKING, Any
 
@@ -24,7 +24,6 @@ from hexar.agent.logs import logs
 from hexar.agent.mentions import mentioned
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
-    NOTHING_TO_CHANGE,
     asks_fix,
     confirmed,
     helped,
@@ -37,7 +36,7 @@ from hexar.agent.overview import (
     yes_or_no,
 )
 from hexar.agent.parameters import asks_parameters
-from hexar.agent.probes import failure_not_told, notable, probe, talked, with_failure
+from hexar.agent.probes import notable, probe, talked, with_failure
 from hexar.agent.questions import EXAMPLE, check_question, quoted, small_talk_reply
 from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
@@ -65,7 +64,7 @@ def _ms(start: float) -> float:
     return round((time.perf_counter() - start) * 1000, 2)
 
 
-def _timings(state: AgentState, key: str, start: float) -> dict[str, float]:
+def timings(state: AgentState, key: str, start: float) -> dict[str, float]:
     return {**state.get("timings_ms", {}), key: _ms(start)}
 
 
@@ -131,7 +130,7 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         update.update(intent="content", asked=asked)  # its plan never ran the module asked about
     elif state.get("intent") == "new" and asks_parameters(state["question"], log):
         update.update(intent="content")  # "which nodes use sim time?": the recorded parameters say it
-    return {**update, "timings_ms": _timings(state, "context", start)}
+    return {**update, "timings_ms": timings(state, "context", start)}
 
 
 def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -147,9 +146,9 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
         if found is not None:
             return {"selected": [], "explanations": [found.model_dump()], "route": "recovery", "depth": 0,
                     "used": [*state.get("used", []), found.explainer],
-                    "timings_ms": _timings(state, "failure_check", start)}
+                    "timings_ms": timings(state, "failure_check", start)}
     return {"selected": selected, "route": "failure_check" if selected else "none",
-            "timings_ms": _timings(state, "failure_check", start)}
+            "timings_ms": timings(state, "failure_check", start)}
 
 
 def _llm_choice(ctx: RunContext, state: AgentState) -> str | None:
@@ -209,7 +208,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         other = notable(ctx, state, {choice}, BENIGN)
         if other is not None:
             choice, route = other, "findings"
-    return {"selected": [choice], "route": route, "timings_ms": _timings(state, "router", start)}
+    return {"selected": [choice], "route": route, "timings_ms": timings(state, "router", start)}
 
 
 def tools(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -224,7 +223,7 @@ def tools(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             # What each explainer tool runs, called directly: building LangChain tools costs a second of imports.
             explanations.append(run_explainer(name, state["question"]))
     return {"explanations": explanations, "used": [*state.get("used", []), *state.get("selected", [])],
-            "depth": 0, "timings_ms": _timings(state, "tools", start)}
+            "depth": 0, "timings_ms": timings(state, "tools", start)}
 
 
 def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -281,7 +280,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     # lines already quoted: the next "why?" goes past them
     return {"explanations": kept, "answer": text, "fallback": fallback, "told": told,
-            "history": remembered(state, turn), "timings_ms": _timings(state, "answer", start),
+            "history": remembered(state, turn), "timings_ms": timings(state, "answer", start),
             **({"depth": 1} if quoted_lines else {})}
 
 
@@ -296,7 +295,7 @@ def _direct(state: AgentState, exp: Explanation, key: str, start: float) -> dict
     turn = {"question": state["question"], "answer": exp.text, "explainers": [exp.explainer]}
     return {"explanations": [exp.model_dump()], "answer": exp.text, "route": "followup", "depth": 0,
             "selected": [], "told": [*state.get("told", []), *exp.causes],
-            "history": remembered(state, turn), "timings_ms": _timings(state, key, start)}
+            "history": remembered(state, turn), "timings_ms": timings(state, key, start)}
 
 
 def walk(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
@@ -353,46 +352,3 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     else:
         exp = answers.said(state["question"], ctx.log, task)
     return _direct(state, when_untold(exp, state["question"], ctx.log, task), "content", start)
-
-
-def followup(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
-    """'Why?' goes one level deeper (evidence, then the causal chain); 'what would have helped?' gives the
-    counterfactual or fix. Nothing is invented: past what was recorded, the robot says so."""
-    start = time.perf_counter()
-    exps = [Explanation.model_validate(e) for e in state.get("explanations", [])]
-    depth = state.get("depth", 0)
-    if state["intent"] == "helped":
-        text = helped(exps, BENIGN) or ""
-        failed = failure_not_told(runtime.context, state, exps)
-        if failed is not None and (not text or text == NOTHING_TO_CHANGE or text.startswith("I have no fix")):
-            fix = helped([failed], BENIGN)
-            stepped = any(e.explainer != "planner" and e.causes and set(e.causes) <= BENIGN for e in exps)
-            text = f"{NOTHING_TO_CHANGE.split(',')[0]}. As for what failed: {fix}" if stepped and fix else fix or text
-    else:
-        depth += 1
-        if depth == 1:
-            text = cited(exps)
-        elif depth == 2:
-            # A detail that only repeats a recorded item was heard at depth 1 (and reads as raw fields)
-            heard = {ev.item for e in exps for ev in e.evidence}
-            text = " ".join(_sentence(d) for e in exps for d in e.details if d not in heard)
-        else:
-            text = ""
-        text = text or "That's everything I recorded about it; I don't have enough information to go deeper."
-    turn = {"question": state["question"], "answer": text, "explainers": [e.explainer for e in exps]}
-    return {"answer": text, "depth": depth, "route": "followup", "history": remembered(state, turn),
-            "timings_ms": _timings(state, "followup", start)}
-
-
-# A count of nothing is no finding: "I tried 0 recovery manoeuvres" says what the log does not hold. Said as what
-# was not recorded, so a recording of only /rosout is not taken to prove the robot never tried.
-_NONE_COUNTED = re.compile(r"^I tried 0 recovery manoeuvres (\([^)]*\)) and then gave up")
-
-
-def _sentence(detail: str) -> str:
-    """Details are written as notes; spoken one after another each must end as a sentence."""
-    detail = _NONE_COUNTED.sub(r"My log records no recovery manoeuvre \1 before I gave up", detail.strip())
-    if not detail:
-        return detail
-    detail = detail[0].upper() + detail[1:]
-    return detail if detail.endswith((".", "!", "?", '."', ".'")) else detail + "."

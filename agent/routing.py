@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any, Literal
 
-from hexar.agent import nodes
+from hexar.agent import followup_node, nodes
 from hexar.agent.state import AgentState
 
 END = "__end__"
@@ -48,7 +48,7 @@ NODES: dict[str, Callable[..., dict[str, Any]]] = {
     "router": nodes.router,
     "tools": nodes.tools,
     "answer": nodes.answer,
-    "followup": nodes.followup,
+    "followup": followup_node.followup,
     "walk": nodes.walk,
     "content": nodes.content,
 }
