@@ -9,6 +9,7 @@ from pathlib import Path
 from hexar.agent.backends import Backend
 from hexar.agent.classifier import QuestionClassifier, default_classifier
 from hexar.events import EventLog, read_recording
+from hexar.events.tasks import WHOLE, Task, whole_recording
 from hexar.explainers.registry import Registry
 
 
@@ -54,6 +55,12 @@ class RunContext:
         if self._log is None:
             self._log = read_recording(self.settings.recording)
         return self._log
+
+    def task(self, ref: str | None = None) -> Task:
+        """A task of the recording (EventLog.task); of one that holds none, the whole recording for WHOLE."""
+        if ref == WHOLE and not self.log.tasks:
+            return whole_recording(self.log.start, self.log.end)
+        return self.log.task(ref)
 
     def budget_left(self) -> float:
         return self.settings.time_budget_s - (time.monotonic() - self.started)

@@ -42,7 +42,10 @@ from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
 from hexar.agent.unseen import unseen
 from hexar.agent.walk import next_finding
+from hexar.agent.whole import RECORDING_WIDE, lines_answer
+from hexar.agent.whole import answerable as whole_answerable
 from hexar.causes import BENIGN, NOTHING_WRONG
+from hexar.events.tasks import WHOLE
 from hexar.explainers.base import Context, Explanation
 from hexar.explainers.errors import ModelError
 from hexar.prompts import load
@@ -112,7 +115,8 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         current = state.get("task_id")
         user = [t for t in log.tasks if not t.is_recovery and t.task_id != current]
         ref = user[-1].task_id if user else None
-    task = log.task(ref)
+    whole = not log.tasks and ref is None and whole_answerable(state["question"], content_kind(state["question"]), log)
+    task = ctx.task(WHOLE if whole else ref)  # a recording with no task: what it holds, if that is what was asked
     candidates: list[str] = []
     for run in task.skills:
         for name in ctx.registry.for_module(run.skill):
@@ -128,7 +132,7 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         update.update(intent="content", object=obj)  # "where is the cup?": what its steps did with it
     elif asked is not None and not answers.ran(asked, task, ctx.registry.for_module):
         update.update(intent="content", asked=asked)  # its plan never ran the module asked about
-    elif state.get("intent") == "new" and asks_parameters(state["question"], log):
+    elif whole or (state.get("intent") == "new" and asks_parameters(state["question"], log)):
         update.update(intent="content")  # "which nodes use sim time?": the recorded parameters say it
     return {**update, "timings_ms": timings(state, "context", start)}
 
@@ -137,7 +141,7 @@ def failure_check(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, 
     """Deterministic: a failed skill goes to its module's explainer, a bad plan to the planner. No LLM."""
     start = time.perf_counter()
     ctx = runtime.context
-    task = ctx.log.task(state["task_id"])
+    task = ctx.task(state["task_id"])
     name = ctx.registry.failure_explainer(task)
     selected = [name] if name else []
     if not selected and task.is_recovery:
@@ -214,7 +218,7 @@ def router(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
 def tools(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     start = time.perf_counter()
     ctx = runtime.context
-    task = ctx.log.task(state["task_id"])
+    task = ctx.task(state["task_id"])
     explanations: list[dict[str, Any]] = []
     # Past the time budget, answer from the grounded templates rather than wait on the model.
     registry = ctx.registry if ctx.budget_left() > 0 else ctx.probe
@@ -252,7 +256,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             text = f"{QUOTED_BEFORE} {quoted_lines.removeprefix('Here is what I recorded: ')}"
         else:  # the finding just heard is not told again before its lines
             text = quoted_lines if quoted_lines and text in last else f"{text} {quoted_lines}".strip()
-    task = ctx.log.task(state["task_id"])
+    task = ctx.task(state["task_id"])
     if state.get("intent") == "new" and not quoted_lines:  # "why did it fail with 'Transform data too old'?"
         text = with_pointed(text, question, ctx.log, task)
     failed = state.get("route") == "failure_check"
@@ -302,7 +306,7 @@ def walk(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     """'What else happened?': the next finding of the task, in plan order, that the person has not heard."""
     start = time.perf_counter()
     ctx = runtime.context
-    task = ctx.log.task(state["task_id"])
+    task = ctx.task(state["task_id"])
     said_before = [t["answer"] for t in state.get("history", [])]
     exp = next_finding(ctx.probe, state["question"], ctx.log, task, said_before, set(state.get("told", [])))
     return _direct(state, exp, "walk", start)
@@ -313,9 +317,11 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
     a failure."""
     start = time.perf_counter()
     ctx = runtime.context
-    task = ctx.log.task(state["task_id"])
+    task = ctx.task(state["task_id"])
     kind = content_kind(state["question"])
-    if state.get("object"):
+    if task.task_id == WHOLE and kind not in RECORDING_WIDE and not asks_parameters(state["question"], ctx.log):
+        exp = lines_answer(state["question"], ctx.log, task)
+    elif state.get("object"):
         name = ctx.registry.failure_explainer(task)
         failed = probe(ctx, name, state["question"], state["task_id"]) if name else None
         exp = object_state(state["question"], state["object"], task, failed)

@@ -12,7 +12,7 @@ from hexar.explainers.base import Context, Explanation
 
 
 def probe(ctx: RunContext, name: str, question: str, task_id: str) -> Explanation:
-    task = ctx.log.task(task_id)
+    task = ctx.task(task_id)
     return ctx.probe.get(name).explain(question, Context.for_task(ctx.log, task, ctx.probe))
 
 
@@ -40,7 +40,7 @@ def with_failure(ctx: RunContext, state: AgentState, exp: Explanation,
     """"Did anyone help you?" of a task that failed before asking: the answer names the step that failed, so
     "why?" and "what would have helped?" go on to that failure (its evidence, details and fix), not to the plan.
     `failed`: the failure's explainer's answer where the caller has it already (it is not asked again)."""
-    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"]))
+    name = ctx.registry.failure_explainer(ctx.task(state["task_id"]))
     if name is None:
         return exp
     failed = failed or probe(ctx, name, state["question"], state["task_id"])
@@ -64,7 +64,7 @@ def notable(ctx: RunContext, state: AgentState, exclude: set[str],
 def finding(ctx: RunContext, state: AgentState) -> Explanation | None:
     """The failure of a task that failed, or, of one that did not, its notable finding (a node that never came up
     on a run the recording cuts short, a slow trip); None when there is neither."""
-    name = ctx.registry.failure_explainer(ctx.log.task(state["task_id"])) or notable(ctx, state, set(), BENIGN)
+    name = ctx.registry.failure_explainer(ctx.task(state["task_id"])) or notable(ctx, state, set(), BENIGN)
     return probe(ctx, name, state["question"], state["task_id"]) if name is not None else None
 
 

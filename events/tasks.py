@@ -139,3 +139,15 @@ def build_tasks(updates: list[TaskUpdate]) -> list[Task]:
         instruction = next((u.instruction for u in ups if u.instruction), "")
         tasks.append(Task(task_id, instruction, tuple(ups), tuple(runs), order))
     return tasks
+
+
+# A recording that holds no task (no /task_info, no goal, no start of the robot read from its logs) is still a
+# recording of what the robot logged and published: a question about that (its lines of a moment, a node, a topic,
+# a parameter) is answered over the whole of it, as this one task of no steps.
+WHOLE = "recording"
+
+
+def whole_recording(start: int, end: int) -> Task:
+    """The recording from its first message to its last, as a task with no steps that nobody asked for."""
+    updates = tuple(TaskUpdate(t, WHOLE, "", "valid", "", (), raw="") for t in dict.fromkeys((start, end)))
+    return Task(WHOLE, "", updates, (), 1, derived=True)

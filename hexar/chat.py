@@ -77,9 +77,13 @@ def _chat(run: Path, thread: str | None, llm: str, console: Console, checkpoints
                           checkpoints=checkpoints or default_checkpoints())
     thread = thread or session.new_thread()
     log = session.context.log
-    task = log.task()
-    console.print(f"[bold]{safe(run.name)}[/bold]: task \"{safe(task.instruction)}\" ({safe(task.outcome)}); "
-                  f"backend {safe(session.backend.name)}; thread {safe(thread)}")
+    try:
+        task = log.task()
+        about = f'task "{safe(task.instruction)}" ({safe(task.outcome)})'
+    except NoTaskError as err:  # what it recorded can still be asked about (agent/whole.py)
+        about = f"{safe(err)}; ask about its log, nodes, topics, parameters or times"
+    console.print(f"[bold]{safe(run.name)}[/bold]: {about}; backend {safe(session.backend.name)}; "
+                  f"thread {safe(thread)}")
     for turn in session.history(thread):
         console.print(f"[dim]you: {safe(turn['question'])}\nHEXAR: {safe(turn['answer'], keep_newlines=True)}[/dim]")
     console.print(f"[dim]{HELP}[/dim]")
