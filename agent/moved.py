@@ -1,7 +1,7 @@
 """"Did the robot move at all before the goal failed?", "did the arm move at all?", "did the trajectory ever get sent
 to the controller?": whether a motion was handed to a controller, from my positions where the recording holds them,
 else from the lines that hand a path or a trajectory to one (their real texts below). Without either, the answer
-says what the log does not show; it never claims a motion the recording cannot tell.
+says what the log does not show; it claims neither a motion nor its absence that the recording cannot tell.
 """
 
 from __future__ import annotations
@@ -48,6 +48,7 @@ def moved(question: str, log: EventLog, task: Task) -> Explanation:
                 f"holds no position of mine, so it does not show how far I moved.")
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                            evidence=line_evidence(handed, task))
-    text = (f"No line of my log up to the end of {name} hands a path or a trajectory to a controller, so most likely "
-            f"I did not move; my recording holds no position of mine to confirm it.")
+    # an excerpt may lack the lines that would show a motion: their absence is not told as "I did not move"
+    text = (f"No line of my log up to the end of {name} hands a path or a trajectory to a controller, and my "
+            f"recording holds no position of mine, so it does not show that I moved.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence([], task))

@@ -24,8 +24,8 @@ def test_a_goal_planning_refused_handed_nothing_to_the_controller(tmp_path: Path
     (asked,) = converse(real_nav2_run("kilted-nav2-goal-off-map", tmp_path / "run"),
                         "Did the robot move at all before the goal failed?")
     assert asked["answer"] == ("No line of my log up to the end of the navigation goal to (16.00, 4.00) hands a path "
-                               "or a trajectory to a controller, so most likely I did not move; my recording holds no "
-                               "position of mine to confirm it.")
+                               "or a trajectory to a controller, and my recording holds no position of mine, so it "
+                               "does not show that I moved.")
 
 
 def test_a_path_handed_to_the_controller_is_quoted_with_its_count(tmp_path: Path) -> None:
