@@ -48,7 +48,10 @@ def moved(question: str, log: EventLog, task: Task) -> Explanation:
                 f"holds no position of mine, so it does not show how far I moved.")
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                            evidence=line_evidence(handed, task))
-    # an excerpt may lack the lines that would show a motion: their absence is not told as "I did not move"
-    text = (f"No line of my log up to the end of {name} hands a path or a trajectory to a controller, and my "
-            f"recording holds no position of mine, so it does not show that I moved.")
+    if task.outcome == "failed":  # it failed before any motion was handed on: most likely none was made
+        text = (f"No line of my log hands a path or a trajectory to a controller before {name} failed, so most "
+                f"likely I did not move; my recording holds no position of mine to confirm it.")
+    else:  # an excerpt may lack the lines that would show a motion: their absence is not told as "I did not move"
+        text = (f"No line of my log up to the end of {name} hands a path or a trajectory to a controller, and my "
+                f"recording holds no position of mine, so it does not show that I moved.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=line_evidence([], task))

@@ -23,9 +23,9 @@ def test_whether_it_moved_is_its_own_question(question: str, kind: str | None) -
 def test_a_goal_planning_refused_handed_nothing_to_the_controller(tmp_path: Path) -> None:
     (asked,) = converse(real_nav2_run("kilted-nav2-goal-off-map", tmp_path / "run"),
                         "Did the robot move at all before the goal failed?")
-    assert asked["answer"] == ("No line of my log up to the end of the navigation goal to (16.00, 4.00) hands a path "
-                               "or a trajectory to a controller, and my recording holds no position of mine, so it "
-                               "does not show that I moved.")
+    assert asked["answer"] == ("No line of my log hands a path or a trajectory to a controller before the navigation "
+                               "goal to (16.00, 4.00) failed, so most likely I did not move; my recording holds no "
+                               "position of mine to confirm it.")
 
 
 def test_a_path_handed_to_the_controller_is_quoted_with_its_count(tmp_path: Path) -> None:
@@ -40,7 +40,8 @@ def test_a_path_handed_to_the_controller_is_quoted_with_its_count(tmp_path: Path
 def test_an_arm_whose_state_was_never_fetched_got_no_trajectory(tmp_path: Path) -> None:
     (asked,) = converse(real_module_run("mogi-simple-arm-move-group-without-sim-time", tmp_path / "run"),
                         "Did the trajectory ever get sent to the controller?")
-    assert str(asked["answer"]).startswith("No line of my log up to the end of the goal to move the arm hands a path")
+    assert str(asked["answer"]).startswith("No line of my log hands a path or a trajectory to a controller before the "
+                                           "goal to move the arm failed")
 
 
 def test_home_runs_answer_from_the_plan_and_the_positions(suite: Path) -> None:
@@ -50,3 +51,11 @@ def test_home_runs_answer_from_the_plan_and_the_positions(suite: Path) -> None:
     (drove,) = converse(suite / "bagfile_14_2", "did you move at all?")
     assert str(drove["answer"]).startswith('For your request "Could you bring me the book from the dining room?", I '
                                            "drove about 6.3 m")
+
+
+def test_an_excerpt_that_shows_no_end_claims_no_absence_of_motion(tmp_path: Path) -> None:
+    # ifra_srrc issue 3: MoveIt's "The complete state of the robot is not yet known" warnings alone, a goal with no end
+    (asked,) = converse(real_module_run("ifra-srrc-3-missing-fixed-joints-nominal", tmp_path / "run"),
+                        "did the arm move actually complete?")
+    assert str(asked["answer"]).endswith("and my recording holds no position of mine, so it does not show that I "
+                                         "moved.")
