@@ -12,6 +12,7 @@ from hexar.agent.content import task_name
 from hexar.agent.logs import line_evidence, quote
 from hexar.agent.measures import far, worked_until
 from hexar.events.log import EventLog
+from hexar.events.nav_servers import BEHAVIOR_SKILL
 from hexar.events.records import LogLine
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
@@ -42,6 +43,10 @@ def moved(question: str, log: EventLog, task: Task) -> Explanation:
                            causes=["planner.plan_ok"], evidence=line_evidence([], task))
     if positions(log, task.created, end)[0]:
         return far(log, task, question)
+    if any(run.skill == BEHAVIOR_SKILL for run in task.skills):  # a spin or backup drives the base itself
+        return Explanation.not_enough("planner", f"My recording holds no position of mine, and {name} drives my base "
+                                                 "without handing a path to a controller, so it does not show how far "
+                                                 "I moved.")
     handed: list[LogLine] = [ln for ln in log.logs if ln.t <= end and HANDED.match(ln.msg.strip())]
     if handed:
         text = (f"A motion was handed to my controllers for {name}: {quote(handed, False, False)}. My recording "

@@ -59,3 +59,11 @@ def test_an_excerpt_that_shows_no_end_claims_no_absence_of_motion(tmp_path: Path
                         "did the arm move actually complete?")
     assert str(asked["answer"]).endswith("and my recording holds no position of mine, so it does not show that I "
                                          "moved.")
+
+
+def test_a_backup_drives_the_base_itself_so_no_controller_line_is_looked_for(tmp_path: Path) -> None:
+    # blind set 28: a backup toward a box exits at once with "Collision Ahead - Exiting DriveOnHeading"
+    (asked,) = converse(real_nav2_run("kilted-nav2-backup-toward-box", tmp_path / "run"),
+                        "Did the robot move at all during the backup before it stopped?")
+    assert str(asked["answer"]).endswith("the goal to run backup drives my base without handing a path to a "
+                                         "controller, so it does not show how far I moved.")
