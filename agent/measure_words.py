@@ -48,9 +48,15 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"searching|driving)\b|\bfor how long\W*$",
               r"^(and |so )?how long did (it|the planner|moveit|the robot) (try|plan|wait|search|look)\b",
               # "how long did the whole errand take?", "how long did the follow_joint_trajectory goal take?"
-              r"^(and |so |ok |okay )?how long did (the |your |my |this |that )?([a-z_]+ ){1,3}(take|last)\b")),
+              r"^(and |so |ok |okay )?how long did (the |your |my |this |that )?([a-z_]+ ){1,3}(take|last)\b",
+              # "how long did the spin run before it aborted?", "... and how long did it run?", "how long was the
+              # goal pending?": the task's and each step's times (after launch: 'when', against the log's start)
+              r"\bhow long (did|was|were|had|after (the|my|your) (goal|request|task)) "
+              r"(?!.*\bafter (the |my )?(launch|start|starting|bring-?up|startup)\b)")),
     ("when", (r"^(and |so |ok |okay )?(when|at what time|what time) did you (start|begin|set off|leave|go|get|arrive|"
               r"reach|finish|stop|end|come back|return|drive|head|give up|fail|quit|abort)\b",
+              r"^(and |so |ok |okay )?(when|at what time|what time) did (it|the robot|the (goal|navigation|spin|"
+              r"backup|motion|arm)) (start|begin|set off|leave|get|arrive|reach)\b",
               r"^(and |so |ok |okay )?(when|at what time|what time) did (it|that|this|the task|the step|things|the "
               r"(goal|navigation|motion|move|pick|trajectory|plan|arm|robot)) "
               r"(fail|go wrong|break|abort|stop|end|finish)\b",

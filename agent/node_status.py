@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import re
 
-from hexar.agent.logs import line_evidence
+from hexar.agent.logs import line_evidence, quote
+from hexar.agent.measures import worked_until
 from hexar.events.log import EventLog
 from hexar.events.records import LEVEL_NAMES, LogLine, hms
 from hexar.events.tasks import Task
@@ -19,11 +20,18 @@ NODE_STATUS = re.compile(
     r"^(and |so |but |ok )?(did|has|had|was|is|were|does) (the )?" + _NODE + r"( node| process| server)? (ever |still |"
     r"otherwise |actually |even |then )?(start(ed|ing)?( up)?|come up|came up|crash(ed)?|die|died|keep running|kept "
     r"running|stay up|stay alive|run|running|go active|become active|make it to active|get configured|configure|"
-    r"activate|shut down|exit|exited|finish|finished|fail to (configure|activate|start)|bring up|brought up)\b")
+    r"activate|shut down|exit|exited|finish|finished|fail to (configure|activate|start)|bring up|brought up|active|"
+    r"activated|configured|loaded|up|ok|okay|working|healthy)\b")
+# another node's words about this one's state: a controller manager activating it, a lifecycle manager configuring it
+_ABOUT = re.compile(r"activat|configur|switch|bond|\bactive\b|inactive|load|spawn|start|fail|crash|died|abort|shut",
+                    re.I)
 # launch's words for a process's end ("[move_group-1]: process has died [pid 4, exit code -6, ...]")
 _ENDED = re.compile(r"process has (died|finished cleanly)|process started with pid")
 # a C++ program's own last words on stderr, often folded into the node's last logged line
 _ABORTED = re.compile(r"terminate called after throwing|Segmentation fault|Aborted \(core dumped\)")
+
+
+ABOUT = 3  # other nodes' lines about the node, the latest
 
 
 def node_status_kind(q: str) -> str | None:
@@ -70,6 +78,13 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
         parts.append("no line says its process ended" + (
             f"; its last line came {tail:.0f} s before my recording ends" if tail >= 1 else
             ", and its last line is the recording's last moment: what came after is not recorded"))
+    named = re.compile(rf"(?<![\w/]){re.escape(node)}(?!\w)") if node else None
+    # up to the task's end: a stack's shutdown deactivates every controller, which says nothing of the task
+    until = worked_until(log, task)
+    about = [ln for ln in log.logs if named is not None and ln.t <= until and ln not in own and ln not in process
+             and named.search(ln.msg.lower()) and _ABOUT.search(ln.msg)]
+    if about:  # "Activating controllers: [ arm_controller ]", "Configuring controller_server"
+        parts.append(f"other nodes said of it: {quote(about[-ABOUT:], False, True)}")
     text = "; ".join(parts) + "."
     return Explanation(explainer="planner", text=text[0].upper() + text[1:], causes=["planner.plan_ok"],
-                       evidence=line_evidence([*own[-2:], *process[-1:]], task))
+                       evidence=line_evidence([*own[-2:], *process[-1:], *about[-ABOUT:]], task))

@@ -15,13 +15,17 @@ from hexar.explainers.navigation.wording import quote as _quote
 from hexar.explainers.navigation.wording import template as nav2_template
 
 
+def _seconds(s: float) -> str:
+    return f"{s:.1f} s" if s < 1 else f"{s:.0f} s"  # a goal reached in 0.3 s did not take "0 s"
+
+
 def _speed_sentence(f: d.Finding) -> str:
     parts = []
     if "distance_m" in f.facts and "duration_s" in f.facts:
-        parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {f.facts['duration_s']:.0f} s")
+        parts.append(f"I travelled {f.facts['distance_m']:.1f} m in {_seconds(f.facts['duration_s'])}")
     elif "straight_m" in f.facts and "duration_s" in f.facts:
         # the begin line's start and goal: the path was at least that long, so the average at least that fast
-        parts.append(f"I took {f.facts['duration_s']:.0f} s to get there, {f.facts['straight_m']:.1f} m in a "
+        parts.append(f"I took {_seconds(f.facts['duration_s'])} to get there, {f.facts['straight_m']:.1f} m in a "
                      "straight line from where I started")
         parts.append(f"at least {f.facts['least_speed']:.2f} m/s on average")
     if "average_speed" in f.facts:

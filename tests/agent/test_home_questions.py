@@ -170,6 +170,11 @@ def test_why_the_person_did_not_confirm_is_not_recorded(suite: Path) -> None:
     ("How long did the whole errand take from when I asked?", "long"),
     ("how long did the follow_joint_trajectory goal take?", "long"),
     ("why did it take so long?", None),  # why is the explainers'
+    ("How long did the spin run before it aborted?", "long"), ("How long was the goal pending?", "long"),
+    ("How long after the goal to (10, 4) was accepted did it fail?", "long"),
+    ("how long after launch did bt_navigator start on the goal?", "when"),
+    ("When did the robot start navigating and when did it reach (10.00, 4.00)?", "when"),
+    ("how long is the corridor?", None),
 ])
 def test_a_persons_help_and_the_time_of_each_step_are_their_own_questions(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind

@@ -44,3 +44,15 @@ def test_a_process_named_after_its_executable_is_the_nodes(tmp_path: Path) -> No
     (asked,) = converse(real_module_run("kilted-respawn-crash-loop", tmp_path / "run"),
                         "Did base_driver start correctly?")
     assert str(asked["answer"]).endswith("launch said its process finished cleanly at 12:58:22.")
+
+
+def test_whether_a_controller_was_active_is_told_with_what_the_controller_manager_said_of_it(tmp_path: Path) -> None:
+    # held-out set 36: arm_controller configured and activated, then a goal with no positions (the stack's shutdown
+    # after the goal deactivates it, which says nothing of the goal)
+    (asked,) = converse(real_module_run("kilted-control-traj-no-positions", tmp_path / "run"),
+                        "Was arm_controller active when the goal arrived?")
+    text = str(asked["answer"])
+    assert ('other nodes said of it: at 13:53:02, controller_manager (INFO) "Configuring controller: '
+            '\'arm_controller\'"; at 13:53:02, controller_manager (INFO) "Activating controllers: [ arm_controller ]"'
+            in text)
+    assert "Deactivating" not in text

@@ -119,3 +119,13 @@ def test_a_configure_asked_of_nodes_already_up_is_a_bring_up_run_twice(tmp_path:
         "it up before (a second lifecycle manager that manages it, or the same launch started twice).")
     assert "never became active" not in answer.text
     assert read_claims(answer.text).causes == {"navigation.bringup_failure"}
+
+
+def test_a_goal_reached_in_under_a_second_is_not_said_to_take_0_s(tmp_path: Path) -> None:
+    # blind set 10: a forklift's MPC goal reached 0.3 s after it began
+    from hexar.evals.real_nav2 import blind_set
+
+    case = next(e for e in blind_set(10) if e.id == "forklift-mpc-humble-p45-navigate-to-pose-succeeded")
+    log = read_recording(write_recording(case, tmp_path / "run", task=False))
+    answer = NavigationExplainer().explain("how did it go?", Context.for_task(log, log.task()))
+    assert "I took 0.3 s to get there" in answer.text and "0 s" not in answer.text.replace("0.3 s", "")
