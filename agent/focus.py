@@ -59,15 +59,30 @@ def _norm(text: str) -> str:
     return " ".join(text.lower().split())
 
 
+_SEEN: list[tuple[list[LogLine], list[tuple[LogLine, str, str]]]] = []
+
+
+def _rows(lines: list[LogLine]) -> list[tuple[LogLine, str, str]]:
+    """(line, its words lower-cased, its node) for a log's lines, kept for the last few logs asked about: every
+    question of a conversation reads the same log, and a real one holds hundreds of thousands of lines."""
+    for seen, rows in _SEEN:
+        if seen is lines and len(rows) == len(lines):
+            return rows
+    rows = [(ln, _norm(ln.msg), _node(ln) if ln.name else "") for ln in lines]
+    _SEEN.insert(0, (lines, rows))
+    del _SEEN[4:]
+    return rows
+
+
 def pointed_lines(question: str, log: EventLog, until: int | None = None, by_words: bool = False) -> list[LogLine]:
     """The log's lines (up to `until`) the question points at by a quote, an identifier or a node's name, with
     the question's other words they repeat; strongest first, at most TOP, warnings before routine lines of the same
     strength. `by_words`: a line that repeats two of the question's words counts too (a developer's question on a
     log read without a plan of the robot's). Empty when the question names nothing of the log."""
-    lines = [ln for ln in log.logs if until is None or ln.t <= until]
-    if not lines:
+    rows = [row for row in _rows(log.logs) if until is None or row[0].t <= until]
+    if not rows:
         return []
-    nodes = {_node(ln) for ln in lines if ln.name}
+    nodes = {node for _, _, node in rows if node}
     quotes = [_norm(next(g for g in m.groups() if g)) for m in _QUOTED.finditer(question)]
     idents = _identifiers(question, nodes)
     bare = _QUOTED.sub(" ", question.lower())
@@ -76,9 +91,7 @@ def pointed_lines(question: str, log: EventLog, until: int | None = None, by_wor
     if not quotes and not idents and not (by_words and len(words) >= 2):
         return []
     scored = []
-    for ln in lines:
-        msg = _norm(ln.msg)
-        node = _node(ln)
+    for ln, msg, node in rows:
         score = 3 * sum(1 for q in quotes if q in msg) + 2 * sum(1 for i in idents if i in msg or i == node)
         shared = sum(1 for w in words if w[:6] in msg or w in node)  # "configure" in "Configuring"
         # without a quote or an identifier, two of the question's own words in one line point at it
