@@ -124,15 +124,20 @@ def answer(f: d.Finding, place: str, run: d.Run) -> tuple[str, str | None, list[
             [f"The last navigation message was {_quote(run.end)}."] if run.end else [])
 
 
-def unfinished(text: str, place: str) -> str:
-    """A cause seen while the goal was still running when the recording ended (no end line, no task status):
-    what the logs show, without claiming the goal failed ("I couldn't reach … because …" or "…: my planner …")."""
+def unfinished(text: str, place: str, canceled: bool = False) -> str:
+    """A cause seen while the goal was still running when the recording ended (no end line, no task status), or
+    before a client canceled it: what the logs show, without claiming the goal failed ("I couldn't reach … because
+    …" or "…: my planner …")."""
+    ended = (f"My navigation to {place} was canceled before it finished (a client asked to cancel it)" if canceled
+             else f"The recording ends before my navigation to {place} finished")
     for head, joint in ((f"I couldn't reach {place} because ", "my logs show a problem: "),
                         (f"I couldn't reach {place}: ", "")):
         if text.startswith(head):
             what = text.removeprefix(head).removeprefix("of ")
-            return (f"The recording ends before my navigation to {place} finished, so it does not show whether I "
-                    f"got there; on the way {joint}{what}")
+            return f"{ended}, so it does not show whether I got there; on the way {joint}{what}"
+    gave_up = f"My navigation to {place} gave up because "
+    if canceled and text.startswith(gave_up):  # it was failing to make progress when the client canceled it
+        return f"{ended}; before that, {text.removeprefix(gave_up)}"
     return text
 
 

@@ -127,7 +127,11 @@ def summarise(tagged: list[tuple[LogLine, Entry | None]], poses: list[PoseSample
     end = ends[-1][0] if ends else None
     outcome: Outcome = "unknown"
     if ends:
-        outcome = "reached" if ends[-1][1] is not None and ends[-1][1].kind == "succeeded" else "failed"
+        kind = ends[-1][1].kind if ends[-1][1] is not None else None
+        # a goal a client canceled, where no plan says its step failed, did not fail: what went wrong before it is
+        # told as seen on the way (a home robot's plan that reports the step failed keeps its failure)
+        outcome = "reached" if kind == "succeeded" else \
+            "unknown" if kind == "canceled" and skill_state == "canceled" else "failed"
     elif skill_state == "succeeded":
         outcome = "reached"
     elif skill_state == "failed":

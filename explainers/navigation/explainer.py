@@ -328,7 +328,8 @@ class NavigationExplainer:
         details: list[str] = []
         for f in findings:
             text, fix, more = _template(f, place, run)
-            texts.append(unfinished(text, place) if run.outcome == "unknown" else text)
+            texts.append(unfinished(text, place, skill_state(context) == "canceled") if run.outcome == "unknown"
+                         else text)
             if fix:
                 fixes.append(fix)
             details += more

@@ -129,3 +129,20 @@ def test_a_goal_reached_in_under_a_second_is_not_said_to_take_0_s(tmp_path: Path
     log = read_recording(write_recording(case, tmp_path / "run", task=False))
     answer = NavigationExplainer().explain("how did it go?", Context.for_task(log, log.task()))
     assert "I took 0.3 s to get there" in answer.text and "0 s" not in answer.text.replace("0.3 s", "")
+
+
+@pytest.mark.parametrize(("ident", "then"), [
+    # blind set 20: cmd_vel remapped away from the base, progress never made, the client cancels after 90 s
+    ("kilted-nav2-cmd-vel-remapped", "; before that, my controller made no progress"),
+    # blind set 22: the collision monitor's base frame wrong, the client cancels
+    ("kilted-nav2-monitor-base-frame", ", so it does not show whether I got there; on the way my logs show a problem"),
+])
+def test_a_goal_a_client_canceled_is_not_told_as_given_up_or_unfinished(tmp_path: Path, ident: str, then: str) -> None:
+    from hexar.evals.real_nav2 import blind_set
+
+    case = next(e for n in range(1, 30) for e in blind_set(n) if e.id == ident)
+    log = read_recording(write_recording(case, tmp_path / "run", task=False))
+    answer = NavigationExplainer().explain("what happened?", Context.for_task(log, log.task()))
+    assert answer.text.startswith("My navigation to the goal at (10.00, 4.00) was canceled before it finished (a "
+                                  "client asked to cancel it)" + then)
+    assert "gave up" not in answer.text and "recording ends" not in answer.text
