@@ -18,6 +18,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import LogLine
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
+from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
 # 'Transform data too old', "Init lds lidar fail!", ‘…’: what a developer copied from the log
 _QUOTED = re.compile(r"'([^']{6,})'|\"([^\"]{6,})\"|‘([^’]{6,})’|“([^”]{6,})”")
@@ -52,7 +53,7 @@ def _identifiers(question: str, nodes: set[str]) -> list[str]:
 
 def _node(line: LogLine) -> str:
     """A line's node as a question names it: launch's process name without its number ("controller_server-2")."""
-    return re.sub(r"-\d+$", "", line.name.rsplit(".", 1)[-1].strip("/").lower())
+    return PROCESS_SUFFIX.sub("", line.name.rsplit(".", 1)[-1].strip("/").lower())
 
 
 def _norm(text: str) -> str:
@@ -109,14 +110,19 @@ def pointed_lines(question: str, log: EventLog, until: int | None = None, by_wor
 def with_pointed(text: str, question: str, log: EventLog, task: Task) -> str:
     """The answer with the lines the question points at that it does not quote already: "… What my log says of
     it: at 07:39:52, tf_help (ERROR) "…"."."""
-    lines = pointed_lines(question, log, worked_until(log, task), by_words=task.derived)
+    until = worked_until(log, task)
     told = _norm(text)
-    fresh = {(ln.name, ln.msg) for ln in lines if _norm(ln.msg)[:60] not in told}
+    fresh = [ln for ln in pointed_lines(question, log, until, by_words=task.derived) if _norm(ln.msg)[:60] not in told]
     if not fresh:
         return text
-    # every repeat of a line told, so that its count is the log's ("Passing new path to controller." (5 times))
-    fresh_lines = [ln for ln in log.logs if (ln.name, ln.msg) in fresh and ln.t <= worked_until(log, task)]
-    return f"{text} What my log says of it: {quote(fresh_lines, False, True)}.".strip()
+    return f"{text} What my log says of it: {quote(with_repeats(fresh, log, until), False, True)}.".strip()
+
+
+def with_repeats(lines: list[LogLine], log: EventLog, until: int | None = None) -> list[LogLine]:
+    """Every line of the log (up to `until`) that repeats one of `lines`, node and words: quoted, their count is the
+    log's ("Passing new path to controller." (5 times)), not the few the search kept."""
+    said = {(ln.name, ln.msg) for ln in lines}
+    return [ln for ln in log.logs if (ln.name, ln.msg) in said and (until is None or ln.t <= until)]
 
 
 def when_untold(exp: Explanation, question: str, log: EventLog, task: Task) -> Explanation:

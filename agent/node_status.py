@@ -81,7 +81,8 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
     named = re.compile(rf"(?<![\w/]){re.escape(node)}(?!\w)") if node else None
     # up to the task's end: a stack's shutdown deactivates every controller, which says nothing of the task
     until = worked_until(log, task)
-    about = [ln for ln in log.logs if named is not None and ln.t <= until and ln not in own and ln not in process
+    its = {id(ln) for ln in (*own, *process)}
+    about = [ln for ln in log.logs if named is not None and ln.t <= until and id(ln) not in its
              and named.search(ln.msg.lower()) and _ABOUT.search(ln.msg)]
     if about:  # "Activating controllers: [ arm_controller ]", "Configuring controller_server"
         parts.append(f"other nodes said of it: {quote(about[-ABOUT:], False, True)}")

@@ -7,7 +7,7 @@ exist?"). Those are answered over the whole recording (events/tasks.py, WHOLE), 
 
 from __future__ import annotations
 
-from hexar.agent.focus import pointed_lines
+from hexar.agent.focus import pointed_lines, with_repeats
 from hexar.agent.logs import line_evidence, quote
 from hexar.agent.parameters import asks_parameters
 from hexar.events.log import EventLog
@@ -33,6 +33,6 @@ def lines_answer(question: str, log: EventLog, task: Task) -> Explanation:
     lines = pointed_lines(question, log, by_words=True)
     if not lines:
         return Explanation.not_enough("planner", f"{NO_TASK}, and no line of my log names what you asked.")
-    shown = [ln for ln in log.logs if (ln.name, ln.msg) in {(x.name, x.msg) for x in lines}]
+    shown = with_repeats(lines, log)
     return Explanation(explainer="planner", causes=["planner.plan_ok"], evidence=line_evidence(shown, task),
                        text=f"{NO_TASK}, but my log says of what you asked: {quote(shown, False, True)}.")

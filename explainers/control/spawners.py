@@ -125,13 +125,14 @@ def never_activated(lines: list[LogLine]) -> LogLine | None:
     controller's refusal of a goal."""
     activated = {n for ln in lines if (m := _ACTIVATING.match(ln.msg)) for n in m["names"].split()}
     last = max((ln.t for ln in lines), default=0)
+    errors = [ln for ln in lines if ln.level >= ERROR]
     for ln in lines:
         m = _CONFIGURING.match(ln.msg)
         if m is None or not activated or m["name"] in activated:
             continue
         refused = [r for r in lines if r.t > ln.t and _REFUSED.match(r.msg) and r.name.rsplit(".", 1)[-1] == m["name"]]
         # its refusal of a goal shows it inactive then; without one, the start must have gone on long enough
-        if (refused or last - ln.t >= SETTLED_NS) and not any(r.level >= ERROR and r not in refused for r in lines):
+        if (refused or last - ln.t >= SETTLED_NS) and all(r in refused for r in errors):
             return ln
     return None
 
