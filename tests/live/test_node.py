@@ -152,6 +152,10 @@ def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path, transp
     try:
         with live_node(domain, transport=transport) as node:
             replay(suite / "bagfile_7_1", domain, rate=40.0, transport=other(transport))
+            # the node tells the failure unasked once it has taken in the run; a loaded machine (3.14 in CI) can
+            # still be reading the replay's tail when the replay process has gone, and a question asked then is
+            # answered on what was heard so far
+            assert listener.wait_answers(1, "failure", timeout=60), "the node never told the failure"
             for i in range(KEEP_THREADS + 5):  # one after another, as people ask (a burst is rate-limited)
                 listener.ask(json.dumps({"question": "Why didn't you bring me the coffee?", "thread": f"t{i}"}))
                 answers = listener.wait_answers(i + 1, "question", timeout=60)
@@ -161,6 +165,7 @@ def test_a_long_running_node_keeps_only_its_recent_dialogues(suite: Path, transp
     finally:
         listener.close()
     assert len(answers) == KEEP_THREADS + 5
-    assert all(a["causes"] == ["navigation.charging"] for a in answers)
+    wrong = [(a["causes"], a["answer"][:200]) for a in answers if a["causes"] != ["navigation.charging"]]
+    assert not wrong
     assert len(kept) <= KEEP_THREADS
     assert f"live::t{KEEP_THREADS + 4}" in kept and "live::t0" not in kept
