@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
-from hexar.events.records import LogLine
+from hexar.events.records import LogLine, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.navigation.behaviors import BEGIN
@@ -39,6 +39,10 @@ TRIED = re.compile(
     r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
     r"^(and |so |but |ok |okay )?how many ([a-z]+ )?(attempts|tries|retries|re-?plans|recoveries|recovery cycles)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
+    # "did any recovery behaviors run?", "which recoveries ran?"
+    r"^(and |so |but )?(did|were) (any|there any) (nav2 )?(recover(y|ies)|recovery behaviou?rs?)( (run|ran|triggered|"
+    r"executed|used|tried))?\b|^(and |so )?(which|what) (recover(y|ies)|recovery behaviou?rs?) (ran|run|were (run|"
+    r"tried|triggered|executed))\b|"
     r"^(and |so |but |ok |okay )?why did (you|it|the planner|nav2) (re-?plan|replanned|re-?route)\b|"
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
     r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")
@@ -51,6 +55,13 @@ _INVALID = re.compile(r"^Path validation failed\. Invalid pose indices")
 _SOFT_RESET = re.compile(r"^Soft reset triggered by trajectory validator")
 _MOVEIT_REQUEST = re.compile(r"^(Combined planning and execution|Planning) request received for MoveGroup action")
 _MOVEIT_FAILED = re.compile(r"(?:^|\]:? )Unable to solve the planning problem")
+# any other node's own words for trying again, as a lifecycle manager, a driver or a spawner log them ("retrying in
+# 1 s", "failed twice; giving up", "attempt 3 of 5"; MoveIt's "Planning attempt 1 of at most 1" is the first): quoted
+# as they are, never counted as a kind of try above
+_RETRIED = re.compile(r"\bretry(ing)?\b|\bretried\b|\b(trying|try) again\b|\battempt #?([2-9]|\d\d+)\b|"
+                      r"\b(2nd|3rd|\d+th|second|third) attempt\b|\b(giving|gave) up\b|\bfailed (twice|\d+ times)\b|"
+                      r"\bafter \d+ (attempts|tries|retries)\b",
+                      re.I)
 _RECOVERY_WORDS = {"spin": ("a spin", "spins"), "backup": ("a backup", "backups"), "back_up": ("a backup", "backups"),
                    "wait": ("a wait", "waits"), "drive_on_heading": ("a drive ahead", "drives ahead"),
                    "assisted_teleop": ("an assisted teleop", "assisted teleops")}
@@ -92,6 +103,8 @@ def _tags(line: LogLine) -> list[str]:
         tags.append("moveit_failed")
     if _recovering(line) and (m := BEGIN.match(msg)):
         tags.append(f"recovery:{m['name']}")
+    if not tags and _RETRIED.search(msg):
+        tags.append("retried")
     return tags
 
 
@@ -122,6 +135,11 @@ def _tries(log: EventLog, task: Task, run: SkillRun) -> _Tries:
         said.append(f"my controller started its trajectory optimisation over {_times(counts['soft_reset'])}")
     if moveit > 1:
         said.append(f"I asked my motion planner for a plan {_times(moveit)}")
+    retried = [ln for ln, tags in tagged if "retried" in tags]
+    if retried:
+        quoted = "; ".join(f"{hms(ln.t)}, {ln.name or 'a node'}: \"{' '.join(ln.msg.split())[:140]}\""
+                           for ln in retried[:3])
+        said.append(f"my log tells of trying again ({quoted})")
     # a failed MoveIt plan is told by its request's line, not shown twice
     shown = [ln for ln, tags in tagged if tags != ["moveit_failed"]]
     return _Tries(run, said, shown)

@@ -11,6 +11,7 @@ from hexar.agent.attempts import TRIED
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
+from hexar.agent.matters import asks_matters
 from hexar.agent.mentions import mentions_kind
 from hexar.agent.node_status import node_status_kind
 from hexar.agent.overview import SETTING_FIX
@@ -19,8 +20,9 @@ from hexar.agent.places import AT_PLACE, FAILED_AT, GOAL, REACHED, ROUTE, place_
 from hexar.agent.plugins import PLUGINS
 from hexar.agent.recording import clock_kind
 from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
-from hexar.agent.skills import SKILLS
+from hexar.agent.skills import ABLE, SKILLS
 from hexar.agent.state import Intent
+from hexar.agent.step_status import step_asked
 from hexar.agent.unseen import unseen_kind
 from hexar.agent.window import window_kind
 
@@ -165,6 +167,12 @@ def content_kind(question: str) -> str | None:
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
+    if asks_matters(q):
+        return None  # "is the 'Costmap2DROS …' warning a problem?": the finding, then whether it rests on that line
+    if ABLE.search(q):
+        return "skills"  # "can you open windows at all?" asks what I can do, not for a try
+    if step_asked(q):
+        return "step"  # "did the place step finish cleanly?"
     # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
     kind = window_kind(q) or node_status_kind(q) or moved_kind(q) or \
         next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \

@@ -13,12 +13,14 @@ from hexar.agent.focus import with_pointed
 from hexar.agent.logs import nodes, stated_spans
 from hexar.agent.mentions import mentions
 from hexar.agent.moved import moved
+from hexar.agent.named_task import named_tasks
 from hexar.agent.node_status import node_status
 from hexar.agent.person import person
 from hexar.agent.places import at_place, goal, place, reached, when_at, where_failed
 from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded, topic_data
 from hexar.agent.skills import skills
+from hexar.agent.step_status import step_status
 from hexar.agent.window import at_time
 from hexar.events.log import EventLog
 from hexar.events.records import duration, hms
@@ -61,6 +63,15 @@ def _after_launch(question: str, told: Explanation, log: EventLog, task: Task) -
                                            f"first line ({hms(first.t)}, {said})."})
 
 
+def _long(question: str, log: EventLog, task: Task) -> Explanation:
+    """The task's time and its steps'; of several tasks asked about together ("the first two waypoints"), each
+    task's time."""
+    several = named_tasks(question.lower(), log)
+    if several:
+        return measures.long_each(log, several)
+    return _with_spans(measures.long(log, task), log, task)
+
+
 FROM_RECORDING: dict[str, Answer] = {
     "where": lambda q, log, task: content.where(log),
     "failed_at": where_failed,
@@ -70,7 +81,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "far": lambda q, log, task: measures.far(log, task, q),
     "fast": lambda q, log, task: measures.fast(log, task),
     "start": lambda q, log, task: measures.start(log, task),
-    "long": lambda q, log, task: _with_spans(measures.long(log, task), log, task),
+    "long": _long,
     "when": lambda q, log, task: _after_launch(q, when_at(q, log, task), log, task),
     "at_place": at_place,
     "route": lambda q, log, task: measures.far(log, task),
@@ -91,4 +102,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "node_status": node_status,
     "moved": moved,
     "skills": skills,
+    "step": step_status,
 }

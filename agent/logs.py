@@ -34,7 +34,7 @@ LOGS = re.compile(
     + _OPEN + r"(did|were|was) (you get |you log |you see |there )?(any |an |a )?(errors?|warnings?)( logged| "
     r"recorded)?\W*$|"
     # "were there any WARN or ERROR lines at all?", "how many times did it warn?"
-    + _OPEN + r"(were|was|are|is) there (any|many) (warn(ing)?s?|errors?)( or (warn(ing)?s?|errors?))?"
+    + _OPEN + r"(were|was|are|is) there (any|many)( [a-z_]+)? (warn(ing)?s?|errors?)( or (warn(ing)?s?|errors?))?"
     r"( lines?| messages?)?\b|"
     r"\bhow many (times did (it|they|the node|[a-z_]+) (warn|complain|error|log it)|warnings|errors)\b|"
     + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"

@@ -13,7 +13,7 @@ _NO_TRIP = (r"(person|people|human|man|woman|guy|lady|someone|somebody|helper|us
             r"obstacle|obstruction|object|thing|wall)\b")
 # Per kind, the ways people ask it (lower case, spaces collapsed); the first kind that matches wins.
 _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
-    ("far", (r"\bhow far (did|have|had|do) you (go|drive|travel|move|come|get|walk|roll)\b",
+    ("far", (r"\bhow far (did|have|had|do) (you|it|the robot|the base|i) (go|drive|travel|move|come|get|walk|roll)\b",
              r"\bhow (much|many (meters|metres)) did you (drive|travel|move|go)\b",
              r"\bwhat distance did you\b",
              # "how far away was the kitchen?": the way I drove there (a person's distance is the help skill's)
@@ -36,7 +36,8 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so )?how long was (the|your|that) (trip|drive|errand|task)\b",
               # "how long did you wait?": every step's time is in the answer, the one asked about among them
               r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
-              r"^(and |so )?(which|what) (step|part|leg) (took|was) (the )?(longest|slowest|quickest|shortest)\b",
+              r"^(and |so )?(which|what) (step|part|leg)( of (the|your|my) [a-z]+)? (took|was) (the )?(longest|slowest|"
+              r"quickest|shortest)\b",
               # "how long did each step take?", "how long were you in the kitchen?", "what were you waiting for?",
               # "how long did you keep trying?", "and for how long?"
               r"^(and |so |ok |okay )?how long did ([a-z]+ )?(each|every|all the|the) (steps?|parts?|legs?|skills?)"
@@ -44,6 +45,13 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so )?how long were you (in|at) (the )?[a-z_]+( room)?\W*$",
               r"\bwhy did you (spend|stay|wait|stand) (so much longer|so long|that long|longer)\b",
               r"^(and |so )?(what|who) were you waiting (for|on)\b",
+              # "why did you stand around in the living room for so long?", "why were you in the dining room for
+              # almost a minute?": where the time went, step by step
+              r"^(and |so |but )?why (were|did) you ([a-z_']+ ){1,8}(for )?(so long|that long|such a long time|ages|"
+              r"(almost |nearly |about |over |more than )?(a|one|two|three|\d+) (minutes?|min))\b",
+              # "how quickly did the goal fail after it was sent?": the task's and its steps' times
+              r"^(and |so )?how (quickly|fast|soon) did (it|that|the( [a-z_]+){1,2}) (fail|abort|end|finish|"
+              r"succeed|give up|get rejected|come back)\b",
               r"^(and |so )?how long did (you|it|the robot|the planner) (keep|kept) (trying|going|waiting|looking|"
               r"searching|driving)\b|\bfor how long\W*$",
               r"^(and |so )?how long did (it|the planner|moveit|the robot) (try|plan|wait|search|look)\b",
@@ -71,6 +79,12 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"bring-?up|startup)\b")),
 )
 _KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
+
+
+def why_so_long(question: str) -> bool:
+    """"Why did you wait there so long?": a time asked about with why (of a failed task, its failure answers it)."""
+    q = " ".join(question.lower().split())
+    return re.match(r"(and |so |but )?why\b", q) is not None and measure_kind(q) == "long"
 
 
 def measure_kind(q: str) -> Measure | None:

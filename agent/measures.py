@@ -83,6 +83,29 @@ _FAR_PLACE = re.compile(r"\bhow far (?:away )?(?:is|was) (?:the|your) ([a-z][a-z
 _NOT_A_PLACE = frozenset({"trip", "drive", "way", "path", "route", "goal", "errand", "task", "distance"})
 
 
+# Nav2's lines that state where the robot was: bt_navigator's "Begin navigating from current location (x, y) to
+# ..." and the planner's "... failed to plan from (x, y) to (x, y)"
+STATED_AT = re.compile(r"(?:from current location|failed to plan from) \((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
+
+
+def _stated_far(log: EventLog, task: Task) -> str:
+    """Without positions, what Nav2's own lines say of where I set off and where I was last while the task ran:
+    the straight line between them (the path driven is not in them)."""
+    end = worked_until(log, task)
+    said = [(ln, m) for ln in log.logs if task.created <= ln.t <= end and (m := STATED_AT.search(ln.msg))]
+    if len(said) < 2:
+        return ""
+    (first, a), (last, b) = said[0], said[-1]
+    x0, y0, x1, y1 = float(a[1]), float(a[2]), float(b[1]), float(b[2])
+    if first is last:
+        return ""
+    gap = math.hypot(x1 - x0, y1 - y0)
+    return (f" My log states where I was, though: at {hms(first.t)} at ({x0:.2f}, {y0:.2f}) "
+            f"({first.name or 'a node'}), and at {hms(last.t)} at ({x1:.2f}, {y1:.2f}) ({last.name or 'a node'}: "
+            f"\"{' '.join(last.msg.split())[:100]}\"), {gap:.1f} m apart in a straight line; the path I drove is not "
+            "in those lines.")
+
+
 def far(log: EventLog, task: Task, question: str = "", asked: str = "far") -> Explanation:
     """How far I drove for the task, leg by leg; of a place the question names, that trip alone. `asked` ("far" or
     "fast") is what a recording without positions cannot tell."""
@@ -107,7 +130,7 @@ def far(log: EventLog, task: Task, question: str = "", asked: str = "far") -> Ex
     if not any(s.metres is not None for s in steps):
         drove = any(s.run.skill in NAV_SKILLS for s in steps)
         text = (f"I can't tell how {asked} I drove for {name}: this recording holds no position of mine "
-                f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran." if drove else
+                f"(no {c.AMCL_POSE} or {c.ODOM} messages) while it ran.{_stated_far(log, task)}" if drove else
                 f"I didn't drive anywhere for {name}.")
         return Explanation(explainer="navigation", text=text, causes=["planner.plan_ok"], evidence=evidence,
                            enough_information=not drove)
@@ -233,9 +256,17 @@ def _ended(task: Task) -> str:
     return "it was canceled"
 
 
+def _span(ns: int) -> str:
+    """duration(), with milliseconds under half a second: "how quickly did the goal fail?" of a goal rejected
+    20 ms after it came is not answered "less than a second"."""
+    if ns >= 500_000_000:
+        return duration(ns)
+    return f"{ns / 1e6:.0f} ms" if ns >= 1_000_000 else "less than a millisecond"
+
+
 def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanation:
     steps = _steps(log, task)
-    span = duration(worked_until(log, task) - task.created)
+    span = _span(worked_until(log, task) - task.created)
     ended = _ended(task)
     name = task_name(task, log)
     if task.outcome in {"running", "waiting"}:
@@ -244,11 +275,12 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
     elif lead_with_times:
         text = f"I started on {name} at {hms(task.created)} UTC, and {ended} at {hms(task.last_update)}, {span} later."
     else:
-        text = (f"{name[0].upper()}{name[1:]} took {span}, from {hms(task.created)} to {hms(task.last_update)} UTC; "
-                f"{ended}.")
+        when = (f"at {hms(task.created)} UTC" if hms(task.created) == hms(task.last_update)
+                else f"from {hms(task.created)} to {hms(task.last_update)} UTC")
+        text = f"{name[0].upper()}{name[1:]} took {span}, {when}; {ended}."
     if steps:
-        each = "; ".join(f"{step_ref(s.run)} had run for {duration(s.end - s.start)} when the recording ends"
-                         if s.run.state == "running" else f"{step_ref(s.run)} took {duration(s.end - s.start)}"
+        each = "; ".join(f"{step_ref(s.run)} had run for {_span(s.end - s.start)} when the recording ends"
+                         if s.run.state == "running" else f"{step_ref(s.run)} took {_span(s.end - s.start)}"
                          for s in steps)
         text += f" {each[0].upper()}{each[1:]}."
         most = max(steps, key=lambda s: s.end - s.start)  # "why did it take so long?": where the time went
@@ -256,6 +288,21 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
             text += f" Most of that time went to {step_ref(most.run)}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=_evidence(task, [s.run for s in steps]))
+
+
+def long_each(log: EventLog, tasks: list[Task]) -> Explanation:
+    """"How long did the first two waypoints take each?": each task's time, in order, in one sentence each."""
+    said = []
+    for task in tasks:
+        name = task_name(task, log)
+        if task.outcome in {"running", "waiting"}:
+            said.append(f"{name[0].upper()}{name[1:]} was not over when the recording ends, "
+                        f"{_span(worked_until(log, task) - task.created)} after it began at {hms(task.created)} UTC.")
+        else:
+            said.append(f"{name[0].upper()}{name[1:]} took {_span(worked_until(log, task) - task.created)}, from "
+                        f"{hms(task.created)} to {hms(task.last_update)} UTC; {_ended(task)}.")
+    return Explanation(explainer="planner", text=" ".join(said), causes=["planner.plan_ok"],
+                       evidence=[e for t in tasks for e in _evidence(t, [s.run for s in _steps(log, t)])])
 
 
 def _trips(log: EventLog, task: Task) -> tuple[list[tuple[Task, SkillRun]], list[tuple[Task, SkillRun]]]:

@@ -97,12 +97,17 @@ _WHICH_NODES = re.compile(r"^(and |so |but )?(which|what|how many) (nodes?|ones?
                           + IDENTIFIER.pattern + r")")
 
 
+# "which waypoint failed, and why?": the failure itself, which names its goal
+_WHICH_FAILED = re.compile(r"^(and |so )?(which|what) (waypoint|goal|pose|step)s? (failed|went wrong|aborted|was "
+                           r"(the one that )?(failed|aborted))\b")
+
+
 def mentions_kind(q: str) -> str | None:
     """'mentions' for a question (lower case, spaces collapsed) that asks for a named thing of the stack or a
     parameter by its name, unless it asks for a specific of the failure the finding's own lines give
     (agent/cited.py) or for the fix ("which parameter should I change?")."""
     named = MENTIONS.search(q) or VALUE_OF.search(q) or _WHICH_NODES.search(q)
-    return "mentions" if named and not asks_specific(q) and not asks_fix(q) else None
+    return "mentions" if named and not asks_specific(q) and not asks_fix(q) and not _WHICH_FAILED.search(q) else None
 
 
 def asked_terms(q: str) -> list[str]:

@@ -21,7 +21,10 @@ from hexar.agent.followups import content_kind, intent_of, module_asked, task_re
 from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.logs import logs
+from hexar.agent.matters import matters_lead
+from hexar.agent.measure_words import why_so_long
 from hexar.agent.mentions import mentioned
+from hexar.agent.named_task import named_task
 from hexar.agent.objects import object_asked, object_state
 from hexar.agent.overview import (
     asks_fix,
@@ -115,6 +118,9 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         current = state.get("task_id")
         user = [t for t in log.tasks if not t.is_recovery and t.task_id != current]
         ref = user[-1].task_id if user else None
+    if ref is None and state.get("intent") in {"new", "content", "else"} and \
+            (named := named_task(state["question"].lower(), log)) is not None:
+        ref = named.task_id  # "why did the goal to (9, 4) fail?" of a recording with several: that goal
     whole = not log.tasks and ref is None and whole_answerable(state["question"], content_kind(state["question"]), log)
     task = ctx.task(WHOLE if whole else ref)  # a recording with no task: what it holds, if that is what was asked
     candidates: list[str] = []
@@ -134,6 +140,8 @@ def context(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         update.update(intent="content", asked=asked)  # its plan never ran the module asked about
     elif whole or (state.get("intent") == "new" and asks_parameters(state["question"], log)):
         update.update(intent="content")  # "which nodes use sim time?": the recorded parameters say it
+    elif state.get("intent") == "content" and task.outcome == "failed" and why_so_long(state["question"]):
+        update.update(intent="new")  # "why did you wait there so long?" of a failed task: its failure says why
     return {**update, "timings_ms": timings(state, "context", start)}
 
 
@@ -272,7 +280,9 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
-    lead = yes_or_no(question, task.outcome) if state.get("route") != "recovery" else ""
+    lead = matters_lead(question, ctx.log, task, [Explanation.model_validate(e) for e in kept]) \
+        if state.get("intent") == "new" else ""
+    lead = lead or (yes_or_no(question, task.outcome) if state.get("route") != "recovery" else "")
     lead = lead or confirmed(question, {c for e in kept for c in e["causes"]}, BENIGN)
     if lead and text:
         text = with_lead(text, lead)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.content import goal_place, task_name, trips_words, where
-from hexar.agent.measures import named_trip, trip_asked, when
+from hexar.agent.measures import STATED_AT, named_trip, trip_asked, when
 from hexar.agent.overview import with_lead
 from hexar.events import contract as c
 from hexar.events.log import EventLog
@@ -80,16 +80,16 @@ FAILED_AT = re.compile(
     r"(when|as|at the (time|moment)) (it|you|the task|that|this|the step|your task) ?(failed|stopped|gave up|went "
     r"wrong|happened|aborted|crashed|broke down)\b|"
     r"\bwhere (was|were) (the robot|you|it|i) when (it|you|the robot|the planner) (tried|was trying|were trying) to "
-    r"(plan|move|drive|dock)\b")
-# Nav2's lines that state where the robot was: bt_navigator's "Begin navigating from current location (x, y) to
-# ..." and the planner's "... failed to plan from (x, y) to (x, y)"
-_STATED_AT = re.compile(r"(?:from current location|failed to plan from) \((-?\d+(?:\.\d+)?), (-?\d+(?:\.\d+)?)\)")
+    r"(plan|move|drive|dock)\b|"
+    # "where was the robot when planning to (9, 4) failed?"
+    r"\bwhere (was|were) (the robot|you|it|i|the base)( exactly)? when ([a-z0-9_(),.]+ ){1,6}"
+    r"(failed|aborted|gave up|stopped|went wrong|crashed)\b")
 
 
 def logged_position(log: EventLog, until: int) -> tuple[LogLine, float, float] | None:
     """The last line up to `until` that states the robot's position, with that position (its map's frame)."""
     for ln in reversed(log.logs):
-        m = _STATED_AT.search(ln.msg) if ln.t <= until else None
+        m = STATED_AT.search(ln.msg) if ln.t <= until else None
         if m is not None:
             return ln, float(m.group(1)), float(m.group(2))
     return None

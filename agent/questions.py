@@ -26,7 +26,24 @@ EXAMPLE = 'e.g. "Why didn\'t you bring me the coffee?" or "what happened"'
 _WORD = re.compile(r"[a-z]+(?:'[a-z]+)?")
 # Sounds and transcript markers that carry no words (whisper writes "[BLANK_AUDIO]" or "(static)" for noise).
 _FILLERS = _words("um umm uh uhh uhm erm er ah ahh eh hmm hm mm mmm")
-_MARKER = re.compile(r"\[[^\]]*\]|\([^)]*\)|<[^>]*>")
+# A bracketed marker is dropped when it is all capitals or names a sound; a developer's "(9, 4)" or
+# "(tolerance 0.5)" is part of the question
+_MARKER = re.compile(r"\[[^\]]{0,40}\]|\([^)]{0,40}\)|<[^>]{0,40}>")
+_SOUNDS = _words("music musical laughter laughs laughing laugh applause noise noises silence silent inaudible static "
+                 "blank audio sound sounds cough coughs coughing sigh sighs sighing breathing breath background beep "
+                 "beeps beeping clapping crosstalk unintelligible indistinct chatter buzzing humming hum wind "
+                 "footsteps typing click clicks clicking unk pause foreign language speaking mumbling mumbles "
+                 "whispering bell ringing phone door engine")
+
+
+def _marker(m: re.Match[str]) -> str:
+    inner = m.group(0)[1:-1]
+    words = re.findall(r"[A-Za-z]+", inner)
+    if not re.fullmatch(r"[A-Za-z_ ]*", inner):
+        return m.group(0)  # digits, dots, commas: coordinates, a value, a quoted line
+    if not words or inner.strip().isupper() or any(w.lower() in _SOUNDS for w in words):
+        return " "
+    return m.group(0)
 # Typed or recognised without an apostrophe, or in chat spelling.
 _SPELLING = {
     "didnt": "didn't", "dont": "don't", "doesnt": "doesn't", "cant": "can't", "couldnt": "couldn't",
@@ -148,7 +165,7 @@ def _known(word: str) -> bool:
 def normalise(question: str) -> str:
     """Noise markers and filler sounds out, apostrophe-less contractions and chat spellings spelled out;
     everything else as asked (a well-formed question comes back unchanged)."""
-    text = _MARKER.sub(" ", question)
+    text = _MARKER.sub(_marker, question)
     text = re.sub(r"\b(would|could|should|might|must) of\b", r"\1 have", text, flags=re.I)
 
     def word(m: re.Match[str]) -> str:

@@ -23,6 +23,9 @@ SKILLS = re.compile(
     + _LEAD + r"what('s| is| was| does) (the |a |an )?(skill |place |room )?(?P<name>(navigate|ask|look|recommend|say|"
     r"explain|pick|place|move|follow|bring|go|find|fetch|deliver|open|grab|kitchen|dining|living|bed|bath)"
     r"(_[a-z]+)+)( mean| do)?\W*$")
+# "can you open windows at all?", "are you even able to cook?": whether a skill of mine does it
+ABLE = re.compile(r"^(and |so |but )?(can|could) you (even |actually )?(?P<verb>[a-z]+)( [a-z]+){0,3} at all\W*$|"
+                  r"^(and |so |but )?(are|were) you (even |actually )?(able|capable) (to|of) (?P<verb2>[a-z]+)")
 # What each skill of the catalogue does, as the robot says it (hexar_interfaces.md, "Skill catalogue").
 _DOES = {"say": "say something aloud", "navigate_to_zone": "drive to one of my places",
          "navigate_to_pose": "drive to a position on my map",
@@ -44,6 +47,20 @@ def _mine(log: EventLog) -> tuple[str, ...]:
 
 def _evidence(task: Task) -> list[Evidence]:
     return [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
+
+
+def _able(verb: str, mine: tuple[str, ...], used: list[str]) -> str:
+    """Whether a skill of mine does what the verb asked about says ("open"), and what a plan that asked for it got."""
+    verb = verb.removesuffix("ing")
+    have = [s for s in mine if s.split("_")[0] == verb or verb in _DOES[s].split()]
+    if have:
+        return "Yes: " + join_words([f"with {s} I {_DOES[s]}" for s in have]) + "."
+    planned = [s for s in used if s.split("_")[0] == verb and s not in mine]
+    said = f"No: none of my skills does that. My skills are {join_words(list(mine))}."
+    if planned:
+        said += (f" My recording's plan asked for {join_words([repr(s) for s in planned])}, which is not one of them, "
+                 "so that plan was rejected before I started.")
+    return said
 
 
 def skills(question: str, log: EventLog, task: Task) -> Explanation:
@@ -68,6 +85,8 @@ def skills(question: str, log: EventLog, task: Task) -> Explanation:
         else:
             text = (f"'{name}' is none of my skills or places.{asked} My skills are {join_words(list(mine))}; my "
                     f"places are {places}.")
+    elif (able := ABLE.search(q)) is not None:
+        text = _able(able.group("verb") or able.group("verb2"), mine, used)
     elif re.search(r"\b(places|rooms|locations|where)\b", q):
         went = list(dict.fromkeys(str(run.params["location"]) for t in log.tasks for run in t.skills
                                   if isinstance(run.params.get("location"), str)))

@@ -188,14 +188,46 @@ def names_parameter(line: LogLine) -> bool:
     return _PARAMETER.search(line.msg) is not None
 
 
+# launch's line for a process that ended (launch/actions/execute_local.py): "process has died [pid %d, exit code %d,
+# cmd '%s']."; a ROS node's command line carries "--ros-args", a command launch ran for the set-up (rm, mkdir) none
+_DIED = re.compile(r"process has died \[pid \d+, exit code (?P<code>\d+), cmd '(?P<cmd>[^']*)'")
+
+
+def helper_exit(line: LogLine, logs: list[LogLine]) -> bool:
+    """A command launch ran that is no ROS node (its command line has no --ros-args: `rm /var/lock/lidar.lock`)
+    ended with an error code, and the robot's nodes went on after it (a line of another process later): a set-up
+    command's failure, not the start's."""
+    m = _DIED.search(line.msg)
+    if m is None or "--ros-args" in m["cmd"] or int(m["code"]) == 0:
+        return False
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
+
+    process = PROCESS_SUFFIX.sub("", line.name)
+    return any(ln.t >= line.t and ln is not line and ln.level < ERROR and ln.name and
+               PROCESS_SUFFIX.sub("", ln.name) != process and "process started" not in ln.msg for ln in logs)
+
+
 def bring_up(logs: list[LogLine]) -> BringUp | None:
     """The start of the robot in `logs` (time-ordered), or None when they show no start at all."""
+    from hexar.explainers.shutdown import before_shutdown
     from hexar.explainers.stack.bringup import ros2_run_said
     from hexar.explainers.stack_causes import stack_cause, transition_reason
 
     if not logs:
         return None
     last = max(ln.t for ln in logs)
+    helpers = {id(ln) for ln in logs if helper_exit(ln, logs)}
+    logs = [ln for ln in logs if id(ln) not in helpers]
+    up = before_shutdown(logs)
+    if len(up) < len(logs) and (first := next((ln for ln in up if starting(ln) or _driver(ln.name, up)), None)) \
+            and not any(_error(ln) for ln in up) and stack_cause(up) is None:
+        # stopped before anything failed (Ctrl-C): what its processes print on the way down is no failure of the
+        # start (a Python node's KeyboardInterrupt traceback, launch's "process has died [..., exit code -2]")
+        done = [ln for ln in up if completed(ln)]
+        if done and not any(refused(ln) for ln in up):
+            return BringUp(first.t, "succeeded", done[-1].t)  # it had come up before it was stopped
+        stop = next(ln for ln in logs if ln.t >= up[-1].t and all(ln is not u for u in up))
+        return BringUp(first.t, "canceled", stop.t, f"stopped: {' '.join(stop.msg.split())[:120]}")
     stack = stack_cause(logs)
     if stack is not None:
         # a transition launch saw fail began with the lifecycle's own reason for it, and a command ros2run could not

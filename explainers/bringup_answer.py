@@ -23,6 +23,7 @@ import re
 from hexar.events.bringup import (
     completed,
     control_logger,
+    helper_exit,
     moveit_logger,
     names_device,
     names_parameter,
@@ -56,16 +57,20 @@ def presumes_failure(question: str) -> bool:
 
 
 def derived_start(run: SkillRun | None) -> bool:
-    """The step is a start derived from the logs (not a /task_info step), and it did not fail."""
+    """The step is a start derived from the logs (not a /task_info step), and it did not fail (it completed, is
+    under way, or was stopped first)."""
     return (run is not None and run.skill == BRING_UP and run.params.get("source") == "bringup"
-            and run.state in {"succeeded", "running"})
+            and run.state in {"succeeded", "running", "canceled"})
 
 
 def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine], t0: int,
-                 question: str = "") -> Explanation:
+                 question: str = "", down: list[LogLine] | None = None) -> Explanation:
+    """`lines` are the start's up to where the stack began to shut down, `down` the lines from there on."""
     # the control package's __init__ imports its explainer, which imports the module explainer, which imports this
     from hexar.explainers.control.description import waited
 
+    if run.state == "canceled":
+        return _stopped(explainer, prefix, lines, down or [], t0)
     if run.state == "succeeded" and presumes_failure(question):
         return _started_then(explainer, prefix, lines, t0)
     if run.state == "succeeded":
@@ -93,6 +98,47 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     if clockless is not None:
         return _no_clock_answer(explainer, clockless, t0)
     return _under_way(explainer, prefix, lines, t0, question)
+
+
+# Python's own words for an interrupted program (its traceback's last line), and launch's for a process that ended
+# on a signal (launch/actions/execute_local.py: "process has died [pid %d, exit code %d, cmd '%s']", -2 for SIGINT)
+_INTERRUPTED = re.compile(r"\bKeyboardInterrupt\b|\bExternalShutdownException\b")
+_SIGNAL_EXIT = re.compile(r"process has died \[pid \d+, exit code -(2|15)\b")
+
+
+def _stopped(explainer: str, prefix: str, lines: list[LogLine], down: list[LogLine], t0: int) -> Explanation:
+    """A start that was stopped (Ctrl-C, a signal) before anything failed: no failure, and what its processes
+    printed on the way down (a Python node's KeyboardInterrupt traceback, a death by that signal) said as such."""
+    cause = f"{prefix}nominal"
+    stop = down[0] if down else None
+    said = f"{verbatim(stop)} at {at(stop, t0)}" if stop is not None else "a stop"
+    text = (f"My start did not fail: it was stopped from outside before anything went wrong ({said}), and my "
+            "processes were shut down.")
+    helpers = [ln for ln in lines if helper_exit(ln, lines)]
+    for ln in helpers:
+        m = re.search(r"cmd '([^']*)'", ln.msg)
+        text += (f" Before that, {verbatim(ln)} at {at(ln, t0)}: a command launch ran for the set-up"
+                 f"{f' ({m[1]})' if m else ''}, not one of my nodes, ended with an error, and my nodes went on after "
+                 "it, so it stopped nothing.")
+    shown = [ln for ln in lines if ln.level >= WARN and all(ln is not h for h in helpers)][:MAX_WARNED]
+    if shown:
+        said = "; ".join(f"{verbatim(w)} at {at(w, t0)}" for w in shown)
+        text += f" {'The warnings' if len(shown) > 1 else 'The warning'} on the way ({said}) stopped nothing either."
+    noisy = [ln for ln in down if _INTERRUPTED.search(ln.msg) or _SIGNAL_EXIT.search(ln.msg)]
+    fix = None
+    if any(_INTERRUPTED.search(ln.msg) for ln in noisy):
+        who = next(ln.name for ln in noisy if _INTERRUPTED.search(ln.msg)) or "a Python node"
+        text += (f" The traceback {who} printed on the way down is Python's KeyboardInterrupt, how a Python node "
+                 "that does not catch the interrupt ends when Ctrl-C reaches it while it spins, not a failure of "
+                 "mine.")
+        fix = ("To let the node end quietly, catch the interrupt around its spin (`except (KeyboardInterrupt, "
+               "ExternalShutdownException)` around `rclpy.spin(node)`, then shut down), as ROS 2's Python examples "
+               "do.")
+    elif noisy:
+        text += f" {verbatim(noisy[0])} at {at(noisy[0], t0)} is that stop's signal, not a failure."
+    return Explanation(explainer=explainer, text=text, causes=[cause], fix=fix,
+                       evidence=[Evidence.of_log(cause, ln) for ln in [*([stop] if stop else []), *noisy[:2]]],
+                       details=["Launch stopped my processes before any error; no line of my start failed."])
 
 
 def _started_then(explainer: str, prefix: str, lines: list[LogLine], t0: int) -> Explanation:

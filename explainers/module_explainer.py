@@ -137,7 +137,9 @@ class ModuleExplainer:
         step = context.task.skills[0] if len(context.task.skills) == 1 else None
         if derived_start(step) and step is not None:
             # no task, no goal: the robot's start, which completed or is still under way (a failed one is below)
-            told = start_answer(self.name, self.prefix, step, lines, context.task.created, question)
+            kept = {id(ln) for ln in lines}
+            down = [ln for ln in context.log.logs if id(ln) not in kept and ln.t >= context.task.created]
+            told = start_answer(self.name, self.prefix, step, lines, context.task.created, question, down)
             return phrase(self.model, self.name, question, self._facts(lines, told), told)
         readings = self.refine([r for r in read(lines, self.catalogues()) if not _other_module(r)])
         d = self.reason_before(context, diagnose(readings, run.state if run is not None else None))

@@ -141,3 +141,26 @@ def test_a_fix_asked_after_the_tries_of_a_run_that_did_not_fail_is_its_findings(
     assert "not sure where I was on my map" in str(first["answer"])
     assert str(tried["answer"]).startswith("I didn't need to")
     assert "relocalise" in str(fix["answer"]) and "Nothing went wrong" not in str(fix["answer"]), fix["answer"]
+
+
+def test_a_nodes_own_retries_are_quoted_as_tries(tmp_path: Path) -> None:
+    """A lifecycle manager that retried a transition once and then gave up (a real console): its own lines are the
+    tries, not "one try"."""
+    from tests.agent.helpers import converse, real_module_run
+
+    run = real_module_run("kilted-lifecycle-transition-label-misspelt", tmp_path / "run")
+    (how_many,) = converse(run, "How many times did it retry before giving up?")
+    text = str(how_many["answer"])
+    assert text.startswith("For step 1 (to bring up my drivers and controllers), my log tells of trying again (")
+    assert '"active of /base_driver failed (state inactive), retrying in 1 s"' in text
+    assert '"active of /base_driver failed twice, state inactive; giving up"' in text and "one try" not in text
+
+
+def test_whether_recoveries_ran_is_a_count_of_tries(tmp_path: Path) -> None:
+    from tests.agent.helpers import real_nav2_run
+
+    assert content_kind("Did any recovery behaviors run before the goal was finally failed?") == "tried"
+    assert content_kind("Which recovery behaviors ran, and did any of them succeed?") == "tried"
+    run = real_nav2_run("kilted-nav2-start-in-wall", tmp_path / "run")
+    (ran,) = converse(run, "Did any recovery behaviors run before the goal was finally failed?")
+    assert "I ran 4 recoveries (2 spins, a wait and a backup)" in str(ran["answer"])

@@ -118,3 +118,9 @@ def test_the_nodes_are_those_that_logged_with_their_counts_and_errors(suite: Pat
     assert all(f"{node} ({names[node]} line" in text and f"{k} error" in text for node, k in errors.items())
     assert text.endswith("A node that never logged does not show here, and my log cannot tell whether one was still "
                          "running at the end.")
+
+
+def test_any_warnings_of_one_module_is_a_question_about_the_log() -> None:
+    from hexar.agent.followups import content_kind
+
+    assert content_kind("Were there any planner warnings before bt_navigator said the goal succeeded?") == "logs"

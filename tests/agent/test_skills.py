@@ -52,3 +52,14 @@ def test_goals_read_from_the_logs_hold_no_skill_list(tmp_path: Path) -> None:
     (asked,) = converse(real_nav2.write_recording(case, tmp_path / "run", task=False), "what skills do you have?")
     assert asked["answer"] == ("I can't tell: my recording holds no list of my skills or places, only goals that "
                                "programs sent my stack, read from its logs.")
+
+
+def test_whether_i_can_do_something_at_all_is_answered_from_my_skills(suite: Path) -> None:
+    """"Can you open windows at all?" after a plan that asked for open_window: no skill of mine does it, and that
+    is why the plan was rejected; "are you able to say things?" is yes, with the skill."""
+    (windows,) = converse(suite / "bagfile_4_1", "Can you open windows at all?")
+    assert str(windows["answer"]).startswith("No: none of my skills does that. My skills are say, navigate_to_zone")
+    assert "My recording's plan asked for 'open_window', which is not one of them, so that plan was rejected before " \
+           "I started." in str(windows["answer"])
+    (say,) = converse(suite / "bagfile_4_1", "are you able to say things?")
+    assert say["answer"] == "Yes: with say I say something aloud."

@@ -211,3 +211,32 @@ def test_a_start_with_the_waiting_warning_alone_tells_both_readings_and_claims_n
     found, claims = _lone(tmp_path, WAITING)
     assert found.causes == ["control.unexplained_failure"] and claims == set()
     assert "Either no description arrived" in found.text and "hardware that did not load" in found.text
+
+
+def test_a_start_stopped_by_ctrl_c_is_no_failure_and_its_traceback_is_named(tmp_path: Path) -> None:
+    """A real console: launch got Ctrl-C a moment after the start, and a Python node printed its KeyboardInterrupt
+    traceback and died with exit code -2 on the way down. Nothing failed; asked what to change, the answer is how a
+    Python node ends quietly."""
+    from hexar.agent.context import RunSettings
+    from hexar.agent.oneshot import OneShot
+    from tests.agent.helpers import real_module_run
+
+    run = real_module_run("kilted-bringup-ctrl-c-traceback", tmp_path / "run")
+    ask = OneShot(RunSettings(recording=run, llm="none")).ask
+    happened = ask("What happened?")
+    text = str(happened["answer"])
+    assert text.startswith("My start did not fail: it was stopped from outside before anything went wrong "
+                           "(“[launch] user interrupted with ctrl-c (SIGINT)”")
+    assert "odom_relay-2 printed on the way down is Python's KeyboardInterrupt" in text
+    assert "failed because" not in text and happened["causes"] == ["control.nominal"]
+    fix = str(ask("What should I change in odom_relay so it shuts down without a traceback?")["answer"])
+    assert "`except (KeyboardInterrupt, ExternalShutdownException)` around `rclpy.spin(node)`" in fix
+
+
+def test_an_error_before_ctrl_c_still_fails_the_start(tmp_path: Path) -> None:
+    """Ctrl-C after the start had already failed ends nothing that was going well: the failure is told."""
+    failed = (0.2, "resource_manager", ERROR, "Failed to initialize hardware 'RRBot'")
+    stop = (0.5, "launch", WARN, "user interrupted with ctrl-c (SIGINT)")
+    task, found = explain(write_lines(tmp_path, [LOADING, failed, stop]), "control", "What happened?")
+    assert task.outcome == "failed" and "control.nominal" not in found.causes
+    assert "stopped from outside" not in found.text
