@@ -60,6 +60,23 @@ def _norm(text: str) -> str:
     return " ".join(text.lower().split())
 
 
+def _quoted_in(quote: str, msg: str) -> bool:
+    """A quote is in a line, a quote shortened with "..." or "…" when its parts are, in order ('No position
+    interface found... Skipping sync!')."""
+    if quote in msg:
+        return True
+    parts = [p.strip() for p in re.split(r"\.{3}|…", quote) if len(p.strip()) >= 6]
+    if not parts or parts == [quote.strip()]:  # no "..." in it: it is not in the line
+        return False
+    at = 0
+    for part in parts:
+        at = msg.find(part, at)
+        if at < 0:
+            return False
+        at += len(part)
+    return True
+
+
 _SEEN: list[tuple[list[LogLine], list[tuple[LogLine, str, str]]]] = []
 
 
@@ -77,9 +94,16 @@ def _rows(lines: list[LogLine]) -> list[tuple[LogLine, str, str]]:
 
 def pointed_lines(question: str, log: EventLog, until: int | None = None, by_words: bool = False) -> list[LogLine]:
     """The log's lines (up to `until`) the question points at by a quote, an identifier or a node's name, with
-    the question's other words they repeat; strongest first, at most TOP, warnings before routine lines of the same
-    strength. `by_words`: a line that repeats two of the question's words counts too (a developer's question on a
-    log read without a plan of the robot's). Empty when the question names nothing of the log."""
+    the question's other words they repeat: the strongest, at most TOP, in time order, warnings before routine lines
+    of the same strength. `by_words`: a line that repeats two of the question's words counts too (a developer's
+    question on a log read without a plan of the robot's). Empty when the question names nothing of the log."""
+    return sorted(ranked_lines(question, log, until, by_words)[:TOP], key=lambda ln: ln.t)
+
+
+def ranked_lines(question: str, log: EventLog, until: int | None = None, by_words: bool = False,
+                 least: int = 2, slack: int = 1) -> list[LogLine]:
+    """pointed_lines' candidates, strongest first (within `slack` points of the best); `least`: the fewest of the
+    question's words that point at a line without a quote or an identifier."""
     rows = [row for row in _rows(log.logs) if until is None or row[0].t <= until]
     if not rows:
         return []
@@ -89,22 +113,22 @@ def pointed_lines(question: str, log: EventLog, until: int | None = None, by_wor
     bare = _QUOTED.sub(" ", question.lower())
     parts = {w for i in idents for w in _WORD.findall(i)}  # "controller" of controller_server counts once
     words = {w for w in _WORD.findall(bare) if len(w) >= 4 and w not in _COMMON} - parts
-    if not quotes and not idents and not (by_words and len(words) >= 2):
+    if not quotes and not idents and not (by_words and len(words) >= least):
         return []
     scored = []
     for ln, msg, node in rows:
-        score = 3 * sum(1 for q in quotes if q in msg) + 2 * sum(1 for i in idents if i in msg or i == node)
+        score = 3 * sum(1 for q in quotes if _quoted_in(q, msg)) + 2 * sum(1 for i in idents if i in msg or i == node)
         shared = sum(1 for w in words if w[:6] in msg or w in node)  # "configure" in "Configuring"
         # without a quote or an identifier, two of the question's own words in one line point at it
-        if score == 0 and (not by_words or shared < 2):
+        if score == 0 and (not by_words or shared < least):
             continue
         scored.append((score + shared - (_ROUTINE.search(ln.msg) is not None), ln.level, ln))
     if not scored:
         return []
     best = max(s for s, _, _ in scored)
-    kept = [x for x in scored if x[0] >= best - 1]
+    kept = [x for x in scored if x[0] >= best - slack]
     kept.sort(key=lambda x: (-x[0], -x[1], -len(x[2].msg)))  # the longer of two errors says more
-    return sorted((ln for _, _, ln in kept[:TOP]), key=lambda ln: ln.t)
+    return [ln for _, _, ln in kept]
 
 
 def with_pointed(text: str, question: str, log: EventLog, task: Task) -> str:

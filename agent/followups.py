@@ -8,10 +8,12 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
+from hexar.agent.between import between_asked
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.matters import asks_matters
+from hexar.agent.measure_words import measure_kind
 from hexar.agent.mentions import mentions_kind
 from hexar.agent.node_status import node_status_kind
 from hexar.agent.overview import SETTING_FIX
@@ -162,13 +164,14 @@ def content_kind(question: str) -> str | None:
     'mentions' (a named thing of the stack, looked up in the log, when nothing else took it).
     Among them 'act' is a request to do something, 'stop' an order to stop, 'next' a question about what it will do;
     None for anything else."""
-    from hexar.agent.measure_words import measure_kind
     from hexar.agent.moved import moved_kind
     from hexar.explainers.tts import CONTENT_QUESTION
 
     q = normalise(question)
     if asks_matters(q):
         return None  # "is the 'Costmap2DROS …' warning a problem?": the finding, then whether it rests on that line
+    if between_asked(q) and measure_kind(q) is None:
+        return "between"  # "how long after the FATAL did spawner-4 exit?" (the task's own times are 'long', 'when')
     if ABLE.search(q):
         return "skills"  # "can you open windows at all?" asks what I can do, not for a try
     if step_asked(q):

@@ -8,6 +8,7 @@ import re
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
+from hexar.agent.between import between
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.focus import with_pointed
 from hexar.agent.logs import nodes, stated_spans
@@ -24,7 +25,7 @@ from hexar.agent.step_status import step_status
 from hexar.agent.window import at_time
 from hexar.events.log import EventLog
 from hexar.events.records import duration, hms
-from hexar.events.tasks import Task
+from hexar.events.tasks import WHOLE, Task
 from hexar.explainers.base import Explanation
 
 Answer = Callable[[str, EventLog, Task], Explanation]
@@ -61,6 +62,15 @@ def _after_launch(question: str, told: Explanation, log: EventLog, task: Task) -
     said = f"{first.name or 'a node'}: \"{' '.join(first.msg.split())[:80]}\""
     return told.model_copy(update={"text": f"{told.text} I began {duration(task.created - first.t)} after my log's "
                                            f"first line ({hms(first.t)}, {said})."})
+
+
+def _between(question: str, log: EventLog, task: Task) -> Explanation:
+    """The time between two moments the question names by their lines; where the log names either of them in no
+    line, the task's times (of a recording with no task, what its log says of the things named)."""
+    found = between(question, log, task)
+    if found is not None:
+        return found
+    return mentions(question, log, task) if task.task_id == WHOLE else _long(question, log, task)
 
 
 def _long(question: str, log: EventLog, task: Task) -> Explanation:
@@ -103,4 +113,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "moved": moved,
     "skills": skills,
     "step": step_status,
+    "between": _between,
 }

@@ -20,6 +20,8 @@ _KIND = r"(global |local |path |motion |arm |navigation )?(planners?|controllers
 PLUGINS = re.compile(
     _LEAD + r"(which|what) " + _KIND + r" (did|do|does|were|was|is|are) (you|it|nav2|moveit|the robot|loaded|in use)"
     r"( (use|using|used|load|loaded|running|run|configured|have|had))?\b|"
+    # "which controller plugin did controller_server load?"
+    + _LEAD + r"(which|what) " + _KIND + r" (did|does|do) [a-z_/]+ (use|using|load|loaded|run|configure|create|have)\b|"
     # a bare "which controller?" after a failure asks which one failed (agent/cited.py), not which was loaded
     + _LEAD + r"(which|what) [a-z ]*plugins?\W*$")
 

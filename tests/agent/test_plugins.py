@@ -49,3 +49,12 @@ def test_moveit_s_planner_and_a_recording_without_start_up_lines(tmp_path: Path,
     (none,) = converse(suite / "bagfile_5_1", "which controller plugin?")
     assert str(none["answer"]).startswith("I can't tell: my log holds no line naming my controller for your request")
     assert none["enough_information"] is False
+
+
+def test_the_plugin_a_named_server_loaded(tmp_path: Path) -> None:
+    from tests.agent.helpers import converse, real_nav2_run
+
+    run = real_nav2_run("kilted-nav2-mppi-heavy", tmp_path / "run")
+    (loaded,) = converse(run, "Which controller plugin did controller_server load for this run?")
+    assert loaded["answer"] == ("My log names what I loaded: my controller FollowPath "
+                                "(nav2_mppi_controller::MPPIController).")

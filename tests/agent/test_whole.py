@@ -54,3 +54,18 @@ def test_the_chat_opens_on_a_recording_with_no_task(real_bags: Path, tmp_path: P
     out = " ".join(done.stdout.split())
     assert "ask about its log, nodes, topics, parameters or times" in out
     assert "use_sim_time = false on all 5 nodes" in out and "you> what happened? no task to explain" in out
+
+
+def test_whether_warnings_matter_on_a_recording_with_no_task(tmp_path: Path) -> None:
+    """A quote shortened with "..." still finds its lines; with no task to judge them by, the answer says when the
+    last of them came and that no error followed."""
+    from tests.agent.helpers import converse, real_module_run
+
+    run = real_module_run("dynamixel-hw-if-89-velocity-wheels-skipping-position-sync-harmless", tmp_path / "run")
+    (said,) = converse(run, "Are the 'No position interface found... Skipping sync!' warnings for the four wheels "
+                            "actually harmful?")
+    text = str(said["answer"])
+    assert "dynamixel_hardware_interface (WARN) \"No position interface found in command interfaces for joint " \
+           "'FL_wheel'. Skipping sync!\"" in text
+    assert text.endswith("The last of them came at 19:58:53; my log goes on for less than a second after it without "
+                         "another, and holds no error after it.")

@@ -1,0 +1,102 @@
+""""How long after the FATAL from spawner_arm_controller did spawner-4 exit?", "why is there a 15 second gap between
+'Mission started' and 'Navigating...'?", "how long from launch until diff_drive_controller was activated?": the time
+between two moments a developer names by their lines, and what the log holds in between.
+
+Each end is found as agent/focus.py finds the lines a question points at (a quote, an identifier, a node's name, the
+phrase's own words), with two words of the stack's own: "launch" is the log's first line, "the goal" the task's
+start; "the FATAL", "the error" prefer a line of that level. Where either end cannot be found, nothing is said
+(the question goes on to the other answers), never a guessed moment."""
+
+from __future__ import annotations
+
+import re
+
+from hexar.agent.focus import ranked_lines
+from hexar.events.log import EventLog
+from hexar.events.records import ERROR, FATAL, WARN, LogLine, duration, hms
+from hexar.events.tasks import Task
+from hexar.explainers.base import Evidence, Explanation
+
+_ASKED = re.compile(
+    r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(after|before) (?P<a>.+?) (did|was|were|"
+    r"does|is|until|till) (?P<b>.+)|"
+    r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(from|between) (?P<a2>.+?) (until|till|to|"
+    r"and) (?P<b2>.+)|"
+    r"\b(gap|delay|pause|wait|silence|time|minutes?|seconds?) (between|from) (?P<a3>.+?) (and|to|until|till) "
+    r"(?P<b3>.+)")
+_LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\berrors?\b"), ERROR),
+           (re.compile(r"\bwarn(ing)?s?\b"), WARN))
+_LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)\b")
+_GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived|received|started)\b|^(the )?(task|goal) (start(ed)?)\b")
+MAX_BETWEEN = 3
+
+
+def between_asked(q: str) -> bool:
+    """The question (lower case) asks for the time between two moments it names."""
+    return _ASKED.search(q) is not None
+
+
+def _ends(q: str) -> tuple[str, str] | None:
+    m = _ASKED.search(q)
+    if m is None:
+        return None
+    a = m.group("a") or m.group("a2") or m.group("a3")
+    b = m.group("b") or m.group("b2") or m.group("b3")
+    return a.strip(" ?.!,"), b.strip(" ?.!,")
+
+
+def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine | int | None:
+    """The line (or, for the goal's start, the time) a phrase names; for the second end, the first such line at or
+    after the first end."""
+    if _LAUNCH.match(phrase) and log.logs:
+        return log.logs[0]
+    if _GOAL.match(phrase):
+        return task.created
+    level = next((lv for pattern, lv in _LEVELS if pattern.search(phrase)), None)
+    # one word of its own names a line only with its level ("the controller error")
+    found = ranked_lines(phrase, log, None, by_words=True, least=1 if level is not None else 2, slack=0)
+    if level is not None:
+        found = [ln for ln in found if ln.level >= level] or found
+    if after is not None:
+        found = [ln for ln in found if ln.t >= after]
+    return min(found, key=lambda ln: ln.t) if found else None
+
+
+def _said(end: LogLine | int) -> str:
+    if isinstance(end, int):
+        return f"the goal's start at {hms(end)}"
+    return f"{end.name or 'a node'}'s \"{' '.join(end.msg.split())[:100]}\" at {hms(end.t)}"
+
+
+def between(question: str, log: EventLog, task: Task) -> Explanation | None:
+    """The time between the two moments the question names and the lines logged in between; None where either
+    cannot be found in the log."""
+    ends = _ends(" ".join(question.lower().split()))
+    if ends is None:
+        return None
+    first = _end(ends[0], log, task, None)
+    if first is None:
+        return None
+    t0 = first if isinstance(first, int) else first.t
+    second = _end(ends[1], log, task, t0)
+    if second is None:
+        return None
+    t1 = second if isinstance(second, int) else second.t
+    gap = t1 - t0
+    span = f"{gap / 1e6:.0f} ms" if 0 <= gap < 500_000_000 else f"{gap / 1e9:.1f} s" if gap < 60e9 else duration(gap)
+    text = f"{span} passed from {_said(first)} to {_said(second)}."
+    inside = [ln for ln in log.logs if t0 < ln.t < t1 and ln is not first and ln is not second]
+    if not inside:
+        text += " My log holds no line in between, so it does not say what took that time."
+    else:
+        notable = sorted(inside, key=lambda ln: (-ln.level, ln.t))[:MAX_BETWEEN]
+        said = "; ".join(f"at {hms(ln.t)}, {ln.name or 'a node'}: \"{' '.join(ln.msg.split())[:100]}\""
+                         for ln in sorted(notable, key=lambda ln: ln.t))
+        text += (f" In between, my log holds {len(inside)} line{'s' if len(inside) > 1 else ''}"
+                 f"{', among them' if len(inside) > len(notable) else ''}: {said}.")
+    lines = [e for e in (first, second) if not isinstance(e, int)]
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence.of_log("planner.plan_ok", ln) for ln in lines])
+
+
+__all__ = ["between", "between_asked"]
