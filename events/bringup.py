@@ -223,9 +223,9 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
             and not any(_error(ln) for ln in up) and stack_cause(up) is None:
         # stopped before anything failed (Ctrl-C): what its processes print on the way down is no failure of the
         # start (a Python node's KeyboardInterrupt traceback, launch's "process has died [..., exit code -2]")
-        done = [ln for ln in up if completed(ln)]
-        if done and not any(refused(ln) for ln in up):
-            return BringUp(first.t, "succeeded", done[-1].t)  # it had come up before it was stopped
+        if any(completed(ln) for ln in up) and not any(refused(ln) for ln in up):
+            # it had come up before it was stopped: its run goes on to the stop (warnings on the way are its own)
+            return BringUp(first.t, "succeeded", up[-1].t)
         stop = next(ln for ln in logs if ln.t >= up[-1].t and all(ln is not u for u in up))
         return BringUp(first.t, "canceled", stop.t, f"stopped: {' '.join(stop.msg.split())[:120]}")
     stack = stack_cause(logs)

@@ -69,8 +69,8 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
     # the control package's __init__ imports its explainer, which imports the module explainer, which imports this
     from hexar.explainers.control.description import waited
 
-    if run.state == "canceled":
-        return _stopped(explainer, prefix, lines, down or [], t0)
+    if run.state == "canceled" and not any(refused(ln) for ln in lines) and waited(lines) is None:
+        return _stopped(explainer, prefix, lines, down or [], t0)  # a start stuck on something is told as that
     if run.state == "succeeded" and presumes_failure(question):
         return _started_then(explainer, prefix, lines, t0)
     if run.state == "succeeded":
@@ -112,8 +112,8 @@ def _stopped(explainer: str, prefix: str, lines: list[LogLine], down: list[LogLi
     cause = f"{prefix}nominal"
     stop = down[0] if down else None
     said = f"{verbatim(stop)} at {at(stop, t0)}" if stop is not None else "a stop"
-    text = (f"My start did not fail: it was stopped from outside before anything went wrong ({said}), and my "
-            "processes were shut down.")
+    text = (f"Starting my drivers and controllers went fine: my controllers were starting without any problem when "
+            f"it was stopped from outside ({said}), and my processes were shut down.")
     helpers = [ln for ln in lines if helper_exit(ln, lines)]
     for ln in helpers:
         m = re.search(r"cmd '([^']*)'", ln.msg)

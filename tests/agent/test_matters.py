@@ -55,7 +55,8 @@ def test_a_set_up_command_that_failed_before_ctrl_c_stopped_nothing(tmp_path: Pa
     assert str(matters["answer"]).startswith("Not as a failure: the task was stopped from outside, not by the line you "
                                              "name (rm, 12:58:41)")
     text = str(stopped["answer"])
-    assert text.startswith("My start did not fail: it was stopped from outside before anything went wrong "
+    assert text.startswith("Starting my drivers and controllers went fine: my controllers were starting "
+                           "without any problem when it was stopped from outside "
                            "(“[launch] user interrupted with ctrl-c (SIGINT)”")
     assert "a command launch ran for the set-up (rm /var/lock/lidar.lock), not one of my nodes, ended with an " \
            "error, and my nodes went on after it, so it stopped nothing." in text

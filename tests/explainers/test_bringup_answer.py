@@ -225,7 +225,8 @@ def test_a_start_stopped_by_ctrl_c_is_no_failure_and_its_traceback_is_named(tmp_
     ask = OneShot(RunSettings(recording=run, llm="none")).ask
     happened = ask("What happened?")
     text = str(happened["answer"])
-    assert text.startswith("My start did not fail: it was stopped from outside before anything went wrong "
+    assert text.startswith("Starting my drivers and controllers went fine: my controllers were starting "
+                           "without any problem when it was stopped from outside "
                            "(“[launch] user interrupted with ctrl-c (SIGINT)”")
     assert "odom_relay-2 printed on the way down is Python's KeyboardInterrupt" in text
     assert "failed because" not in text and happened["causes"] == ["control.nominal"]
