@@ -24,6 +24,9 @@ _ASKED = re.compile(
     r"and) (?P<b2>.+)|"
     r"\b(gap|delay|pause|wait|silence|time|minutes?|seconds?) (between|from) (?P<a3>.+?) (and|to|until|till) "
     r"(?P<b3>.+)")
+# "which came first, the global_costmap TF timeout or the AMCL warning?", "did the timeout come before the warning?"
+_ORDER = re.compile(r"\b(which|what) (came|happened|was logged|showed up|appeared|was) first,? (?P<a>.+?),? or "
+                    r"(?P<b>.+)|^(and |so )?did (?P<a2>.+?) (come|happen|appear|show up) (before|after) (?P<b2>.+)")
 _LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\berrors?\b"), ERROR),
            (re.compile(r"\bwarn(ing)?s?\b"), WARN))
 _LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)\b")
@@ -32,14 +35,16 @@ MAX_BETWEEN = 3
 
 
 def between_asked(q: str) -> bool:
-    """The question (lower case) asks for the time between two moments it names."""
-    return _ASKED.search(q) is not None
+    """The question (lower case) asks for the time between two moments it names, or which came first."""
+    return _ASKED.search(q) is not None or _ORDER.search(q) is not None
 
 
 def _ends(q: str) -> tuple[str, str] | None:
     m = _ASKED.search(q)
     if m is None:
-        return None
+        o = _ORDER.search(q)
+        return None if o is None else ((o.group("a") or o.group("a2")).strip(" ?.!,"),
+                                       (o.group("b") or o.group("b2")).strip(" ?.!,"))
     a = m.group("a") or m.group("a2") or m.group("a3")
     b = m.group("b") or m.group("b2") or m.group("b3")
     return a.strip(" ?.!,"), b.strip(" ?.!,")
@@ -71,9 +76,12 @@ def _said(end: LogLine | int) -> str:
 def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     """The time between the two moments the question names and the lines logged in between; None where either
     cannot be found in the log."""
-    ends = _ends(" ".join(question.lower().split()))
+    q = " ".join(question.lower().split())
+    ends = _ends(q)
     if ends is None:
         return None
+    if _ASKED.search(q) is None:
+        return _order(ends, log, task)
     first = _end(ends[0], log, task, None)
     if first is None:
         return None
@@ -97,6 +105,22 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     lines = [e for e in (first, second) if not isinstance(e, int)]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", ln) for ln in lines])
+
+
+def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | None:
+    """Which of two moments the question names came first, and how long before the other."""
+    a, b = (_end(phrase, log, task, None) for phrase in ends)
+    if a is None or b is None or a is b:
+        return None
+    ta, tb = (e if isinstance(e, int) else e.t for e in (a, b))
+    (early, t0), (late, t1) = sorted([(a, ta), (b, tb)], key=lambda x: x[1])
+    gap = t1 - t0
+    later = f"{gap / 1e6:.0f} ms" if gap < 500_000_000 else f"{gap / 1e9:.1f} s" if gap < 60e9 else duration(gap)
+    text = (f"First came {_said(early)}; {_said(late)} came {later} later."
+            if gap > 0 else f"They came at the same moment: {_said(a)}, and {_said(b)}.")
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence.of_log("planner.plan_ok", e) for e in (early, late)
+                                 if not isinstance(e, int)])
 
 
 __all__ = ["between", "between_asked"]

@@ -49,6 +49,7 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               # almost a minute?": where the time went, step by step
               r"^(and |so |but )?why (were|did) you ([a-z_']+ ){1,8}(for )?(so long|that long|such a long time|ages|"
               r"(almost |nearly |about |over |more than )?(a|one|two|three|\d+) (minutes?|min))\b",
+              r"^(and |so |but )?what took (you|it|the robot) so long\b",
               # "how quickly did the goal fail after it was sent?": the task's and its steps' times
               r"^(and |so )?how (quickly|fast|soon) did (it|that|the( [a-z_]+){1,2}) (fail|abort|end|finish|"
               r"succeed|give up|get rejected|come back)\b",
@@ -84,7 +85,7 @@ _KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
 def why_so_long(question: str) -> bool:
     """"Why did you wait there so long?": a time asked about with why (of a failed task, its failure answers it)."""
     q = " ".join(question.lower().split())
-    return re.match(r"(and |so |but )?why\b", q) is not None and measure_kind(q) == "long"
+    return re.match(r"(and |so |but )?(why|what took)\b", q) is not None and measure_kind(q) == "long"
 
 
 def measure_kind(q: str) -> Measure | None:

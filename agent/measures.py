@@ -272,6 +272,15 @@ def long(log: EventLog, task: Task, lead_with_times: bool = False) -> Explanatio
     if task.outcome in {"running", "waiting"}:
         text = (f"{name[0].upper()}{name[1:]} was not over when the recording ends, {span} after it began at "
                 f"{hms(task.created)} UTC.")
+    elif task.outcome == "invalid":
+        text = f"My plan for {name} was rejected at once, at {hms(task.created)} UTC, before I started anything."
+        said = next(((r, t) for t in later_recoveries(log, task) for r in t.skills if r.skill == "say"
+                     and r.time_of("running") is not None), None)
+        if said is not None:  # "how long before you told me?": the recovery's words are when the person heard it
+            spoke = said[0].time_of("running") or said[0].last_change
+            text += (f" I told you at {hms(spoke)} UTC, {duration(spoke - task.created)} after that: "
+                     f"\"{said[0].params.get('input', '')}\".")
+        return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], evidence=_evidence(task, []))
     elif lead_with_times:
         text = f"I started on {name} at {hms(task.created)} UTC, and {ended} at {hms(task.last_update)}, {span} later."
     else:

@@ -8,8 +8,8 @@ from hexar.events import contract as c
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Context, Evidence, Explanation, TextModel
 from hexar.explainers.phrasing import phrase
-from hexar.explainers.plan_check import Finding, check_plan
-from hexar.explainers.recorded import plan_words, sentence, step_words
+from hexar.explainers.plan_check import LOCATIONS, Finding, check_plan
+from hexar.explainers.recorded import place_name, plan_words, sentence, step_words
 
 if TYPE_CHECKING:
     from hexar.explainers.registry import Registry
@@ -28,6 +28,17 @@ _FIX = {
     "living room.",
     "planner.plan_not_fulfilling_request": "Ask me again, saying exactly what to do and where.",
 }
+
+
+def _fix(cause: str, task: Task) -> str:
+    """What to do about a faulty plan; a request that already named one of my places was fine, and the planner put
+    another name in the plan: the request needs no change."""
+    named = [p for p in LOCATIONS if p.replace("_", " ") in task.instruction.lower()]
+    if cause == "planner.invalid_parameter" and named:
+        return (f"Your request was fine: it named {place_name(named[0])}, one of my places, and my task planner put "
+                "another name in my plan. Ask me again the same way; if it happens again, the task planner needs "
+                "fixing.")
+    return _FIX[cause]
 
 
 _OUTCOME = {"invalid": "was rejected", "failed": "failed", "succeeded": "succeeded", "canceled": "was canceled",
@@ -133,7 +144,7 @@ class PlannerExplainer:
             causes=causes,
             evidence=evidence,
             counterfactual=counterfactual,
-            fix=_FIX[first.cause],
+            fix=_fix(first.cause, task),
             details=details,
         )
         facts = "\n".join([f"Request: {task.instruction}", *details])

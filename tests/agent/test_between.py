@@ -46,3 +46,13 @@ def test_what_happened_between_two_lines_names_what_was_logged(tmp_path: Path) -
 ])
 def test_a_time_between_two_named_moments_is_its_own_question(question: str, kind: str) -> None:
     assert content_kind(question) == kind
+
+
+def test_which_of_two_named_lines_came_first(tmp_path: Path) -> None:
+    run = real_nav2_run("slam-wheeled-robot-amcl-initialpose-race-bringup-abort", tmp_path / "run")
+    (first,) = converse(run, "Which came first, the global_costmap TF timeout or the AMCL warning?")
+    text = str(first["answer"])
+    assert text.startswith("First came global_costmap.global_costmap's \"Timed out waiting for transform from "
+                           "base_link to map to become available")
+    assert text.endswith("amcl's \"AMCL cannot publish a pose or update the transform.\" at 22:13:20 came 300 ms "
+                         "later.")

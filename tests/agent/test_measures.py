@@ -133,3 +133,13 @@ def test_where_a_recovery_started_is_the_place_a_trip_had_taken_me(suite: Path) 
     away = Session(RunSettings(recording=suite / "bagfile_14_1", llm="none")).ask("Where did you start?", task="2")
     assert str(away["answer"]).endswith("I can't say which room that is: I know rooms only as the places my plan's "
                                         "steps name.")
+
+
+def test_how_long_before_a_rejected_plan_was_told_is_the_recoverys_words(suite: Path) -> None:
+    """A plan rejected at once took no time; what the person waited for is the apology the recovery said."""
+    from tests.agent.helpers import converse
+
+    (told,) = converse(suite / "bagfile_2_2", "How long did it take before you told me you couldn't do it?")
+    assert told["answer"] == ('My plan for your request "Could you bring me the book from the dining room?" was '
+                              "rejected at once, at 12:20:32 UTC, before I started anything. I told you at 12:20:34 "
+                              'UTC, 2 s after that: "Sorry, I could not complete the task.".')

@@ -43,3 +43,13 @@ def test_a_navigate_to_pose_goal_may_carry_its_pose_but_nothing_else() -> None:
     assert check_plan("go to the goal", [("navigate_to_pose", {"x": 1.46, "y": 0.05})]) == []
     [bad] = check_plan("go to the goal", [("navigate_to_pose", {"x": 1.0, "y": 2.0, "speed": 3})])
     assert bad.cause == "planner.invalid_parameter" and "'speed'" in bad.message
+
+
+def test_a_request_that_named_my_place_needs_no_change(suite: Path) -> None:
+    """"Bring me a coffee from the kitchen", planned to 'kitchen_counter': the fix says the request was fine."""
+    from tests.agent.helpers import converse
+
+    (asked,) = converse(suite / "bagfile_2_1", "What should I say differently so you'll actually fetch coffee next "
+                                               "time?")
+    assert "Your request was fine: it named the kitchen, one of my places, and my task planner put another name " \
+           "in my plan. Ask me again the same way" in str(asked["answer"])
