@@ -28,7 +28,8 @@ _ABOUT = re.compile(r"activat|configur|switch|bond|\bactive\b|inactive|load|spaw
 # launch's words for a process's end ("[move_group-1]: process has died [pid 4, exit code -6, ...]")
 _ENDED = re.compile(r"process has (died|finished cleanly)|process started with pid")
 # a C++ program's own last words on stderr, often folded into the node's last logged line
-_ABORTED = re.compile(r"terminate called after throwing|Segmentation fault|Aborted \(core dumped\)")
+_ABORTED = re.compile(r"terminate called after throwing|Segmentation fault|Aborted \(core dumped\)|"
+                      r"^\s*what\(\):|Stack trace \(most recent call last\)")
 
 
 ABOUT = 3  # other nodes' lines about the node, the latest
@@ -45,8 +46,10 @@ def _lines_of(log: EventLog, node: str) -> tuple[list[LogLine], list[LogLine]]:
     if not own:  # "lifecycle_manager" asked, "lifecycle_manager_navigation" logged
         own = [ln for ln in log.logs if ln.name.lower().startswith(node + "_")]
     # launch names a process after its executable: base_driver's is often "base_driver_node-1"
-    process = [ln for ln in log.logs if re.fullmatch(re.escape(node) + r"(_node)?-\d+", ln.name.lower())
-               and _ENDED.search(ln.msg)]
+    launched = [ln for ln in log.logs if re.fullmatch(re.escape(node) + r"(_node)?-\d+", ln.name.lower())]
+    process = [ln for ln in launched if _ENDED.search(ln.msg)]
+    if not own:  # a console's output of the process, under launch's name for it ("move_group-4")
+        own = [ln for ln in launched if not _ENDED.search(ln.msg)]
     return own, process
 
 

@@ -119,8 +119,18 @@ def completed(line: LogLine) -> bool:
     return line.level < ERROR and entry is not None and entry.id in _done_ids()
 
 
+# the rest of libstdc++'s words for an uncaught exception when a console split them from "terminate called …"
+# ("what():  parameter '…' has invalid type"), and backward-cpp's trace of a crash (ROS 2 prints it on a crash)
+_ABORT_REST = re.compile(r"^\s*what\(\):\s|Stack trace \(most recent call last\):")
+
+
+def aborted(line: LogLine) -> bool:
+    """A C++ exception nobody caught, or a crash's stack trace, whatever level the console gave the line."""
+    return ABORT in line.msg or _ABORT_REST.search(line.msg) is not None
+
+
 def _error(line: LogLine) -> bool:
-    return (line.level >= ERROR and not notice(line)) or ABORT in line.msg
+    return (line.level >= ERROR and not notice(line)) or aborted(line)
 
 
 def notice(line: LogLine) -> bool:
@@ -161,8 +171,8 @@ def _shown(line: LogLine, before: list[LogLine], logs: list[LogLine]) -> bool:
     own = starting(line)
     if not own and not _driver(line.name, logs):
         return False
-    if line.level < ERROR:
-        return bool(line.msg.split(ABORT, 1)[0].strip())
+    if line.level < ERROR and ABORT in line.msg and line.msg.split(ABORT, 1)[0].strip():
+        return True  # "Loading hardware '…'" and the abort on one console line
     return any(ln.level < ERROR and not _error(ln) and (ln.name == line.name or (own and starting(ln)))
                for ln in before)
 
@@ -173,6 +183,8 @@ def _alone(line: LogLine, logs: list[LogLine]) -> bool:
     a line that names a device or a parameter to check (a lidar driver's own words for its port). MoveIt's lone
     error, or a behaviour node's ("Service … unavailable" after the robot undocked), is no start: healthy robots
     print such lines too."""
+    if aborted(line) and starting(line):
+        return True  # a process of the starting software that crashed: healthy robots do not
     if line.level < ERROR:
         return False
     return control_logger(line.name) or _driver(line.name, logs) or names_device(line) or names_parameter(line)

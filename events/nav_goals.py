@@ -142,14 +142,26 @@ def any_robots(name: str) -> bool:
     return name.strip("/").split("/")[-1].split(".")[-1].startswith(_ANY_ROBOTS)
 
 
+# the plugin base classes of ros2_control and MoveIt 2 that pluginlib names when it cannot load a plugin
+_ARMS_BASE = re.compile(r"with base class type (hardware_interface|controller_interface|transmission_interface|"
+                        r"semantic_components|planning_interface|kinematics|moveit_controller_manager|move_group|"
+                        r"collision_detection|constraint_samplers|planning_request_adapter)::")
+
+
 def _arms_logger(line: LogLine) -> bool:
     """A line logged by a node the arm's catalogues name (controller_manager, resource_manager, move_group...):
     generic texts of such a node (pluginlib's "... does not exist", "Failed to configure") match Nav2's catalogue
     too, but no Nav2 node logged them."""
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
+    from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
-    return bool(line.name) and any(cat.role(line.name) is not None for cat in (moveit(), control()))
+    if _ARMS_BASE.search(line.msg):
+        return True  # pluginlib's "... with base class type hardware_interface::SystemInterface does not exist"
+    # launch's name for the process: the executable's, then "-<n>" (ros2_control_node-1, move_group-4)
+    name = PROCESS_SUFFIX.sub("", line.name or "")
+    return bool(name) and (any(cat.role(n) is not None for cat in (moveit(), control()) for n in {line.name, name})
+                           or "ros2_control" in name)
 
 
 _STARTED = "process started with pid ["

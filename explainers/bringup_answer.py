@@ -78,8 +78,12 @@ def start_answer(explainer: str, prefix: str, run: SkillRun, lines: list[LogLine
         came = [ln for ln in lines if completed(ln)]
         last = came[-1].t if came else t0
         cause = f"{prefix}nominal"
-        text = ("Starting my drivers and controllers went fine: nothing went wrong, and my controllers came up "
-                "without any problem. What came up: " + "; ".join(verbatim(ln) for ln in came[:MAX_QUOTED]) + ".")
+        # a hardware interface that came up is not a controller that did ("were any controllers loaded?")
+        controllers = any("controller" in ln.msg.lower() for ln in lines)
+        what = "my controllers" if controllers else "my hardware"
+        text = (f"Starting my drivers and controllers went fine: nothing went wrong, and {what} came up without any "
+                "problem. What came up: " + "; ".join(verbatim(ln) for ln in came[:MAX_QUOTED]) + "." +
+                ("" if controllers else " My log names no controller being loaded or started."))
         for w in warned:
             after = "the start completed after it" if w.t <= last else "no error followed it"
             text += f" {verbatim(w)} at {at(w, t0)} is a warning that only looks like a failure: {after}."

@@ -376,6 +376,10 @@ def bringup_findings(lines: Iterable[LogLine], before: int | None = None) -> lis
         if entry is not None and entry.cause != BRINGUP and "Failed to create" in line.msg:
             # another entry may match first (the generic "Failed to create (a )?(plugin|…)" rule)
             entry = next((e for e in cat.matches(line.msg) if configure_failed(e)), entry)
+        if entry is not None and "Couldn't parse" in line.msg:
+            # rclpy's RCLError quotes rcl's own "Couldn't parse params file" after its "failed to initialize rcl"
+            entry = next((e for e in cat.matches(line.msg) if e.layer == "rcl" and e.text.startswith("Couldn't parse")),
+                         entry)
         configure = entry is not None and configure_failed(entry)
         if entry is None or (entry.cause != BRINGUP and not configure) \
                 or (line.level < ERROR and entry.level == "WARN"):

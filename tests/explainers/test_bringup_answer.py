@@ -241,3 +241,40 @@ def test_an_error_before_ctrl_c_still_fails_the_start(tmp_path: Path) -> None:
     task, found = explain(write_lines(tmp_path, [LOADING, failed, stop]), "control", "What happened?")
     assert task.outcome == "failed" and "control.nominal" not in found.causes
     assert "stopped from outside" not in found.text
+
+
+def test_a_hardware_that_came_up_is_not_told_as_controllers(tmp_path: Path) -> None:
+    """A KUKA RSI driver's real console: the hardware activated, and no controller line follows."""
+    from tests.agent.helpers import converse, real_module_run
+
+    run = real_module_run("kuka-drivers-344-iiqka-rsi-stale-project-files", tmp_path / "run")
+    (loaded,) = converse(run, "were any controllers loaded after the hardware came up?")
+    text = str(loaded["answer"])
+    assert "my hardware came up without any problem" in text and "my controllers came up" not in text
+    assert text.endswith("My log names no controller being loaded or started.")
+
+
+def test_a_process_that_aborted_on_its_only_line_failed_the_start(tmp_path: Path) -> None:
+    """move_group's console holds only libstdc++'s "what():" and a backward-cpp stack trace (at INFO, as a console
+    gives it): its start failed there, on the parameter of the wrong type the exception names."""
+    from tests.agent.helpers import converse, real_module_run
+
+    run = real_module_run("moveit2-pr2865-cached-ik-integer-parameter", tmp_path / "run")
+    happened, crashed = converse(run, "What happened?", "did move_group crash or just log a warning?")
+    assert "parameter 'robot_description_kinematics.robot.min_joint_config_distance' has a value of the wrong " \
+           "type" in str(happened["answer"])
+    assert "no line reports an error" not in str(happened["answer"])
+    assert str(crashed["answer"]).endswith("holds \"what():\": its process aborted there.")
+
+
+def test_a_hardware_plugin_that_pluginlib_cannot_load_is_the_arms_not_navigations(tmp_path: Path) -> None:
+    """ros2_control_node's "terminate called … pluginlib::LibraryLoadException … with base class type
+    hardware_interface::SystemInterface does not exist": the start failed, and no navigation goal is made of it."""
+    from hexar.events import read_recording
+    from tests.agent.helpers import real_module_run
+
+    run = real_module_run("r2c-demos-62-hardware-package-missing", tmp_path / "run")
+    task, found = explain(read_recording(run), "control", "What happened?")
+    assert task.task_id.startswith("bringup-goal") and task.outcome == "failed"
+    assert "the hardware plugin named in the ros2_control tag of the URDF is not among the installed plugin " \
+           "descriptions" in found.text and "navigation" not in found.text

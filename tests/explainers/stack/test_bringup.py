@@ -172,3 +172,17 @@ def test_a_nav2_server_that_could_not_create_its_plugin_failed_its_configure(tmp
 def test_a_waypoint_follower_that_goes_on_after_its_fatal_is_no_node_that_failed(tmp_path: Path) -> None:
     assert bringup_findings(_logs(tmp_path / "wf", NO_TASK_EXECUTOR)) == []
     assert bringup_findings(_logs(tmp_path / "both", NO_TASK_EXECUTOR + NO_PLANNER))[0].node == "planner_server"
+
+
+def test_rclpys_rclerror_quoting_rcls_params_file_error_is_the_params_file(tmp_path: Path) -> None:
+    """A Python node whose rclpy.init raised RCLError "failed to initialize rcl: Couldn't parse params file: …":
+    the parameter file could not be parsed, even where rcl's own "Failed to parse global arguments" line before it
+    lies outside the window read."""
+    from tests.agent.helpers import converse, real_module_run
+
+    run = real_module_run("kilted-params-file-yaml-syntax", tmp_path / "run")
+    lines = read_recording(run).logs
+    assert [f.kind for f in bringup_findings(lines[1:])] == ["params_file"]
+    (wrong,) = converse(run, "what's wrong at line 3 of scan_filter.yaml?")
+    assert str(wrong["answer"]).startswith("Starting my drivers and controllers failed because a parameter never "
+                                           "reached one of my nodes: its parameter file could not be parsed.")
