@@ -16,6 +16,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import ERROR, FATAL, WARN, LogLine, duration, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.shutdown import CTRL_C
 
 _ASKED = re.compile(
     r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(after|before) (?P<a>.+?) (did|was|were|"
@@ -31,6 +32,7 @@ _LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\berrors?\b"), ERROR
            (re.compile(r"\bwarn(ing)?s?\b"), WARN))
 _LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)\b")
 _GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived|received|started)\b|^(the )?(task|goal) (start(ed)?)\b")
+_INTERRUPT = re.compile(r"\bctrl.?c\b|\bsigint\b|\bthe interrupt\b")
 MAX_BETWEEN = 3
 
 
@@ -50,6 +52,11 @@ def _ends(q: str) -> tuple[str, str] | None:
     return a.strip(" ?.!,"), b.strip(" ?.!,")
 
 
+def moment(phrase: str, log: EventLog, task: Task) -> LogLine | int | None:
+    """The first line (or, for the goal's start, the time) a phrase names ("the ctrl-c", "'Reached the goal!'")."""
+    return _end(phrase, log, task, None)
+
+
 def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine | int | None:
     """The line (or, for the goal's start, the time) a phrase names; for the second end, the first such line at or
     after the first end."""
@@ -57,6 +64,10 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine |
         return log.logs[0]
     if _GOAL.match(phrase):
         return task.created
+    if _INTERRUPT.search(phrase):  # launch's own line for Ctrl-C (explainers/shutdown.py)
+        stop = next((ln for ln in log.logs if CTRL_C.match(ln.msg) and (after is None or ln.t >= after)), None)
+        if stop is not None:
+            return stop
     level = next((lv for pattern, lv in _LEVELS if pattern.search(phrase)), None)
     # one word of its own names a line only with its level ("the controller error")
     found = ranked_lines(phrase, log, None, by_words=True, least=1 if level is not None else 2, slack=0)
@@ -123,4 +134,4 @@ def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | No
                                  if not isinstance(e, int)])
 
 
-__all__ = ["between", "between_asked"]
+__all__ = ["between", "between_asked", "moment"]

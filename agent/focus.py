@@ -60,6 +60,15 @@ def _norm(text: str) -> str:
     return " ".join(text.lower().split())
 
 
+def _stem(word: str) -> str:
+    """A word without the endings a log's own form of it may not share ("passed" of "Passing", "brake" of
+    "Braking")."""
+    for end in ("ing", "ed", "es", "e", "s"):
+        if word.endswith(end) and len(word) - len(end) >= 4:
+            return word[: -len(end)]
+    return word
+
+
 def _quoted_in(quote: str, msg: str) -> bool:
     """A quote is in a line, a quote shortened with "..." or "…" when its parts are, in order ('No position
     interface found... Skipping sync!')."""
@@ -113,12 +122,13 @@ def ranked_lines(question: str, log: EventLog, until: int | None = None, by_word
     bare = _QUOTED.sub(" ", question.lower())
     parts = {w for i in idents for w in _WORD.findall(i)}  # "controller" of controller_server counts once
     words = {w for w in _WORD.findall(bare) if len(w) >= 4 and w not in _COMMON} - parts
+    stems = [(w, _stem(w)[:6]) for w in sorted(words)]  # "configure" in "Configuring", "brake" in "Braking"
     if not quotes and not idents and not (by_words and len(words) >= least):
         return []
     scored = []
     for ln, msg, node in rows:
         score = 3 * sum(1 for q in quotes if _quoted_in(q, msg)) + 2 * sum(1 for i in idents if i in msg or i == node)
-        shared = sum(1 for w in words if w[:6] in msg or w in node)  # "configure" in "Configuring"
+        shared = sum(1 for w, stem in stems if stem in msg or w in node)
         # without a quote or an identifier, two of the question's own words in one line point at it
         if score == 0 and (not by_words or shared < least):
             continue

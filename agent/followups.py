@@ -9,6 +9,7 @@ import re
 
 from hexar.agent.attempts import TRIED
 from hexar.agent.between import between_asked
+from hexar.agent.counted import count_asked
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
@@ -190,6 +191,8 @@ def content_kind(question: str) -> str | None:
         kind = "place"
     if kind is None and (kind := measure_kind(q)) is None and CONTENT_QUESTION.search(q):
         kind = "said"
+    if kind is None and count_asked(q):
+        kind = "count"  # "how many times was a new path passed to the controller?"
     return kind or mentions_kind(q)
 
 

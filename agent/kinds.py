@@ -9,6 +9,7 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.between import between
+from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.focus import with_pointed
 from hexar.agent.logs import nodes, stated_spans
@@ -73,6 +74,12 @@ def _between(question: str, log: EventLog, task: Task) -> Explanation:
     return mentions(question, log, task) if task.task_id == WHOLE else _long(question, log, task)
 
 
+def _counted(question: str, log: EventLog, task: Task) -> Explanation:
+    """How often the line the question describes was logged; where no line fits, what the log says of the things
+    the question names."""
+    return counted(question, log, task) or mentions(question, log, task)
+
+
 def _long(question: str, log: EventLog, task: Task) -> Explanation:
     """The task's time and its steps'; of several tasks asked about together ("the first two waypoints"), each
     task's time."""
@@ -114,4 +121,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "skills": skills,
     "step": step_status,
     "between": _between,
+    "count": _counted,
 }

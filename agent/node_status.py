@@ -58,7 +58,18 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
     m = NODE_STATUS.search(" ".join(question.lower().split()))
     node = m.group("node") if m else ""
     own, process = _lines_of(log, node)
+    named = re.compile(rf"(?<![\w/]){re.escape(node)}(?!\w)") if node else None
+    # up to the task's end: a stack's shutdown deactivates every controller, which says nothing of the task
+    until = worked_until(log, task)
+    its = {id(ln) for ln in (*own, *process)}
+    about = [ln for ln in log.logs if named is not None and ln.t <= until and id(ln) not in its
+             and named.search(ln.msg.lower()) and _ABOUT.search(ln.msg)]
     if not own and not process:
+        if about:  # a hardware component or a controller has no logger of its own: what others said of it
+            return Explanation(explainer="planner", causes=["planner.plan_ok"],
+                               evidence=line_evidence(about[-ABOUT:], task),
+                               text=f"My log holds no line of {node}'s own, but other nodes said of it: "
+                                    f"{quote(about[-ABOUT:], False, True)}.")
         return Explanation(explainer="planner", causes=["planner.plan_ok"], enough_information=False,
                            text=f"My log holds no line from {node or 'that node'} and no word from launch about its "
                                 "process: it may not have run, or its lines were not recorded; I can't tell.")
@@ -81,12 +92,6 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
         parts.append("no line says its process ended" + (
             f"; its last line came {tail:.0f} s before my recording ends" if tail >= 1 else
             ", and its last line is the recording's last moment: what came after is not recorded"))
-    named = re.compile(rf"(?<![\w/]){re.escape(node)}(?!\w)") if node else None
-    # up to the task's end: a stack's shutdown deactivates every controller, which says nothing of the task
-    until = worked_until(log, task)
-    its = {id(ln) for ln in (*own, *process)}
-    about = [ln for ln in log.logs if named is not None and ln.t <= until and id(ln) not in its
-             and named.search(ln.msg.lower()) and _ABOUT.search(ln.msg)]
     if about:  # "Activating controllers: [ arm_controller ]", "Configuring controller_server"
         parts.append(f"other nodes said of it: {quote(about[-ABOUT:], False, True)}")
     text = "; ".join(parts) + "."

@@ -175,7 +175,8 @@ def normalise(question: str) -> str:
             return ""
         return _SPELLING.get(low) or _question_word(low) or w
 
-    text = re.sub(r"[A-Za-z]+(?:'[A-Za-z]+)?", word, text)
+    # a word inside an identifier (lbr_iisy11_r1300, /u2/odom) is no chat spelling: only free-standing words change
+    text = re.sub(r"(?<![\w./-])[A-Za-z]+(?:'[A-Za-z]+)?(?![\w./-])", word, text)
     text = re.sub(r"\s+([,.?!])", r"\1", re.sub(r"\s+", " ", text)).strip()
     return text.lstrip(" ,.;:-")
 

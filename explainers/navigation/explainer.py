@@ -293,6 +293,8 @@ class NavigationExplainer:
             # a state of the costmap or planner with no line that supports one of its causes: told as what it is
             found = d.Finding(d.UNEXPLAINED, [Evidence.of_log(d.UNEXPLAINED, ln) for ln, _ in said[:2]])
             found.facts = {states.FACT + said[0][1].key: float(len(said))}
+            if said[0][1] is states.OUTSIDE and (by := states.outside_by(before)):
+                found.notes.append(by)  # where I was against where the costmap lies, as the costmap logged it
             if run.end is not None and run.outcome == "failed":
                 found.evidence.append(Evidence.of_log(d.UNEXPLAINED, run.end))
             return found

@@ -22,6 +22,7 @@ trajectories" is what controller_failure means. The planner's own "no valid path
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -98,6 +99,28 @@ def _beyond_any_map(msg: str) -> bool:
         return m is not None and max(abs(float(m["x"])), abs(float(m["y"]))) > BEYOND_ANY_MAP_M
     except ValueError:
         return False
+
+
+# obstacle_layer.cpp's "Sensor origin at (%.2f, %.2f) is out of map bounds (%.2f, %.2f) to (%.2f, %.2f). The costmap
+# cannot raytrace for it.": where the robot was and where the costmap lies, in one line
+_NUM = r"(-?\d+(?:\.\d+)?)"
+OUTSIDE_BY = "My costmap's own line puts me at"
+_BOUNDS = re.compile(rf"Sensor origin at \({_NUM}, {_NUM}\) is out of map bounds \({_NUM}, {_NUM}\) to "
+                     rf"\({_NUM}, {_NUM}\)")
+
+
+def outside_by(lines: list[LogLine]) -> str:
+    """"My costmap's own line puts me at (-2.00, 4.00), and it spans (0.00, 0.00) to (11.98, 7.98): 2.0 m outside
+    it.", from the first such line; empty without one (or with a position no map can hold)."""
+    m = next((m for ln in lines if (m := _BOUNDS.search(ln.msg)) is not None), None)
+    if m is None:
+        return ""
+    x, y, x0, y0, x1, y1 = (float(v) for v in m.groups())
+    if max(abs(x), abs(y)) > BEYOND_ANY_MAP_M:
+        return ""
+    off = math.hypot(max(x0 - x, 0.0, x - x1), max(y0 - y, 0.0, y - y1))
+    return (f"{OUTSIDE_BY} ({x:.2f}, {y:.2f}), and the costmap spans ({x0:.2f}, {y0:.2f}) to "
+            f"({x1:.2f}, {y1:.2f}): I was {off:.1f} m outside it.")
 
 
 def state_of(entry: Entry, msg: str) -> State | None:

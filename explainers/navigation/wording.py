@@ -172,6 +172,8 @@ def _symptom(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
     if state is not None:
         verb = "failed" if run.outcome == "failed" else "did not finish"
         tail = f" {last[0].upper()}{last[1:]}." if last else ""
+        by = next((n for n in f.notes if n.startswith(states.OUTSIDE_BY)), "")
+        tail = f" {by}{tail}" if by else tail  # the facts that tell the candidates apart, as the costmap logged them
         return states.sentence(state, place, verb) + tail, state.checks, [f"Nav2 said: {_said(f)}"]
     if "plan_failures" in f.facts:
         tail = f" {last[0].upper()}{last[1:]}." if last else ""

@@ -42,7 +42,8 @@ def test_a_repeated_line_is_told_with_the_logs_count(tmp_path: Path) -> None:
     log = read_recording(tmp_path / "run")
     passed = sum(1 for ln in log.logs if ln.msg.startswith("Passing new path to controller"))
     assert passed == 5
-    assert str(asked["answer"]).endswith('controller_server (INFO) "Passing new path to controller." (5 times).')
+    # "how many times?" is counted first (agent/counted.py)
+    assert str(asked["answer"]).startswith('5 times: controller_server logged "Passing new path to controller." from ')
 
 
 def test_words_alone_point_only_on_a_log_read_without_a_plan(suite: Path, tmp_path: Path) -> None:

@@ -56,3 +56,13 @@ def test_whether_a_controller_was_active_is_told_with_what_the_controller_manage
             '\'arm_controller\'"; at 13:53:02, controller_manager (INFO) "Activating controllers: [ arm_controller ]"'
             in text)
     assert "Deactivating" not in text
+
+
+def test_a_hardware_component_is_told_by_what_others_said_of_it(tmp_path: Path) -> None:
+    """A ros2_control hardware component has no logger of its own; its name also keeps its 'r' (no chat spelling is
+    read inside an identifier: lbr_iisy11_r1300, not lbr_iisy11_are1300)."""
+    run = real_module_run("kuka-drivers-344-iiqka-rsi-stale-project-files", tmp_path / "run")
+    (active,) = converse(run, "did lbr_iisy11_r1300 actually activate?")
+    assert active["answer"] == ("My log holds no line of lbr_iisy11_r1300's own, but other nodes said of it: at "
+                                "22:13:20, resource_manager (INFO) \"Successful 'activate' of hardware "
+                                "'lbr_iisy11_r1300'\".")

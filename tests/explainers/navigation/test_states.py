@@ -157,3 +157,14 @@ def test_a_goal_reached_after_getting_stuck_and_recovering_says_so(tmp_path: Pat
 def test_one_progress_failure_and_one_recovery_is_no_trip_without_problems(tmp_path: Path) -> None:
     answer = _explain(tmp_path, [], STUCK[:1] + STUCK[3:4], end=SUCCEEDED, question="How did the navigation go?")
     assert answer.causes == [UNEXPLAINED] and "got stuck" in answer.text and "without any problem" not in answer.text
+
+
+def test_a_robot_outside_its_costmap_is_told_where_against_the_costmaps_bounds(tmp_path: Path) -> None:
+    """A real Nav2 (kilted) console: the base came up at (-2, 4) on a map from (0, 0); the obstacle layer's own line
+    gives both, so the answer gives them beside the candidates it cannot choose between."""
+    from tests.agent.helpers import converse, real_nav2_run
+
+    run = real_nav2_run("kilted-nav2-start-off-map", tmp_path / "run")
+    (why,) = converse(run, "why is the start (-2, 4) outside the map bounds?")
+    assert "My costmap's own line puts me at (-2.00, 4.00), and the costmap spans (0.00, 0.00) to (11.98, 7.98): I " \
+           "was 2.0 m outside it." in str(why["answer"])
