@@ -85,7 +85,8 @@ _KINDS = tuple((kind, re.compile("|".join(ways))) for kind, ways in _ASKED)
 def why_so_long(question: str) -> bool:
     """"Why did you wait there so long?": a time asked about with why (of a failed task, its failure answers it)."""
     q = " ".join(question.lower().split())
-    return re.match(r"(and |so |but )?(why|what took)\b", q) is not None and measure_kind(q) == "long"
+    return re.match(r"(and |so |but )?(why|what took|(what|who) were you waiting)\b", q) is not None and \
+        measure_kind(q) == "long"
 
 
 def measure_kind(q: str) -> Measure | None:

@@ -310,6 +310,9 @@ def long_each(log: EventLog, tasks: list[Task]) -> Explanation:
         else:
             said.append(f"{name[0].upper()}{name[1:]} took {_span(worked_until(log, task) - task.created)}, from "
                         f"{hms(task.created)} to {hms(task.last_update)} UTC; {_ended(task)}.")
+    if len(tasks) > 1:  # "which leg took the longest?"
+        longest = max(tasks, key=lambda t: worked_until(log, t) - t.created)
+        said.append(f"The longest was {task_name(longest, log)}.")
     return Explanation(explainer="planner", text=" ".join(said), causes=["planner.plan_ok"],
                        evidence=[e for t in tasks for e in _evidence(t, [s.run for s in _steps(log, t)])])
 

@@ -18,7 +18,10 @@ _ORDINAL = re.compile(r"\b(first|1st|second|2nd|third|3rd|fourth|4th|fifth|5th|l
 _COUNT = {"two": 2, "three": 3, "four": 4, "five": 5, "2": 2, "3": 3, "4": 4, "5": 5}
 # "the first two waypoints", "each goal", "all the goals", "both goals"
 _SEVERAL = re.compile(r"\b(first|last) (two|three|four|five|[2-5]) ([a-z_]+ )?" + _WHAT + r"\b|"
-                      r"\b(each|every|all( the| of the)?|both)( [a-z_]+)? " + _WHAT + r"\b")
+                      r"\b(each|every|all( the| of the)?|both)( [a-z_]+)? " + _WHAT + r"\b|"
+                      # "which leg took the longest?" of a run of several goals compares them all
+                      r"\b(which|what) (leg|goal|waypoint|run|trip)s? (took|was) (the )?(longest|slowest|quickest|"
+                      r"shortest|fastest)\b")
 # close enough to be the same goal: logs print two decimals, people round
 _SAME = 0.051
 

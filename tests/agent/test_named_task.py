@@ -98,3 +98,11 @@ def test_how_far_without_positions_uses_the_positions_nav2_logged(tmp_path: Path
                            "no position of mine")
     assert "My log states where I was, though: at 07:43:46 at (5.06, 4.49) (planner_server), and at 07:44:03 at " \
            "(4.90, 4.22) (bt_navigator:" in text and "0.3 m apart in a straight line" in text
+
+
+def test_which_leg_took_longest_compares_the_goals(tmp_path: Path) -> None:
+    run = real_nav2_run("kilted-nav2-waypoints-nominal", tmp_path / "run")
+    (leg,) = converse(run, "which leg took the longest?")
+    text = str(leg["answer"])
+    assert text.startswith("The navigation goal to (4.00, 2.50) took 7 s")
+    assert text.endswith("The longest was the navigation goal to (9.00, 4.00).")
