@@ -14,6 +14,7 @@ from hexar.events.log import EventLog
 from hexar.events.records import LEVEL_NAMES, LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
+from hexar.explainers.shutdown import before_shutdown
 
 _NODE = r"(?P<node>[a-z][a-z0-9]*(?:_[a-z0-9]+)+|amcl|rviz2?|gazebo|ekf)"
 NODE_STATUS = re.compile(
@@ -79,6 +80,12 @@ def node_status(question: str, log: EventLog, task: Task) -> Explanation:
         when = f"at {hms(last.t)}" if len(own) == 1 else f"from {hms(own[0].t)} to {hms(last.t)}"
         parts.append(f"The node {node} logged {len(own)} line{'s' if len(own) > 1 else ''} {when}; its last "
                      f'({LEVEL_NAMES.get(last.level, str(last.level))}): "{" ".join(last.msg.split())[:200]}"')
+        up = {id(ln) for ln in before_shutdown(log.logs)}
+        before = [ln for ln in own if id(ln) in up]
+        if before and before[-1] is not last:
+            # what it was doing when the stack was stopped, apart from what it printed on the way down
+            parts.append(f'its last line before my stack began to shut down came at {hms(before[-1].t)}: '
+                         f'"{" ".join(before[-1].msg.split())[:160]}"')
     aborted = next(((ln, m) for ln in own if (m := _ABORTED.search(ln.msg)) is not None), None)
     ended = process[-1] if process else None
     if aborted is not None:

@@ -66,3 +66,13 @@ def test_a_hardware_component_is_told_by_what_others_said_of_it(tmp_path: Path) 
     assert active["answer"] == ("My log holds no line of lbr_iisy11_r1300's own, but other nodes said of it: at "
                                 "22:13:20, resource_manager (INFO) \"Successful 'activate' of hardware "
                                 "'lbr_iisy11_r1300'\".")
+
+
+def test_what_a_node_was_doing_when_the_stack_was_stopped(tmp_path: Path) -> None:
+    """A real Nav2 console: the lifecycle manager was still activating planner_server when Ctrl-C came, and only
+    on the way down said it failed; the answer gives its last line before the shutdown too."""
+    run = real_nav2_run("kilted-nav2-ekf-world-map", tmp_path / "run")
+    (status,) = converse(run, "Did lifecycle_manager_navigation finish bringing up all the nodes, or did one fail to "
+                              "activate?")
+    assert 'its last line before my stack began to shut down came at 09:44:24: "Activating planner_server"' \
+        in str(status["answer"])
