@@ -41,6 +41,13 @@ def between_asked(q: str) -> bool:
     return _ASKED.search(q) is not None or _ORDER.search(q) is not None
 
 
+def spans_two(q: str) -> bool:
+    """"How long did it take from launch until diff_drive_controller was activated?": a span between two moments
+    named, not the task's own time (which "how long did it take?" alone asks)."""
+    m = _ASKED.search(q)
+    return m is not None and m.group("a2") is not None
+
+
 def _ends(q: str) -> tuple[str, str] | None:
     m = _ASKED.search(q)
     if m is None:
@@ -75,7 +82,11 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine |
         found = [ln for ln in found if ln.level >= level] or found
     if after is not None:
         found = [ln for ln in found if ln.t >= after]
-    return min(found, key=lambda ln: ln.t) if found else None
+    if not found:
+        return None
+    # "both controllers being active", "all nodes up": the last of the lines it names
+    last = re.search(r"\b(both|all|every|last|each)\b", phrase) is not None
+    return (max if last else min)(found, key=lambda ln: ln.t)
 
 
 def _said(end: LogLine | int) -> str:

@@ -8,7 +8,7 @@ from __future__ import annotations
 import re
 
 from hexar.agent.attempts import TRIED
-from hexar.agent.between import between_asked
+from hexar.agent.between import between_asked, spans_two
 from hexar.agent.counted import count_asked
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
@@ -171,7 +171,7 @@ def content_kind(question: str) -> str | None:
     q = normalise(question)
     if asks_matters(q):
         return None  # "is the 'Costmap2DROS …' warning a problem?": the finding, then whether it rests on that line
-    if between_asked(q) and measure_kind(q) is None:
+    if between_asked(q) and (measure_kind(q) is None or spans_two(q)):
         return "between"  # "how long after the FATAL did spawner-4 exit?" (the task's own times are 'long', 'when')
     if ABLE.search(q):
         return "skills"  # "can you open windows at all?" asks what I can do, not for a try

@@ -21,6 +21,7 @@ from hexar.events.records import ERROR, WARN, LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import join_words
+from hexar.explainers.stack.bringup import PROCESS_SUFFIX
 
 _OPEN = r"^(and |so |but |ok |okay |now |then )?(please )?"
 LOGS = re.compile(
@@ -117,6 +118,25 @@ def line_evidence(lines: list[LogLine], task: Task) -> list[Evidence]:
         [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=task.created, item=task.instruction)]
 
 
+# parts of node names that name no one node ("controller" names both controller_server and controller_manager: still
+# a part a question may mean, but "server" or "node" alone is none)
+_GENERIC_PARTS = frozenset({"server", "manager", "node", "nodes", "interface", "broadcaster", "publisher"})
+
+
+def _named_nodes(q: str, log: EventLog) -> list[str]:
+    """The log's nodes a question names ("any planner warnings?": planner_server), by a word that is a node's name
+    or a part of it between underscores; empty when it names none."""
+    # "... before bt_navigator said the goal succeeded?": a node after "before" is a moment, not whose lines
+    asked = re.split(r"\b(before|after|until|till|when|while|since)\b", q)[0]
+    words = {w for w in re.findall(r"[a-z][a-z0-9_]{3,}", asked)} - _GENERIC_PARTS
+    out = []
+    for name in sorted({ln.name for ln in log.logs if ln.name and not PROCESS_SUFFIX.search(ln.name)}):
+        base = name.strip("/").split("/")[-1].split(".")[-1].lower()
+        if base in words or any(part in words for part in base.split("_")):
+            out.append(name)
+    return out
+
+
 def _select(log: EventLog, low: int, high: int, start: int, end: int) -> tuple[list[LogLine], bool]:
     """The lines of these levels in [start, end] (True), else those before `start` (False): a node that failed at
     bring-up explains the task that came after."""
@@ -140,6 +160,16 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
     lines, inside = _select(log, asked.low, asked.high, start, end)
     times = f"at {hms(start)}" if hms(start) == hms(end) else f"{hms(start)} to {hms(end)}"
     span = f"while I worked on {name} ({times} UTC)"
+    named = _named_nodes(q, log)
+    if named and lines:  # "were there any planner warnings?": those of the nodes it names
+        theirs = [ln for ln in lines if ln.name in named]
+        if not theirs:
+            others = join_words(sorted({ln.name or "a node" for ln in lines}))
+            text = (f"{'No. ' if asked.yes_no else ''}My log holds no {asked.noun} from {join_words(named)} {span}; "
+                    f"the {_PLURAL[asked.noun]} there came from {others}.")
+            return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                               evidence=line_evidence(lines, task))
+        lines = theirs
     if not lines:
         text = f"{'No. ' if asked.yes_no else ''}My log holds no {asked.noun} {span}, nor before it."
         warned, _ = _select(log, WARN, WARN, start, end) if asked.noun == "error" else ([], True)

@@ -56,3 +56,17 @@ def test_which_of_two_named_lines_came_first(tmp_path: Path) -> None:
                            "base_link to map to become available")
     assert text.endswith("amcl's \"AMCL cannot publish a pose or update the transform.\" at 22:13:20 came 300 ms "
                          "later.")
+
+
+def test_a_span_from_launch_until_a_controller_was_activated(tmp_path: Path) -> None:
+    """"From X until Y" is the span between them, not the task's own time; "both controllers" ends at the last."""
+    run = real_module_run("kilted-control-base-nominal", tmp_path / "run")
+    (until,) = converse(run, "How long did it take from launch until diff_drive_controller was activated?")
+    assert str(until["answer"]).startswith("2.0 s passed from launch's \"All log files can be found below ")
+    assert "to controller_manager's \"Activating controllers: [ diff_drive_controller ]\" at 07:05:52." in \
+        str(until["answer"])
+    both = real_module_run("janvanhulzen-mobile-base-hardware-bringup-fifo-warn-nominal", tmp_path / "both")
+    (active,) = converse(both, "how long from loading MobileBase to both controllers being active?")
+    assert str(active["answer"]).startswith("3.5 s passed from controller_manager's \"Loading hardware 'MobileBase'\" "
+                                            "at 17:20:42 to spawner_diff_drive_controller's \"Configured and "
+                                            "activated diff_drive_controller\" at 17:20:45.")

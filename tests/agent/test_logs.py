@@ -124,3 +124,16 @@ def test_any_warnings_of_one_module_is_a_question_about_the_log() -> None:
     from hexar.agent.followups import content_kind
 
     assert content_kind("Were there any planner warnings before bt_navigator said the goal succeeded?") == "logs"
+
+
+def test_warnings_of_a_module_named_are_that_modules(tmp_path: Path) -> None:
+    """"Any planner warnings before bt_navigator said the goal succeeded?": planner_server logged none (the node
+    after "before" is a moment, not whose lines); the warnings there were controller_server's, and are not told
+    as the planner's."""
+    from tests.agent.helpers import converse, real_nav2_run
+
+    run = real_nav2_run("kilted-nav2-goal-in-wall", tmp_path / "run")
+    (planner,) = converse(run, "Were there any planner warnings before bt_navigator said the goal succeeded?")
+    assert planner["answer"] == ("No. My log holds no warning from planner_server while I worked on the navigation "
+                                 "goal to (6.10, 2.00) (01:36:38 to 01:36:53 UTC); the warnings there came from "
+                                 "controller_server.")
