@@ -149,7 +149,24 @@ def with_pointed(text: str, question: str, log: EventLog, task: Task) -> str:
     fresh = [ln for ln in pointed_lines(question, log, until, by_words=task.derived) if _norm(ln.msg)[:60] not in told]
     if not fresh:
         return text
-    return f"{text} What my log says of it: {quote(with_repeats(fresh, log, until), False, True)}.".strip()
+    text = f"{text} What my log says of it: {quote(with_repeats(fresh, log, until), False, True)}."
+    if re.match(r"\s*(and |so |but )?why\b", question.lower()):
+        # "why did P5 cap max_v?": what the same node logged just before the line is what says why, if anything
+        before = just_before(fresh[0], log, {id(ln) for ln in fresh})
+        if before:
+            text += f" Just before it, the same node logged: {quote(before, True, False)}."
+    return text.strip()
+
+
+def just_before(line: LogLine, log: EventLog, skip: set[int], within_ns: int = 2_000_000_000) -> list[LogLine]:
+    """The last few lines the line's own node logged in the seconds before it (the line itself and `skip` left
+    out), oldest first."""
+    at = next((i for i, ln in enumerate(log.logs) if ln is line), None)
+    if at is None:
+        return []
+    out = [ln for ln in log.logs[max(0, at - 40):at] if ln.name == line.name and id(ln) not in skip
+           and line.t - ln.t <= within_ns and ln.msg != line.msg]
+    return out[-2:]
 
 
 def with_repeats(lines: list[LogLine], log: EventLog, until: int | None = None) -> list[LogLine]:

@@ -14,6 +14,7 @@ from hexar.agent.flags import BATTERY, LIMIT, flag_asked
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.matters import asks_matters
+from hexar.agent.means import means_asked
 from hexar.agent.measure_words import measure_kind
 from hexar.agent.mentions import mentions_kind
 from hexar.agent.node_status import node_status_kind
@@ -193,6 +194,8 @@ def content_kind(question: str) -> str | None:
         kind = "said"
     if kind is None and count_asked(q):
         kind = "count"  # "how many times was a new path passed to the controller?"
+    if kind is None and means_asked(q):
+        kind = "means"  # "what does 'Sequences cannot be key' mean here?"
     return kind or mentions_kind(q)
 
 

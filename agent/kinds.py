@@ -13,6 +13,7 @@ from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.focus import with_pointed
 from hexar.agent.logs import nodes, stated_spans
+from hexar.agent.means import means
 from hexar.agent.mentions import mentions
 from hexar.agent.moved import moved
 from hexar.agent.named_task import named_tasks
@@ -74,6 +75,12 @@ def _between(question: str, log: EventLog, task: Task) -> Explanation:
     return mentions(question, log, task) if task.task_id == WHOLE else _long(question, log, task)
 
 
+def _means(question: str, log: EventLog, task: Task) -> Explanation:
+    """What the line the question points at means; where it points at none, what the log says of the things it
+    names."""
+    return means(question, log, task) or mentions(question, log, task)
+
+
 def _counted(question: str, log: EventLog, task: Task) -> Explanation:
     """How often the line the question describes was logged; where no line fits, what the log says of the things
     the question names."""
@@ -122,4 +129,5 @@ FROM_RECORDING: dict[str, Answer] = {
     "step": step_status,
     "between": _between,
     "count": _counted,
+    "means": _means,
 }
