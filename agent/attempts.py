@@ -36,7 +36,7 @@ TRIED = re.compile(
     r"( it| that| this)?( again| once more| twice| a second time| more than once| another time| something else|"
     r" anything else| another way| to go around( it| them| that)?)?\W*$|"
     r"^(and |so |but |ok |okay )?how (many|often|many times) (times )?(did|have) (you|it|the robot|nav2|the planner|"
-    r"moveit) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
+    r"moveit|[a-z_/]+) (try|tried|retry|retried|attempt(ed)?|re-?plann?(ed)?|recover(ed)?)\b|"
     r"^(and |so |but |ok |okay )?how many ([a-z]+ )?(attempts|tries|retries|re-?plans|recoveries|recovery cycles)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
     # "did any recovery behaviors run?", "which recoveries ran?"

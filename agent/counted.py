@@ -34,8 +34,8 @@ def counted(question: str, log: EventLog, task: Task) -> Explanation | None:
             t = at if isinstance(at, int) else at.t
             since, until = (None, t) if bound.group(1) in {"before", "until", "till"} else (t, None)
             said = f" {bound.group(1)} {_named(at)}"
-    found = [ln for ln in ranked_lines(what, log, until, by_words=True, least=1, slack=0)
-             if since is None or ln.t > since]
+    found = [ln for ln in ranked_lines(what, log, None if until is None else until - 1, by_words=True, least=1,
+                                       slack=0) if since is None or ln.t > since]
     if not found:
         return None
     top = found[0]

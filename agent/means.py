@@ -21,6 +21,8 @@ _UNCLASSIFIED = "(no cause assigned)"
 
 def means_asked(q: str) -> bool:
     """The question (lower case) asks what something it names means ("what does that mean?" asks of the answer)."""
+    if "?" in q.rstrip(" ?"):
+        return False  # "what does X mean? did controller_server die?": two questions, the finding answers both
     return _ASKED.search(q) is not None and re.search(
         r"\bwhat (does|did) (that|this|the|it)( (error|warning|line|message|log|finding|answer))? mean\W*$", q) is None
 

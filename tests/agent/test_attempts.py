@@ -164,3 +164,16 @@ def test_whether_recoveries_ran_is_a_count_of_tries(tmp_path: Path) -> None:
     run = real_nav2_run("kilted-nav2-start-in-wall", tmp_path / "run")
     (ran,) = converse(run, "Did any recovery behaviors run before the goal was finally failed?")
     assert "I ran 4 recoveries (2 spins, a wait and a backup)" in str(ran["answer"])
+
+
+def test_a_named_node_trying_again_is_a_question_of_tries(tmp_path: Path) -> None:
+    """"How many times did lifecycle_manager try to configure /base_driver before giving up?": its own retry lines,
+    not one line counted."""
+    from tests.agent.helpers import real_module_run
+
+    assert content_kind("How many times did lifecycle_manager try to configure /base_driver before giving up?") == \
+        "tried"
+    run = real_module_run("kilted-lifecycle-configure-raises", tmp_path / "run")
+    (tries,) = converse(run, "How many times did lifecycle_manager try to configure /base_driver before giving up?")
+    assert '"configure of /base_driver failed (state unconfigured), retrying in 1 s"' in str(tries["answer"])
+    assert '"configure of /base_driver failed twice, state unconfigured; giving up"' in str(tries["answer"])

@@ -74,3 +74,13 @@ def test_whether_a_line_matters_is_asked_in_many_ways(question: str, asked: bool
     assert asks_matters(question) is asked
     if asked:
         assert content_kind(question) is None  # the finding answers it, led by the verdict
+
+
+def test_a_finding_that_names_no_cause_rules_no_line_out(tmp_path: Path) -> None:
+    """A hardware interface's segfault the logs do not explain: asked whether a frame of its stack trace is the
+    cause, the answer does not say the finding rests on other lines (it names no cause to rest on)."""
+    run = real_module_run("rokae-ros2-hardware-interface-callback-in-write-segfault", tmp_path / "run")
+    (asked,) = converse(run, "Is RokaeHardwareInterface::callback being called from write() the cause of the crash?")
+    assert "does not rest on" not in str(asked["answer"])
+    assert str(asked["answer"]).startswith("Starting my drivers and controllers failed, but my control logs do not "
+                                           "show a cause I know.")

@@ -42,3 +42,14 @@ def test_why_a_line_came_adds_what_its_node_logged_just_before(tmp_path: Path) -
 ])
 def test_what_a_line_means_is_its_own_question(question: str, kind: str | None) -> None:
     assert content_kind(question) == kind
+
+
+def test_two_questions_in_one_are_answered_by_the_finding(tmp_path: Path) -> None:
+    """"What does X mean here? Did controller_server die?": the finding (controller_server died) answers both;
+    a meaning alone would leave the second unanswered."""
+    question = "What does \"Behavior Tree action client timed out waiting\" mean here? Did controller_server die?"
+    assert content_kind(question) is None
+    run = real_nav2_run("kilted-nav2-amcl-controller-killed", tmp_path / "run")
+    (both,) = converse(run, question)
+    assert str(both["answer"]).startswith("I couldn't reach the goal at (10.00, 4.00) because the process of "
+                                          "controller_server died (exit code -9)")
