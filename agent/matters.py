@@ -67,7 +67,8 @@ def matters_lead(question: str, log: EventLog, task: Task, found: list[Explanati
     if named.t > end + 1_000_000_000:  # a second: a failure's own lines come in the same moment as its end
         return f"Not as its cause: {when} came after the task had already ended, at {hms(end)}."
     if any(c.endswith(".unexplained_failure") for e in found for c in e.causes):
-        return ""  # a finding that names no cause rests on no line that could rule this one out
+        # a finding that names no cause rests on no line that could rule this one out
+        return f"I can't tell from my logs whether {when} is: my finding below names no cause for sure."
     return (f"My finding below does not rest on {when}: the lines it rests on are others, so the log does not show "
             "that line as the cause.")
 

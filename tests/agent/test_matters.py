@@ -82,5 +82,7 @@ def test_a_finding_that_names_no_cause_rules_no_line_out(tmp_path: Path) -> None
     run = real_module_run("rokae-ros2-hardware-interface-callback-in-write-segfault", tmp_path / "run")
     (asked,) = converse(run, "Is RokaeHardwareInterface::callback being called from write() the cause of the crash?")
     assert "does not rest on" not in str(asked["answer"])
-    assert str(asked["answer"]).startswith("Starting my drivers and controllers failed, but my control logs do not "
-                                           "show a cause I know.")
+    assert str(asked["answer"]).startswith("I can't tell from my logs whether the line you name (")
+    assert ") is: my finding below names no cause for sure." in str(asked["answer"])
+    assert "Starting my drivers and controllers failed, but my control logs do not show a cause I know." in \
+        str(asked["answer"])
