@@ -36,6 +36,13 @@ _INTERRUPT = re.compile(r"\bctrl.?c\b|\bsigint\b|\bthe interrupt\b")
 MAX_BETWEEN = 3
 
 
+def gap_said(ns: int) -> str:
+    """A time between two lines as said: "300 ms", "5.6 s", "1 min 56 s"."""
+    if ns < 500_000_000:
+        return f"{max(ns, 0) / 1e6:.0f} ms"
+    return f"{ns / 1e9:.1f} s" if ns < 60_000_000_000 else duration(ns)
+
+
 def between_asked(q: str) -> bool:
     """The question (lower case) asks for the time between two moments it names, or which came first."""
     return _ASKED.search(q) is not None or _ORDER.search(q) is not None
@@ -112,9 +119,7 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     if second is None:
         return None
     t1 = second if isinstance(second, int) else second.t
-    gap = t1 - t0
-    span = f"{gap / 1e6:.0f} ms" if 0 <= gap < 500_000_000 else f"{gap / 1e9:.1f} s" if gap < 60e9 else duration(gap)
-    text = f"{span} passed from {_said(first)} to {_said(second)}."
+    text = f"{gap_said(t1 - t0)} passed from {_said(first)} to {_said(second)}."
     inside = [ln for ln in log.logs if t0 < ln.t < t1 and ln is not first and ln is not second]
     if not inside:
         text += " My log holds no line in between, so it does not say what took that time."
@@ -136,10 +141,8 @@ def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | No
         return None
     ta, tb = (e if isinstance(e, int) else e.t for e in (a, b))
     (early, t0), (late, t1) = sorted([(a, ta), (b, tb)], key=lambda x: x[1])
-    gap = t1 - t0
-    later = f"{gap / 1e6:.0f} ms" if gap < 500_000_000 else f"{gap / 1e9:.1f} s" if gap < 60e9 else duration(gap)
-    text = (f"First came {_said(early)}; {_said(late)} came {later} later."
-            if gap > 0 else f"They came at the same moment: {_said(a)}, and {_said(b)}.")
+    text = (f"First came {_said(early)}; {_said(late)} came {gap_said(t1 - t0)} later."
+            if t1 > t0 else f"They came at the same moment: {_said(a)}, and {_said(b)}.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", e) for e in (early, late)
                                  if not isinstance(e, int)])

@@ -12,6 +12,7 @@ from hexar.events.records import WARN, LogLine, duration, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.recorded import NAV_SKILLS, step_ref
+from hexar.explainers.shutdown import before_shutdown
 
 # how it went, not why it failed ("why did the pick step fail?" is the failure's own question)
 _ASKED = re.compile(
@@ -48,7 +49,7 @@ def _runs(q: str, task: Task) -> list[SkillRun]:
 
 
 def _quoted(lines: list[LogLine]) -> str:
-    return "; ".join(f"at {hms(ln.t)}, {ln.name or 'a node'} ({'ERROR' if ln.level > WARN else 'WARN'}) "
+    return "; ".join(f"at {hms(ln.t)}, {ln.name or 'a node'} ({ln.level_name}) "
                      f"\"{' '.join(ln.msg.split())[:160]}\"" for ln in lines[:MAX_QUOTED])
 
 
@@ -72,14 +73,15 @@ def step_status(question: str, log: EventLog, task: Task) -> Explanation:
         if state == "failed" and run.error_msg:
             told += f" ({run.error_msg})"
     during = [ln for ln in log.logs if start <= ln.t <= end and ln.level >= WARN]
-    later_end = log.end
-    after = [ln for ln in log.logs if end < ln.t <= later_end and ln.level > WARN] if state != "running" else []
+    # what a stack prints as it is stopped (a traceback at Ctrl-C) is no error of the step
+    up = {id(ln) for ln in before_shutdown(log.logs)}
+    after = [ln for ln in log.logs if ln.t > end and ln.level > WARN and id(ln) in up] if state != "running" else []
     text = told[0].upper() + told[1:] + "."
     text += (f" While it ran, my log holds {len(during)} warning or error line{'s' if len(during) > 1 else ''}: "
              f"{_quoted(during)}." if during else " My log holds no warning or error while it ran.")
     if state != "running":
-        text += (f" After it, up to the recording's end, my log holds {len(after)} error line"
-                 f"{'s' if len(after) > 1 else ''}: {_quoted(after)}." if after else
+        text += (f" After it, up to the recording's end (or the stack's shutdown), my log holds {len(after)} error "
+                 f"line{'s' if len(after) > 1 else ''}: {_quoted(after)}." if after else
                  " After it, up to the recording's end, my log holds no error.")
     evidence = [Evidence(cause="planner.plan_ok", topic=c.TASK_INFO, t=end, item=f"step {run.index + 1}: {run.label()} "
                                                                                  f"{state}")]
