@@ -96,10 +96,11 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine |
     return (max if last else min)(found, key=lambda ln: ln.t)
 
 
-def _said(end: LogLine | int) -> str:
+def moment_said(end: LogLine | int, limit: int = 100) -> str:
+    """A moment as said: "the goal's start at 07:05:50", or a line's node and words with its time."""
     if isinstance(end, int):
         return f"the goal's start at {hms(end)}"
-    return f"{end.name or 'a node'}'s \"{' '.join(end.msg.split())[:100]}\" at {hms(end.t)}"
+    return f"{end.name or 'a node'}'s \"{' '.join(end.msg.split())[:limit]}\" at {hms(end.t)}"
 
 
 def between(question: str, log: EventLog, task: Task) -> Explanation | None:
@@ -119,7 +120,7 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     if second is None:
         return None
     t1 = second if isinstance(second, int) else second.t
-    text = f"{gap_said(t1 - t0)} passed from {_said(first)} to {_said(second)}."
+    text = f"{gap_said(t1 - t0)} passed from {moment_said(first)} to {moment_said(second)}."
     inside = [ln for ln in log.logs if t0 < ln.t < t1 and ln is not first and ln is not second]
     if not inside:
         text += " My log holds no line in between, so it does not say what took that time."
@@ -141,11 +142,11 @@ def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | No
         return None
     ta, tb = (e if isinstance(e, int) else e.t for e in (a, b))
     (early, t0), (late, t1) = sorted([(a, ta), (b, tb)], key=lambda x: x[1])
-    text = (f"First came {_said(early)}; {_said(late)} came {gap_said(t1 - t0)} later."
-            if t1 > t0 else f"They came at the same moment: {_said(a)}, and {_said(b)}.")
+    text = (f"First came {moment_said(early)}; {moment_said(late)} came {gap_said(t1 - t0)} later."
+            if t1 > t0 else f"They came at the same moment: {moment_said(a)}, and {moment_said(b)}.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", e) for e in (early, late)
                                  if not isinstance(e, int)])
 
 
-__all__ = ["between", "between_asked", "moment"]
+__all__ = ["between", "between_asked", "gap_said", "moment", "moment_said", "spans_two"]

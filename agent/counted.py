@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import re
 
-from hexar.agent.between import moment
+from hexar.agent.between import moment, moment_said
 from hexar.agent.focus import ranked_lines
 from hexar.events.log import EventLog
-from hexar.events.records import LogLine, hms
+from hexar.events.records import hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 
@@ -33,7 +33,7 @@ def counted(question: str, log: EventLog, task: Task) -> Explanation | None:
         if at is not None:
             t = at if isinstance(at, int) else at.t
             since, until = (None, t) if bound.group(1) in {"before", "until", "till"} else (t, None)
-            said = f" {bound.group(1)} {_named(at)}"
+            said = f" {bound.group(1)} {moment_said(at, 80)}"
     found = [ln for ln in ranked_lines(what, log, None if until is None else until - 1, by_words=True, least=1,
                                        slack=0) if since is None or ln.t > since]
     if not found:
@@ -47,12 +47,6 @@ def counted(question: str, log: EventLog, task: Task) -> Explanation | None:
             f"\"{' '.join(top.msg.split())[:160]}\" {span}.")
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", ln) for ln in same[:3]])
-
-
-def _named(at: LogLine | int) -> str:
-    if isinstance(at, int):
-        return f"the goal's start at {hms(at)}"
-    return f"{at.name or 'a node'}'s \"{' '.join(at.msg.split())[:80]}\" at {hms(at.t)}"
 
 
 __all__ = ["count_asked", "counted"]

@@ -97,8 +97,6 @@ def _stated_far(log: EventLog, task: Task) -> str:
         return ""
     (first, a), (last, b) = said[0], said[-1]
     x0, y0, x1, y1 = float(a[1]), float(a[2]), float(b[1]), float(b[2])
-    if first is last:
-        return ""
     gap = math.hypot(x1 - x0, y1 - y0)
     return (f" My log states where I was, though: at {hms(first.t)} at ({x0:.2f}, {y0:.2f}) "
             f"({first.name or 'a node'}), and at {hms(last.t)} at ({x1:.2f}, {y1:.2f}) ({last.name or 'a node'}: "

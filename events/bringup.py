@@ -238,7 +238,8 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
         if any(completed(ln) for ln in up) and not any(refused(ln) for ln in up):
             # it had come up before it was stopped: its run goes on to the stop (warnings on the way are its own)
             return BringUp(first.t, "succeeded", up[-1].t)
-        stop = next(ln for ln in logs if ln.t >= up[-1].t and all(ln is not u for u in up))
+        kept = {id(u) for u in up}
+        stop = next(ln for ln in logs if ln.t >= up[-1].t and id(ln) not in kept)
         return BringUp(first.t, "canceled", stop.t, f"stopped: {' '.join(stop.msg.split())[:120]}")
     stack = stack_cause(logs)
     if stack is not None:
