@@ -89,6 +89,10 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine |
         found = [ln for ln in found if ln.level >= level] or found
     if after is not None:
         found = [ln for ln in found if ln.t >= after]
+        if not found and level is None:
+            # the second end is looked for after the first: one word of its own names a line there ("the result
+            # coming back" after "Goal accepted": the first line on that names a result)
+            found = [ln for ln in ranked_lines(phrase, log, None, by_words=True, least=1, slack=0) if ln.t >= after]
     if not found:
         return None
     # "both controllers being active", "all nodes up": the last of the lines it names

@@ -120,7 +120,9 @@ def ranked_lines(question: str, log: EventLog, until: int | None = None, by_word
     quotes = [_norm(next(g for g in m.groups() if g)) for m in _QUOTED.finditer(question)]
     idents = _identifiers(question, nodes)
     bare = _QUOTED.sub(" ", question.lower())
-    parts = {w for i in idents for w in _WORD.findall(i)}  # "controller" of controller_server counts once
+    # "controller" of controller_server counts once; the words of one that names nothing of the log count as words
+    # ("free/occupied threshold warnings")
+    parts = {w for i in idents if any(i in msg or i == node for _, msg, node in rows) for w in _WORD.findall(i)}
     words = {w for w in _WORD.findall(bare) if len(w) >= 4 and w not in _COMMON} - parts
     stems = [(w, _stem(w)[:6]) for w in sorted(words)]  # "configure" in "Configuring", "brake" in "Braking"
     if not quotes and not idents and not (by_words and len(words) >= least):

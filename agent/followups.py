@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import re
 
+from hexar.agent.all_up import all_up_kind
 from hexar.agent.attempts import TRIED
 from hexar.agent.between import between_asked, spans_two
 from hexar.agent.counted import count_asked
@@ -122,9 +123,11 @@ _MODULE_WORDS = {
         r"somebody|a person|the person|for help)\b|"
         # the person's distance is the help skill's measurement, not a trip of the plan
         r"\bhow (far|close|near)( away)? (was|were|is) (the|that) (person|human|people)\b"),
-    # "drop off the coffee" is a delivery, which a tray robot makes without an arm
-    "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|drop(ped|ping)?(?! off\b)|"
-                               r"pick(ed|ing)? (\w+ )?up|plac(e|ed|ing) (it|them|that|this|the)|put (\w+ )?down)\b"),
+    # "drop off the coffee" is a delivery, which a tray robot makes without an arm; "the loop rate dropped to
+    # 3.3 Hz" is a number that fell
+    "manipulation": re.compile(r"\b(arm|gripper|grasp(ed|ing)?|grab(bed|bing)?|"
+                               r"drop(ped|ping)?(?! (off|to|by|below|under|from|out)\b)|pick(ed|ing)? (\w+ )?up|"
+                               r"plac(e|ed|ing) (it|them|that|this|the)|put (\w+ )?down)\b"),
 }
 
 
@@ -179,7 +182,7 @@ def content_kind(question: str) -> str | None:
     if step_asked(q):
         return "step"  # "did the place step finish cleanly?"
     # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
-    kind = window_kind(q) or node_status_kind(q) or moved_kind(q) or \
+    kind = window_kind(q) or node_status_kind(q) or all_up_kind(q) or moved_kind(q) or \
         next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
         clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:
@@ -199,8 +202,13 @@ def content_kind(question: str) -> str | None:
     return kind or mentions_kind(q)
 
 
+# "thanks for the coffee! who put it on your tray?": a pleasantry before the question says nothing of its kind
+_PLEASANTRY = re.compile(r"^(thanks|thank you|great|nice|cool|wow|ok(ay)?|hi|hello|hey|good job|well done|oh)\b"
+                         r"[^.!?]{0,60}[.!?]+\s+(?=\S)")
+
+
 def normalise(question: str) -> str:
-    return re.sub(r"\s+", " ", question.strip().lower())
+    return _PLEASANTRY.sub("", re.sub(r"\s+", " ", question.strip().lower()))
 
 
 def intent_of(question: str, has_history: bool) -> Intent:

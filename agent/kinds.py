@@ -8,6 +8,7 @@ import re
 from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
+from hexar.agent.all_up import all_up
 from hexar.agent.between import between
 from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
@@ -124,6 +125,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "topic_data": _topic_data,
     "at_time": at_time,
     "node_status": node_status,
+    "all_up": all_up,
     "moved": moved,
     "skills": skills,
     "step": step_status,

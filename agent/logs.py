@@ -41,6 +41,8 @@ LOGS = re.compile(
     + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"
     r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
 )
+# the robot's start, before the task: "any warnings during bring-up?", "errors at startup?"
+_BRINGUP = re.compile(r"\b(during|at|in|on) (the |my |your )?(bring-?up|start-?up|launch|boot)\b|\bbefore the goal\b")
 QUOTED = 3  # distinct messages quoted in one answer; the rest are counted
 # a span a log line states itself: "within 10.000000 seconds", "timed out after 5 seconds", "waited 2.5 s"
 _STATED = re.compile(r"\b(within|after|waited|wait of|timeout of|timed out after)\s+\d+(\.\d+)?\s*"
@@ -157,9 +159,12 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                            evidence=line_evidence([], task), enough_information=False)
     start = task.created
     end = worked_until(log, task)
+    if _BRINGUP.search(q) and log.logs[0].t < task.created:  # "any warnings during bring-up?": before the task
+        start, end = log.logs[0].t, task.created - 1
     lines, inside = _select(log, asked.low, asked.high, start, end)
     times = f"at {hms(start)}" if hms(start) == hms(end) else f"{hms(start)} to {hms(end)}"
-    span = f"while I worked on {name} ({times} UTC)"
+    span = f"while I worked on {name} ({times} UTC)" if end >= task.created else \
+        f"while I came up, before {name} ({times} UTC)"
     named = _named_nodes(q, log)
     if named and lines:  # "were there any planner warnings?": those of the nodes it names
         theirs = [ln for ln in lines if ln.name in named]
@@ -171,7 +176,8 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                                evidence=line_evidence(lines, task))
         lines = theirs
     if not lines:
-        text = f"{'No. ' if asked.yes_no else ''}My log holds no {asked.noun} {span}, nor before it."
+        text = f"{'No. ' if asked.yes_no else ''}My log holds no {asked.noun} {span}" + \
+            (", nor before it." if end >= task.created else ".")
         warned, _ = _select(log, WARN, WARN, start, end) if asked.noun == "error" else ([], True)
         if warned:
             text += f' It holds {_plural(len(warned), "warning")}: ask "what warnings were there?" for them.'

@@ -24,7 +24,10 @@ _ASKED = re.compile(
     r"related to|connected to|linked to|to blame|the (cause|reason|culprit))\b|"
     r"\b(does|do|did) [^?]{0,160}?\b(matter|hurt|harm|have anything to do with|have to do with|cause (it|this|that|"
     r"the))\b|\bcan (i|it|this|that|these|those) be (safely )?ignored\b|\bcan i (safely )?ignore\b|"
-    r"\bsafe to ignore\b")
+    r"\bsafe to ignore\b|"
+    # "is the inflation radius error what caused the planning failure?", "is X something I must handle as an error?"
+    r"\b(is|are|was|were) [^?]{0,160}?\bwhat (caused|made|broke|stopped|killed)\b|"
+    r"\b(handle|treat|count|see) (it |this |that |them |these |those )?as an? (error|failure|fault|bug)\b")
 # what names a line: a quote, or the words for one
 _NAMES_A_LINE = re.compile(r"['\"‘“]|\b(warn(ing)?s?|errors?|messages?|lines?|exit code|dying|died|dies|crash(ed|es)?|"
                            r"traceback|exception|fatal)\b")
@@ -37,7 +40,7 @@ def asks_matters(question: str) -> bool:
     return _ASKED.search(q) is not None and _NAMES_A_LINE.search(q) is not None
 
 
-def _rests_on(line: LogLine, found: list[Explanation]) -> bool:
+def rests_on(line: LogLine, found: list[Explanation]) -> bool:
     """A finding's evidence holds the line (its time and words)."""
     words = " ".join(line.msg.split())[:60]
     return any(ev.t == line.t and words in " ".join(ev.item.split()) for e in found for ev in e.evidence)
@@ -62,7 +65,7 @@ def matters_lead(question: str, log: EventLog, task: Task, found: list[Explanati
         return f"Not as a failure: the task was stopped from outside, not by {when}, and nothing failed before that."
     if task.outcome in {"running", "waiting"}:
         return f"It had not stopped the task when the recording ends: {when} came, and the task was still under way."
-    if any(_rests_on(ln, found) for ln in lines):
+    if any(rests_on(ln, found) for ln in lines):
         return f"Yes: {when} is among the lines my finding below rests on."
     if named.t > end + 1_000_000_000:  # a second: a failure's own lines come in the same moment as its end
         return f"Not as its cause: {when} came after the task had already ended, at {hms(end)}."

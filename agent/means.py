@@ -8,10 +8,12 @@ from __future__ import annotations
 import re
 
 from hexar.agent.focus import pointed_lines
+from hexar.agent.matters import rests_on
 from hexar.events.log import EventLog
 from hexar.events.records import LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
+from hexar.explainers.stack.bringup import TRANSITIONS
 
 _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a |an )?.+? (mean|means|meant|indicate|"
                     r"signify)\b|^(and |so )?what('s| is) the meaning of\b")
@@ -19,8 +21,14 @@ _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a
 _UNCLASSIFIED = "(no cause assigned)"
 
 
+# "what is transition 10?": the lifecycle transition a line names by its number
+_TRANSITION = re.compile(r"^(and |so )?what('s| is| was| does| do) (the |that |this )?transition (?P<n>\d+)\b")
+
+
 def means_asked(q: str) -> bool:
     """The question (lower case) asks what something it names means ("what does that mean?" asks of the answer)."""
+    if _TRANSITION.search(q):
+        return True
     if "?" in q.rstrip(" ?"):
         return False  # "what does X mean? did controller_server die?": two questions, the finding answers both
     return _ASKED.search(q) is not None and re.search(
@@ -43,22 +51,50 @@ def _meaning(line: LogLine) -> str:
     return ""
 
 
-def means(question: str, log: EventLog, task: Task) -> Explanation | None:
-    """What the line the question points at means; None when it points at no line."""
+def means(question: str, log: EventLog, task: Task, found: Explanation | None = None) -> Explanation | None:
+    """What the line the question points at means; None when it points at no line. `found`: the task's finding,
+    which tells what a line it rests on means where no catalogue does."""
+    asked = _TRANSITION.search(" ".join(question.lower().split()))
+    if asked is not None:
+        return _transition(int(asked["n"]), log)
     lines = pointed_lines(question, log, None, by_words=True)
     if not lines:
         return None
     said = [(ln, m) for ln in lines if (m := _meaning(ln))]
     if not said:
-        ln = lines[0]
-        text = (f"My catalogues of the stack's log lines hold no meaning for {ln.name or 'a node'}'s "
-                f"\"{' '.join(ln.msg.split())[:160]}\" at {hms(ln.t)}, so I can't tell more than its own words.")
+        rested = [ln for ln in lines if found is not None and found.causes and rests_on(ln, [found])]
+        ln = (rested or lines)[0]
+        quoted = f"\"{' '.join(ln.msg.split())[:160]}\""
+        line = f"{ln.name or 'a node'}'s {quoted} at {hms(ln.t)}"
+        evidence = [Evidence.of_log("planner.plan_ok", ln)]
+        if rested and found is not None:
+            # "Parameter 'version' is not set. Please update your URDF": the finding's reading of it
+            text = f"My catalogues hold no meaning of their own for {line}, but my finding rests on it: {found.text}"
+            return found.model_copy(update={"text": text, "evidence": [*evidence, *found.evidence]})
+        text = (f"My catalogues of the stack's log lines hold no meaning for {line}, so I can't tell more than its "
+                "own words.")
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"], enough_information=False,
-                           evidence=[Evidence.of_log("planner.plan_ok", ln)])
+                           evidence=evidence)
     ln, meaning = said[0]
     text = f"That line ({ln.name or 'a node'}, {hms(ln.t)}: \"{' '.join(ln.msg.split())[:160]}\") means: {meaning}."
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", ln)])
+
+
+def _transition(n: int, log: EventLog) -> Explanation | None:
+    """What "transition N" of the log's lines is: a transition state a callback ran in (10 and up), or a
+    transition asked of the node."""
+    line = next((ln for ln in log.logs if re.search(rf"\btransition {n}\b", ln.msg)), None)
+    if line is None or n not in TRANSITIONS:
+        return None
+    name = TRANSITIONS[n]
+    what = (f"the lifecycle transition the node's callback was running in: {name} (lifecycle_msgs/msg/State's "
+            f"transition state {n}; rclcpp_lifecycle numbers a callback's transition so)" if n >= 10 else
+            f"the lifecycle transition asked of the node: {name} (lifecycle_msgs/msg/Transition id {n})")
+    said = f"\"{' '.join(line.msg.split())[:120]}\""
+    text = f"In {line.name or 'a node'}'s {said} at {hms(line.t)}, transition {n} is {what}."
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence.of_log("planner.plan_ok", line)])
 
 
 __all__ = ["means", "means_asked"]

@@ -38,6 +38,8 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so |ok |okay )?how long did you (wait|stand|stay|sit|talk|speak|drive|search|look|try)\b",
               r"^(and |so )?(which|what) (step|part|leg)( of (the|your|my) [a-z]+)? (took|was) (the )?(longest|slowest|"
               r"quickest|shortest)\b",
+              r"^(and |so )?(which|what)( one)? of (the|your|my)( [a-z0-9]+)? (steps|parts|legs|goals|waypoints|trips) "
+              r"(took|was) (the )?(longest|slowest|quickest|shortest)\b",
               # "how long did each step take?", "how long were you in the kitchen?", "what were you waiting for?",
               # "how long did you keep trying?", "and for how long?"
               r"^(and |so |ok |okay )?how long did ([a-z]+ )?(each|every|all the|the) (steps?|parts?|legs?|skills?)"
@@ -50,6 +52,11 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"^(and |so |but )?why (were|did) you ([a-z_']+ ){1,8}(for )?(so long|that long|such a long time|ages|"
               r"(almost |nearly |about |over |more than )?(a|one|two|three|\d+) (minutes?|min))\b",
               r"^(and |so |but )?what took (you|it|the robot) so long\b",
+              # "why did it take you more than a minute to bring it?", "what were you doing in the kitchen so long?"
+              # ("why did it take you so long?" asks the explainers why it was slow)
+              r"^(and |so |but )?why did it take (you |me |the robot )?(almost |nearly |about |over |more than |"
+              r"a whole |a full )?(a|one|two|three|\d+) (minutes?|min)\b",
+              r"^(and |so |but )?what were you doing\b[^?]*\b(so long|that long|such a long time|ages)\b",
               # "how quickly did the goal fail after it was sent?": the task's and its steps' times
               r"^(and |so )?how (quickly|fast|soon) did (it|that|the( [a-z_]+){1,2}) (fail|abort|end|finish|"
               r"succeed|give up|get rejected|come back)\b",

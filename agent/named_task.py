@@ -20,8 +20,8 @@ _COUNT = {"two": 2, "three": 3, "four": 4, "five": 5, "2": 2, "3": 3, "4": 4, "5
 _SEVERAL = re.compile(r"\b(first|last) (two|three|four|five|[2-5]) ([a-z_]+ )?" + _WHAT + r"\b|"
                       r"\b(each|every|all( the| of the)?|both)( [a-z_]+)? " + _WHAT + r"\b|"
                       # "which leg took the longest?" of a run of several goals compares them all
-                      r"\b(which|what) (leg|goal|waypoint|run|trip)s? (took|was) (the )?(longest|slowest|quickest|"
-                      r"shortest|fastest)\b")
+                      r"\b(which|what)( one)?( of (the|my|your)( [a-z0-9]+)?)? (leg|goal|waypoint|run|trip)s? "
+                      r"(took|was) (the )?(longest|slowest|quickest|shortest|fastest)\b")
 # close enough to be the same goal: logs print two decimals, people round
 _SAME = 0.051
 

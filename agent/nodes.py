@@ -22,6 +22,7 @@ from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.logs import logs
 from hexar.agent.matters import matters_lead
+from hexar.agent.means import means
 from hexar.agent.measure_words import why_so_long
 from hexar.agent.mentions import mentioned
 from hexar.agent.named_task import named_task
@@ -39,7 +40,7 @@ from hexar.agent.overview import (
     yes_or_no,
 )
 from hexar.agent.parameters import asks_parameters
-from hexar.agent.probes import notable, probe, talked, with_failure
+from hexar.agent.probes import finding, notable, probe, talked, with_failure
 from hexar.agent.questions import EXAMPLE, check_question, quoted, small_talk_reply
 from hexar.agent.state import AgentState
 from hexar.agent.topic import ABOUT_ME, OFF_TOPIC, about_me, defined, off_topic, recording_words
@@ -344,6 +345,9 @@ def content(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         if kind == "learn" and exp.fix:
             exp = exp.model_copy(update={"text": f"{exp.text} To keep it from happening again: {exp.fix[0].lower()}"
                                                   f"{exp.fix[1:]}"})
+    elif kind == "means" and task.task_id != WHOLE:  # a line the finding rests on means what the finding says
+        exp = means(state["question"], ctx.log, task, finding(ctx, state)) or \
+            FROM_RECORDING[kind](state["question"], ctx.log, task)
     elif kind in FROM_RECORDING:
         exp = FROM_RECORDING[kind](state["question"], ctx.log, task)
     elif kind == "talked":

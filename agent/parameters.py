@@ -18,6 +18,9 @@ from hexar.explainers.base import Evidence
 
 # a parameter's name as a question writes it: snake_case or dotted ("failure_tolerance", "FollowPath.max_vel_x")
 IDENTIFIER = re.compile(r"(?<![\w.])[a-z][a-z0-9]*(?:[_.][a-z0-9]+)+(?![\w])")
+# a quoted line of the log ("… actuate the specified joints"), not a parameter's name ('failure_tolerance'): its
+# words are the line's
+_LINE_QUOTED = re.compile(r"'[^']*\s[^']*'|\"[^\"]*\s[^\"]*\"|‘[^’]*\s[^’]*’|“[^”]*\s[^”]*”")
 _NODES_SHOWN = 5
 _NAMES_SHOWN = 4
 
@@ -57,7 +60,7 @@ def named(question: str, names: set[str], spaced: bool = True) -> list[str]:
     where that is an identifier of its own ("max_vel_x" of FollowPath.max_vel_x, not "trajectory" of
     constraints.arm_1_joint.trajectory, a word any question may hold), or, with `spaced`, its words spaced
     ("transform tolerance", "use sim time")."""
-    q = " ".join(question.lower().split())
+    q = _LINE_QUOTED.sub(" ", " ".join(question.lower().split()))
     return sorted(n for n in names
                   if _stands(q, n.lower(), True)
                   or ("_" in _last(n) and _stands(q, _last(n), True))

@@ -59,7 +59,9 @@ def _answered(steps: dict[str, Step]) -> str:
 
 def person(question: str, log: EventLog, task: Task) -> Explanation:
     """What the help skill recorded of the person, for the part of them asked about."""
-    q = " ".join(question.lower().split())
+    from hexar.agent.followups import normalise  # it reads this module's PERSON
+
+    q = normalise(question)
     run, steps = _steps(log, task)
     if run is None:
         text = "I asked nobody for help in this task, so my recording holds nothing of a person."

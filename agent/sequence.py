@@ -104,8 +104,9 @@ def tasks(log: EventLog) -> Explanation:
 
 
 DOING = re.compile(
+    # not "what were you doing standing in the kitchen for so long?", which asks where the time went (a measure)
     _LEAD + r"what were you (doing|up to|working on|in the middle of)( when| at the time| then| at that (time|point)|"
-    r" before| right before)?\b|"
+    r" before| right before)?\b(?![^?]*\b(so long|that long|such a long time|ages)\b)|"
     + _LEAD + r"what was happening when\b|"
     + _LEAD + r"what step (was it|were you|did (you|it) (fail|stop|give up))\b|"
     + _LEAD + r"(at )?which step (did it|did you) (fail|stop|give up)\b")

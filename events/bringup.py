@@ -120,8 +120,9 @@ def completed(line: LogLine) -> bool:
 
 
 # the rest of libstdc++'s words for an uncaught exception when a console split them from "terminate called …"
-# ("what():  parameter '…' has invalid type"), and backward-cpp's trace of a crash (ROS 2 prints it on a crash)
-_ABORT_REST = re.compile(r"^\s*what\(\):\s|Stack trace \(most recent call last\):")
+# ("what():  parameter '…' has invalid type"), and backward-cpp's trace of a crash (ROS 2 prints it on a crash,
+# "Stack trace (most recent call last) in thread 4726:" from a thread other than the main one)
+_ABORT_REST = re.compile(r"^\s*what\(\):\s|Stack trace \(most recent call last\)( in thread \d+)?:")
 
 
 def aborted(line: LogLine) -> bool:

@@ -21,18 +21,22 @@ from __future__ import annotations
 import re
 from typing import ClassVar
 
-from hexar.explainers.base import Context, Explanation
+from hexar.events.records import hms
+from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue as control_catalogue
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
 from hexar.explainers.manipulation.catalogue import catalogue
 from hexar.explainers.manipulation.wording import template
 from hexar.explainers.module_explainer import ModuleExplainer, focus
+from hexar.explainers.module_wording import verbatim
 from hexar.explainers.recorded import NAV_SKILLS
 from hexar.explainers.sim_time import with_sim_time
 
 SKILLS = ("pick", "place", "move_arm")
 REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "manipulation.goal_state_invalid"})
 FOUND_NONE = "manipulation.controllers_not_found"
+# move_action_capability.cpp's INFO when the goal holds before any motion (the mined catalogue's id)
+ALREADY_MET = "move_group.goal_constraints_are_already_satisfied_no"
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
 _TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
                     r"(?P<last>\d+(?:\.\d+)?)")
@@ -144,6 +148,8 @@ class ManipulationExplainer(ModuleExplainer):
 
     def explain(self, question: str, context: Context) -> Explanation:
         found = with_sim_time(super().explain(question, context), context.log, context.window[1])
+        if found.causes == ["manipulation.nominal"]:
+            return _without_motion(found, context)
         if not set(found.causes) & REACH:
             return found
         return self._with_navigation(question, context, found)
@@ -166,3 +172,17 @@ class ManipulationExplainer(ModuleExplainer):
             "evidence": [*found.evidence, *nav.evidence],
             "details": [*found.details, "I asked my navigation explainer about the trip before it.", *nav.details],
         })
+
+
+def _without_motion(found: Explanation, context: Context) -> Explanation:
+    """A goal MoveIt ended without moving the arm, because it was already there ("Goal constraints are already
+    satisfied. No need to plan or execute any motions"): told as that, never as a motion made."""
+    lo, hi = context.window
+    met = next((ln for ln in context.log.logs if lo <= ln.t <= hi and (e := catalogue().match(ln.msg)) is not None
+                and e.id == ALREADY_MET), None)
+    if met is None:
+        return found
+    text = (f"I did not need to move my arm: it was already at the goal, so MoveIt had nothing to plan or execute "
+            f"and ended the goal as a success ({verbatim(met)} at {hms(met.t)}).")
+    return found.model_copy(update={"text": text, "evidence": [Evidence.of_log("manipulation.nominal", met),
+                                                               *found.evidence]})

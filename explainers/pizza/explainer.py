@@ -17,6 +17,8 @@ if TYPE_CHECKING:
 
 CAUSE = "pizza.ingredients"
 MISMATCH = "pizza.model_mismatch"
+# the skill's request holds the ingredients it was given (available_ingredients), not who gave them: never "you told me"
+GIVEN = "The ingredients I was given as available were"
 LIME_SAMPLES = 1000
 LIME_SEED = 0
 # LIME fits a local linear model to sampled outputs, so ingredients the tree never tests still get small
@@ -173,7 +175,7 @@ class PizzaRecommenderExplainer:
         had = join_words([pretty(a) for a in available]) if available else "no ingredients at all"
         model = ("my recipe model still picks the same for them" if predicted == pizza
                  else f"my recipe model picks {a_pizza(predicted)} for them")
-        details = [f"You told me you had {had}.", f"I recommended {a_pizza(pizza)}, and {model}."]
+        details = [f"{GIVEN} {had}.", f"I recommended {a_pizza(pizza)}, and {model}."]
         if unknown:
             details.append(f"{join_words([pretty(u) for u in unknown]).capitalize()} "
                            f"{'is' if len(unknown) == 1 else 'are'} not in my recipe data, so I left "
@@ -265,7 +267,7 @@ def _asked(rec: PizzaRecommender, known: list[str], pizza: str, question: str) -
         return [how_sure(rec, known, pizza)]
     if asks_what_was_had(question):
         had = join_words([pretty(k) for k in known]) if known else "none of the ingredients my recipes know"
-        return [f"You told me you had {had}, and from that I recommended {a_pizza(pizza)}."]
+        return [f"{GIVEN} {had}, and from that I recommended {a_pizza(pizza)}."]
     wanted = asked_pizza(question, rec.classes, pizza)
     if wanted is not None:
         return [why_not(rec, known, pizza, wanted)]

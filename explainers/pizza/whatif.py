@@ -30,7 +30,9 @@ _COULD = re.compile(r"\b(could|would|can|might) (you|i|we) (have )?(made|make|co
                     r"\bwhat (would|does|do|did) (a|an|the|i|we) (\w+ )*(have )?need\b")
 # "What ingredients did I have?": the recorded request, said back.
 _HAD = re.compile(r"\b(what|which) ingredients\b|\bwhat (did|do) (i|we) (have|tell you|give you)\b|"
-                  r"\bwhat (was|is) in (the|my|our) (fridge|kitchen|pantry)\b")
+                  r"\bwhat (was|is) in (the|my|our) (fridge|kitchen|pantry)\b|"
+                  # "what did you see we had in the fridge?", "what was available?"
+                  r"\bwhat did you (see|find|think|know) (we|i) (had|have)\b|\bwhat (was|were) (available|there)\b")
 # The words after the last of these in a "what if" are what it adds or takes away, whether the recipe data knows
 # them or not ("what if I had truffles?"); words that are no food stop the reading.
 _CHANGE_WORD = re.compile(r"\b(had|have|with|without|no|plus|add|added|adding|also|got|instead of)\s+")

@@ -91,10 +91,14 @@ _LIFECYCLE_SET = re.compile(r"cmd '[^']*\bros2 lifecycle set (?:--\S+ )*(?P<node
 _LIFECYCLE_SAID = ("Node not found", "Unknown transition requested", "Transitioning failed",
                    "Exception while calling service of node")
 _NO_MANAGER = ("Controller manager not available", "Could not contact service")
-# lifecycle_msgs/msg/Transition ids (the message definition): what "transition 10" means to a person.
+# What "transition N" means to a person. rcl_lifecycle's "Failed to finish transition 3" names a
+# lifecycle_msgs/msg/Transition id (1 configure ... 5 shutdown); rclcpp_lifecycle's "Caught exception in callback for
+# transition 13" names the transition *state* the callback ran in, a lifecycle_msgs/msg/State id
+# (TRANSITION_STATE_CONFIGURING = 10 ... ERRORPROCESSING = 15): a real Nav2 console prints "... transition 13" and
+# then "Failed to finish transition 3" (activate), and ros2_control's "... transition 14" then "Callback returned
+# ERROR during the transition: deactivate".
 TRANSITIONS = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate", 5: "shutdown", 10: "configure",
-               11: "cleanup", 12: "activate", 13: "deactivate", 14: "unconfigured_shutdown",
-               15: "inactive_shutdown", 16: "active_shutdown"}
+               11: "cleanup", 12: "shutdown", 13: "activate", 14: "deactivate", 15: "error processing"}
 
 
 # nav2_util's LifecycleServiceClient blocks the lifecycle manager that creates it until the managed node's

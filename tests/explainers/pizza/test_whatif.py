@@ -93,9 +93,11 @@ def test_an_ingredient_the_recipes_lack_is_said_to_change_nothing(pizza_bag: Mak
 
 def test_what_was_had_is_the_recorded_request_said_back(pizza_bag: MakeBag) -> None:
     log = pizza_bag(AVAILABLE)
-    for question in ("What ingredients did I have?", "what was in the fridge", "What did I tell you?"):
-        assert _ask(log, question) == ("You told me you had tomato sauce, mozzarella, basil, olive oil and capers, "
-                                       "and from that I recommended a Margherita."), question
+    for question in ("What ingredients did I have?", "what was in the fridge", "What did I tell you?",
+                     "What did you see we had in the fridge?"):
+        assert _ask(log, question) == ("The ingredients I was given as available were tomato sauce, mozzarella, "
+                                       "basil, olive oil and capers, and from that I recommended a Margherita."), \
+            question
 
 
 def test_could_and_would_questions_about_another_pizza_are_why_nots() -> None:
