@@ -47,7 +47,9 @@ TRIED = re.compile(
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
     r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")
 _REPLAN = (re.compile(r"^Planning algorithm \S+ failed to generate a valid path"),
-           re.compile(r": failed to create plan with tolerance"),
+           # "…: failed to create plan with tolerance …." and "…: failed to create plan, …." (nav2_navfn_planner,
+           # nav2_smac_planner/src/smac_planner_2d.cpp:270@humble): one line per failed attempt
+           re.compile(r": failed to create plan( with tolerance|, )"),
            # "GridBasedplugin failed to plan from" as a Jazzy robot logged it (the format has no space)
            re.compile(r"^\S+?\s?plugin failed to plan (from|calculation to|through)"))
 _CLEAR = re.compile(r"^Received request to clear entirely the (?P<which>\w+)")

@@ -31,7 +31,12 @@ _ORDER = re.compile(r"\b(which|what) (came|happened|was logged|showed up|appeare
 _LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\berrors?\b"), ERROR),
            (re.compile(r"\bwarn(ing)?s?\b"), WARN))
 _LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)\b")
-_GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived|received|started)\b|^(the )?(task|goal) (start(ed)?)\b")
+_GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived?|received|started)\b|"
+                   r"^(the )?(task|goal) (start(ed)?)\b")
+# "how long after arm_controller was activated did the goal arrive?": "was" belongs to the first moment's words when
+# a "did" or "until" splits the question later
+_SPLIT = re.compile(r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(after|before) (?P<a>.+) "
+                    r"(did|does|until|till) (?P<b>.+)")
 _INTERRUPT = re.compile(r"\bctrl.?c\b|\bsigint\b|\bthe interrupt\b")
 MAX_BETWEEN = 3
 
@@ -63,6 +68,9 @@ def _ends(q: str) -> tuple[str, str] | None:
                                        (o.group("b") or o.group("b2")).strip(" ?.!,"))
     a = m.group("a") or m.group("a2") or m.group("a3")
     b = m.group("b") or m.group("b2") or m.group("b3")
+    split = _SPLIT.search(q) if m.group("a") else None
+    if split is not None:
+        a, b = split.group("a"), split.group("b")
     return a.strip(" ?.!,"), b.strip(" ?.!,")
 
 

@@ -86,6 +86,17 @@ def _quoted_in(quote: str, msg: str) -> bool:
     return True
 
 
+def _holds(msg: str, ident: str) -> bool:
+    """An identifier in a line, not as the start of a longer one ("arm_controller" is not in "arm_controllers.yaml")."""
+    at = msg.find(ident)
+    while at >= 0:
+        after = msg[at + len(ident):at + len(ident) + 1]
+        if not (after.isalnum() or after == "_"):
+            return True
+        at = msg.find(ident, at + 1)
+    return False
+
+
 _SEEN: list[tuple[list[LogLine], list[tuple[LogLine, str, str]]]] = []
 
 
@@ -129,7 +140,8 @@ def ranked_lines(question: str, log: EventLog, until: int | None = None, by_word
         return []
     scored = []
     for ln, msg, node in rows:
-        score = 3 * sum(1 for q in quotes if _quoted_in(q, msg)) + 2 * sum(1 for i in idents if i in msg or i == node)
+        score = 3 * sum(1 for q in quotes if _quoted_in(q, msg)) + \
+            2 * sum(1 for i in idents if _holds(msg, i) or i == node)
         shared = sum(1 for w, stem in stems if stem in msg or w in node)
         # without a quote or an identifier, two of the question's own words in one line point at it
         if score == 0 and (not by_words or shared < least):

@@ -28,6 +28,7 @@ from hexar.agent.sequence import AFTER, DOING, PLAN, REQUEST, TASKS
 from hexar.agent.skills import ABLE, SKILLS
 from hexar.agent.state import Intent
 from hexar.agent.step_status import step_asked
+from hexar.agent.unnamed import unnamed_kind
 from hexar.agent.unseen import unseen_kind
 from hexar.agent.window import window_kind
 
@@ -182,7 +183,7 @@ def content_kind(question: str) -> str | None:
     if step_asked(q):
         return "step"  # "did the place step finish cleanly?"
     # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
-    kind = window_kind(q) or node_status_kind(q) or all_up_kind(q) or moved_kind(q) or \
+    kind = window_kind(q) or node_status_kind(q) or all_up_kind(q) or unnamed_kind(q) or moved_kind(q) or \
         next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
         clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:

@@ -25,6 +25,7 @@ from hexar.agent.plugins import plugins
 from hexar.agent.recording import clock, recorded, topic_data
 from hexar.agent.skills import skills
 from hexar.agent.step_status import step_status
+from hexar.agent.unnamed import unnamed
 from hexar.agent.window import at_time
 from hexar.events.log import EventLog
 from hexar.events.records import duration, hms
@@ -126,6 +127,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "at_time": at_time,
     "node_status": node_status,
     "all_up": all_up,
+    "unnamed": unnamed,
     "moved": moved,
     "skills": skills,
     "step": step_status,

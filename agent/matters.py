@@ -21,7 +21,8 @@ from hexar.explainers.base import Explanation
 _ASKED = re.compile(
     r"\b(anything|something) to (worry|be worried) about\b|\bshould i (worry|be worried|care)\b|"
     r"\b(is|are|was|were) [^?]{0,160}?\b(a problem|harmful|harmless|a concern|serious|dangerous|benign|"
-    r"related to|connected to|linked to|to blame|the (cause|reason|culprit))\b|"
+    r"related to|connected to|linked to|to blame|the (root )?(cause|reason|culprit)|(just |only |merely )?(a |an )?"
+    r"(side[- ]effect|knock[- ]on( effect)?|follow[- ]on( effect)?|consequence|symptom|noise)s?)\b|"
     r"\b(does|do|did) [^?]{0,160}?\b(matter|hurt|harm|have anything to do with|have to do with|cause (it|this|that|"
     r"the))\b|\bcan (i|it|this|that|these|those) be (safely )?ignored\b|\bcan i (safely )?ignore\b|"
     r"\bsafe to ignore\b|"
@@ -56,7 +57,9 @@ def matters_lead(question: str, log: EventLog, task: Task, found: list[Explanati
     if not lines:
         return ""
     named = lines[0]
-    when = f"the line you name ({named.name or 'a node'}, {hms(named.t)})"
+    times = sum(1 for ln in log.logs if ln.name == named.name and ln.msg == named.msg)
+    alike = f", the first of {times} alike" if times > 1 else ""
+    when = f"the line you name ({named.name or 'a node'}, {hms(named.t)}{alike})"
     if task.outcome in _FINE:
         if named.t > end:
             return f"Not for this task: {when} came after it had already ended well."

@@ -46,7 +46,9 @@ _ASKED: tuple[tuple[Measure, tuple[str, ...]], ...] = (
               r"( each)? take\b|^(and |so )?how long did [a-z]+ and [a-z]+ (each )?take\b",
               r"^(and |so )?how long were you (in|at) (the )?[a-z_]+( room)?\W*$",
               r"\bwhy did you (spend|stay|wait|stand) (so much longer|so long|that long|longer)\b",
-              r"^(and |so )?(what|who) were you waiting (for|on)\b",
+              r"(^(and |so )?|, )(what|who) were you waiting (for|on)\b",
+              # "why did it take you so long in the dining room?": the time at a place, step by step
+              r"^(and |so |but )?why did it take (you )?(so|that) long (in|at) (the )?[a-z_]+",
               # "why did you stand around in the living room for so long?", "why were you in the dining room for
               # almost a minute?": where the time went, step by step
               r"^(and |so |but )?why (were|did) you ([a-z_']+ ){1,8}(for )?(so long|that long|such a long time|ages|"

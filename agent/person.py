@@ -30,7 +30,11 @@ PERSON = re.compile(
     + _LEAD + r"who (put|gave|handed|loaded|placed|brought)\b(?!.*\b(task|request|order|job|instruction|command|"
               r"plan|errand)s?\b)|"
     + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place)\b|"
-    + r"\bdid you (pick|get|take) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|on your own)\b")
+    + r"\bdid you (actually |really |even )?(pick|get|take|find|fetch|grab) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|"
+      r"on your own)\b")
+# "did someone give it to you?", "did you find it yourself?": whether a person put it on my tray
+_GAVE = re.compile(r"\bdid (someone|somebody|anyone|anybody|a person|the person|they|she|he) "
+                   r"(give|put|hand|load|place)\b|\b(yourself|by yourself|on your own)\b")
 _ACCEPTED = {"True": "they agreed to help", "False": "they declined"}
 _CONFIRMED = {"True": "then confirmed that they had helped", "False": "then never confirmed that they had helped"}
 
@@ -79,6 +83,13 @@ def person(question: str, log: EventLog, task: Task) -> Explanation:
     elif re.search(r"\bname\b|^(\w+ )?who\b", q):
         text = ("My recording holds no name: I knew the person only as someone I detected and asked for help"
                 f"; {answered}.")
+    elif _GAVE.search(q) and "AskForHelpState" in steps:
+        # "did you find it yourself or did someone give it to you?": the help skill is how it came to my tray
+        confirmed = steps.get("user_confirmed")
+        helped = confirmed is not None and confirmed.value == "True"
+        text = (f"Someone gave it to me: I asked a person for help, and {answered}; no step of my plan had me take "
+                "it myself." if helped else
+                f"Not as far as my recording shows: I asked a person for help, and {answered}.")
     elif re.search(r"^(\w+ )?where\b", q):
         distance = steps.get("person_distance")
         text = (f"I measured the person at {distance.value} m from me when I detected them" if distance is not None

@@ -17,8 +17,8 @@ from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
 # the content kinds a recording answers without a task (agent/kinds.py): what it holds, not what a task did
-RECORDING_WIDE = frozenset({"at_time", "node_status", "all_up", "recorded", "clock", "topic_data", "nodes", "plugins",
-                            "mentions", "logs", "between", "count", "means"})
+RECORDING_WIDE = frozenset({"at_time", "node_status", "all_up", "unnamed", "recorded", "clock", "topic_data", "nodes",
+                            "plugins", "mentions", "logs", "between", "count", "means"})
 NO_TASK = ("My recording holds no task of mine (no /task_info, no goal, no start of my drivers or controllers in its "
            "logs), so I can't tell what I was doing")
 

@@ -33,8 +33,8 @@ def test_a_line_the_failure_rests_on_is_said_to_matter(tmp_path: Path) -> None:
     run = real_module_run("kilted-lifecycle-transition-label-misspelt", tmp_path / "run")
     (said,) = converse(run, "Is the 'No transition matching active found for current state inactive' warning the "
                             "reason it failed?")
-    assert str(said["answer"]).startswith("Yes: the line you name (rcl_lifecycle, 13:47:26) is among the lines my "
-                                          "finding below rests on.")
+    assert str(said["answer"]).startswith("Yes: the line you name (rcl_lifecycle, 13:47:26, the first of 2 alike) is "
+                                          "among the lines my finding below rests on.")
 
 
 def test_a_line_the_failure_does_not_rest_on_is_not_told_as_its_cause(tmp_path: Path) -> None:

@@ -1,0 +1,68 @@
+"""Questions of round 53's blind set 13 that the answers missed or got wrong, asked again of real consoles written as
+recordings and of the simulated runs: a span whose first moment says "was", an identifier inside a longer one,
+whether a line is a side effect and how many like it, planner failures NavFn and Smac word as "failed to create
+plan, …", lines that name no node, whether someone gave the robot what it brought, and the time at a place."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from hexar.agent.followups import content_kind
+from tests.agent.helpers import converse, real_module_run, real_nav2_run
+
+
+def test_a_span_from_a_moment_said_with_was(tmp_path: Path) -> None:
+    run = real_module_run("kilted-control-traj-stamp-past", tmp_path / "run")
+    (gap,) = converse(run, "How long after arm_controller was activated did the goal arrive?")
+    # not from "arm_controllers.yaml" in joint_state_broadcaster's arguments: the identifier stands alone
+    assert str(gap["answer"]).startswith("1.1 s passed from controller_manager's \"Activating controllers: [ "
+                                         "arm_controller ]\" at 13:52:56 to the goal's start at 13:52:57.")
+
+
+def test_a_side_effect_question_and_how_many_alike(tmp_path: Path) -> None:
+    run = real_module_run("kilted-control-base-no-position-state", tmp_path / "run")
+    (knock,) = converse(run, "Are all the \"Can't accept new commands. subscriber is inactive\" warnings just a knock-on "
+                             "effect, and how many are there?")
+    assert str(knock["answer"]).startswith("Not as its cause: the line you name (diff_drive_controller, 07:07:57, the "
+                                           "first of 30 alike) came after the task had already ended, at 07:07:56.")
+
+
+def test_each_failed_to_create_plan_line_is_a_try(tmp_path: Path) -> None:
+    run = real_nav2_run("navgreen-iter23-wp15-start-in-lethal-space-aborted", tmp_path / "run")
+    (tries,) = converse(run, "how many times did it retry planning?")
+    assert str(tries["answer"]) == ("For step 1 (to drive to (5.50, -2.20)), my planner failed to find a path 4 times, "
+                                    "and the step was still going when the recording ends.")
+
+
+def test_lines_that_name_no_node_are_said_by_whose_words_they_are(tmp_path: Path) -> None:
+    run = real_nav2_run("forklift-mpc-foxy-sparse-90-turn-no-feasible-command", tmp_path / "run")
+    (whose,) = converse(run, "Which node logged these lines? They have no name.")
+    text = str(whose["answer"])
+    assert "(ERROR) \"Action server failed while executing action callback: \"ForkliftMpcController found no " \
+           "collision-free\" names no node; its words are what nav2_util logs (nav2_ros_common/include/" \
+           "nav2_ros_common/simple_action_server.hpp:267@main)" in text
+    assert "no catalogue of mine holds its words, so I can't tell whose code wrote it" in text
+    assert text.endswith("2 more lines name no node.")
+
+
+def test_someone_gave_it_or_not(suite: Path) -> None:
+    (gave,) = converse(suite / "bagfile_10_2", "Did you actually find the book yourself or did someone give it to you?")
+    assert str(gave["answer"]) == ("Someone gave it to me: I asked a person for help, and they agreed to help, and then "
+                                   "confirmed that they had helped; no step of my plan had me take it myself.")
+    (no,) = converse(suite / "bagfile_15_2", "did someone give you the book?")
+    assert str(no["answer"]).startswith("Not as far as my recording shows: I asked a person for help, and they "
+                                        "declined")
+
+
+@pytest.mark.parametrize(("question", "kind"), [
+    ("Why did it take you so long in the dining room before you came back?", "long"),
+    ("that took almost a minute and a half, what were you waiting for?", "long"),
+    ("Which node threw this? The log line has no node name.", "unnamed"),
+    ("Which node logged these lines? They have no name.", "unnamed"),
+    ("which node failed?", "logs"),
+    ("Did you actually find the book yourself or did someone give it to you?", "person"),
+])
+def test_kinds(question: str, kind: str) -> None:
+    assert content_kind(question) == kind
