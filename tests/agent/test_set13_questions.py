@@ -23,8 +23,8 @@ def test_a_span_from_a_moment_said_with_was(tmp_path: Path) -> None:
 
 def test_a_side_effect_question_and_how_many_alike(tmp_path: Path) -> None:
     run = real_module_run("kilted-control-base-no-position-state", tmp_path / "run")
-    (knock,) = converse(run, "Are all the \"Can't accept new commands. subscriber is inactive\" warnings just a knock-on "
-                             "effect, and how many are there?")
+    (knock,) = converse(run, "Are all the \"Can't accept new commands. subscriber is inactive\" warnings just a "
+                             "knock-on effect, and how many are there?")
     assert str(knock["answer"]).startswith("Not as its cause: the line you name (diff_drive_controller, 07:07:57, the "
                                            "first of 30 alike) came after the task had already ended, at 07:07:56.")
 
@@ -48,7 +48,8 @@ def test_lines_that_name_no_node_are_said_by_whose_words_they_are(tmp_path: Path
 
 
 def test_someone_gave_it_or_not(suite: Path) -> None:
-    (gave,) = converse(suite / "bagfile_10_2", "Did you actually find the book yourself or did someone give it to you?")
+    (gave,) = converse(suite / "bagfile_10_2",
+                       "Did you actually find the book yourself or did someone give it to you?")
     assert str(gave["answer"]) == ("Someone gave it to me: I asked a person for help, and they agreed to help, and then "
                                    "confirmed that they had helped; no step of my plan had me take it myself.")
     (no,) = converse(suite / "bagfile_15_2", "did someone give you the book?")
