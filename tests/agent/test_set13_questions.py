@@ -50,8 +50,8 @@ def test_lines_that_name_no_node_are_said_by_whose_words_they_are(tmp_path: Path
 def test_someone_gave_it_or_not(suite: Path) -> None:
     (gave,) = converse(suite / "bagfile_10_2",
                        "Did you actually find the book yourself or did someone give it to you?")
-    assert str(gave["answer"]) == ("Someone gave it to me: I asked a person for help, and they agreed to help, and then "
-                                   "confirmed that they had helped; no step of my plan had me take it myself.")
+    assert str(gave["answer"]) == ("Someone gave it to me: I asked a person for help, and they agreed to help, and "
+                                   "then confirmed that they had helped; no step of my plan had me take it myself.")
     (no,) = converse(suite / "bagfile_15_2", "did someone give you the book?")
     assert str(no["answer"]).startswith("Not as far as my recording shows: I asked a person for help, and they "
                                         "declined")
