@@ -19,7 +19,9 @@ ALL_UP = re.compile(
     r"(nodes?|servers?)( \w+)? (come|came|get|got|start(ed)?|brought|go|went|become|became|been)"
     r"( up| active| started| configured)?\b|"
     r"^(and |so |but )?did (everything|the (whole |nav2 |navigation )?(stack|bring-?up)) (come up|start( up)?|"
-    r"finish)\b")
+    r"finish)\b|"
+    # "did the lifecycle manager ever finish bringing up all the nav2 nodes?"
+    r"\b(finish(ed)?|complete(d)?) (bringing up|the bring-?up|starting up)\b")
 # the mined Nav2 catalogue's ids for the lifecycle manager's end of a bring-up
 _DONE, _FAILED = "lm.active", "lm.bringup_failed"
 _BEFORE = re.compile(r"\bbefore (the |my |a )?goal\b")

@@ -67,3 +67,11 @@ def test_someone_gave_it_or_not(suite: Path) -> None:
 ])
 def test_kinds(question: str, kind: str) -> None:
     assert content_kind(question) == kind
+
+
+def test_whether_the_lifecycle_manager_finished_bringing_up(tmp_path: Path) -> None:
+    run = real_nav2_run("kilted-nav2-amcl-scan-frame-unknown", tmp_path / "run")
+    (up,) = converse(run, "Did the lifecycle manager ever finish bringing up all the nav2 nodes?")
+    assert str(up["answer"]).startswith("No: my log shows a bring-up that failed: at 02:35:55, "
+                                        "lifecycle_manager_navigation (ERROR) \"Failed to change state for node: "
+                                        "planner_server.")
