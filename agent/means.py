@@ -14,6 +14,7 @@ from hexar.events.records import LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Evidence, Explanation
 from hexar.explainers.stack.bringup import TRANSITIONS
+from hexar.explainers.stack.signals import ended_by
 
 _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a |an )?.+? (mean|means|meant|indicate|"
                     r"signify)\b|^(and |so )?what('s| is) the meaning of\b")
@@ -23,11 +24,14 @@ _UNCLASSIFIED = "(no cause assigned)"
 
 # "what is transition 10?": the lifecycle transition a line names by its number
 _TRANSITION = re.compile(r"^(and |so )?what('s| is| was| does| do) (the |that |this )?transition (?P<n>\d+)\b")
+# "what does exit code -8 mean?": launch's word for how a process ended
+_EXIT_CODE = re.compile(r"^(and |so )?what('s| is| was| does| do) (an? |the |that |this )?exit code (?P<code>-?\d+)\b")
+_ON_REQUEST = {2: "SIGINT (Ctrl-C, or launch stopping it)", 15: "SIGTERM (a request to stop, as a shutdown sends)"}
 
 
 def means_asked(q: str) -> bool:
     """The question (lower case) asks what something it names means ("what does that mean?" asks of the answer)."""
-    if _TRANSITION.search(q):
+    if _TRANSITION.search(q) or _EXIT_CODE.search(q):
         return True
     if "?" in q.rstrip(" ?"):
         return False  # "what does X mean? did controller_server die?": two questions, the finding answers both
@@ -57,6 +61,9 @@ def means(question: str, log: EventLog, task: Task, found: Explanation | None = 
     asked = _TRANSITION.search(" ".join(question.lower().split()))
     if asked is not None:
         return _transition(int(asked["n"]), log)
+    code = _EXIT_CODE.search(" ".join(question.lower().split()))
+    if code is not None:
+        return _exit_code(int(code["code"]), log)
     lines = pointed_lines(question, log, None, by_words=True)
     if not lines:
         return None
@@ -97,4 +104,37 @@ def _transition(n: int, log: EventLog) -> Explanation | None:
                        evidence=[Evidence.of_log("planner.plan_ok", line)])
 
 
-__all__ = ["means", "means_asked"]
+def _exit_code(code: int, log: EventLog) -> Explanation | None:
+    """What launch's "exit code N" of a process's death line says of how it ended."""
+    line = next((ln for ln in log.logs if re.search(rf"exit code {code}\b", ln.msg)), None)
+    if line is None:
+        return None
+    said = f"\"{' '.join(line.msg.split())[:100]}\""
+    where = f"In {line.name or 'a node'}'s {said} at {hms(line.t)}, exit code {code}"
+    signal = ended_by(line.msg)
+    if signal is not None:
+        text = (f"{where} is signal {signal.number} ({signal.name}), negated: the process {signal.happened}. "
+                f"{signal.fix}")
+    elif -code in _ON_REQUEST:
+        text = f"{where} is signal {-code}, negated: the process was stopped by {_ON_REQUEST[-code]}."
+    elif code < 0:
+        text = f"{where} is signal {-code}, negated: a signal ended the process."
+    else:
+        ended = "no error" if code == 0 else "an error, which its lines before it may say"
+        text = f"{where} is the program's own: it returned {code} as it ended ({ended})."
+    return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
+                       evidence=[Evidence.of_log("planner.plan_ok", line)])
+
+
+def means_lead(question: str, log: EventLog) -> str:
+    """What a number the question's first part asks about means ("what does exit code -8 mean? is it my BT?"), said
+    before the finding that answers the rest; "" when it asks of none."""
+    q = " ".join(question.lower().split())
+    asked = _EXIT_CODE.search(q) or _TRANSITION.search(q)
+    if asked is None or "?" not in q.rstrip(" ?"):
+        return ""
+    found = _exit_code(int(asked["code"]), log) if "code" in asked.groupdict() else _transition(int(asked["n"]), log)
+    return found.text if found is not None else ""
+
+
+__all__ = ["means", "means_asked", "means_lead"]

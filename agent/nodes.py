@@ -22,7 +22,7 @@ from hexar.agent.health import health
 from hexar.agent.kinds import FROM_RECORDING
 from hexar.agent.logs import logs
 from hexar.agent.matters import matters_lead
-from hexar.agent.means import means
+from hexar.agent.means import means, means_lead
 from hexar.agent.measure_words import why_so_long
 from hexar.agent.mentions import mentioned
 from hexar.agent.named_task import named_task
@@ -281,8 +281,9 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
         # a failure's cause comes first (a spoken answer keeps only its first sentences); a run where nothing
         # failed opens with every step done, which answers "did everything go ok?"
         text = (f"{text} {summary}" if failed else f"{summary} {text}".strip()) if summary else text
+    meant = means_lead(question, ctx.log) if state.get("intent") == "new" else ""  # "what does exit code -8 mean?"
     lead = matters_lead(question, ctx.log, task, [Explanation.model_validate(e) for e in kept]) \
-        if state.get("intent") == "new" else ""
+        if state.get("intent") == "new" and not meant else ""
     lead = lead or (yes_or_no(question, task.outcome) if state.get("route") != "recovery" else "")
     lead = lead or confirmed(question, {c for e in kept for c in e["causes"]}, BENIGN)
     if lead and text:
@@ -291,6 +292,7 @@ def answer(state: AgentState, runtime: Runtime[RunContext]) -> dict[str, Any]:
             text in {t["answer"] for t in state.get("history", [])[-2:]}:
         # a different question that finds nothing more specific: said as such, not as if it were news
         text = f"{SAID_BEFORE} {text}"
+    text = f"{meant} {text}".strip() if meant else text
     turn = {"question": question, "answer": text, "explainers": [e["explainer"] for e in kept]}
     told = [*state.get("told", []), *(c for e in kept for c in e["causes"])]
     # lines already quoted: the next "why?" goes past them

@@ -75,3 +75,17 @@ def test_whether_the_lifecycle_manager_finished_bringing_up(tmp_path: Path) -> N
     assert str(up["answer"]).startswith("No: my log shows a bring-up that failed: at 02:35:55, "
                                         "lifecycle_manager_navigation (ERROR) \"Failed to change state for node: "
                                         "planner_server.")
+
+
+def test_an_exit_code_is_said_by_its_signal(tmp_path: Path) -> None:
+    run = real_nav2_run("nav2-3508-humble-bt-navigator-died-custom-bt", tmp_path / "run")
+    (both,) = converse(run, "What does exit code -8 mean? Is it a problem with my custom BT xml?")
+    text = str(both["answer"])
+    assert text.startswith("In bt_navigator-28's \"process has died [pid 81493, exit code -8,")
+    assert "exit code -8 is signal 8 (SIGFPE), negated: the process ended on an arithmetic error (a division by " \
+           "zero)." in text
+    # the rest of the question is the finding's
+    assert "I couldn't reach my goal because the process of bt_navigator died (exit code -8)" in text
+    (alone,) = converse(run, "what is exit code -8?")
+    assert str(alone["answer"]).startswith("In bt_navigator-28's")
+    assert content_kind("what does exit code -6 mean?") == "means"
