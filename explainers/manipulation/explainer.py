@@ -37,6 +37,9 @@ REACH = frozenset({"manipulation.ik_failed", "manipulation.planning_failed", "ma
 FOUND_NONE = "manipulation.controllers_not_found"
 # move_action_capability.cpp's INFO when the goal holds before any motion (the mined catalogue's id)
 ALREADY_MET = "move_group.goal_constraints_are_already_satisfied_no"
+# fix_start_state_collision.cpp's WARN: it found no valid state nearby and passes the request to the planner anyway
+PASSED_ON = "planning_request_adapter_plugins.unable_to_find_a_valid_state"
+ENDS = frozenset({"cause", "symptom", "failed", "succeeded", "canceled"})
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
 _TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
                     r"(?P<last>\d+(?:\.\d+)?)")
@@ -150,6 +153,8 @@ class ManipulationExplainer(ModuleExplainer):
         found = with_sim_time(super().explain(question, context), context.log, context.window[1])
         if found.causes == ["manipulation.nominal"]:
             return _without_motion(found, context)
+        if found.causes == ["manipulation.start_state_in_collision"]:
+            found = _passed_on(found, context)
         if not set(found.causes) & REACH:
             return found
         return self._with_navigation(question, context, found)
@@ -186,3 +191,22 @@ def _without_motion(found: Explanation, context: Context) -> Explanation:
             f"and ended the goal as a success ({verbatim(met)} at {hms(met.t)}).")
     return found.model_copy(update={"text": text, "evidence": [Evidence.of_log("manipulation.nominal", met),
                                                                *found.evidence]})
+
+
+def _passed_on(found: Explanation, context: Context) -> Explanation:
+    """A start state in collision that MoveIt passed on to its planner anyway ("Passing the original planning request
+    to the planner"), in a recording that ends before any later line says how planning went: told as that, never as a
+    planning that could not begin (the planner may still find a path)."""
+    lo, hi = context.window
+    lines = [ln for ln in context.log.logs if lo <= ln.t <= hi]
+    at = next((i for i in range(len(lines) - 1, -1, -1) if (e := catalogue().match(lines[i].msg)) is not None
+               and e.id == PASSED_ON), None)
+    if at is None or any((e := catalogue().match(ln.msg)) is not None and e.kind in ENDS for ln in lines[at + 1:]):
+        return found
+    line = lines[at]
+    text = (f"The recording ends before my arm's motion finished. On the way, MoveIt found my start state in "
+            f"collision and passed the request on to its planner anyway ({verbatim(line)} at {hms(line.t)}); no later "
+            "line says how planning went, so my logs do not show whether it failed.")
+    # the cause stays the one the line shows (a start state in collision), with the low confidence of an unfinished
+    # story: the words claim no failure
+    return found.model_copy(update={"text": text, "confidence": 0.3, "fix": None})

@@ -89,3 +89,17 @@ def test_an_exit_code_is_said_by_its_signal(tmp_path: Path) -> None:
     (alone,) = converse(run, "what is exit code -8?")
     assert str(alone["answer"]).startswith("In bt_navigator-28's")
     assert content_kind("what does exit code -6 mean?") == "means"
+
+
+def test_a_start_state_moveit_passed_on_to_its_planner_is_no_failure_claimed(tmp_path: Path) -> None:
+    from hexar.evals import real_modules
+
+    (case,) = [e for k in real_modules.FILES for e in real_modules.load_excerpts(k)
+               if e.id == "agx-arm-ros-teach-open-hand-errors-then-plan-succeeds"]
+    run = tmp_path / "run"
+    real_modules.write_recording(case, run, task=False)  # the task read from its logs: it has not ended
+    (how,) = converse(run, "Did the planning request end up succeeding or did it fail?")
+    text = str(how["answer"])
+    assert text.startswith("The recording ends before my arm's motion finished. On the way, MoveIt found my start "
+                           "state in collision and passed the request on to its planner anyway")
+    assert "could not begin" not in text and "couldn't finish" not in text
