@@ -40,9 +40,9 @@ TRIED = re.compile(
     r"^(and |so |but |ok |okay )?how many ([a-z]+ )?(attempts|tries|retries|re-?plans|recoveries|recovery cycles)\b|"
     r"^(and |so |but |ok |okay )?did you (just )?give up\W*$|"
     # "did any recovery behaviors run?", "which recoveries ran?"
-    r"^(and |so |but )?(did|were) (any|there any) (nav2 )?(recover(y|ies)|recovery behaviou?rs?)( (run|ran|triggered|"
-    r"executed|used|tried))?\b|^(and |so )?(which|what) (recover(y|ies)|recovery behaviou?rs?) (ran|run|were (run|"
-    r"tried|triggered|executed))\b|"
+    r"^(and |so |but )?(did|were) (any|there any|the|my|your) (nav2 )?(recover(y|ies)|recovery behaviou?rs?)"
+    r"( (run|ran|triggered|executed|used|tried))?\b|"
+    r"^(and |so )?(which|what) (recover(y|ies)|recovery behaviou?rs?) (ran|run|were (run|tried|triggered|executed))\b|"
     r"^(and |so |but |ok |okay )?why did (you|it|the planner|nav2) (re-?plan|replanned|re-?route)\b|"
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
     r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")

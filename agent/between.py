@@ -21,8 +21,8 @@ from hexar.explainers.shutdown import CTRL_C
 _ASKED = re.compile(
     r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(after|before) (?P<a>.+?) (did|was|were|"
     r"does|is|until|till) (?P<b>.+)|"
-    r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(from|between) (?P<a2>.+?) (until|till|to|"
-    r"and) (?P<b2>.+)|"
+    r"\bhow (long|many seconds|much time) (did (it|the \w+|\w+) take |was it |passed )?(from|between) (?P<a2>.+?) "
+    r"(until|till|to|and) (?P<b2>.+)|"
     r"\b(gap|delay|pause|wait|silence|time|minutes?|seconds?) (between|from) (?P<a3>.+?) (and|to|until|till) "
     r"(?P<b3>.+)")
 # "which came first, the global_costmap TF timeout or the AMCL warning?", "did the timeout come before the warning?"
@@ -48,9 +48,19 @@ def gap_said(ns: int) -> str:
     return f"{ns / 1e9:.1f} s" if ns < 60_000_000_000 else duration(ns)
 
 
+# "how long was the robot stuck before the first planning error?": from the goal's start to the moment named
+_BEFORE_ONE = re.compile(r"\bhow (long|many seconds|much time) (was|were|did|had) (?!.*\b(after|between|from)\b)"
+                         r"[^?]*? (before|until|till) (?P<b>[^?]+)")
+
+
+def before_one(q: str) -> bool:
+    """"How long was it stuck before the first planning error?": one moment named, the goal's start the other."""
+    return _BEFORE_ONE.search(q) is not None
+
+
 def between_asked(q: str) -> bool:
     """The question (lower case) asks for the time between two moments it names, or which came first."""
-    return _ASKED.search(q) is not None or _ORDER.search(q) is not None
+    return _ASKED.search(q) is not None or _ORDER.search(q) is not None or _BEFORE_ONE.search(q) is not None
 
 
 def spans_two(q: str) -> bool:
@@ -120,9 +130,11 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     cannot be found in the log."""
     q = " ".join(question.lower().split())
     ends = _ends(q)
+    if ends is None and (one := _BEFORE_ONE.search(q)) is not None:
+        ends = ("the goal started", one.group("b").strip(" ?.!,"))
     if ends is None:
         return None
-    if _ASKED.search(q) is None:
+    if _ASKED.search(q) is None and _BEFORE_ONE.search(q) is None:
         return _order(ends, log, task)
     first = _end(ends[0], log, task, None)
     if first is None:
@@ -161,4 +173,4 @@ def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | No
                                  if not isinstance(e, int)])
 
 
-__all__ = ["between", "between_asked", "gap_said", "moment", "moment_said", "spans_two"]
+__all__ = ["before_one", "between", "between_asked", "gap_said", "moment", "moment_said", "spans_two"]

@@ -9,7 +9,7 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.all_up import all_up
-from hexar.agent.between import between
+from hexar.agent.between import before_one, between
 from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.focus import with_pointed
@@ -95,6 +95,10 @@ def _long(question: str, log: EventLog, task: Task) -> Explanation:
     several = named_tasks(question.lower(), log)
     if several:
         return measures.long_each(log, several)
+    if before_one(" ".join(question.lower().split())):  # "how long was it stuck before the first planning error?"
+        found = between(question, log, task)
+        if found is not None:
+            return found
     return _with_spans(measures.long(log, task), log, task)
 
 

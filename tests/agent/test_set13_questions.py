@@ -103,3 +103,17 @@ def test_a_start_state_moveit_passed_on_to_its_planner_is_no_failure_claimed(tmp
     assert text.startswith("The recording ends before my arm's motion finished. On the way, MoveIt found my start "
                            "state in collision and passed the request on to its planner anyway")
     assert "could not begin" not in text and "couldn't finish" not in text
+
+
+def test_spans_named_with_one_end_or_a_subject_of_their_own(tmp_path: Path) -> None:
+    stuck = real_nav2_run("navgreen-iter23-wp15-start-in-lethal-space-aborted", tmp_path / "a")
+    (before,) = converse(stuck, "How long was the robot stuck before the first planning error?")
+    assert str(before["answer"]).startswith("38.7 s passed from the goal's start at 00:55:47 to planner_server-13's "
+                                            "\"Planning algorithm GridBased failed to generate a valid path")
+    up = real_module_run("kilted-control-state-no-initial-value", tmp_path / "b")
+    (bringup,) = converse(up, "How long did bringup take from launch until the arm_controller was active?")
+    assert str(bringup["answer"]).startswith("1.6 s passed from launch's \"All log files can be found below")
+    keepout = real_nav2_run("kilted-nav2-keepout-start", tmp_path / "c")
+    (ran,) = converse(keepout, "did the recovery behaviors run before the goal was aborted, and how many?")
+    assert str(ran["answer"]).startswith("For step 1 (to drive to (9.00, 4.00)), I ran 8 recoveries (3 spins, 3 waits "
+                                         "and 2 backups)")
