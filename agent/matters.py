@@ -30,8 +30,9 @@ _ASKED = re.compile(
     r"\b(is|are|was|were) [^?]{0,160}?\bwhat (caused|made|broke|stopped|killed)\b|"
     r"\b(handle|treat|count|see) (it |this |that |them |these |those )?as an? (error|failure|fault|bug)\b")
 # what names a line: a quote, or the words for one
+# ("the ROSInterruptException", "that RuntimeError": an exception by its class)
 _NAMES_A_LINE = re.compile(r"['\"‘“]|\b(warn(ing)?s?|errors?|messages?|lines?|exit code|dying|died|dies|crash(ed|es)?|"
-                           r"traceback|exception|fatal)\b")
+                           r"traceback|exception|fatal)\b|\b\w+(exception|error)s?\b")
 _FINE = {"succeeded"}
 
 
@@ -69,7 +70,10 @@ def matters_lead(question: str, log: EventLog, task: Task, found: list[Explanati
     if task.outcome in {"running", "waiting"}:
         return f"It had not stopped the task when the recording ends: {when} came, and the task was still under way."
     if any(rests_on(ln, found) for ln in lines):
-        return f"Yes: {when} is among the lines my finding below rests on."
+        # "a real bug or just a side effect?" asks two things: no bare yes for it
+        yes = "" if re.search(r"\bor\b", question.lower()) else "Yes: "
+        said = f"{yes}{when} is among the lines my finding below rests on."
+        return said[:1].upper() + said[1:]
     if named.t > end + 1_000_000_000:  # a second: a failure's own lines come in the same moment as its end
         return f"Not as its cause: {when} came after the task had already ended, at {hms(end)}."
     if any(c.endswith(".unexplained_failure") for e in found for c in e.causes):

@@ -54,13 +54,15 @@ def test_what_no_line_names_is_said_beside_what_one_does(tmp_path: Path) -> None
     text = str(tolerance["answer"])
     assert text.startswith("My log names transform in 2 lines")
     assert "No line names tolerance." in text
-    # "which critic?" is a specific of the failure: the finding, then the lines it rests on (agent/cited.py)
+    # "which critic?" is a specific of the failure: the finding (with the critics DWB's summary names), then the lines
+    # it rests on (agent/cited.py)
     (critic,) = converse(real_nav2_run("nav2-3807-dwb-no-valid-trajectories", tmp_path / "dwb"),
                          "which critic rejected the trajectories?")
     assert critic["answer"] == (
         "I couldn't reach my goal because my controller failed to compute velocity commands to follow the path. "
-        'Here is what I recorded: at 01:36:58.760 my log recorded "[controller_server] WARN No valid trajectories '
-        'out of 419!".')
+        "DWB's critics rejected the trajectories it sampled, by share: BaseObstacle 100% (\"Trajectory Hits "
+        'Obstacle"). Here is what I recorded: at 01:36:58.760 my log recorded "[controller_server] WARN No valid '
+        'trajectories out of 419!".')
 
 
 def test_a_parameter_a_module_s_log_never_names(tmp_path: Path) -> None:

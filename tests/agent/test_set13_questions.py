@@ -117,3 +117,20 @@ def test_spans_named_with_one_end_or_a_subject_of_their_own(tmp_path: Path) -> N
     (ran,) = converse(keepout, "did the recovery behaviors run before the goal was aborted, and how many?")
     assert str(ran["answer"]).startswith("For step 1 (to drive to (9.00, 4.00)), I ran 8 recoveries (3 spins, 3 waits "
                                          "and 2 backups)")
+
+
+def test_a_controller_failure_names_the_critics_dwb_logged(tmp_path: Path) -> None:
+    run = real_nav2_run("nav2-520-dwb-all-trajectories-oscillating", tmp_path / "run")
+    (why,) = converse(run, "Why did DWB reject all 399 trajectories?")
+    assert str(why["answer"]) == ("I couldn't reach my goal because my controller failed to compute velocity commands "
+                                  "to follow the path. DWB's critics rejected the trajectories it sampled, by share: "
+                                  "Oscillation 100% (\"Trajectory is oscillating\").")
+
+
+def test_an_exception_named_by_its_class_is_a_line_asked_about(tmp_path: Path) -> None:
+    run = real_module_run("kilted-rate-sleep-after-shutdown", tmp_path / "run")
+    (either,) = converse(run, "Is the ROSInterruptException a real bug or just a side effect of the e-stop shutting "
+                              "things down?")
+    # two things asked: no bare "yes" before the finding
+    assert str(either["answer"]).startswith("The line you name (a node, 13:47:57) is among the lines my finding below "
+                                            "rests on.")
