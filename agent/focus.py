@@ -133,7 +133,7 @@ def ranked_lines(question: str, log: EventLog, until: int | None = None, by_word
     bare = _QUOTED.sub(" ", question.lower())
     # "controller" of controller_server counts once; the words of one that names nothing of the log count as words
     # ("free/occupied threshold warnings")
-    parts = {w for i in idents if any(i in msg or i in node for _, msg, node in rows) for w in _WORD.findall(i)}
+    parts = {w for i in idents if any(_holds(msg, i) or i in node for _, msg, node in rows) for w in _WORD.findall(i)}
     words = {w for w in _WORD.findall(bare) if len(w) >= 4 and w not in _COMMON} - parts
     stems = [(w, _stem(w)[:6]) for w in sorted(words)]  # "configure" in "Configuring", "brake" in "Braking"
     if not quotes and not idents and not (by_words and len(words) >= least):
