@@ -123,12 +123,15 @@ def yes_or_no(question: str, outcome: str) -> str:
     outcome; "" for any other question, and for a task still running when the recording ends."""
     m = _YES_NO.search(question.strip().lower())
     done = _DONE.get(outcome)
-    if m is None or done is None:
+    if m is None or done is None or _EITHER.search(question.lower()):
         return ""
     failing = m.group("wrong") is not None or (m.group("verb") or m.group("state") or "").startswith(_FAILING)
     return "Yes." if done != failing else "No."
 
 
+# "are the timeouts harmless or do I need to fix something?": two things asked, which no bare yes or no answers ("or
+# not" still asks one)
+_EITHER = re.compile(r"\bor\b(?! (not|no|nah)\b)")
 # "Were you charging?", "was your path blocked?": a yes-or-no question about one condition the explainers name.
 _ASKS_YES_NO = re.compile(_LEAD + r"(?:was|were|wasn't|weren't|is|are|isn't|aren't|did|didn't|do|does|had|has|have|"
                           r"hadn't|hasn't|could|couldn't)\b")
@@ -146,7 +149,7 @@ def confirmed(question: str, causes: Set[str], benign: Set[str]) -> str:
     from hexar.claims import read_claims
 
     q = " ".join(question.strip().lower().split())
-    if _ASKS_YES_NO.match(q) is None:
+    if _ASKS_YES_NO.match(q) is None or _EITHER.search(q):
         return ""
     claims = read_claims(q)
     asked = {c for c in claims.affirmed | claims.denied if not c.startswith("claim.")} - set(benign)
