@@ -29,7 +29,10 @@ def rejected_by(lines: Iterable[LogLine]) -> str:
             best[key] = max(best.get(key, 0.0), float(m["share"]))
     if not best:
         return ""
-    ranked = sorted(best.items(), key=lambda kv: -kv[1])[:SHOWN]
+    # a critic at 0.00 rejected none of them (DWB lists it all the same)
+    ranked = sorted(((k, v) for k, v in best.items() if v > 0), key=lambda kv: -kv[1])[:SHOWN]
+    if not ranked:
+        return ""
     said = "; ".join(f"{critic} {share:.0%} (\"{why}\")" for (critic, why), share in ranked)
     return f"DWB's critics rejected the trajectories it sampled, by share: {said}."
 

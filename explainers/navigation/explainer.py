@@ -76,6 +76,7 @@ from hexar.explainers.navigation import detectors as d
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation.answers import answer as _template
 from hexar.explainers.navigation.answers import unfinished, unread
+from hexar.explainers.navigation.critics import rejected_by
 from hexar.explainers.navigation.filter import routine_drops, tag_logs, weak_noise
 from hexar.explainers.navigation.focus import inferred, place_of, skill_state, status_evidence
 from hexar.explainers.navigation.unmanaged import unmanaged
@@ -184,6 +185,10 @@ class NavigationExplainer:
             return Explanation(explainer=self.name, text=quiet[0], causes=[d.NOMINAL], confidence=0.6,
                                evidence=[Evidence.of_log(d.NOMINAL, ln) for ln in quiet[1]])
         grounded = self._compose(question, context, run, findings, lines)
+        if grounded.causes == [g.CONTROLLER] and (critics := rejected_by(raw)):
+            # which critic stopped every trajectory says why no command could be computed (read from every line of
+            # the window: DWB's summary lines carry no logger's role of navigation's)
+            grounded = grounded.model_copy(update={"text": f"{grounded.text} {critics}"})
         return phrase(self.model, "navigation", question, self._facts(lines, grounded), grounded)
 
     def _others(self, question: str, view: View, run: d.Run, flagged: bool, before: list[LogLine],

@@ -16,7 +16,6 @@ from hexar.events import contract as c
 from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, keepout, mapsave, smoother, states, waypoints, worded
-from hexar.explainers.navigation.critics import rejected_by
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
 from hexar.explainers.navigation.nomap import NO_MAP, NO_MAP_FACT
 from hexar.explainers.stack.bringup import AGAIN, LAUNCH_ANY
@@ -364,9 +363,8 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "is there).",
                 seen)
     if f.cause == g.CONTROLLER:
-        critics = rejected_by(run.lines)
         return (f"I couldn't reach {place} because my controller failed to compute velocity commands "
-                "to follow the path." + (f" {critics}" if critics else ""),
+                "to follow the path.",
                 "Check the controller's parameters and the local costmap around the robot (footprint, inflation, "
                 "critics).",
                 seen)

@@ -134,3 +134,12 @@ def test_an_exception_named_by_its_class_is_a_line_asked_about(tmp_path: Path) -
     # two things asked: no bare "yes" before the finding
     assert str(either["answer"]).startswith("The line you name (a node, 13:47:57) is among the lines my finding below "
                                             "rests on.")
+
+
+def test_dwb_critics_are_read_from_every_line_and_a_zero_share_is_left_out(tmp_path: Path) -> None:
+    run = real_nav2_run("oliwall-arm-sweep-dwb-refuses-scan-pose-inside-inflation", tmp_path / "run")
+    (what,) = converse(run, "what happened?")
+    text = str(what["answer"])
+    assert "DWB's critics rejected the trajectories it sampled, by share: RotateToGoal 100% (\"Nonrotation command " \
+           "near goal\")." in text
+    assert "BaseObstacle" not in text  # 0.00: it rejected none
