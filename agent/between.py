@@ -28,9 +28,12 @@ _ASKED = re.compile(
 # "which came first, the global_costmap TF timeout or the AMCL warning?", "did the timeout come before the warning?"
 _ORDER = re.compile(r"\b(which|what) (came|happened|was logged|showed up|appeared|was) first,? (?P<a>.+?),? or "
                     r"(?P<b>.+)|^(and |so )?did (?P<a2>.+?) (come|happen|appear|show up) (before|after) (?P<b2>.+)")
-_LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\berrors?\b"), ERROR),
+# ("did the launch fail": the error it failed with)
+_LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\b(errors?|fail(ed|s|ure)?|crash(ed)?)\b"), ERROR),
            (re.compile(r"\bwarn(ing)?s?\b"), WARN))
-_LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)\b")
+# launch's start (not "the launch fail", a moment of its own)
+_LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)"
+                     r"( (started|began|was started))?\W*$")
 _GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived?|received|started)\b|"
                    r"^(the )?(task|goal) (start(ed)?)\b")
 # "how long after arm_controller was activated did the goal arrive?": "was" belongs to the first moment's words when
@@ -89,9 +92,10 @@ def moment(phrase: str, log: EventLog, task: Task) -> LogLine | int | None:
     return _end(phrase, log, task, None)
 
 
-def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine | int | None:
+def _end(phrase: str, log: EventLog, task: Task, after: int | None,
+         first: LogLine | int | None = None) -> LogLine | int | None:
     """The line (or, for the goal's start, the time) a phrase names; for the second end, the first such line at or
-    after the first end."""
+    after the first end (`first`), never that line itself."""
     if _LAUNCH.match(phrase) and log.logs:
         return log.logs[0]
     if _GOAL.match(phrase):
@@ -106,11 +110,12 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None) -> LogLine |
     if level is not None:
         found = [ln for ln in found if ln.level >= level] or found
     if after is not None:
-        found = [ln for ln in found if ln.t >= after]
+        found = [ln for ln in found if ln.t >= after and ln is not first]
         if not found and level is None:
             # the second end is looked for after the first: one word of its own names a line there ("the result
             # coming back" after "Goal accepted": the first line on that names a result)
-            found = [ln for ln in ranked_lines(phrase, log, None, by_words=True, least=1, slack=0) if ln.t >= after]
+            found = [ln for ln in ranked_lines(phrase, log, None, by_words=True, least=1, slack=0)
+                     if ln.t >= after and ln is not first]
     if not found:
         return None
     # "both controllers being active", "all nodes up": the last of the lines it names
@@ -140,7 +145,7 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
     if first is None:
         return None
     t0 = first if isinstance(first, int) else first.t
-    second = _end(ends[1], log, task, t0)
+    second = _end(ends[1], log, task, t0, first)
     if second is None:
         return None
     t1 = second if isinstance(second, int) else second.t

@@ -59,6 +59,11 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
     for skill, cat in ((MOVE_ARM, moveit()), (FOLLOW, control())):
         entry = cat.match(line.msg)
         if entry is None:
+            refined = cat.refinement(line.msg) if skill == FOLLOW else None
+            if refined is not None and refined.cause == "control.tolerance_violated" and line.msg.startswith("Aborted"):
+                # "Aborted due to goal_time_tolerance exceeding by 1.0 seconds" (kilted's words, a refinement's text
+                # that no mined entry matches): the controller ends the goal it was following
+                return skill, "failed"
             continue
         kind = entry.kind
         if kind == "end_server":

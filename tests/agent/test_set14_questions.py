@@ -7,7 +7,7 @@ from pathlib import Path
 
 from hexar.agent.overview import confirmed, yes_or_no
 from hexar.causes import BENIGN
-from tests.agent.helpers import converse, real_nav2_run
+from tests.agent.helpers import converse, real_module_run, real_nav2_run
 
 
 def test_an_either_or_question_gets_no_bare_yes_or_no(tmp_path: Path) -> None:
@@ -19,3 +19,18 @@ def test_an_either_or_question_gets_no_bare_yes_or_no(tmp_path: Path) -> None:
     assert confirmed("were you charging or was the joystick on?", {"navigation.charging"}, BENIGN) == ""
     assert confirmed("were you charging?", {"navigation.charging"}, BENIGN) == "Yes."
     assert yes_or_no("did you finish or did you give up?", "succeeded") == ""
+
+
+def test_the_launch_failing_is_its_error_not_its_start(tmp_path: Path) -> None:
+    run = real_nav2_run("tb4robot-20-humble-rplidar-executable-missing", tmp_path / "run")
+    (gap,) = converse(run, 'How long after "bringup turtlebot4" started did the launch fail?')
+    assert str(gap["answer"]).startswith("5.0 s passed from a node's \"Started \"bringup turtlebot4\".\" at 11:09:32 "
+                                         "to launch's \"Caught exception in launch")
+
+
+def test_a_trajectory_goal_kilted_aborts_on_its_goal_time_ends_failed(tmp_path: Path) -> None:
+    run = real_module_run("kilted-control-hardware-state-offset", tmp_path / "run")
+    (why,) = converse(run, "Is the hardware reporting a state offset that keeps the JTC from reaching the goal?")
+    assert str(why["answer"]).startswith("My controllers could not go on because my arm strayed from its planned "
+                                         "trajectory beyond the controller's tolerance")
+    assert "The recording ends before" not in str(why["answer"])
