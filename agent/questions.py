@@ -258,6 +258,9 @@ def quoted(question: str, limit: int = 80) -> str:
     return repr(q) if len(q) <= limit else repr(q[:limit]) + "..."
 
 
+_COPIED = re.compile(r"(?<!\w)'[^']{3,}'(?!\w)|\"[^\"]{3,}\"|“[^”]{3,}”|‘[^’]{3,}’")
+
+
 def check_question(question: str) -> str:
     """The question, trimmed and normalised; raises BadQuestionError with a one-line reason otherwise."""
     if not question.strip():
@@ -265,10 +268,13 @@ def check_question(question: str) -> str:
     if len(question) > MAX_QUESTION:
         raise BadQuestionError(f"that question is too long: ask in at most {MAX_QUESTION} characters, {EXAMPLE}")
     q = normalise(question)
-    words = _WORD.findall(q.lower())
+    # a log line the developer copied ("cannot access /etc/ros/humble/turtlebot4.d/*.xacro") is the log's words, not
+    # the question's: it counts as one known word
+    plain = _COPIED.sub(" line ", q) if _WORD.findall(_COPIED.sub(" ", q)) else q  # a quote alone: its own words
+    words = _WORD.findall(plain.lower())
     # a parameter or topic by its name ("max_vel_x", "FollowPath.max_vel_x") is one word a developer knows, among
     # other words: alone, its own words must be known ("use_sim_time?", not "asdf_qwer?")
-    named = _WORD.findall(IDENTIFIER.sub(" parameter ", q.lower()))
+    named = _WORD.findall(IDENTIFIER.sub(" parameter ", plain.lower()))
     if len(named) > 1 and named != words:
         words = named
     if not words:

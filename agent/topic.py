@@ -78,11 +78,18 @@ def recording_words(tasks: Iterable[Task]) -> frozenset[str]:
     return frozenset(words - _FUNCTION)
 
 
+# a name in the stack's spelling ("cmd_vel", "/scan"): a developer's question about the software ("TwistStamped" only
+# where the recording holds it: "NewYork" is spelt so too)
+_STACK_NAME = re.compile(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b|(?<![\w/])/[a-z]\w*")
+_CAMEL = re.compile(r"\b[A-Z][a-z0-9]+[A-Z]\w*\b")
+
+
 def off_topic(question: str, recorded: frozenset[str] = frozenset()) -> bool:
     """True for a question with words of its own that name nothing of the robot, its work or its recording."""
     q = question.lower()
     content = [w for w in _WORD.findall(q.replace("'", "")) if w not in _FUNCTION]
-    if not content or _COUNTERFACTUAL.search(q):
+    if not content or _COUNTERFACTUAL.search(q) or _STACK_NAME.search(question) or \
+            any(m.group(0).lower() in recorded for m in _CAMEL.finditer(question)):
         return False
     return not any(_topical(w) or w in recorded or _stem(w) in recorded for w in content)
 

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from hexar.agent.overview import confirmed, yes_or_no
 from hexar.causes import BENIGN
 from tests.agent.helpers import converse, real_module_run, real_nav2_run
@@ -34,3 +36,26 @@ def test_a_trajectory_goal_kilted_aborts_on_its_goal_time_ends_failed(tmp_path: 
     assert str(why["answer"]).startswith("My controllers could not go on because my arm strayed from its planned "
                                          "trajectory beyond the controller's tolerance")
     assert "The recording ends before" not in str(why["answer"])
+
+
+def test_a_copied_log_line_is_no_word_the_question_must_know(tmp_path: Path) -> None:
+    from hexar.agent.errors import BadQuestionError
+    from hexar.agent.questions import check_question
+
+    asked = 'Does the "cannot access /etc/ros/humble/turtlebot4.d/*.xacro" warning matter?'
+    assert check_question(asked) == asked
+    with pytest.raises(BadQuestionError):
+        check_question('"asdf qwer"?')  # a quote alone is judged by its own words
+    run = real_nav2_run("tb4robot-20-humble-rplidar-executable-missing", tmp_path / "run")
+    (matters,) = converse(run, asked)
+    assert "cannot access" in str(matters["answer"]) and "I don't understand" not in str(matters["answer"])
+
+
+def test_a_question_naming_the_stack_is_not_off_topic(tmp_path: Path) -> None:
+    from hexar.agent.topic import off_topic
+
+    assert not off_topic("Could this be a Twist vs TwistStamped mismatch on cmd_vel in Jazzy?")
+    assert off_topic("what is the capital of France?")
+    run = real_nav2_run("leo-blog-jazzy-tb3-twist-vs-twiststamped-no-motion", tmp_path / "run")
+    (asked,) = converse(run, "Could this be a Twist vs TwistStamped mismatch on cmd_vel in Jazzy?")
+    assert "not about it" not in str(asked["answer"])
