@@ -124,8 +124,8 @@ class Job:
 @dataclass(frozen=True)
 class Look:
     """A second look at an unasked explanation (live/recheck.py): its failure's job, the causes last published and
-    when the first answer went out, when the log last read was taken, which look this is, and whether the first
-    answer was said aloud (so that its correction is said too)."""
+    when the first answer went out, when the log last read was taken, which look this is, whether the first
+    answer was said aloud (so that its correction is said too), and how many holes in what was heard it told."""
 
     job: Job
     causes: tuple[str, ...]
@@ -133,6 +133,7 @@ class Look:
     since: float
     n: int = 0
     spoken: bool = False
+    holes: int = 0
 
 
 def failure_key(update: TaskUpdate) -> str | None:

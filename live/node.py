@@ -314,7 +314,8 @@ class LiveNode:
             self._say(result, "question" if job.kind == "question" else "failure")
         if job.kind == "failure" and not result.get("error"):
             now = time.monotonic()
-            self._rechecks.add(Look(job, tuple(result.get("causes") or ()), now, taken, spoken=speak), 0, now)
+            self._rechecks.add(Look(job, tuple(result.get("causes") or ()), now, taken, spoken=speak,
+                                    holes=len(result.get("contact") or ())), 0, now)
 
     def _may_speak(self, job: Job) -> bool:
         """Whether an unasked explanation is said aloud (NodeOptions.speak_every_s, live/jobs.py SPEAK_*); it is
@@ -327,7 +328,9 @@ class LiveNode:
 
     def _recheck(self, look: Look) -> None:
         """Look again at an unasked explanation (live/recheck.py): when records stamped before the failure came
-        in late since the last look, explain it anew, and publish a correction if the causes changed."""
+        in late since the last look, explain it anew, and publish a correction if the causes changed, or if it now
+        knows of a hole in what it heard that the last answer did not tell (the messages a writer no longer kept
+        are known lost only when the next one arrives, which a stalled link can bring after the failure)."""
         job, n = look.job, look.n + 1
         if not self.log.late_since(look.since, job.t + int(self.options.settle_s * NS)):
             self._rechecks.add(replace(look, n=n), n, look.answered)
@@ -341,7 +344,8 @@ class LiveNode:
             result = {"error": "no task"}
         causes = tuple(result.get("causes") or ())
         shape(result, self._session.context.log.tasks, self.log.contact, self.log.newest)
-        if result.get("error") or causes == look.causes:
+        holes = len(result.get("contact") or ())
+        if result.get("error") or (causes == look.causes and holes <= look.holes):
             self._session.graph.checkpointer.delete_thread(f"{self._session.settings.recording}::{thread}")
         else:
             # the corrected answer's thread becomes the dialogue a "why?" continues
@@ -353,7 +357,7 @@ class LiveNode:
             self._publish(result)
             if look.spoken:
                 self._say(result, "correction")
-            look = replace(look, causes=causes)
+            look = replace(look, causes=causes, holes=holes)
         self._rechecks.add(replace(look, n=n, since=taken), n, look.answered)
 
     def _remember(self, thread: str) -> None:
