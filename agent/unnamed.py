@@ -1,7 +1,7 @@
 """"Which node threw this? The log line has no node name.", "which node logged these lines?": a console's line that
 names no logger (a process's own output, an exception printed on stderr, an excerpt pasted without it) still has
 words someone's code wrote. The mined catalogue of the stack (explainers/stack/) says whose: the package and source
-file that log or raise those words. The answer gives that, and the nearest line before it that names its node; it
+file that log or raise those words. The answer gives that, and the node of the nearest named line before it; it
 never names a node the log does not."""
 
 from __future__ import annotations
