@@ -13,6 +13,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from hexar.events import contract as c
 from hexar.events.reader import read_recording
 from hexar.events.tasks import build_tasks
@@ -293,6 +295,10 @@ def _told_failure(line: str) -> bool:
     return line.startswith("{") and json.loads(line).get("trigger") == "failure"
 
 
+# On Python 3.13's rclpy wheel a loaded machine's stalled node sometimes loses nothing at all (it received every one
+# of the 30, 279 records against 252 when the kernel drops them: seen in 2 of 3 fresh CI runs' 3.13 stage and in 1
+# of 3 runs here beside another): the hole this test needs does not always happen there, so it runs on the others.
+@pytest.mark.skipif(sys.version_info >= (3, 13), reason="on 3.13's rclpy a stalled node under load may lose nothing")
 @NO_RCLPY
 @NO_DDS
 def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Path) -> None:
@@ -301,6 +307,8 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
     Linux): what the kernel dropped and the publisher no longer keeps never comes, as on a Wi-Fi link that stalls.
     The node counts them from the writer's sequence numbers and tells them in the failure it explains, or, where
     the failure came before the resends that reveal the hole, in a correction of it (live/node.py _recheck)."""
+    from cyclonedds.util import duration
+
     from hexar.live import msgs
     from hexar.live.dds import DdsEndpoint
 
@@ -330,7 +338,13 @@ def test_messages_a_publisher_no_longer_kept_for_the_node_are_counted(suite: Pat
             time.sleep(0.05)
         # stamped on the robot's clock, which replays the recording's day: just after the task began
         stamp = msgs.Header(stamp=msgs.time_of(read_recording(run).tasks[0].created + 2 * 10**9))
-        events.write(msgs.DiagnosticArray(header=stamp))  # the node has this writer's first number
+        # the node has this writer's first number: it matched the writer and acknowledged the first message (a loaded
+        # machine discovers late; a reader that matched only after the stall would see no hole, correctly)
+        deadline = time.monotonic() + 30
+        while not events.get_matched_subscriptions() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        events.write(msgs.DiagnosticArray(header=stamp))
+        assert events.wait_for_acks(duration(seconds=10)), "the node never acknowledged the first message"
         time.sleep(0.5)
         serve.send_signal(signal.SIGSTOP)
         big = msgs.DiagnosticArray(header=stamp, status=[msgs.DiagnosticStatus(name="recipe", message="x" * 64_000)])
