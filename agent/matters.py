@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 
-from hexar.agent.focus import pointed_lines
+from hexar.agent.focus import pointed_lines, with_repeats
 from hexar.agent.measures import worked_until
 from hexar.events.log import EventLog
 from hexar.events.records import LogLine, hms
@@ -58,7 +58,7 @@ def matters_lead(question: str, log: EventLog, task: Task, found: list[Explanati
     if not lines:
         return ""
     named = lines[0]
-    times = sum(1 for ln in log.logs if ln.name == named.name and ln.msg == named.msg)
+    times = len(with_repeats([named], log))
     alike = f", the first of {times} alike" if times > 1 else ""
     when = f"the line you name ({named.name or 'a node'}, {hms(named.t)}{alike})"
     if task.outcome in _FINE:

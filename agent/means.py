@@ -58,12 +58,9 @@ def _meaning(line: LogLine) -> str:
 def means(question: str, log: EventLog, task: Task, found: Explanation | None = None) -> Explanation | None:
     """What the line the question points at means; None when it points at no line. `found`: the task's finding,
     which tells what a line it rests on means where no catalogue does."""
-    asked = _TRANSITION.search(" ".join(question.lower().split()))
-    if asked is not None:
-        return _transition(int(asked["n"]), log)
-    code = _EXIT_CODE.search(" ".join(question.lower().split()))
-    if code is not None:
-        return _exit_code(int(code["code"]), log)
+    q = " ".join(question.lower().split())
+    if _TRANSITION.search(q) or _EXIT_CODE.search(q):
+        return _number(q, log)
     lines = pointed_lines(question, log, None, by_words=True)
     if not lines:
         return None
@@ -126,14 +123,22 @@ def _exit_code(code: int, log: EventLog) -> Explanation | None:
                        evidence=[Evidence.of_log("planner.plan_ok", line)])
 
 
+def _number(q: str, log: EventLog) -> Explanation | None:
+    """What the exit code or transition number the question (lower case) asks about means; None for neither."""
+    if (code := _EXIT_CODE.search(q)) is not None:
+        return _exit_code(int(code["code"]), log)
+    if (asked := _TRANSITION.search(q)) is not None:
+        return _transition(int(asked["n"]), log)
+    return None
+
+
 def means_lead(question: str, log: EventLog) -> str:
     """What a number the question's first part asks about means ("what does exit code -8 mean? is it my BT?"), said
     before the finding that answers the rest; "" when it asks of none."""
     q = " ".join(question.lower().split())
-    asked = _EXIT_CODE.search(q) or _TRANSITION.search(q)
-    if asked is None or "?" not in q.rstrip(" ?"):
+    if "?" not in q.rstrip(" ?"):
         return ""
-    found = _exit_code(int(asked["code"]), log) if "code" in asked.groupdict() else _transition(int(asked["n"]), log)
+    found = _number(q, log)
     return found.text if found is not None else ""
 
 

@@ -126,13 +126,11 @@ class ModuleExplainer:
         return before_shutdown([ln for ln in context.log.logs if ln.t > context.window[1]])
 
     def explain(self, question: str, context: Context) -> Explanation:
-        view = context.view(self.topics)
         # what a stack prints as it is stopped explains nothing before; where the stopping began is read from the
         # window's start to the recording's end (a goal aborted just after launch's ctrl-c line, printed after it
         # by its pipe, ends inside the window, while the signals launch sends come after it)
         rest = context.view(self.topics, (context.window[0], context.log.end)).logs()
-        up = {id(ln) for ln in before_shutdown(rest)}
-        lines = [ln for ln in view.logs() if id(ln) in up]
+        lines = [ln for ln in before_shutdown(rest) if ln.t <= context.window[1]]
         if not lines:
             return Explanation.not_enough(self.name, "The recording has no log lines for that time.")
         told = self.decided(lines, context)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import re
 from typing import ClassVar
 
-from hexar.events.records import hms
+from hexar.events.records import LogLine, hms
 from hexar.explainers.base import Context, Evidence, Explanation
 from hexar.explainers.control.catalogue import catalogue as control_catalogue
 from hexar.explainers.logcause import Diagnosis, ModuleCatalogue, Reading
@@ -152,9 +152,9 @@ class ManipulationExplainer(ModuleExplainer):
     def explain(self, question: str, context: Context) -> Explanation:
         found = with_sim_time(super().explain(question, context), context.log, context.window[1])
         if found.causes == ["manipulation.nominal"]:
-            return _without_motion(found, context)
+            return _without_motion(found, context.view(self.topics).logs())
         if found.causes == ["manipulation.start_state_in_collision"]:
-            found = _passed_on(found, context)
+            found = _passed_on(found, context.view(self.topics).logs())
         if not set(found.causes) & REACH:
             return found
         return self._with_navigation(question, context, found)
@@ -179,12 +179,11 @@ class ManipulationExplainer(ModuleExplainer):
         })
 
 
-def _without_motion(found: Explanation, context: Context) -> Explanation:
+def _without_motion(found: Explanation, lines: list[LogLine]) -> Explanation:
     """A goal MoveIt ended without moving the arm, because it was already there ("Goal constraints are already
-    satisfied. No need to plan or execute any motions"): told as that, never as a motion made."""
-    lo, hi = context.window
-    met = next((ln for ln in context.log.logs if lo <= ln.t <= hi and (e := catalogue().match(ln.msg)) is not None
-                and e.id == ALREADY_MET), None)
+    satisfied. No need to plan or execute any motions"), in the window's `lines`: told as that, never as a motion
+    made."""
+    met = next((ln for ln in lines if (e := catalogue().match(ln.msg)) is not None and e.id == ALREADY_MET), None)
     if met is None:
         return found
     text = (f"I did not need to move my arm: it was already at the goal, so MoveIt had nothing to plan or execute "
@@ -193,12 +192,10 @@ def _without_motion(found: Explanation, context: Context) -> Explanation:
                                                                *found.evidence]})
 
 
-def _passed_on(found: Explanation, context: Context) -> Explanation:
+def _passed_on(found: Explanation, lines: list[LogLine]) -> Explanation:
     """A start state in collision that MoveIt passed on to its planner anyway ("Passing the original planning request
-    to the planner"), in a recording that ends before any later line says how planning went: told as that, never as a
-    planning that could not begin (the planner may still find a path)."""
-    lo, hi = context.window
-    lines = [ln for ln in context.log.logs if lo <= ln.t <= hi]
+    to the planner"), in the window's `lines`, with no later line that says how planning went: told as that, never as
+    a planning that could not begin (the planner may still find a path)."""
     at = next((i for i in range(len(lines) - 1, -1, -1) if (e := catalogue().match(lines[i].msg)) is not None
                and e.id == PASSED_ON), None)
     if at is None or any((e := catalogue().match(ln.msg)) is not None and e.kind in ENDS for ln in lines[at + 1:]):
