@@ -45,6 +45,11 @@ def _begins(line: LogLine) -> bool:
     return entry is not None and entry.kind == "begin"
 
 
+def active_lines(log: EventLog) -> list[LogLine]:
+    """The lifecycle managers' "Managed nodes are active" lines, in time order."""
+    return [ln for ln in log.logs if _said(ln) == _DONE]
+
+
 def all_up(question: str, log: EventLog, task: Task) -> Explanation:
     """Whether the lifecycle managers said their nodes came up, and when against the goal's start."""
     said = [(ln, kind) for ln in log.logs if (kind := _said(ln)) is not None]

@@ -34,8 +34,13 @@ _LEVELS = ((re.compile(r"\bfatal\b"), FATAL), (re.compile(r"\b(errors?|fail(ed|s
 # launch's start (not "the launch fail", a moment of its own)
 _LAUNCH = re.compile(r"^(the )?(launch|start(up)?|bring-?up|the beginning|the first line)"
                      r"( (started|began|was started))?\W*$")
-_GOAL = re.compile(r"^(the |my )?goal (was )?(sent|came|arrived?|received|started)\b|"
-                   r"^(the )?(task|goal) (start(ed)?)\b")
+# "the goal was sent", "the navigate_to_pose goal was accepted": the task's start
+_GOAL = re.compile(r"^(the |my |a )?([a-z0-9_/]+ )?goal (was |got |is )?(sent|came|arrived?|received|started|accepted|"
+                   r"began)\b|^(the )?(task|goal) (start(ed)?)\b")
+# "Nav2 was active and ready for goals", "all the nodes were up": the lifecycle managers' "Managed nodes are active"
+_READY = re.compile(r"^(the )?(nav2|navigation|(the )?(nav2 |navigation )?stack|everything|(all )?(the )?(nav2 |"
+                    r"lifecycle )?nodes)( (stack|servers?))? (was |were |is |are |had |has |became |become |came |"
+                    r"got |been )*(fully )?(active|ready|up|activated|brought up)\b")
 # "how long after arm_controller was activated did the goal arrive?": "was" belongs to the first moment's words when
 # a "did" or "until" splits the question later
 _SPLIT = re.compile(r"\bhow (long|many seconds|much time) (did it take |was it |passed )?(after|before) (?P<a>.+) "
@@ -56,24 +61,45 @@ _BEFORE_ONE = re.compile(r"\bhow (long|many seconds|much time) (was|were|did|had
                          r"[^?]*? (before|until|till) (?P<b>[^?]+)")
 
 
+_QUOTED = re.compile(r"\"[^\"]+\"|“[^”]+”|(?<!\w)'[^']+'(?!\w)")
+
+
+def _unquoted(q: str) -> str:
+    """The question with each quoted line as one word: a line's own words ("Time between points 0 and 1 …") ask
+    nothing."""
+    return _QUOTED.sub("\x00", q)
+
+
 def before_one(q: str) -> bool:
     """"How long was it stuck before the first planning error?": one moment named, the goal's start the other."""
-    return _BEFORE_ONE.search(q) is not None
+    return _BEFORE_ONE.search(_unquoted(q)) is not None
 
 
 def between_asked(q: str) -> bool:
     """The question (lower case) asks for the time between two moments it names, or which came first."""
+    q = _unquoted(q)
     return _ASKED.search(q) is not None or _ORDER.search(q) is not None or _BEFORE_ONE.search(q) is not None
 
 
 def spans_two(q: str) -> bool:
     """"How long did it take from launch until diff_drive_controller was activated?": a span between two moments
     named, not the task's own time (which "how long did it take?" alone asks)."""
-    m = _ASKED.search(q)
+    m = _ASKED.search(_unquoted(q))
     return m is not None and m.group("a2") is not None
 
 
-def _ends(q: str) -> tuple[str, str] | None:
+def _ends(question: str) -> tuple[str, str] | None:
+    # a quoted line is one moment, whatever words it holds ("between "ready to take commands" and ...")
+    quotes = _QUOTED.findall(question)
+    q = _QUOTED.sub(lambda m: f"\x00{quotes.index(m.group(0))}\x00", question)
+    ends = _split_ends(q)
+    if ends is None:
+        return None
+    a, b = (re.sub("\x00(\\d+)\x00", lambda m: quotes[int(m.group(1))], e) for e in ends)
+    return a, b
+
+
+def _split_ends(q: str) -> tuple[str, str] | None:
     m = _ASKED.search(q)
     if m is None:
         o = _ORDER.search(q)
@@ -100,6 +126,8 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None,
         return log.logs[0]
     if _GOAL.match(phrase):
         return task.created
+    if _READY.match(phrase) and (ready := _ready(log, task)) is not None:
+        return ready
     if _INTERRUPT.search(phrase):  # launch's own line for Ctrl-C (explainers/shutdown.py)
         stop = next((ln for ln in log.logs if CTRL_C.match(ln.msg) and (after is None or ln.t >= after)), None)
         if stop is not None:
@@ -121,6 +149,15 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None,
     # "both controllers being active", "all nodes up": the last of the lines it names
     last = re.search(r"\b(both|all|every|last|each)\b", phrase) is not None
     return (max if last else min)(found, key=lambda ln: ln.t)
+
+
+def _ready(log: EventLog, task: Task) -> LogLine | None:
+    """The lifecycle managers' last "Managed nodes are active" before the goal's start, else their first."""
+    from hexar.agent.all_up import active_lines
+
+    done = active_lines(log)
+    before = [ln for ln in done if ln.t <= task.created]
+    return before[-1] if before else (done[0] if done else None)
 
 
 def moment_said(end: LogLine | int, limit: int = 100) -> str:
@@ -159,9 +196,20 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
                          for ln in sorted(notable, key=lambda ln: ln.t))
         text += (f" In between, my log holds {len(inside)} line{'s' if len(inside) > 1 else ''}"
                  f"{', among them' if len(inside) > len(notable) else ''}: {said}.")
+        text += _silence([t0, *(ln.t for ln in inside), t1])
     lines = [e for e in (first, second) if not isinstance(e, int)]
     return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                        evidence=[Evidence.of_log("planner.plan_ok", ln) for ln in lines])
+
+
+def _silence(times: list[int]) -> str:
+    """Where most of a span passed with no line logged ("why a 4 minute gap between ..."), that stretch."""
+    gaps = [(b - a, a, b) for a, b in zip(times, times[1:], strict=False)]
+    gap, a, b = max(gaps)
+    if gap < 1_000_000_000 or 2 * gap < times[-1] - times[0]:
+        return ""
+    return (f" {gap_said(gap)} of it passed with no line logged at all ({hms(a)} to {hms(b)}): no node reported "
+            "waiting, a warning or an error then, so my log does not say what that time went to.")
 
 
 def _order(ends: tuple[str, str], log: EventLog, task: Task) -> Explanation | None:

@@ -9,6 +9,7 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.all_up import all_up
+from hexar.agent.goal_sent import goal_sent
 from hexar.agent.between import before_one, between
 from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
@@ -131,6 +132,7 @@ FROM_RECORDING: dict[str, Answer] = {
     "at_time": at_time,
     "node_status": node_status,
     "all_up": all_up,
+    "goal_sent": goal_sent,
     "unnamed": unnamed,
     "moved": moved,
     "skills": skills,

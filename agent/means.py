@@ -43,11 +43,14 @@ def _meaning(line: LogLine) -> str:
     from hexar.explainers.control.catalogue import catalogue as control
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
     from hexar.explainers.navigation.catalogue import catalogue as nav
+    from hexar.explainers.stack.middleware import fastdds_meaning
     from hexar.explainers.stack_causes import mixed_clocks
 
     mixed = mixed_clocks(line)
     if mixed is not None:
         return mixed
+    if (dds := fastdds_meaning(line)):
+        return dds
     for cat in (nav(), control(), moveit()):
         entry = cat.match(line.msg)
         if entry is not None and entry.meaning and _UNCLASSIFIED not in entry.meaning:

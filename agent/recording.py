@@ -45,6 +45,9 @@ TOPIC_DATA = re.compile(
     r"\b(ever )?(get|got|receive|received) (a |any )?" + _NAMED + r"( messages?)?\b")
 
 
+_WHY = re.compile(r"^(and |so |but |ok,? )?why\b")
+
+
 def clock_kind(q: str) -> str | None:
     """'clock', 'recorded' or 'topic_data' for a question (lower case, spaces collapsed) about the recording
     itself."""
@@ -52,7 +55,8 @@ def clock_kind(q: str) -> str | None:
         return "clock"
     if RECORDED.search(q):
         return "recorded"
-    return "topic_data" if TOPIC_DATA.search(q) else None
+    # "why did the planner never receive the map?" asks for a cause, which the finding gives, not for a count
+    return "topic_data" if TOPIC_DATA.search(q) and not _WHY.match(q) else None
 
 
 def _asked_topics(q: str) -> list[str]:

@@ -34,8 +34,8 @@ _DOES = {"say": "say something aloud", "navigate_to_zone": "drive to one of my p
          "explain": "explain what I did", "pick": "pick something up with my arm",
          "place": "put something down with my arm", "move_arm": "move my arm",
          "follow_joint_trajectory": "run a trajectory on my arm's controllers",
-         "bring_up_controllers": "start my arm's controllers"}
-_ARM = ("pick", "place", "move_arm", "follow_joint_trajectory", "bring_up_controllers")
+         "command_gripper": "open or close my gripper", "bring_up_controllers": "start my arm's controllers"}
+_ARM = ("pick", "place", "move_arm", "follow_joint_trajectory", "command_gripper", "bring_up_controllers")
 _HOME = ("say", "navigate_to_zone", "ask_human_for_help", "look_for_human", "recommend_pizza", "explain")
 
 

@@ -26,6 +26,10 @@ if TYPE_CHECKING:
 
 MOVE_ARM = "move_arm"
 FOLLOW = "follow_joint_trajectory"
+GRIP = "command_gripper"
+# the gripper action controllers' own packages (gripper_controllers, parallel_gripper_controller): their "Received &
+# accepted new action goal" begins a GripperCommand goal, not a trajectory
+_GRIPPERS = frozenset({"gripper_controllers", "parallel_gripper_controller"})
 BRING_UP = "bring_up_controllers"
 _STATUS_END = {4: "succeeded", 5: "canceled", 6: "failed"}
 _BEGIN, _END = {"begin", "begin_server"}, {"succeeded", "failed", "canceled", "end_server"}
@@ -74,6 +78,8 @@ def _kind(line: LogLine) -> tuple[str, str] | None:
             kind = "failed"  # the controller aborts the goal it was following
         elif skill == FOLLOW and (entry.id == REFUSED or entry.id in INVALID):
             kind = "failed"  # the controller refuses the goal it has just received: not active, or not a fit
+        if kind in _BEGIN and entry.role in _GRIPPERS:
+            return GRIP, "begin"
         if kind in _BEGIN or kind in _END:
             return skill, ("begin" if kind in _BEGIN else kind)
     return None
@@ -111,13 +117,16 @@ def _status_events(statuses: list[GoalStatus]) -> list[tuple[int, str, str, str]
 
 def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> list[_Goal]:
     goals: list[_Goal] = []
-    open_goal: _Goal | None = None
+    open_goals: dict[str, _Goal] = {}  # a gripper's goal may run beside an arm's
     for t, skill, kind, msg in sorted(events, key=lambda e: (e[0], e[2] != "begin")):
         if kind == "begin":
-            if open_goal is None:
-                open_goal = _Goal(skill, t, via)
-                goals.append(open_goal)
+            if skill not in open_goals:
+                open_goals[skill] = _Goal(skill, t, via)
+                goals.append(open_goals[skill])
             continue  # the server's and the client's begin lines of one goal
+        if skill == FOLLOW and FOLLOW not in open_goals and GRIP in open_goals:
+            skill = GRIP  # the controllers' shared words for a cancel ("Got request to cancel goal") end the gripper's
+        open_goal = open_goals.pop(skill, None)
         if open_goal is None:
             if goals and goals[-1].end is not None and t - goals[-1].end < _SAME_END_NS:
                 continue  # another line (or the status topic) telling the same end
@@ -125,7 +134,6 @@ def _pair(events: list[tuple[int, str, str, str]], first_t: int, via: str) -> li
             goals.append(open_goal)
         open_goal.end, open_goal.state = t, kind
         open_goal.error = msg if kind != "succeeded" else ""
-        open_goal = None
     return goals
 
 
@@ -212,10 +220,11 @@ def derive_arm_tasks(logs: list[LogLine], statuses: list[GoalStatus]) -> list[Ta
     arm_statuses = [s for s in statuses if c.topic_key(s.topic) in c.ARM_STATUS_TOPICS]
     tasks = []
     for order, goal in enumerate(_goals(logs, arm_statuses), start=1):
-        source = {MOVE_ARM: "moveit", FOLLOW: "ros2_control", BRING_UP: "bringup"}[goal.skill]
+        source = {MOVE_ARM: "moveit", FOLLOW: "ros2_control", GRIP: "ros2_control", BRING_UP: "bringup"}[goal.skill]
         params: dict[str, object] = {"source": source, "derived_from": goal.via}
         instruction = {MOVE_ARM: "Move the arm (derived from MoveIt)",
                        FOLLOW: "Follow a joint trajectory (derived from ros2_control)",
+                       GRIP: "Open or close the gripper (derived from ros2_control)",
                        BRING_UP: "Start the robot (derived from its start lines)"}[goal.skill]
         history = [StatusChange(goal.start, "running", "")]
         if goal.end is not None:

@@ -224,7 +224,7 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
     """The start of the robot in `logs` (time-ordered), or None when they show no start at all."""
     from hexar.explainers.shutdown import before_shutdown
     from hexar.explainers.stack.bringup import ros2_run_said
-    from hexar.explainers.stack_causes import stack_cause, transition_reason
+    from hexar.explainers.stack_causes import launch_transition, stack_cause, transition_reason
 
     if not logs:
         return None
@@ -249,6 +249,14 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
         reason = transition_reason(stack.line, logs) or ros2_run_said(stack.line, logs)
         return BringUp(reason.t if reason else stack.line.t, "failed", last, stack.line.msg)
     first = next((ln for ln in logs if starting(ln)), None)
+    node = next((n for ln in logs if ln.level >= ERROR and (n := launch_transition(ln))), None)
+    if node is not None:
+        # launch_ros asked a node it started for a lifecycle transition and the node refused, saying nothing of why
+        # (a reason logged before it is a stack cause, above): the start failed there all the same, from the node's
+        # first line on
+        refused = next(ln for ln in logs if ln.level >= ERROR and launch_transition(ln))
+        began = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), refused.t)
+        return BringUp(min(began, refused.t), "failed", last, refused.msg)
     failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),
                   None)
     if failed is not None:

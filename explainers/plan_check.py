@@ -28,6 +28,7 @@ CATALOGUE: dict[str, tuple[str, ...]] = {
     "place": ("object",),
     "move_arm": (),
     "follow_joint_trajectory": (),
+    "command_gripper": (),
     "bring_up_controllers": (),
 }
 # Skills that get an object into the robot's hands: a person's help, or its own arm.

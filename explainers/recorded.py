@@ -23,7 +23,7 @@ _BEHAVIORS = {"spin": "turn in place", "backup": "back up", "back_up": "back up"
 # The steps HEXAR derives from Nav2's, MoveIt's and ros2_control's goals (events/nav_goals.py, arm_goals.py), as
 # a person says them rather than as the skill's identifier ("step 1 (to move my arm)", not "(to move arm)").
 _DERIVED_STEPS = {"navigate_to_pose": "drive to my goal", "dock_robot": "dock", "move_arm": "move my arm",
-                  "follow_joint_trajectory": "follow a joint trajectory",
+                  "follow_joint_trajectory": "follow a joint trajectory", "command_gripper": "move my gripper",
                   "bring_up_controllers": "bring up my drivers and controllers"}
 _NAVIGATING_TO = re.compile(r"^Navigating to (.+?) at \((-?[\d.]+), (-?[\d.]+)\)")
 

@@ -185,6 +185,12 @@ def _told_last(lines: Sequence[LogLine]) -> Iterator[Reading | None]:
         if action is not None and action.kind == "two_servers" else None
 
 
+def launch_transition(line: LogLine) -> str:
+    """The node of launch_ros' "Failed to make transition '…' for LifecycleNode '/…'" (lifecycle_node.py), else ""."""
+    asked = _LAUNCH_TRANSITION.search(line.msg)
+    return asked["node"].strip("/") if asked is not None else ""
+
+
 def _unexplained_request(line: LogLine, lines: Sequence[LogLine]) -> bool:
     """launch_ros' "Failed to make transition" with no reason before it: the transition failed, but the lines do not
     show its cause."""

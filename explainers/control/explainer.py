@@ -28,7 +28,7 @@ from typing import ClassVar
 from hexar.events.records import LogLine
 from hexar.events.tasks import SkillRun
 from hexar.explainers.base import Context, Evidence, Explanation
-from hexar.explainers.control import clock, limits, spawners
+from hexar.explainers.control import clock, gripper, limits, spawners
 from hexar.explainers.control.catalogue import REFUSED, catalogue
 from hexar.explainers.control.description import description_reading, waited, waiting_answer
 from hexar.explainers.control.driver_roles import RoleReading, by_role
@@ -40,7 +40,7 @@ from hexar.explainers.module_wording import verbatim
 
 CM_NOT_AVAILABLE = re.compile(r"^Controller manager not available\b")  # the spawner's, as its catalogue entry
 ACTIVATION = "control.controller_activation_failed"
-SKILLS = ("follow_joint_trajectory", "bring_up_controllers", "pick", "place", "move_arm")
+SKILLS = ("follow_joint_trajectory", "command_gripper", "bring_up_controllers", "pick", "place", "move_arm")
 
 
 class ControlExplainer(ModuleExplainer):
@@ -87,6 +87,9 @@ class ControlExplainer(ModuleExplainer):
         stalled = clock.stalled([ln for ln in context.log.logs if ln.t <= context.window[1]])
         if stalled is not None:
             return clock.answer(self.name, stalled)
+        told = gripper.open_goal(self.name, context.task, context.log.logs, context.window[1])
+        if told is not None:
+            return told
         run = focus(context, self.skills)
         beyond = limits.beyond_limits(lines) if run is not None and run.state == "failed" else None
         if beyond is not None:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-from hexar.events.records import LogLine
+from hexar.events.records import LogLine, hms
 from hexar.explainers.base import Evidence, Explanation
 
 CAUSE = "control.configuration_error"
@@ -65,3 +65,43 @@ def answer(explainer: str, found: Beyond, what: str) -> Explanation:
         fix=(f"Command {found.joint} within [{found.low:g}, {found.high:g}], or, if the joint really goes further, "
              "widen its limits in the robot description."),
         details=["ros2_control's joint limiter clamps every command to the limits of the robot description."])
+
+
+@dataclass(frozen=True)
+class Slowed:
+    joint: str
+    actual: float | None
+    command: float
+    limited: float
+    low: float
+    high: float
+    clamped: LogLine
+
+
+_ACTUAL = re.compile(rf"actual: \[Joint: '[^']+', position: (?P<actual>{_N})")
+
+
+def slowed(lines: list[LogLine]) -> Slowed | None:
+    """The first clamped command whose position lies inside its joint's logged position limits: the limiter held
+    back how fast (or how hard) the joint was moved towards it, not where it went."""
+    limits = {m["joint"]: (float(m["lo"]), float(m["hi"])) for ln in lines if (m := _LIMITS.match(ln.msg))}
+    for ln in lines:
+        m = _CLAMPED.match(ln.msg)
+        if m is None or m["joint"] not in limits:
+            continue
+        low, high = limits[m["joint"]]
+        command = float(m["command"])
+        if low - EPSILON <= command <= high + EPSILON:
+            a = _ACTUAL.search(ln.msg)
+            return Slowed(m["joint"], float(a["actual"]) if a else None, command, float(m["limited"]), low, high, ln)
+    return None
+
+
+def slowed_said(found: Slowed) -> str:
+    """The clamped command in words: a notice, never a failure."""
+    at = f" with the joint at {found.actual:g}" if found.actual is not None else ""
+    return (f"ros2_control's joint limiter logged an ERROR at {hms(found.clamped.t)} because it clamped a command of "
+            f"{found.joint}: asked for position {found.command:g}{at}, it sent {found.limited:g} on. That position "
+            f"lies inside the joint's limits [{found.low:g}, {found.high:g}], so the limiter held back how fast the "
+            "joint moved towards it (its velocity, acceleration or effort limits), not where it went; the line is a "
+            "notice that comes with large steps in a command, not a failure.")

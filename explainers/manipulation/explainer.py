@@ -39,6 +39,10 @@ FOUND_NONE = "manipulation.controllers_not_found"
 ALREADY_MET = "move_group.goal_constraints_are_already_satisfied_no"
 # fix_start_state_collision.cpp's WARN: it found no valid state nearby and passes the request to the planner anyway
 PASSED_ON = "planning_request_adapter_plugins.unable_to_find_a_valid_state"
+# getActionResultString's success text for a plan-only goal and MoveGroupInterface::plan()'s end (move_action_capability.cpp,
+# move_group_interface.cpp): a plan computed for a request that asked for no execution
+PLANNED = frozenset({"move_group.motion_plan_was_computed_successfully", "move_group_interface.planning_request_complete"})
+NOT_RUN = "move_group.no_motion_plan_found_no_execution"
 ENDS = frozenset({"cause", "symptom", "failed", "succeeded", "canceled"})
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})
 _TIMES = re.compile(r"Requested time (?P<req>\d+(?:\.\d+)?),? but latest received state has time "
@@ -152,7 +156,9 @@ class ManipulationExplainer(ModuleExplainer):
     def explain(self, question: str, context: Context) -> Explanation:
         found = with_sim_time(super().explain(question, context), context.log, context.window[1])
         if found.causes == ["manipulation.nominal"]:
-            return _without_motion(found, context.view(self.topics).logs())
+            lines = context.view(self.topics).logs()
+            met = _without_motion(found, lines)
+            return met if met is not found else _plan_only(found, lines)
         if found.causes == ["manipulation.start_state_in_collision"]:
             found = _passed_on(found, context.view(self.topics).logs())
         if not set(found.causes) & REACH:
@@ -189,6 +195,20 @@ def _without_motion(found: Explanation, lines: list[LogLine]) -> Explanation:
     text = (f"I did not need to move my arm: it was already at the goal, so MoveIt had nothing to plan or execute "
             f"and ended the goal as a success ({verbatim(met)} at {hms(met.t)}).")
     return found.model_copy(update={"text": text, "evidence": [Evidence.of_log("manipulation.nominal", met),
+                                                               *found.evidence]})
+
+
+def _plan_only(found: Explanation, lines: list[LogLine]) -> Explanation:
+    """A goal that asked MoveIt for a plan alone (RViz's "Plan", MoveGroupInterface::plan()): MoveIt computed it, and
+    no line of the window shows an execution; told as a plan made, never as a motion."""
+    entries = [(ln, catalogue().match(ln.msg)) for ln in lines]
+    planned = next((ln for ln, e in entries if e is not None and e.id in PLANNED), None)
+    ran = any(e is not None and "execut" in e.id and e.id != NOT_RUN for _, e in entries)
+    if planned is None or ran:
+        return found
+    text = (f"I planned a motion for my arm and did not move it: the request asked MoveIt for a plan only, and it "
+            f"computed one ({verbatim(planned)} at {hms(planned.t)}); no line of my log shows the plan executed.")
+    return found.model_copy(update={"text": text, "evidence": [Evidence.of_log("manipulation.nominal", planned),
                                                                *found.evidence]})
 
 

@@ -38,6 +38,32 @@ _FASTDDS = re.compile(r"^\[(?P<category>[A-Z][A-Z0-9_]*) (?:Error|Warning|Info)\
                       re.S)
 
 
+# Fast-DDS 3.6.x: TopicPayloadPool::get_payload logs it when PayloadNode::resize's realloc fails for a message
+# larger than the buffers it holds (TopicPayloadPool.cpp:74, TopicPayloadPool.hpp:175); the message is not taken
+PAYLOAD = "Failed to resize the payload"
+# SharedMemTransport::init logs the exception that kept its segment from being made (RTPS_MSG_OUT, with the
+# system's words), SharedMemSegment/SharedMemManager "Failed to create segment <name>: <what>" (RTPS_TRANSPORT_SHM),
+# and RTPSParticipantImpl.cpp:549 "Unable to Register SHM Transport ..." before it goes on with its other transports
+_SHM = ("Unable to Register SHM Transport", "Failed to create segment")
+
+
+def fastdds_meaning(line: LogLine) -> str:
+    """What one of Fast DDS's lines about a message or its shared-memory transport means, from its source; ""
+    for any other line."""
+    words = text(line)
+    m = _FASTDDS.match(line.msg.strip().splitlines()[0] if line.msg.strip() else "")
+    category = m["category"] if m else ""
+    if words.startswith(PAYLOAD):
+        return ("my DDS middleware (Fast DDS) could not allocate memory for a message larger than the buffers it "
+                "held (its realloc failed), so that message was not taken: the node it was for never got it")
+    if words.startswith(_SHM) or (category == "RTPS_MSG_OUT" and line.msg.rstrip().endswith("Function init")):
+        return ("my DDS middleware (Fast DDS) could not set up its shared-memory transport (its segment under "
+                "/dev/shm could not be made: the system's words say why, \"No such file or directory\" where there "
+                "is no /dev/shm), and went on with its other transports (UDP by default): nodes still reach each "
+                "other, over the network stack instead of shared memory")
+    return ""
+
+
 def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tuple[LogLine, str] | None:
     """The first line (WARN or above: Cyclone's stderr lines carry no level) whose catalogue entry is the
     middleware's, with the project cause it supports; None when there is none."""
@@ -47,6 +73,8 @@ def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tupl
             continue
         if _CYCLONE_CONFIG_AT in line.msg and _CYCLONE_CONFIG.match(text(line)):
             return line, CAUSES[CONFIGURATION]
+        if text(line).startswith(PAYLOAD):
+            return line, CAUSES[NETWORK]
         entry = cat.match(line.msg)
         if entry is not None and entry.cause in CAUSES:
             return line, CAUSES[entry.cause]
@@ -143,6 +171,10 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
         return (f"my DDS middleware (Cyclone DDS) could not send to {to}: the network link or interface it sends on "
                 "went away while it ran, so the other computer stopped hearing my node",
                 "Check the link (cable, Wi-Fi, ip link) of the computer that logged it; DDS resumes once it is up.")
+    if words.startswith(PAYLOAD):
+        return (f"{fastdds_meaning(line)} (\"{PAYLOAD}\")",
+                "Check the memory the process may use (free memory, ulimit -v, a container's memory limit) against "
+                "the size of the messages it sends or receives, or send smaller ones (a coarser map, fewer points).")
     if (m := _OVERSIZE.search(words)) is not None:
         # ddsi_transmit.c:825@releases/11.0.x: a sample over the configured maximum is dropped by its own writer
         return (f"my DDS middleware (Cyclone DDS) could not send a message: at {m['size']} bytes it was larger than "
