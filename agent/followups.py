@@ -206,7 +206,7 @@ def content_kind(question: str) -> str | None:
 
 # "thanks for the coffee! who put it on your tray?": a pleasantry before the question says nothing of its kind
 _PLEASANTRY = re.compile(r"^(thanks|thank you|great|nice|cool|wow|ok(ay)?|hi|hello|hey|good job|well done|oh)\b"
-                         r"[^.!?]{0,60}[.!?]+\s+(?=\S)")
+                         r"[^.!?,]{0,60}[.!?,]+\s+(?=\S)")
 
 
 def normalise(question: str) -> str:

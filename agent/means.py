@@ -18,6 +18,16 @@ from hexar.explainers.stack.signals import ended_by
 
 _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a |an )?.+? (mean|means|meant|indicate|"
                     r"signify)\b|^(and |so )?what('s| is) the meaning of\b")
+# "why did controller_server crash with 'double free or corruption'?": what the quoted last words mean
+_CRASHED_WITH = re.compile(r"^(and |so |but )?why did .{1,60}? (crash|die|abort|segfault)(ed)? (with|on|after printing|"
+                           r"printing|saying)\b.*['\"“]")
+# glibc's malloc_printerr texts (malloc/malloc.c): its allocator found the heap corrupted and aborts the process
+_GLIBC_HEAP = re.compile(r"double free or corruption|malloc\(\): |free\(\): invalid|realloc\(\): invalid|"
+                         r"munmap_chunk\(\): invalid pointer|corrupted (size vs\. prev_size|double-linked list|top size)")
+_HEAP = ("glibc's memory allocator found the process's heap corrupted (memory freed twice, or written past what was "
+         "allocated) and aborted the process (SIGABRT, exit code -6): a memory bug in that program or in a library or "
+         "plugin it loaded. The line does not say where; a backtrace does (run the node under gdb, or read its core "
+         "dump)")
 # the mined catalogues' word for an entry no rule classified: no meaning to tell
 _UNCLASSIFIED = "(no cause assigned)"
 
@@ -31,7 +41,7 @@ _ON_REQUEST = {2: "SIGINT (Ctrl-C, or launch stopping it)", 15: "SIGTERM (a requ
 
 def means_asked(q: str) -> bool:
     """The question (lower case) asks what something it names means ("what does that mean?" asks of the answer)."""
-    if _TRANSITION.search(q) or _EXIT_CODE.search(q):
+    if _TRANSITION.search(q) or _EXIT_CODE.search(q) or _CRASHED_WITH.search(q):
         return True
     if "?" in q.rstrip(" ?"):
         return False  # "what does X mean? did controller_server die?": two questions, the finding answers both
@@ -44,6 +54,7 @@ def _meaning(line: LogLine) -> str:
     from hexar.explainers.manipulation.catalogue import catalogue as moveit
     from hexar.explainers.navigation.catalogue import catalogue as nav
     from hexar.explainers.stack.middleware import fastdds_meaning
+    from hexar.explainers.stack.thrown import rclpy_action_meaning
     from hexar.explainers.stack_causes import mixed_clocks
 
     mixed = mixed_clocks(line)
@@ -51,6 +62,10 @@ def _meaning(line: LogLine) -> str:
         return mixed
     if (dds := fastdds_meaning(line)):
         return dds
+    if _GLIBC_HEAP.search(line.msg):
+        return _HEAP
+    if (rclpy := rclpy_action_meaning(line)):
+        return rclpy
     for cat in (nav(), control(), moveit()):
         entry = cat.match(line.msg)
         if entry is not None and entry.meaning and _UNCLASSIFIED not in entry.meaning:

@@ -9,6 +9,7 @@ import re
 
 from hexar.events import contract as c
 from hexar.events.log import EventLog
+from hexar.events.records import duration, hms
 from hexar.events.tasks import SkillRun, Task
 from hexar.explainers.ask_human.explainer import NAME, Step, last_execution
 from hexar.explainers.base import Explanation
@@ -27,7 +28,11 @@ PERSON = re.compile(
     + _LEAD + r"how many (people|persons|humans|others) did you (meet|see|detect|find|ask|talk to|speak to)\b|"
     # "who put the book on your tray?", "did somebody give it to you?", "did you pick it up yourself?"
     # not "who gave you the task?" (the request's) nor "did anyone help you?" (the ask-for-help step's)
-    + _LEAD + r"who (put|gave|handed|loaded|placed|brought)\b(?!.*\b(task|request|order|job|instruction|command|"
+    + _LEAD + r"who (were|was) you (talking|speaking|chatting) (to|with)\b|"
+    # "did you have to wait for someone before coming back?": the help skill's wait for a person
+    + r"\bdid you (have to |need to )?wait (for|on) (someone|somebody|anyone|anybody|a person|the person|them|her|"
+      r"him|help)\b|"
+    + _LEAD + r"who (put|gave|handed|loaded|placed|brought|made|prepared|got|fetched)\b(?!.*\b(task|request|order|job|instruction|command|"
               r"plan|errand)s?\b)|"
     + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place)\b|"
     + r"\bdid you (actually |really |even )?(pick|get|take|find|fetch|grab) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|"
@@ -80,9 +85,16 @@ def person(question: str, log: EventLog, task: Task) -> Explanation:
         text = f"{'None: ' if many else ''}I never detected anybody to ask, so my recording holds nothing of a person."
     elif many:
         text = f"One, as far as my recording shows: the person I detected and asked for help; {answered}."
+    elif re.search(r"\bwait (for|on)\b", q):
+        start, end = run.time_of("running"), run.last_change
+        took = f" for {duration(end - start)}, from {hms(start)} to {hms(end)}" if start is not None else ""
+        text = f"Yes: I waited for a person's help{took}; {answered}."
     elif re.search(r"\bname\b|^(\w+ )?who\b", q):
         text = ("My recording holds no name: I knew the person only as someone I detected and asked for help"
-                f"; {answered}.")
+                f"; {answered}")
+        # "who were you talking to, and what did they say?"
+        text += (", and of what they said only that yes or no, not their words." if
+                 re.search(r"\bwhat did (they|she|he) (say|answer|reply|tell)\b", q) else ".")
     elif _GAVE.search(q) and "AskForHelpState" in steps:
         # "did you find it yourself or did someone give it to you?": the help skill is how it came to my tray
         confirmed = steps.get("user_confirmed")

@@ -129,7 +129,10 @@ def where_failed(question: str, log: EventLog, task: Task) -> Explanation:
 # "What was your goal?", "where was the goal?": the goals my steps were sent to, as the recording gives them.
 GOAL = re.compile(r"^(and |so |but |ok |okay )?(what|where) (was|were|is|are) (your|the|my|its) (navigation )?"
                   r"(goals?|goal poses?|goal positions?|targets?|destinations?)( (coordinates|pose|position))?\W*$|"
-                  r"^(and |so )?what (were|are) the (goal|target) (coordinates|poses?|positions?)\W*$")
+                  r"^(and |so )?what (were|are) the (goal|target) (coordinates|poses?|positions?)\W*$|"
+                  # "which goal was the robot navigating to when this happened?"
+                  r"^(and |so )?(which|what) (goal|target|destination) (was|were|is) (the robot|it|you) (navigating|"
+                  r"driving|heading|going|trying to (reach|get to))\b")
 _OUTCOME = {"succeeded": "I got there", "failed": "I didn't get there", "running": "I was still on my way",
             "canceled": "it was canceled"}
 
@@ -164,15 +167,17 @@ def goal(question: str, log: EventLog, task: Task) -> Explanation:
 
 
 # "Did you reach the kitchen?", "did you get there?": yes or no from the trip's own outcome, with its times.
-REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) you (ever )?(reach|reached|get to|got to|make it to|"
-                     r"made it to|arrive (at|in)|arrived (at|in)|get into|go into|go to|drive to|"
+REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) (you|the robot|it) (ever )?(reach|reached|get to|got to|"
+                     r"make it to|made it to|arrive (at|in)|arrived (at|in)|get into|go into|go to|drive to|"
+                     # "did the robot end up back in the dining room after the failure?"
+                     r"(go|get|come|drive|make it|end up) back (to|in|at|into)|"
                      r"end up (at|in))( the| your| my)? "
                      # "did you reach the goal?" asks whether the task was done (overview.yes_or_no)
                      r"(?!((the|your|my) )?(goals?|destination|target|end|it|that)( or not)?\W*$)"
                      # "did you go to the wrong room?" asks about the plan, "... to the person?" about the help skill
                      r"(?!((the|your|my|a|an) )?(wrong|right|correct|same|other|another|person|people|someone|"
                      r"somebody|anyone|human|them|"
-                     r"him|her)\b)(?P<place>[a-z][a-z ]*?)\W*$|"
+                     r"him|her)\b)(?P<place>[a-z][a-z ]*?)( (after|once|when) [a-z ]+)?\W*$|"
                      r"^(and |so |but |ok |okay )?(did|have) you (ever )?(get|got|make it|made it|arrive|arrived) "
                      r"(there|back)\W*$")
 

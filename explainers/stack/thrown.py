@@ -24,6 +24,28 @@ _FRAME = re.compile(r'^File "(?P<file>[^"]+)", line (?P<line>\d+), in (?P<functi
 _LIBRARY = re.compile(r"/(site|dist)-packages/|/lib/python\d")
 
 
+# rclpy's ActionServer._execute_goal (rclpy/action/server.py) catches what a goal's execute callback raises, logs
+# "Error raised in execute callback: …", prints the traceback (traceback.print_exc) and aborts the goal ("Goal state
+# not set, assuming aborted"): the exception ended that goal, not the process
+_RCLPY_ACTION_SERVER = "rclpy/action/server.py"
+
+
+_RCLPY_SAYS = {
+    "Error raised in execute callback:": (
+        "the goal's execute callback raised an exception; rclpy's action server caught it, printed its traceback and "
+        "aborted the goal, and the node went on running"),
+    "Goal state not set, assuming aborted.": (
+        "the goal's execute callback ended without ending the goal (it called none of succeed(), abort() or "
+        "canceled(), as when it raised an exception), so rclpy's action server aborted the goal itself"),
+}
+
+
+def rclpy_action_meaning(line: LogLine) -> str:
+    """What rclpy's action server's own lines about a goal's execute callback mean (rclpy/action/server.py); ""
+    for any other line."""
+    return next((said for start, said in _RCLPY_SAYS.items() if line.msg.startswith(start)), "")
+
+
 @dataclass(frozen=True)
 class PyException:
     type: str  # the class as printed: "ValueError", "rclpy.exceptions.InvalidParameterTypeException"
@@ -45,6 +67,8 @@ def python_exception(line: LogLine) -> PyException | None:
     if m is None:
         return None
     own = [f for f in (_FRAME.match(x.strip()) for x in frames.splitlines()) if f is not None]
+    if any(f["file"].endswith(_RCLPY_ACTION_SERVER) and f["function"] == "_execute_goal" for f in own):
+        return None  # rclpy caught it and printed it: its process goes on (see _RCLPY_ACTION_SERVER)
     mine = [f for f in own if not _LIBRARY.search(f["file"])] or own
     where = f"{mine[-1]['function']} ({mine[-1]['file']}, line {mine[-1]['line']})" if mine else ""
     text = " ".join([(m["text"] or "").strip(), *(x.strip() for x in more.splitlines() if x.strip())]).strip()
