@@ -254,9 +254,9 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
         # launch_ros asked a node it started for a lifecycle transition and the node refused, saying nothing of why
         # (a reason logged before it is a stack cause, above): the start failed there all the same, from the node's
         # first line on
-        refused = next(ln for ln in logs if ln.level >= ERROR and launch_transition(ln))
-        began = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), refused.t)
-        return BringUp(min(began, refused.t), "failed", last, refused.msg)
+        turned = next(ln for ln in logs if ln.level >= ERROR and launch_transition(ln))
+        began = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), turned.t)
+        return BringUp(min(began, turned.t), "failed", last, turned.msg)
     failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),
                   None)
     if failed is not None:
