@@ -7,6 +7,11 @@ asks it to. A lifecycle manager brings up the nodes of its node_names and then l
 node that announced itself before that and never logged "Configuring" was in no manager's list: it stays
 unconfigured, and the servers it creates on configure (a waypoint follower's follow_waypoints action) never exist.
 It is told only for a run in which no goal reached the navigator: a node no goal needed explains nothing.
+
+A manager configures every node of its list before it activates any (LifecycleManager::startup: configure all, then
+activate all): one that has begun activating ("Activating <node>") without configuring a node announced before is
+past that node too. When its bring-up then failed because a server was not there (the navigator's "… action server
+not available", the catalogue's bt.action_unavailable), the node it never configured is told the same way.
 """
 
 from __future__ import annotations
@@ -22,12 +27,26 @@ from hexar.explainers.navigation.detectors import Finding
 _LAUNCHED = re.compile(r"(?P<node>[\w/]+) lifecycle node launched")
 _ACTIVE = "Managed nodes are active"
 _ASKED = ("Configuring", "Activating")
+_UNAVAILABLE = "bt.action_unavailable"  # the mined Nav2 catalogue's "… action server not available …"
+
+
+def _past(logs: Sequence[LogLine]) -> list[LogLine]:
+    """A manager's lines by which every node of its list had been configured: its "Managed nodes are active", or,
+    where its bring-up then failed for want of a server, its first "Activating <node>"."""
+    from hexar.explainers.navigation.catalogue import catalogue
+
+    active = [ln for ln in logs if ln.msg.strip() == _ACTIVE]
+    if active:
+        return active
+    missing = any((e := catalogue().match(ln.msg)) is not None and e.id == _UNAVAILABLE for ln in logs)
+    activating = next((ln for ln in logs if "lifecycle_manager" in ln.name and ln.msg.startswith("Activating ")), None)
+    return [activating] if missing and activating is not None else []
 
 
 def unmanaged(logs: Sequence[LogLine]) -> Finding | None:
-    """The first managed node that announced itself before a lifecycle manager had all its nodes active, and was
-    never configured."""
-    active = [ln for ln in logs if ln.msg.strip() == _ACTIVE]
+    """The first managed node that announced itself before a lifecycle manager had all its nodes active (or had
+    begun activating them, and failed for want of a server), and was never configured."""
+    active = _past(logs)
     if not active:
         return None
     for line in logs:
@@ -38,9 +57,11 @@ def unmanaged(logs: Sequence[LogLine]) -> Finding | None:
         if any(ln.name.strip("/") == node and ln.msg.strip() in _ASKED for ln in logs):
             continue
         found = Finding(BRINGUP, [Evidence.of_log(BRINGUP, line), Evidence.of_log(BRINGUP, active[-1])])
-        found.notes = [f"{node} was started but never configured or activated: my lifecycle manager brought the "
-                       f"others up ('{_ACTIVE}') without it, as when it is missing from the manager's node_names, so "
-                       "nothing it serves ever existed"]
+        brought = (f"brought the others up ('{_ACTIVE}')" if active[-1].msg.strip() == _ACTIVE else
+                   f"configured the others and went on to activate them ('{active[-1].msg.strip()}')")
+        found.notes = [f"{node} was started but never configured or activated: my lifecycle manager {brought} "
+                       "without it, as when it is missing from the manager's node_names, so nothing it serves ever "
+                       "existed"]
         found.facts[NEVER_CAME_UP] = 1.0
         return found
     return None

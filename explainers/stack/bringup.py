@@ -144,6 +144,7 @@ class BringupFinding:
     entry: StackEntry | None
     detail: str = ""
     cause: str = BRINGUP
+    unlaunched: tuple[str, ...] = ()  # for a wait: the processes launch started, none of them the node waited for
 
     def describe(self) -> str:
         """One sentence for a person: what failed, for which node."""
@@ -170,8 +171,12 @@ class BringupFinding:
                     "transition that state does not have: something had brought it up before (a second lifecycle "
                     "manager that manages it, or the same launch started twice)")
         if self.kind == "lifecycle_wait":
-            return (f"my lifecycle manager kept waiting for {who}'s lifecycle service ({self.detail}) and never "
+            said = (f"my lifecycle manager kept waiting for {who}'s lifecycle service ({self.detail}) and never "
                     f"found it, so it configured none of my nodes")
+            if self.unlaunched:
+                shown = ", ".join(self.unlaunched[:8]) + (", …" if len(self.unlaunched) > 8 else "")
+                said += f"; my launch never started a process of {who} (it started {shown})"
+            return said
         return f"{who} failed to come up"
 
 
@@ -335,8 +340,11 @@ def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:
         span = (last.t - said[0].t) / 1e9
         over = f" over {span:.0f} s" if span >= 1 else ""
         node = service.rsplit("/", 2)[-2]
+        # launch's "process started with pid [N]", under the process's name ("map_server-2")
+        started = [PROCESS_SUFFIX.sub("", ln.name) for ln in ordered if ln.msg.startswith("process started with pid")]
+        unlaunched = tuple(started) if started and node not in started else ()
         out.append(BringupFinding("lifecycle_wait", node, last.t, last, None,
-                                  f"'{service}', {len(said)} times{over}"))
+                                  f"'{service}', {len(said)} times{over}", unlaunched=unlaunched))
     return out
 
 
