@@ -43,6 +43,9 @@ TRIED = re.compile(
     r"^(and |so |but )?(did|were) (any|there any|the|my|your) (nav2 )?(recover(y|ies)|recovery behaviou?rs?)"
     r"( (run|ran|triggered|executed|used|tried))?\b|"
     r"^(and |so )?(which|what) (recover(y|ies)|recovery behaviou?rs?) (ran|run|were (run|tried|triggered|executed))\b|"
+    # "did the BT try any recovery behaviors after the follow_path abort?"
+    r"^(and |so |but )?did (the bt|the behaviou?r tree|it|you|nav2|the robot|the navigator|bt_navigator) (try|run|"
+    r"attempt|use|trigger|start) (any |a |the )?(recover(y|ies)|recovery behaviou?rs?)\b|"
     r"^(and |so |but |ok |okay )?why did (you|it|the planner|nav2) (re-?plan|replanned|re-?route)\b|"
     r"^(and |so |but |ok |okay )?(could(n't| not)? you (not )?|why (didn't|did not|couldn't|could not) you |can't you )"
     r"(just )?(go|drive|get|find a way) (a)?round (it|them|that|the obstacle)\b")
@@ -191,6 +194,12 @@ def tried(question: str, log: EventLog, task: Task) -> Explanation:
         text = (f"my recording shows no second try at any step: {step_ref(going)} was still going when the "
                 "recording ends.")
         lead = "No. "
+    if re.search(r"\brecover", question.lower()) and not any(
+            said.startswith(("I ran ", "I cleared ")) for t in tries for said in t.said):
+        # asked about recoveries alone: that none ran is the answer, before the tries
+        text = ("no recovery shows in my log: my behavior server never logged running one (spin, backup, wait) "
+                "and no costmap was cleared; " + text[0].lower() + text[1:])
+        lead = ""
     if not yes_no and lead in {"Yes. ", "No. "}:
         lead = ""
     said = lead + (text[0].upper() + text[1:] if lead.endswith(". ") else text)

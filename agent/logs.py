@@ -38,6 +38,8 @@ LOGS = re.compile(
     + _OPEN + r"(were|was|are|is) there (any|many)( [a-z_]+)? (warn(ing)?s?|errors?)( or (warn(ing)?s?|errors?))?"
     r"( lines?| messages?)?\b|"
     r"\bhow many (times did (it|they|the node|[a-z_]+) (warn|complain|error|log it)|warnings|errors)\b|"
+    # "did this run go cleanly, any warnings or errors at all?": a clause after the first asks for them
+    r"[,;:] any (warn(ing)?s?|errors?)( or (warn(ing)?s?|errors?))?( at all)?\W*$|"
     + _OPEN + r"which (node|nodes|process|processes|component|components)( of yours)? (failed|crashed|died|"
     r"complained|errored|reported (an |any )?(errors?|problems?)|had (an |any )?(errors?|problems?))\b"
 )
@@ -73,7 +75,8 @@ def _asked(q: str) -> _Asked:
     one = "last" if re.search(r"\b(last|latest|final)\b", q) else "first" if re.search(r"\bfirst\b", q) else ""
     return _Asked(low, high, noun, one,
                   re.search(r"\bwhich (node|process|component)", q) is not None,
-                  re.search(r"^(\w+ )?(any|did|were|was)\b", q) is not None)
+                  # "did it go cleanly, any warnings?": a yes would answer the first question, not the count
+                  re.search(r"^(\w+ )?(any|did|were|was)\b", q) is not None and re.search(r"[,;:] any\b", q) is None)
 
 
 _PLURAL = {"error": "errors", "warning": "warnings", "error or warning": "errors or warnings"}

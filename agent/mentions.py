@@ -89,7 +89,9 @@ VALUE_OF = re.compile(
     r"( (is|was|are|were))?( (the|my|your))?( value of)? " + _ID + r"( (value|values|parameter|param))?\W*$|"
     + _ID + r"( and " + _ID + r")? (is |was |are |were )?(set to|set at)\b|"
     r"(^|[.?!] )(is|was|are|were) " + _ID + r" (set|true|false|on|off|enabled|disabled)\b|"
-    r"\bvalue of " + _ID)
+    r"\bvalue of " + _ID + r"|"
+    # "which xy_goal_tolerance / yaw_goal_tolerance values were in effect?"
+    r"^(and |so |but |ok )?(which|what) " + _ID + r"(( ?/ ?| and | or )" + _ID + r")? (values?|settings?)\b")
 
 
 # "which nodes use sim time?", "how many nodes had use_sim_time false?"
