@@ -79,6 +79,17 @@ def _asked(q: str) -> _Asked:
                   re.search(r"^(\w+ )?(any|did|were|was)\b", q) is not None and re.search(r"[,;:] any\b", q) is None)
 
 
+def _speaker(line: LogLine) -> str:
+    """A line's node; for a Python traceback that names none, the program its own frames point at."""
+    from hexar.explainers.stack.thrown import python_exception
+
+    if line.name:
+        return line.name
+    exc = python_exception(line)
+    program = exc.where.rsplit("(", 1)[-1].split(",", 1)[0] if exc is not None and exc.where else ""
+    return f"a Python program of no node name ({program})" if program else "a node"
+
+
 _PLURAL = {"error": "errors", "warning": "warnings", "error or warning": "errors or warnings"}
 
 
@@ -192,12 +203,13 @@ def logs(question: str, log: EventLog, task: Task) -> Explanation:
                 f'"{_said(ln.msg)}".')
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                            evidence=line_evidence([ln], task))
-    by_node = Counter(ln.name or "a node" for ln in lines)
+    by_node = Counter(_speaker(ln) for ln in lines)
     nodes = join_words([f"{node} ({n})" if len(by_node) > 1 else node for node, n in by_node.most_common()])
     if asked.nodes:
         ln = lines[0]
-        text = (f"The {_PLURAL[asked.noun]} {where} came from {nodes}. The first, at {hms(ln.t)}, came from "
-                f'{ln.name or "a node"}: "{_said(ln.msg)}".')
+        first = f"from {_speaker(ln)}" if len(by_node) > 1 else "from it"
+        text = (f"The {_PLURAL[asked.noun]} {where} came from {nodes}. The first, at {hms(ln.t)}, came {first}: "
+                f'"{_said(ln.msg)}".')
     else:
         text = (f"{'Yes. ' if asked.yes_no else ''}My log holds {_plural(len(lines), asked.noun)} {where}, from "
                 f"{nodes}: {quote(lines, len(by_node) == 1, len({ln.level for ln in lines}) > 1)}.")
