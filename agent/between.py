@@ -124,6 +124,11 @@ def _end(phrase: str, log: EventLog, task: Task, after: int | None,
     after the first end (`first`), never that line itself."""
     if _LAUNCH.match(phrase) and log.logs:
         return log.logs[0]
+    # a line's own words, whole ("goal accepted"): that line, before any reading of them
+    said = next((ln for ln in log.logs if ln.msg.strip().rstrip(".!").lower() == phrase.strip("\"'“”")
+                 and (after is None or (ln.t >= after and ln is not first))), None)
+    if said is not None:
+        return said
     if _GOAL.match(phrase):
         return task.created
     if _READY.match(phrase) and (ready := _ready(log, task)) is not None:

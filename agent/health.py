@@ -36,7 +36,10 @@ FAULT = re.compile(
     + _LEAD + r"did (i|we) (do|make) (something|anything|a mistake|a thing) ?(wrong)?\b|"
     + _LEAD + r"(did|have) (i|we) (break|broken|mess(ed)? (it|up)|cause(d)? (it|this|that))\b|"
     + _LEAD + r"(whose|who's|who is|who was) (fault|to blame)\b|who (caused|is responsible for|was responsible for)\b|"
-    + _LEAD + r"was (it|this|that) (someone|somebody|anyone)'?s fault\b")
+    + _LEAD + r"was (it|this|that) (someone|somebody|anyone)'?s fault\b|"
+    # "should I phrase the book request differently next time?": whether the request was to blame
+    + _LEAD + r"should (i|we) (have )?(phrase[d]?|word(ed)?|say|said|ask(ed)?|put) (it |that |my request |the [a-z]+ "
+              r"request |my [a-z]+ request |the request )?differently\b")
 
 LOST = re.compile(_LEAD + r"(did|were|was|are) (you|it|the robot) (get |getting )?(lost|confused about where)\b|"
                   + _LEAD + r"did (you|it|the robot) (know|lose track of) where (you|it) (were|was)\b")

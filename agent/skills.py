@@ -25,6 +25,9 @@ SKILLS = re.compile(
     r"(_[a-z]+)+)( mean| do)?\W*$")
 # "can you open windows at all?", "are you even able to cook?": whether a skill of mine does it
 ABLE = re.compile(r"^(and |so |but )?(can|could) you (even |actually )?(?P<verb>[a-z]+)( [a-z]+){0,3} at all\W*$|"
+                  # "couldn't you have just picked it up yourself instead of giving up?"
+                  r"^(and |so |but )?(couldn't|could|why couldn't|why didn't|can't) you (just )?(have )?(just )?"
+                  r"(?P<verb3>[a-z]+?)(ed)? (it|that|them|the [a-z]+)( up)? (yourself|by yourself|on your own)\b|"
                   r"^(and |so |but )?(are|were) you (even |actually )?(able|capable) (to|of) (?P<verb2>[a-z]+)")
 # What each skill of the catalogue does, as the robot says it (hexar_interfaces.md, "Skill catalogue").
 _DOES = {"say": "say something aloud", "navigate_to_zone": "drive to one of my places",
@@ -86,7 +89,7 @@ def skills(question: str, log: EventLog, task: Task) -> Explanation:
             text = (f"'{name}' is none of my skills or places.{asked} My skills are {join_words(list(mine))}; my "
                     f"places are {places}.")
     elif (able := ABLE.search(q)) is not None:
-        text = _able(able.group("verb") or able.group("verb2"), mine, used)
+        text = _able(able.group("verb") or able.group("verb2") or able.group("verb3"), mine, used)
     elif re.search(r"\b(places|rooms|locations|where)\b", q):
         went = list(dict.fromkeys(str(run.params["location"]) for t in log.tasks for run in t.skills
                                   if isinstance(run.params.get("location"), str)))
