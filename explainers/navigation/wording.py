@@ -17,6 +17,7 @@ from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, keepout, mapsave, smoother, states, waypoints, worded
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
+from hexar.explainers.navigation.plugin_name import plugin_reading
 from hexar.explainers.navigation.nomap import NO_MAP, NO_MAP_FACT
 from hexar.explainers.stack.bringup import AGAIN, LAUNCH_ANY
 
@@ -327,6 +328,13 @@ def template(f: Finding, place: str, run: Run) -> tuple[str, str | None, list[st
                 "Fix the error quoted from that node (often its parameters or plugins) and restart the navigation "
                 "until the lifecycle manager reports 'Managed nodes are active'.",
                 [f"Also: {n}." for n in f.notes[1:]] + seen)
+    plugin = next((r for e in f.evidence if (r := plugin_reading(e.item or ""))), "")
+    if f.cause == g.CONFIGURATION and plugin:
+        return (f"I couldn't reach {place} because my navigation stack was misconfigured, so a node of it never "
+                f"came up: {plugin}.",
+                "Name the plugin in that node's parameters exactly as its plugin description declares it, and "
+                "restart the navigation until the lifecycle manager reports 'Managed nodes are active'.",
+                seen)
     if f.cause == g.CONFIGURATION and f.facts.get("never_came_up"):
         return (f"I couldn't reach {place} because my navigation stack was misconfigured, so a node of it never "
                 "came up (a configuration error: a plugin, behaviour tree or lifecycle node failed).",

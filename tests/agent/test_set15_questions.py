@@ -162,3 +162,16 @@ def test_clauses_after_the_first(tmp_path: Path) -> None:
     pivot = _run("pivot-g2-warehouse-dispatch-rpp-collision-ahead-patience-exceeded", tmp_path / "pivot")
     (recovered,) = converse(pivot, "Did the BT try any recovery behaviors after the follow_path abort?")
     assert str(recovered["answer"]).startswith("No recovery shows in my log")
+
+
+def test_a_plugin_type_against_the_types_its_descriptions_declare(tmp_path: Path) -> None:
+    typo = _run("kilted-nav2-planner-plugin", tmp_path / "typo")
+    (misspelt,) = converse(typo, "Which parameter in my nav2 params yaml do I need to fix?")
+    assert "the plugin type asked for, nav2_navfn_planner::NavfnPlaner, is not among the types its plugin " \
+           "descriptions declare; the nearest declared one is nav2_navfn_planner::NavfnPlanner" in \
+           str(misspelt["answer"])
+    colons = _run("nl-nav2-bot-humble-navfn-plugin-name-mismatch-bringup", tmp_path / "colons")
+    (slash,) = converse(colons, "The class is nav2_navfn_planner::NavfnPlanner, which looks right; why does it say "
+                                "it doesn't exist?")
+    assert "is written with '::' where its plugin description declares it with '/' (nav2_navfn_planner/NavfnPlanner)" \
+        in str(slash["answer"])

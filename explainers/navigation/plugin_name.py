@@ -1,0 +1,39 @@
+"""A plugin type a node asked pluginlib for that its plugin descriptions do not declare, read against the types they
+do declare.
+
+pluginlib's ClassLoader::createUniqueInstance throws "According to the loaded plugin descriptions the class <type>
+with base class type <base> does not exist. Declared types are <type> <type> …" (pluginlib class_loader_imp.hpp),
+which Nav2's servers log as they fail to configure ("Failed to create global planner. Exception: …"). The declared
+types name each plugin as its package's plugin description file does ("nav2_navfn_planner/NavfnPlanner", or
+"nav2_navfn_planner::NavfnPlanner"): a type asked for with the other separator, or with a letter or two wrong, is
+told as that, with the declared type to write instead.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+
+_MISSING = re.compile(r"the class (?P<cls>\S+) with base class type (?P<base>\S+) does not exist\. Declared types "
+                      r"are (?P<declared>.*)", re.S)
+CLOSE = 0.85  # difflib's ratio above which a declared type is the one meant, one letter or two apart
+
+
+def plugin_reading(text: str) -> str:
+    """For pluginlib's "does not exist. Declared types are …" in `text`, what is wrong with the type asked for,
+    against the declared ones; "" when the text holds no such line, or no declared type is near."""
+    m = _MISSING.search(" ".join(text.split()))
+    if m is None:
+        return ""
+    asked = m["cls"]
+    declared = [t.strip(",.") for t in m["declared"].split() if t.strip(",.") and t != "..." and t != "…"]
+    for other in (asked.replace("::", "/"), asked.replace("/", "::")):
+        if other != asked and other in declared:
+            sep, right = ("::", "/") if "::" in asked else ("/", "::")
+            return (f"the plugin type asked for, {asked}, is written with '{sep}' where its plugin description "
+                    f"declares it with '{right}' ({other}): write {other} in the parameter that names it")
+    near = difflib.get_close_matches(asked, declared, n=1, cutoff=CLOSE)
+    if near:
+        return (f"the plugin type asked for, {asked}, is not among the types its plugin descriptions declare; the "
+                f"nearest declared one is {near[0]}, so the parameter that names it is most likely misspelt")
+    return ""
