@@ -33,6 +33,8 @@ from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 from hexar.explainers.stack.loader import loader_failure
+from hexar.explainers.stack.middleware import fastdds_meaning
+from hexar.explainers.stack.middleware import text as dds_text
 
 BRINGUP = "navigation.bringup_failure"
 CONFIGURATION = "navigation.configuration_error"
@@ -406,9 +408,10 @@ TEARDOWN = re.compile(r"^(?:Destroying|Cleaning up|Deactivating|Shutting down|Ru
                       r"preshutdown|process has finished cleanly)\b")
 
 
-def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
+def ran_quietly(lines: list[LogLine], started: Iterable[LogLine] = ()) -> tuple[str, list[LogLine]] | None:
     """A stack that came up and ran with no goal's end recorded: which Nav2 nodes logged their work, when none of
-    them logged a warning or an error (None otherwise, or when no Nav2 node logged at all)."""
+    them logged a warning or an error (None otherwise, or when no Nav2 node logged at all). `started`: the lines
+    before the window, where the middleware's own errors at start are looked for too."""
     cat = catalogue()
     own = [ln for ln in lines if ln.name and cat.role(ln.name) is not None]
     if not own or any(ln.level >= WARN or _warns(ln) for ln in own) or all(TEARDOWN.match(ln.msg) for ln in own):
@@ -417,6 +420,11 @@ def ran_quietly(lines: list[LogLine]) -> tuple[str, list[LogLine]] | None:
     said = "logged their work and none of them logged" if len(nodes) > 1 else "logged its work and did not log"
     text = (f"As far as my recording shows, my navigation went normally: {', '.join(nodes[:4])} {said} a warning "
             "or an error. The recording shows no goal ending here, so it does not show whether I reached one.")
-    if any(ln.level >= WARN or _warns(ln) for ln in lines):  # a node that is not Nav2's, or not named, did warn
+    dds = next((ln for ln in [*started, *lines] if ln.level >= WARN and fastdds_meaning(ln)), None)
+    if dds is not None:
+        # Fast DDS's own errors (no node name): what they mean, from its source (explainers/stack/middleware.py)
+        text += f" My DDS middleware logged errors on the way (“{dds_text(dds)}” at {clock(dds.t)}): " \
+                f"{fastdds_meaning(dds).replace('my DDS middleware (Fast DDS) ', 'it ', 1)}."
+    elif any(ln.level >= WARN or _warns(ln) for ln in lines):  # a node that is not Nav2's, or not named, did warn
         text += last_warning(lines)
     return text, [own[0], own[-1]]

@@ -178,7 +178,7 @@ class NavigationExplainer:
         if run.outcome == "unknown" and all(f.cause in {d.NOMINAL, d.NOMINAL_SPEED} for f in findings):
             # neither a navigator line nor the skill's status says how the trip ended: "I reached it" would be a
             # claim without evidence; a stack whose nodes ran without a warning is told as just that
-            quiet = chain.ran_quietly(raw)
+            quiet = chain.ran_quietly(raw, [ln for ln in context.log.logs if ln.t < window[0]])
             if quiet is None:
                 return Explanation.not_enough(self.name, "The recording does not show whether I reached the goal."
                                               + chain.last_warning(raw))

@@ -175,3 +175,12 @@ def test_a_plugin_type_against_the_types_its_descriptions_declare(tmp_path: Path
                                 "it doesn't exist?")
     assert "is written with '::' where its plugin description declares it with '/' (nav2_navfn_planner/NavfnPlanner)" \
         in str(slash["answer"])
+
+
+def test_fast_dds_shared_memory_errors_beside_a_quiet_run(tmp_path: Path) -> None:
+    run = _run("kilted-shm-too-small-container", tmp_path / "run")
+    (what,) = converse(run, "what happened?")
+    text = str(what["answer"])
+    assert text.startswith("As far as my recording shows, my navigation went normally")
+    assert "My DDS middleware logged errors on the way (“Failed to create segment fastdds_16eae69b8164549a: No such " \
+           "file or directory” at 13:33:13.223): it could not set up its shared-memory transport" in text
