@@ -10,6 +10,7 @@ start; "the FATAL", "the error" prefer a line of that level. Where either end ca
 from __future__ import annotations
 
 import re
+from itertools import pairwise
 
 from hexar.agent.focus import ranked_lines
 from hexar.events.log import EventLog
@@ -209,7 +210,7 @@ def between(question: str, log: EventLog, task: Task) -> Explanation | None:
 
 def _silence(times: list[int]) -> str:
     """Where most of a span passed with no line logged ("why a 4 minute gap between ..."), that stretch."""
-    gaps = [(b - a, a, b) for a, b in zip(times, times[1:], strict=False)]
+    gaps = [(b - a, a, b) for a, b in pairwise(times)]
     gap, a, b = max(gaps)
     if gap < 1_000_000_000 or 2 * gap < times[-1] - times[0]:
         return ""

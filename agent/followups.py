@@ -8,11 +8,11 @@ from __future__ import annotations
 import re
 
 from hexar.agent.all_up import all_up_kind
-from hexar.agent.goal_sent import goal_sent_kind
 from hexar.agent.attempts import TRIED
 from hexar.agent.between import between_asked, spans_two
 from hexar.agent.counted import count_asked
 from hexar.agent.flags import BATTERY, LIMIT, flag_asked
+from hexar.agent.goal_sent import goal_sent_kind
 from hexar.agent.health import health_kind
 from hexar.agent.logs import LOGS, NODES
 from hexar.agent.matters import asks_matters
@@ -184,7 +184,8 @@ def content_kind(question: str) -> str | None:
     if step_asked(q):
         return "step"  # "did the place step finish cleanly?"
     # a time of day names the moment asked about (agent/window.py), a node's name the node (agent/node_status.py)
-    kind = window_kind(q) or node_status_kind(q) or goal_sent_kind(q) or all_up_kind(q) or unnamed_kind(q) or moved_kind(q) or \
+    kind = window_kind(q) or node_status_kind(q) or goal_sent_kind(q) or all_up_kind(q) or unnamed_kind(q) or \
+        moved_kind(q) or \
         next((kind for kind, pattern in _CONTENT_KINDS if pattern.search(q)), None) or \
         clock_kind(q) or health_kind(q) or unseen_kind(q)
     if kind is None and flag_asked(q) is not None:

@@ -9,11 +9,11 @@ from collections.abc import Callable
 
 from hexar.agent import content, measures, sequence
 from hexar.agent.all_up import all_up
-from hexar.agent.goal_sent import goal_sent
 from hexar.agent.between import before_one, between
 from hexar.agent.counted import counted
 from hexar.agent.flags import battery, speed_limit
 from hexar.agent.focus import with_pointed
+from hexar.agent.goal_sent import goal_sent
 from hexar.agent.logs import nodes, stated_spans
 from hexar.agent.means import means
 from hexar.agent.mentions import mentions

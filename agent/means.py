@@ -19,11 +19,12 @@ from hexar.explainers.stack.signals import ended_by
 _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a |an )?.+? (mean|means|meant|indicate|"
                     r"signify)\b|^(and |so )?what('s| is) the meaning of\b")
 # "why did controller_server crash with 'double free or corruption'?": what the quoted last words mean
-_CRASHED_WITH = re.compile(r"^(and |so |but )?why did .{1,60}? (crash|die|abort|segfault)(ed)? (with|on|after printing|"
-                           r"printing|saying)\b.*['\"“]")
+_CRASHED_WITH = re.compile(r"^(and |so |but )?why did .{1,60}? (crash|die|abort|segfault)(ed)? (with|on|after "
+                           r"printing|printing|saying)\b.*['\"“]")
 # glibc's malloc_printerr texts (malloc/malloc.c): its allocator found the heap corrupted and aborts the process
 _GLIBC_HEAP = re.compile(r"double free or corruption|malloc\(\): |free\(\): invalid|realloc\(\): invalid|"
-                         r"munmap_chunk\(\): invalid pointer|corrupted (size vs\. prev_size|double-linked list|top size)")
+                         r"munmap_chunk\(\): invalid pointer|"
+                         r"corrupted (size vs\. prev_size|double-linked list|top size)")
 _HEAP = ("glibc's memory allocator found the process's heap corrupted (memory freed twice, or written past what was "
          "allocated) and aborted the process (SIGABRT, exit code -6): a memory bug in that program or in a library or "
          "plugin it loaded. The line does not say where; a backtrace does (run the node under gdb, or read its core "

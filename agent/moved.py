@@ -19,7 +19,8 @@ from hexar.explainers.base import Explanation
 from hexar.explainers.recorded import positions
 
 MOVED = re.compile(
-    r"(^|[,;:] )(and |so |but )?did (you|it|i|the robot|the (arm|base|robot|gripper))( even| ever)? (move|drive|budge|go "
+    r"(^|[,;:] )(and |so |but )?did (you|it|i|the robot|the (arm|base|robot|gripper))( even| ever)? (move|drive|"
+    r"budge|go "
     r"anywhere|start moving)\b|"
     r"^(and |so |but )?did (the |my |your |any )?(trajectory|motion|path|plan) (ever |even )?(get )?(sent|executed|"
     r"passed|handed|reach)")

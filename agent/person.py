@@ -32,8 +32,8 @@ PERSON = re.compile(
     # "did you have to wait for someone before coming back?": the help skill's wait for a person
     + r"\bdid you (have to |need to )?wait (for|on) (someone|somebody|anyone|anybody|a person|the person|them|her|"
       r"him|help)\b|"
-    + _LEAD + r"who (put|gave|handed|loaded|placed|brought|made|prepared|got|fetched)\b(?!.*\b(task|request|order|job|instruction|command|"
-              r"plan|errand)s?\b)|"
+    + _LEAD + r"who (put|gave|handed|loaded|placed|brought|made|prepared|got|fetched)\b(?!.*\b(task|request|order|job|"
+              r"instruction|command|plan|errand)s?\b)|"
     + _LEAD + r"did (someone|somebody|anyone|anybody|a person|the person|they|she|he) (give|put|hand|load|place)\b|"
     + r"\bdid you (actually |really |even )?(pick|get|take|find|fetch|grab) ([a-z]+ ){0,3}?(up )?(yourself|by yourself|"
       r"on your own)\b")

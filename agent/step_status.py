@@ -26,7 +26,8 @@ _ASKED = re.compile(
 # the words people use for a skill of the plan
 _SAID = {"drive": NAV_SKILLS, "driving": NAV_SKILLS, "navigation": NAV_SKILLS, "nav": NAV_SKILLS, "move": NAV_SKILLS,
          "speech": ("say",), "speak": ("say",), "help": ("ask_human_for_help",), "arm": ("move_arm",),
-         "trajectory": ("follow_joint_trajectory",), "grasp": ("pick",), "gripper": ("command_gripper",), "bringup": ("bring_up_controllers",),
+         "trajectory": ("follow_joint_trajectory",), "grasp": ("pick",),
+         "gripper": ("command_gripper",), "bringup": ("bring_up_controllers",),
          "start": ("bring_up_controllers",)}
 MAX_QUOTED = 3
 

@@ -255,8 +255,8 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
         # (a reason logged before it is a stack cause, above): the start failed there all the same, from the node's
         # first line on
         turned = next(ln for ln in logs if ln.level >= ERROR and launch_transition(ln))
-        began = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), turned.t)
-        return BringUp(min(began, turned.t), "failed", last, turned.msg)
+        own = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), turned.t)
+        return BringUp(min(own, turned.t), "failed", last, turned.msg)
     failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),
                   None)
     if failed is not None:

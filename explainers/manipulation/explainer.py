@@ -39,9 +39,10 @@ FOUND_NONE = "manipulation.controllers_not_found"
 ALREADY_MET = "move_group.goal_constraints_are_already_satisfied_no"
 # fix_start_state_collision.cpp's WARN: it found no valid state nearby and passes the request to the planner anyway
 PASSED_ON = "planning_request_adapter_plugins.unable_to_find_a_valid_state"
-# getActionResultString's success text for a plan-only goal and MoveGroupInterface::plan()'s end (move_action_capability.cpp,
-# move_group_interface.cpp): a plan computed for a request that asked for no execution
-PLANNED = frozenset({"move_group.motion_plan_was_computed_successfully", "move_group_interface.planning_request_complete"})
+# getActionResultString's success text for a plan-only goal and MoveGroupInterface::plan()'s end
+# (move_action_capability.cpp, move_group_interface.cpp): a plan computed for a request that asked for no execution
+PLANNED = frozenset({"move_group.motion_plan_was_computed_successfully",
+                     "move_group_interface.planning_request_complete"})
 NOT_RUN = "move_group.no_motion_plan_found_no_execution"
 ENDS = frozenset({"cause", "symptom", "failed", "succeeded", "canceled"})
 NAV_FINE = frozenset({"navigation.nominal", "navigation.nominal_speed"})

@@ -17,8 +17,8 @@ from hexar.events.records import LogLine
 from hexar.explainers.navigation import diagnose as g
 from hexar.explainers.navigation import grids, keepout, mapsave, smoother, states, waypoints, worded
 from hexar.explainers.navigation.detectors import CLOCK_DOUBT, REACH_DOUBT, Finding, Run
-from hexar.explainers.navigation.plugin_name import plugin_reading
 from hexar.explainers.navigation.nomap import NO_MAP, NO_MAP_FACT
+from hexar.explainers.navigation.plugin_name import plugin_reading
 from hexar.explainers.stack.bringup import AGAIN, LAUNCH_ANY
 
 

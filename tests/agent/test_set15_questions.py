@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from hexar.evals import real_modules
-from hexar.events import read_recording
 from hexar.evals.scenarios.arm import simulate_arm_suite
+from hexar.events import read_recording
 from tests.agent.helpers import converse, real_module_run, real_nav2_run
 
 
@@ -134,7 +134,8 @@ def test_the_persons_wait_and_who_made_it(suite: Path) -> None:
 
 
 def test_back_in_a_room_after_the_failure(arm: Path) -> None:
-    (back,) = converse(arm / "armfile_out_of_reach_3", "Did the robot end up back in the dining room after the failure?")
+    (back,) = converse(arm / "armfile_out_of_reach_3",
+                       "Did the robot end up back in the dining room after the failure?")
     assert str(back["answer"]).startswith("Yes. In my own recovery task, I got to the dining room at ")
 
 
