@@ -33,7 +33,7 @@ from hexar.explainers.stack import bringup_findings, stack_catalogue
 from hexar.explainers.stack.bringup import LAUNCH_ANY, LAUNCH_NAV, PROCESS_SUFFIX, BringupFinding
 from hexar.explainers.stack.catalogue import StackEntry
 from hexar.explainers.stack.loader import loader_failure
-from hexar.explainers.stack.middleware import fastdds_meaning
+from hexar.explainers.stack.middleware import dropped_messages, dropped_said, fastdds_meaning
 from hexar.explainers.stack.middleware import text as dds_text
 
 BRINGUP = "navigation.bringup_failure"
@@ -350,37 +350,11 @@ def with_last_error(found: Finding, raw: list[LogLine], run: Run) -> Finding:
         note = quote_last_error(errors, gave_up=run.outcome == "failed")
         dropped = dropped_messages(raw, errors[-1].t)
         if dropped:
-            note += f"; {dropped_said(dropped, raw)}"
+            note += f"; before it, {dropped_said(dropped, raw)}"
             found.evidence.append(Evidence.of_log(found.cause, dropped[0]))
         found.notes.append(note)
         found.evidence.append(Evidence.of_log(found.cause, errors[-1]))
     return found
-
-
-def dropped_messages(lines: list[LogLine], until: int) -> list[LogLine]:
-    """Fast DDS's lines, up to `until`, that say a message was not taken for want of memory
-    (explainers/stack/middleware.py)."""
-    from hexar.explainers.stack.middleware import PAYLOAD, text
-
-    return [ln for ln in lines if ln.t <= until and text(ln).startswith(PAYLOAD)]
-
-
-def dropped_said(dropped: list[LogLine], lines: list[LogLine]) -> str:
-    """'before it, my DDS middleware ... ("Failed to resize the payload", 20 times from 13:33:03, right after
-    map_server's "publishing map 8000x8000 ...")'."""
-    from hexar.explainers.stack.middleware import PAYLOAD, fastdds_meaning
-
-    first = dropped[0]
-    before = next((ln for ln in reversed(lines) if ln.t <= first.t and ln is not first and ln.name
-                   and not text_of_dds(ln) and first.t - ln.t <= 1_000_000_000), None)
-    after = (f", right after {before.name}'s \"{' '.join(before.msg.split())[:80]}\"" if before is not None else "")
-    times = f"{len(dropped)} times from" if len(dropped) > 1 else "at"
-    return f"before it, {fastdds_meaning(first)} (\"{PAYLOAD}\", {times} {clock(first.t)}{after})"
-
-
-def text_of_dds(line: LogLine) -> bool:
-    """A line Fast DDS printed ("[RTPS_HISTORY Error] … -> Function …")."""
-    return line.msg.startswith("[RTPS") or line.msg.startswith("[DDS")
 
 
 def _warns(line: LogLine) -> bool:

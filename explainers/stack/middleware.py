@@ -16,7 +16,7 @@ from __future__ import annotations
 import re
 from collections.abc import Sequence
 
-from hexar.events.records import WARN, LogLine
+from hexar.events.records import WARN, LogLine, clock
 from hexar.explainers.stack.catalogue import stack_catalogue
 
 NETWORK = "stack.network"
@@ -220,3 +220,19 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
                 "FASTDDS_DEFAULT_PROFILES_FILE; Fast DDS prints each parse error before this line.")
     return (f"my DDS middleware reported a problem that kept my node from working with the others: '{words[:160]}'",
             "Read the middleware's lines around it (Fast DDS and Cyclone DDS print their errors on stderr).")
+
+
+def dropped_messages(lines: list[LogLine], until: int) -> list[LogLine]:
+    """Fast DDS's lines, up to `until`, that say a message was not taken for want of memory (PAYLOAD)."""
+    return [ln for ln in lines if ln.t <= until and text(ln).startswith(PAYLOAD)]
+
+
+def dropped_said(dropped: list[LogLine], lines: list[LogLine]) -> str:
+    """'my DDS middleware … ("Failed to resize the payload", 20 times from 13:33:03.387, right after map_server's
+    "publishing map 8000x8000 …")': what the first of `dropped` means, and the named line just before it."""
+    first = dropped[0]
+    before = next((ln for ln in reversed(lines) if ln.t <= first.t and ln is not first and ln.name
+                   and not _FASTDDS.match(ln.msg.strip()) and first.t - ln.t <= 1_000_000_000), None)
+    after = (f", right after {before.name}'s \"{' '.join(before.msg.split())[:80]}\"" if before is not None else "")
+    times = f"{len(dropped)} times from" if len(dropped) > 1 else "at"
+    return f"{fastdds_meaning(first)} (\"{PAYLOAD}\", {times} {clock(first.t)}{after})"
