@@ -13,7 +13,8 @@ plain regex matching from misreading free text:
   was", "confirmed that they had") and state the cause only when negated, so for them the flip goes the other way.
 - longest match: "no one confirmed" is a phrasing of `ask_human.not_confirmed`; the shorter "no one" inside it
   must not also count as `ask_human.nobody_detected`.
-- a log line quoted verbatim, “[node] …”, is the log's words: none of them is the answer's claim.
+- a log line quoted verbatim, “[node] …”, is the log's words: none of them is the answer's claim; nor are the words
+  of a qualified type name the answer cites ("opennav_docking::SimpleChargingDock").
 
 Besides causes, three claims about the run that no cause id names but that annotators count as incorrect facts
 when untrue: blaming the plan, saying the task failed, and saying nothing went wrong.
@@ -47,6 +48,9 @@ AFTER_DENIAL = re.compile(
 # A log line an answer quotes verbatim, “[node] …” (explainers/module_explainer.py's verbatim): the log's words, not
 # the answer's claim ("operation time out" on a lidar's line is no text-to-speech timeout).
 QUOTED_LOG = re.compile(r"“\[[^\]\n]*\] [^”]*”")
+# A qualified name the answer cites, a plugin or class type ("opennav_docking::SimpleChargingDock",
+# "nav2_navfn_planner/NavfnPlanner"): its words name a thing, they state nothing ("Charging" is no charger)
+QUALIFIED = re.compile(r"\b[A-Za-z_]\w*(?:::[A-Za-z_]\w*)+\b|\b[a-z_][a-z0-9_]*(?:/[A-Z]\w*)\b")
 CLAUSE_END = re.compile(r"[.;:!?()\n]")
 WINDOW_WORDS = 3
 
@@ -140,6 +144,7 @@ def _shadowed(m: Match, others: list[Match]) -> bool:
 
 def read_claims(text: str) -> Claims:
     text = QUOTED_LOG.sub(lambda m: " " * len(m[0]), text)  # same length: match offsets stay the answer's
+    text = QUALIFIED.sub(lambda m: " " * len(m[0]), text)
     found = list(_raw_matches(text))
     kept = tuple(m for m in found if not _shadowed(m, found))
     affirmed = frozenset(m.claim for m in kept if m.affirmed)

@@ -32,8 +32,34 @@ def plugin_reading(text: str) -> str:
             sep, right = ("::", "/") if "::" in asked else ("/", "::")
             return (f"the plugin type asked for, {asked}, is written with '{sep}' where its plugin description "
                     f"declares it with '{right}' ({other}): write {other} in the parameter that names it")
-    near = difflib.get_close_matches(asked, declared, n=1, cutoff=CLOSE)
+    near = [t for t in difflib.get_close_matches(asked, declared, n=3, cutoff=CLOSE) if _misspelt(asked, t)]
     if near:
         return (f"the plugin type asked for, {asked}, is not among the types its plugin descriptions declare; the "
                 f"nearest declared one is {near[0]}, so the parameter that names it is most likely misspelt")
+    if declared and m["declared"].rstrip().endswith(("...", "…")):
+        return ""  # the list was cut short where it was copied: the type may be among the rest
+    if declared:
+        shown = ", ".join(declared[:6]) + (", …" if len(declared) > 6 else "")
+        return (f"the plugin type asked for, {asked}, is not among the types its plugin descriptions declare "
+                f"({shown}): the package that would declare it is not installed in this version, or the parameter "
+                "names another type")
     return ""
+
+
+def _misspelt(asked: str, declared: str) -> bool:
+    """One or two letters apart, and not a longer name of its own ("SmacPlanner" and "SmacPlanner2D", "SmacPlanner"
+    and "SmacPlannerHybrid" are different plugins: what one adds begins a word or a number of its own)."""
+    short, long_ = sorted((asked, declared), key=len)
+    if long_.startswith(short) and long_[len(short):][:1].isupper() | long_[len(short):][:1].isdigit():
+        return False
+    return _distance(asked, declared) <= 2
+
+
+def _distance(a: str, b: str) -> int:
+    """Levenshtein's edit distance."""
+    row = list(range(len(b) + 1))
+    for i, ca in enumerate(a, 1):
+        prev, row[0] = row[0], i
+        for j, cb in enumerate(b, 1):
+            prev, row[j] = row[j], min(row[j] + 1, row[j - 1] + 1, prev + (ca != cb))
+    return row[-1]

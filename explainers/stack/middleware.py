@@ -54,7 +54,7 @@ def fastdds_meaning(line: LogLine) -> str:
     m = _FASTDDS.match(line.msg.strip().splitlines()[0] if line.msg.strip() else "")
     category = m["category"] if m else ""
     if words.startswith(PAYLOAD):
-        return ("my DDS middleware (Fast DDS) could not allocate memory for a message larger than the buffers it "
+        return ("my DDS middleware (Fast DDS) ran out of memory for a message larger than the buffers it "
                 "held (its realloc failed), so that message was not taken: the node it was for never got it")
     if words.startswith(_SHM) or (category == "RTPS_MSG_OUT" and line.msg.rstrip().endswith("Function init")):
         return ("my DDS middleware (Fast DDS) could not set up its shared-memory transport (its segment under "
@@ -73,8 +73,6 @@ def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tupl
             continue
         if _CYCLONE_CONFIG_AT in line.msg and _CYCLONE_CONFIG.match(text(line)):
             return line, CAUSES[CONFIGURATION]
-        if text(line).startswith(PAYLOAD):
-            return line, CAUSES[NETWORK]
         entry = cat.match(line.msg)
         if entry is not None and entry.cause in CAUSES:
             return line, CAUSES[entry.cause]
@@ -171,10 +169,6 @@ def middleware_words(line: LogLine) -> tuple[str, str]:
         return (f"my DDS middleware (Cyclone DDS) could not send to {to}: the network link or interface it sends on "
                 "went away while it ran, so the other computer stopped hearing my node",
                 "Check the link (cable, Wi-Fi, ip link) of the computer that logged it; DDS resumes once it is up.")
-    if words.startswith(PAYLOAD):
-        return (f"{fastdds_meaning(line)} (\"{PAYLOAD}\")",
-                "Check the memory the process may use (free memory, ulimit -v, a container's memory limit) against "
-                "the size of the messages it sends or receives, or send smaller ones (a coarser map, fewer points).")
     if (m := _OVERSIZE.search(words)) is not None:
         # ddsi_transmit.c:825@releases/11.0.x: a sample over the configured maximum is dropped by its own writer
         return (f"my DDS middleware (Cyclone DDS) could not send a message: at {m['size']} bytes it was larger than "

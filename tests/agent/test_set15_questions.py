@@ -103,7 +103,7 @@ def test_fast_dds_lines_mean_what_its_source_says(tmp_path: Path) -> None:
     (why,) = converse(run, "Why did the planner never receive the map even though map_server published it?")
     text = str(why["answer"])
     assert "the last error before I gave up came from planner: 'no map received for 4 s, cannot plan'" in text
-    assert "before it, my DDS middleware (Fast DDS) could not allocate memory for a message larger than the buffers " \
+    assert "before it, my DDS middleware (Fast DDS) ran out of memory for a message larger than the buffers " \
            "it held" in text
     assert 'right after map_server\'s "publishing map 8000x8000 at 0.05 m/cell"' in text
     shm = _run("kilted-shm-too-small-container", tmp_path / "shm")
@@ -185,3 +185,20 @@ def test_fast_dds_shared_memory_errors_beside_a_quiet_run(tmp_path: Path) -> Non
     assert text.startswith("As far as my recording shows, my navigation went normally")
     assert "My DDS middleware logged errors on the way (“Failed to create segment fastdds_16eae69b8164549a: No such " \
            "file or directory” at 13:33:13.223): it could not set up its shared-memory transport" in text
+
+
+def test_a_plugin_not_declared_here_is_no_misspelling_and_its_name_claims_nothing(tmp_path: Path) -> None:
+    from hexar.claims import read_claims
+
+    hybrid = _run("nav2-3473-foxy-smac-hybrid-name-not-in-foxy", tmp_path / "hybrid")
+    (why,) = converse(hybrid, "why didn't you get there?")
+    text = str(why["answer"])
+    # SmacPlannerHybrid is not SmacPlanner misspelt: a plugin of its own that this version does not declare
+    assert "misspelt" not in text
+    assert "the package that would declare it is not installed in this version, or the parameter names another " \
+           "type" in text
+    dock = _run("kilted-nav2-dock-plugin-misspelt", tmp_path / "dock")
+    (dock_why,) = converse(dock, "why didn't you get there?")
+    assert "the nearest declared one is opennav_docking::SimpleChargingDock" in str(dock_why["answer"])
+    # "Charging" inside a plugin's type names no charger
+    assert "navigation.charging" not in read_claims(str(dock_why["answer"])).affirmed
