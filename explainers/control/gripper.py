@@ -30,8 +30,8 @@ def open_goal(explainer: str, task: Task, logs: list[LogLine], end: int) -> Expl
     if began is None:
         return None
     text = (f"My gripper's controller ({began.name or 'its node'}) received a goal at {hms(began.t)} "
-            f"({verbatim(began)}), and my log shows no end of it: the gripper action controller logs a goal's "
-            "success or stall at DEBUG level only, so a log at INFO cannot show whether the gripper reached its "
+            f"({verbatim(began)}), and my log does not show what became of it: the gripper action controller logs a "
+            "goal's success or stall at DEBUG level only, so a log at INFO cannot tell whether the gripper reached its "
             "position.")
     evidence = [Evidence.of_log(CAUSE, began)]
     # the spawner's "Configured and activated <controller>" (controller_manager/spawner.py): it came up first
