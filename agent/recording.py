@@ -42,7 +42,9 @@ TOPIC_DATA = re.compile(
     r"\b(anything|any messages?|any data) (on|from|in) (the )?" + _NAMED + r"\b|"
     r"\b(arriv\w*|publish\w*|come in|came in|received?|sent) (on|in|at|to) (the )?" + _NAMED + r"\b|"
     r"\bany " + _NAMED + r"( or " + _NAMED + r")?( data| messages?)? (in|on) (the |this |my )?(bag|recording)\b|"
-    r"\b(ever )?(get|got|receive|received) (a |any )?" + _NAMED + r"( messages?)?\b")
+    r"\b(ever )?(get|got|receive|received) (a |any )?" + _NAMED + r"( messages?)?\b|"
+    # "did the driver publish any scans before it stopped?"
+    r"\b(did|has|had) (the |my |your |a |any )?[a-z_]+ (ever )?(publish|send|output) (a |any )?" + _NAMED + r"s?\b")
 
 
 _WHY = re.compile(r"^(and |so |but |ok,? )?why\b")
@@ -62,7 +64,7 @@ def clock_kind(q: str) -> str | None:
 def _asked_topics(q: str) -> list[str]:
     """The topic names a question asks about, as a recording names them: "/scan", or a word for one ("lidar")."""
     found: list[str] = []
-    for m in re.finditer(r"(?<![a-z0-9_])" + _NAMED + r"(?![a-z0-9_])", q):
+    for m in re.finditer(r"(?<![a-z0-9_])" + _NAMED + r"s?(?![a-z0-9_])", q):
         word = m.group(1)
         name = word.strip("/") if word.startswith("/") else _TOPIC_WORDS[word]
         if name not in found:

@@ -202,3 +202,10 @@ def test_a_plugin_not_declared_here_is_no_misspelling_and_its_name_claims_nothin
     assert "the nearest declared one is opennav_docking::SimpleChargingDock" in str(dock_why["answer"])
     # "Charging" inside a plugin's type names no charger
     assert "navigation.charging" not in read_claims(str(dock_why["answer"])).affirmed
+
+
+def test_whether_a_driver_published_any_scans(tmp_path: Path) -> None:
+    run = _run("ydlidar-ros2-4-x4-wrong-baud-rate", tmp_path / "run")
+    (scans,) = converse(run, "Did the driver publish any scans before it stopped?")
+    assert str(scans["answer"]).startswith("My recording holds no /scan: it has only /rosout, so whether anything was "
+                                           "published on /scan it cannot tell.")
