@@ -19,7 +19,8 @@ from hexar.explainers.stack.signals import ended_by
 _ASKED = re.compile(r"^(and |so |but )?what (does|do|did|is) (the |that |this |a |an )?.+? (mean|means|meant|indicate|"
                     r"signify)\b|^(and |so )?what('s| is) the meaning of\b")
 # "why did controller_server crash with 'double free or corruption'?": what the quoted last words mean
-_CRASHED_WITH = re.compile(r"^(and |so |but )?why did .{1,60}? (crash|die|abort|segfault)(ed)? (with|on|after "
+# (not "why did controller_server abort with 'Failed to make progress'?": a goal's abort, which the finding explains)
+_CRASHED_WITH = re.compile(r"^(and |so |but )?why did .{1,60}? (crash|die|segfault)(ed)? (with|on|after "
                            r"printing|printing|saying)\b.*['\"“]")
 # glibc's malloc_printerr texts (malloc/malloc.c): its allocator found the heap corrupted and aborts the process
 _GLIBC_HEAP = re.compile(r"double free or corruption|malloc\(\): |free\(\): invalid|realloc\(\): invalid|"

@@ -177,7 +177,10 @@ REACHED = re.compile(r"^(and |so |but |ok |okay )?(did|have) (you|the robot|it) 
                      # "did you go to the wrong room?" asks about the plan, "... to the person?" about the help skill
                      r"(?!((the|your|my|a|an) )?(wrong|right|correct|same|other|another|person|people|someone|"
                      r"somebody|anyone|human|them|"
-                     r"him|her)\b)(?P<place>[a-z][a-z ]*?)( (after|once|when) [a-z ]+)?\W*$|"
+                     r"him|her)\b)"
+                     # "did the robot reach its frontier goal?" asks whether the goal was reached, not a place
+                     r"(?!([a-z]+ ){0,3}(goals?|destinations?|targets?|waypoints?)\b)"
+                     r"(?P<place>[a-z][a-z ]*?)( (after|once|when) [a-z ]+)?\W*$|"
                      r"^(and |so |but |ok |okay )?(did|have) you (ever )?(get|got|make it|made it|arrive|arrived) "
                      r"(there|back)\W*$")
 
