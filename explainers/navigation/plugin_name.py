@@ -32,7 +32,10 @@ def plugin_reading(text: str) -> str:
             sep, right = ("::", "/") if "::" in asked else ("/", "::")
             return (f"the plugin type asked for, {asked}, is written with '{sep}' where its plugin description "
                     f"declares it with '{right}' ({other}): write {other} in the parameter that names it")
-    near = [t for t in difflib.get_close_matches(asked, declared, n=3, cutoff=CLOSE) if _misspelt(asked, t)]
+    # a type asked for without its package ("BaseObstaclCritic": DWB adds dwb_critics::) is read against the
+    # declared types' own names
+    names = {re.split(r"::|/", t)[-1] if not re.search(r"::|/", asked) else t: t for t in declared}
+    near = [names[t] for t in difflib.get_close_matches(asked, list(names), n=3, cutoff=CLOSE) if _misspelt(asked, t)]
     if near:
         return (f"the plugin type asked for, {asked}, is not among the types its plugin descriptions declare; the "
                 f"nearest declared one is {near[0]}, so the parameter that names it is most likely misspelt")

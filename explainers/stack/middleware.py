@@ -57,10 +57,14 @@ def fastdds_meaning(line: LogLine) -> str:
         return ("my DDS middleware (Fast DDS) ran out of memory for a message larger than the buffers it "
                 "held (its realloc failed), so that message was not taken: the node it was for never got it")
     if words.startswith(_SHM) or (category == "RTPS_MSG_OUT" and line.msg.rstrip().endswith("Function init")):
-        return ("my DDS middleware (Fast DDS) could not set up its shared-memory transport (its segment under "
-                "/dev/shm could not be made: the system's words say why, \"No such file or directory\" where there "
-                "is no /dev/shm), and went on with its other transports (UDP by default): nodes still reach each "
-                "other, over the network stack instead of shared memory")
+        # the system's words for why, after the segment's name ("…: Read-only file system"), or the whole line
+        why = words.split(": ", 1)[1] if words.startswith("Failed to create segment") and ": " in words else \
+            words if category == "RTPS_MSG_OUT" else ""
+        made = f"its segment under /dev/shm could not be made: \"{why}\"" if why else \
+            "its segment under /dev/shm could not be made"
+        return (f"my DDS middleware (Fast DDS) could not set up its shared-memory transport ({made}), and went on "
+                "with its other transports (UDP by default): nodes still reach each other, over the network stack "
+                "instead of shared memory")
     return ""
 
 
