@@ -10,7 +10,7 @@ import re
 
 from hexar.agent.logs import line_evidence, quote
 from hexar.events.log import EventLog
-from hexar.events.records import LogLine, hms
+from hexar.events.records import ERROR, LogLine, hms
 from hexar.events.tasks import Task
 from hexar.explainers.base import Explanation
 
@@ -50,7 +50,7 @@ def goal_sent(question: str, log: EventLog, task: Task) -> Explanation:
         return Explanation(explainer="planner", text=text, causes=["planner.plan_ok"],
                            evidence=line_evidence([], task))
     if _NONE in via:
-        errors = [ln for ln in log.logs if ln.t >= task.created and ln.level >= 40][:1]
+        errors = [ln for ln in log.logs if ln.t >= task.created and ln.level >= ERROR][:1]
         text = ("No line of my log shows a goal sent or received (no navigator's \"Begin navigating …\", no action "
                 "server's accepted goal, no goal status): I took the task from what my nodes logged, not from a "
                 "goal")
