@@ -86,8 +86,7 @@ def _speaker(line: LogLine) -> str:
     if line.name:
         return line.name
     exc = python_exception(line)
-    program = exc.where.rsplit("(", 1)[-1].split(",", 1)[0] if exc is not None and exc.where else ""
-    return f"a Python program of no node name ({program})" if program else "a node"
+    return f"a Python program of no node name ({exc.file})" if exc is not None and exc.file else "a node"
 
 
 _PLURAL = {"error": "errors", "warning": "warnings", "error or warning": "errors or warnings"}

@@ -249,12 +249,12 @@ def bring_up(logs: list[LogLine]) -> BringUp | None:
         reason = transition_reason(stack.line, logs) or ros2_run_said(stack.line, logs)
         return BringUp(reason.t if reason else stack.line.t, "failed", last, stack.line.msg)
     first = next((ln for ln in logs if starting(ln)), None)
-    node = next((n for ln in logs if ln.level >= ERROR and (n := launch_transition(ln))), None)
-    if node is not None:
+    turned = next((ln for ln in logs if ln.level >= ERROR and launch_transition(ln)), None)
+    if turned is not None:
         # launch_ros asked a node it started for a lifecycle transition and the node refused, saying nothing of why
         # (a reason logged before it is a stack cause, above): the start failed there all the same, from the node's
         # first line on
-        turned = next(ln for ln in logs if ln.level >= ERROR and launch_transition(ln))
+        node = launch_transition(turned)
         own = next((ln.t for ln in logs if ln.name.replace(".", "/").strip("/") == node), turned.t)
         return BringUp(min(own, turned.t), "failed", last, turned.msg)
     failed = next((ln for i, ln in enumerate(logs) if _error(ln) and (_shown(ln, logs[:i], logs) or _alone(ln, logs))),

@@ -194,7 +194,7 @@ def launch_transition(line: LogLine) -> str:
 def _unexplained_request(line: LogLine, lines: Sequence[LogLine]) -> bool:
     """launch_ros' "Failed to make transition" with no reason before it: the transition failed, but the lines do not
     show its cause."""
-    return _LAUNCH_TRANSITION.search(line.msg) is not None and transition_reason(line, lines) is None
+    return bool(launch_transition(line)) and transition_reason(line, lines) is None
 
 
 def transition_reason(line: LogLine, lines: Sequence[LogLine]) -> LogLine | None:

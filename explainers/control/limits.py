@@ -12,6 +12,7 @@ failed because it asked for a position the robot description does not allow.
 from __future__ import annotations
 
 import re
+from collections.abc import Iterator
 from dataclasses import dataclass
 
 from hexar.events.records import LogLine, hms
@@ -37,16 +38,22 @@ class Beyond:
     clamped: LogLine
 
 
+def _clamped(lines: list[LogLine]) -> Iterator[tuple[re.Match[str], float, float, LogLine, LogLine]]:
+    """Each clamped command of a joint whose limits were logged: (the clamp's match, the joint's low and high
+    position limits, the line that logged them, the clamp's line)."""
+    limits = {m["joint"]: (float(m["lo"]), float(m["hi"]), ln) for ln in lines if (m := _LIMITS.match(ln.msg))}
+    for ln in lines:
+        m = _CLAMPED.match(ln.msg)
+        if m is not None and m["joint"] in limits:
+            low, high, limit_line = limits[m["joint"]]
+            yield m, low, high, limit_line, ln
+
+
 def beyond_limits(lines: list[LogLine]) -> Beyond | None:
     """The clamped command that lies furthest beyond its joint's logged position limits (by more than a rounding's
     EPSILON), else None."""
-    limits = {m["joint"]: (float(m["lo"]), float(m["hi"]), ln) for ln in lines if (m := _LIMITS.match(ln.msg))}
     found: tuple[float, Beyond] | None = None
-    for ln in lines:
-        m = _CLAMPED.match(ln.msg)
-        if m is None or m["joint"] not in limits:
-            continue
-        low, high, limit_line = limits[m["joint"]]
+    for m, low, high, limit_line, ln in _clamped(lines):
         command = float(m["command"])
         excess = max(low - command, command - high)
         if excess > EPSILON and (found is None or excess > found[0]):
@@ -84,12 +91,7 @@ _ACTUAL = re.compile(rf"actual: \[Joint: '[^']+', position: (?P<actual>{_N})")
 def slowed(lines: list[LogLine]) -> Slowed | None:
     """The first clamped command whose position lies inside its joint's logged position limits: the limiter held
     back how fast (or how hard) the joint was moved towards it, not where it went."""
-    limits = {m["joint"]: (float(m["lo"]), float(m["hi"])) for ln in lines if (m := _LIMITS.match(ln.msg))}
-    for ln in lines:
-        m = _CLAMPED.match(ln.msg)
-        if m is None or m["joint"] not in limits:
-            continue
-        low, high = limits[m["joint"]]
+    for m, low, high, _, ln in _clamped(lines):
         command = float(m["command"])
         if low - EPSILON <= command <= high + EPSILON:
             a = _ACTUAL.search(ln.msg)

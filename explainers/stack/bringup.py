@@ -331,6 +331,8 @@ def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:
         if m is not None:
             waits.setdefault((line.name, m["service"]), []).append(line)
     out = []
+    # launch's "process started with pid [N]", under the process's name ("map_server-2")
+    started = [PROCESS_SUFFIX.sub("", ln.name) for ln in ordered if ln.msg.startswith("process started with pid")]
     for (who, service), said in waits.items():
         last = said[-1]
         moved_on = any(ln.t > last.t and ln.name == who and not ln.msg.strip().endswith(f"{service}...")
@@ -340,8 +342,6 @@ def unserved_waits(ordered: list[LogLine]) -> list[BringupFinding]:
         span = (last.t - said[0].t) / 1e9
         over = f" over {span:.0f} s" if span >= 1 else ""
         node = service.rsplit("/", 2)[-2]
-        # launch's "process started with pid [N]", under the process's name ("map_server-2")
-        started = [PROCESS_SUFFIX.sub("", ln.name) for ln in ordered if ln.msg.startswith("process started with pid")]
         unlaunched = tuple(started) if started and node not in started else ()
         out.append(BringupFinding("lifecycle_wait", node, last.t, last, None,
                                   f"'{service}', {len(said)} times{over}", unlaunched=unlaunched))

@@ -50,9 +50,7 @@ _SHM = ("Unable to Register SHM Transport", "Failed to create segment")
 def fastdds_meaning(line: LogLine) -> str:
     """What one of Fast DDS's lines about a message or its shared-memory transport means, from its source; ""
     for any other line."""
-    words = text(line)
-    m = _FASTDDS.match(line.msg.strip().splitlines()[0] if line.msg.strip() else "")
-    category = m["category"] if m else ""
+    category, words = _decorated(line)
     if words.startswith(PAYLOAD):
         return ("my DDS middleware (Fast DDS) ran out of memory for a message larger than the buffers it "
                 "held (its realloc failed), so that message was not taken: the node it was for never got it")
@@ -85,9 +83,14 @@ def middleware_line(lines: Sequence[LogLine], before: int | None = None) -> tupl
 
 def text(line: LogLine) -> str:
     """The middleware's own words, without Fast DDS's category and function decoration, first line only."""
+    return _decorated(line)[1]
+
+
+def _decorated(line: LogLine) -> tuple[str, str]:
+    """(Fast DDS's category, or "" for a line without its decoration; the words, first line only)."""
     first = line.msg.strip().splitlines()[0] if line.msg.strip() else ""
     m = _FASTDDS.match(first)
-    return (m["text"] if m else first).strip()
+    return (m["category"], m["text"].strip()) if m else ("", first.strip())
 
 
 def _quoted(words: str, n: int = 0) -> str:

@@ -51,6 +51,7 @@ class PyException:
     type: str  # the class as printed: "ValueError", "rclpy.exceptions.InvalidParameterTypeException"
     text: str  # its message, with the lines it went on over
     where: str  # the innermost frame of the node's own code: "tick (/home/robot/ws/scan_filter.py, line 12)"
+    file: str = ""  # that frame's file: "/home/robot/ws/scan_filter.py"
 
     @property
     def name(self) -> str:
@@ -72,7 +73,7 @@ def python_exception(line: LogLine) -> PyException | None:
     mine = [f for f in own if not _LIBRARY.search(f["file"])] or own
     where = f"{mine[-1]['function']} ({mine[-1]['file']}, line {mine[-1]['line']})" if mine else ""
     text = " ".join([(m["text"] or "").strip(), *(x.strip() for x in more.splitlines() if x.strip())]).strip()
-    return PyException(m["type"], text, where)
+    return PyException(m["type"], text, where, mine[-1]["file"] if mine else "")
 
 
 def exception_quoted(line: LogLine, exc: PyException, most: int = 200) -> str:
